@@ -1,0 +1,497 @@
+"""Aircraft definition: validated, frozen dataclasses for the paper's topology.
+
+The aircraft is the flexible multibody system of Tuzcu & Nguyen (2014), "Modeling Flexible Aircraft":
+a fuselage beam clamped at the body origin o, and right/left wing, right/left horizontal stabilizer and
+vertical stabilizer beams clamped to the fuselage at their roots. Every beam carries one bending
+displacement along z_i and one torsion about x_i (its elastic axis). Lumped masses (engines, fuel, gear,
+payload) ride on a component at a station.
+
+All quantities are SI and expressed in **body axes** (x forward, y right, z down, origin o); the TOML
+loader (:mod:`flexsim.aircraft.toml_loader`) converts other input frames. Validation happens on
+construction: a malformed definition raises :class:`~flexsim.errors.AircraftDefinitionError` naming the
+field, the value and what is allowed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Iterable
+
+import numpy as np
+
+from flexsim.errors import AircraftDefinitionError
+from flexsim.structure.kinematics import dcm_321
+from flexsim.structure.shapes import MAX_MODES
+
+__all__ = [
+    "COMPONENT_NAMES",
+    "SectionTable",
+    "ControlSurface",
+    "Component",
+    "LumpedMass",
+    "Engine",
+    "Aircraft",
+]
+
+#: The paper's components, in the order of the global velocity vector (eq. 9).
+COMPONENT_NAMES = ("fuselage", "right_wing", "left_wing", "right_htail", "left_htail", "vtail")
+
+#: Control surface kind allowed on each component (paper: ailerons antisymmetric, elevator symmetric).
+_SURFACE_KIND = {
+    "right_wing": "aileron",
+    "left_wing": "aileron",
+    "right_htail": "elevator",
+    "left_htail": "elevator",
+    "vtail": "rudder",
+}
+
+
+def _plain(value: object) -> object:
+    """numpy values as plain Python numbers/lists, so messages read ``[1.5, 1.4]``."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value
+
+
+def _fail(where: str, value: object, allowed: str) -> None:
+    raise AircraftDefinitionError(f"{where} = {_plain(value)!r}: {allowed}")
+
+
+def _frozen_array(where: str, value: object, shape: tuple[int, ...] | None = None) -> np.ndarray:
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        _fail(where, value, "must be a number or an array of numbers")
+    if shape is not None and arr.shape != shape:
+        _fail(where, value, f"must have shape {shape}")
+    if not np.all(np.isfinite(arr)):
+        _fail(where, value, "must be finite")
+    arr.setflags(write=False)
+    return arr
+
+
+def _check_scalar(where: str, value: object, lo: float, hi: float, lo_open: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+        _fail(where, value, "must be a number")
+    v = float(value)
+    ok = (v > lo if lo_open else v >= lo) and v <= hi and np.isfinite(v)
+    if not ok:
+        bracket = "(" if lo_open else "["
+        _fail(where, value, f"must be in {bracket}{lo}, {hi}]")
+    return v
+
+
+@dataclass(frozen=True, eq=False)
+class SectionTable:
+    """Spanwise (or lengthwise) tables of a beam's section properties, linear between stations.
+
+    Attributes
+    ----------
+    station_m : ndarray, shape (k,)
+        Stations x_i along the elastic axis, strictly increasing from 0 (root) to the length [m].
+    mass_kg_per_m : ndarray, shape (k,)
+        Mass per unit length [kg/m], >= 0.
+    cg_offset_m : ndarray, shape (k,)
+        Offset of the section centre of mass from the elastic axis along the streamwise chord, positive
+        towards the trailing edge [m] (Theodorsen's x_theta * b). Must be 0 for a component without chord.
+    torsional_inertia_kg_m : ndarray, shape (k,)
+        Mass moment of inertia per unit length about the elastic axis [kg m^2/m]; must be at least
+        mass * cg_offset^2 (it includes the offset by the parallel-axis theorem).
+    ei_nm2 : ndarray, shape (k,)
+        Bending rigidity EI_i for bending along z_i [N m^2] (paper eq. 14).
+    gj_nm2 : ndarray, shape (k,)
+        Torsional rigidity GJ_i [N m^2] (paper eq. 14).
+    chord_m : ndarray, shape (k,)
+        Streamwise chord of the section through the station [m] (0 for the fuselage).
+    ea_fraction : ndarray, shape (k,)
+        Elastic-axis position aft of the leading edge as a fraction of the chord [-]; Theodorsen's
+        a = 2 ea_fraction - 1 (the paper's GTM: a = 0.25, ea_fraction = 0.625).
+    """
+
+    station_m: np.ndarray
+    mass_kg_per_m: np.ndarray
+    cg_offset_m: np.ndarray
+    torsional_inertia_kg_m: np.ndarray
+    ei_nm2: np.ndarray
+    gj_nm2: np.ndarray
+    chord_m: np.ndarray
+    ea_fraction: np.ndarray
+    where: str = field(default="sections", repr=False)
+
+    def __post_init__(self) -> None:
+        w = self.where
+        names = (
+            "station_m",
+            "mass_kg_per_m",
+            "cg_offset_m",
+            "torsional_inertia_kg_m",
+            "ei_nm2",
+            "gj_nm2",
+            "chord_m",
+            "ea_fraction",
+        )
+        arrays = {}
+        for name in names:
+            arr = _frozen_array(f"{w}.{name}", getattr(self, name))
+            if arr.ndim != 1:
+                _fail(f"{w}.{name}", getattr(self, name), "must be a 1-D list of numbers")
+            arrays[name] = arr
+        k = arrays["station_m"].size
+        if k < 2:
+            _fail(f"{w}.station_m", getattr(self, "station_m"), "needs at least two stations (root and tip)")
+        for name, arr in arrays.items():
+            if arr.size != k:
+                _fail(f"{w}.{name}", list(arr), f"must have {k} entries, one per station")
+        st = arrays["station_m"]
+        if st[0] != 0.0:
+            _fail(f"{w}.station_m[0]", st[0], "must be 0 (the root)")
+        bad = np.flatnonzero(np.diff(st) <= 0.0)
+        if bad.size:
+            i = int(bad[0]) + 1
+            _fail(f"{w}.station_m[{i}]", float(st[i]), f"must be > station_m[{i - 1}] = {st[i - 1]} (strictly increasing)")
+        for name, lo in (("mass_kg_per_m", 0.0), ("torsional_inertia_kg_m", 0.0), ("chord_m", 0.0)):
+            bad = np.flatnonzero(arrays[name] < lo)
+            if bad.size:
+                i = int(bad[0])
+                _fail(f"{w}.{name}[{i}]", float(arrays[name][i]), f"must be >= {lo}")
+        for name in ("ei_nm2", "gj_nm2"):
+            bad = np.flatnonzero(arrays[name] <= 0.0)
+            if bad.size:
+                i = int(bad[0])
+                _fail(f"{w}.{name}[{i}]", float(arrays[name][i]), "must be > 0")
+        ea = arrays["ea_fraction"]
+        bad = np.flatnonzero((ea < 0.0) | (ea > 1.0))
+        if bad.size:
+            i = int(bad[0])
+            _fail(f"{w}.ea_fraction[{i}]", float(ea[i]), "must be in [0, 1]")
+        m, e, ith = arrays["mass_kg_per_m"], arrays["cg_offset_m"], arrays["torsional_inertia_kg_m"]
+        need = m * e**2
+        bad = np.flatnonzero(ith < need * (1.0 - 1e-9))
+        if bad.size:
+            i = int(bad[0])
+            _fail(
+                f"{w}.torsional_inertia_kg_m[{i}]",
+                float(ith[i]),
+                f"must be >= mass_kg_per_m * cg_offset_m^2 = {need[i]:.6g} (inertia about the elastic axis)",
+            )
+        chordless = arrays["chord_m"] == 0.0
+        bad = np.flatnonzero(chordless & (e != 0.0))
+        if bad.size:
+            i = int(bad[0])
+            _fail(f"{w}.cg_offset_m[{i}]", float(e[i]), "must be 0 where chord_m is 0 (no chordwise direction)")
+        for name, arr in arrays.items():
+            object.__setattr__(self, name, arr)
+
+    @property
+    def length_m(self) -> float:
+        """Beam length L_i [m] (the last station)."""
+        return float(self.station_m[-1])
+
+    def at(self, name: str, x: np.ndarray) -> np.ndarray:
+        """Property ``name`` interpolated linearly at stations ``x`` [m] (shape (k,) -> (k,))."""
+        return np.interp(x, self.station_m, getattr(self, name))
+
+
+@dataclass(frozen=True, eq=False)
+class ControlSurface:
+    """A trailing-edge control surface on a lifting component (paper Fig. 2, eq. 26).
+
+    Attributes
+    ----------
+    kind : {"aileron", "elevator", "rudder"}
+    hinge_fraction : float
+        Hinge line aft of the leading edge as a fraction of the chord, in (0, 1); Peters' d = 2 f - 1.
+    start_m, end_m : float
+        Spanwise extent along the elastic axis [m], 0 <= start < end <= length.
+    """
+
+    kind: str
+    hinge_fraction: float
+    start_m: float
+    end_m: float
+
+    @property
+    def hinge_d(self) -> float:
+        """Hinge position in semichords from mid-chord, d = 2 hinge_fraction - 1 (reference 1.6)."""
+        return 2.0 * self.hinge_fraction - 1.0
+
+
+@dataclass(frozen=True, eq=False)
+class Component:
+    """One beam of the aircraft, clamped at its root (paper eqs. 1, 5-6, Table 1).
+
+    Attributes
+    ----------
+    name : str
+        One of :data:`COMPONENT_NAMES`.
+    root_m : ndarray, shape (3,)
+        Root (origin o_i of x_i y_i z_i) in body axes [m]; the fuselage root is the body origin.
+    euler_rad : ndarray, shape (3,)
+        3-2-1 angles (phi, theta, psi) from body axes to component axes [rad] (paper Table 1).
+    sections : SectionTable
+    bending_modes, torsion_modes : int
+        Numbers m and n of shape functions (0..10); both 0 when ``rigid``.
+    rigid : bool
+        True for a component carried rigidly (mass and aerodynamics, no elastic coordinates).
+    section_inertia : {"chordwise", "axisymmetric"}
+        How the torsional inertia splits into the section's rotary inertias: chordwise (airfoil,
+        J_yy = 0, J_zz = I_theta) or axisymmetric (fuselage, J_yy = J_zz = I_theta / 2).
+    control_surface : ControlSurface or None
+    sweep_rad : float or None
+        Sweep of the elastic axis Lambda_i [rad] (paper, text after eq. 27) when given explicitly;
+        None derives it from the orientation (see :attr:`sweep`).
+    """
+
+    name: str
+    root_m: np.ndarray
+    euler_rad: np.ndarray
+    sections: SectionTable
+    bending_modes: int = 2
+    torsion_modes: int = 2
+    rigid: bool = False
+    section_inertia: str = "chordwise"
+    control_surface: ControlSurface | None = None
+    sweep_rad: float | None = None
+
+    def __post_init__(self) -> None:
+        w = f"components.{self.name}"
+        if self.name not in COMPONENT_NAMES:
+            _fail("components", self.name, f"unknown component; allowed: {', '.join(COMPONENT_NAMES)}")
+        object.__setattr__(self, "root_m", _frozen_array(f"{w}.root_m", self.root_m, (3,)))
+        object.__setattr__(self, "euler_rad", _frozen_array(f"{w}.euler", self.euler_rad, (3,)))
+        for attr in ("bending_modes", "torsion_modes"):
+            v = getattr(self, attr)
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not 0 <= v <= MAX_MODES:
+                _fail(f"{w}.{attr}", v, f"must be an integer in [0, {MAX_MODES}]")
+        if not isinstance(self.rigid, bool):
+            _fail(f"{w}.rigid", self.rigid, "must be true or false")
+        if self.rigid:
+            object.__setattr__(self, "bending_modes", 0)
+            object.__setattr__(self, "torsion_modes", 0)
+        if self.section_inertia not in ("chordwise", "axisymmetric"):
+            _fail(f"{w}.section_inertia", self.section_inertia, 'must be "chordwise" or "axisymmetric"')
+        if self.section_inertia == "chordwise" and abs(self.chord_direction[0]) > np.sin(np.deg2rad(80.0)):
+            _fail(f"{w}.section_inertia", self.section_inertia, 'needs a component swept less than 80 deg from the flow; use "axisymmetric"')
+        cs = self.control_surface
+        if cs is not None:
+            allowed = _SURFACE_KIND.get(self.name)
+            if allowed is None or cs.kind != allowed:
+                _fail(f"{w}.control_surface.kind", cs.kind, f"must be {allowed!r} on {self.name}" if allowed else f"{self.name} carries no control surface")
+            _check_scalar(f"{w}.control_surface.hinge_fraction", cs.hinge_fraction, 0.0, 1.0, lo_open=True)
+            if cs.hinge_fraction >= 1.0:
+                _fail(f"{w}.control_surface.hinge_fraction", cs.hinge_fraction, "must be in (0, 1)")
+            length = self.sections.length_m
+            if not (0.0 <= cs.start_m < cs.end_m <= length * (1 + 1e-12)):
+                _fail(f"{w}.control_surface.[start_m, end_m]", [cs.start_m, cs.end_m], f"must satisfy 0 <= start_m < end_m <= length_m = {length}")
+        if self.sweep_rad is not None:
+            _check_scalar(f"{w}.sweep", self.sweep_rad, -np.pi / 2, np.pi / 2, lo_open=True)
+            object.__setattr__(self, "sweep_rad", float(self.sweep_rad))
+
+    @property
+    def length_m(self) -> float:
+        """Beam length L_i [m]."""
+        return self.sections.length_m
+
+    @property
+    def sweep(self) -> float:
+        """Sweep Lambda_i of the elastic axis [rad]: the given ``sweep_rad``, else asin(-x_i . x_body)."""
+        if self.sweep_rad is not None:
+            return self.sweep_rad
+        return float(np.arcsin(np.clip(-self.axes_in_body[0, 0], -1.0, 1.0)))
+
+    @property
+    def dcm(self) -> np.ndarray:
+        """C_i, shape (3, 3): body components -> component components (paper eq. 6, Table 1)."""
+        return dcm_321(*self.euler_rad)
+
+    @property
+    def axes_in_body(self) -> np.ndarray:
+        """Unit vectors x_i, y_i, z_i as the columns of a (3, 3) array in body components (C_i^T)."""
+        return self.dcm.T
+
+    @property
+    def is_flexible(self) -> bool:
+        """True when the component has at least one elastic coordinate."""
+        return self.bending_modes + self.torsion_modes > 0
+
+    @property
+    def chord_direction(self) -> np.ndarray:
+        """Unit vector along the streamwise chord towards the trailing edge, component axes, shape (3,).
+
+        The aerodynamic strips are streamwise (the paper's "horizontal lines on the wing", Fig. 5), so
+        chords, chordwise mass offsets and the airfoil coordinate run along body -x projected onto the
+        component's x_i y_i plane. For a swept beam it has a spanwise component sin(Lambda) along x_i;
+        unswept, it is +-y_i.
+        """
+        aft = -self.dcm[:, 0]  # body -x in component axes
+        d = np.array([aft[0], aft[1], 0.0])
+        norm = np.linalg.norm(d)
+        return d / norm if norm > 1e-9 else np.array([0.0, 1.0, 0.0])
+
+    def station_of(self, point_m: np.ndarray) -> float:
+        """Projection of a body-axes point [m] onto the elastic axis: station x_i [m]."""
+        return float((np.asarray(point_m, float) - self.root_m) @ self.axes_in_body[:, 0])
+
+
+@dataclass(frozen=True, eq=False)
+class LumpedMass:
+    """A point mass with its own inertia, attached rigidly to a component at the nearest station.
+
+    Attributes
+    ----------
+    name : str
+    component : str
+    position_m : ndarray, shape (3,)
+        Centre of mass in body axes [m].
+    mass_kg : float
+    inertia_kg_m2 : ndarray, shape (3, 3)
+        Inertia tensor about its own centre of mass, body axes [kg m^2].
+    """
+
+    name: str
+    component: str
+    position_m: np.ndarray
+    mass_kg: float
+    inertia_kg_m2: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
+    where: str = field(default="lumped_masses", repr=False)
+
+    def __post_init__(self) -> None:
+        w = f"{self.where}.{self.name}"
+        object.__setattr__(self, "position_m", _frozen_array(f"{w}.position_m", self.position_m, (3,)))
+        _check_scalar(f"{w}.mass_kg", self.mass_kg, 0.0, np.inf, lo_open=True)
+        object.__setattr__(self, "mass_kg", float(self.mass_kg))
+        inertia = np.array(self.inertia_kg_m2, dtype=float) if np.ndim(self.inertia_kg_m2) else None
+        if inertia is not None and inertia.shape == (3,):
+            inertia = np.diag(inertia)
+        inertia = _frozen_array(f"{w}.inertia_kg_m2", inertia if inertia is not None else self.inertia_kg_m2, (3, 3))
+        if not np.allclose(inertia, inertia.T) or np.linalg.eigvalsh(inertia).min() < -1e-9 * max(1.0, np.abs(inertia).max()):
+            _fail(f"{w}.inertia_kg_m2", inertia.tolist(), "must be a symmetric positive semi-definite tensor")
+        object.__setattr__(self, "inertia_kg_m2", inertia)
+
+
+@dataclass(frozen=True, eq=False)
+class Engine(LumpedMass):
+    """An engine: a lumped mass that also carries thrust along body x (paper eqs. 17, 20-24).
+
+    Attributes
+    ----------
+    max_thrust_n : float
+        Maximum thrust of this engine [N]; the total thrust T_e is shared equally by the engines.
+    """
+
+    max_thrust_n: float = 0.0
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        _check_scalar(f"{self.where}.{self.name}.max_thrust_n", self.max_thrust_n, 0.0, np.inf, lo_open=True)
+        object.__setattr__(self, "max_thrust_n", float(self.max_thrust_n))
+
+
+@dataclass(frozen=True, eq=False)
+class Aircraft:
+    """A whole aircraft definition: components, lumped masses and engines (body axes, SI).
+
+    Attributes
+    ----------
+    name : str
+    components : tuple of Component
+        In :data:`COMPONENT_NAMES` order; any component may be omitted.
+    lumped_masses : tuple of LumpedMass
+    engines : tuple of Engine
+    description : str
+    source : str
+        Where the definition came from (file path or "<python>"); used in error messages.
+    design_origin_m : ndarray, shape (3,), or None
+        For files written in a design frame (x aft, y right, z up): the body origin o in that frame
+        [m], so that results can be reported back in the file's axes.
+    """
+
+    name: str
+    components: tuple[Component, ...]
+    lumped_masses: tuple[LumpedMass, ...] = ()
+    engines: tuple[Engine, ...] = ()
+    description: str = ""
+    source: str = "<python>"
+    design_origin_m: np.ndarray | None = None
+
+    def to_design_frame(self, point_m: np.ndarray) -> np.ndarray:
+        """A body-axes point [m] in the file's design frame (x aft, y right, z up) [m]."""
+        if self.design_origin_m is None:
+            raise ValueError(f"aircraft {self.name!r} was not defined in a design frame")
+        return self.design_origin_m + np.array([-1.0, 1.0, -1.0]) * np.asarray(point_m, float)
+
+    def __post_init__(self) -> None:
+        comps = tuple(self.components)
+        names = [c.name for c in comps]
+        if not comps:
+            _fail("components", [], "at least one component is required")
+        if len(set(names)) != len(names):
+            _fail("components", names, "each component may appear once")
+        comps = tuple(sorted(comps, key=lambda c: COMPONENT_NAMES.index(c.name)))
+        object.__setattr__(self, "components", comps)
+        object.__setattr__(self, "lumped_masses", tuple(self.lumped_masses))
+        object.__setattr__(self, "engines", tuple(self.engines))
+        fus = self.component("fuselage") if "fuselage" in names else None
+        if fus is not None:
+            if np.any(fus.root_m != 0.0):
+                _fail("components.fuselage.root_m", fus.root_m.tolist(), "must be [0, 0, 0] in body axes: the fuselage is clamped at the body origin o (paper: x_f y_f z_f coincides with xyz)")
+            if np.any(fus.euler_rad != 0.0):
+                _fail("components.fuselage.euler", fus.euler_rad.tolist(), "must be [0, 0, 0] (paper Table 1)")
+            for c in comps:
+                if c.name == "fuselage":
+                    continue
+                s = fus.station_of(c.root_m)
+                if not -1e-9 <= s <= fus.length_m * (1 + 1e-9):
+                    _fail(f"components.{c.name}.root_m", c.root_m.tolist(), f"root lies at fuselage station {s:.4g} m, off the fuselage (0 to {fus.length_m:.4g} m)")
+        all_names = [m.name for m in self.lumped_masses] + [e.name for e in self.engines]
+        if len(set(all_names)) != len(all_names):
+            _fail("lumped_masses/engines names", all_names, "names must be unique")
+        for item in (*self.lumped_masses, *self.engines):
+            w = f"{item.where}.{item.name}"
+            if item.component not in names:
+                _fail(f"{w}.component", item.component, f"must be one of the defined components: {', '.join(names)}")
+            comp = self.component(item.component)
+            s = comp.station_of(item.position_m)
+            if not -1e-9 * comp.length_m <= s <= comp.length_m * (1 + 1e-9):
+                _fail(f"{w}.position_m", item.position_m.tolist(), f"projects to station {s:.4g} m, off component {comp.name} (0 to {comp.length_m:.4g} m)")
+
+    def component(self, name: str) -> Component:
+        """The component called ``name`` (KeyError listing the available ones otherwise)."""
+        for c in self.components:
+            if c.name == name:
+                return c
+        raise KeyError(f"component {name!r} not in aircraft {self.name!r}; available: {[c.name for c in self.components]}")
+
+    @property
+    def component_names(self) -> tuple[str, ...]:
+        """Names of the components present, in the order of the global velocity vector (eq. 9)."""
+        return tuple(c.name for c in self.components)
+
+    def subset(self, names: Iterable[str]) -> "Aircraft":
+        """A new aircraft keeping only the components ``names`` and the masses they carry.
+
+        Without the fuselage, the remaining components are clamped directly to the body axes (e.g. a
+        single wing clamped at its root, paper "individual flexible components" model).
+        """
+        keep = tuple(names)
+        for n in keep:
+            self.component(n)
+        return replace(
+            self,
+            components=tuple(c for c in self.components if c.name in keep),
+            lumped_masses=tuple(m for m in self.lumped_masses if m.component in keep),
+            engines=tuple(e for e in self.engines if e.component in keep),
+            name=f"{self.name}[{','.join(keep)}]",
+        )
+
+    def with_modes(self, bending_modes: int, torsion_modes: int) -> "Aircraft":
+        """A copy with every flexible component using m = ``bending_modes`` and n = ``torsion_modes``."""
+        comps = tuple(
+            c if c.rigid else replace(c, bending_modes=bending_modes, torsion_modes=torsion_modes)
+            for c in self.components
+        )
+        return replace(self, components=comps)

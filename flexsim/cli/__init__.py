@@ -1,0 +1,1 @@
+"""flexsim.cli subpackage."""

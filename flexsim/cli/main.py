@@ -1,0 +1,142 @@
+"""Command-line interface: thin commands over the Python API.
+
+    flexsim info  [AIRCRAFT] [--json]
+    flexsim modes [AIRCRAFT] [--variant free|restrained|quasi-rigid] [--components NAME ...]
+                  [--bending-modes M] [--torsion-modes N] [--count K] [--json]
+
+AIRCRAFT is a bundled name (``gtm``, ``goland_wing``) or the path of a TOML file (default ``gtm``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Sequence
+
+import numpy as np
+
+from flexsim.aircraft.definition import Aircraft
+from flexsim.aircraft.toml_loader import bundled_aircraft_names, load_aircraft
+from flexsim.errors import FlexsimError
+from flexsim.linear.modes import in_vacuo_modes
+from flexsim.model.aircraft_model import AircraftModel, Variant
+from flexsim.structure.model import StructuralModel
+
+__all__ = ["main"]
+
+
+def _aircraft(args: argparse.Namespace) -> Aircraft:
+    aircraft = load_aircraft(args.aircraft)
+    if getattr(args, "components", None):
+        aircraft = aircraft.subset(args.components)
+    m, n = getattr(args, "bending_modes", None), getattr(args, "torsion_modes", None)
+    if m is not None or n is not None:
+        first = next(c for c in aircraft.components)
+        aircraft = aircraft.with_modes(
+            first.bending_modes if m is None else m, first.torsion_modes if n is None else n
+        )
+    return aircraft
+
+
+def _info(args: argparse.Namespace) -> int:
+    aircraft = _aircraft(args)
+    mp = StructuralModel(aircraft).mass_properties
+    ixx, iyy, izz, ixz = mp.ixx_iyy_izz_ixz
+    out = {
+        "aircraft": aircraft.name,
+        "source": aircraft.source,
+        "components": list(aircraft.component_names),
+        "mass_kg": mp.mass_kg,
+        "cg_body_m": mp.cg_m.tolist(),
+        "inertia_cg_body_kg_m2": mp.inertia_cg_kg_m2.tolist(),
+        "ixx_iyy_izz_ixz_kg_m2": [ixx, iyy, izz, ixz],
+    }
+    if aircraft.design_origin_m is not None:
+        out["cg_design_m"] = aircraft.to_design_frame(mp.cg_m).tolist()
+    if args.json:
+        print(json.dumps(out, indent=2))
+        return 0
+    print(f"{aircraft.name}  ({aircraft.source})")
+    print(f"  components       : {', '.join(aircraft.component_names)}")
+    print(f"  mass             : {mp.mass_kg:12.1f} kg")
+    print("  CG (body axes)   : x = {:.4f} m, y = {:.4f} m, z = {:.4f} m  (from o; x fwd, z down)".format(*mp.cg_m))
+    if "cg_design_m" in out:
+        print("  CG (design axes) : x = {:.4f} m, y = {:.4f} m, z = {:.4f} m  (x aft, z up)".format(*out["cg_design_m"]))
+    print("  inertia about CG (body axes) [kg m^2]:")
+    print(f"    Ixx = {ixx:12.5e}   Iyy = {iyy:12.5e}   Izz = {izz:12.5e}   Ixz = {ixz:12.5e}")
+    return 0
+
+
+def _modes(args: argparse.Namespace) -> int:
+    aircraft = _aircraft(args)
+    model = AircraftModel(aircraft, variant=args.variant, gravity_m_s2=0.0)
+    analysis = in_vacuo_modes(model)
+    modes = analysis.modes[: args.count] if args.count else analysis.modes
+    if args.json:
+        print(
+            json.dumps(
+                {
+                    "aircraft": aircraft.name,
+                    "variant": model.variant.value,
+                    "n_rigid": analysis.n_rigid,
+                    "modes": [
+                        {
+                            "frequency_rad_s": m.frequency_rad_s,
+                            "frequency_hz": m.frequency_hz,
+                            "component": m.component,
+                            "dof": m.dominant_dof,
+                            "energy_fraction": m.dominant_fraction,
+                        }
+                        for m in modes
+                    ],
+                },
+                indent=2,
+            )
+        )
+        return 0
+    print(f"In-vacuo modes of {aircraft.name} ({model.variant.value}; {analysis.n_rigid} rigid-body modes)")
+    print(f"{'#':>3} {'omega [rad/s]':>14} {'f [Hz]':>10}  {'dominant DOF':<34} {'KE share':>8}")
+    for i, m in enumerate(modes, 1):
+        print(f"{i:>3} {m.frequency_rad_s:14.4f} {m.frequency_hz:10.4f}  {m.dominant_dof:<34} {m.dominant_fraction:8.1%}")
+    return 0
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="flexsim", description="Flexible aircraft in manoeuvring flight.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    bundled = ", ".join(bundled_aircraft_names())
+
+    def add_aircraft(p: argparse.ArgumentParser) -> None:
+        p.add_argument("aircraft", nargs="?", default="gtm", help=f"bundled aircraft ({bundled}) or TOML path [gtm]")
+        p.add_argument("--json", action="store_true", help="print machine-readable JSON")
+        p.add_argument("--components", nargs="+", metavar="NAME", help="keep only these components")
+
+    p_info = sub.add_parser("info", help="mass, centre of gravity and inertia tensor")
+    add_aircraft(p_info)
+    p_info.set_defaults(func=_info)
+
+    p_modes = sub.add_parser("modes", help="in-vacuo natural frequencies and dominant DOFs")
+    add_aircraft(p_modes)
+    p_modes.add_argument("--variant", default="free", choices=[v.value for v in Variant])
+    p_modes.add_argument("--bending-modes", type=int, metavar="M", help="bending shape functions per component")
+    p_modes.add_argument("--torsion-modes", type=int, metavar="N", help="torsion shape functions per component")
+    p_modes.add_argument("--count", type=int, default=0, metavar="K", help="print only the first K modes")
+    p_modes.set_defaults(func=_modes)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``flexsim`` command; returns the process exit code."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    np.set_printoptions(precision=5)
+    try:
+        return int(args.func(args))
+    except (FlexsimError, FileNotFoundError, KeyError, ValueError) as exc:
+        print(f"flexsim {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

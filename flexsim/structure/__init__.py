@@ -1,0 +1,1 @@
+"""flexsim.structure subpackage."""

@@ -1,0 +1,70 @@
+"""The flexsim command line: info and modes (issue 2), text and JSON output, clear errors."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from flexsim.cli.main import main
+
+
+def _run(capsys, *argv):
+    code = main(list(argv))
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_info_json_reports_mass_cg_inertia(capsys):
+    code, out, _ = _run(capsys, "info", "gtm", "--json")
+    assert code == 0
+    data = json.loads(out)
+    assert data["mass_kg"] == pytest.approx(100.0e3, rel=0.01)
+    assert data["cg_design_m"][0] == pytest.approx(22.34, rel=0.01)
+    assert len(data["inertia_cg_body_kg_m2"]) == 3
+
+
+def test_info_text(capsys):
+    code, out, _ = _run(capsys, "info")
+    assert code == 0 and "mass" in out and "Ixx" in out
+
+
+def test_modes_free_gtm_lists_six_rigid_modes(capsys):
+    code, out, _ = _run(capsys, "modes", "gtm", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["n_rigid"] == 6 and data["variant"] == "free"
+    elastic = data["modes"][6]
+    assert elastic["frequency_rad_s"] > 1.0 and elastic["component"] in {"wings", "fuselage"}
+
+
+def test_modes_restrained_single_wing(capsys):
+    code, out, _ = _run(capsys, "modes", "gtm", "--components", "right_wing", "--variant", "restrained", "--bending-modes", "3", "--torsion-modes", "2")
+    assert code == 0
+    assert "0 rigid-body modes" in out
+    assert out.count("right_wing") >= 5
+
+
+def test_toml_path_accepted(capsys, tmp_path):
+    from importlib import resources
+
+    text = (resources.files("flexsim.aircraft") / "data" / "goland_wing.toml").read_text()
+    path = tmp_path / "wing.toml"
+    path.write_text(text)
+    code, out, _ = _run(capsys, "modes", str(path), "--variant", "restrained", "--json")
+    assert code == 0 and len(json.loads(out)["modes"]) == 5
+
+
+def test_bad_aircraft_gives_one_line_error(capsys, tmp_path):
+    code, _, err = _run(capsys, "info", str(tmp_path / "missing.toml"))
+    assert code == 2
+    assert "flexsim info: error: aircraft" in err and "Traceback" not in err
+    bad = tmp_path / "bad.toml"
+    bad.write_text('schema_version = 1\nname = "x"\n[components.right_wing]\nroot_m = [0,0,0]\n')
+    code, _, err = _run(capsys, "info", str(bad))
+    assert code == 2 and "missing required field" in err
+
+
+def test_console_script_entry_point():
+    # The installed command (pyproject [project.scripts]) runs the same main().
+    result = subprocess.run([sys.executable, "-m", "flexsim.cli.main", "modes", "goland_wing", "--variant", "restrained", "--count", "2"], capture_output=True, text=True, check=True)
+    assert "right_wing bending 1" in result.stdout
