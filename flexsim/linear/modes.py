@@ -1,0 +1,130 @@
+"""In-vacuo natural modes of the aircraft about its undeformed, motionless configuration.
+
+Linearising eq. (33) about q = xi = 0, V = 0 without aerodynamics and gravity leaves
+M(0) V_dot = -K [q; xi] with V = d/dt [R, Theta, q, xi] at zero attitude, so the modes solve the
+symmetric-definite problem K phi = omega^2 M(0) phi (eqs. 8, 15). A free aircraft has six zero
+frequencies (rigid-body modes); a restrained one has none. Each mode is labelled with the degree of
+freedom carrying the largest share of its kinetic energy, phi_i (M phi)_i / (phi^T M phi).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import eigh
+
+from flexsim.model.aircraft_model import AircraftModel
+
+__all__ = ["Mode", "ModalAnalysis", "in_vacuo_modes"]
+
+
+@dataclass(frozen=True)
+class Mode:
+    """One in-vacuo mode.
+
+    Attributes
+    ----------
+    frequency_rad_s : float
+        Natural frequency omega [rad/s] (0 for a rigid-body mode).
+    shape : ndarray, shape (n_v,)
+        Mass-normalised mode shape over V = [v, omega, s, eta] (zeros on fixed DOFs).
+    dominant_dof : str
+        Label of the DOF with the largest kinetic-energy fraction, e.g. "right_wing torsion 1".
+    dominant_fraction : float
+        That fraction [-].
+    """
+
+    frequency_rad_s: float
+    shape: np.ndarray
+    dominant_dof: str
+    dominant_fraction: float
+
+    @property
+    def frequency_hz(self) -> float:
+        """Natural frequency [Hz]."""
+        return self.frequency_rad_s / (2 * np.pi)
+
+    @property
+    def component(self) -> str:
+        """Dominant component ("rigid body" for u, v, w, p, q, r)."""
+        parts = self.dominant_dof.split(" ")
+        return parts[0] if len(parts) > 1 else "rigid body"
+
+
+@dataclass(frozen=True)
+class ModalAnalysis:
+    """All modes of a model, sorted by frequency.
+
+    Attributes
+    ----------
+    modes : tuple of Mode
+    n_rigid : int
+        Number of rigid-body (zero-frequency) modes: 6 for a free aircraft, 0 restrained.
+    """
+
+    modes: tuple[Mode, ...]
+    n_rigid: int
+
+    @property
+    def frequencies_rad_s(self) -> np.ndarray:
+        """Natural frequencies [rad/s], shape (n_modes,)."""
+        return np.array([m.frequency_rad_s for m in self.modes])
+
+
+def in_vacuo_modes(model: AircraftModel) -> ModalAnalysis:
+    """Natural modes of ``model`` in vacuum without gravity (eqs. 8, 15 at q = 0).
+
+    Parameters
+    ----------
+    model : AircraftModel
+        Any variant; quasi-rigid models have only rigid-body modes.
+
+    Returns
+    -------
+    ModalAnalysis
+    """
+    st = model.structure
+    active = model.active_dofs
+    m = st.inertia.m0[np.ix_(active, active)]
+    k = st.stiffness[np.ix_(active, active)]
+    lam, vec = eigh(k, m)
+    # Rigid-body modes: eigenvalues at round-off level relative to the stiffest mode.
+    n_rigid = int(np.sum(np.abs(lam) <= 1e-10 * max(np.abs(lam).max(), 1e-300)))
+    labels = [st.dofs.labels[i] for i in active]
+    modes = []
+    for i in range(lam.size):
+        phi = vec[:, i]
+        full = np.zeros(st.dofs.n_v)
+        full[active] = phi
+        label, share = _dominant(labels, phi, phi * (m @ phi))
+        modes.append(Mode(float(np.sqrt(max(lam[i], 0.0))), full, label, share))
+    return ModalAnalysis(tuple(modes), n_rigid)
+
+
+def _dominant(labels: list[str], phi: np.ndarray, energy: np.ndarray) -> tuple[str, float]:
+    """Label of the DOF with the largest kinetic-energy share, merging mirror-image pairs.
+
+    When the right- and left-hand coordinates of a pair (wings, horizontal stabilizers) carry comparable
+    energy, the mode is labelled "wings bending 1 (symmetric)" or "(antisymmetric)". Right and left
+    component axes are mirror images with z_i down on both, so symmetric bending has equal signs of
+    q_R, q_L, while symmetric torsion (both noses up) has opposite signs of xi_R, xi_L.
+    """
+    total = energy.sum()
+    shares = dict(zip(labels, energy / total))
+    coords = dict(zip(labels, phi))
+    best = max(shares, key=shares.get)
+    name = best
+    share = shares[best]
+    for side, other in (("right_", "left_"), ("left_", "right_")):
+        if best.startswith(side):
+            twin = other + best[len(side):]
+            if twin in shares and shares[twin] > 0.5 * share:
+                kind = best[len(side):].split(" ")[1]
+                same_sign = coords[best] * coords[twin] > 0
+                symmetric = same_sign if kind == "bending" else not same_sign
+                part = best[len(side):].split(" ", 1)
+                plural = {"wing": "wings", "htail": "htails"}[part[0]]
+                name = f"{plural} {part[1]} ({'symmetric' if symmetric else 'antisymmetric'})"
+                share += shares[twin]
+    return name, float(share)

@@ -1,0 +1,256 @@
+"""The one nonlinear model of the aircraft: ``rhs(t, x, u)``.
+
+Source: Tuzcu & Nguyen (2014), eqs. (2)-(4), (12), (33). The paper integrates momenta p = M(q) V
+(eq. 12); flexsim integrates the velocities with the equivalent velocity form, which keeps the implicit
+aerodynamic coupling clean (E(x) x_dot = f(x), docs/design.md):
+
+    M(q) V_dot = -M_dot V + g(V, p) + [0, 0, dT/dq, 0] - K [0, 0, q, xi] + Q_gravity + Q_thrust + Q_aero
+
+with p = M V and the quasi-coordinate terms of eq. (33)
+
+    g_v = -omega x p_v,      g_omega = -v x p_v - omega x rho_omega
+
+and the kinematics R_dot = C^T v, Theta_dot = E^-1 omega, q_dot = s, xi_dot = eta (eq. 4).
+
+Trim, linearisation, simulation and the gymnasium environments all call :meth:`AircraftModel.rhs`.
+"""
+
+from __future__ import annotations
+
+from enum import Enum
+
+import numpy as np
+
+from flexsim.aircraft.definition import Aircraft
+from flexsim.model.layout import StateLayout
+from flexsim.structure.kinematics import dcm_321, euler_rate_matrix_inverse
+from flexsim.structure.model import StructuralModel
+
+__all__ = ["Variant", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES"]
+
+#: Standard gravitational acceleration [m/s^2] (paper eq. 32's g).
+STANDARD_GRAVITY = 9.80665
+#: The control vector u of the paper (text after eq. 33): [T_e (N), delta_a, delta_e, delta_r (rad)].
+CONTROL_NAMES = ("thrust", "aileron", "elevator", "rudder")
+
+
+class Variant(str, Enum):
+    """Model variants built from one definition (docs/design.md, "Model variants").
+
+    FREE: free-flying flexible aircraft (6 rigid-body + all elastic DOFs).
+    RESTRAINED: rigid-body motion fixed, the aircraft clamped at its body origin o (ground vibration
+    test; with a single-component aircraft, a clamped wing).
+    QUASI_RIGID: elastic coordinates frozen at given values, rigid-body DOFs free.
+    """
+
+    FREE = "free"
+    RESTRAINED = "restrained"
+    QUASI_RIGID = "quasi-rigid"
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.array(
+        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    )
+
+
+class AircraftModel:
+    """Equations of motion of the whole flexible aircraft (eq. 33) in first-order form.
+
+    Parameters
+    ----------
+    aircraft : Aircraft
+        The definition (use :meth:`Aircraft.subset` for a subset of components).
+    variant : Variant or str, optional
+        ``"free"`` (default), ``"restrained"`` or ``"quasi-rigid"``.
+    gravity_m_s2 : float, optional
+        Gravitational acceleration g [m/s^2] of eq. (32); 0 for vacuum-and-no-gravity studies.
+    restrained_euler_rad : array_like, shape (3,), optional
+        Attitude [phi, theta, psi] of a restrained aircraft [rad] (sets the direction of gravity).
+    frozen_q, frozen_xi : array_like, optional
+        Values of the elastic coordinates of a quasi-rigid model [m], [rad] (default zero).
+
+    Attributes
+    ----------
+    aircraft : Aircraft
+    structure : StructuralModel
+    variant : Variant
+    layout : StateLayout
+    """
+
+    def __init__(
+        self,
+        aircraft: Aircraft,
+        *,
+        variant: Variant | str = Variant.FREE,
+        gravity_m_s2: float = STANDARD_GRAVITY,
+        restrained_euler_rad: np.ndarray | None = None,
+        frozen_q: np.ndarray | None = None,
+        frozen_xi: np.ndarray | None = None,
+    ) -> None:
+        try:
+            self.variant = Variant(variant)
+        except ValueError:
+            raise ValueError(
+                f"variant = {variant!r}: must be one of {', '.join(v.value for v in Variant)}"
+            ) from None
+        if not np.isfinite(gravity_m_s2) or gravity_m_s2 < 0:
+            raise ValueError(f"gravity_m_s2 = {gravity_m_s2!r}: must be a finite number >= 0")
+        self.aircraft = aircraft
+        self.structure = StructuralModel(aircraft)
+        self.gravity_m_s2 = float(gravity_m_s2)
+        dofs = self.structure.dofs
+        rigid = self.variant is not Variant.RESTRAINED
+        elastic = self.variant is not Variant.QUASI_RIGID
+        self.layout = StateLayout(rigid=rigid, nq=dofs.nq if elastic else 0, nxi=dofs.nxi if elastic else 0)
+        self._active = np.concatenate(
+            [np.arange(6) if rigid else np.zeros(0, int), np.arange(6, dofs.n_v) if elastic else np.zeros(0, int)]
+        ).astype(int)
+        self._all_active = self._active.size == dofs.n_v
+        self._euler_fixed = np.zeros(3) if restrained_euler_rad is None else np.asarray(restrained_euler_rad, float)
+        if self._euler_fixed.shape != (3,):
+            raise ValueError(f"restrained_euler_rad = {restrained_euler_rad!r}: must have 3 entries [rad]")
+        self._q_frozen = np.zeros(dofs.nq) if frozen_q is None else np.asarray(frozen_q, float)
+        self._xi_frozen = np.zeros(dofs.nxi) if frozen_xi is None else np.asarray(frozen_xi, float)
+        if self._q_frozen.shape != (dofs.nq,) or self._xi_frozen.shape != (dofs.nxi,):
+            raise ValueError(f"frozen_q/frozen_xi: must have {dofs.nq} and {dofs.nxi} entries")
+
+    @property
+    def active_dofs(self) -> np.ndarray:
+        """Indices of the entries of V = [v, omega, s, eta] that are degrees of freedom of this variant."""
+        return self._active
+
+    # ------------------------------------------------------------------ state unpacking
+    def unpack(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Full-size (R, Theta, q, xi, V) from a state vector, filling fixed or frozen blocks.
+
+        Returns
+        -------
+        position_m (3,), euler_rad (3,), q (nq,), xi (nxi,), velocity (n_v,)
+        """
+        lay = self.layout
+        if lay.rigid:
+            pos, eul = x[lay.position], x[lay.euler]
+        else:
+            pos, eul = np.zeros(3), self._euler_fixed
+        if lay.nq or lay.nxi or self.variant is not Variant.QUASI_RIGID:
+            q, xi = x[lay.q], x[lay.xi]
+        else:
+            q, xi = self._q_frozen, self._xi_frozen
+        if self._all_active:
+            vel = x[lay.velocity]
+        else:
+            vel = np.zeros(self.structure.dofs.n_v)
+            vel[self._active] = x[lay.velocity]
+        return pos, eul, q, xi, vel
+
+    def pack(self, position_m=None, euler_rad=None, q=None, xi=None, velocity=None) -> np.ndarray:
+        """A state vector from full-size blocks (missing blocks are zero; inactive ones are dropped)."""
+        lay = self.layout
+        x = lay.zeros()
+        if lay.rigid:
+            if position_m is not None:
+                x[lay.position] = position_m
+            if euler_rad is not None:
+                x[lay.euler] = euler_rad
+        if self.variant is not Variant.QUASI_RIGID:
+            if q is not None:
+                x[lay.q] = q
+            if xi is not None:
+                x[lay.xi] = xi
+        if velocity is not None:
+            x[lay.velocity] = np.asarray(velocity, float)[self._active]
+        return x
+
+    # ------------------------------------------------------------------ equations of motion
+    def generalized_forces(self, x: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Mass matrix M(q) and right-hand side f of M V_dot = f (full size, eq. 33 velocity form).
+
+        Parameters
+        ----------
+        x : ndarray, shape (n_states,)
+        u : ndarray, shape (4,)
+            Controls [T_e (N), delta_a, delta_e, delta_r (rad)].
+
+        Returns
+        -------
+        m : ndarray, shape (n_v, n_v)
+        f : ndarray, shape (n_v,)
+        """
+        st = self.structure
+        nq = st.dofs.nq
+        _, eul, q, xi, vel = self.unpack(x)
+        v, w, s = vel[0:3], vel[3:6], vel[6 : 6 + nq]
+        m = st.inertia.mass_matrix(q)
+        p = m @ vel
+        f = -st.inertia.mdot_v(vel, q, s)
+        f[0:3] -= _cross(w, p[0:3])
+        f[3:6] -= _cross(v, p[0:3]) + _cross(w, p[3:6])
+        f[6 : 6 + nq] += st.inertia.dT_dq(vel, q) - st.k_bending @ q
+        f[6 + nq :] -= st.k_torsion @ xi
+        if self.gravity_m_s2:
+            sf, cf = np.sin(eul[0]), np.cos(eul[0])
+            st_, ct = np.sin(eul[1]), np.cos(eul[1])
+            g_b = self.gravity_m_s2 * np.array([-st_, sf * ct, cf * ct])  # C [0, 0, g] (eq. 32)
+            f += m[:, 0:3] @ g_b
+        if u[0]:
+            f += st.thrust.force(u[0], q)
+        return m, f
+
+    def rhs(self, t: float, x: np.ndarray, u: np.ndarray) -> np.ndarray:
+        """State derivative x_dot = rhs(t, x, u) of the nonlinear model (eqs. 4, 33).
+
+        Parameters
+        ----------
+        t : float
+            Time [s] (the model is autonomous; kept for the solve_ivp signature).
+        x : ndarray, shape (n_states,)
+        u : ndarray, shape (4,)
+            Controls [T_e (N), delta_a, delta_e, delta_r (rad)].
+
+        Returns
+        -------
+        ndarray, shape (n_states,)
+        """
+        lay = self.layout
+        m, f = self.generalized_forces(x, u)
+        if not self._all_active:
+            a = self._active
+            m, f = m[np.ix_(a, a)], f[a]
+        dx = np.empty_like(x)
+        dx[lay.velocity] = np.linalg.solve(m, f)
+        vel = x[lay.velocity]
+        if lay.rigid:
+            eul = x[lay.euler]
+            c = dcm_321(*eul)
+            dx[lay.position] = c.T @ vel[0:3]
+            dx[lay.euler] = euler_rate_matrix_inverse(eul[0], eul[1]) @ vel[3:6]
+        n_el = lay.nq + lay.nxi
+        if n_el:
+            off = 6 if lay.rigid else 0
+            dx[lay.q.start : lay.xi.stop] = vel[off : off + n_el]
+        return dx
+
+    # ------------------------------------------------------------------ invariants
+    def kinetic_energy(self, x: np.ndarray) -> float:
+        """T = 1/2 V^T M(q) V [J] (eq. 8)."""
+        _, _, q, _, vel = self.unpack(x)
+        return 0.5 * float(vel @ self.structure.inertia.mass_matrix(q) @ vel)
+
+    def strain_energy(self, x: np.ndarray) -> float:
+        """V = 1/2 (q^T K q + xi^T K~ xi) [J] (eq. 15)."""
+        _, _, q, xi, _ = self.unpack(x)
+        st = self.structure
+        return 0.5 * float(q @ st.k_bending @ q + xi @ st.k_torsion @ xi)
+
+    def momentum_inertial(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Inertial linear momentum P = C^T p_v [kg m/s] and angular momentum about O [kg m^2/s].
+
+        H_O = C^T rho_omega + R x C^T p_v; both are conserved without external forces
+        (consequence of eq. 33, see docs/design.md).
+        """
+        pos, eul, q, _, vel = self.unpack(x)
+        p = self.structure.inertia.mass_matrix(q) @ vel
+        c = dcm_321(*eul)
+        p_lin = c.T @ p[0:3]
+        return p_lin, c.T @ p[3:6] + np.cross(pos, p_lin)
