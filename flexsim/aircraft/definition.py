@@ -26,6 +26,7 @@ from flexsim.structure.shapes import MAX_MODES
 __all__ = [
     "COMPONENT_NAMES",
     "SectionTable",
+    "StripAero",
     "ControlSurface",
     "Component",
     "LumpedMass",
@@ -196,6 +197,45 @@ class SectionTable:
         return np.interp(x, self.station_m, getattr(self, name))
 
 
+@dataclass(frozen=True)
+class StripAero:
+    """Aerodynamic strips of a lifting component (paper: N_w, N_h spanwise locations, Fig. 5).
+
+    Attributes
+    ----------
+    strips : int
+        Number of equal-width streamwise strips along the elastic axis, 1..200.
+    lift_slope : str or float
+        Sectional lift-curve slope Cl_alpha: ``"vlm"`` (vortex lattice of wing + horizontal stabilizer,
+        the paper's choice; wings and stabilizers only), ``"2pi"`` (thin-airfoil value), or a number
+        [1/rad] in (0, 2 pi]. The Prandtl-Glauert factor 1/sqrt(1 - M^2) is applied on top.
+    cd0 : float
+        Section parasite-drag coefficient [-] (not in the paper; default 0).
+    incidence_rad : float
+        Rigging angle of the strips' chords relative to the component's x_i y_i plane, nose up [rad]
+        (not in the paper's Table 1, whose angles fix the elastic axis; default 0).
+    """
+
+    strips: int = 8
+    lift_slope: str | float = "vlm"
+    cd0: float = 0.0
+    incidence_rad: float = 0.0
+
+    def check(self, where: str, component: str) -> None:
+        """Validate against the owning component (raises AircraftDefinitionError)."""
+        if isinstance(self.strips, bool) or not isinstance(self.strips, (int, np.integer)) or not 1 <= self.strips <= 200:
+            _fail(f"{where}.strips", self.strips, "must be an integer in [1, 200]")
+        if isinstance(self.lift_slope, str):
+            if self.lift_slope not in ("vlm", "2pi"):
+                _fail(f"{where}.lift_slope", self.lift_slope, 'must be "vlm", "2pi" or a number in (0, 2 pi] [1/rad]')
+            if self.lift_slope == "vlm" and component == "vtail":
+                _fail(f"{where}.lift_slope", self.lift_slope, 'the vortex lattice covers wing and horizontal stabilizer only (paper); give "2pi" or a number for the fin')
+        else:
+            _check_scalar(f"{where}.lift_slope", self.lift_slope, 0.0, 2 * np.pi, lo_open=True)
+        _check_scalar(f"{where}.cd0", self.cd0, 0.0, 1.0)
+        _check_scalar(f"{where}.incidence", self.incidence_rad, -np.deg2rad(15.0), np.deg2rad(15.0))
+
+
 @dataclass(frozen=True, eq=False)
 class ControlSurface:
     """A trailing-edge control surface on a lifting component (paper Fig. 2, eq. 26).
@@ -241,6 +281,8 @@ class Component:
         How the torsional inertia splits into the section's rotary inertias: chordwise (airfoil,
         J_yy = 0, J_zz = I_theta) or axisymmetric (fuselage, J_yy = J_zz = I_theta / 2).
     control_surface : ControlSurface or None
+    aero : StripAero or None
+        Aerodynamic strips; None for a component without aerodynamics (the fuselage, paper).
     sweep_rad : float or None
         Sweep of the elastic axis Lambda_i [rad] (paper, text after eq. 27) when given explicitly;
         None derives it from the orientation (see :attr:`sweep`).
@@ -255,6 +297,7 @@ class Component:
     rigid: bool = False
     section_inertia: str = "chordwise"
     control_surface: ControlSurface | None = None
+    aero: StripAero | None = None
     sweep_rad: float | None = None
 
     def __post_init__(self) -> None:
@@ -287,6 +330,13 @@ class Component:
             length = self.sections.length_m
             if not (0.0 <= cs.start_m < cs.end_m <= length * (1 + 1e-12)):
                 _fail(f"{w}.control_surface.[start_m, end_m]", [cs.start_m, cs.end_m], f"must satisfy 0 <= start_m < end_m <= length_m = {length}")
+        if self.aero is not None:
+            if self.name == "fuselage":
+                _fail(f"{w}.aero", "table", "the fuselage carries no aerodynamic strips (paper: wing and stabilizers only)")
+            self.aero.check(f"{w}.aero", self.name)
+            if np.any(self.sections.chord_m <= 0.0):
+                i = int(np.flatnonzero(self.sections.chord_m <= 0.0)[0])
+                _fail(f"{w}.sections.chord_m[{i}]", float(self.sections.chord_m[i]), "must be > 0 on a component with aerodynamic strips")
         if self.sweep_rad is not None:
             _check_scalar(f"{w}.sweep", self.sweep_rad, -np.pi / 2, np.pi / 2, lo_open=True)
             object.__setattr__(self, "sweep_rad", float(self.sweep_rad))

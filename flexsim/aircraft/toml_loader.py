@@ -26,6 +26,7 @@ from flexsim.aircraft.definition import (
     Engine,
     LumpedMass,
     SectionTable,
+    StripAero,
 )
 from flexsim.errors import AircraftDefinitionError
 
@@ -38,7 +39,8 @@ _TOP_KEYS = {"schema_version": True, "name": True, "description": False, "frame"
              "components": True, "lumped_masses": False, "engines": False}
 _COMPONENT_KEYS = {"root_m": True, "euler_deg": True, "length_m": True, "bending_modes": False,
                    "torsion_modes": False, "rigid": False, "section_inertia": False, "sweep_deg": False,
-                   "sections": True, "control_surface": False}
+                   "sections": True, "control_surface": False, "aero": False}
+_AERO_KEYS = {"strips": False, "lift_slope": False, "cd0": False, "incidence_deg": False}
 _SECTION_KEYS = {"station_m": True, "mass_kg_per_m": True, "cg_offset_m": False,
                  "torsional_inertia_kg_m": True, "ei_nm2": True, "gj_nm2": True, "chord_m": False,
                  "ea_fraction": False}
@@ -174,6 +176,19 @@ def _component(name: str, table: Any, frame: _Frame) -> Component:
             start_m=_number(f"{where}.control_surface.start_m", cs["start_m"]),
             end_m=_number(f"{where}.control_surface.end_m", cs["end_m"]),
         )
+    aero = None
+    if "aero" in table:
+        at = table["aero"]
+        _check_keys(f"{where}.aero", at, _AERO_KEYS)
+        slope = at.get("lift_slope", "vlm")
+        if not isinstance(slope, str):
+            slope = _number(f"{where}.aero.lift_slope", slope)
+        aero = StripAero(
+            strips=at.get("strips", 8),
+            lift_slope=slope,
+            cd0=_number(f"{where}.aero.cd0", at.get("cd0", 0.0)),
+            incidence_rad=np.deg2rad(_number(f"{where}.aero.incidence_deg", at.get("incidence_deg", 0.0))),
+        )
     sweep = table.get("sweep_deg")
     return Component(
         name=name,
@@ -185,6 +200,7 @@ def _component(name: str, table: Any, frame: _Frame) -> Component:
         rigid=table.get("rigid", False),
         section_inertia=table.get("section_inertia", "chordwise" if name != "fuselage" else "axisymmetric"),
         control_surface=surface,
+        aero=aero,
         sweep_rad=None if sweep is None else np.deg2rad(_number(f"{where}.sweep_deg", sweep)),
     )
 

@@ -3,6 +3,7 @@
     flexsim info  [AIRCRAFT] [--json]
     flexsim modes [AIRCRAFT] [--variant free|restrained|quasi-rigid] [--components NAME ...]
                   [--bending-modes M] [--torsion-modes N] [--count K] [--json]
+    flexsim aero  [AIRCRAFT] [--mach M] [--plot FILE.png] [--json]
 
 AIRCRAFT is a bundled name (``gtm``, ``goland_wing``) or the path of a TOML file (default ``gtm``).
 """
@@ -102,6 +103,43 @@ def _modes(args: argparse.Namespace) -> int:
     return 0
 
 
+def _aero(args: argparse.Namespace) -> int:
+    from flexsim.aero.strips import StripSet, vlm_surfaces
+    from flexsim.aero.vlm import plot_lift_slope, solve_vlm
+
+    aircraft = _aircraft(args)
+    if not 0.0 <= args.mach < 0.95:
+        raise ValueError(f"--mach = {args.mach}: must be in [0, 0.95)")
+    strips = StripSet.from_model(StructuralModel(aircraft))
+    factor = 1.0 / np.sqrt(1.0 - args.mach**2)  # Prandtl-Glauert (paper, "Numerical Model")
+    rows = [
+        {
+            "component": name,
+            "station_m": float(strips.station_m[j]),
+            "y_m": float(strips.position_body_m[j, 1]),
+            "chord_m": float(2 * strips.semichord_m[j]),
+            "a": float(strips.a[j]),
+            "lift_slope_per_rad": float(strips.lift_slope0[j] * factor),
+        }
+        for j, name in enumerate(strips.component)
+    ]
+    if args.plot:
+        lattice = [s for s in vlm_surfaces(aircraft)]
+        if not lattice:
+            raise ValueError(f"aircraft {aircraft.name!r} has no wing or stabilizer strips for the vortex lattice")
+        plot_lift_slope(solve_vlm(lattice, mach=args.mach, compressibility="prandtl_glauert"), args.plot)
+    if args.json:
+        print(json.dumps({"aircraft": aircraft.name, "mach": args.mach, "strips": rows}, indent=2))
+        return 0
+    print(f"Aerodynamic strips of {aircraft.name} at M = {args.mach:.3f} (Cl_alpha with Prandtl-Glauert)")
+    print(f"{'component':<12} {'x_i [m]':>8} {'y [m]':>8} {'chord [m]':>9} {'a':>6} {'Cl_alpha':>9}")
+    for r in rows:
+        print(f"{r['component']:<12} {r['station_m']:8.3f} {r['y_m']:8.3f} {r['chord_m']:9.3f} {r['a']:6.3f} {r['lift_slope_per_rad']:9.4f}")
+    if args.plot:
+        print(f"Cl_alpha distribution plotted to {args.plot}")
+    return 0
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="flexsim", description="Flexible aircraft in manoeuvring flight.")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -123,6 +161,12 @@ def _parser() -> argparse.ArgumentParser:
     p_modes.add_argument("--torsion-modes", type=int, metavar="N", help="torsion shape functions per component")
     p_modes.add_argument("--count", type=int, default=0, metavar="K", help="print only the first K modes")
     p_modes.set_defaults(func=_modes)
+
+    p_aero = sub.add_parser("aero", help="aerodynamic strips and their lift-curve slopes (vortex lattice)")
+    add_aircraft(p_aero)
+    p_aero.add_argument("--mach", type=float, default=0.0, help="flight Mach number for Prandtl-Glauert [0]")
+    p_aero.add_argument("--plot", metavar="FILE.png", help="draw the Cl_alpha distribution (cf. paper Fig. 6)")
+    p_aero.set_defaults(func=_aero)
     return parser
 
 

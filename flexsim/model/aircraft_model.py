@@ -22,6 +22,8 @@ from enum import Enum
 import numpy as np
 
 from flexsim.aircraft.definition import Aircraft
+from flexsim.atmosphere import isa_density, speed_of_sound
+from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.layout import StateLayout
 from flexsim.structure.kinematics import dcm_321, euler_rate_matrix_inverse
 from flexsim.structure.model import StructuralModel
@@ -65,8 +67,17 @@ class AircraftModel:
         ``"free"`` (default), ``"restrained"`` or ``"quasi-rigid"``.
     gravity_m_s2 : float, optional
         Gravitational acceleration g [m/s^2] of eq. (32); 0 for vacuum-and-no-gravity studies.
+    aero : AeroOptions, str or None, optional
+        Aerodynamic model: an :class:`AeroOptions`, a model name (``"unsteady"`` default,
+        ``"quasi-steady"``), or None for no aerodynamics (vacuum).
     restrained_euler_rad : array_like, shape (3,), optional
         Attitude [phi, theta, psi] of a restrained aircraft [rad] (sets the direction of gravity).
+    restrained_velocity_m_s : array_like, shape (3,), optional
+        Body-axes velocity [m/s] of a restrained aircraft: the air flows past the clamped structure at
+        minus this velocity (a wind tunnel). Default zero (still air).
+    altitude_m : float, optional
+        Altitude of a restrained aircraft [m] (air density and speed of sound; ISA). A free aircraft
+        uses its own altitude -Z.
     frozen_q, frozen_xi : array_like, optional
         Values of the elastic coordinates of a quasi-rigid model [m], [rad] (default zero).
 
@@ -84,7 +95,10 @@ class AircraftModel:
         *,
         variant: Variant | str = Variant.FREE,
         gravity_m_s2: float = STANDARD_GRAVITY,
+        aero: AeroOptions | str | None = "unsteady",
         restrained_euler_rad: np.ndarray | None = None,
+        restrained_velocity_m_s: np.ndarray | None = None,
+        altitude_m: float = 0.0,
         frozen_q: np.ndarray | None = None,
         frozen_xi: np.ndarray | None = None,
     ) -> None:
@@ -102,7 +116,16 @@ class AircraftModel:
         dofs = self.structure.dofs
         rigid = self.variant is not Variant.RESTRAINED
         elastic = self.variant is not Variant.QUASI_RIGID
-        self.layout = StateLayout(rigid=rigid, nq=dofs.nq if elastic else 0, nxi=dofs.nxi if elastic else 0)
+        if isinstance(aero, str):
+            aero = AeroOptions(model=aero)
+        if aero is not None and aero.model == "theodorsen":
+            raise ValueError(
+                'aero model = "theodorsen": the Theodorsen function is a frequency-domain model for linear '
+                'flutter analysis (flexsim.linear); the time-domain model takes "unsteady" or "quasi-steady"'
+            )
+        self.aero = None if aero is None else AeroCoupling(self.structure, aero)
+        n_inflow = 0 if self.aero is None else self.aero.n_inflow_states
+        self.layout = StateLayout(rigid=rigid, nq=dofs.nq if elastic else 0, nxi=dofs.nxi if elastic else 0, n_inflow=n_inflow)
         self._active = np.concatenate(
             [np.arange(6) if rigid else np.zeros(0, int), np.arange(6, dofs.n_v) if elastic else np.zeros(0, int)]
         ).astype(int)
@@ -110,6 +133,11 @@ class AircraftModel:
         self._euler_fixed = np.zeros(3) if restrained_euler_rad is None else np.asarray(restrained_euler_rad, float)
         if self._euler_fixed.shape != (3,):
             raise ValueError(f"restrained_euler_rad = {restrained_euler_rad!r}: must have 3 entries [rad]")
+        self._v_fixed = np.zeros(3) if restrained_velocity_m_s is None else np.asarray(restrained_velocity_m_s, float)
+        if self._v_fixed.shape != (3,) or not np.all(np.isfinite(self._v_fixed)):
+            raise ValueError(f"restrained_velocity_m_s = {restrained_velocity_m_s!r}: must be 3 finite numbers [m/s]")
+        self.altitude_m = float(altitude_m)
+        speed_of_sound(self.altitude_m)  # validates the ISA range with a clear message
         self._q_frozen = np.zeros(dofs.nq) if frozen_q is None else np.asarray(frozen_q, float)
         self._xi_frozen = np.zeros(dofs.nxi) if frozen_xi is None else np.asarray(frozen_xi, float)
         if self._q_frozen.shape != (dofs.nq,) or self._xi_frozen.shape != (dofs.nxi,):
@@ -142,6 +170,8 @@ class AircraftModel:
         else:
             vel = np.zeros(self.structure.dofs.n_v)
             vel[self._active] = x[lay.velocity]
+            if not lay.rigid:
+                vel[0:3] = self._v_fixed
         return pos, eul, q, xi, vel
 
     def pack(self, position_m=None, euler_rad=None, q=None, xi=None, velocity=None) -> np.ndarray:
@@ -164,7 +194,9 @@ class AircraftModel:
 
     # ------------------------------------------------------------------ equations of motion
     def generalized_forces(self, x: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Mass matrix M(q) and right-hand side f of M V_dot = f (full size, eq. 33 velocity form).
+        """System matrix E = M(q) + M_a and right-hand side f of E V_dot = f (full size, eq. 33).
+
+        Includes the aerodynamic added mass M_a and generalized forces when the model has aerodynamics.
 
         Parameters
         ----------
@@ -177,6 +209,10 @@ class AircraftModel:
         m : ndarray, shape (n_v, n_v)
         f : ndarray, shape (n_v,)
         """
+        m, f, _ = self._assemble(x, u)
+        return m, f
+
+    def _assemble(self, x: np.ndarray, u: np.ndarray):
         st = self.structure
         nq = st.dofs.nq
         _, eul, q, xi, vel = self.unpack(x)
@@ -195,7 +231,15 @@ class AircraftModel:
             f += m[:, 0:3] @ g_b
         if u[0]:
             f += st.thrust.force(u[0], q)
-        return m, f
+        inflow_terms = None
+        if self.aero is not None:
+            altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
+            rho = isa_density(float(altitude))
+            mach = float(np.sqrt(v @ v)) / speed_of_sound(float(altitude))
+            m_a, q_a, inflow_terms = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach)
+            m = m + m_a
+            f = f + q_a
+        return m, f, inflow_terms
 
     def rhs(self, t: float, x: np.ndarray, u: np.ndarray) -> np.ndarray:
         """State derivative x_dot = rhs(t, x, u) of the nonlinear model (eqs. 4, 33).
@@ -213,12 +257,19 @@ class AircraftModel:
         ndarray, shape (n_states,)
         """
         lay = self.layout
-        m, f = self.generalized_forces(x, u)
+        m, f, inflow_terms = self._assemble(x, u)
         if not self._all_active:
             a = self._active
             m, f = m[np.ix_(a, a)], f[a]
         dx = np.empty_like(x)
-        dx[lay.velocity] = np.linalg.solve(m, f)
+        vdot = np.linalg.solve(m, f)
+        dx[lay.velocity] = vdot
+        if lay.n_inflow:
+            if not self._all_active:
+                full = np.zeros(self.structure.dofs.n_v)
+                full[self._active] = vdot
+                vdot = full
+            dx[lay.inflow] = self.aero.inflow_rate(inflow_terms, vdot)
         vel = x[lay.velocity]
         if lay.rigid:
             eul = x[lay.euler]

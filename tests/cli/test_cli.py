@@ -4,6 +4,7 @@ import json
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from flexsim.cli.main import main
@@ -68,3 +69,22 @@ def test_console_script_entry_point():
     # The installed command (pyproject [project.scripts]) runs the same main().
     result = subprocess.run([sys.executable, "-m", "flexsim.cli.main", "modes", "goland_wing", "--variant", "restrained", "--count", "2"], capture_output=True, text=True, check=True)
     assert "right_wing bending 1" in result.stdout
+
+
+def test_aero_plot_and_gtm_lift_slopes(capsys, tmp_path):
+    # Issue 3: the GTM sectional Cl_alpha from the vortex lattice is below 2 pi everywhere and falls
+    # towards the tips (over the outboard strips, past its maximum near 85 % semispan on this notional
+    # planform of taper 0.2, whose sectional cl rises outboard before the tip loss).
+    plot = tmp_path / "cla.png"
+    code, out, _ = _run(capsys, "aero", "gtm", "--json", "--plot", str(plot))
+    assert code == 0
+    assert plot.stat().st_size > 10_000 and plot.read_bytes()[:4] == b"\x89PNG"
+    rows = json.loads(out)["strips"]
+    for name in ("right_wing", "left_wing", "right_htail", "left_htail"):
+        cla = np.array([r["lift_slope_per_rad"] for r in rows if r["component"] == name])
+        assert np.all(cla < 2 * np.pi)
+        assert cla[-1] < cla.max() and np.argmax(cla) >= len(cla) // 2
+    code, out, _ = _run(capsys, "aero", "gtm", "--mach", "0.6", "--json")
+    cla6 = np.array([r["lift_slope_per_rad"] for r in json.loads(out)["strips"]])
+    cla0 = np.array([r["lift_slope_per_rad"] for r in rows])
+    np.testing.assert_allclose(cla6 / cla0, 1.25, rtol=1e-12)  # Prandtl-Glauert 1/sqrt(1 - 0.36)

@@ -14,13 +14,18 @@ def gtm():
 
 
 def test_layouts_of_variants(gtm):
-    free = AircraftModel(gtm)
+    free = AircraftModel(gtm, aero=None)
     d = free.structure.dofs
     assert free.layout.n_states == 12 + 2 * (d.nq + d.nxi) == 12 * (1 + 2 + 2)  # paper: 12(1+m+n)
-    restrained = AircraftModel(gtm, variant="restrained")
+    restrained = AircraftModel(gtm, variant="restrained", aero=None)
     assert restrained.layout.n_states == 2 * (d.nq + d.nxi)
-    rigid = AircraftModel(gtm, variant=Variant.QUASI_RIGID)
+    rigid = AircraftModel(gtm, variant=Variant.QUASI_RIGID, aero=None)
     assert rigid.layout.n_states == 12
+    # finite-state inflow: N = 6 states on each of the 2 x 10 wing and 2 x 6 stabilizer strips
+    unsteady = AircraftModel(gtm, aero="unsteady")
+    assert unsteady.layout.n_inflow == 6 * (2 * 10 + 2 * 6)
+    assert unsteady.layout.n_states == 60 + unsteady.layout.n_inflow
+    assert AircraftModel(gtm, aero="quasi-steady").layout.n_inflow == 0
 
 
 def test_restrained_modes_are_the_elastic_modes_with_body_clamped(gtm):
@@ -32,7 +37,7 @@ def test_restrained_modes_are_the_elastic_modes_with_body_clamped(gtm):
 def test_quasi_rigid_model_is_a_rigid_body(gtm):
     # With elastic coordinates frozen at zero, the rigid-body equations use M0's rigid block:
     # a thrust T along x gives v_dot = T / m at zero rates (Newton), and no elastic states exist.
-    model = AircraftModel(gtm, variant="quasi-rigid", gravity_m_s2=0.0)
+    model = AircraftModel(gtm, variant="quasi-rigid", gravity_m_s2=0.0, aero=None)
     x = model.pack()
     dx = model.rhs(0.0, x, np.array([1e5, 0, 0, 0]))
     m0 = model.structure.inertia.m0[:6, :6]

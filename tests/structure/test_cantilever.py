@@ -54,7 +54,7 @@ def test_clamped_wing_sags_q_l4_over_8ei_under_own_weight():
     # Acceptance: static tip deflection under own weight within 1 % of q L^4 / (8 EI), q = m g.
     aircraft = load_aircraft("goland_wing")  # bending under uniform load does not depend on the CG offset
     wing = aircraft.components[0]
-    model = AircraftModel(aircraft, variant="restrained")
+    model = AircraftModel(aircraft, variant="restrained", aero=None)
     _, f = model.generalized_forces(model.layout.zeros(), np.zeros(4))
     st = model.structure
     nq = st.dofs.nq
@@ -71,7 +71,7 @@ def test_clamped_wing_sags_q_l4_over_8ei_under_own_weight():
 def test_eigen_solution_independent_of_variant_plumbing():
     # Restrained modes from the model equal eigh(K, M0) on the elastic block (no rigid DOFs).
     aircraft, _ = _uncoupled_goland()
-    model = AircraftModel(aircraft, variant="restrained")
+    model = AircraftModel(aircraft, variant="restrained", aero=None)
     st = model.structure
     lam = eigh(st.stiffness[6:, 6:], st.inertia.m0[6:, 6:], eigvals_only=True)
     np.testing.assert_allclose(in_vacuo_modes(model).frequencies_rad_s, np.sqrt(lam), rtol=1e-12)

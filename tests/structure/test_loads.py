@@ -101,7 +101,7 @@ def test_gravity_equals_sum_of_weights_through_virtual_work(gtm):
     # generalized force of its weight m_p g applied at its centre of mass.
     q, xi, _ = _random(gtm, 11)
     theta = np.array([0.1, 0.05, 0.7])
-    model = AircraftModel(gtm.aircraft)
+    model = AircraftModel(gtm.aircraft, aero=None)
     x = model.pack(euler_rad=theta, q=q, xi=xi)
     m, f = model.generalized_forces(x, np.zeros(4))
     f_el = -np.concatenate([np.zeros(6), gtm.k_bending @ q, gtm.k_torsion @ xi])

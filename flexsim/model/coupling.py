@@ -1,0 +1,246 @@
+"""Aeroelastic coupling: strip airloads as generalized forces, apparent mass and inflow states.
+
+Sources: Tuzcu & Nguyen (2014) eqs. (25)-(31); Peters-Johnson rigid-strip loads as written in
+``shared/reference/aero-kinematics.md`` sections 1.3-1.6 (pi rho normalisation); Peters, Karunamoorthy &
+Cao (1995) finite-state inflow (reference section 2.1).
+
+For every strip (see :mod:`flexsim.aero.strips`) the Chebyshev downwash coefficients follow from the
+kinematic map of its elastic-axis point, in strip axes (chord direction d, plunge direction n, pitch axis p)::
+
+    u0 = -d^T A(q) V                             chordwise air speed [m/s]
+    w_EA = n^T A(q) V + u0 (alpha_el + alpha_r)  normal velocity relative to the air, down [m/s]
+    alpha_dot = p^T B V                          pitch rate [rad/s]
+
+with alpha_el the elastic pitch of the strip (phi cos(Lambda) for the component's own torsion, plus the
+fuselage's rotation at the attachment) and alpha_r the rigging incidence.
+    w0 = w_EA - a b alpha_dot + u0 beta f0,   w1 = b alpha_dot + u0 beta f1,   w2 = u0 beta f2
+
+and the loads per unit span are (Cl_alpha replaces 2 pi in the circulatory terms, as in the paper)::
+
+    L   = Cl_a rho b u0 (w0 + w1/2 - lambda0) + pi rho b^2 w0_dot
+    M_EA = (Cl_a/2) rho b^2 u0 (w0 - lambda0 - w2/2) + (b^4 terms) + a b L
+
+The circulatory lift acts normal to the local relative wind and the drag along it (eq. 28, with the
+local inflow angle alpha0 = (w0 + w1/2 - lambda0)/u0): f = L (-n - alpha0 d) + D (d - alpha0 n). The
+drag is the induced drag of the strip, L alpha0 (1 - Cl_a0/2 pi) (the lift tilted by the 3-D induced
+angle implied by the vortex-lattice slope; zero in 2-D, as Peters' drag is in steady flow), plus an
+optional parasite drag. Each strip's force and moment enter the equations of motion as
+width * G^T [f; M_EA p] (eqs. 17-24).
+
+The apparent-mass terms and the inflow forcing w0_dot + w1_dot/2 contain the accelerations V_dot: the
+coupling returns the added-mass matrix M_a (moved to the left-hand side, E(x) x_dot = f(x)) and the
+explicit parts, so that the model solves for the accelerations inside the right-hand side and then
+evaluates the inflow rates with those accelerations. No acceleration is lagged.
+
+Simplifications (documented in docs/design.md): control-surface rates and the u0_dot terms of Peters'
+[G] matrix are neglected; the fin is quasi-steady without apparent mass (paper eqs. 29-31).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from flexsim.aero.inflow import inflow_coefficients
+from flexsim.aero.strips import StripSet
+from flexsim.structure.model import StructuralModel
+
+__all__ = ["AeroOptions", "AeroCoupling", "AERO_MODELS", "StripLoads", "StripKinematics"]
+
+#: Aerodynamic models by name (the "theodorsen" frequency-domain model is for linear flutter analysis).
+AERO_MODELS = ("quasi-steady", "unsteady", "theodorsen")
+_MACH_CAP = 0.95
+
+
+@dataclass(frozen=True)
+class AeroOptions:
+    """Choice of aerodynamic model.
+
+    Attributes
+    ----------
+    model : {"quasi-steady", "unsteady", "theodorsen"}
+        ``quasi-steady``: lambda0 = 0 (paper "QS"); ``unsteady``: Peters finite-state inflow with
+        ``n_inflow`` states per wing/stabilizer strip (time domain and state space); ``theodorsen``:
+        frequency-domain C(k), valid for linear flutter analysis only (its time-domain limit k = 0 is
+        the quasi-steady model, which is what trim uses).
+    n_inflow : int
+        Inflow states per strip, 1..10 (default 6).
+    lift_slope : {"file", "vlm", "2pi"}
+        Where the sectional Cl_alpha comes from: each component's file setting, or an override.
+    """
+
+    model: str = "unsteady"
+    n_inflow: int = 6
+    lift_slope: str = "file"
+
+    def __post_init__(self) -> None:
+        if self.model not in AERO_MODELS:
+            raise ValueError(f"aero model = {self.model!r}: must be one of {', '.join(AERO_MODELS)}")
+        inflow_coefficients(self.n_inflow)  # validates 1..10 with a clear message
+        if self.lift_slope not in ("file", "vlm", "2pi"):
+            raise ValueError(f"lift_slope = {self.lift_slope!r}: must be \"file\", \"vlm\" or \"2pi\"")
+
+
+class StripKinematics(NamedTuple):
+    """Strip velocities and downwash at one state (module docstring); arrays of shape (n_s,) unless noted."""
+
+    p_mat: np.ndarray  #: n^T A(q), shape (n_s, n_v)
+    d_mat: np.ndarray  #: d^T A(q), shape (n_s, n_v)
+    alpha_el: np.ndarray  #: elastic pitch + rigging [rad]
+    u0: np.ndarray  #: chordwise air speed [m/s]
+    w_ea: np.ndarray  #: normal velocity of the elastic axis relative to the air, down [m/s]
+    w34: np.ndarray  #: w0 + w1/2, three-quarter-chord downwash [m/s]
+    wc: np.ndarray  #: w0 + w1/2 - lambda0 [m/s]
+    w_moment: np.ndarray  #: w0 - lambda0 - w2/2 [m/s]
+
+
+@dataclass(frozen=True, eq=False)
+class StripLoads:
+    """Per-strip aerodynamic quantities at one state (outputs for logging and tests).
+
+    Attributes
+    ----------
+    u0_m_s, w_ea_m_s, lift_n_m, moment_n, drag_n_m, alpha0_rad : ndarray, shape (n_s,)
+        Chordwise speed, normal velocity, circulatory lift per span, moment about the
+        elastic axis per span (nose up), drag per span, local inflow angle.
+    """
+
+    u0_m_s: np.ndarray
+    w_ea_m_s: np.ndarray
+    lift_n_m: np.ndarray
+    moment_n: np.ndarray
+    drag_n_m: np.ndarray
+    alpha0_rad: np.ndarray
+
+
+class AeroCoupling:
+    """Strip aerodynamics of a structural model (built once; :meth:`evaluate` per right-hand side).
+
+    Parameters
+    ----------
+    structure : StructuralModel
+    options : AeroOptions
+    """
+
+    def __init__(self, structure: StructuralModel, options: AeroOptions) -> None:
+        self.options = options
+        self.strips = s = StripSet.from_model(structure, options.lift_slope)
+        self._nq = structure.dofs.nq
+        self._ext_u = np.zeros(4)
+        self._b = s.semichord_m
+        self._ab = s.a * s.semichord_m
+        self._k0 = s.lift_slope0 / (2 * np.pi)
+        self._am = s.unsteady.astype(float)  # apparent mass only on wing/stabilizer strips
+        self._pr_w = np.pi * s.semichord_m**2 * s.width_m * self._am  # times rho at run time
+        self._rel = s.proj_p[:, 6:]  # elastic pitch per unit [q; xi] (B constant: angles = rates map)
+        self._finite_state = options.model == "unsteady"
+        self._inflow_idx = np.flatnonzero(s.unsteady) if self._finite_state else np.zeros(0, int)
+        self.inflow = inflow_coefficients(options.n_inflow)
+        self.n_inflow_states = self._inflow_idx.size * options.n_inflow
+
+    def kinematics(self, q, xi, vel, lam, u) -> StripKinematics:
+        """Strip velocities and Chebyshev downwash coefficients at a state (module docstring)."""
+        s = self.strips
+        b, ab = self._b, self._ab
+        p_mat = s.proj_n0.copy()
+        p_mat[:, 3:6] += s.proj_n1 @ q
+        d_mat = s.proj_d0.copy()
+        d_mat[:, 3:6] += s.proj_d1 @ q
+        alpha_el = self._rel @ np.concatenate([q, xi]) + s.incidence_rad
+        u0 = -(d_mat @ vel)
+        adot = s.proj_p @ vel
+        w_ea = p_mat @ vel + u0 * alpha_el
+        ext = self._ext_u.copy()
+        ext[1:] = u[1:]
+        ub = u0 * s.flap_sign * ext[s.flap_index]
+        w0 = w_ea - ab * adot + ub * s.flap_w[:, 0]
+        w1 = b * adot + ub * s.flap_w[:, 1]
+        w2 = ub * s.flap_w[:, 2]
+        lam0 = np.zeros(s.n_strips)
+        if self._finite_state:
+            lam0[self._inflow_idx] = 0.5 * (lam.reshape(-1, self.options.n_inflow) @ self.inflow.b)
+        w34 = w0 + 0.5 * w1
+        return StripKinematics(p_mat, d_mat, alpha_el, u0, w_ea, w34, w34 - lam0, w0 - lam0 - 0.5 * w2)
+
+    def _circulatory(self, kin: StripKinematics, rho: float, mach: float):
+        """Circulatory lift, moment about the EA, L alpha0 and drag per unit span (module docstring)."""
+        b = self._b
+        kfac = self._k0 / np.sqrt(1.0 - min(mach, _MACH_CAP) ** 2)  # Prandtl-Glauert on Cl_alpha
+        two_pi_rho_b = 2.0 * np.pi * rho * b * kfac
+        lift = two_pi_rho_b * kin.u0 * kin.wc
+        moment = 0.5 * two_pi_rho_b * b * kin.u0 * kin.w_moment + self._ab * lift
+        lift_alpha0 = two_pi_rho_b * kin.wc * kin.wc  # L alpha0, without dividing by u0
+        drag = lift_alpha0 * (1.0 - self._k0) + rho * kin.u0 * kin.u0 * b * self.strips.cd0
+        return lift, moment, lift_alpha0, drag
+
+    def evaluate(self, q, xi, vel, lam, u, rho, mach):
+        """Added mass, generalized aerodynamic force and inflow forcing at one state.
+
+        Parameters
+        ----------
+        q, xi : ndarray, shapes (nq,), (nxi,)
+            Elastic coordinates [m], [rad].
+        vel : ndarray, shape (n_v,)
+            Global velocity vector V (body axes).
+        lam : ndarray, shape (n_inflow_states,)
+            Inflow states [m/s], strip-major.
+        u : ndarray, shape (4,)
+            Controls [T_e, delta_a, delta_e, delta_r].
+        rho : float
+            Air density [kg/m^3].
+        mach : float
+            Flight Mach number (Prandtl-Glauert factor on Cl_alpha, capped at M = 0.95).
+
+        Returns
+        -------
+        m_a : ndarray, shape (n_v, n_v)
+            Added-mass matrix (left-hand side).
+        q_a : ndarray, shape (n_v,)
+            Explicit generalized aerodynamic force.
+        inflow : tuple
+            Terms for :meth:`inflow_rate`.
+        """
+        s = self.strips
+        b, ab = self._b, self._ab
+        kin = self.kinematics(q, xi, vel, lam, u)
+        p_mat, d_mat, r_mat = kin.p_mat, kin.d_mat, s.proj_p
+        lift_c, moment_c, lift_alpha0, drag = self._circulatory(kin, rho, mach)
+        alpha0 = kin.wc / np.maximum(kin.u0, 1.0)
+        w = s.width_m
+        c_n = -lift_c - drag * alpha0  # eq. (28): f = L (-n - alpha0 d) + D (d - alpha0 n)
+        c_d = drag - lift_alpha0
+        # apparent mass: w_EA_dot = E V_dot + explicit part
+        vs = vel[6 : 6 + self._nq]
+        omega = vel[3:6]
+        pdot_v = (s.proj_n1 @ vs) @ omega
+        ddot_v = (s.proj_d1 @ vs) @ omega
+        w_ea_x = pdot_v - kin.alpha_el * ddot_v + kin.u0 * (self._rel @ vel[6:])
+        row0 = p_mat - kin.alpha_el[:, None] * d_mat - ab[:, None] * r_mat
+        pr_w = rho * self._pr_w
+        lever = p_mat - ab[:, None] * r_mat
+        m_a = (pr_w[:, None] * lever).T @ row0 + ((pr_w * b * b / 8.0)[:, None] * r_mat).T @ r_mat
+        q_a = p_mat.T @ (w * c_n - pr_w * w_ea_x) + d_mat.T @ (w * c_d) + r_mat.T @ (w * moment_c + ab * pr_w * w_ea_x)
+        return m_a, q_a, (row0, w_ea_x, kin.u0, lam)
+
+    def inflow_rate(self, terms, vdot: np.ndarray) -> np.ndarray:
+        """Finite-state inflow derivative lambda_dot (reference 2.1) with the solved accelerations.
+
+        lambda_dot = A^-1 [c (w0_dot + w1_dot/2) - (u0/b) lambda] for every wing/stabilizer strip.
+        """
+        if not self._finite_state:
+            return np.zeros(0)
+        row0, w_ea_x, u0, lam = terms
+        idx = self._inflow_idx
+        s = self.strips
+        forcing = (row0[idx] + (0.5 * s.semichord_m[idx])[:, None] * s.proj_p[idx]) @ vdot + w_ea_x[idx]
+        lam2 = lam.reshape(-1, self.options.n_inflow)
+        rate = forcing[:, None] * self.inflow.A_inv_c[None, :] - (u0[idx] / s.semichord_m[idx])[:, None] * (lam2 @ self.inflow.A_inv.T)
+        return rate.ravel()
+
+    def strip_loads(self, q, xi, vel, lam, u, rho, mach) -> StripLoads:
+        """Per-strip circulatory loads at a state (no apparent mass), for outputs and tests."""
+        kin = self.kinematics(q, xi, vel, lam, u)
+        lift, moment, _, drag = self._circulatory(kin, rho, mach)
+        return StripLoads(kin.u0, kin.w_ea, lift, moment, drag, kin.wc / np.maximum(kin.u0, 1.0))
