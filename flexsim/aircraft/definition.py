@@ -247,12 +247,15 @@ class ControlSurface:
         Hinge line aft of the leading edge as a fraction of the chord, in (0, 1); Peters' d = 2 f - 1.
     start_m, end_m : float
         Spanwise extent along the elastic axis [m], 0 <= start < end <= length.
+    max_deflection_rad : float
+        Deflection limit, +-, used by trim and the environments [rad] (default 25 deg).
     """
 
     kind: str
     hinge_fraction: float
     start_m: float
     end_m: float
+    max_deflection_rad: float = float(np.deg2rad(25.0))
 
     @property
     def hinge_d(self) -> float:
@@ -327,6 +330,7 @@ class Component:
             _check_scalar(f"{w}.control_surface.hinge_fraction", cs.hinge_fraction, 0.0, 1.0, lo_open=True)
             if cs.hinge_fraction >= 1.0:
                 _fail(f"{w}.control_surface.hinge_fraction", cs.hinge_fraction, "must be in (0, 1)")
+            _check_scalar(f"{w}.control_surface.max_deflection", cs.max_deflection_rad, 0.0, np.deg2rad(60.0), lo_open=True)
             length = self.sections.length_m
             if not (0.0 <= cs.start_m < cs.end_m <= length * (1 + 1e-12)):
                 _fail(f"{w}.control_surface.[start_m, end_m]", [cs.start_m, cs.end_m], f"must satisfy 0 <= start_m < end_m <= length_m = {length}")
@@ -515,6 +519,27 @@ class Aircraft:
             if c.name == name:
                 return c
         raise KeyError(f"component {name!r} not in aircraft {self.name!r}; available: {[c.name for c in self.components]}")
+
+    @property
+    def max_thrust_n(self) -> float:
+        """Total maximum thrust of all engines [N] (0 without engines)."""
+        return float(sum(e.max_thrust_n for e in self.engines))
+
+    def control_limits(self) -> tuple[np.ndarray, np.ndarray]:
+        """Lower and upper limits of u = [T_e (N), delta_a, delta_e, delta_r (rad)], shape (4,) each.
+
+        Thrust: 0 .. sum of the engines' maximum thrust; a surface absent from the aircraft has limits 0.
+        """
+        hi = np.zeros(4)
+        hi[0] = self.max_thrust_n
+        kinds = {"aileron": 1, "elevator": 2, "rudder": 3}
+        for c in self.components:
+            if c.control_surface is not None:
+                k = kinds[c.control_surface.kind]
+                hi[k] = max(hi[k], c.control_surface.max_deflection_rad)
+        lo = -hi
+        lo[0] = 0.0
+        return lo, hi
 
     @property
     def component_names(self) -> tuple[str, ...]:

@@ -44,7 +44,7 @@ _AERO_KEYS = {"strips": False, "lift_slope": False, "cd0": False, "incidence_deg
 _SECTION_KEYS = {"station_m": True, "mass_kg_per_m": True, "cg_offset_m": False,
                  "torsional_inertia_kg_m": True, "ei_nm2": True, "gj_nm2": True, "chord_m": False,
                  "ea_fraction": False}
-_SURFACE_KEYS = {"kind": True, "hinge_fraction": True, "start_m": True, "end_m": True}
+_SURFACE_KEYS = {"kind": True, "hinge_fraction": True, "start_m": True, "end_m": True, "max_deflection_deg": False}
 _MASS_KEYS = {"name": True, "component": True, "position_m": True, "mass_kg": True, "inertia_kg_m2": False}
 _ENGINE_KEYS = dict(_MASS_KEYS, max_thrust_n=True)
 
@@ -175,6 +175,7 @@ def _component(name: str, table: Any, frame: _Frame) -> Component:
             hinge_fraction=_number(f"{where}.control_surface.hinge_fraction", cs["hinge_fraction"]),
             start_m=_number(f"{where}.control_surface.start_m", cs["start_m"]),
             end_m=_number(f"{where}.control_surface.end_m", cs["end_m"]),
+            max_deflection_rad=np.deg2rad(_number(f"{where}.control_surface.max_deflection_deg", cs.get("max_deflection_deg", 25.0))),
         )
     aero = None
     if "aero" in table:

@@ -21,10 +21,11 @@ and the loads per unit span are (Cl_alpha replaces 2 pi in the circulatory terms
     M_EA = (Cl_a/2) rho b^2 u0 (w0 - lambda0 - w2/2) + (b^4 terms) + a b L
 
 The circulatory lift acts normal to the local relative wind and the drag along it (eq. 28, with the
-local inflow angle alpha0 = (w0 + w1/2 - lambda0)/u0): f = L (-n - alpha0 d) + D (d - alpha0 n). The
-drag is the induced drag of the strip, L alpha0 (1 - Cl_a0/2 pi) (the lift tilted by the 3-D induced
-angle implied by the vortex-lattice slope; zero in 2-D, as Peters' drag is in steady flow), plus an
-optional parasite drag. Each strip's force and moment enter the equations of motion as
+local flow angle a0 = (w0 + w1/2 - lambda0)/u0 - alpha_chord relative to the component axes instead of
+the body's W/U): f = L (-n - a0 d) + D (d - a0 n). The drag is the induced drag of the strip,
+L alpha_e (1 - Cl_a0/2 pi) with alpha_e = (w0 + w1/2 - lambda0)/u0 the effective angle of attack (the lift
+tilted by the 3-D induced angle implied by the vortex-lattice slope; zero in 2-D, as Peters' drag is in
+steady flow), plus an optional parasite drag. Each strip's force and moment enter the equations of motion as
 width * G^T [f; M_EA p] (eqs. 17-24).
 
 The apparent-mass terms and the inflow forcing w0_dot + w1_dot/2 contain the accelerations V_dot: the
@@ -94,6 +95,7 @@ class StripKinematics(NamedTuple):
     w34: np.ndarray  #: w0 + w1/2, three-quarter-chord downwash [m/s]
     wc: np.ndarray  #: w0 + w1/2 - lambda0 [m/s]
     w_moment: np.ndarray  #: w0 - lambda0 - w2/2 [m/s]
+    alpha_chord: np.ndarray  #: pitch of the chord (elastic + rigging) plus the flap's camber angle [rad]
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,7 +106,8 @@ class StripLoads:
     ----------
     u0_m_s, w_ea_m_s, lift_n_m, moment_n, drag_n_m, alpha0_rad : ndarray, shape (n_s,)
         Chordwise speed, normal velocity, circulatory lift per span, moment about the
-        elastic axis per span (nose up), drag per span, local inflow angle.
+        elastic axis per span (nose up), drag per span, flow angle relative to the component axes
+        (the tilt of the lift in eq. 28).
     """
 
     u0_m_s: np.ndarray
@@ -162,18 +165,25 @@ class AeroCoupling:
         if self._finite_state:
             lam0[self._inflow_idx] = 0.5 * (lam.reshape(-1, self.options.n_inflow) @ self.inflow.b)
         w34 = w0 + 0.5 * w1
-        return StripKinematics(p_mat, d_mat, alpha_el, u0, w_ea, w34, w34 - lam0, w0 - lam0 - 0.5 * w2)
+        camber = s.flap_sign * ext[s.flap_index] * (s.flap_w[:, 0] + 0.5 * s.flap_w[:, 1])
+        return StripKinematics(p_mat, d_mat, alpha_el, u0, w_ea, w34, w34 - lam0, w0 - lam0 - 0.5 * w2, alpha_el + camber)
 
     def _circulatory(self, kin: StripKinematics, rho: float, mach: float):
-        """Circulatory lift, moment about the EA, L alpha0 and drag per unit span (module docstring)."""
+        """Circulatory lift, moment about the EA, lift x flow angle and drag per unit span.
+
+        The flow angle relative to the component axes is (w0 + w1/2 - lambda0)/u0 - alpha_chord: the
+        effective angle of attack less the chord's own pitch and the flap camber. The products with the
+        lift are formed without dividing by u0 (well defined in still air).
+        """
         b = self._b
         kfac = self._k0 / np.sqrt(1.0 - min(mach, _MACH_CAP) ** 2)  # Prandtl-Glauert on Cl_alpha
         two_pi_rho_b = 2.0 * np.pi * rho * b * kfac
         lift = two_pi_rho_b * kin.u0 * kin.wc
         moment = 0.5 * two_pi_rho_b * b * kin.u0 * kin.w_moment + self._ab * lift
-        lift_alpha0 = two_pi_rho_b * kin.wc * kin.wc  # L alpha0, without dividing by u0
-        drag = lift_alpha0 * (1.0 - self._k0) + rho * kin.u0 * kin.u0 * b * self.strips.cd0
-        return lift, moment, lift_alpha0, drag
+        flow = kin.wc - kin.u0 * kin.alpha_chord  # u0 x flow angle [m/s]
+        lift_tilt = two_pi_rho_b * kin.wc * flow  # L x flow angle
+        drag = two_pi_rho_b * kin.wc * kin.wc * (1.0 - self._k0) + rho * kin.u0 * kin.u0 * b * self.strips.cd0
+        return lift, moment, lift_tilt, drag, flow / np.maximum(kin.u0, 1.0)
 
     def evaluate(self, q, xi, vel, lam, u, rho, mach):
         """Added mass, generalized aerodynamic force and inflow forcing at one state.
@@ -206,11 +216,10 @@ class AeroCoupling:
         b, ab = self._b, self._ab
         kin = self.kinematics(q, xi, vel, lam, u)
         p_mat, d_mat, r_mat = kin.p_mat, kin.d_mat, s.proj_p
-        lift_c, moment_c, lift_alpha0, drag = self._circulatory(kin, rho, mach)
-        alpha0 = kin.wc / np.maximum(kin.u0, 1.0)
+        lift_c, moment_c, lift_tilt, drag, flow_angle = self._circulatory(kin, rho, mach)
         w = s.width_m
-        c_n = -lift_c - drag * alpha0  # eq. (28): f = L (-n - alpha0 d) + D (d - alpha0 n)
-        c_d = drag - lift_alpha0
+        c_n = -lift_c - drag * flow_angle  # eq. (28): f = L (-n - a0 d) + D (d - a0 n), a0 the flow angle
+        c_d = drag - lift_tilt
         # apparent mass: w_EA_dot = E V_dot + explicit part
         vs = vel[6 : 6 + self._nq]
         omega = vel[3:6]
@@ -242,5 +251,5 @@ class AeroCoupling:
     def strip_loads(self, q, xi, vel, lam, u, rho, mach) -> StripLoads:
         """Per-strip circulatory loads at a state (no apparent mass), for outputs and tests."""
         kin = self.kinematics(q, xi, vel, lam, u)
-        lift, moment, _, drag = self._circulatory(kin, rho, mach)
-        return StripLoads(kin.u0, kin.w_ea, lift, moment, drag, kin.wc / np.maximum(kin.u0, 1.0))
+        lift, moment, _, drag, flow_angle = self._circulatory(kin, rho, mach)
+        return StripLoads(kin.u0, kin.w_ea, lift, moment, drag, flow_angle)

@@ -52,7 +52,8 @@ def test_total_force_is_sum_of_strip_loads(rigid):
     total = np.zeros(3)
     for j, name in enumerate(st.component):
         axes = rigid.aircraft.component(name).axes_in_body  # C_i^T
-        f_strip = loads.lift_n_m[j] * (-st.n[j] - loads.alpha0_rad[j] * st.d[j]) + loads.drag_n_m[j] * (st.d[j] - loads.alpha0_rad[j] * st.n[j])
+        a0 = loads.alpha0_rad[j]  # flow angle relative to the component axes (eq. 28's alpha0)
+        f_strip = loads.lift_n_m[j] * (-st.n[j] - a0 * st.d[j]) + loads.drag_n_m[j] * (st.d[j] - a0 * st.n[j])
         total += st.width_m[j] * axes @ f_strip
     np.testing.assert_allclose(force, total, rtol=1e-9, atol=1e-9 * np.abs(total).max())
 

@@ -1,0 +1,138 @@
+"""Steady (time-invariant) manoeuvres: level flight, level turn, climb/descent, glide, climbing turn.
+
+Source: Tuzcu & Nguyen (2014) eqs. (34)-(39). With heading psi = Omega t along the flight path, the
+inertial velocity is R_dot = V [cos(gamma) cos(psi), cos(gamma) sin(psi), -sin(gamma)] (north-east-down,
+gamma > 0 climbing) and Theta_dot = [0, 0, Omega], Omega = V cos(gamma) / R, so that
+
+    v = C(phi, theta, psi) R_dot,    omega = E(phi, theta) [0, 0, Omega]
+
+(eq. 37 for gamma = 0; eq. 39 for Omega = 0, where v = V [cos(theta - gamma), 0, sin(theta - gamma)]).
+The equations stay time-invariant because X, Y and psi do not appear in them; the climbing turn (R and
+gamma together) is time-invariant too and is included.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from flexsim.atmosphere import mach_to_true_airspeed, speed_of_sound
+from flexsim.structure.kinematics import dcm_321, euler_rate_matrix
+
+__all__ = ["SteadyManoeuvre"]
+
+
+@dataclass(frozen=True)
+class SteadyManoeuvre:
+    """A steady manoeuvre to trim for.
+
+    Attributes
+    ----------
+    speed_m_s : float
+        True airspeed V [m/s], > 0.
+    altitude_m : float
+        Altitude H [m] (ISA range).
+    turn_radius_m : float
+        Turn radius R [m]; ``math.inf`` for straight flight; positive turns right.
+    climb_angle_rad : float or None
+        Flight-path angle gamma [rad] (> 0 climbing); None for a glide, where gamma is an unknown and the
+        thrust is zero.
+    """
+
+    speed_m_s: float
+    altitude_m: float
+    turn_radius_m: float = math.inf
+    climb_angle_rad: float | None = 0.0
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.speed_m_s) and 1.0 <= self.speed_m_s <= 400.0):
+            raise ValueError(f"speed_m_s = {self.speed_m_s!r}: must be in [1, 400] m/s")
+        speed_of_sound(float(self.altitude_m))  # ISA range check with a clear message
+        if not (self.turn_radius_m == math.inf or (math.isfinite(self.turn_radius_m) and abs(self.turn_radius_m) >= 100.0)):
+            raise ValueError(f"turn_radius_m = {self.turn_radius_m!r}: must be inf (straight) or |R| >= 100 m")
+        if self.climb_angle_rad is not None and not abs(self.climb_angle_rad) <= math.radians(30.0):
+            raise ValueError(f"climb_angle_rad = {self.climb_angle_rad!r}: must be within +-30 deg (or None for a glide)")
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def level(cls, altitude_m: float, *, speed_m_s: float | None = None, mach: float | None = None) -> "SteadyManoeuvre":
+        """Steady level flight, eqs. (34)-(35)."""
+        return cls(_speed(altitude_m, speed_m_s, mach), altitude_m)
+
+    @classmethod
+    def turn(cls, altitude_m: float, radius_m: float, *, speed_m_s: float | None = None, mach: float | None = None) -> "SteadyManoeuvre":
+        """Steady level turn of radius R, eqs. (36)-(37)."""
+        return cls(_speed(altitude_m, speed_m_s, mach), altitude_m, turn_radius_m=radius_m)
+
+    @classmethod
+    def climb(cls, altitude_m: float, climb_angle_rad: float, *, speed_m_s: float | None = None, mach: float | None = None) -> "SteadyManoeuvre":
+        """Steady climb (gamma > 0) or descent (gamma < 0), eqs. (38)-(39)."""
+        return cls(_speed(altitude_m, speed_m_s, mach), altitude_m, climb_angle_rad=climb_angle_rad)
+
+    @classmethod
+    def glide(cls, altitude_m: float, *, speed_m_s: float | None = None, mach: float | None = None) -> "SteadyManoeuvre":
+        """Steady glide: thrust zero, flight-path angle found by trim (paper: gamma = -3.12 deg at 9144 m)."""
+        return cls(_speed(altitude_m, speed_m_s, mach), altitude_m, climb_angle_rad=None)
+
+    @classmethod
+    def climbing_turn(cls, altitude_m: float, radius_m: float, climb_angle_rad: float, *, speed_m_s: float | None = None, mach: float | None = None) -> "SteadyManoeuvre":
+        """Steady climbing (or descending) turn: R and gamma together (time-invariant, not in the paper)."""
+        return cls(_speed(altitude_m, speed_m_s, mach), altitude_m, turn_radius_m=radius_m, climb_angle_rad=climb_angle_rad)
+
+    # ------------------------------------------------------------------ derived
+    @property
+    def mach(self) -> float:
+        """Flight Mach number at the manoeuvre's altitude."""
+        return self.speed_m_s / speed_of_sound(float(self.altitude_m))
+
+    @property
+    def is_glide(self) -> bool:
+        """True when gamma is an unknown and the thrust is zero."""
+        return self.climb_angle_rad is None
+
+    def with_speed(self, speed_m_s: float) -> "SteadyManoeuvre":
+        """The same manoeuvre at another speed (used by the flutter search)."""
+        return SteadyManoeuvre(speed_m_s, self.altitude_m, self.turn_radius_m, self.climb_angle_rad)
+
+    def describe(self) -> str:
+        """Human-readable name, e.g. "level turn R = 5000 m at M 0.740, H = 9144 m"."""
+        gamma = "glide" if self.is_glide else f"gamma = {math.degrees(self.climb_angle_rad):+.2f} deg"
+        turn = "" if self.turn_radius_m == math.inf else f"turn R = {self.turn_radius_m:.0f} m, "
+        kind = "level flight" if (not turn and not self.is_glide and self.climb_angle_rad == 0.0) else "steady flight"
+        return f"{kind} ({turn}{gamma}) at M {self.mach:.4f} (V = {self.speed_m_s:.2f} m/s), H = {self.altitude_m:.0f} m"
+
+    def turn_rate(self, gamma: float) -> float:
+        """Omega = V cos(gamma) / R [rad/s] (0 for straight flight)."""
+        return 0.0 if self.turn_radius_m == math.inf else self.speed_m_s * math.cos(gamma) / self.turn_radius_m
+
+    def body_rates(self, phi: float, theta: float, gamma: float) -> tuple[np.ndarray, np.ndarray]:
+        """Body velocity v and angular velocity omega of the steady manoeuvre (eqs. 35, 37, 39).
+
+        Parameters
+        ----------
+        phi, theta : float
+            Bank and pitch angles [rad] (psi = 0: the equations do not depend on it).
+        gamma : float
+            Flight-path angle [rad].
+
+        Returns
+        -------
+        v : ndarray, shape (3,)  [m/s], body axes
+        omega : ndarray, shape (3,)  [rad/s], body axes
+        """
+        r_dot = self.speed_m_s * np.array([math.cos(gamma), 0.0, -math.sin(gamma)])
+        v = dcm_321(phi, theta, 0.0) @ r_dot
+        omega = euler_rate_matrix(phi, theta) @ np.array([0.0, 0.0, self.turn_rate(gamma)])
+        return v, omega
+
+
+def _speed(altitude_m: float, speed_m_s: float | None, mach: float | None) -> float:
+    if (speed_m_s is None) == (mach is None):
+        raise ValueError("give exactly one of speed_m_s and mach")
+    if mach is not None:
+        if not 0.0 < mach < 1.0:
+            raise ValueError(f"mach = {mach!r}: must be in (0, 1)")
+        return float(mach_to_true_airspeed(mach, altitude_m))
+    return float(speed_m_s)

@@ -1,0 +1,247 @@
+"""Trim of the full nonlinear model in a steady manoeuvre (Tuzcu & Nguyen 2014, eqs. 33-39).
+
+Unknowns: pitch theta, bank phi, controls [T_e, delta_a, delta_e, delta_r] (the flight-path angle gamma
+replaces T_e in a glide, where T_e = 0) and the static elastic coordinates q, xi. The manoeuvre fixes the
+velocities v, omega (:meth:`SteadyManoeuvre.body_rates`); the elastic rates and the inflow states are zero.
+Equations: the model's own right-hand side, V_dot = 0 (6 rigid-body + all elastic equations) — a square
+system solved by scipy's MINPACK hybrid method. The residual reported is the norm of V_dot scaled by g
+(translations, elastic coordinates) and g / 5 m (rotations); trim converges to ~1e-12.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import root
+
+from flexsim.errors import FlexsimError
+from flexsim.model.aircraft_model import AircraftModel, Variant
+from flexsim.structure.shapes import bending_shapes, torsion_shapes
+from flexsim.trim.manoeuvre import SteadyManoeuvre
+
+__all__ = ["TrimPoint", "TrimError", "trim"]
+
+_ROT_LENGTH = 5.0  # [m] scale converting angular accelerations to g units in the residual
+_TOLERANCE = 1e-8
+
+
+class TrimError(FlexsimError, RuntimeError):
+    """Trim failed or is infeasible; the message names the manoeuvre, residuals and limiting quantity."""
+
+
+@dataclass(frozen=True, eq=False)
+class TrimPoint:
+    """A trimmed steady manoeuvre (all quantities SI, radians).
+
+    Attributes
+    ----------
+    manoeuvre : SteadyManoeuvre
+    x : ndarray, shape (n_states,)
+        Trim state of the model (position [0, 0, -H], psi = 0, inflow zero).
+    u : ndarray, shape (4,)
+        Controls [T_e (N), delta_a, delta_e, delta_r (rad)].
+    theta, phi, gamma : float
+        Pitch, bank and flight-path angles [rad].
+    alpha, beta : float
+        Angle of attack atan(W/U) and sideslip asin(V/|v|) of the body axes [rad].
+    load_factor : float
+        Aerodynamic + thrust force along -z_body over the weight [-].
+    tip_deflection_m, tip_twist_rad : float
+        Right-wing tip bending w_w(L_w) (positive down, paper's sign) [m] and torsion psi_w(L_w) (positive
+        nose up) [rad], as in the paper's Tables 2-3.
+    residual : float
+        Scaled norm of the right-hand side at the trim state.
+    """
+
+    manoeuvre: SteadyManoeuvre
+    x: np.ndarray
+    u: np.ndarray
+    theta: float
+    phi: float
+    gamma: float
+    alpha: float
+    beta: float
+    load_factor: float
+    tip_deflection_m: float
+    tip_twist_rad: float
+    residual: float
+
+    @property
+    def thrust_n(self) -> float:
+        """Total thrust T_e [N]."""
+        return float(self.u[0])
+
+    def summary(self) -> dict[str, float]:
+        """The trim quantities in display units (degrees, kN), as in the paper's tables."""
+        return {
+            "mach": self.manoeuvre.mach,
+            "speed_m_s": self.manoeuvre.speed_m_s,
+            "altitude_m": self.manoeuvre.altitude_m,
+            "theta_deg": math.degrees(self.theta),
+            "phi_deg": math.degrees(self.phi),
+            "gamma_deg": math.degrees(self.gamma),
+            "alpha_deg": math.degrees(self.alpha),
+            "thrust_kN": self.thrust_n / 1e3,
+            "aileron_deg": math.degrees(self.u[1]),
+            "elevator_deg": math.degrees(self.u[2]),
+            "rudder_deg": math.degrees(self.u[3]),
+            "load_factor": self.load_factor,
+            "tip_deflection_m": self.tip_deflection_m,
+            "tip_twist_deg": math.degrees(self.tip_twist_rad),
+            "residual": self.residual,
+        }
+
+
+class _Problem:
+    """Maps the unknown vector to a model state and evaluates the scaled residual."""
+
+    def __init__(self, model: AircraftModel, manoeuvre: SteadyManoeuvre) -> None:
+        if model.variant is Variant.RESTRAINED:
+            raise ValueError("trim needs a free or quasi-rigid model (a restrained aircraft has no flight path)")
+        self.model, self.man = model, manoeuvre
+        lay = model.layout
+        self.n_el = lay.nq + lay.nxi
+        mass = model.structure.mass_properties.mass_kg
+        self.weight = mass * max(model.gravity_m_s2, 1e-9)
+        g = max(model.gravity_m_s2, 1.0)
+        n_vel = lay.velocity.stop - lay.velocity.start
+        self.scale = np.full(n_vel, 1.0 / g)
+        self.scale[3:6] = _ROT_LENGTH / g
+
+    def state(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        theta, phi = z[0], z[1]
+        if self.man.is_glide:
+            gamma, thrust = z[2], 0.0
+        else:
+            gamma, thrust = self.man.climb_angle_rad, z[2] * self.weight
+        u = np.array([thrust, z[3], z[4], z[5]])
+        lay = self.model.layout
+        v, omega = self.man.body_rates(phi, theta, gamma)
+        x = lay.zeros()
+        x[lay.position] = [0.0, 0.0, -self.man.altitude_m]
+        x[lay.euler] = [phi, theta, 0.0]
+        x[lay.q.start : lay.xi.stop] = z[6 : 6 + self.n_el]
+        x[lay.v] = v
+        x[lay.omega] = omega
+        return x, u, gamma
+
+    def residual(self, z: np.ndarray) -> np.ndarray:
+        x, u, _ = self.state(z)
+        return self.model.rhs(0.0, x, u)[self.model.layout.velocity] * self.scale
+
+
+def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint | None = None, check_limits: bool = True) -> TrimPoint:
+    """Trim ``model`` in ``manoeuvre`` (eqs. 33-39) with its own right-hand side.
+
+    Parameters
+    ----------
+    model : AircraftModel
+        Free or quasi-rigid; any aerodynamic model (the inflow is zero in a steady state, so the
+        quasi-steady and finite-state models have the same trim).
+    manoeuvre : SteadyManoeuvre
+    guess : TrimPoint, optional
+        Starting point (e.g. the trim at a neighbouring speed).
+    check_limits : bool
+        Raise when the thrust or a surface is beyond its limit (default True).
+
+    Returns
+    -------
+    TrimPoint
+
+    Raises
+    ------
+    TrimError
+        Naming the manoeuvre and either the residuals that did not vanish or the limiting quantity.
+    """
+    prob = _Problem(model, manoeuvre)
+    lay = model.layout
+    z0 = np.zeros(6 + prob.n_el)
+    if guess is not None:
+        z0[0], z0[1] = guess.theta, guess.phi
+        z0[2] = guess.gamma if manoeuvre.is_glide else guess.u[0] / prob.weight
+        z0[3:6] = guess.u[1:]
+        z0[6:] = guess.x[lay.q.start : lay.xi.stop]
+    else:
+        omega = manoeuvre.turn_rate(0.0)
+        z0[0] = 0.08
+        z0[1] = math.atan(manoeuvre.speed_m_s * omega / max(model.gravity_m_s2, 1e-9)) if omega else 0.0
+        z0[2] = -0.03 if manoeuvre.is_glide else 0.03
+    sol = root(prob.residual, z0, method="hybr", options={"xtol": 1e-13, "maxfev": 200 * (z0.size + 1)})
+    z = sol.x
+    if not sol.success or np.linalg.norm(prob.residual(z)) > _TOLERANCE:
+        # polish with a least-squares Newton step sequence from where hybr stopped
+        sol = root(prob.residual, z, method="lm", options={"xtol": 1e-15, "ftol": 1e-15, "maxiter": 2000})
+        z = sol.x
+    r = prob.residual(z)
+    norm = float(np.linalg.norm(r))
+    if not np.isfinite(norm) or norm > _TOLERANCE:
+        labels = _residual_labels(model)
+        worst = np.argsort(-np.abs(r))[:4]
+        detail = ", ".join(f"{labels[i]} = {r[i]:.3g}" for i in worst)
+        raise TrimError(f"trim failed for {manoeuvre.describe()}: scaled residual {norm:.3g} > {_TOLERANCE:g}; largest: {detail} ({sol.message})")
+    x, u, gamma = prob.state(z)
+    point = _trim_point(model, manoeuvre, x, u, gamma, norm)
+    if check_limits:
+        _check_limits(model, manoeuvre, point)
+    return point
+
+
+def _residual_labels(model: AircraftModel) -> list[str]:
+    labels = model.structure.dofs.labels
+    return [f"d/dt {labels[i]}" for i in model.active_dofs]
+
+
+def _check_limits(model: AircraftModel, manoeuvre: SteadyManoeuvre, point: TrimPoint) -> None:
+    lo, hi = model.aircraft.control_limits()
+    names = ("thrust T_e [N]", "aileron delta_a [rad]", "elevator delta_e [rad]", "rudder delta_r [rad]")
+    for k in range(4):
+        if manoeuvre.is_glide and k == 0:
+            continue
+        if not lo[k] - 1e-9 <= point.u[k] <= hi[k] + 1e-9:
+            raise TrimError(
+                f"trim infeasible for {manoeuvre.describe()}: {names[k]} = {point.u[k]:.5g} outside its limits "
+                f"[{lo[k]:.5g}, {hi[k]:.5g}] (the equations were solved, scaled residual {point.residual:.2g})"
+            )
+
+
+def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np.ndarray, gamma: float, residual: float) -> TrimPoint:
+    lay = model.layout
+    st = model.structure
+    _, eul, q, xi, vel = model.unpack(x)
+    v = vel[0:3]
+    speed = float(np.linalg.norm(v))
+    alpha = math.atan2(v[2], v[0])
+    beta = math.asin(v[1] / speed)
+    # aerodynamic + thrust force along -z_body over the weight
+    force = st.thrust.force(u[0], q)[0:3]
+    if model.aero is not None:
+        from flexsim.atmosphere import isa_density, speed_of_sound
+
+        h = man.altitude_m
+        _, q_a, _ = model.aero.evaluate(q, xi, vel, x[lay.inflow], u, isa_density(float(h)), speed / speed_of_sound(float(h)))
+        force = force + q_a[0:3]
+    weight = st.mass_properties.mass_kg * max(model.gravity_m_s2, 1e-9)
+    tip_w = tip_t = 0.0
+    if "right_wing" in model.aircraft.component_names:
+        wing = model.aircraft.component("right_wing")
+        d = st.dofs
+        if wing.bending_modes and lay.nq:
+            tip_w = float(bending_shapes(wing.length_m, wing.length_m, wing.bending_modes)[0] @ q[d.bending["right_wing"]])
+        if wing.torsion_modes and lay.nxi:
+            tip_t = float(torsion_shapes(wing.length_m, wing.length_m, wing.torsion_modes)[0] @ xi[d.torsion["right_wing"]])
+    return TrimPoint(
+        manoeuvre=man,
+        x=x,
+        u=u,
+        theta=float(eul[1]),
+        phi=float(eul[0]),
+        gamma=float(gamma),
+        alpha=alpha,
+        beta=beta,
+        load_factor=float(-force[2] / weight),
+        tip_deflection_m=tip_w,
+        tip_twist_rad=tip_t,
+        residual=residual,
+    )

@@ -1,0 +1,108 @@
+"""Trim of the full nonlinear GTM model in steady manoeuvres (paper eqs. 34-39; issue 4).
+
+Acceptance: the scaled norm of the right-hand side at every trim state < 1e-8 (level flight, turn,
+climb, glide, climbing turn); a simulation started at a trim holds it; gamma = 0 climb equals level
+flight; infeasible manoeuvres raise TrimError naming the manoeuvre and the limiting quantity.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.model.aircraft_model import AircraftModel
+from flexsim.trim import SteadyManoeuvre, TrimError, trim
+
+H = 9144.0
+
+
+@pytest.fixture(scope="module")
+def models():
+    gtm = load_aircraft("gtm")
+    return {name: AircraftModel(gtm, aero=name) for name in ("quasi-steady", "unsteady")}
+
+
+MANOEUVRES = {
+    "level": SteadyManoeuvre.level(H, mach=0.75),
+    "turn": SteadyManoeuvre.turn(H, 8000.0, mach=0.75),
+    "climb": SteadyManoeuvre.climb(H, math.radians(4.0), mach=0.75),
+    "descent": SteadyManoeuvre.climb(H, math.radians(-1.0), mach=0.75),
+    "glide": SteadyManoeuvre.glide(H, mach=0.75),
+    "climbing turn": SteadyManoeuvre.climbing_turn(H, 9000.0, math.radians(2.0), mach=0.75),
+}
+
+
+@pytest.mark.parametrize("aero", ["quasi-steady", "unsteady"])
+@pytest.mark.parametrize("name", list(MANOEUVRES))
+def test_trim_residual_below_1e_8(models, aero, name):
+    model = models[aero]
+    point = trim(model, MANOEUVRES[name])
+    assert point.residual < 1e-8
+    # independent check with the raw right-hand side: every acceleration vanishes, inflow too
+    dx = model.rhs(0.0, point.x, point.u)
+    lay = model.layout
+    assert np.abs(dx[lay.velocity]).max() < 1e-7
+    assert np.abs(dx[lay.inflow]).max(initial=0.0) < 1e-9
+    # kinematics of the manoeuvre: heading rate Omega = V cos(gamma)/R, climb rate V sin(gamma)
+    man = point.manoeuvre
+    assert dx[lay.euler][2] == pytest.approx(man.turn_rate(point.gamma), abs=1e-12)
+    assert -dx[lay.position][2] == pytest.approx(man.speed_m_s * math.sin(point.gamma), abs=1e-9)
+    assert np.linalg.norm(dx[lay.position]) == pytest.approx(man.speed_m_s, rel=1e-12)
+
+
+def test_quasi_steady_and_unsteady_trims_coincide(models):
+    # In a steady state the inflow is zero, so both aerodynamic models give the same trim.
+    a = trim(models["quasi-steady"], MANOEUVRES["turn"])
+    b = trim(models["unsteady"], MANOEUVRES["turn"])
+    np.testing.assert_allclose(a.u, b.u, rtol=1e-8, atol=1e-10)
+    assert a.theta == pytest.approx(b.theta, abs=1e-10)
+
+
+def test_zero_climb_angle_is_level_flight_and_turn_tends_to_level(models):
+    model = models["quasi-steady"]
+    level = trim(model, SteadyManoeuvre.level(H, mach=0.75))
+    climb0 = trim(model, SteadyManoeuvre.climb(H, 0.0, mach=0.75))
+    np.testing.assert_allclose(climb0.x, level.x, atol=1e-10)
+    wide = trim(model, SteadyManoeuvre.turn(H, 1e6, mach=0.75))
+    assert wide.theta == pytest.approx(level.theta, abs=1e-4)
+    assert wide.u[0] == pytest.approx(level.u[0], rel=1e-3)
+    # level turn: load factor 1/cos(phi) (exact for the aircraft's vertical balance when theta is small)
+    turn = trim(model, MANOEUVRES["turn"])
+    assert turn.load_factor == pytest.approx(1 / math.cos(turn.phi), rel=0.02)
+
+
+def test_glide_has_zero_thrust_and_descends(models):
+    point = trim(models["quasi-steady"], MANOEUVRES["glide"])
+    assert point.u[0] == 0.0 and point.gamma < 0.0
+
+
+def test_simulation_started_at_trim_holds_it(models):
+    model = models["unsteady"]
+    point = trim(model, MANOEUVRES["level"])
+    sol = solve_ivp(model.rhs, (0.0, 3.0), point.x, args=(point.u,), method="DOP853", rtol=1e-10, atol=1e-12)
+    lay = model.layout
+    drift = sol.y[:, -1] - point.x
+    drift[lay.position] = 0.0  # X grows as V t by design
+    assert np.abs(drift[lay.velocity]).max() < 1e-6  # m/s, rad/s: at the integration tolerance
+    assert np.abs(drift[lay.q.start : lay.xi.stop]).max() < 1e-7
+    assert abs(sol.y[lay.position][2, -1] - point.x[lay.position][2]) < 1e-5
+
+
+def test_infeasible_turn_names_manoeuvre_and_limit(models):
+    with pytest.raises(TrimError, match=r"trim (infeasible|failed) for steady flight \(turn R = 1500 m.*(limits|residual)"):
+        trim(models["quasi-steady"], SteadyManoeuvre.turn(H, 1500.0, mach=0.6))
+
+
+def test_bad_manoeuvre_arguments():
+    with pytest.raises(ValueError, match="mach = 1.2: must be in"):
+        SteadyManoeuvre.level(H, mach=1.2)
+    with pytest.raises(ValueError, match="turn_radius_m = 10"):
+        SteadyManoeuvre.turn(H, 10.0, mach=0.5)
+    with pytest.raises(ValueError, match="climb_angle_rad"):
+        SteadyManoeuvre.climb(H, 1.0, mach=0.5)
+    with pytest.raises(ValueError, match="exactly one of"):
+        SteadyManoeuvre.level(H)
+    with pytest.raises(ValueError, match="ISA|altitude"):
+        SteadyManoeuvre.level(50_000.0, mach=0.5)
