@@ -80,6 +80,10 @@ class AircraftModel:
         uses its own altitude -Z.
     frozen_q, frozen_xi : array_like, optional
         Values of the elastic coordinates of a quasi-rigid model [m], [rad] (default zero).
+    wind : callable, optional
+        Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)``: air velocity [m/s] in inertial
+        north-east-down axes at the given inertial positions (k, 3) of the aerodynamic strips at time
+        t [s] (gusts, turbulence; :mod:`flexsim.sim.disturbances`). None for still air.
 
     Attributes
     ----------
@@ -101,6 +105,7 @@ class AircraftModel:
         altitude_m: float = 0.0,
         frozen_q: np.ndarray | None = None,
         frozen_xi: np.ndarray | None = None,
+        wind=None,
     ) -> None:
         try:
             self.variant = Variant(variant)
@@ -124,6 +129,12 @@ class AircraftModel:
                 'flutter analysis (flexsim.linear); the time-domain model takes "unsteady" or "quasi-steady"'
             )
         self.aero = None if aero is None else AeroCoupling(self.structure, aero)
+        if wind is not None and not callable(wind):
+            raise ValueError(f"wind = {wind!r}: must be a callable wind(t, positions_ned_m) -> (k, 3) array")
+        self.wind = wind
+        if self.aero is not None:
+            strips = self.aero.strips
+            self._strip_dcm = np.stack([self.aircraft.component(c).dcm for c in strips.component]) if strips.n_strips else np.zeros((0, 3, 3))
         n_inflow = 0 if self.aero is None else self.aero.n_inflow_states
         self.layout = StateLayout(rigid=rigid, nq=dofs.nq if elastic else 0, nxi=dofs.nxi if elastic else 0, n_inflow=n_inflow)
         self._active = np.concatenate(
@@ -212,10 +223,22 @@ class AircraftModel:
         m, f, _ = self._assemble(x, u)
         return m, f
 
-    def _assemble(self, x: np.ndarray, u: np.ndarray):
+    def _strip_wind(self, t: float, x: np.ndarray, pos: np.ndarray, eul: np.ndarray) -> np.ndarray | None:
+        """Air velocity at every strip in component axes [m/s], shape (n_s, 3), from the wind field."""
+        if self.wind is None or self.aero is None:
+            return None
+        c = dcm_321(*eul)
+        r_strips = self.aero.strips.position_body_m
+        positions = pos[None, :] + r_strips @ c  # inertial: R + C^T r
+        w_ned = np.asarray(self.wind(t, positions), dtype=float)
+        if w_ned.shape != r_strips.shape or not np.all(np.isfinite(w_ned)):
+            raise ValueError(f"wind(t, positions) returned shape {w_ned.shape} or non-finite values; expected finite {r_strips.shape}")
+        return np.einsum("sab,sb->sa", self._strip_dcm, w_ned @ c.T)
+
+    def _assemble(self, x: np.ndarray, u: np.ndarray, t: float = 0.0):
         st = self.structure
         nq = st.dofs.nq
-        _, eul, q, xi, vel = self.unpack(x)
+        pos, eul, q, xi, vel = self.unpack(x)
         v, w, s = vel[0:3], vel[3:6], vel[6 : 6 + nq]
         m = st.inertia.mass_matrix(q)
         p = m @ vel
@@ -236,7 +259,8 @@ class AircraftModel:
             altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
             rho = isa_density(float(altitude))
             mach = float(np.sqrt(v @ v)) / speed_of_sound(float(altitude))
-            m_a, q_a, inflow_terms = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach)
+            wind_c = self._strip_wind(t, x, pos, eul)
+            m_a, q_a, inflow_terms = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach, wind_c)
             m = m + m_a
             f = f + q_a
         return m, f, inflow_terms
@@ -257,7 +281,7 @@ class AircraftModel:
         ndarray, shape (n_states,)
         """
         lay = self.layout
-        m, f, inflow_terms = self._assemble(x, u)
+        m, f, inflow_terms = self._assemble(x, u, t)
         if not self._all_active:
             a = self._active
             m, f = m[np.ix_(a, a)], f[a]

@@ -143,8 +143,12 @@ class AeroCoupling:
         self.inflow = inflow_coefficients(options.n_inflow)
         self.n_inflow_states = self._inflow_idx.size * options.n_inflow
 
-    def kinematics(self, q, xi, vel, lam, u) -> StripKinematics:
-        """Strip velocities and Chebyshev downwash coefficients at a state (module docstring)."""
+    def kinematics(self, q, xi, vel, lam, u, wind_c=None) -> StripKinematics:
+        """Strip velocities and Chebyshev downwash coefficients at a state (module docstring).
+
+        ``wind_c`` (n_s, 3), optional: air velocity at each strip in its component axes [m/s]; the strip
+        sees the air velocity relative to itself (gusts, turbulence).
+        """
         s = self.strips
         b, ab = self._b, self._ab
         p_mat = s.proj_n0.copy()
@@ -154,7 +158,11 @@ class AeroCoupling:
         alpha_el = self._rel @ np.concatenate([q, xi]) + s.incidence_rad
         u0 = -(d_mat @ vel)
         adot = s.proj_p @ vel
-        w_ea = p_mat @ vel + u0 * alpha_el
+        w_n = p_mat @ vel
+        if wind_c is not None:
+            u0 = u0 + np.einsum("sk,sk->s", s.d, wind_c)
+            w_n = w_n - np.einsum("sk,sk->s", s.n, wind_c)
+        w_ea = w_n + u0 * alpha_el
         ext = self._ext_u.copy()
         ext[1:] = u[1:]
         ub = u0 * s.flap_sign * ext[s.flap_index]
@@ -185,7 +193,7 @@ class AeroCoupling:
         drag = two_pi_rho_b * kin.wc * kin.wc * (1.0 - self._k0) + rho * kin.u0 * kin.u0 * b * self.strips.cd0
         return lift, moment, lift_tilt, drag, flow / np.maximum(kin.u0, 1.0)
 
-    def evaluate(self, q, xi, vel, lam, u, rho, mach):
+    def evaluate(self, q, xi, vel, lam, u, rho, mach, wind_c=None):
         """Added mass, generalized aerodynamic force and inflow forcing at one state.
 
         Parameters
@@ -202,6 +210,9 @@ class AeroCoupling:
             Air density [kg/m^3].
         mach : float
             Flight Mach number (Prandtl-Glauert factor on Cl_alpha, capped at M = 0.95).
+        wind_c : ndarray, shape (n_s, 3), optional
+            Air velocity at the strips, component axes [m/s] (its time derivative is neglected in the
+            apparent-mass and inflow terms).
 
         Returns
         -------
@@ -214,7 +225,7 @@ class AeroCoupling:
         """
         s = self.strips
         b, ab = self._b, self._ab
-        kin = self.kinematics(q, xi, vel, lam, u)
+        kin = self.kinematics(q, xi, vel, lam, u, wind_c)
         p_mat, d_mat, r_mat = kin.p_mat, kin.d_mat, s.proj_p
         lift_c, moment_c, lift_tilt, drag, flow_angle = self._circulatory(kin, rho, mach)
         w = s.width_m
@@ -248,8 +259,8 @@ class AeroCoupling:
         rate = forcing[:, None] * self.inflow.A_inv_c[None, :] - (u0[idx] / s.semichord_m[idx])[:, None] * (lam2 @ self.inflow.A_inv.T)
         return rate.ravel()
 
-    def strip_loads(self, q, xi, vel, lam, u, rho, mach) -> StripLoads:
+    def strip_loads(self, q, xi, vel, lam, u, rho, mach, wind_c=None) -> StripLoads:
         """Per-strip circulatory loads at a state (no apparent mass), for outputs and tests."""
-        kin = self.kinematics(q, xi, vel, lam, u)
+        kin = self.kinematics(q, xi, vel, lam, u, wind_c)
         lift, moment, _, drag, flow_angle = self._circulatory(kin, rho, mach)
         return StripLoads(kin.u0, kin.w_ea, lift, moment, drag, flow_angle)
