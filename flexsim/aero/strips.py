@@ -51,8 +51,10 @@ class StripSet:
     incidence_rad : ndarray, shape (n_s,)
         Rigging angle of the chord, nose up [rad].
     unsteady : ndarray of bool, shape (n_s,)
-        Strips with apparent mass and (for the finite-state model) inflow states: wing and stabilizer.
-        Fin strips are quasi-steady without apparent mass (paper eqs. 29-31).
+        Strips that carry wake inflow states in the finite-state model: wing and stabilizer. Fin strips
+        are quasi-steady (lambda0 = 0, paper eqs. 29-31); all strips carry the apparent mass, which
+        the quasi-steady thin-airfoil theory includes (without it the fin would lose the pitch damping
+        that cancels its circulatory pitch-rate moment and would flutter spuriously in torsion).
     flap_index : ndarray of int, shape (n_s,)
         Index into u of the strip's control (1 aileron, 2 elevator, 3 rudder), 0 for none.
     flap_sign : ndarray, shape (n_s,)

@@ -4,6 +4,8 @@
     flexsim modes [AIRCRAFT] [--variant free|restrained|quasi-rigid] [--components NAME ...]
                   [--bending-modes M] [--torsion-modes N] [--count K] [--json]
     flexsim aero  [AIRCRAFT] [--mach M] [--plot FILE.png] [--json]
+    flexsim trim  [AIRCRAFT] [--altitude-m H] [--mach M] [--turn-radius-m R] [--climb-deg G | --glide]
+    flexsim flutter [AIRCRAFT] [--altitudes H ...] [--models QS,US] [--workers N] [--json]
 
 AIRCRAFT is a bundled name (``gtm``, ``goland_wing``) or the path of a TOML file (default ``gtm``).
 """
@@ -167,6 +169,10 @@ def _parser() -> argparse.ArgumentParser:
     p_aero.add_argument("--mach", type=float, default=0.0, help="flight Mach number for Prandtl-Glauert [0]")
     p_aero.add_argument("--plot", metavar="FILE.png", help="draw the Cl_alpha distribution (cf. paper Fig. 6)")
     p_aero.set_defaults(func=_aero)
+
+    from flexsim.cli.flutter_commands import add_flutter_commands
+
+    add_flutter_commands(sub, add_aircraft)
     return parser
 
 
@@ -177,7 +183,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     np.set_printoptions(precision=5)
     try:
         return int(args.func(args))
-    except (FlexsimError, FileNotFoundError, KeyError, ValueError) as exc:
+    except (FlexsimError, FileNotFoundError, KeyError, ValueError, RuntimeError) as exc:
         print(f"flexsim {args.command}: error: {exc}", file=sys.stderr)
         return 2
 

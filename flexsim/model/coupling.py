@@ -34,7 +34,7 @@ explicit parts, so that the model solves for the accelerations inside the right-
 evaluates the inflow rates with those accelerations. No acceleration is lagged.
 
 Simplifications (documented in docs/design.md): control-surface rates and the u0_dot terms of Peters'
-[G] matrix are neglected; the fin is quasi-steady without apparent mass (paper eqs. 29-31).
+[G] matrix are neglected; the fin is quasi-steady (lambda0 = 0, paper eqs. 29-31) with apparent mass.
 """
 
 from __future__ import annotations
@@ -135,8 +135,7 @@ class AeroCoupling:
         self._b = s.semichord_m
         self._ab = s.a * s.semichord_m
         self._k0 = s.lift_slope0 / (2 * np.pi)
-        self._am = s.unsteady.astype(float)  # apparent mass only on wing/stabilizer strips
-        self._pr_w = np.pi * s.semichord_m**2 * s.width_m * self._am  # times rho at run time
+        self._pr_w = np.pi * s.semichord_m**2 * s.width_m  # apparent mass per rho, all strips
         self._rel = s.proj_p[:, 6:]  # elastic pitch per unit [q; xi] (B constant: angles = rates map)
         self._finite_state = options.model == "unsteady"
         self._inflow_idx = np.flatnonzero(s.unsteady) if self._finite_state else np.zeros(0, int)

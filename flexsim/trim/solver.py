@@ -169,23 +169,44 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         z0[1] = math.atan(manoeuvre.speed_m_s * omega / max(model.gravity_m_s2, 1e-9)) if omega else 0.0
         z0[2] = -0.03 if manoeuvre.is_glide else 0.03
     sol = root(prob.residual, z0, method="hybr", options={"xtol": 1e-13, "maxfev": 200 * (z0.size + 1)})
-    z = sol.x
-    if not sol.success or np.linalg.norm(prob.residual(z)) > _TOLERANCE:
-        # polish with a least-squares Newton step sequence from where hybr stopped
-        sol = root(prob.residual, z, method="lm", options={"xtol": 1e-15, "ftol": 1e-15, "maxiter": 2000})
-        z = sol.x
+    z = _newton_polish(prob.residual, sol.x)
     r = prob.residual(z)
     norm = float(np.linalg.norm(r))
     if not np.isfinite(norm) or norm > _TOLERANCE:
         labels = _residual_labels(model)
         worst = np.argsort(-np.abs(r))[:4]
         detail = ", ".join(f"{labels[i]} = {r[i]:.3g}" for i in worst)
-        raise TrimError(f"trim failed for {manoeuvre.describe()}: scaled residual {norm:.3g} > {_TOLERANCE:g}; largest: {detail} ({sol.message})")
+        raise TrimError(f"trim failed for {manoeuvre.describe()}: scaled residual {norm:.3g} > {_TOLERANCE:g}; largest: {detail}")
     x, u, gamma = prob.state(z)
     point = _trim_point(model, manoeuvre, x, u, gamma, norm)
     if check_limits:
         _check_limits(model, manoeuvre, point)
     return point
+
+
+def _newton_polish(fun, z: np.ndarray, iterations: int = 4) -> np.ndarray:
+    """A few Newton steps with a central-difference Jacobian (hybr stops at ~1e-8 at high dynamic pressure)."""
+    r = fun(z)
+    for _ in range(iterations):
+        if not np.all(np.isfinite(r)) or np.linalg.norm(r) < 1e-13:
+            break
+        jac = np.empty((r.size, z.size))
+        for j in range(z.size):
+            h = 1e-7 * max(1.0, abs(z[j]))
+            zp, zm = z.copy(), z.copy()
+            zp[j] += h
+            zm[j] -= h
+            jac[:, j] = (fun(zp) - fun(zm)) / (2 * h)
+        try:
+            step = np.linalg.solve(jac, r)
+        except np.linalg.LinAlgError:
+            break
+        z_new = z - step
+        r_new = fun(z_new)
+        if not np.linalg.norm(r_new) < np.linalg.norm(r):
+            break
+        z, r = z_new, r_new
+    return z
 
 
 def _residual_labels(model: AircraftModel) -> list[str]:

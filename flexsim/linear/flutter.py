@@ -1,0 +1,199 @@
+"""Flutter speed of a manoeuvring aircraft, and of a restrained structure in a wind tunnel.
+
+Source: Tuzcu & Nguyen (2014), "Numerical Model": the flutter speed is the lowest speed of the nominal
+(steady) flight at which an eigenvalue of the linearised equations crosses the imaginary axis. Here the
+crossing must be made by an elastic-dominated mode (:mod:`flexsim.linear.stability`); rigid-body
+instabilities (spiral, phugoid) met on the way are reported separately, never as flutter. The aircraft is
+re-trimmed at every Mach number; the crossing is bracketed on a Mach grid and refined with Brent's
+method to 1e-4 in Mach.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+from scipy.optimize import brentq
+
+from flexsim.aircraft.definition import Aircraft
+from flexsim.atmosphere import speed_of_sound
+from flexsim.errors import FlexsimError
+from flexsim.linear.stability import Mode, Spectrum, spectrum
+from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.coupling import AERO_MODELS, AeroOptions
+from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
+
+__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "wind_tunnel_flutter"]
+
+
+class FlutterNotFound(FlexsimError, RuntimeError):
+    """No elastic mode crossed the imaginary axis in the searched range."""
+
+
+@dataclass(frozen=True, eq=False)
+class FlutterPoint:
+    """The flutter point of a manoeuvre.
+
+    Attributes
+    ----------
+    aero_model : str
+    mach, speed_m_s, frequency_rad_s : float
+        Flutter Mach number, true airspeed [m/s] and frequency |Im(lambda)| [rad/s].
+    trim : TrimPoint or None
+        Trim at the flutter speed (None for a wind-tunnel case).
+    mode : Mode
+        The crossing mode.
+    mode_shape : ndarray (complex), shape (n_v,)
+        Displacement amplitudes over [R, Theta, q, xi]-rates order of V (eq. 9), i.e. shape / lambda,
+        normalised so that the fuselage's first bending coordinate q_f1 = 1 m (paper Figs. 11, 16); by the
+        largest elastic coordinate when there is no flexible fuselage.
+    labels : tuple of str
+        DOF label of every entry of ``mode_shape``.
+    rigid_instabilities : tuple of (float, complex, str)
+        (Mach, eigenvalue, dominant DOF) of unstable rigid-body modes met during the search.
+    evaluations : int
+        Number of trims + eigen-analyses.
+    """
+
+    aero_model: str
+    mach: float
+    speed_m_s: float
+    frequency_rad_s: float
+    trim: TrimPoint | None
+    mode: Mode
+    mode_shape: np.ndarray
+    labels: tuple[str, ...]
+    rigid_instabilities: tuple = field(default=())
+    evaluations: int = 0
+
+
+def _normalised_shape(model: AircraftModel, mode: Mode) -> np.ndarray:
+    disp = mode.shape / mode.eigenvalue
+    dofs = model.structure.dofs
+    fus = dofs.v_bending("fuselage") if "fuselage" in dofs.component_names else slice(0, 0)
+    if fus.stop > fus.start and abs(disp[fus.start]) > 1e-12 * np.abs(disp).max():
+        return disp / disp[fus.start]
+    el = disp[6:]
+    return disp / el[np.argmax(np.abs(el))]
+
+
+class FlutterAnalysis:
+    """Flutter of an aircraft in a steady manoeuvre, with the paper's aerodynamic models.
+
+    Parameters
+    ----------
+    aircraft : Aircraft
+    aero_model : {"quasi-steady", "unsteady", "theodorsen"}
+        ``theodorsen`` is the paper's "US" model (p-k); ``unsteady`` the finite-state state space.
+    n_inflow : int
+        Finite-state inflow states per strip (``unsteady`` and the p-k input/output matrices).
+    """
+
+    def __init__(self, aircraft: Aircraft, aero_model: str = "theodorsen", n_inflow: int = 6) -> None:
+        if aero_model not in AERO_MODELS:
+            raise ValueError(f"aero_model = {aero_model!r}: must be one of {', '.join(AERO_MODELS)}")
+        self.aircraft = aircraft
+        self.aero_model = aero_model
+        self.qs = AircraftModel(aircraft, aero="quasi-steady")
+        self.fs = AircraftModel(aircraft, aero=AeroOptions("unsteady", n_inflow)) if aero_model != "quasi-steady" else None
+
+    def evaluate(self, manoeuvre: SteadyManoeuvre, guess: TrimPoint | None = None) -> tuple[TrimPoint, Spectrum]:
+        """Trim (limits not enforced: the paper's climbs need negative thrust) and eigen-analysis."""
+        point = trim(self.qs, manoeuvre, guess=guess, check_limits=False)
+        if self.aero_model == "quasi-steady":
+            return point, spectrum(self.qs, point.x, point.u, aero_model="quasi-steady")
+        if self.aero_model == "unsteady":
+            x = np.concatenate([point.x, np.zeros(self.fs.layout.n_inflow)])
+            return point, spectrum(self.fs, x, point.u, aero_model="unsteady")
+        return point, spectrum(self.qs, point.x, point.u, aero_model="theodorsen", pk_model=self.fs)
+
+    def search(self, manoeuvre: SteadyManoeuvre, *, mach_range: tuple[float, float] = (0.3, 0.95),
+               mach_step: float = 0.05, tol: float = 1e-4) -> FlutterPoint:
+        """Lowest flutter Mach number of ``manoeuvre`` (its speed is replaced by the searched one).
+
+        Raises
+        ------
+        FlutterNotFound
+            When no elastic mode becomes unstable in ``mach_range``.
+        """
+        lo, hi = mach_range
+        if not 0.0 < lo < hi < 1.0:
+            raise ValueError(f"mach_range = {mach_range!r}: must satisfy 0 < lo < hi < 1")
+        a_sound = speed_of_sound(float(manoeuvre.altitude_m))
+        state = {"guess": None, "n": 0, "rigid": []}
+
+        def g(mach: float) -> float:
+            man = manoeuvre.with_speed(mach * a_sound)
+            point, spec = self.evaluate(man, state["guess"])
+            state["guess"], state["n"] = point, state["n"] + 1
+            state["last"] = (point, spec)
+            rig = spec.max_real("rigid", min_frequency_rad_s=0.0)
+            if rig > 0:
+                crit = max((m for m in spec.of_kind("rigid")), key=lambda m: m.eigenvalue.real)
+                state["rigid"].append((mach, crit.eigenvalue, crit.dominant_dof))
+            return spec.max_real("elastic")
+
+        grid = np.arange(lo, hi + 1e-12, mach_step)
+        prev_m, prev_g = None, None
+        for mach in grid:
+            val = g(float(mach))
+            if val > 0:
+                if prev_m is None:
+                    raise FlutterNotFound(
+                        f"{self.aero_model}: already unstable at the lower end of the search, M = {mach:.4f} "
+                        f"({manoeuvre.describe()}); lower mach_range[0]"
+                    )
+                state["guess"] = None
+                mach_f = brentq(g, prev_m, float(mach), xtol=tol)
+                point, spec = self.evaluate(manoeuvre.with_speed(mach_f * a_sound))
+                mode = spec.critical("elastic")
+                return FlutterPoint(
+                    aero_model=self.aero_model,
+                    mach=float(mach_f),
+                    speed_m_s=float(mach_f * a_sound),
+                    frequency_rad_s=mode.frequency_rad_s,
+                    trim=point,
+                    mode=mode,
+                    mode_shape=_normalised_shape(self.qs, mode),
+                    labels=self.qs.structure.dofs.labels,
+                    rigid_instabilities=tuple(state["rigid"]),
+                    evaluations=state["n"] + 1,
+                )
+            prev_m, prev_g = float(mach), val
+        raise FlutterNotFound(
+            f"{self.aero_model}: no elastic mode crosses the imaginary axis for {lo:.3f} <= M <= {hi:.3f} "
+            f"({manoeuvre.describe()}); largest elastic real part {prev_g:.4g} 1/s at M = {prev_m:.3f}"
+        )
+
+
+def wind_tunnel_flutter(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range: tuple[float, float] = (10.0, 300.0),
+                        speed_step: float = 5.0, altitude_m: float = 0.0, tol_m_s: float = 1e-3, n_inflow: int = 6) -> tuple[float, float]:
+    """Flutter speed [m/s] and frequency [rad/s] of a restrained aircraft (e.g. a clamped wing) in an airflow.
+
+    The structure is clamped at the body origin and the air flows at -speed along body x (zero angle
+    of attack, no gravity): the classical wind-tunnel flutter problem, e.g. the Goland wing.
+    """
+    if aero_model not in AERO_MODELS:
+        raise ValueError(f"aero_model = {aero_model!r}: must be one of {', '.join(AERO_MODELS)}")
+
+    def spec_at(speed: float) -> Spectrum:
+        kw = dict(variant="restrained", gravity_m_s2=0.0, restrained_velocity_m_s=[speed, 0.0, 0.0], altitude_m=altitude_m)
+        if aero_model == "theodorsen":
+            qs = AircraftModel(aircraft, aero="quasi-steady", **kw)
+            fs = AircraftModel(aircraft, aero=AeroOptions("unsteady", n_inflow), **kw)
+            return spectrum(qs, qs.layout.zeros(), np.zeros(4), aero_model="theodorsen", pk_model=fs)
+        model = AircraftModel(aircraft, aero=AeroOptions(aero_model, n_inflow), **kw)
+        return spectrum(model, model.layout.zeros(), np.zeros(4), aero_model=aero_model)
+
+    g: Callable[[float], float] = lambda sp: spec_at(sp).max_real("elastic")
+    prev = None
+    for speed in np.arange(speed_range[0], speed_range[1] + 1e-9, speed_step):
+        if g(float(speed)) > 0:
+            if prev is None:
+                raise FlutterNotFound(f"already unstable at {speed} m/s; lower speed_range[0]")
+            u_f = brentq(g, prev, float(speed), xtol=tol_m_s)
+            return float(u_f), spec_at(u_f).critical("elastic").frequency_rad_s
+        prev = float(speed)
+    raise FlutterNotFound(f"no flutter for {speed_range[0]} <= U <= {speed_range[1]} m/s ({aero_model})")

@@ -1,0 +1,236 @@
+"""Eigen-analysis of a trimmed steady manoeuvre: modes, their classification, and the p-k method.
+
+Source: Tuzcu & Nguyen (2014), "Numerical Model": linearise eq. (33) about the steady manoeuvre and
+solve the eigenvalue problem; the first 12 eigenvalues are rigid-body dominated, the others elastic; the
+"US" results use the frequency-domain wake (Theodorsen, eq. 27), valid at flutter.
+
+Three aerodynamic models (DESIGN 5): ``quasi-steady`` (lambda0 = 0), ``unsteady`` (Peters finite-state
+inflow in state space), ``theodorsen`` (p-k iteration: lambda0 = (1 - C(k_j)) (w0 + w1/2) at every strip,
+k_j = omega b_j / u0_j, iterated on omega for every mode until consistent).
+
+Each mode is classified by the split of its kinetic energy (velocity part phi of the eigenvector, M the
+structural mass matrix at the trim) into the energy of the rigid-body motion of the whole aircraft and
+the rest (Koenig's theorem): with the linear momentum P = (M phi)_v and the angular momentum about the
+centre of mass H = (M phi)_omega - r_cg x P, the rigid-body part is |P|^2/m + H^H J_cg^-1 H and the
+elastic fraction is 1 - rigid / (phi^H M phi). This does not depend on where the body origin o is (for the
+GTM, the fuselage tail, so that cantilever fuselage modes carry large rigid-body coordinates). A mode is
+rigid-body dominated when more than half of its energy is rigid-body motion AND its frequency |eigenvalue|
+is below half the first in-vacuo elastic frequency: the paper's "first 12 eigenvalues" are the
+flight-dynamics modes, while a fuselage-bending mode strongly coupled to pitch and heave through the tail's
+aerodynamics (the paper's flutter mode, q_f1 dominant) stays an elastic mode. Restrained models have only
+elastic modes. Modes that
+are almost pure inflow (aerodynamic lag states, structural energy below 1e-9 of the vector) are labelled
+"aerodynamic". The dominant DOF is the one with the largest share Re(conj(phi_i) (M phi)_i).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from flexsim.aero.theodorsen import theodorsen_function
+from flexsim.linear.linearize import LinearModel, jacobian, linearize
+from flexsim.model.aircraft_model import AircraftModel
+
+__all__ = ["Mode", "Spectrum", "spectrum"]
+
+
+
+@dataclass(frozen=True, eq=False)
+class Mode:
+    """One eigenvalue of the linearised manoeuvre.
+
+    Attributes
+    ----------
+    eigenvalue : complex
+        [1/s]; frequency = |Im|, damping ratio = -Re/|eigenvalue|.
+    kind : {"rigid", "elastic", "aerodynamic"}
+    elastic_fraction : float
+        Share of the kinetic energy in elastic DOFs [-].
+    dominant_dof : str
+        DOF label with the largest kinetic-energy share (e.g. "right_wing torsion 1").
+    shape : ndarray (complex), shape (n_v,)
+        Velocity part of the eigenvector over V = [v, omega, s, eta] (eq. 9); the configuration part is
+        shape / eigenvalue.
+    """
+
+    eigenvalue: complex
+    kind: str
+    elastic_fraction: float
+    dominant_dof: str
+    shape: np.ndarray
+
+    @property
+    def frequency_rad_s(self) -> float:
+        """Damped natural frequency |Im(eigenvalue)| [rad/s]."""
+        return abs(self.eigenvalue.imag)
+
+    @property
+    def damping_ratio(self) -> float:
+        """-Re / |eigenvalue| [-]."""
+        return -self.eigenvalue.real / max(abs(self.eigenvalue), 1e-300)
+
+
+@dataclass(frozen=True, eq=False)
+class Spectrum:
+    """All modes of a linearised manoeuvre, sorted by decreasing real part."""
+
+    modes: tuple[Mode, ...]
+    aero_model: str
+
+    def of_kind(self, kind: str) -> tuple[Mode, ...]:
+        """The modes of one kind ("rigid", "elastic", "aerodynamic")."""
+        return tuple(m for m in self.modes if m.kind == kind)
+
+    def max_real(self, kind: str = "elastic", min_frequency_rad_s: float = 0.5) -> float:
+        """Largest real part among oscillatory modes of ``kind`` (the flutter function) [1/s]."""
+        vals = [m.eigenvalue.real for m in self.modes if m.kind == kind and m.frequency_rad_s >= min_frequency_rad_s]
+        return max(vals) if vals else -np.inf
+
+    def critical(self, kind: str = "elastic", min_frequency_rad_s: float = 0.5) -> Mode:
+        """The oscillatory mode of ``kind`` with the largest real part."""
+        cands = [m for m in self.modes if m.kind == kind and m.frequency_rad_s >= min_frequency_rad_s]
+        return max(cands, key=lambda m: m.eigenvalue.real)
+
+
+def _classify(model: AircraftModel, lin: LinearModel, vals: np.ndarray, vecs: np.ndarray, aero_model: str) -> Spectrum:
+    lay = model.layout
+    pos = {int(k): i for i, k in enumerate(lin.keep)}
+    vel_rows = np.array([pos[i] for i in range(lay.velocity.start, lay.velocity.stop)])
+    _, _, q, _, _ = model.unpack(lin.x0)
+    mass = model.structure.inertia.mass_matrix(q)
+    active = model.active_dofs
+    m_act = mass[np.ix_(active, active)]
+    labels = [model.structure.dofs.labels[i] for i in active]
+    free = lay.rigid
+    cut = 0.5 * _first_elastic_frequency(model) if free else 0.0
+    mp = model.structure.mass_properties
+    j_inv = np.linalg.inv(mp.inertia_cg_kg_m2)
+    modes = []
+    for k in range(vals.size):
+        phi = vecs[vel_rows, k]
+        m_phi = m_act @ phi
+        share = np.real(np.conj(phi) * m_phi)
+        total = share.sum()
+        scale = np.real(np.vdot(vecs[:, k], vecs[:, k]))
+        full = np.zeros(model.structure.dofs.n_v, dtype=complex)
+        full[active] = phi
+        if total <= 1e-9 * scale * np.abs(m_act).max() or total <= 0:
+            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", full))
+            continue
+        if free:
+            p_lin = m_phi[0:3]
+            h_cg = m_phi[3:6] - np.cross(mp.cg_m, p_lin)
+            rigid_energy = np.real(np.vdot(p_lin, p_lin)) / mp.mass_kg + np.real(np.vdot(h_cg, j_inv @ h_cg))
+            frac_el = float(np.clip(1.0 - rigid_energy / total, 0.0, 1.0))
+        else:
+            frac_el = 1.0
+        j = int(np.argmax(share))
+        rigid = frac_el < 0.5 and abs(vals[k]) < cut
+        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, labels[j], full))
+    modes.sort(key=lambda m: -m.eigenvalue.real)
+    return Spectrum(tuple(modes), aero_model)
+
+
+def _first_elastic_frequency(model: AircraftModel) -> float:
+    """Lowest in-vacuo elastic frequency of the model's structure [rad/s] (cached on the structure)."""
+    st = model.structure
+    cached = getattr(st, "_first_elastic_rad_s", None)
+    if cached is None:
+        from flexsim.linear.modes import in_vacuo_modes
+
+        analysis = in_vacuo_modes(AircraftModel(model.aircraft, aero=None, gravity_m_s2=0.0))
+        freqs = analysis.frequencies_rad_s[analysis.n_rigid :]
+        cached = float(freqs[0]) if freqs.size else np.inf
+        st._first_elastic_rad_s = cached
+    return cached
+
+
+def spectrum(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, *, aero_model: str = "unsteady",
+             pk_model: AircraftModel | None = None) -> Spectrum:
+    """Eigen-analysis of ``model`` linearised about (x0, u0).
+
+    Parameters
+    ----------
+    model : AircraftModel
+        Its aerodynamic model is used as is for ``quasi-steady`` and ``unsteady``.
+    x0, u0 : ndarray
+        Trim state and controls.
+    aero_model : {"quasi-steady", "unsteady", "theodorsen"}
+        Label of the analysis; ``theodorsen`` runs the p-k iteration and needs ``pk_model``.
+    pk_model : AircraftModel, optional
+        A finite-state (``unsteady``) model of the same aircraft, used to build the lambda0 input and
+        w0 + w1/2 output matrices of the p-k method; ``model`` must then be the quasi-steady model.
+    """
+    lin = linearize(model, x0, u0)
+    if aero_model != "theodorsen":
+        vals, vecs = np.linalg.eig(lin.a)
+        return _classify(model, lin, vals, vecs, aero_model)
+    if pk_model is None:
+        raise ValueError('aero_model = "theodorsen" needs pk_model: the finite-state model of the same aircraft')
+    return _pk(model, pk_model, lin, x0, u0)
+
+
+def _pk(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel, x0: np.ndarray, u0: np.ndarray) -> Spectrum:
+    """p-k iteration with Theodorsen's C(k) at every strip (paper eq. 27, the "US" model)."""
+    coupling = fs_model.aero
+    strips = coupling.strips
+    idx = np.flatnonzero(strips.unsteady)
+    n_in = coupling.options.n_inflow
+    lay_fs, lay_qs = fs_model.layout, qs_model.layout
+    # finite-state state at the trim: same configuration/velocities, zero inflow
+    x_fs = lay_fs.zeros()
+    x_fs[: lay_fs.inflow.start] = x0[: lay_qs.n_states]
+    # input matrix: d x_dot / d lambda0_j (perturb the strip's inflow states by 2 eps: lambda0 = 1/2 b^T lam)
+    b_lam = np.empty((lay_qs.n_states, idx.size))
+    eps = 1e-4
+    for c, j in enumerate(range(idx.size)):
+        xp, xm = x_fs.copy(), x_fs.copy()
+        sl = slice(lay_fs.inflow.start + j * n_in, lay_fs.inflow.start + (j + 1) * n_in)
+        xp[sl] += 2 * eps
+        xm[sl] -= 2 * eps
+        b_lam[:, c] = (fs_model.rhs(0.0, xp, u0) - fs_model.rhs(0.0, xm, u0))[: lay_qs.n_states] / (2 * eps)
+    # output matrix: w0 + w1/2 at the strips per unit state
+    def w34(xx):
+        _, _, q, xi, v = fs_model.unpack(xx)
+        return coupling.kinematics(q, xi, v, xx[lay_fs.inflow], u0).w34[idx]
+
+    c_w = np.empty((idx.size, lay_qs.n_states))
+    for j in range(lay_qs.n_states):
+        h = max(1e-7, 1e-6 * abs(x_fs[j]))
+        xp, xm = x_fs.copy(), x_fs.copy()
+        xp[j] += h
+        xm[j] -= h
+        c_w[:, j] = (w34(xp) - w34(xm)) / (2 * h)
+    keep = lin.keep
+    b_k, c_k = b_lam[keep], c_w[:, keep]
+    _, _, q, xi, vel = fs_model.unpack(x_fs)
+    kin = coupling.kinematics(q, xi, vel, x_fs[lay_fs.inflow], u0)
+    b_over_u = strips.semichord_m[idx] / np.maximum(kin.u0[idx], 1e-6)
+
+    def a_of(omega: float) -> np.ndarray:
+        one_minus_c = 1.0 - theodorsen_function(np.abs(omega) * b_over_u)
+        return lin.a + (b_k * one_minus_c[None, :]) @ c_k
+
+    vals0, vecs0 = np.linalg.eig(lin.a)
+    out_vals, out_vecs = vals0.astype(complex).copy(), vecs0.astype(complex).copy()
+    for k in range(vals0.size):
+        p = vals0[k]
+        if p.imag <= 0.5 or p.real < -20.0:
+            continue
+        vec = vecs0[:, k]
+        for _ in range(30):
+            vals, vecs = np.linalg.eig(a_of(p.imag))
+            corr = np.abs(vecs.conj().T @ vec) / (np.linalg.norm(vecs, axis=0) * np.linalg.norm(vec))
+            m = int(np.argmax(corr - 1e-3 * np.abs(vals - p) / max(abs(p), 1.0)))
+            p_new, vec = vals[m], vecs[:, m]
+            if abs(p_new.imag - p.imag) < 1e-7 * max(1.0, abs(p.imag)):
+                p = p_new
+                break
+            p = p_new
+        out_vals[k], out_vecs[:, k] = p, vec
+        conj = np.argmin(np.abs(vals0 - np.conj(vals0[k])))
+        if conj != k:
+            out_vals[conj], out_vecs[:, conj] = np.conj(p), np.conj(vec)
+    return _classify(qs_model, lin, out_vals, out_vecs, "theodorsen")
