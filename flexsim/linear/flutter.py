@@ -113,6 +113,9 @@ class FlutterAnalysis:
                mach_step: float = 0.05, tol: float = 1e-4) -> FlutterPoint:
         """Lowest flutter Mach number of ``manoeuvre`` (its speed is replaced by the searched one).
 
+        Speeds whose trim needs a control surface beyond its limit (too slow to fly the manoeuvre) are
+        skipped; thrust limits are not enforced (the paper's descents need negative thrust).
+
         Raises
         ------
         FlutterNotFound
@@ -137,8 +140,13 @@ class FlutterAnalysis:
 
         grid = np.arange(lo, hi + 1e-12, mach_step)
         prev_m, prev_g = None, None
+        _, surf_hi = self.aircraft.control_limits()
         for mach in grid:
             val = g(float(mach))
+            trim_point = state["last"][0]
+            if np.any(np.abs(trim_point.u[1:]) > surf_hi[1:] + 1e-12):
+                state["guess"] = None  # trim needs a surface beyond its limit: not flyable, skip this speed
+                continue
             if val > 0:
                 if prev_m is None:
                     raise FlutterNotFound(
@@ -162,6 +170,8 @@ class FlutterAnalysis:
                     evaluations=state["n"] + 1,
                 )
             prev_m, prev_g = float(mach), val
+        if prev_m is None:
+            raise FlutterNotFound(f"{self.aero_model}: no flyable trim (surfaces within limits) for {lo:.3f} <= M <= {hi:.3f} ({manoeuvre.describe()})")
         raise FlutterNotFound(
             f"{self.aero_model}: no elastic mode crosses the imaginary axis for {lo:.3f} <= M <= {hi:.3f} "
             f"({manoeuvre.describe()}); largest elastic real part {prev_g:.4g} 1/s at M = {prev_m:.3f}"
