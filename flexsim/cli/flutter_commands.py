@@ -6,17 +6,16 @@ import argparse
 import json
 import math
 import os
-from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
 
 from flexsim.aircraft.toml_loader import load_aircraft
-from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
-from flexsim.linear.paper_data import TABLE_QS, TABLE_US
+from flexsim.linear.paper_data import GLIDE_9144, TABLE_QS, TABLE_US
+from flexsim.linear.study import MODELS as _MODELS
+from flexsim.linear.study import StudyCase, climb_cases, glide_from_climb, plot_study, run_study, turn_cases, write_results
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, TrimError, trim
+from flexsim.trim import SteadyManoeuvre, trim
 
-__all__ = ["add_flutter_commands", "flutter_row"]
-
-_MODELS = {"QS": "quasi-steady", "US": "theodorsen", "FS": "unsteady"}
+__all__ = ["add_flutter_commands"]
 
 
 def _manoeuvre(args: argparse.Namespace, altitude: float, mach: float) -> SteadyManoeuvre:
@@ -39,40 +38,13 @@ def _trim(args: argparse.Namespace) -> int:
     return 0
 
 
-def flutter_row(aircraft_name: str, model_key: str, altitude: float, mach_lo: float, mach_hi: float,
-                turn_radius_m: float = math.inf, climb_angle_rad: float | None = 0.0) -> dict:
-    """One flutter point as a plain dict (picklable worker for process pools)."""
-    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-    aircraft = load_aircraft(aircraft_name)
-    analysis = FlutterAnalysis(aircraft, _MODELS[model_key])
-    man = SteadyManoeuvre(SteadyManoeuvre.level(altitude, mach=mach_lo).speed_m_s, altitude, turn_radius_m, climb_angle_rad)
-    row = {"model": model_key, "altitude_m": altitude, "turn_radius_m": turn_radius_m,
-           "climb_angle_deg": None if climb_angle_rad is None else math.degrees(climb_angle_rad)}
-    try:
-        fp = analysis.search(man, mach_range=(mach_lo, mach_hi))
-    except (FlutterNotFound, TrimError) as exc:
-        row["error"] = str(exc)
-        return row
-    s = fp.trim.summary()
-    row.update(mach=fp.mach, omega_rad_s=fp.frequency_rad_s, theta_deg=s["theta_deg"], thrust_kN=s["thrust_kN"],
-               elevator_deg=s["elevator_deg"], tip_deflection_m=s["tip_deflection_m"], tip_twist_deg=s["tip_twist_deg"],
-               gamma_deg=s["gamma_deg"], phi_deg=s["phi_deg"], mode=fp.mode.dominant_dof, evaluations=fp.evaluations,
-               rigid_instabilities=[(m, str(ev), dof) for m, ev, dof in fp.rigid_instabilities[:3]])
-    return row
-
-
 def _flutter(args: argparse.Namespace) -> int:
     keys = [k.strip().upper() for k in args.models.split(",")]
     for k in keys:
         if k not in _MODELS:
             raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
-    jobs = [(args.aircraft, k, h, args.mach_min, args.mach_max) for k in keys for h in args.altitudes]
-    workers = max(1, min(args.workers, len(jobs)))
-    if workers > 1:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            rows = list(pool.map(flutter_row, *zip(*jobs)))
-    else:
-        rows = [flutter_row(*job) for job in jobs]
+    cases = [StudyCase(args.aircraft, k, h, mach_min=args.mach_min, mach_max=args.mach_max) for k in keys for h in args.altitudes]
+    rows = run_study(cases, workers=args.workers, progress=not args.json)
     if args.json:
         print(json.dumps(rows, indent=2))
         return 0
@@ -91,6 +63,31 @@ def _flutter(args: argparse.Namespace) -> int:
                       f"{row['thrust_kN']:8.2f} {row['elevator_deg']:7.3f} {row['tip_deflection_m']:8.4f} {row['tip_twist_deg']:8.4f}   ({row['mode']})")
             if ref:
                 print(f"{'pap.':>4} {ref[0]:7.0f} {ref[1]:7.4f} {ref[2]:8.3f} {ref[3]:7.3f} {ref[4]:8.2f} {ref[5]:7.3f} {ref[6]:8.4f} {ref[7]:8.4f}")
+    return 0
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    kind = "turn" if args.turn else "climb"
+    models = [k.strip().upper() for k in args.models.split(",")]
+    if kind == "turn":
+        cases = turn_cases(args.aircraft, altitudes_m=args.altitudes, models=models)
+    else:
+        cases = climb_cases(args.aircraft, altitudes_m=args.altitudes, models=models)
+    rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=True)
+    out = Path(args.out)
+    csv_path, json_path = write_results(rows, out, f"flutter_{kind}")
+    png = plot_study(rows, kind, out / f"flutter_{kind}.png")
+    ok = sum("mach" in r for r in rows)
+    print(f"{ok}/{len(rows)} flutter points; results: {csv_path}, {json_path}; figure: {png}")
+    if kind == "climb":
+        glide = glide_from_climb(rows)
+        if glide:
+            print(f"glide at 9144 m (T_e = 0 on the US climb curve): gamma = {glide['gamma_deg']:.2f} deg, "
+                  f"M_F = {glide['mach']:.4f}, omega_F = {glide['omega_rad_s']:.3f} rad/s "
+                  f"(paper: {GLIDE_9144[0]} deg, {GLIDE_9144[1]}, {GLIDE_9144[2]} rad/s)")
+    for r in rows:
+        if "error" in r:
+            print(f"  no flutter point: {r['model']} h={r['altitude_m']:.0f} R={r['turn_radius_m']} gamma={r['climb_angle_deg']}: {r['error'][:100]}")
     return 0
 
 
@@ -114,3 +111,15 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_fl.add_argument("--mach-max", type=float, default=0.95)
     p_fl.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="local processes [all cores]")
     p_fl.set_defaults(func=_flutter)
+
+    p_sw = sub.add_parser("sweep", help="flutter versus turn radius or climb angle (paper Figs. 7-16)")
+    add_aircraft(p_sw)
+    group = p_sw.add_mutually_exclusive_group(required=True)
+    group.add_argument("--turn", action="store_true", help="level turns, R = 5-12 km")
+    group.add_argument("--climb", action="store_true", help="climbs and descents, gamma = -15..15 deg")
+    p_sw.add_argument("--altitudes", type=float, nargs="+", default=[0.0, 3048.0, 6096.0, 9144.0], metavar="H")
+    p_sw.add_argument("--models", default="QS,US")
+    p_sw.add_argument("--scheduler", metavar="ADDRESS", help="Dask distributed scheduler (default: local processes)")
+    p_sw.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    p_sw.add_argument("--out", default="logs/study", help="output folder for CSV, JSON and PNG [logs/study]")
+    p_sw.set_defaults(func=_sweep)

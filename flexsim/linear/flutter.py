@@ -110,8 +110,13 @@ class FlutterAnalysis:
         return point, spectrum(self.qs, point.x, point.u, aero_model="theodorsen", pk_model=self.fs)
 
     def search(self, manoeuvre: SteadyManoeuvre, *, mach_range: tuple[float, float] = (0.3, 0.95),
-               mach_step: float = 0.05, tol: float = 1e-4) -> FlutterPoint:
+               mach_step: float = 0.05, tol: float = 1e-4, mach_guess: float | None = None) -> FlutterPoint:
         """Lowest flutter Mach number of ``manoeuvre`` (its speed is replaced by the searched one).
+
+        With ``mach_guess`` (e.g. the flutter Mach of a neighbouring manoeuvre in a study) the crossing is
+        first bracketed within +-0.01 of the guess, widening geometrically; it falls back to the full grid
+        scan when the crossing found that way might not be the lowest (an unstable point below the guess
+        is always re-checked down to the lower end of ``mach_range`` on the coarse grid).
 
         Speeds whose trim needs a control surface beyond its limit (too slow to fly the manoeuvre) are
         skipped; thrust limits are not enforced (the paper's descents need negative thrust).
@@ -138,6 +143,15 @@ class FlutterAnalysis:
                 state["rigid"].append((mach, crit.eigenvalue, crit.dominant_dof))
             return spec.max_real("elastic")
 
+        if mach_guess is not None and lo < mach_guess < hi:
+            bracket = self._bracket_near(g, mach_guess, lo, hi)
+            if bracket is not None:
+                a, b = bracket
+                # the crossing near the guess is the lowest one if the coarse grid below it is stable
+                below = [m for m in np.arange(lo, a, mach_step)]
+                if all(g(float(m)) <= 0 for m in below[-2:]):
+                    state["guess"] = None
+                    return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state)
         grid = np.arange(lo, hi + 1e-12, mach_step)
         prev_m, prev_g = None, None
         _, surf_hi = self.aircraft.control_limits()
@@ -154,27 +168,51 @@ class FlutterAnalysis:
                         f"({manoeuvre.describe()}); lower mach_range[0]"
                     )
                 state["guess"] = None
-                mach_f = brentq(g, prev_m, float(mach), xtol=tol)
-                point, spec = self.evaluate(manoeuvre.with_speed(mach_f * a_sound))
-                mode = spec.critical("elastic")
-                return FlutterPoint(
-                    aero_model=self.aero_model,
-                    mach=float(mach_f),
-                    speed_m_s=float(mach_f * a_sound),
-                    frequency_rad_s=mode.frequency_rad_s,
-                    trim=point,
-                    mode=mode,
-                    mode_shape=_normalised_shape(self.qs, mode),
-                    labels=self.qs.structure.dofs.labels,
-                    rigid_instabilities=tuple(state["rigid"]),
-                    evaluations=state["n"] + 1,
-                )
+                return self._point(manoeuvre, brentq(g, prev_m, float(mach), xtol=tol), a_sound, state)
             prev_m, prev_g = float(mach), val
         if prev_m is None:
             raise FlutterNotFound(f"{self.aero_model}: no flyable trim (surfaces within limits) for {lo:.3f} <= M <= {hi:.3f} ({manoeuvre.describe()})")
         raise FlutterNotFound(
             f"{self.aero_model}: no elastic mode crosses the imaginary axis for {lo:.3f} <= M <= {hi:.3f} "
             f"({manoeuvre.describe()}); largest elastic real part {prev_g:.4g} 1/s at M = {prev_m:.3f}"
+        )
+
+    @staticmethod
+    def _bracket_near(g, guess: float, lo: float, hi: float) -> tuple[float, float] | None:
+        """[a, b] with g(a) <= 0 < g(b) near ``guess``, widening by factors of 2 from +-0.01."""
+        step = 0.01
+        g0 = g(guess)
+        a = b = guess
+        for _ in range(6):
+            if g0 > 0:
+                a = max(lo, b - step)
+                if g(a) <= 0:
+                    return a, b
+                b = a
+            else:
+                b = min(hi, a + step)
+                if g(b) > 0:
+                    return a, b
+                a = b
+            step *= 2
+            if a <= lo or b >= hi:
+                return None
+        return None
+
+    def _point(self, manoeuvre: SteadyManoeuvre, mach_f: float, a_sound: float, state: dict) -> FlutterPoint:
+        point, spec = self.evaluate(manoeuvre.with_speed(mach_f * a_sound))
+        mode = spec.critical("elastic")
+        return FlutterPoint(
+            aero_model=self.aero_model,
+            mach=float(mach_f),
+            speed_m_s=float(mach_f * a_sound),
+            frequency_rad_s=mode.frequency_rad_s,
+            trim=point,
+            mode=mode,
+            mode_shape=_normalised_shape(self.qs, mode),
+            labels=self.qs.structure.dofs.labels,
+            rigid_instabilities=tuple(state["rigid"]),
+            evaluations=state["n"] + 1,
         )
 
 

@@ -1,0 +1,231 @@
+"""Flutter studies over steady manoeuvres: turn radius and climb angle at several altitudes.
+
+Source: Tuzcu & Nguyen (2014), Figs. 7-16: flutter Mach number and frequency versus turn radius R
+(5-12 km) and climb angle gamma (-15 to 15 deg) at 0, 3048, 6096 and 9144 m, quasi-steady (QS) and
+unsteady (US, Theodorsen) aerodynamics, with the trim quantities at 9144 m; the glide is the point of the
+climb curve where the thrust vanishes.
+
+Each condition is an independent flutter search (:class:`~flexsim.linear.flutter.FlutterAnalysis`),
+run in parallel: local processes by default, or a Dask distributed cluster when a scheduler address is
+given. Results are plain dicts (one per condition), written as CSV and JSON and plotted as PNG figures
+laid out like the paper's.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import os
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Iterable, Sequence
+
+import numpy as np
+
+__all__ = ["StudyCase", "turn_cases", "climb_cases", "run_case", "run_chain", "run_study", "write_results", "plot_study", "glide_from_climb"]
+
+MODELS = {"QS": "quasi-steady", "US": "theodorsen", "FS": "unsteady"}
+PAPER_ALTITUDES_M = (0.0, 3048.0, 6096.0, 9144.0)
+
+
+@dataclass(frozen=True)
+class StudyCase:
+    """One flutter search of a study.
+
+    Attributes
+    ----------
+    aircraft : str
+        Bundled name or TOML path (resolved in the worker).
+    model : {"QS", "US", "FS"}
+    altitude_m : float
+    turn_radius_m : float
+        ``inf`` for straight flight.
+    climb_angle_deg : float or None
+        None for a glide.
+    mach_min, mach_max : float
+        Search range.
+    """
+
+    aircraft: str
+    model: str
+    altitude_m: float
+    turn_radius_m: float = math.inf
+    climb_angle_deg: float | None = 0.0
+    mach_min: float = 0.5
+    mach_max: float = 0.95
+
+    def __post_init__(self) -> None:
+        if self.model not in MODELS:
+            raise ValueError(f"model = {self.model!r}: must be one of {', '.join(MODELS)}")
+
+
+def turn_cases(aircraft: str, radii_m: Sequence[float] = tuple(range(5000, 12001, 1000)),
+               altitudes_m: Sequence[float] = PAPER_ALTITUDES_M, models: Sequence[str] = ("QS", "US")) -> list[StudyCase]:
+    """Level turns of the paper's Figs. 7-10 (R = 5-12 km)."""
+    return [StudyCase(aircraft, m, h, turn_radius_m=float(r)) for m in models for h in altitudes_m for r in radii_m]
+
+
+def climb_cases(aircraft: str, angles_deg: Sequence[float] = tuple(range(-15, 16, 5)),
+                altitudes_m: Sequence[float] = PAPER_ALTITUDES_M, models: Sequence[str] = ("QS", "US")) -> list[StudyCase]:
+    """Steady climbs and descents of the paper's Figs. 12-15 (gamma = -15 to 15 deg)."""
+    return [StudyCase(aircraft, m, h, climb_angle_deg=float(g)) for m in models for h in altitudes_m for g in angles_deg]
+
+
+def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None) -> dict:
+    """Flutter search of one case; a plain dict with the flutter point and its trim, or an ``error``."""
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
+    from flexsim.trim import SteadyManoeuvre, TrimError
+
+    row = asdict(case)
+    gamma = None if case.climb_angle_deg is None else math.radians(case.climb_angle_deg)
+    try:
+        analysis = analysis or FlutterAnalysis(load_aircraft(case.aircraft), MODELS[case.model])
+        start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_min)
+        man = SteadyManoeuvre(start.speed_m_s, case.altitude_m, case.turn_radius_m, gamma)
+        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_guess=mach_guess)
+    except (FlutterNotFound, TrimError, ValueError) as exc:
+        row["error"] = str(exc)
+        return row
+    s = fp.trim.summary()
+    row.update(
+        mach=fp.mach, omega_rad_s=fp.frequency_rad_s, mode=fp.mode.dominant_dof,
+        theta_deg=s["theta_deg"], phi_deg=s["phi_deg"], gamma_deg=s["gamma_deg"], thrust_kN=s["thrust_kN"],
+        aileron_deg=s["aileron_deg"], elevator_deg=s["elevator_deg"], rudder_deg=s["rudder_deg"],
+        tip_deflection_m=s["tip_deflection_m"], tip_twist_deg=s["tip_twist_deg"], evaluations=fp.evaluations,
+        rigid_instabilities=len(fp.rigid_instabilities),
+    )
+    return row
+
+
+def run_chain(cases: Sequence[StudyCase]) -> list[dict]:
+    """Run cases that differ in one manoeuvre parameter in order, each seeded with the previous flutter Mach.
+
+    The models are built once per chain; neighbouring conditions have neighbouring flutter points, so
+    bracketing near the previous one saves most of the grid scan.
+    """
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.flutter import FlutterAnalysis
+
+    analysis = FlutterAnalysis(load_aircraft(cases[0].aircraft), MODELS[cases[0].model]) if cases else None
+    rows, guess = [], None
+    for case in cases:
+        row = run_case(case, mach_guess=guess, analysis=analysis)
+        guess = row.get("mach", guess)
+        rows.append(row)
+    return rows
+
+
+def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, workers: int | None = None,
+              progress: bool = True) -> list[dict]:
+    """Run the cases in parallel (chains of one model and altitude) and return rows in the input order.
+
+    Parameters
+    ----------
+    cases : iterable of StudyCase
+    scheduler : str, optional
+        Address of a Dask distributed scheduler (``tcp://host:8786``); needs ``dask[distributed]``
+        (``pip install flexsim[dask]``). Default: local processes.
+    workers : int, optional
+        Local processes (default: all cores).
+    progress : bool
+        Show a tqdm progress bar (auto-disabled when not a terminal).
+    """
+    from tqdm.auto import tqdm
+
+    cases = list(cases)
+    chains: dict[tuple, list[int]] = {}
+    for i, c in enumerate(cases):
+        chains.setdefault((c.aircraft, c.model, c.altitude_m), []).append(i)
+    groups = list(chains.values())
+    bar = tqdm(total=len(cases), desc="flutter points", disable=None if progress else True)
+    rows: list[dict | None] = [None] * len(cases)
+
+    def store(group: list[int], result: list[dict]) -> None:
+        for i, row in zip(group, result):
+            rows[i] = row
+        bar.update(len(group))
+
+    if scheduler:
+        try:
+            from dask.distributed import Client, as_completed
+        except ImportError as exc:  # optional dependency
+            raise RuntimeError(f"--scheduler {scheduler!r} needs dask.distributed: pip install 'flexsim[dask]' ({exc})") from None
+        with Client(scheduler) as client:
+            futures = {client.submit(run_chain, [cases[i] for i in g], pure=False): k for k, g in enumerate(groups)}
+            for fut in as_completed(futures):
+                store(groups[futures[fut]], fut.result())
+    else:
+        n = max(1, min(workers or os.cpu_count() or 1, len(groups)))
+        if n == 1:
+            for g in groups:
+                store(g, run_chain([cases[i] for i in g]))
+        else:
+            with ProcessPoolExecutor(max_workers=n) as pool:
+                for g, result in zip(groups, pool.map(run_chain, [[cases[i] for i in g] for g in groups])):
+                    store(g, result)
+    bar.close()
+    return [r for r in rows if r is not None]
+
+
+def write_results(rows: list[dict], out_dir: str | Path, stem: str) -> tuple[Path, Path]:
+    """Write rows as ``<stem>.csv`` and ``<stem>.json`` in ``out_dir`` (created if needed)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    json_path = out / f"{stem}.json"
+    json_path.write_text(json.dumps(rows, indent=2, default=str))
+    keys = sorted({k for r in rows for k in r}, key=lambda k: (k not in StudyCase.__dataclass_fields__, k))
+    csv_path = out / f"{stem}.csv"
+    with csv_path.open("w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=keys)
+        writer.writeheader()
+        for r in rows:
+            writer.writerow({k: r.get(k, "") for k in keys})
+    return csv_path, json_path
+
+
+def glide_from_climb(rows: list[dict], model: str = "US", altitude_m: float = 9144.0) -> dict | None:
+    """Interpolate the climb curve where T_e = 0 (the paper's glide: gamma, M_F, omega_F)."""
+    pts = sorted((r["climb_angle_deg"], r["thrust_kN"], r["mach"], r["omega_rad_s"]) for r in rows
+                 if r.get("model") == model and r.get("altitude_m") == altitude_m and "mach" in r and r.get("climb_angle_deg") is not None)
+    for (g0, t0, m0, w0), (g1, t1, m1, w1) in zip(pts[:-1], pts[1:]):
+        if t0 <= 0.0 <= t1 or t1 <= 0.0 <= t0:
+            f = t0 / (t0 - t1) if t0 != t1 else 0.0
+            return {"gamma_deg": g0 + f * (g1 - g0), "mach": m0 + f * (m1 - m0), "omega_rad_s": w0 + f * (w1 - w0)}
+    return None
+
+
+def plot_study(rows: list[dict], kind: str, path: str | Path) -> Path:
+    """Flutter Mach and frequency versus R (``kind="turn"``) or gamma (``"climb"``), one row per altitude.
+
+    Layout as the paper's Figs. 7-9 / 12-14: left M_F, right omega_F, QS and US curves.
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    xkey, xlabel, scale = ("turn_radius_m", "R [km]", 1e-3) if kind == "turn" else ("climb_angle_deg", "γ [deg]", 1.0)
+    altitudes = sorted({r["altitude_m"] for r in rows})
+    fig = Figure(figsize=(9.0, 2.6 * max(1, len(altitudes))), layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(max(1, len(altitudes)), 2, squeeze=False)
+    for i, h in enumerate(altitudes):
+        for model, style in (("QS", "o--"), ("US", "s-"), ("FS", "^-.")):
+            sel = sorted((r[xkey] * scale, r["mach"], r["omega_rad_s"]) for r in rows
+                         if r["altitude_m"] == h and r["model"] == model and "mach" in r)
+            if sel:
+                x, m, w = np.array(sel).T
+                axes[i, 0].plot(x, m, style, label=model)
+                axes[i, 1].plot(x, w, style, label=model)
+        axes[i, 0].set_ylabel(f"M_F (h = {h:.0f} m)")
+        axes[i, 1].set_ylabel("ω_F [rad/s]")
+        for ax in axes[i]:
+            ax.grid(alpha=0.3)
+            ax.set_xlabel(xlabel)
+    axes[0, 0].legend()
+    fig.suptitle(f"Flutter versus {'turn radius' if kind == 'turn' else 'climb angle'} (flexsim, notional GTM)")
+    out = Path(path)
+    fig.savefig(out, dpi=110)
+    return out
