@@ -89,15 +89,18 @@ class FlutterAnalysis:
         ``theodorsen`` is the paper's "US" model (p-k); ``unsteady`` the finite-state state space.
     n_inflow : int
         Finite-state inflow states per strip (``unsteady`` and the p-k input/output matrices).
+    structural_damping : float
+        Modal damping ratio of the clamped elastic modes (default 0, as the paper).
     """
 
-    def __init__(self, aircraft: Aircraft, aero_model: str = "theodorsen", n_inflow: int = 6) -> None:
+    def __init__(self, aircraft: Aircraft, aero_model: str = "theodorsen", n_inflow: int = 6, structural_damping: float = 0.0) -> None:
         if aero_model not in AERO_MODELS:
             raise ValueError(f"aero_model = {aero_model!r}: must be one of {', '.join(AERO_MODELS)}")
         self.aircraft = aircraft
         self.aero_model = aero_model
-        self.qs = AircraftModel(aircraft, aero="quasi-steady")
-        self.fs = AircraftModel(aircraft, aero=AeroOptions("unsteady", n_inflow)) if aero_model != "quasi-steady" else None
+        self.qs = AircraftModel(aircraft, aero="quasi-steady", structural_damping=structural_damping)
+        self.fs = (AircraftModel(aircraft, aero=AeroOptions("unsteady", n_inflow), structural_damping=structural_damping)
+                   if aero_model != "quasi-steady" else None)
 
     def evaluate(self, manoeuvre: SteadyManoeuvre, guess: TrimPoint | None = None) -> tuple[TrimPoint, Spectrum]:
         """Trim (limits not enforced: the paper's climbs need negative thrust) and eigen-analysis."""

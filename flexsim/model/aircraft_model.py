@@ -80,6 +80,8 @@ class AircraftModel:
         uses its own altitude -Z.
     frozen_q, frozen_xi : array_like, optional
         Values of the elastic coordinates of a quasi-rigid model [m], [rad] (default zero).
+    structural_damping : float, optional
+        Modal damping ratio zeta of every clamped elastic mode, 0 <= zeta < 1 (default 0, as the paper).
     wind : callable, optional
         Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)``: air velocity [m/s] in inertial
         north-east-down axes at the given inertial positions (k, 3) of the aerodynamic strips at time
@@ -106,6 +108,7 @@ class AircraftModel:
         frozen_q: np.ndarray | None = None,
         frozen_xi: np.ndarray | None = None,
         wind=None,
+        structural_damping: float = 0.0,
     ) -> None:
         try:
             self.variant = Variant(variant)
@@ -117,6 +120,10 @@ class AircraftModel:
             raise ValueError(f"gravity_m_s2 = {gravity_m_s2!r}: must be a finite number >= 0")
         self.aircraft = aircraft
         self.structure = StructuralModel(aircraft)
+        if not (np.isfinite(structural_damping) and 0.0 <= structural_damping < 1.0):
+            raise ValueError(f"structural_damping = {structural_damping!r}: must be a damping ratio in [0, 1)")
+        self.structural_damping = float(structural_damping)
+        self._c_el = self.structure.damping(self.structural_damping) if structural_damping else None
         self.gravity_m_s2 = float(gravity_m_s2)
         dofs = self.structure.dofs
         rigid = self.variant is not Variant.RESTRAINED
@@ -247,6 +254,8 @@ class AircraftModel:
         f[3:6] -= _cross(v, p[0:3]) + _cross(w, p[3:6])
         f[6 : 6 + nq] += st.inertia.dT_dq(vel, q) - st.k_bending @ q
         f[6 + nq :] -= st.k_torsion @ xi
+        if self._c_el is not None:
+            f[6:] -= self._c_el @ vel[6:]
         if self.gravity_m_s2:
             sf, cf = np.sin(eul[0]), np.cos(eul[0])
             st_, ct = np.sin(eul[1]), np.cos(eul[1])

@@ -84,6 +84,24 @@ class StructuralModel:
         k.setflags(write=False)
         return k
 
+    def damping(self, ratio: float) -> np.ndarray:
+        """Modal structural damping on the elastic coordinates, shape (n_el, n_el) [N s/m ...].
+
+        C = M_ee Phi diag(2 zeta omega_i) Phi^T M_ee with (omega_i, Phi) the mass-normalised modes of the
+        elastic block (body clamped: K_ee phi = omega^2 M0_ee phi), so that every clamped mode gets the
+        damping ratio ``ratio`` (not in the paper, whose structure is undamped; common practice in flutter
+        analysis, e.g. g = 2 zeta = 0.02).
+        """
+        if ratio == 0.0:
+            return np.zeros((self.dofs.n_v - 6, self.dofs.n_v - 6))
+        from scipy.linalg import eigh
+
+        m_ee = self.inertia.m0[6:, 6:]
+        lam, phi = eigh(self.stiffness[6:, 6:], m_ee)
+        omega = np.sqrt(np.clip(lam, 0.0, None))
+        mp = m_ee @ phi
+        return (mp * (2.0 * ratio * omega)[None, :]) @ mp.T
+
     @cached_property
     def mass_properties(self) -> MassProperties:
         """Mass, CG and inertia about the CG of the undeformed aircraft, from M0 (eq. 8)."""

@@ -75,3 +75,17 @@ def test_eigen_solution_independent_of_variant_plumbing():
     st = model.structure
     lam = eigh(st.stiffness[6:, 6:], st.inertia.m0[6:, 6:], eigvals_only=True)
     np.testing.assert_allclose(in_vacuo_modes(model).frequencies_rad_s, np.sqrt(lam), rtol=1e-12)
+
+
+def test_modal_structural_damping_gives_the_requested_ratio():
+    # Every clamped mode of the restrained wing gets damping ratio zeta: eigenvalues -zeta w +- i w sqrt(1 - zeta^2).
+    from flexsim.linear.linearize import linearize
+
+    aircraft, _ = _uncoupled_goland()
+    zeta = 0.02
+    model = AircraftModel(aircraft, variant="restrained", aero=None, gravity_m_s2=0.0, structural_damping=zeta)
+    lin = linearize(model, model.layout.zeros(), np.zeros(4))
+    lam = np.linalg.eigvals(lin.a)
+    lam = lam[lam.imag > 0]
+    ratios = -lam.real / np.abs(lam)
+    np.testing.assert_allclose(ratios, zeta, rtol=1e-6)
