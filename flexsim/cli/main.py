@@ -13,9 +13,15 @@ AIRCRAFT is a bundled name (``gtm``, ``goland_wing``) or the path of a TOML file
 
 from __future__ import annotations
 
-import argparse
-import json
-import sys
+import os
+
+# Small dense linear algebra: BLAS threads only oversubscribe the cores (docs/design.md, Performance).
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import sys  # noqa: E402
 from typing import Sequence
 
 import numpy as np
@@ -174,6 +180,9 @@ def _parser() -> argparse.ArgumentParser:
     from flexsim.cli.flutter_commands import add_flutter_commands
 
     add_flutter_commands(sub, add_aircraft)
+    from flexsim.cli.sim_commands import add_sim_commands
+
+    add_sim_commands(sub)
     return parser
 
 

@@ -211,7 +211,7 @@ class AircraftModel:
         return x
 
     # ------------------------------------------------------------------ equations of motion
-    def generalized_forces(self, x: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def generalized_forces(self, x: np.ndarray, u: np.ndarray, t: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """System matrix E = M(q) + M_a and right-hand side f of E V_dot = f (full size, eq. 33).
 
         Includes the aerodynamic added mass M_a and generalized forces when the model has aerodynamics.
@@ -221,17 +221,26 @@ class AircraftModel:
         x : ndarray, shape (n_states,)
         u : ndarray, shape (4,)
             Controls [T_e (N), delta_a, delta_e, delta_r (rad)].
+        t : float
+            Time [s] (for the wind field).
 
         Returns
         -------
         m : ndarray, shape (n_v, n_v)
         f : ndarray, shape (n_v,)
         """
-        m, f, _ = self._assemble(x, u)
+        m, f, _ = self._assemble(x, u, t)
         return m, f
 
+    def strip_wind(self, t: float, x: np.ndarray) -> np.ndarray | None:
+        """Air velocity at every aerodynamic strip in its component axes [m/s], shape (n_s, 3), or None.
+
+        From the model's wind field at time t [s] and the strips' inertial positions at state x.
+        """
+        pos, eul, _, _, _ = self.unpack(x)
+        return self._strip_wind(t, x, pos, eul)
+
     def _strip_wind(self, t: float, x: np.ndarray, pos: np.ndarray, eul: np.ndarray) -> np.ndarray | None:
-        """Air velocity at every strip in component axes [m/s], shape (n_s, 3), from the wind field."""
         if self.wind is None or self.aero is None:
             return None
         c = dcm_321(*eul)

@@ -1,0 +1,16 @@
+"""Time-domain simulation: events, flight logs, disturbances and named manoeuvres (``docs/simulation.md``).
+
+Modules: :mod:`flexsim.sim.simulate` (``simulate``, ``SimEvent``, ``HoldingRadau``),
+:mod:`flexsim.sim.controls` (``ControlSchedule``), :mod:`flexsim.sim.result` (``SimulationResult``),
+:mod:`flexsim.sim.outputs` (names and output maps shared by results and logs),
+:mod:`flexsim.sim.recording` (log paths, the log sink), :mod:`flexsim.sim.disturbances`
+(``OneMinusCosineGust``, ``DrydenTurbulence``, ``combine``), :mod:`flexsim.sim.manoeuvres`
+(``build_manoeuvre``, ``manoeuvre_names``). Import the function as ``from flexsim.sim.simulate import simulate``; the package
+does not re-export it, so that ``flexsim.sim.simulate`` always names the module.
+"""
+
+from flexsim.sim.disturbances import DrydenTurbulence, OneMinusCosineGust, combine
+from flexsim.sim.result import SimulationResult
+from flexsim.sim.simulate import ControlSchedule, SimEvent
+
+__all__ = ["ControlSchedule", "SimEvent", "SimulationResult", "OneMinusCosineGust", "DrydenTurbulence", "combine"]

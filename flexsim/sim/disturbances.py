@@ -96,7 +96,7 @@ def _positions(positions_ned_m: np.ndarray) -> np.ndarray:
     return p
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class OneMinusCosineGust:
     """Discrete "1-cos" gust: a plane front frozen in the air (CS-25.341(a); MIL-F-8785C 3.7.3).
 
@@ -281,7 +281,7 @@ def mil_f_8785c_turbulence(altitude_m: float, severity: str = "moderate") -> tup
     return sig * _FT, lengths * _FT
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class DrydenTurbulence:
     """Continuous Dryden turbulence, frozen in the air along a straight flight direction (seeded).
 

@@ -1,0 +1,306 @@
+"""Named manoeuvres: each builds a model, an initial state, a control schedule and a duration.
+
+``build_manoeuvre(name, aero=..., duration_s=...)`` returns a :class:`ManoeuvreSetup`;
+``setup.simulate(log_path=...)`` runs it with :func:`flexsim.sim.simulate.simulate`. Registered names
+(:func:`manoeuvre_names`):
+
+* ``level-turn-entry`` — GTM from level flight into a steady level turn of radius 10 km: a bank-angle
+  feedback on the aileron (20 Hz, zero-order hold) follows a smooth bank command to the turn trim's bank
+  while the other controls blend from the level to the turn trim (paper eqs. 36-37).
+* ``climb`` — GTM from level flight, elevator and thrust ramped to the 3 deg climb trim (eqs. 38-39).
+* ``elevator-doublet`` — GTM level trim, elevator +2 deg / -2 deg, 0.5 s each.
+* ``aileron-roll`` — GTM level trim, aileron -3 deg (right wing trailing edge up: roll right) for 2 s.
+* ``gust-encounter`` — GTM level trim flying into a 1-cos up-gust, U_ds = 10 m/s, H = 60 m (CS-25.341).
+* ``flutter-onset`` — the Goland wing clamped in a wind tunnel (sea level) at 1.05 times its flutter
+  speed with Peters' unsteady aerodynamics (found by :func:`goland_flutter_speed`, 131.6 m/s): the
+  oscillation that starts from the static sag under gravity grows until the structural-limit event stops
+  the run. With ``aero="quasi-steady"`` the same tunnel speed is used (that model flutters from 63.9 m/s).
+
+The GTM runs are at 9144 m and M 0.75 (the paper's 30 000 ft cruise) with the notional GTM of
+``flexsim/aircraft/data/gtm.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import numpy as np
+
+from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.linear.flutter import wind_tunnel_flutter
+from flexsim.model.aircraft_model import AircraftModel
+from flexsim.sim.disturbances import OneMinusCosineGust
+from flexsim.sim.result import SimulationResult
+from flexsim.sim.simulate import ControlSchedule, simulate
+from flexsim.structure.kinematics import dcm_321
+from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
+
+__all__ = ["ManoeuvreSetup", "build_manoeuvre", "manoeuvre_names", "goland_flutter_speed", "pulse_schedule",
+           "BankController", "CRUISE_ALTITUDE_M", "CRUISE_MACH"]
+
+CRUISE_ALTITUDE_M = 9144.0
+CRUISE_MACH = 0.75
+_AERO_CHOICES = ("unsteady", "quasi-steady")
+
+
+@dataclass(frozen=True, eq=False)
+class ManoeuvreSetup:
+    """Everything :func:`~flexsim.sim.simulate.simulate` needs for one named manoeuvre.
+
+    Attributes
+    ----------
+    name, description : str
+    model : AircraftModel
+        With its wind field, if any.
+    initial : TrimPoint or ndarray
+        Initial state (a trim point where the manoeuvre starts from one).
+    controls : ControlSchedule, ndarray (4,) or callable(t, x) -> u
+    duration_s : float
+        Default run length [s].
+    control_period_s : float
+        Period of a feedback controller [s].
+    structural_limit_m : float or None
+        Bound for the structural-limit event (None: simulate's default, 0.25 x wing length).
+    notes : tuple of (t [s], text)
+        Informational events for the flight log.
+    metadata : dict of str to str
+        Run metadata for the flight log.
+    """
+
+    name: str
+    description: str
+    model: AircraftModel
+    initial: TrimPoint | np.ndarray
+    controls: ControlSchedule | np.ndarray | Callable[[float, np.ndarray], np.ndarray]
+    duration_s: float
+    control_period_s: float = 0.02
+    structural_limit_m: float | None = None
+    notes: tuple[tuple[float, str], ...] = ()
+    metadata: dict[str, str] = field(default_factory=dict)
+
+    def simulate(self, **options) -> SimulationResult:
+        """Run the manoeuvre; ``options`` go to :func:`~flexsim.sim.simulate.simulate` (e.g. ``log_path``,
+        ``method``, ``rtol``, ``t_end_s`` to override the duration)."""
+        t_end = options.pop("t_end_s", self.duration_s)
+        meta = {"manoeuvre": self.name, "description": self.description, **self.metadata, **options.pop("metadata", {})}
+        kwargs = {"controls": self.controls, "control_period_s": self.control_period_s,
+                  "structural_limit_m": self.structural_limit_m, "notes": self.notes, "metadata": meta}
+        kwargs.update(options)
+        return simulate(self.model, self.initial, t_end, **kwargs)
+
+
+def pulse_schedule(base_u: np.ndarray, pulses: list[tuple[int, float, float, float]], ramp_s: float = 0.05) -> ControlSchedule:
+    """Trim controls plus trapezoidal pulses, as an exact piecewise-linear schedule.
+
+    Parameters
+    ----------
+    base_u : ndarray, shape (4,)
+        Controls held outside the pulses [N, rad].
+    pulses : list of (control index, start [s], end [s], increment)
+        Control ``index`` (0 thrust, 1 aileron, 2 elevator, 3 rudder) moves by ``increment`` [N or rad],
+        ramping over ``ramp_s`` from ``start`` and back from ``end``.
+    ramp_s : float
+        Ramp time [s] > 0.
+    """
+    base = np.asarray(base_u, dtype=float)
+    if not ramp_s > 0:
+        raise ValueError(f"ramp_s = {ramp_s!r}: must be > 0 [s]")
+    for j, start, end, _ in pulses:
+        if not (0 <= j <= 3 and 0 <= start and end >= start + ramp_s):
+            raise ValueError(f"pulse ({j}, {start}, {end}): needs a control index 0..3, start >= 0 and end >= start + ramp_s")
+    knots = sorted({0.0} | {t for _, s, e, _ in pulses for t in (s, s + ramp_s, e, e + ramp_s)})
+
+    def value(t: float) -> np.ndarray:
+        u = base.copy()
+        for j, s, e, d in pulses:
+            u[j] += d * float(np.interp(t, [s, s + ramp_s, e, e + ramp_s], [0.0, 1.0, 1.0, 0.0]))
+        return u
+
+    return ControlSchedule(np.array(knots), np.array([value(t) for t in knots]))
+
+
+@dataclass(frozen=True, eq=False)
+class BankController:
+    """Turn entry: bank-angle feedback on the aileron plus a feed-forward blend of two trims.
+
+    With the blend f(t) = smoothstep((t - start_s) / ramp_s) in [0, 1], the controls are
+    ``u = (1 - f) level.u + f turn.u`` and the aileron adds ``k_phi (phi - f phi_turn) + k_p p`` (delta_a > 0
+    rolls left, so positive gains oppose a bank error), saturated at the aircraft's limits.
+
+    Attributes
+    ----------
+    level, turn : TrimPoint
+    start_s, ramp_s : float
+        Start and duration of the blend [s].
+    k_phi, k_p : float
+        Gains [rad/rad], [rad/(rad/s)].
+    lower, upper : ndarray, shape (4,)
+        Control limits.
+    euler_index, omega_index : int
+        Positions of phi and of the roll rate p in the state vector (``model.layout``).
+    """
+
+    level: TrimPoint
+    turn: TrimPoint
+    start_s: float
+    ramp_s: float
+    k_phi: float
+    k_p: float
+    lower: np.ndarray
+    upper: np.ndarray
+    euler_index: int
+    omega_index: int
+
+    def blend(self, t: float) -> float:
+        """f(t) in [0, 1] (smoothstep, continuous slope)."""
+        s = min(max((t - self.start_s) / self.ramp_s, 0.0), 1.0)
+        return s * s * (3.0 - 2.0 * s)
+
+    def __call__(self, t: float, x: np.ndarray) -> np.ndarray:
+        f = self.blend(t)
+        u = (1.0 - f) * self.level.u + f * self.turn.u
+        phi, p = x[self.euler_index], x[self.omega_index]
+        u[1] += self.k_phi * (phi - f * self.turn.phi) + self.k_p * p
+        return np.clip(u, self.lower, self.upper)
+
+
+# ---------------------------------------------------------------------------------------------- GTM
+def _gtm(aero: str, wind=None) -> AircraftModel:
+    return AircraftModel(load_aircraft("gtm"), aero=aero, wind=wind)
+
+
+def _cruise(model: AircraftModel) -> TrimPoint:
+    return trim(model, SteadyManoeuvre.level(CRUISE_ALTITUDE_M, mach=CRUISE_MACH))
+
+
+def _level_turn_entry(aero: str) -> ManoeuvreSetup:
+    model = _gtm(aero)
+    level = _cruise(model)
+    turn = trim(model, SteadyManoeuvre.turn(CRUISE_ALTITUDE_M, 10_000.0, mach=CRUISE_MACH), guess=level)
+    lo, hi = model.aircraft.control_limits()
+    lay = model.layout
+    ctrl = BankController(level, turn, start_s=1.0, ramp_s=4.0, k_phi=0.8, k_p=0.0, lower=lo, upper=hi,
+                          euler_index=lay.euler.start, omega_index=lay.omega.start)
+    return ManoeuvreSetup("level-turn-entry", f"level flight into a level turn of R = 10 km (bank {math.degrees(turn.phi):.1f} deg)",
+                          model, level, ctrl, 10.0, control_period_s=0.05,
+                          notes=((1.0, f"turn entry: bank command to {math.degrees(turn.phi):.1f} deg over 4 s"),))
+
+
+def _climb(aero: str) -> ManoeuvreSetup:
+    model = _gtm(aero)
+    level = _cruise(model)
+    climb = trim(model, SteadyManoeuvre.climb(CRUISE_ALTITUDE_M, math.radians(3.0), mach=CRUISE_MACH), guess=level)
+    sched = ControlSchedule(np.array([0.0, 1.0, 3.0]), np.array([level.u, level.u, climb.u]))
+    return ManoeuvreSetup("climb", "level flight to the 3 deg climb trim's elevator and thrust (ramped over 2 s)",
+                          model, level, sched, 10.0, notes=((1.0, "controls ramp to the 3 deg climb trim"),))
+
+
+def _elevator_doublet(aero: str) -> ManoeuvreSetup:
+    model = _gtm(aero)
+    level = _cruise(model)
+    d = math.radians(2.0)
+    sched = pulse_schedule(level.u, [(2, 1.0, 1.5, d), (2, 1.5, 2.0, -d)])
+    return ManoeuvreSetup("elevator-doublet", "elevator doublet +-2 deg, 0.5 s each, from level trim",
+                          model, level, sched, 6.0, notes=((1.0, "elevator doublet"),))
+
+
+def _aileron_roll(aero: str) -> ManoeuvreSetup:
+    model = _gtm(aero)
+    level = _cruise(model)
+    sched = pulse_schedule(level.u, [(1, 1.0, 3.0, -math.radians(3.0))], ramp_s=0.1)
+    return ManoeuvreSetup("aileron-roll", "aileron -3 deg (roll right) for 2 s from level trim",
+                          model, level, sched, 6.0, notes=((1.0, "aileron input"),))
+
+
+def _gust_encounter(aero: str) -> ManoeuvreSetup:
+    still = _gtm(aero)
+    level = _cruise(still)
+    lay = still.layout
+    velocity_ned = dcm_321(*level.x[lay.euler]).T @ level.x[lay.v]
+    gust = OneMinusCosineGust.encounter(10.0, 60.0, position_ned_m=level.x[lay.position], velocity_ned_m_s=velocity_ned,
+                                        start_time_s=1.0)
+    model = _gtm(aero, wind=gust)
+    return ManoeuvreSetup("gust-encounter", "1-cos up-gust U_ds = 10 m/s, H = 60 m (CS-25.341) reached at t = 1 s",
+                          model, level, level.u, 5.0, notes=((1.0, "the body origin enters the 1-cos gust"),),
+                          metadata={"gust": "1-cos, U_ds 10 m/s, H 60 m"})
+
+
+# ---------------------------------------------------------------------------------------------- Goland
+def _goland_model(speed_m_s: float, aero: str) -> AircraftModel:
+    return AircraftModel(load_aircraft("goland_wing"), variant="restrained", restrained_velocity_m_s=[speed_m_s, 0.0, 0.0],
+                         altitude_m=0.0, aero=aero)
+
+
+@lru_cache(maxsize=4)
+def goland_flutter_speed(aero: str = "unsteady") -> float:
+    """Flutter speed of the clamped Goland wing at sea level [m/s] with this model
+    (:func:`flexsim.linear.flutter.wind_tunnel_flutter`, cached).
+
+    Literature: 137 m/s at 70.7 rad/s (Goland 1945; Patil, Hodges & Cesnik 2001); flexsim's m = 3,
+    n = 2 model gives 131.6 m/s at 70.2 rad/s with Peters N = 6 inflow and 63.9 m/s quasi-steady.
+    """
+    if aero not in _AERO_CHOICES:
+        raise ValueError(f"aero = {aero!r}: must be one of {', '.join(_AERO_CHOICES)}")
+    return wind_tunnel_flutter(load_aircraft("goland_wing"), aero_model=aero)[0]
+
+
+def _flutter_onset(aero: str) -> ManoeuvreSetup:
+    speed_f = goland_flutter_speed("unsteady")
+    speed = 1.05 * speed_f
+    model = _goland_model(speed, aero)
+    note = "" if aero == "unsteady" else (f", simulated with quasi-steady aerodynamics (whose own flutter speed is "
+                                          f"{goland_flutter_speed('quasi-steady'):.1f} m/s)")
+    return ManoeuvreSetup("flutter-onset", f"Goland wing clamped in a sea-level wind tunnel at {speed:.1f} m/s = 1.05 x its "
+                          f"flutter speed {speed_f:.1f} m/s (Peters unsteady aerodynamics){note}; "
+                          "released undeformed under gravity",
+                          model, model.layout.zeros(), np.zeros(4), 10.0,
+                          notes=((0.0, f"tunnel speed {speed:.2f} m/s, flutter speed {speed_f:.2f} m/s"),),
+                          metadata={"flutter_speed_m_s": f"{speed_f:.3f}", "tunnel_speed_m_s": f"{speed:.3f}"})
+
+
+_REGISTRY: dict[str, Callable[[str], ManoeuvreSetup]] = {
+    "level-turn-entry": _level_turn_entry,
+    "climb": _climb,
+    "elevator-doublet": _elevator_doublet,
+    "aileron-roll": _aileron_roll,
+    "gust-encounter": _gust_encounter,
+    "flutter-onset": _flutter_onset,
+}
+
+
+def manoeuvre_names() -> tuple[str, ...]:
+    """Names accepted by :func:`build_manoeuvre`."""
+    return tuple(_REGISTRY)
+
+
+def build_manoeuvre(name: str, *, aero: str = "unsteady", duration_s: float | None = None) -> ManoeuvreSetup:
+    """Build a named manoeuvre (see the module docstring).
+
+    Parameters
+    ----------
+    name : str
+        One of :func:`manoeuvre_names`.
+    aero : {"unsteady", "quasi-steady"}
+        Aerodynamic model (default Peters finite-state, N = 6).
+    duration_s : float, optional
+        Run length [s] > 0 instead of the manoeuvre's default.
+
+    Raises
+    ------
+    ValueError
+        Unknown name (the message lists the valid ones), aero model or duration.
+    """
+    if name not in _REGISTRY:
+        raise ValueError(f"manoeuvre = {name!r}: unknown; valid manoeuvres: {', '.join(_REGISTRY)}")
+    if aero not in _AERO_CHOICES:
+        raise ValueError(f"aero = {aero!r}: must be one of {', '.join(_AERO_CHOICES)}")
+    setup = _REGISTRY[name](aero)
+    if duration_s is not None:
+        if not (isinstance(duration_s, (int, float)) and math.isfinite(duration_s) and duration_s > 0):
+            raise ValueError(f"duration_s = {duration_s!r}: must be a finite number > 0 [s]")
+        setup = ManoeuvreSetup(setup.name, setup.description, setup.model, setup.initial, setup.controls, float(duration_s),
+                               setup.control_period_s, setup.structural_limit_m, setup.notes, setup.metadata)
+    return setup

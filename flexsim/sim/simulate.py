@@ -1,0 +1,531 @@
+"""Time-domain simulation of the one nonlinear model, with events and a flight log written as it runs.
+
+``simulate(model, x0 | TrimPoint, t_end_s, controls=...)`` integrates ``model.rhs(t, x, u)`` (Tuzcu &
+Nguyen 2014, eqs. 4 and 33 with the strip aerodynamics of eqs. 25-31) with the integrators of
+``scipy.integrate`` — the ``OdeSolver`` classes behind ``solve_ivp`` (Radau, DOP853, LSODA, BDF, RK45,
+RK23), stepped here one step at a time so that every accepted step is sampled from its dense output onto
+the output grid and the flight log while the integration proceeds, and events are located on the dense
+output as ``solve_ivp`` does (Brent's method). The solver is restarted only where the right-hand side
+changes character: at the breakpoints of a control schedule and at every control period of a feedback
+controller (zero-order hold). Restarting at every log chunk instead cost 2.2x the run time of a gust
+response with Radau (LU refactorisations), see ``docs/simulation.md``.
+
+Default method (measured, ``benchmarks/bench_simulate.py`` and ``docs/simulation.md``): with aerodynamics,
+**Radau** with a constant Jacobian computed by :func:`flexsim.linear.linearize.jacobian` at the initial
+state. The finite-state inflow and apparent-mass states give well-damped eigenvalues down to about
+-650 s^-1 (|lambda| up to 1500 s^-1 on the GTM), which hold an explicit method at its stability limit:
+DOP853 needs ~4300 right-hand sides per simulated second whatever the tolerance. Without aerodynamics the
+model is a lightly damped structure, and the default is DOP853.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+import uuid
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import BDF, DOP853, LSODA, RK23, RK45, Radau
+from scipy.optimize import brentq
+
+from flexsim.linear.linearize import jacobian
+from flexsim.model.aircraft_model import AircraftModel
+from flexsim.sim.controls import ControlSchedule, Controls
+from flexsim.sim.outputs import OutputMaps
+from flexsim.sim.recording import LogSink, resolve_log_path
+from flexsim.sim.result import SimulationResult
+from flexsim.trim.solver import TrimPoint
+
+__all__ = ["ControlSchedule", "SimEvent", "simulate", "state_scales", "METHODS", "DEFAULT_EVENTS", "default_method"]
+
+#: Integration methods by name (scipy.integrate OdeSolver classes).
+METHODS = {"Radau": Radau, "DOP853": DOP853, "LSODA": LSODA, "BDF": BDF, "RK45": RK45, "RK23": RK23}
+_IMPLICIT = ("Radau", "BDF", "LSODA")
+#: Built-in terminal events (the non-finite check is always on).
+DEFAULT_EVENTS = ("ground", "structural_limit", "gimbal_lock")
+#: Default relative tolerance per method family (accuracy checks in docs/simulation.md).
+DEFAULT_RTOL = {"implicit": 1e-3, "explicit": 1e-6}
+GIMBAL_LIMIT_DEG = 89.0
+#: Default structural limit: |tip deflection| of a wing beyond this fraction of its length.
+STRUCTURAL_LIMIT_FRACTION = 0.25
+_EPS = np.finfo(float).eps
+
+
+@dataclass(frozen=True)
+class SimEvent:
+    """A user event: the run stops (``terminal``) or logs a note when ``function(t, x)`` crosses zero.
+
+    Attributes
+    ----------
+    name : str
+        Short name, used in the reason and the log.
+    function : callable
+        ``function(t [s], x (n_states,)) -> float``, continuous in t along the trajectory.
+    direction : int
+        -1: only crossings from positive to negative count (default); +1 the reverse; 0 both.
+    terminal : bool
+        Stop the run (status ``event``) or only log the crossing.
+    """
+
+    name: str
+    function: Callable[[float, np.ndarray], float]
+    direction: int = -1
+    terminal: bool = True
+
+    def __post_init__(self) -> None:
+        if not callable(self.function):
+            raise ValueError(f"SimEvent {self.name!r}: function = {self.function!r} must be callable function(t, x) -> float")
+        if self.direction not in (-1, 0, 1):
+            raise ValueError(f"SimEvent {self.name!r}: direction = {self.direction!r}: must be -1, 0 or +1")
+
+
+@dataclass(frozen=True)
+class _Event:
+    """An event with a margin function (terminal events: positive while the run may go on)."""
+
+    name: str
+    function: Callable[[float, np.ndarray], float]
+    direction: int
+    terminal: bool
+    status: str
+    describe: Callable[[float, np.ndarray], str]
+
+
+class HoldingRadau(Radau):
+    """scipy's Radau IIA (order 5) that keeps its LU factors while the step is held at ``max_step``.
+
+    scipy's Radau drops both LU factorisations (of MU/h I - J) whenever it proposes a step >= 1.2 times
+    the last one; when that proposal is cut back to ``max_step`` at the next step, the same two matrices
+    are factorised again. In quiet flight held at ``max_step`` this refactorised on every step: 1852 LU
+    factorisations in the 60 s GTM benchmark, 44 with this class. With a constant Jacobian (``jac`` given
+    as an array) and an accepted step of exactly ``max_step`` followed by another one, the factors of that
+    step stay valid for the next and are kept. Everything else is scipy's algorithm unchanged (the same
+    steps and results).
+    """
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        factorise = self.lu
+        self._factors: list = []
+
+        def lu(a):
+            f = factorise(a)
+            self._factors.append(f)
+            del self._factors[:-2]
+            return f
+
+        self.lu = lu
+
+    def _step_impl(self):
+        before = (self.LU_real, self.LU_complex)
+        self._factors.clear()
+        success, message = super()._step_impl()
+        if (success and self.jac is None and self.LU_real is None and self.h_abs >= self.max_step
+                and abs(self.t_bound - self.t) >= self.max_step):  # the next step is max_step again
+            h = abs(self.t - self.t_old)
+            if abs(h - self.max_step) <= 1e-9 * self.max_step:
+                pair = tuple(self._factors) if len(self._factors) == 2 else before
+                if pair[0] is not None:
+                    self.LU_real, self.LU_complex = pair
+        return success, message
+
+
+def state_scales(model: AircraftModel) -> np.ndarray:
+    """Typical magnitudes of the state entries, shape (n_states,); the default ``atol`` is rtol times these.
+
+    Position 1 m, Euler angles 0.01 rad, bending 0.01 m, torsion 1e-3 rad, velocity 0.1 m/s, body rates
+    1e-3 rad/s, bending rates 0.01 m/s, torsion rates 0.01 rad/s, inflow 0.1 m/s.
+    """
+    lay = model.layout
+    scale = np.empty(lay.n_states)
+    for sl, value in ((lay.position, 1.0), (lay.euler, 1e-2), (lay.q, 1e-2), (lay.xi, 1e-3), (lay.v, 0.1),
+                      (lay.omega, 1e-3), (lay.s, 1e-2), (lay.eta, 1e-2), (lay.inflow, 0.1)):
+        scale[sl] = value
+    return scale
+
+
+def default_method(model: AircraftModel) -> str:
+    """The measured default: Radau with aerodynamics (stiff aero-lag states), DOP853 without."""
+    return "Radau" if model.aero is not None else "DOP853"
+
+
+def _initial(model: AircraftModel, initial: TrimPoint | np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+    if isinstance(initial, TrimPoint):
+        x0, u0 = np.array(initial.x, dtype=float), np.array(initial.u, dtype=float)
+    else:
+        try:
+            x0, u0 = np.array(initial, dtype=float), None
+        except (TypeError, ValueError):
+            raise ValueError(f"initial state: expected a TrimPoint or {model.layout.n_states} numbers, got {initial!r}") from None
+    n = model.layout.n_states
+    if x0.shape != (n,):
+        raise ValueError(f"initial state: expected shape ({n},) (model.layout.n_states), got shape {x0.shape}")
+    bad = np.flatnonzero(~np.isfinite(x0))
+    if bad.size:
+        raise ValueError(f"initial state: entry {bad[0]} = {x0[bad[0]]} is not finite")
+    return x0, u0
+
+
+def _builtin_events(model: AircraftModel, outputs: OutputMaps, names: Sequence[str], limit_m) -> list[_Event]:
+    lay = model.layout
+    unknown = [n for n in names if n not in DEFAULT_EVENTS]
+    if unknown:
+        raise ValueError(f"events: unknown event(s) {unknown}; built-in events are {', '.join(DEFAULT_EVENTS)} (or SimEvent objects)")
+    events: list[_Event] = []
+    if "ground" in names and lay.rigid:
+        iz = lay.position.start + 2
+        events.append(_Event("ground", lambda t, x: -x[iz], -1, True, "ground_contact",
+                             lambda t, x: f"ground contact: the body origin reached altitude 0 m at t = {t:.4f} s"))
+    if "gimbal_lock" in names and lay.rigid:
+        ith = lay.euler.start + 1
+        lim = math.radians(GIMBAL_LIMIT_DEG)
+        events.append(_Event("gimbal_lock", lambda t, x: lim - abs(x[ith]), -1, True, "gimbal_lock",
+                             lambda t, x: f"gimbal lock: |theta| = {math.degrees(abs(x[ith])):.2f} deg reached "
+                                          f"{GIMBAL_LIMIT_DEG:g} deg at t = {t:.4f} s (3-2-1 Euler angles singular at 90 deg)"))
+    if "structural_limit" in names:
+        for wing in outputs.wings:
+            length = model.aircraft.component(wing).length_m
+            if limit_m is None:
+                bound = STRUCTURAL_LIMIT_FRACTION * length
+            else:
+                bound = float(limit_m)
+                if not (math.isfinite(bound) and bound > 0):
+                    raise ValueError(f"structural_limit_m = {limit_m!r}: must be a finite number > 0 [m] (or None: "
+                                     f"{STRUCTURAL_LIMIT_FRACTION:g} x wing length)")
+
+            def margin(t, x, wing=wing, bound=bound):
+                return bound - abs(float(outputs.tip_deflection_m(wing, x)))
+
+            def describe(t, x, wing=wing, bound=bound):
+                return (f"structural limit: {wing} tip deflection {float(outputs.tip_deflection_m(wing, x)):+.4f} m reached "
+                        f"the bound +-{bound:.4g} m at t = {t:.4f} s")
+
+            events.append(_Event(f"structural_limit:{wing}", margin, -1, True, "structural_limit", describe))
+    return events
+
+
+def _user_event(ev: SimEvent) -> _Event:
+    return _Event(ev.name, lambda t, x: float(ev.function(t, x)), ev.direction, ev.terminal, "event",
+                  lambda t, x: f"event {ev.name!r} at t = {t:.4f} s")
+
+
+def _grid(rate_hz: float | None, t_end: float, what: str) -> np.ndarray | None:
+    if rate_hz is None:
+        return None
+    if not (isinstance(rate_hz, (int, float)) and math.isfinite(rate_hz) and rate_hz > 0):
+        raise ValueError(f"{what} = {rate_hz!r}: must be a finite number > 0 [Hz]")
+    n = int(math.floor(t_end * rate_hz * (1 + 1e-12)))
+    return np.arange(n + 1) / float(rate_hz)
+
+
+class _Sampler:
+    """Collects samples on a time grid (or every step) from each step's dense output."""
+
+    def __init__(self, grid: np.ndarray | None) -> None:
+        self.grid = grid
+        self.next = 1  # index 0 (t = 0) is written at the start
+        self.t: list[np.ndarray] = []
+        self.x: list[np.ndarray] = []
+        self.u: list[np.ndarray] = []
+
+    def take(self, t_new: float, sol, y_new: np.ndarray, u_of, inclusive: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Samples up to t_new (a grid time at t_new itself only if ``inclusive``: at the end of a control
+        segment it belongs to the next segment, whose control then applies); without a grid, t_new."""
+        if self.grid is None:  # every accepted step, step ends included
+            times = np.array([t_new])
+            xs = y_new[None, :]
+        else:
+            edge = t_new * (1 + 4 * _EPS) + 1e-12 if inclusive else t_new - 1e-9 * max(1.0, abs(t_new))
+            stop = int(np.searchsorted(self.grid, edge, side="right"))
+            times = self.grid[self.next:stop]
+            self.next = max(self.next, stop)
+            if times.size == 0:
+                return times, np.zeros((0, y_new.size)), np.zeros((0, 4))
+            xs = sol(times).T
+        us = u_of(times)
+        self.t.append(times)
+        self.x.append(xs)
+        self.u.append(us)
+        return times, xs, us
+
+    def add(self, t: float, x: np.ndarray, u: np.ndarray) -> None:
+        last = self.t[-1][-1] if self.t and self.t[-1].size else -math.inf
+        if t > last:
+            self.t.append(np.array([t]))
+            self.x.append(x[None, :])
+            self.u.append(u[None, :])
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return np.concatenate(self.t), np.concatenate(self.x), np.concatenate(self.u)
+
+
+def simulate(
+    model: AircraftModel,
+    initial: TrimPoint | np.ndarray,
+    t_end_s: float,
+    *,
+    controls: np.ndarray | ControlSchedule | Callable[[float, np.ndarray], np.ndarray] | None = None,
+    method: str = "auto",
+    rtol: float | None = None,
+    atol: float | np.ndarray | None = None,
+    max_step: float = 0.05,
+    control_period_s: float = 0.02,
+    events: Sequence[str | SimEvent] = DEFAULT_EVENTS,
+    structural_limit_m: float | None = None,
+    output_rate_hz: float | None = 100.0,
+    log_path: str | os.PathLike | bool | None = None,
+    log_rate_hz: float = 50.0,
+    metadata: Mapping[str, str] | None = None,
+    notes: Sequence[tuple[float, str]] = (),
+    progress: bool | Callable[[float], None] = False,
+) -> SimulationResult:
+    """Simulate the model from an initial state (or a trim) for ``t_end_s`` seconds.
+
+    Parameters
+    ----------
+    model : AircraftModel
+        Any variant; its ``wind`` (gusts, turbulence: :mod:`flexsim.sim.disturbances`) is part of it.
+    initial : TrimPoint or ndarray, shape (n_states,)
+        Initial state (a trim point also supplies the default controls).
+    t_end_s : float
+        Duration [s] > 0 (the run starts at t = 0).
+    controls : array (4,), ControlSchedule or callable, optional
+        Constant controls [T_e (N), delta_a, delta_e, delta_r (rad)]; a piecewise-linear schedule; or a
+        feedback controller ``controls(t, x) -> u`` evaluated every ``control_period_s`` and held
+        (zero-order hold). Default: the trim controls. Values beyond ``aircraft.control_limits()`` are
+        rejected.
+    method : str
+        ``"auto"`` (:func:`default_method`), or one of :data:`METHODS`. Implicit methods (Radau, BDF, LSODA)
+        use a constant Jacobian from :func:`~flexsim.linear.linearize.jacobian` at the initial state.
+    rtol : float, optional
+        Relative tolerance; default 1e-3 for implicit and 1e-6 for explicit methods (accuracy checks in
+        ``docs/simulation.md``).
+    atol : float or ndarray (n_states,), optional
+        Absolute tolerance; default ``rtol * state_scales(model)``.
+    max_step : float
+        Largest step [s] (default 0.05), so that no gust or event falls between two steps.
+    control_period_s : float
+        Period of a feedback controller [s] (default 0.02).
+    events : sequence of str or SimEvent
+        Built-in terminal events among ``"ground"`` (altitude of the body origin <= 0), ``"structural_limit"``
+        (|tip deflection| of a wing >= the bound: the signature of flutter or overload), ``"gimbal_lock"``
+        (|theta| >= 89 deg), plus user :class:`SimEvent` objects. A non-finite state always stops the run.
+    structural_limit_m : float, optional
+        Bound on |tip deflection| [m]; default 0.25 x each wing's length.
+    output_rate_hz : float or None
+        Rate of the result's samples [Hz] (default 100); None: every accepted step.
+    log_path : str, Path, True or None
+        Write a flight log (MCAP) there as the run proceeds; True: ``logs/simulation-<time>.mcap``.
+    log_rate_hz : float
+        Rate of the logged samples [Hz] (default 50).
+    metadata : mapping of str to str, optional
+        Extra run metadata for the log.
+    notes : sequence of (t [s], text)
+        Informational events for the log (e.g. when a gust arrives).
+    progress : bool or callable
+        True: a tqdm progress bar; a callable is called with the sim time [s] after every accepted step.
+
+    Returns
+    -------
+    SimulationResult
+        With ``status`` and ``reason`` saying why the run stopped.
+
+    Raises
+    ------
+    ValueError, FileNotFoundError
+        Bad arguments (the message names the argument, its value and what is allowed).
+    """
+    x0, u_trim = _initial(model, initial)
+    if not (isinstance(t_end_s, (int, float)) and math.isfinite(t_end_s) and t_end_s > 0):
+        raise ValueError(f"t_end_s = {t_end_s!r}: must be a finite number > 0 [s]")
+    t_end = float(t_end_s)
+    ctrl = Controls(model, controls, u_trim, control_period_s)
+    if method == "auto":
+        method = default_method(model)
+    if method not in METHODS:
+        raise ValueError(f"method = {method!r}: must be 'auto' or one of {', '.join(METHODS)}")
+    implicit = method in _IMPLICIT
+    if rtol is None:
+        rtol = DEFAULT_RTOL["implicit" if implicit else "explicit"]
+    if not (isinstance(rtol, (int, float)) and 1e-13 <= rtol <= 0.1):
+        raise ValueError(f"rtol = {rtol!r}: must be a number in [1e-13, 0.1]")
+    atol_v = rtol * state_scales(model) if atol is None else np.broadcast_to(np.asarray(atol, dtype=float), (model.layout.n_states,)).copy()
+    if not np.all(np.isfinite(atol_v)) or np.any(atol_v <= 0):
+        raise ValueError(f"atol = {atol!r}: must be positive and finite (a number or {model.layout.n_states} numbers)")
+    if not (isinstance(max_step, (int, float)) and max_step > 0):
+        raise ValueError(f"max_step = {max_step!r}: must be a number > 0 [s] (math.inf for no limit)")
+    out_grid = _grid(output_rate_hz, t_end, "output_rate_hz")
+    log_grid = _grid(log_rate_hz, t_end, "log_rate_hz")
+    outputs = OutputMaps(model)
+    limit_names = [e for e in events if isinstance(e, str)]
+    evs = _builtin_events(model, outputs, limit_names, structural_limit_m)
+    for e in events:
+        if isinstance(e, SimEvent):
+            evs.append(_user_event(e))
+        elif not isinstance(e, str):
+            raise ValueError(f"events: {e!r} is neither a built-in event name nor a SimEvent")
+    for ev in evs:
+        if ev.status != "event" and not ev.function(0.0, x0) > 0:  # built-in limits: positive margins
+            raise ValueError(f"initial state already stops the run: {ev.describe(0.0, x0)}")
+    path = resolve_log_path(log_path)
+
+    u0 = ctrl.held(0.0, x0) if ctrl.controller is not None else ctrl.schedule(0.0)
+    wall0 = time.perf_counter()
+    jac_matrix = jacobian(model, x0, u0)[0] if implicit else None
+    counters = {"nfev": 0, "njev": 0, "nlu": 0, "nonfinite": 0}
+    sink = None
+    if path is not None:
+        meta = {"aircraft": model.aircraft.name, "aircraft_source": str(model.aircraft.source),
+                "variant": model.variant.value, "aero": "none" if model.aero is None else model.aero.options.model,
+                "method": method, "rtol": f"{rtol:g}", "t_end_s": f"{t_end:g}", "run_id": uuid.uuid4().hex}
+        meta.update({str(k): str(v) for k, v in (metadata or {}).items()})
+        sink = LogSink(path, outputs, meta)
+    bar = None
+    if progress is True:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=t_end, unit="sim s", disable=None)
+    crossings: list[tuple[float, str]] = []
+    results = _Sampler(out_grid)
+    logged = _Sampler(log_grid)
+    results.add(0.0, x0, u0)
+    try:
+        if sink is not None:
+            sink.event(0.0, f"simulation start: {model.aircraft.name} ({model.variant.value}, aero "
+                            f"{meta['aero']}), method {method}, rtol {rtol:g}, t_end {t_end:g} s")
+            for t_note, text in notes:
+                sink.schedule(float(t_note), str(text))
+            sink.write(np.zeros(1), x0[None, :], u0[None, :])
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            status, reason = _integrate(model, ctrl, x0, u0, t_end, method, rtol, atol_v, max_step, jac_matrix, evs, results,
+                                        logged, sink, counters, crossings, progress if callable(progress) else None, bar)
+    except BaseException as exc:
+        if sink is not None:
+            t_fail = logged.t[-1][-1] if logged.t and logged.t[-1].size else 0.0
+            sink.event(float(t_fail), f"simulation aborted: {type(exc).__name__}: {exc}", "error")
+        raise
+    finally:
+        if bar is not None:
+            bar.close()
+        if sink is not None:
+            sink.close()
+    t, x, u = results.arrays()
+    return SimulationResult(t=t, x=x, u=u, status=status, reason=reason, model=model, method=method, rtol=float(rtol),
+                            nfev=counters["nfev"], njev=counters["njev"], nlu=counters["nlu"],
+                            wall_time_s=time.perf_counter() - wall0, log_path=path, events=tuple(crossings))
+
+
+def _integrate(model, ctrl, x0, u0, t_end, method, rtol, atol, max_step, jac_matrix, evs, results, logged, sink,
+               counters, crossings, callback, bar) -> tuple[str, str]:
+    """The stepping loop: a solver per control segment; sample, log and check events after every step."""
+    bounds = ctrl.boundaries(t_end)
+    h_next = None
+    g_old = [ev.function(0.0, x0) for ev in evs]
+    current: list = [None]  # the control law u_of(t) of the current segment
+    solvers: list = []
+
+    def fun(t, y):
+        counters["nfev"] += 1
+        dy = model.rhs(t, y, current[0](t))
+        if not np.all(np.isfinite(dy)):
+            counters["nonfinite"] += 1
+        return dy
+
+    def finish(t: float, y: np.ndarray) -> None:
+        u = current[0](t)
+        results.add(t, y, u)
+        if sink is not None and np.all(np.isfinite(y)):
+            sink.write(np.array([t]), y[None, :], u[None, :])
+
+    try:
+        x = x0.copy()
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            if ctrl.controller is not None:
+                u_held = u0 if a == 0.0 else ctrl.held(float(a), x)
+
+                def u_of(t, u_held=u_held):
+                    return np.broadcast_to(u_held, (np.size(t), 4)) if np.ndim(t) else u_held
+            else:
+                sched = ctrl.schedule
+
+                def u_of(t, sched=sched):
+                    return sched.at(t) if np.ndim(t) else sched(t)
+
+            current[0] = u_of
+            options = {"rtol": rtol, "atol": atol, "max_step": max_step}
+            if h_next is not None:
+                options["first_step"] = min(h_next, b - a)
+            if method == "LSODA":
+                options["jac"] = lambda t, y, j=jac_matrix: j
+            elif method in _IMPLICIT:
+                options["jac"] = jac_matrix
+            solver = (HoldingRadau if method == "Radau" else METHODS[method])(fun, float(a), x, float(b), **options)
+            solvers.append(solver)
+            steps: list[float] = []
+            while solver.status == "running":
+                if b - solver.t <= 1e-12 * max(1.0, abs(b)):
+                    break  # landed on the boundary up to rounding (e.g. 0.25 + 0.05 < 6 * 0.05)
+                message = solver.step()
+                if solver.status == "failed":
+                    finish(solver.t, solver.y)
+                    if counters["nonfinite"]:
+                        return "non_finite", (f"non-finite state: the right-hand side stopped being finite near "
+                                              f"t = {solver.t:.4f} s (solver: {message})")
+                    return "solver_failure", f"solver failure at t = {solver.t:.4f} s: {message}"
+                t_old, t_new, y_new = solver.t_old, solver.t, solver.y
+                steps.append(t_new - t_old)
+                if not np.all(np.isfinite(y_new)):
+                    finish(t_old, x)
+                    return "non_finite", f"non-finite state at t = {t_new:.4f} s"
+                sol = solver.dense_output()
+                hit = None
+                for k, ev in enumerate(evs):
+                    g_new = ev.function(t_new, y_new)
+                    down = g_old[k] >= 0 >= g_new and g_old[k] != g_new
+                    up = g_old[k] <= 0 <= g_new and g_old[k] != g_new
+                    if (down and ev.direction <= 0) or (up and ev.direction >= 0):
+                        t_ev = brentq(lambda tt, ev=ev: ev.function(tt, sol(tt)), t_old, t_new, xtol=4 * _EPS, rtol=4 * _EPS)
+                        if ev.terminal and (hit is None or t_ev < hit[0]):
+                            hit = (t_ev, ev)
+                        elif not ev.terminal:
+                            crossings.append((t_ev, ev.name))
+                            if sink is not None:
+                                sink.event(t_ev, f"event {ev.name!r} at t = {t_ev:.4f} s")
+                    g_old[k] = g_new
+                t_reached = t_new if hit is None else hit[0]
+                inclusive = hit is not None or solver.status != "finished" or b >= t_end
+                _emit(results, logged, sink, t_reached, sol, sol(t_reached), u_of, inclusive)
+                x = y_new
+                if callback is not None:
+                    callback(t_reached)
+                if bar is not None:
+                    bar.update(t_reached - bar.n)
+                if hit is not None:
+                    t_ev, ev = hit
+                    x_ev = sol(t_ev)
+                    finish(t_ev, x_ev)
+                    crossings.append((t_ev, ev.name))
+                    if sink is not None:
+                        sink.event(t_ev, ev.describe(t_ev, x_ev), "error")
+                    return ev.status, ev.describe(t_ev, x_ev)
+            x = solver.y.copy()
+            if steps:
+                h_next = max(steps[-2:]) if len(steps) > 1 else steps[-1]
+        finish(t_end, x)
+        if sink is not None:
+            sink.event(t_end, f"simulation completed at t = {t_end:g} s")
+        return "completed", f"reached t_end = {t_end:g} s"
+    finally:
+        counters["njev"] += sum(getattr(s_, "njev", 0) for s_ in solvers)
+        counters["nlu"] += sum(getattr(s_, "nlu", 0) for s_ in solvers)
+
+
+def _emit(results: _Sampler, logged: _Sampler, sink: LogSink | None, t_reached: float, sol, y_reached, u_of,
+          inclusive: bool) -> None:
+    results.take(t_reached, sol, y_reached, u_of, inclusive)
+    times, xs, us = logged.take(t_reached, sol, y_reached, u_of, inclusive)
+    if sink is not None and times.size:
+        sink.write(times, xs, us)
