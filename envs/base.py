@@ -1,0 +1,368 @@
+"""The common gymnasium adapter of the flexsim tasks: spaces, action mapping, stepping, termination.
+
+The physics lives in :mod:`envs.dynamics` (and below it in flexsim); a task subclass only says how an
+episode starts (trim, perturbation, wind), which errors it tracks and how they are rewarded
+(:class:`~envs.config.TrackingReward`).
+"""
+
+from __future__ import annotations
+
+import math
+import multiprocessing
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, ClassVar
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+
+from flexsim.aircraft.definition import Aircraft
+from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.model.aircraft_model import CONTROL_NAMES
+from flexsim.trim import SteadyManoeuvre
+
+from envs.config import (AERO_MODELS, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
+                         IntegratorSettings, TrackingReward)
+from envs.dynamics import SENSOR_COMPONENTS, FlightDynamics, Measurements, StepOutcome
+from envs.parallel import limit_blas_threads
+
+__all__ = ["FlexSimEnv", "Episode", "LogSample", "TERMINATION_REASONS"]
+
+#: Values of ``info["termination_reason"]`` ("" while flying).
+TERMINATION_REASONS = ("non_finite", "crash", "structural_limit", "gimbal_lock", "envelope")
+#: Physical control names of the flight logs.
+LOG_CONTROL_NAMES = ("thrust_N", "aileron_rad", "elevator_rad", "rudder_rad")
+_HISTORY = 500  # samples of the flight path kept for rendering
+
+
+@dataclass(frozen=True)
+class Episode:
+    """How an episode starts (returned by a task's :meth:`FlexSimEnv._new_episode`).
+
+    Attributes
+    ----------
+    manoeuvre : SteadyManoeuvre
+        The trim the aircraft starts from (and whose Jacobian Radau uses).
+    x0 : ndarray
+        Initial state (the trim state plus perturbations).
+    wind : callable or None
+        Wind field of the episode, ``wind(t, positions_ned_m)``.
+    reference : dict of str to float
+        Targets of the task (reported in the reset info).
+    """
+
+    manoeuvre: SteadyManoeuvre
+    x0: np.ndarray
+    wind: Any
+    reference: dict
+
+
+@dataclass(frozen=True)
+class LogSample:
+    """One flight-log sample of the current state (see :class:`envs.wrappers.FlightLogRecorder`)."""
+
+    time_s: float
+    position_ned_m: np.ndarray
+    euler_rad: np.ndarray
+    state: np.ndarray
+    controls: np.ndarray
+    signals: np.ndarray
+    structure: dict
+
+
+class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
+    """Base class of the flexsim tasks (not registered itself; see the task classes for the docs).
+
+    Parameters
+    ----------
+    aircraft : str, Path or Aircraft
+        Bundled aircraft name (``"gtm"``), a TOML file, or a loaded :class:`Aircraft`.
+    aero : {"unsteady", "quasi-steady"}
+    control_rate_hz : float
+        Control (and observation) rate [Hz], 5 to 1000 (default 50).
+    turbulence : {"none", "light", "moderate", "severe"} or None
+        Dryden turbulence level (MIL-F-8785C); None takes the task's default.
+    render_mode : {"human", "rgb_array"} or None
+    task : frozen dataclass, optional
+        The task parameters (the task class's ``task_type``; default its defaults).
+    integrator : IntegratorSettings, optional
+    actuator_rates : ActuatorRates, optional
+    limits : FlightLimits, optional
+    perturbation : InitialPerturbation, optional
+    """
+
+    metadata: ClassVar[dict] = {"render_modes": ["human", "rgb_array"], "render_fps": 50}
+    task_type: ClassVar[type]
+    default_turbulence: ClassVar[str] = "none"
+    #: Whether the task's subject is a lightly damped high-frequency structural mode (integrator "auto" -> DOP853).
+    undamped_structure: ClassVar[bool] = False
+    #: (name, bound) of the task errors in the observation, in order; set by each task class.
+    task_errors_spec: ClassVar[tuple[tuple[str, float], ...]] = ()
+
+    def __init__(self, *, aircraft: str | Path | Aircraft = "gtm", aero: str = "unsteady", control_rate_hz: float = 50.0,
+                 turbulence: str | None = None, render_mode: str | None = None, task: Any = None,
+                 integrator: IntegratorSettings | None = None, actuator_rates: ActuatorRates | None = None,
+                 limits: FlightLimits | None = None, perturbation: InitialPerturbation | None = None) -> None:
+        #: OpenBLAS thread counts set when built in a worker process (vector envs), else None.
+        self.worker_blas_threads = limit_blas_threads(1) if multiprocessing.parent_process() is not None else None
+        if aero not in AERO_MODELS:
+            raise ValueError(f"aero = {aero!r}: must be one of {', '.join(AERO_MODELS)}")
+        try:
+            rate = float(control_rate_hz)
+        except (TypeError, ValueError):
+            rate = math.nan
+        if not 5.0 <= rate <= 1000.0:
+            raise ValueError(f"control_rate_hz = {control_rate_hz!r}: must be a number in [5, 1000] Hz")
+        turbulence = self.default_turbulence if turbulence is None else turbulence
+        if turbulence not in TURBULENCE_LEVELS:
+            raise ValueError(f"turbulence = {turbulence!r}: must be one of {', '.join(TURBULENCE_LEVELS)}")
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode = {render_mode!r}: must be None or one of {', '.join(self.metadata['render_modes'])}")
+        task = self.task_type() if task is None else task
+        if not isinstance(task, self.task_type):
+            raise ValueError(f"task = {task!r}: must be a {self.task_type.__name__}")
+        for name, value, kind in (("integrator", integrator, IntegratorSettings), ("actuator_rates", actuator_rates, ActuatorRates),
+                                  ("limits", limits, FlightLimits), ("perturbation", perturbation, InitialPerturbation)):
+            if value is not None and not isinstance(value, kind):
+                raise ValueError(f"{name} = {value!r}: must be a {kind.__name__} or None")
+        self.aircraft = aircraft if isinstance(aircraft, Aircraft) else load_aircraft(aircraft)
+        self.aircraft_source = self.aircraft.source
+        self.task = task
+        self.turbulence = turbulence
+        self.control_rate_hz = rate
+        self.dt = 1.0 / rate
+        self.limits = limits or FlightLimits()
+        self.perturbation = perturbation or InitialPerturbation()
+        self.render_mode = render_mode
+        self.metadata = {**type(self).metadata, "render_fps": rate}
+        self.dynamics = FlightDynamics(self.aircraft, aero, integrator or IntegratorSettings(), actuator_rates or ActuatorRates(),
+                                       self.dt, windy=self._needs_wind(), undamped_structure=self.undamped_structure)
+        self.reward_definition: TrackingReward = task.reward
+        lo, hi = self.dynamics.u_low, self.dynamics.u_high
+        self._u_scale = hi.copy()  # 0 for a surface the aircraft does not have: its action has no effect
+        self.action_space = spaces.Box(np.array([0.0, -1.0, -1.0, -1.0], np.float32), np.ones(4, np.float32), dtype=np.float32)
+        self.observation_structure, low, high, self.observation_names = self._observation_layout()
+        self.observation_space = spaces.Box(low, high, dtype=np.float32)
+        self._obs_low, self._obs_high = low.astype(np.float64), high.astype(np.float64)
+        self._x = None
+        self._u = np.zeros(4)
+        self._last_action = np.zeros(4)
+        self._steps = 0
+        self._time = 0.0
+        self._ended = False
+        self._reference: dict = {}
+        self._errors: dict = {}
+        self._last_reward = 0.0
+        self._path: list[np.ndarray] = []
+        self._renderer = None
+
+    # ------------------------------------------------------------------ task hooks
+    def _needs_wind(self) -> bool:
+        """Whether episodes can have wind (turbulence here; tasks with gusts override)."""
+        return self.turbulence != "none"
+
+    def _new_episode(self, rng: np.random.Generator) -> Episode:
+        """The start of an episode, drawn from ``rng`` (implemented by each task class)."""
+        raise NotImplementedError(f"{type(self).__name__} must implement _new_episode")
+
+    def _task_errors(self, meas: Measurements) -> dict[str, float]:
+        """Task errors in the order of ``task_errors_spec`` (implemented by each task class)."""
+        raise NotImplementedError(f"{type(self).__name__} must implement _task_errors")
+
+    # ------------------------------------------------------------------ spaces
+    def _observation_layout(self) -> tuple[dict[str, slice], np.ndarray, np.ndarray, tuple[str, ...]]:
+        blocks: list[tuple[str, list[tuple[str, float, float]]]] = [
+            ("attitude", [("roll_rad", -math.pi, math.pi), ("pitch_rad", -math.pi / 2, math.pi / 2), ("heading_rad", -math.pi, math.pi)]),
+            ("body_rates", [(f"{n}_rad_s", -10.0, 10.0) for n in ("roll_rate", "pitch_rate", "yaw_rate")]),
+            ("air_data", [("airspeed_m_s", 0.0, 600.0), ("alpha_rad", -math.pi, math.pi), ("beta_rad", -math.pi / 2, math.pi / 2)]),
+            ("altitude", [("altitude_m", -1000.0, 25000.0)]),
+            ("task_errors", [(name, -bound, bound) for name, bound in self.task_errors_spec]),
+            ("structure", [item for c in SENSOR_COMPONENTS for item in (
+                (f"tip_deflection_{c}_m", -50.0, 50.0), (f"tip_deflection_rate_{c}_m_s", -500.0, 500.0),
+                (f"tip_twist_{c}_rad", -math.pi, math.pi), (f"tip_twist_rate_{c}_rad_s", -1000.0, 1000.0))]),
+            ("controls", [("thrust_fraction", 0.0, 1.0), ("aileron_fraction", -1.0, 1.0), ("elevator_fraction", -1.0, 1.0),
+                          ("rudder_fraction", -1.0, 1.0)]),
+        ]
+        structure, names, low, high = {}, [], [], []
+        for block, items in blocks:
+            structure[block] = slice(len(names), len(names) + len(items))
+            for name, lo, hi in items:
+                names.append(name)
+                low.append(lo)
+                high.append(hi)
+        return structure, np.array(low, np.float32), np.array(high, np.float32), tuple(names)
+
+    # ------------------------------------------------------------------ action mapping
+    def action_to_controls(self, action: np.ndarray) -> np.ndarray:
+        """Physical controls [N, rad, rad, rad] of a normalised action (thrust fraction, surface fractions)."""
+        return np.asarray(action, float) * self._u_scale
+
+    def controls_to_action(self, u: np.ndarray) -> np.ndarray:
+        """Normalised action (float32) of physical controls [N, rad, rad, rad] (inverse of :meth:`action_to_controls`)."""
+        scale = self._u_scale
+        a = np.divide(np.asarray(u, float), scale, out=np.zeros(4), where=scale > 0)
+        return np.clip(a, self.action_space.low, self.action_space.high).astype(np.float32)
+
+    def _check_action(self, action: Any) -> tuple[np.ndarray, bool]:
+        try:
+            a = np.asarray(action, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"action = {action!r}: must be 4 numbers [thrust, aileron, elevator, rudder]") from None
+        if a.shape != (4,):
+            raise ValueError(f"action: expected shape (4,) [thrust, aileron, elevator, rudder], got shape {a.shape}")
+        bad = np.flatnonzero(~np.isfinite(a))
+        if bad.size:
+            names = ", ".join(f"action[{i}] ({CONTROL_NAMES[i]}) = {a[i]}" for i in bad)
+            raise ValueError(f"action: values must be finite, got {names}")
+        low, high = self.action_space.low.astype(np.float64), self.action_space.high.astype(np.float64)
+        clipped = np.clip(a, low, high)
+        return clipped, bool(np.any(clipped != a))
+
+    # ------------------------------------------------------------------ gymnasium API
+    def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple[np.ndarray, dict]:
+        super().reset(seed=seed)
+        episode = self._new_episode(self.np_random)
+        point = self.dynamics.trim(episode.manoeuvre)
+        self.dynamics.start(episode.manoeuvre)
+        if self.dynamics.wind is not None:
+            self.dynamics.wind.field = episode.wind
+        self._x = np.array(episode.x0, dtype=float)
+        self._u = point.u.copy()
+        self._last_action = self.controls_to_action(point.u).astype(np.float64)
+        self._steps = 0
+        self._time = 0.0
+        self._ended = False
+        self._reference = dict(episode.reference)
+        meas = self.dynamics.measure(self._x, 0.0)
+        self._errors = self._task_errors(meas)
+        self._last_reward = 0.0
+        self._path = [meas.position_ned_m]
+        obs = self._observe(meas)
+        info = {"time_s": 0.0, "trim_action": self.controls_to_action(point.u), "reference": dict(self._reference)}
+        if self.render_mode == "human":
+            self.render()
+        return obs, info
+
+    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict]:
+        if self._x is None:
+            raise RuntimeError("step() called before reset()")
+        if self._ended:
+            raise RuntimeError("step() called after the episode terminated; call reset()")
+        a, clipped = self._check_action(action)
+        command = self.action_to_controls(a)
+        u = self.dynamics.rate_limit(self._u, command)
+        t0, t1 = self._steps * self.dt, (self._steps + 1) * self.dt
+        outcome = self.dynamics.advance(self._x, u, t0, t1)
+        self._x, self._u, self._time = outcome.x, u, outcome.time_s
+        self._steps += 1
+        meas = self.dynamics.measure(self._x, self._time)
+        reason = self._termination(outcome, meas)
+        terminated = bool(reason)
+        self._ended = terminated
+        self._errors = self._task_errors(meas)
+        parts = self.reward_definition.parts(self._errors, a - self._last_action, terminated)
+        reward = TrackingReward.total(parts)
+        self._last_action = a
+        self._last_reward = reward
+        self._path.append(meas.position_ned_m)
+        del self._path[:-_HISTORY]
+        obs = self._observe(meas)
+        info = {"time_s": self._time, "reward_parts": parts, "termination_reason": reason, "action_clipped": clipped,
+                "task_errors": dict(self._errors), "nfev": outcome.nfev, "nlu": outcome.nlu, "solver_failure": outcome.failure}
+        if self.render_mode == "human":
+            self.render()
+        return obs, reward, terminated, False, info
+
+    def _termination(self, outcome: StepOutcome, meas: Measurements) -> str:
+        lim = self.limits
+        if outcome.failure:
+            return "non_finite"
+        if outcome.crashed or meas.altitude_m <= 0.0:
+            return "crash"
+        wing = max(abs(meas.tip_deflection_m["right_wing"]), abs(meas.tip_deflection_m["left_wing"]))
+        if not wing <= lim.wing_tip_deflection_m or not abs(meas.tip_twist_rad["vtail"]) <= lim.fin_tip_twist_rad:
+            return "structural_limit"
+        if not abs(meas.euler_rad[1]) < lim.max_abs_pitch_rad:
+            return "gimbal_lock"
+        if not (meas.mach < lim.max_mach and abs(meas.alpha_rad) < lim.max_abs_alpha_rad and meas.airspeed_m_s > lim.min_airspeed_m_s):
+            return "envelope"
+        return ""
+
+    def _observe(self, meas: Measurements) -> np.ndarray:
+        psi = math.remainder(float(meas.euler_rad[2]), 2.0 * math.pi) if math.isfinite(meas.euler_rad[2]) else 0.0
+        parts = [meas.euler_rad[0], meas.euler_rad[1], psi, *meas.body_rates_rad_s, meas.airspeed_m_s, meas.alpha_rad,
+                 meas.beta_rad, meas.altitude_m, *self._errors.values()]
+        for c in SENSOR_COMPONENTS:
+            parts += [meas.tip_deflection_m[c], meas.tip_deflection_rate_m_s[c], meas.tip_twist_rad[c], meas.tip_twist_rate_rad_s[c]]
+        parts += list(self.controls_to_action(self._u))
+        obs = np.array(parts, dtype=np.float64)
+        obs[np.isnan(obs)] = 0.0
+        return np.clip(obs, self._obs_low, self._obs_high).astype(np.float32)
+
+    # ------------------------------------------------------------------ introspection
+    @property
+    def state(self) -> np.ndarray:
+        """A copy of the current model state (layout: ``self.dynamics.layout``)."""
+        return None if self._x is None else self._x.copy()
+
+    @property
+    def applied_controls(self) -> np.ndarray:
+        """Controls applied over the last period after rate limiting [N, rad, rad, rad]."""
+        return self._u.copy()
+
+    @property
+    def time_s(self) -> float:
+        """Simulation time [s]."""
+        return self._time
+
+    def measurements(self) -> Measurements:
+        """Outputs of the current state."""
+        return self.dynamics.measure(self._x, self._time)
+
+    def signal_names(self) -> tuple[str, ...]:
+        """Names of the flight-log signals (:meth:`log_sample`)."""
+        names = ["airspeed_m_s", "mach", "alpha_rad", "beta_rad", "altitude_m", "heading_rate_rad_s"]
+        names += [f"tip_deflection_{c}_m" for c in SENSOR_COMPONENTS]
+        names += [f"twist_tip_{c}_rad" for c in SENSOR_COMPONENTS]
+        names += ["root_bending_moment_right_wing_n_m", "root_bending_moment_left_wing_n_m"]
+        names += [f"error_{name}" for name, _ in self.task_errors_spec] + ["reward"]
+        return tuple(names)
+
+    def log_sample(self) -> LogSample:
+        """The current sample in flight-log form (names: :meth:`signal_names`, ``dynamics.state_names()``)."""
+        m = self.measurements()
+        signals = [m.airspeed_m_s, m.mach, m.alpha_rad, m.beta_rad, m.altitude_m, m.heading_rate_rad_s]
+        signals += [m.tip_deflection_m[c] for c in SENSOR_COMPONENTS] + [m.tip_twist_rad[c] for c in SENSOR_COMPONENTS]
+        signals += [m.root_bending_moment_n_m["right_wing"], m.root_bending_moment_n_m["left_wing"]]
+        signals += list(self._errors.values()) + [self._last_reward]
+        x = self._x
+        lay = self.dynamics.layout
+        return LogSample(self._time, x[lay.position].copy(), x[lay.euler].copy(), x.copy(), self._u.copy(),
+                         np.nan_to_num(np.array(signals, float), nan=0.0, posinf=0.0, neginf=0.0),
+                         self.dynamics.structure_nodes(x))
+
+    def render(self) -> np.ndarray | None:
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' or 'human' to the constructor")
+            return None
+        if self._x is None:
+            raise RuntimeError("render() called before reset()")
+        from envs.rendering import RerunStreamer, RgbRenderer
+
+        if self._renderer is None:
+            self._renderer = RgbRenderer() if self.render_mode == "rgb_array" else RerunStreamer()
+        nodes = self.dynamics.structure_nodes(self._x)
+        m = self.measurements()
+        return self._renderer.draw(m, nodes, np.array(self._path), self._u, self.task_label(), self._errors)
+
+    def task_label(self) -> str:
+        """Short title for renderings."""
+        return type(self).__name__
+
+    def close(self) -> None:
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+        super().close()
+

@@ -1,0 +1,281 @@
+"""Frozen parameter sets shared by every flexsim environment (actuators, integrator, limits, rewards).
+
+All quantities SI and radians. Each dataclass validates itself and raises ``ValueError`` naming the
+field, the value and the allowed range.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = [
+    "ActuatorRates",
+    "IntegratorSettings",
+    "FlightLimits",
+    "InitialPerturbation",
+    "RewardTerm",
+    "TrackingReward",
+    "TURBULENCE_LEVELS",
+    "INTEGRATOR_METHODS",
+    "AERO_MODELS",
+]
+
+#: Turbulence levels accepted by the ``turbulence`` argument (MIL-F-8785C severities, or none).
+TURBULENCE_LEVELS = ("none", "light", "moderate", "severe")
+#: Integration methods accepted by :class:`IntegratorSettings` (``"auto"`` picks by aerodynamic model).
+INTEGRATOR_METHODS = ("auto", "DOP853", "Radau")
+#: Aerodynamic models of the time-domain model.
+AERO_MODELS = ("unsteady", "quasi-steady")
+
+
+def _positive(name: str, value: float, *, allow_zero: bool = False) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r}: must be a finite number {'>= 0' if allow_zero else '> 0'}") from None
+    if not math.isfinite(v) or v < 0.0 or (v == 0.0 and not allow_zero):
+        raise ValueError(f"{name} = {value!r}: must be a finite number {'>= 0' if allow_zero else '> 0'}")
+    return v
+
+
+@dataclass(frozen=True)
+class ActuatorRates:
+    """Rate limits of the actuators (applied to the commanded controls every control period).
+
+    The notional GTM file has no actuator data; the defaults are typical of a 757-class transport
+    (hydraulic surfaces 40-60 deg/s, engine spool-up from idle to full thrust in about 4 s).
+
+    Attributes
+    ----------
+    thrust_fraction_per_s : float
+        Largest thrust change per second as a fraction of the maximum thrust [1/s] (default 0.25).
+    aileron_rad_s, elevator_rad_s, rudder_rad_s : float
+        Largest surface rates [rad/s] (defaults 60, 40 and 60 deg/s).
+    """
+
+    thrust_fraction_per_s: float = 0.25
+    aileron_rad_s: float = math.radians(60.0)
+    elevator_rad_s: float = math.radians(40.0)
+    rudder_rad_s: float = math.radians(60.0)
+
+    def __post_init__(self) -> None:
+        for name in ("thrust_fraction_per_s", "aileron_rad_s", "elevator_rad_s", "rudder_rad_s"):
+            object.__setattr__(self, name, _positive(name, getattr(self, name)))
+
+    def limits(self, max_thrust_n: float) -> np.ndarray:
+        """Rates of u = [T_e, delta_a, delta_e, delta_r]: [N/s, rad/s, rad/s, rad/s], shape (4,)."""
+        return np.array([self.thrust_fraction_per_s * max_thrust_n, self.aileron_rad_s, self.elevator_rad_s, self.rudder_rad_s])
+
+
+@dataclass(frozen=True)
+class IntegratorSettings:
+    """How each control period is integrated with ``scipy.integrate.solve_ivp``.
+
+    Attributes
+    ----------
+    method : {"auto", "DOP853", "Radau"}
+        ``"auto"`` (default) uses Radau with the constant Jacobian of the trim for the finite-state
+        (``"unsteady"``) model, whose inflow states are stiff (eigenvalues down to about -650 1/s,
+        |lambda| up to 1500 1/s on the GTM), and DOP853 for the quasi-steady model and for tasks whose
+        subject is a lightly damped high-frequency structural mode (flutter): at the default tolerances
+        Radau damps the 179 rad/s fin flutter mode numerically (its amplitude after 5 s is 22 % low),
+        DOP853 does not (measured in ``benchmarks/bench_envs.py``; see ``docs/environments.md``).
+    rtol : float
+        Relative tolerance (default 1e-3; the error is dominated by ``atol`` on the small states).
+    atol_scale : float
+        Multiplies the per-state absolute tolerances of :meth:`atol` (default 10).
+    """
+
+    method: str = "auto"
+    rtol: float = 1e-3
+    atol_scale: float = 10.0
+
+    def __post_init__(self) -> None:
+        if self.method not in INTEGRATOR_METHODS:
+            raise ValueError(f"method = {self.method!r}: must be one of {', '.join(INTEGRATOR_METHODS)}")
+        rtol = _positive("rtol", self.rtol)
+        if not 1e-12 <= rtol <= 1e-2:
+            raise ValueError(f"rtol = {self.rtol!r}: must be in [1e-12, 1e-2]")
+        object.__setattr__(self, "rtol", rtol)
+        object.__setattr__(self, "atol_scale", _positive("atol_scale", self.atol_scale))
+
+    def resolve(self, aero: str, undamped_structure: bool = False) -> str:
+        """The solve_ivp method used for aerodynamic model ``aero``; ``undamped_structure`` asks for an
+        integrator without numerical damping of the high-frequency structural modes (DOP853)."""
+        if self.method != "auto":
+            return self.method
+        return "Radau" if aero == "unsteady" and not undamped_structure else "DOP853"
+
+    def atol(self, layout) -> np.ndarray:
+        """Per-state absolute tolerances for a :class:`~flexsim.model.layout.StateLayout`.
+
+        Base values (times ``atol_scale``): position 1e-3 m, Euler angles 1e-6 rad, bending 1e-5 m,
+        torsion 1e-6 rad, body velocity 1e-4 m/s, body rates 1e-6 rad/s, bending rates 1e-4 m/s,
+        torsion rates 1e-5 rad/s, inflow 1e-3 m/s.
+        """
+        a = np.empty(layout.n_states)
+        for name, value in (("position", 1e-3), ("euler", 1e-6), ("q", 1e-5), ("xi", 1e-6), ("v", 1e-4),
+                            ("omega", 1e-6), ("s", 1e-4), ("eta", 1e-5), ("inflow", 1e-3)):
+            a[getattr(layout, name)] = value
+        return a * self.atol_scale
+
+
+@dataclass(frozen=True)
+class FlightLimits:
+    """Termination bounds (an episode ends with ``terminated = True`` when one is crossed).
+
+    Attributes
+    ----------
+    wing_tip_deflection_m : float
+        Structural limit on |tip bending deflection| of either wing half [m] (default 5.5 m, 30 % of the
+        GTM's 18.25 m semispan).
+    fin_tip_twist_rad : float
+        Structural limit on |tip twist| of the vertical stabilizer [rad] (default 0.1 rad, 5.7 deg).
+    max_abs_pitch_rad : float
+        Gimbal-lock guard of the 3-2-1 Euler angles: |theta| limit [rad] (default 85 deg).
+    max_mach : float
+        Envelope: Mach limit (default 0.95, where the model's Prandtl-Glauert correction is capped).
+    max_abs_alpha_rad : float
+        Envelope: |angle of attack| limit (default 25 deg; strip theory has no stall).
+    min_airspeed_m_s : float
+        Envelope: lowest airspeed [m/s] (default 60 m/s).
+    """
+
+    wing_tip_deflection_m: float = 5.5
+    fin_tip_twist_rad: float = 0.1
+    max_abs_pitch_rad: float = math.radians(85.0)
+    max_mach: float = 0.95
+    max_abs_alpha_rad: float = math.radians(25.0)
+    min_airspeed_m_s: float = 60.0
+
+    def __post_init__(self) -> None:
+        for name in ("wing_tip_deflection_m", "fin_tip_twist_rad", "max_abs_pitch_rad", "max_mach",
+                     "max_abs_alpha_rad", "min_airspeed_m_s"):
+            object.__setattr__(self, name, _positive(name, getattr(self, name)))
+        if not self.max_abs_pitch_rad < math.pi / 2:
+            raise ValueError(f"max_abs_pitch_rad = {self.max_abs_pitch_rad!r}: must be in (0, pi/2)")
+
+
+@dataclass(frozen=True)
+class InitialPerturbation:
+    """Half-widths of the uniform random perturbation added to the trim state at reset.
+
+    Attributes
+    ----------
+    attitude_rad : float
+        Roll and pitch [rad] (default 0.01).
+    heading_rad : float
+        Yaw [rad] (default 0.01).
+    body_rate_rad_s : float
+        Each body rate p, q, r [rad/s] (default 0.005).
+    airspeed_m_s : float
+        Forward body velocity u [m/s] (default 1).
+    altitude_m : float
+        Altitude [m] (default 5).
+    """
+
+    attitude_rad: float = 0.01
+    heading_rad: float = 0.01
+    body_rate_rad_s: float = 0.005
+    airspeed_m_s: float = 1.0
+    altitude_m: float = 5.0
+
+    def __post_init__(self) -> None:
+        for name in ("attitude_rad", "heading_rad", "body_rate_rad_s", "airspeed_m_s", "altitude_m"):
+            object.__setattr__(self, name, _positive(name, getattr(self, name), allow_zero=True))
+
+
+@dataclass(frozen=True)
+class RewardTerm:
+    """One tracking cost: ``-weight * min((error / scale)**2, 1)``, bounded in [-weight, 0].
+
+    Attributes
+    ----------
+    error : str
+        Name of the task error it penalises (a key of the env's task errors).
+    weight : float
+        Weight [-] (>= 0).
+    scale : float
+        Error at which the cost saturates, in the error's unit (> 0).
+    """
+
+    error: str
+    weight: float
+    scale: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "weight", _positive(f"RewardTerm({self.error}).weight", self.weight, allow_zero=True))
+        object.__setattr__(self, "scale", _positive(f"RewardTerm({self.error}).scale", self.scale))
+
+
+@dataclass(frozen=True)
+class TrackingReward:
+    """Per-step reward of every flexsim task (its parts go to ``info["reward_parts"]``)::
+
+        reward = alive + sum_i -w_i min((e_i / s_i)^2, 1) - w_u min(mean((da / s_u)^2), 1) - penalty [terminated]
+
+    with ``da`` the change of the normalised action from the previous step. The parts are, in order,
+    ``"alive"``, one entry per :class:`RewardTerm` named after its error, ``"control_rate"`` and
+    ``"termination"``; ``reward`` is their sum, in that order, so the parts add up to it exactly.
+
+    Attributes
+    ----------
+    terms : tuple of RewardTerm
+    alive : float
+        Bonus per step while flying [-] (default 1).
+    control_rate_weight : float
+        w_u [-] (default 0.1).
+    control_rate_scale : float
+        s_u: normalised action change at which the control-rate cost saturates (default 0.1 per step).
+    termination_penalty : float
+        Subtracted once on the terminating step [-] (default 100).
+    """
+
+    terms: tuple[RewardTerm, ...]
+    alive: float = 1.0
+    control_rate_weight: float = 0.1
+    control_rate_scale: float = 0.1
+    termination_penalty: float = 100.0
+    _names: tuple[str, ...] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "terms", tuple(self.terms))
+        names = [t.error for t in self.terms]
+        reserved = {"alive", "control_rate", "termination"}
+        if len(set(names)) != len(names) or reserved & set(names):
+            raise ValueError(f"terms: error names must be unique and not one of {sorted(reserved)}, got {names}")
+        for name in ("alive", "control_rate_weight", "termination_penalty"):
+            object.__setattr__(self, name, _positive(name, getattr(self, name), allow_zero=True))
+        object.__setattr__(self, "control_rate_scale", _positive("control_rate_scale", self.control_rate_scale))
+        object.__setattr__(self, "_names", ("alive", *names, "control_rate", "termination"))
+
+    @property
+    def part_names(self) -> tuple[str, ...]:
+        """Keys of ``info["reward_parts"]``, in summation order."""
+        return self._names
+
+    def parts(self, errors: Mapping[str, float], action_change: np.ndarray, terminated: bool) -> dict[str, float]:
+        """The reward parts for task ``errors`` (name -> value), the action change and the end flag.
+
+        Non-finite errors count as saturated (cost -weight).
+        """
+        out = {"alive": float(self.alive)}
+        for term in self.terms:
+            ratio = float(errors[term.error]) / term.scale
+            out[term.error] = -term.weight * (min(ratio * ratio, 1.0) if math.isfinite(ratio) else 1.0)
+        rate = float(np.mean((np.asarray(action_change, float) / self.control_rate_scale) ** 2))
+        out["control_rate"] = -self.control_rate_weight * (min(rate, 1.0) if math.isfinite(rate) else 1.0)
+        out["termination"] = -float(self.termination_penalty) if terminated else 0.0
+        return out
+
+    @staticmethod
+    def total(parts: Mapping[str, float]) -> float:
+        """The reward: the sum of the parts in their order (exactly what :meth:`parts` returns)."""
+        reward = 0.0
+        for value in parts.values():
+            reward += value
+        return reward

@@ -1,0 +1,331 @@
+"""The physics behind the environments: one flexsim model, trimmed, stepped over control periods.
+
+:class:`FlightDynamics` is the only place where the environments touch the model. It holds one
+:class:`~flexsim.model.aircraft_model.AircraftModel` (whose ``rhs(t, x, u)`` is integrated unchanged),
+trims it with :func:`flexsim.trim.trim`, computes the constant Jacobian for Radau with
+:func:`flexsim.linear.linearize.jacobian`, and integrates a control period with
+``scipy.integrate.solve_ivp``:
+
+* zero-order hold: the control vector is constant over the period;
+* actuator rate limits: the applied controls move towards the commanded ones by at most rate * dt per
+  period (:meth:`FlightDynamics.rate_limit`), then are held;
+* a restart per period (the right-hand side changes with the controls), warm-started with
+  ``first_step`` = the step size the solver reached in the previous period, shortened so that a whole
+  number of steps fills the period (a clipped last step would make Radau factorise again);
+* a terminal event at altitude 0 (crash).
+
+:class:`Measurements` are the outputs the environments observe (air data, attitude, structural sensors)
+computed from the state; nothing here depends on gymnasium.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from flexsim.aircraft.definition import Aircraft
+from flexsim.atmosphere import speed_of_sound
+from flexsim.linear.linearize import jacobian
+from flexsim.model.aircraft_model import AircraftModel
+from flexsim.structure.kinematics import dcm_321, euler_rate_matrix_inverse
+from flexsim.structure.shapes import bending_shapes, torsion_shapes
+from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
+
+from envs.config import ActuatorRates, IntegratorSettings
+
+__all__ = ["FlightDynamics", "Measurements", "StepOutcome", "WindHolder", "SENSOR_COMPONENTS"]
+
+#: Components carrying the structural sensors (tip deflection, twist and their rates), in order.
+SENSOR_COMPONENTS = ("right_wing", "left_wing", "vtail")
+#: Number of beam nodes per component used for rendering and flight logs.
+STRUCTURE_NODES = 9
+#: Number of trims kept per environment (tasks with random targets trim every episode).
+TRIM_CACHE = 16
+#: Remaining fraction of a period below which a solver stop counts as having reached its end.
+_SLIVER = 1e-12
+
+
+class WindHolder:
+    """The model's wind hook: forwards to the episode's wind field, or still air when it is None.
+
+    The model is built once per environment with this holder; each reset installs a new field
+    (turbulence seed, gust), so the model itself is never rebuilt or changed.
+    """
+
+    def __init__(self) -> None:
+        self.field = None
+
+    def __call__(self, t: float, positions_ned_m: np.ndarray) -> np.ndarray:
+        """Air velocity [m/s], NED, shape (k, 3), at ``positions_ned_m`` (k, 3) [m] and time t [s]."""
+        if self.field is None:
+            return np.zeros(np.shape(positions_ned_m))
+        return np.asarray(self.field(t, positions_ned_m), dtype=float)
+
+
+@dataclass(frozen=True)
+class Measurements:
+    """Outputs of one state (SI, radians; structural signs as in ``docs/conventions.md``).
+
+    Attributes
+    ----------
+    time_s : float
+    position_ned_m, euler_rad, body_rates_rad_s : ndarray, shape (3,)
+    airspeed_m_s, alpha_rad, beta_rad, mach : float
+        Air data relative to the air at the body origin (wind included).
+    altitude_m : float
+    heading_rate_rad_s : float
+        psi_dot = (q sin(phi) + r cos(phi)) / cos(theta) [rad/s] (the turn rate of a level turn).
+    tip_deflection_m, tip_deflection_rate_m_s, tip_twist_rad, tip_twist_rate_rad_s : dict
+        Per sensor component (:data:`SENSOR_COMPONENTS`): bending deflection w(L) (positive along z_i,
+        i.e. down on a wing half), its rate, torsion psi(L) and its rate at the tip.
+    root_bending_moment_n_m : dict
+        Per wing half: EI(0) w''(0), the modal-curvature root bending moment [N m].
+    """
+
+    time_s: float
+    position_ned_m: np.ndarray
+    euler_rad: np.ndarray
+    body_rates_rad_s: np.ndarray
+    airspeed_m_s: float
+    alpha_rad: float
+    beta_rad: float
+    mach: float
+    altitude_m: float
+    heading_rate_rad_s: float
+    tip_deflection_m: dict
+    tip_deflection_rate_m_s: dict
+    tip_twist_rad: dict
+    tip_twist_rate_rad_s: dict
+    root_bending_moment_n_m: dict
+
+
+@dataclass(frozen=True)
+class StepOutcome:
+    """Result of one control period.
+
+    Attributes
+    ----------
+    x : ndarray
+        State at the end (the last finite state if the integration failed).
+    time_s : float
+        Time reached [s] (earlier than the period's end after a crash event or a failure).
+    crashed : bool
+        The ground event (altitude 0) stopped the integration.
+    failure : str
+        Empty, or why the integration failed (non-finite state, solver failure, model error).
+    nfev, nlu : int
+        Right-hand-side evaluations and LU factorisations.
+    """
+
+    x: np.ndarray
+    time_s: float
+    crashed: bool
+    failure: str
+    nfev: int
+    nlu: int = 0
+
+
+class _Sensor:
+    """Tip/root shape rows of one component (tip deflection, twist and root curvature)."""
+
+    def __init__(self, model: AircraftModel, name: str) -> None:
+        comp = model.aircraft.component(name)
+        dofs, lay = model.structure.dofs, model.layout
+        length = comp.length_m
+        self.q_idx = np.arange(lay.q.start, lay.q.stop)[dofs.bending[name]]
+        self.s_idx = np.arange(lay.s.start, lay.s.stop)[dofs.bending[name]]
+        self.xi_idx = np.arange(lay.xi.start, lay.xi.stop)[dofs.torsion[name]]
+        self.eta_idx = np.arange(lay.eta.start, lay.eta.stop)[dofs.torsion[name]]
+        self.w_tip = bending_shapes(length, length, comp.bending_modes)[0]
+        self.psi_tip = torsion_shapes(length, length, comp.torsion_modes)[0]
+        self.curv_root = bending_shapes(0.0, length, comp.bending_modes, derivative=2)[0] * float(comp.sections.ei_nm2[0])
+
+
+class FlightDynamics:
+    """One flexsim model of an aircraft, with trim, Jacobian cache, actuators and the period integrator.
+
+    Parameters
+    ----------
+    aircraft : Aircraft
+    aero : {"unsteady", "quasi-steady"}
+    integrator : IntegratorSettings
+    rates : ActuatorRates
+    control_dt_s : float
+        Control period [s].
+    windy : bool
+        Build the model with a :class:`WindHolder` (needed for gusts and turbulence; costs a little per
+        right-hand side, so still-air tasks leave it out).
+    undamped_structure : bool
+        The task needs the high-frequency structural modes free of numerical damping (see
+        :meth:`IntegratorSettings.resolve`).
+    """
+
+    def __init__(self, aircraft: Aircraft, aero: str, integrator: IntegratorSettings, rates: ActuatorRates,
+                 control_dt_s: float, windy: bool, undamped_structure: bool = False) -> None:
+        self.aircraft = aircraft
+        self.aero = aero
+        self.wind = WindHolder() if windy else None
+        self.model = AircraftModel(aircraft, aero=aero, wind=self.wind)
+        self.layout = self.model.layout
+        for name in SENSOR_COMPONENTS:
+            aircraft.component(name)  # KeyError naming the missing component
+        self.sensors = {name: _Sensor(self.model, name) for name in SENSOR_COMPONENTS}
+        self.method = integrator.resolve(aero, undamped_structure)
+        self.rtol = integrator.rtol
+        self.atol = integrator.atol(self.layout)
+        self.dt = float(control_dt_s)
+        lo, hi = aircraft.control_limits()
+        self.u_low, self.u_high = lo, hi
+        self.rate_limits = rates.limits(float(hi[0]))
+        self._trims: dict[SteadyManoeuvre, TrimPoint] = {}
+        self._jacobians: dict[SteadyManoeuvre, np.ndarray] = {}
+        self._point_maps = {c.name: self.model.structure.point_maps(c.name, np.linspace(0.0, c.length_m, STRUCTURE_NODES))
+                            for c in aircraft.components}
+        self._jac = None
+        self._h_next = None
+        z = self.layout.position.start + 2
+
+        def ground(t: float, y: np.ndarray, u: np.ndarray) -> float:
+            return -y[z]
+
+        ground.terminal = True
+        ground.direction = -1.0
+        self._ground = ground
+
+    # ------------------------------------------------------------------ trim and Jacobian
+    def trim(self, manoeuvre: SteadyManoeuvre) -> TrimPoint:
+        """Trim of ``manoeuvre`` (the last ``TRIM_CACHE`` trims are cached: trims are deterministic)."""
+        point = self._trims.pop(manoeuvre, None)
+        if point is None:
+            point = trim(self.model, manoeuvre)
+        self._trims[manoeuvre] = point
+        while len(self._trims) > TRIM_CACHE:
+            del self._trims[next(iter(self._trims))]
+        return point
+
+    def start(self, manoeuvre: SteadyManoeuvre) -> None:
+        """Prepare an episode flown about the trim of ``manoeuvre``; the wind field is reset to still air.
+
+        For Radau, the constant Jacobian d rhs / dx at that (still-air) trim is computed once and cached
+        per manoeuvre: it only steers the Newton iterations, the accuracy is set by the error control.
+        Install the episode's wind field after this call (``self.wind.field``).
+        """
+        self._h_next = None
+        if self.wind is not None:
+            self.wind.field = None
+        if self.method != "Radau":
+            self._jac = None
+            return
+        if manoeuvre not in self._jacobians:
+            point = self.trim(manoeuvre)
+            self._jacobians[manoeuvre] = jacobian(self.model, point.x, point.u)[0]
+        self._jac = self._jacobians[manoeuvre]
+
+    # ------------------------------------------------------------------ actuators
+    def rate_limit(self, applied: np.ndarray, command: np.ndarray) -> np.ndarray:
+        """Controls after one period of rate-limited motion from ``applied`` towards ``command``."""
+        step = self.rate_limits * self.dt
+        return applied + np.clip(command - applied, -step, step)
+
+    # ------------------------------------------------------------------ integration
+    def advance(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float) -> StepOutcome:
+        """Integrate ``rhs`` from t0 to t1 [s] with the controls ``u`` held (zero-order hold)."""
+        span = t1 - t0
+        first = None if self._h_next is None else min(self._h_next, span)
+        options = {"jac": self._jac} if self.method == "Radau" else {}
+        try:
+            with np.errstate(all="ignore"):
+                sol = solve_ivp(self.model.rhs, (t0, t1), x, method=self.method, args=(u,), rtol=self.rtol,
+                                atol=self.atol, first_step=first, events=self._ground, **options)
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+            return StepOutcome(x, t0, False, f"model error: {exc}", 0)
+        if sol.status < 0 and t1 - sol.t[-1] <= _SLIVER * span and np.all(np.isfinite(sol.y[:, -1])):
+            # scipy stops with "step size less than spacing between numbers" when rounding leaves a
+            # remaining interval of a few ulp; the state there is the state at t1 to within |f| * 1e-12 s
+            sol.status, sol.t[-1] = 0, t1
+        if sol.status < 0 or not np.all(np.isfinite(sol.y[:, -1])):
+            good = np.flatnonzero(np.all(np.isfinite(sol.y), axis=0))
+            last = int(good[-1]) if good.size else None
+            x_end = sol.y[:, last] if last is not None else x
+            t_end = float(sol.t[last]) if last is not None else t0
+            return StepOutcome(x_end.copy(), t_end, False, f"non-finite state or solver failure: {sol.message}", sol.nfev, sol.nlu)
+        steps = np.diff(sol.t)
+        if steps.size > 1:
+            h = float(steps[:-1].max())
+            # a whole number of steps per period, 1e-6 long so that rounding cannot leave a sliver at the end
+            # (scipy fails when the remaining step is below its spacing of numbers)
+            self._h_next = span / math.ceil(span / h * (1.0 - 1e-9)) * (1.0 + 1e-6)
+        elif steps.size == 1:
+            self._h_next = span
+        crashed = sol.status == 1
+        return StepOutcome(sol.y[:, -1].copy(), float(sol.t[-1]), crashed, "", sol.nfev, sol.nlu)
+
+    # ------------------------------------------------------------------ outputs
+    def measure(self, x: np.ndarray, t: float) -> Measurements:
+        """Air data, attitude and structural sensors of state ``x`` at time ``t`` [s]."""
+        lay = self.layout
+        pos = x[lay.position]
+        eul = x[lay.euler]
+        v = x[lay.v]
+        w = x[lay.omega]
+        if self.wind is not None and self.wind.field is not None:
+            with np.errstate(all="ignore"):
+                try:
+                    air = self.wind(t, pos[None, :])[0]
+                    v = v - dcm_321(*eul) @ air
+                except ValueError:
+                    pass
+        speed = float(np.linalg.norm(v))
+        altitude = float(-pos[2])
+        with np.errstate(all="ignore"):
+            alpha = math.atan2(float(v[2]), float(v[0]))
+            beta = math.asin(max(-1.0, min(1.0, float(v[1]) / speed))) if speed > 0.0 else 0.0
+            try:
+                mach = speed / speed_of_sound(altitude)
+            except ValueError:
+                mach = math.nan
+            cos_theta = math.cos(float(eul[1]))
+            heading_rate = (float(w[1]) * math.sin(float(eul[0])) + float(w[2]) * math.cos(float(eul[0]))) / cos_theta if cos_theta else math.nan
+        tips, rates, twists, twist_rates, roots = {}, {}, {}, {}, {}
+        for name, s in self.sensors.items():
+            tips[name] = float(s.w_tip @ x[s.q_idx])
+            rates[name] = float(s.w_tip @ x[s.s_idx])
+            twists[name] = float(s.psi_tip @ x[s.xi_idx])
+            twist_rates[name] = float(s.psi_tip @ x[s.eta_idx])
+            if name != "vtail":
+                roots[name] = float(s.curv_root @ x[s.q_idx])
+        return Measurements(float(t), pos.copy(), eul.copy(), w.copy(), speed, alpha, beta, mach, altitude, heading_rate,
+                            tips, rates, twists, twist_rates, roots)
+
+    def euler_rates(self, x: np.ndarray) -> np.ndarray:
+        """Theta_dot = E^-1 omega [rad/s] of state ``x``."""
+        eul = x[self.layout.euler]
+        return euler_rate_matrix_inverse(eul[0], eul[1]) @ x[self.layout.omega]
+
+    def structure_nodes(self, x: np.ndarray) -> dict[str, np.ndarray]:
+        """Deformed beam nodes of every component in body axes [m], shape (STRUCTURE_NODES, 3) each."""
+        _, _, q, xi, _ = self.model.unpack(x)
+        return {name: maps.positions(q, xi) for name, maps in self._point_maps.items()}
+
+    def state_names(self) -> tuple[str, ...]:
+        """A name with unit for every entry of the state vector (flight-log ``state_names``).
+
+        Bending and torsion coordinates are ``q_<component>_<k>_m`` and ``xi_<component>_<k>_rad`` (the
+        prefixes the Rerun layout plots as modal coordinates); body rates are spelled out so that the
+        pitch rate is not taken for a bending coordinate.
+        """
+        lay, dofs = self.layout, self.model.structure.dofs
+        names = ["north_m", "east_m", "down_m", "phi_rad", "theta_rad", "psi_rad"] if lay.rigid else []
+        bend = [f"{c}_{k + 1}" for c in dofs.component_names for k in range(dofs.bending[c].stop - dofs.bending[c].start)]
+        tors = [f"{c}_{k + 1}" for c in dofs.component_names for k in range(dofs.torsion[c].stop - dofs.torsion[c].start)]
+        names += [f"q_{b}_m" for b in bend] + [f"xi_{t}_rad" for t in tors]
+        if lay.rigid:
+            names += ["u_m_s", "v_m_s", "w_m_s", "roll_rate_rad_s", "pitch_rate_rad_s", "yaw_rate_rad_s"]
+        names += [f"s_{b}_m_s" for b in bend] + [f"eta_{t}_rad_s" for t in tors]
+        names += [f"inflow_{i}_m_s" for i in range(lay.n_inflow)]
+        if len(names) != lay.n_states:
+            raise RuntimeError(f"state_names: built {len(names)} names for {lay.n_states} states")
+        return tuple(names)

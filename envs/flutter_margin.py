@@ -1,0 +1,215 @@
+"""FlexSim/GTM-FlutterMargin-v0: fly just beyond the open-loop flutter speed and keep the structure stable."""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from flexsim.aircraft.definition import Aircraft
+from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
+from flexsim.trim import SteadyManoeuvre
+
+from envs.base import Episode, FlexSimEnv
+from envs.config import RewardTerm, TrackingReward
+from envs.dynamics import Measurements
+from envs.episodes import perturbed_state, turbulence_field
+
+__all__ = ["FlutterMarginTask", "FlutterMarginEnv", "FlutterCondition", "flutter_condition"]
+
+
+@dataclass(frozen=True)
+class FlutterCondition:
+    """The open-loop flutter point of level flight at the task altitude (``FlutterAnalysis.search``).
+
+    Attributes
+    ----------
+    mach, speed_m_s, frequency_rad_s : float
+        Flutter Mach number, true airspeed [m/s] and frequency [rad/s].
+    mode : str
+        Dominant DOF of the crossing mode (e.g. ``"vtail torsion 1"``).
+    """
+
+    mach: float
+    speed_m_s: float
+    frequency_rad_s: float
+    mode: str
+
+
+@functools.lru_cache(maxsize=8)
+def _cached_condition(source: str, name: str, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+    from flexsim.aircraft.toml_loader import load_aircraft
+
+    return _search(load_aircraft(source), aero, altitude_m, mach_range)
+
+
+def _search(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+    try:
+        point = FlutterAnalysis(aircraft, aero).search(SteadyManoeuvre.level(altitude_m, mach=0.6), mach_range=mach_range, mach_step=0.02)
+    except FlutterNotFound as exc:
+        raise ValueError(f"aero = {aero!r}: no usable open-loop flutter point of {aircraft.name} at {altitude_m:g} m for Mach in "
+                         f"{mach_range} ({exc}); the GTM task is defined with the finite-state model, aero = 'unsteady'") from None
+    return FlutterCondition(point.mach, point.speed_m_s, point.frequency_rad_s, point.mode.dominant_dof)
+
+
+def flutter_condition(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+    """Flutter point of level flight (cached per aircraft file, aerodynamic model, altitude and range)."""
+    if aircraft.source.startswith("<"):
+        return _search(aircraft, aero, altitude_m, mach_range)
+    return _cached_condition(aircraft.source, aircraft.name, aero, float(altitude_m), tuple(mach_range))
+
+
+@dataclass(frozen=True)
+class FlutterMarginTask:
+    """Parameters of the flutter-margin task.
+
+    Attributes
+    ----------
+    altitude_m : float
+        Flight altitude [m] (default 300 m: sea-level conditions with room above the ground, where
+        altitude <= 0 ends the episode).
+    mach_margin : float
+        The target Mach number is the open-loop flutter Mach plus this margin [-] (default 0.01).
+    flutter_mach_range : tuple of float
+        Mach range searched for the flutter point (default 0.8-0.95).
+    fin_twist_rate_range_rad_s : tuple of float
+        |initial fin-torsion rate| ~ U(range) [rad/s], random sign (default 0.3-0.6 rad/s): seeds the
+        flutter mode.
+    reward : TrackingReward
+        Costs on ``fin_twist_rate_rad_s`` (weight 0.3, saturating at 0.5 rad/s), ``flutter_speed_deficit_m_s``
+        (0.2, 1 m/s below the flutter speed), ``airspeed_error_m_s`` (0.15, 3 m/s), ``altitude_error_m`` (0.15,
+        15 m); control rate 0.1.
+    """
+
+    altitude_m: float = 300.0
+    mach_margin: float = 0.01
+    flutter_mach_range: tuple[float, float] = (0.8, 0.95)
+    fin_twist_rate_range_rad_s: tuple[float, float] = (0.3, 0.6)
+    reward: TrackingReward = TrackingReward(
+        terms=(RewardTerm("fin_twist_rate_rad_s", 0.3, 0.5), RewardTerm("flutter_speed_deficit_m_s", 0.2, 1.0),
+               RewardTerm("airspeed_error_m_s", 0.15, 3.0), RewardTerm("altitude_error_m", 0.15, 15.0)),
+        control_rate_weight=0.1)
+
+    def __post_init__(self) -> None:
+        SteadyManoeuvre.level(self.altitude_m, mach=0.5)
+        if not self.altitude_m > 0.0:
+            raise ValueError(f"altitude_m = {self.altitude_m!r}: must be > 0 m (altitude <= 0 is a crash)")
+        if not 0.0 <= self.mach_margin <= 0.05:
+            raise ValueError(f"mach_margin = {self.mach_margin!r}: must be in [0, 0.05]")
+        lo, hi = (float(v) for v in self.flutter_mach_range)
+        if not 0.0 < lo < hi < 1.0:
+            raise ValueError(f"flutter_mach_range = {self.flutter_mach_range!r}: must satisfy 0 < lo < hi < 1")
+        object.__setattr__(self, "flutter_mach_range", (lo, hi))
+        a, b = (float(v) for v in self.fin_twist_rate_range_rad_s)
+        if not 0.0 <= a <= b <= 10.0:
+            raise ValueError(f"fin_twist_rate_range_rad_s = {self.fin_twist_rate_range_rad_s!r}: must be (lo, hi), 0 <= lo <= hi <= 10 rad/s")
+        object.__setattr__(self, "fin_twist_rate_range_rad_s", (a, b))
+
+
+class FlutterMarginEnv(FlexSimEnv):
+    """
+    ## Description
+    The flexible notional GTM (see ``FlexSim/GTM-LevelHold-v0``) flies level at 300 m (sea-level
+    conditions) slightly beyond its open-loop flutter speed: at the flutter Mach number found by
+    ``flexsim.linear.flutter.FlutterAnalysis`` with the env's aerodynamic model, plus ``task.mach_margin``
+    (0.01). On the bundled GTM with the finite-state model the flutter point is M 0.8908 (302.1 m/s,
+    179 rad/s = 28.5 Hz) at 300 m (M 0.8883 at sea level): a **fin bending-torsion mode**, dominated by the
+    vertical stabilizer's first torsion mode coupled with its first bending mode and the horizontal
+    stabilizers' symmetric bending; at M_f + 0.01 it grows at about 0.2 1/s. Hold the speed above the
+    flutter speed, altitude, and keep the fin from diverging (the rudder is the fin's control surface).
+    The flutter mode is above the Nyquist frequency of the default 50 Hz control rate (25 Hz); a
+    sampled rudder feedback can still damp it (see ``examples/agents/flutter_margin_baseline.py``).
+
+    ## Action Space
+    As ``FlexSim/GTM-LevelHold-v0``: ``Box([0, -1, -1, -1], [1, 1, 1, 1], float32)`` = [thrust (0-356 kN),
+    aileron, elevator, rudder (-25 to 25 deg)], clipped when out of range, ``ValueError`` on NaN/inf or a wrong
+    shape, rate-limited (25 % thrust/s, 60/40/60 deg/s).
+
+    ## Observation Space
+    ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
+
+    | Num   | Observation                                        | Min    | Max   | Unit   |
+    |-------|----------------------------------------------------|--------|-------|--------|
+    | 0-2   | roll phi, pitch theta, heading psi (wrapped)       | -pi    | pi    | rad    |
+    | 3-5   | body rates p, q, r                                 | -10    | 10    | rad/s  |
+    | 6     | airspeed                                           | 0      | 600   | m/s    |
+    | 7-8   | angle of attack alpha, sideslip beta               | -pi    | pi    | rad    |
+    | 9     | altitude                                           | -1000  | 25000 | m      |
+    | 10    | fin tip twist rate (the rewarded structural error) | -1000  | 1000  | rad/s  |
+    | 11    | flutter-speed deficit max(0, V_f - V)              | -600   | 600   | m/s    |
+    | 12    | airspeed error V - V_target                        | -300   | 300   | m/s    |
+    | 13    | altitude error                                     | -5000  | 5000  | m      |
+    | 14    | flutter margin V - V_f                             | -600   | 600   | m/s    |
+    | 15-26 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
+    | 27-30 | applied controls, normalised                       | 0/-1   | 1     | -      |
+
+    ## Rewards
+    ``alive`` +1; ``fin_twist_rate_rad_s`` -0.3 min((e/0.5 rad/s)^2, 1); ``flutter_speed_deficit_m_s``
+    -0.2 min((e/1 m/s)^2, 1); ``airspeed_error_m_s`` -0.15 min((e/3 m/s)^2, 1); ``altitude_error_m``
+    -0.15 min((e/15 m)^2, 1); ``control_rate`` -0.1 min(mean((da/0.1)^2), 1); ``termination`` -100 (a
+    fin tip twist beyond 0.1 rad is a structural failure). Parts in ``info["reward_parts"]``.
+
+    ## Starting State
+    Trim at the target Mach number, perturbed (``InitialPerturbation``) and with a fin first-torsion rate
+    of random sign and magnitude ``task.fin_twist_rate_range_rad_s`` (``self.np_random``).
+    ``info["reference"]`` at reset reports the flutter point and the target.
+
+    ## Episode End
+    ### Termination
+    As ``FlexSim/GTM-LevelHold-v0`` (crash, structural limit — here mostly the fin twist —, non-finite
+    state, gimbal lock, envelope).
+    ### Truncation
+    ``max_episode_steps`` = 1000 (20 s at 50 Hz).
+
+    ## Arguments
+    As ``FlexSim/GTM-LevelHold-v0`` with ``task=FlutterMarginTask(...)``; ``turbulence`` default "none".
+    The flutter search (about 2 s) runs once per process and aircraft file. With ``aero="quasi-steady"``
+    the GTM is already unstable at M 0.8 at 300 m, and construction raises ``ValueError``. The default
+    integrator here is DOP853 (``IntegratorSettings(method="auto")``): Radau at the default tolerances
+    damps the flutter mode numerically (amplitude 22 % low after 5 s).
+
+    ## Version History
+    * v0: initial version (flexsim issue 6).
+    """
+
+    task_type = FlutterMarginTask
+    default_turbulence = "none"
+    undamped_structure = True
+    task_errors_spec = (("fin_twist_rate_rad_s", 1000.0), ("flutter_speed_deficit_m_s", 600.0), ("airspeed_error_m_s", 300.0),
+                        ("altitude_error_m", 5000.0), ("flutter_margin_m_s", 600.0))
+
+    def __init__(self, **kwargs) -> None:
+        super().__init__(**kwargs)
+        task = self.task
+        self.flutter = flutter_condition(self.aircraft, self.dynamics.aero, task.altitude_m, task.flutter_mach_range)
+        self.target = SteadyManoeuvre.level(task.altitude_m, mach=self.flutter.mach + task.mach_margin)
+        name = "vtail"
+        dofs, lay = self.dynamics.model.structure.dofs, self.dynamics.layout
+        if dofs.torsion[name].stop == dofs.torsion[name].start:
+            raise ValueError(f"aircraft {self.aircraft.name!r}: the fin ({name}) needs at least one torsion mode for this task")
+        self._fin_eta = lay.eta.start + dofs.torsion[name].start
+
+    def _new_episode(self, rng: np.random.Generator) -> Episode:
+        point = self.dynamics.trim(self.target)
+        x0 = perturbed_state(point.x, self.dynamics.layout, rng, self.perturbation)
+        lo, hi = self.task.fin_twist_rate_range_rad_s
+        x0[self._fin_eta] += float(rng.uniform(lo, hi)) * (1.0 if rng.random() < 0.5 else -1.0)
+        wind = turbulence_field(self.turbulence, self.task.altitude_m, x0[self.dynamics.layout.position], 0.0, rng)
+        reference = {"altitude_m": self.task.altitude_m, "airspeed_m_s": self.target.speed_m_s, "target_mach": self.target.mach,
+                     "flutter_mach": self.flutter.mach, "flutter_speed_m_s": self.flutter.speed_m_s,
+                     "flutter_frequency_rad_s": self.flutter.frequency_rad_s}
+        return Episode(self.target, x0, wind, reference)
+
+    def _task_errors(self, meas: Measurements) -> dict[str, float]:
+        ref = self._reference
+        margin = meas.airspeed_m_s - ref["flutter_speed_m_s"]
+        return {"fin_twist_rate_rad_s": meas.tip_twist_rate_rad_s["vtail"],
+                "flutter_speed_deficit_m_s": max(0.0, -margin) if math.isfinite(margin) else math.nan,
+                "airspeed_error_m_s": meas.airspeed_m_s - ref["airspeed_m_s"],
+                "altitude_error_m": meas.altitude_m - ref["altitude_m"],
+                "flutter_margin_m_s": margin}
+
+    def task_label(self) -> str:
+        return f"GTM flutter margin M {self.target.mach:.3f} (M_f {self.flutter.mach:.3f})"

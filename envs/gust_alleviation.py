@@ -1,0 +1,175 @@
+"""FlexSim/GTM-GustAlleviation-v0: hold attitude through a discrete gust with small wing loads."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from flexsim.sim.disturbances import OneMinusCosineGust, combine
+from flexsim.structure.kinematics import dcm_321
+from flexsim.trim import SteadyManoeuvre
+
+from envs.base import Episode, FlexSimEnv
+from envs.config import RewardTerm, TrackingReward
+from envs.dynamics import Measurements
+from envs.episodes import perturbed_state, turbulence_field
+
+__all__ = ["GustAlleviationTask", "GustAlleviationEnv"]
+
+
+def _range(name: str, value: tuple[float, float], low: float, high: float) -> tuple[float, float]:
+    lo, hi = (float(v) for v in value)
+    if not low <= lo <= hi <= high:
+        raise ValueError(f"{name} = {value!r}: must be (lo, hi) with {low:g} <= lo <= hi <= {high:g}")
+    return lo, hi
+
+
+@dataclass(frozen=True)
+class GustAlleviationTask:
+    """Parameters of the gust-load-alleviation task.
+
+    Attributes
+    ----------
+    altitude_m : float
+        Trim altitude [m] (default 6000 m).
+    mach : float
+        Trim Mach number [-] (default 0.7).
+    gust_amplitude_range_m_s : tuple of float
+        |U_ds| of the 1-cos gust (CS-25.341(a) shape) ~ U(range) [m/s] (default 6-12 m/s true airspeed);
+        up or down with probability 1/2 each.
+    gust_length_range_m : tuple of float
+        Gust gradient distance H ~ U(range) [m] (default 30-107 m; CS-25: 9 to 107 m).
+    gust_start_range_s : tuple of float
+        Time at which the body origin reaches the front ~ U(range) [s] (default 1-2 s).
+    reward : TrackingReward
+        Costs on ``tip_deflection_increment_m`` (weight 0.25, saturating at 0.3 m), ``root_moment_increment``
+        (0.2, 0.3 of the 1-g root bending moment), ``pitch_error_rad`` (0.2, 2 deg), ``roll_error_rad`` (0.1,
+        2 deg), ``altitude_error_m`` (0.1, 20 m); control rate 0.15.
+    """
+
+    altitude_m: float = 6000.0
+    mach: float = 0.7
+    gust_amplitude_range_m_s: tuple[float, float] = (6.0, 12.0)
+    gust_length_range_m: tuple[float, float] = (30.0, 107.0)
+    gust_start_range_s: tuple[float, float] = (1.0, 2.0)
+    reward: TrackingReward = TrackingReward(
+        terms=(RewardTerm("tip_deflection_increment_m", 0.25, 0.3), RewardTerm("root_moment_increment", 0.2, 0.3),
+               RewardTerm("pitch_error_rad", 0.2, math.radians(2.0)), RewardTerm("roll_error_rad", 0.1, math.radians(2.0)),
+               RewardTerm("altitude_error_m", 0.1, 20.0)),
+        control_rate_weight=0.15)
+
+    def __post_init__(self) -> None:
+        SteadyManoeuvre.level(self.altitude_m, mach=self.mach)
+        if not self.altitude_m > 0.0:
+            raise ValueError(f"altitude_m = {self.altitude_m!r}: must be > 0 m (altitude <= 0 is a crash)")
+        object.__setattr__(self, "gust_amplitude_range_m_s", _range("gust_amplitude_range_m_s", self.gust_amplitude_range_m_s, 0.0, 50.0))
+        object.__setattr__(self, "gust_length_range_m", _range("gust_length_range_m", self.gust_length_range_m, 1.0, 1000.0))
+        object.__setattr__(self, "gust_start_range_s", _range("gust_start_range_s", self.gust_start_range_s, 0.0, 3600.0))
+
+    @property
+    def manoeuvre(self) -> SteadyManoeuvre:
+        """The trimmed level flight."""
+        return SteadyManoeuvre.level(self.altitude_m, mach=self.mach)
+
+
+class GustAlleviationEnv(FlexSimEnv):
+    """
+    ## Description
+    The flexible notional GTM (see ``FlexSim/GTM-LevelHold-v0``) flies trimmed at 6000 m and Mach 0.7 and
+    meets a vertical "1 - cos" gust (CS-25.341(a) shape, frozen in the air, reaching the nose before the
+    tail): hold the attitude (pitch, roll) and altitude while keeping the wing loads — tip deflection and
+    root bending moment above their 1-g values — small. The GTM's ailerons deflect antisymmetrically only,
+    so the symmetric loads are shaped with the elevator and thrust. The gust is a
+    :class:`flexsim.sim.disturbances.OneMinusCosineGust`; Dryden turbulence can be added.
+
+    ## Action Space
+    As ``FlexSim/GTM-LevelHold-v0``: ``Box([0, -1, -1, -1], [1, 1, 1, 1], float32)`` = [thrust (0-356 kN),
+    aileron, elevator, rudder (-25 to 25 deg)], clipped when out of range, ``ValueError`` on NaN/inf or a wrong
+    shape, rate-limited (25 % thrust/s, 60/40/60 deg/s).
+
+    ## Observation Space
+    ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
+
+    | Num   | Observation                                        | Min    | Max   | Unit   |
+    |-------|----------------------------------------------------|--------|-------|--------|
+    | 0-2   | roll phi, pitch theta, heading psi (wrapped)       | -pi    | pi    | rad    |
+    | 3-5   | body rates p, q, r                                 | -10    | 10    | rad/s  |
+    | 6     | airspeed (relative to the air at the body origin)  | 0      | 600   | m/s    |
+    | 7-8   | angle of attack alpha, sideslip beta               | -pi    | pi    | rad    |
+    | 9     | altitude                                           | -1000  | 25000 | m      |
+    | 10    | mean wing-tip deflection minus its trim value      | -50    | 50    | m      |
+    | 11    | mean wing-root bending moment increment / |1-g value| | -50  | 50    | -      |
+    | 12    | pitch error theta - theta_trim                     | -pi    | pi    | rad    |
+    | 13    | roll error phi                                     | -pi    | pi    | rad    |
+    | 14    | altitude error                                     | -5000  | 5000  | m      |
+    | 15-26 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
+    | 27-30 | applied controls, normalised                       | 0/-1   | 1     | -      |
+
+    The root bending moment is the modal-curvature estimate EI(0) w''(0) of the beam model.
+
+    ## Rewards
+    ``alive`` +1; ``tip_deflection_increment_m`` -0.25 min((e/0.3 m)^2, 1); ``root_moment_increment``
+    -0.2 min((e/0.3)^2, 1); ``pitch_error_rad`` -0.2 min((e/2 deg)^2, 1); ``roll_error_rad`` -0.1 min((e/2 deg)^2, 1);
+    ``altitude_error_m`` -0.1 min((e/20 m)^2, 1); ``control_rate`` -0.15 min(mean((da/0.1)^2), 1);
+    ``termination`` -100. Parts in ``info["reward_parts"]``.
+
+    ## Starting State
+    Perturbed level trim (``InitialPerturbation``); gust amplitude, sign, gradient distance and encounter
+    time drawn from ``self.np_random`` (``info["reference"]`` at reset reports them).
+
+    ## Episode End
+    ### Termination
+    As ``FlexSim/GTM-LevelHold-v0`` (crash, structural limit, non-finite state, gimbal lock, envelope).
+    ### Truncation
+    ``max_episode_steps`` = 500 (10 s at 50 Hz).
+
+    ## Arguments
+    As ``FlexSim/GTM-LevelHold-v0`` with ``task=GustAlleviationTask(...)``; ``turbulence`` default "none".
+
+    ## Version History
+    * v0: initial version (flexsim issue 6).
+    """
+
+    task_type = GustAlleviationTask
+    default_turbulence = "none"
+    task_errors_spec = (("tip_deflection_increment_m", 50.0), ("root_moment_increment", 50.0), ("pitch_error_rad", math.pi),
+                        ("roll_error_rad", math.pi), ("altitude_error_m", 5000.0))
+
+    def _needs_wind(self) -> bool:
+        return True
+
+    def _new_episode(self, rng: np.random.Generator) -> Episode:
+        task = self.task
+        manoeuvre = task.manoeuvre
+        point = self.dynamics.trim(manoeuvre)
+        lay = self.dynamics.layout
+        x0 = perturbed_state(point.x, lay, rng, self.perturbation)
+        amplitude = float(rng.uniform(*task.gust_amplitude_range_m_s)) * (1.0 if rng.random() < 0.5 else -1.0)
+        length = float(rng.uniform(*task.gust_length_range_m))
+        start = float(rng.uniform(*task.gust_start_range_s))
+        velocity_ned = dcm_321(*point.x[lay.euler]).T @ point.x[lay.v]
+        gust = OneMinusCosineGust.encounter(amplitude, length, position_ned_m=x0[lay.position], velocity_ned_m_s=velocity_ned,
+                                            start_time_s=start)
+        turbulence = turbulence_field(self.turbulence, task.altitude_m, x0[lay.position], 0.0, rng)
+        trim_meas = self.dynamics.measure(point.x, 0.0)
+        reference = {"altitude_m": task.altitude_m, "pitch_rad": point.theta, "gust_amplitude_m_s": amplitude,
+                     "gust_length_m": length, "gust_start_s": start,
+                     "tip_deflection_m": 0.5 * (trim_meas.tip_deflection_m["right_wing"] + trim_meas.tip_deflection_m["left_wing"]),
+                     "root_moment_n_m": 0.5 * (trim_meas.root_bending_moment_n_m["right_wing"] + trim_meas.root_bending_moment_n_m["left_wing"])}
+        wind = gust if turbulence is None else combine(gust, turbulence)
+        return Episode(manoeuvre, x0, wind, reference)
+
+    def _task_errors(self, meas: Measurements) -> dict[str, float]:
+        ref = self._reference
+        tip = 0.5 * (meas.tip_deflection_m["right_wing"] + meas.tip_deflection_m["left_wing"])
+        root = 0.5 * (meas.root_bending_moment_n_m["right_wing"] + meas.root_bending_moment_n_m["left_wing"])
+        return {"tip_deflection_increment_m": tip - ref["tip_deflection_m"],
+                "root_moment_increment": (root - ref["root_moment_n_m"]) / max(abs(ref["root_moment_n_m"]), 1.0),
+                "pitch_error_rad": float(meas.euler_rad[1]) - ref["pitch_rad"],
+                "roll_error_rad": float(meas.euler_rad[0]),
+                "altitude_error_m": meas.altitude_m - ref["altitude_m"]}
+
+    def task_label(self) -> str:
+        return f"GTM gust {self._reference.get('gust_amplitude_m_s', math.nan):+.1f} m/s"

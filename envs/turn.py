@@ -1,0 +1,155 @@
+"""FlexSim/GTM-Turn-v0: enter and hold a level turn of commanded radius."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from flexsim.trim import SteadyManoeuvre
+
+from envs.base import Episode, FlexSimEnv
+from envs.config import RewardTerm, TrackingReward
+from envs.dynamics import Measurements
+from envs.episodes import perturbed_state, turbulence_field
+
+__all__ = ["TurnTask", "TurnEnv"]
+
+
+@dataclass(frozen=True)
+class TurnTask:
+    """Parameters of the turn task.
+
+    Attributes
+    ----------
+    altitude_m : float
+        Altitude of the initial level flight and of the turn [m] (default 9144 m).
+    mach : float
+        Mach number of both [-] (default 0.75).
+    radius_range_m : tuple of float
+        The commanded radius |R| is drawn uniformly from this range [m] (default 7000-12000 m: bank 27 to
+        38 deg on the GTM at M 0.75), the direction (right R > 0, left R < 0) with probability 1/2 each.
+    reward : TrackingReward
+        Costs on ``turn_rate_error_rad_s`` (weight 0.4, saturating at 0.005 rad/s), ``altitude_error_m`` (0.2,
+        30 m), ``airspeed_error_m_s`` (0.15, 5 m/s), ``sideslip_error_rad`` (0.1, 0.02 rad); control rate 0.15.
+    """
+
+    altitude_m: float = 9144.0
+    mach: float = 0.75
+    radius_range_m: tuple[float, float] = (7000.0, 12000.0)
+    reward: TrackingReward = TrackingReward(
+        terms=(RewardTerm("turn_rate_error_rad_s", 0.4, 0.005), RewardTerm("altitude_error_m", 0.2, 30.0),
+               RewardTerm("airspeed_error_m_s", 0.15, 5.0), RewardTerm("sideslip_error_rad", 0.1, 0.02)),
+        control_rate_weight=0.15)
+
+    def __post_init__(self) -> None:
+        SteadyManoeuvre.level(self.altitude_m, mach=self.mach)
+        if not self.altitude_m > 0.0:
+            raise ValueError(f"altitude_m = {self.altitude_m!r}: must be > 0 m (altitude <= 0 is a crash)")
+        lo, hi = (float(v) for v in self.radius_range_m)
+        if not 1000.0 <= lo <= hi < math.inf:
+            raise ValueError(f"radius_range_m = {self.radius_range_m!r}: must be (lo, hi) with 1000 m <= lo <= hi < inf")
+        object.__setattr__(self, "radius_range_m", (lo, hi))
+
+    @property
+    def manoeuvre(self) -> SteadyManoeuvre:
+        """The level flight the episode starts from."""
+        return SteadyManoeuvre.level(self.altitude_m, mach=self.mach)
+
+    def turn(self, radius_m: float) -> SteadyManoeuvre:
+        """The commanded steady level turn of radius ``radius_m`` [m] (> 0 right)."""
+        return SteadyManoeuvre.turn(self.altitude_m, radius_m, mach=self.mach)
+
+
+class TurnEnv(FlexSimEnv):
+    """
+    ## Description
+    The flexible notional GTM (see ``FlexSim/GTM-LevelHold-v0``) starts near its trim in level flight at
+    9144 m and Mach 0.75 and must enter and hold a steady level turn of a commanded radius R (drawn per
+    episode): heading rate psi_dot = V / R at constant altitude and airspeed, with the sideslip of the steady turn.
+    The steady turn is a trim of the same model (paper eqs. 36-37): bank about 34 deg for R = 8000 m.
+    That trim puts the velocity along the heading (psi = track), so its body-axis sideslip is
+    asin(sin(phi) sin(theta)) (about -3.9 deg at R = 8000 m), held with about 8 deg of rudder; the
+    rewarded sideslip error is measured from this trimmed sideslip.
+    Still air by default (Dryden turbulence is frozen along a straight line, so it is not a natural
+    companion of a turn; it can still be switched on).
+
+    ## Action Space
+    As ``FlexSim/GTM-LevelHold-v0``: ``Box([0, -1, -1, -1], [1, 1, 1, 1], float32)`` = [thrust (0-356 kN),
+    aileron, elevator, rudder (-25 to 25 deg)], clipped when out of range, ``ValueError`` on NaN/inf or a wrong
+    shape, rate-limited (25 % thrust/s, 60/40/60 deg/s).
+
+    ## Observation Space
+    ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
+
+    | Num   | Observation                                        | Min    | Max   | Unit   |
+    |-------|----------------------------------------------------|--------|-------|--------|
+    | 0-2   | roll phi, pitch theta, heading psi (wrapped)       | -pi    | pi    | rad    |
+    | 3-5   | body rates p, q, r                                 | -10    | 10    | rad/s  |
+    | 6     | airspeed                                           | 0      | 600   | m/s    |
+    | 7-8   | angle of attack alpha, sideslip beta               | -pi    | pi    | rad    |
+    | 9     | altitude                                           | -1000  | 25000 | m      |
+    | 10    | turn-rate error psi_dot - V_ref / R                | -1     | 1     | rad/s  |
+    | 11    | commanded turn rate V_ref / R (> 0 right)          | -1     | 1     | rad/s  |
+    | 12    | altitude error                                     | -5000  | 5000  | m      |
+    | 13    | airspeed error                                     | -300   | 300   | m/s    |
+    | 14    | sideslip error beta - beta_turn_trim               | -pi/2  | pi/2  | rad    |
+    | 15-26 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
+    | 27-30 | applied controls, normalised                       | 0/-1   | 1     | -      |
+
+    ## Rewards
+    ``alive`` +1; ``turn_rate_error_rad_s`` -0.4 min((e/0.005 rad/s)^2, 1); ``altitude_error_m`` -0.2 min((e/30 m)^2, 1);
+    ``airspeed_error_m_s`` -0.15 min((e/5 m/s)^2, 1); ``sideslip_error_rad`` -0.1 min((e/0.02 rad)^2, 1);
+    ``control_rate`` -0.15 min(mean((da/0.1)^2), 1); ``termination`` -100. Parts in ``info["reward_parts"]``.
+
+    ## Starting State
+    Perturbed level trim (``InitialPerturbation``); the commanded radius |R| ~ U(``task.radius_range_m``)
+    and its sign ~ U{-1, +1} from ``self.np_random``. ``info["reference"]`` at reset holds R, the commanded
+    turn rate and the trim of the steady turn (bank, pitch, sideslip, normalised controls).
+
+    ## Episode End
+    ### Termination
+    As ``FlexSim/GTM-LevelHold-v0`` (crash, structural limit, non-finite state, gimbal lock, envelope).
+    ### Truncation
+    ``max_episode_steps`` = 1000 (20 s at 50 Hz).
+
+    ## Arguments
+    As ``FlexSim/GTM-LevelHold-v0`` with ``task=TurnTask(...)``; ``turbulence`` default "none".
+
+    ## Version History
+    * v0: initial version (flexsim issue 6).
+    """
+
+    task_type = TurnTask
+    default_turbulence = "none"
+    task_errors_spec = (("turn_rate_error_rad_s", 1.0), ("turn_rate_command_rad_s", 1.0), ("altitude_error_m", 5000.0),
+                        ("airspeed_error_m_s", 300.0), ("sideslip_error_rad", math.pi / 2))
+
+    def _new_episode(self, rng: np.random.Generator) -> Episode:
+        manoeuvre = self.task.manoeuvre
+        point = self.dynamics.trim(manoeuvre)
+        x0 = perturbed_state(point.x, self.dynamics.layout, rng, self.perturbation)
+        lo, hi = self.task.radius_range_m
+        radius = float(rng.uniform(lo, hi)) * (1.0 if rng.random() < 0.5 else -1.0)
+        turn = self.task.turn(radius)
+        turn_trim = self.dynamics.trim(turn)
+        wind = turbulence_field(self.turbulence, self.task.altitude_m, x0[self.dynamics.layout.position], 0.0, rng)
+        action = self.controls_to_action(turn_trim.u)
+        reference = {"altitude_m": self.task.altitude_m, "airspeed_m_s": manoeuvre.speed_m_s, "radius_m": radius,
+                     "turn_rate_rad_s": turn.turn_rate(0.0), "turn_bank_rad": turn_trim.phi, "turn_pitch_rad": turn_trim.theta,
+                     "turn_sideslip_rad": turn_trim.beta,
+                     "turn_thrust_fraction": float(action[0]), "turn_aileron_fraction": float(action[1]),
+                     "turn_elevator_fraction": float(action[2]), "turn_rudder_fraction": float(action[3])}
+        return Episode(manoeuvre, x0, wind, reference)
+
+    def _task_errors(self, meas: Measurements) -> dict[str, float]:
+        ref = self._reference
+        return {"turn_rate_error_rad_s": meas.heading_rate_rad_s - ref["turn_rate_rad_s"],
+                "turn_rate_command_rad_s": ref["turn_rate_rad_s"],
+                "altitude_error_m": meas.altitude_m - ref["altitude_m"],
+                "airspeed_error_m_s": meas.airspeed_m_s - ref["airspeed_m_s"],
+                "sideslip_error_rad": meas.beta_rad - ref["turn_sideslip_rad"]}
+
+    def task_label(self) -> str:
+        return f"GTM turn R = {self._reference.get('radius_m', math.nan):.0f} m"

@@ -1,0 +1,109 @@
+"""Wrappers of the flexsim environments."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+
+from flexsim.io.flight_log import FlightLogWriter
+
+from envs.base import LOG_CONTROL_NAMES, FlexSimEnv
+
+__all__ = ["FlightLogRecorder"]
+
+
+class FlightLogRecorder(gym.Wrapper):
+    """Record every episode to a flight log (protobuf MCAP, :class:`~flexsim.io.flight_log.FlightLogWriter`).
+
+    The logs have the simulator's format (``docs/logs.md``): the full state with names from the model's
+    layout (``q_<component>_<k>_m`` / ``xi_<component>_<k>_rad`` for the modal coordinates), the applied
+    controls ``thrust_N, aileron_rad, elevator_rad, rudder_rad``, signals (air data, ``tip_deflection_*``,
+    tip twists, root bending moments, ``error_<task error>``, ``reward``), the deformed beam nodes of every
+    component and events (reset, termination with its reason, truncation). View one with
+    ``python -m flexsim.io.rerun_view LOG.mcap --rrd out.rrd``.
+
+    Parameters
+    ----------
+    env : gymnasium.Env
+        A flexsim environment (possibly wrapped, e.g. by ``gymnasium.make``).
+    path : str or os.PathLike
+        Log file, suffix ``.mcap``; its directory must exist. Episode k is written to ``path`` with
+        ``{episode}`` replaced by k (0-based) if the name contains it, otherwise episode 0 to ``path``
+        and episode k >= 1 to ``<stem>-<k:04d>.mcap`` beside it. Each log is closed when the next
+        episode starts or the wrapper is closed.
+    metadata : dict of str to str, optional
+        Extra run metadata stored in every log (``"run"`` record).
+
+    Attributes
+    ----------
+    paths : list of Path
+        The logs written so far.
+    """
+
+    def __init__(self, env: gym.Env, path: str | os.PathLike, metadata: dict[str, str] | None = None) -> None:
+        super().__init__(env)
+        if not isinstance(env.unwrapped, FlexSimEnv):
+            raise ValueError(f"env = {env!r}: FlightLogRecorder needs a flexsim environment (FlexSimEnv)")
+        path = Path(path)
+        if path.suffix != ".mcap":
+            raise ValueError(f"path = {str(path)!r}: the suffix must be '.mcap'")
+        if not path.parent.is_dir():
+            raise FileNotFoundError(f"path = {str(path)!r}: directory {str(path.parent)!r} does not exist")
+        self.pattern = path
+        self.run_metadata = dict(metadata or {})
+        self.paths: list[Path] = []
+        self._writer: FlightLogWriter | None = None
+        self._episode = -1
+
+    def _episode_path(self, k: int) -> Path:
+        name = self.pattern.name
+        if "{episode}" in name:
+            return self.pattern.with_name(name.replace("{episode}", str(k)))
+        return self.pattern if k == 0 else self.pattern.with_name(f"{self.pattern.stem}-{k:04d}.mcap")
+
+    def _write(self) -> None:
+        sample = self.env.unwrapped.log_sample()
+        self._writer.write(sample.time_s, position_m=sample.position_ned_m, euler_rad=sample.euler_rad, state=sample.state,
+                           controls=sample.controls, signals=sample.signals, structure=sample.structure)
+
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        obs, info = self.env.reset(seed=seed, options=options)
+        self._close_writer()
+        self._episode += 1
+        base: FlexSimEnv = self.env.unwrapped
+        path = self._episode_path(self._episode)
+        metadata = {"aircraft": str(base.aircraft_source), "env": type(base).__name__, "episode": str(self._episode),
+                    "seed": str(seed), "aero": base.dynamics.aero, "integrator": base.dynamics.method,
+                    "control_rate_hz": f"{base.control_rate_hz:g}", "run_id": f"{type(base).__name__}-{self._episode}",
+                    **self.run_metadata}
+        nodes = base.dynamics.structure_nodes(base.state)
+        self._writer = FlightLogWriter(path, state_names=base.dynamics.state_names(), control_names=LOG_CONTROL_NAMES,
+                                       signal_names=base.signal_names(), structure_topology={k: len(v) for k, v in nodes.items()},
+                                       metadata=metadata)
+        self.paths.append(path)
+        self._writer.event(0.0, f"reset: {type(base).__name__}, seed {seed}, reference {info.get('reference', {})}")
+        self._write()
+        return obs, info
+
+    def step(self, action):
+        obs, reward, terminated, truncated, info = self.env.step(action)
+        if self._writer is not None:
+            self._write()
+            t = self.env.unwrapped.time_s
+            if terminated:
+                self._writer.event(t, f"terminated: {info.get('termination_reason', '')}", level="error")
+            elif truncated:
+                self._writer.event(t, "truncated (time limit)")
+        return obs, reward, terminated, truncated, info
+
+    def _close_writer(self) -> None:
+        if self._writer is not None:
+            self._writer.close()
+            self._writer = None
+
+    def close(self) -> None:
+        self._close_writer()
+        super().close()

@@ -1,0 +1,100 @@
+"""Action validation and termination.
+
+Checks: an out-of-range action is clipped to the Box (same result as the clipped action, exactly;
+``info["action_clipped"]``); NaN/inf or a wrong shape raise ValueError naming the problem; the actuator
+rate limits bound the change of the applied controls per step (to 1e-12); a forced crash (full
+nose-down elevator at 150 m) terminates with reason "crash" and finite, in-bounds observations; a
+structural limit below the trim deflection terminates at once; a failing model (non-finite wind)
+terminates with "non_finite" and finite observations; stepping after termination raises.
+"""
+
+import math
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import envs
+
+
+@pytest.fixture(scope="module")
+def env():
+    e = gym.make("FlexSim/GTM-LevelHold-v0", aero="quasi-steady", turbulence="none")
+    yield e
+    e.close()
+
+
+def test_out_of_range_actions_are_clipped(env):
+    _, info = env.reset(seed=0)
+    wild = np.array([2.0, -3.0, 0.5, 7.0], np.float32)
+    obs_a, r_a, _, _, info_a = env.step(wild)
+    env.reset(seed=0)
+    obs_b, r_b, _, _, info_b = env.step(np.clip(wild, env.action_space.low, env.action_space.high))
+    np.testing.assert_array_equal(obs_a, obs_b)
+    assert r_a == r_b and info_a["action_clipped"] and not info_b["action_clipped"]
+
+
+def test_invalid_actions_raise(env):
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match=r"action\[2\] \(elevator\) = nan"):
+        env.step(np.array([0.1, 0.0, np.nan, 0.0], np.float32))
+    with pytest.raises(ValueError, match=r"action\[0\] \(thrust\) = inf"):
+        env.step([np.inf, 0.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match=r"expected shape \(4,\).*got shape \(3,\)"):
+        env.step(np.zeros(3, np.float32))
+    with pytest.raises(ValueError, match=r"expected shape \(4,\).*got shape \(1, 4\)"):
+        env.step(np.zeros((1, 4), np.float32))
+    obs, *_ = env.step([0.1, 0.0, -0.4, 0.0])  # a plain list is accepted
+    assert env.observation_space.contains(obs)
+
+
+def test_rate_limits_bound_control_changes(env):
+    env.reset(seed=0)
+    base = env.unwrapped
+    limits = base.dynamics.rate_limits * base.dt
+    previous = base.applied_controls
+    for action in ([1.0, 1.0, 1.0, 1.0], [0.0, -1.0, -1.0, -1.0]):
+        env.step(np.array(action, np.float32))
+        change = np.abs(base.applied_controls - previous)
+        assert np.all(change <= limits * (1 + 1e-12))
+        np.testing.assert_allclose(change, limits, rtol=1e-12)
+        previous = base.applied_controls
+
+
+def _finite_in_space(space, obs):
+    return obs.dtype == np.float32 and np.all(np.isfinite(obs)) and space.contains(obs)
+
+
+def test_forced_crash_terminates_with_finite_observation():
+    task = envs.LevelHoldTask(altitude_m=150.0, mach=0.5)
+    env = gym.make("FlexSim/GTM-LevelHold-v0", aero="quasi-steady", turbulence="none", task=task)
+    obs, info = env.reset(seed=0)
+    dive = info["trim_action"].copy()
+    dive[2] = 1.0  # elevator fully trailing edge down: nose down
+    for _ in range(400):
+        obs, reward, terminated, truncated, info = env.step(dive)
+        assert _finite_in_space(env.observation_space, obs)
+        if terminated:
+            break
+    assert terminated and info["termination_reason"] == "crash"
+    assert info["reward_parts"]["termination"] == -100.0 and math.isfinite(reward)
+    assert env.unwrapped.measurements().altitude_m == pytest.approx(0.0, abs=1e-6)  # the ground event stops at h = 0
+    with pytest.raises(RuntimeError, match="after the episode terminated"):
+        env.step(dive)
+    env.close()
+
+
+def test_structural_limit_and_non_finite_terminate():
+    env = gym.make("FlexSim/GTM-LevelHold-v0", aero="quasi-steady", turbulence="none",
+                   limits=envs.FlightLimits(wing_tip_deflection_m=0.5))
+    _, info = env.reset(seed=0)
+    obs, _, terminated, _, info = env.step(info["trim_action"])
+    assert terminated and info["termination_reason"] == "structural_limit"
+    env.close()
+    env = gym.make("FlexSim/GTM-LevelHold-v0", aero="quasi-steady", turbulence="light")
+    _, info = env.reset(seed=0)
+    env.unwrapped.dynamics.wind.field = lambda t, p: np.full(np.shape(p), np.nan)
+    obs, reward, terminated, _, info = env.step(info["trim_action"])
+    assert terminated and info["termination_reason"] == "non_finite"
+    assert _finite_in_space(env.observation_space, obs) and math.isfinite(reward)
+    env.close()

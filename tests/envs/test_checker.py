@@ -1,0 +1,61 @@
+"""Registration and gymnasium's env checker.
+
+Checks: the four ids are registered once (registering again is a no-op); ``gymnasium.utils.env_checker.
+check_env`` passes without warnings for every id (render check skipped: "human" would open a viewer);
+the spaces are float32 Boxes with finite bounds and ``observation_structure`` tiles the observation.
+Tolerances: exact (structural checks).
+"""
+
+import warnings
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import envs
+
+
+def test_ids_registered_once():
+    before = {k: gym.registry[k] for k in envs.ENV_IDS}
+    envs.register_envs()
+    assert set(envs.ENV_IDS) <= set(gym.registry)
+    assert all(gym.registry[k] is before[k] for k in envs.ENV_IDS)
+    assert [gym.registry[k].max_episode_steps for k in envs.ENV_IDS] == [1000, 1000, 500, 1000]
+
+
+@pytest.mark.parametrize("env_id", list(envs.ENV_IDS))
+def test_check_env_passes(env_id):
+    env = gym.make(env_id)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        check_env(env.unwrapped, skip_render_check=True)
+    space = env.observation_space
+    assert space.dtype == np.float32 and np.all(np.isfinite(space.low)) and np.all(np.isfinite(space.high))
+    assert env.action_space.dtype == np.float32
+    np.testing.assert_array_equal(env.action_space.low, [0, -1, -1, -1])
+    np.testing.assert_array_equal(env.action_space.high, [1, 1, 1, 1])
+    structure = env.unwrapped.observation_structure
+    covered = np.concatenate([np.arange(space.shape[0])[s] for s in structure.values()])
+    np.testing.assert_array_equal(covered, np.arange(space.shape[0]))
+    assert len(env.unwrapped.observation_names) == space.shape[0]
+    env.close()
+
+
+def test_invalid_arguments_name_field_and_range():
+    with pytest.raises(ValueError, match="aero = 'bogus'"):
+        envs.LevelHoldEnv(aero="bogus")
+    with pytest.raises(ValueError, match=r"control_rate_hz = 0: must be a number in \[5, 1000\] Hz"):
+        envs.LevelHoldEnv(control_rate_hz=0)
+    with pytest.raises(ValueError, match="turbulence = 'stormy'"):
+        envs.LevelHoldEnv(turbulence="stormy")
+    with pytest.raises(ValueError, match="render_mode = 'ansi'"):
+        envs.LevelHoldEnv(render_mode="ansi")
+    with pytest.raises(ValueError, match="task = .*must be a LevelHoldTask"):
+        envs.LevelHoldEnv(task=envs.TurnTask())
+    with pytest.raises(ValueError, match="method = 'RK4'"):
+        envs.IntegratorSettings(method="RK4")
+    with pytest.raises(ValueError, match=r"radius_range_m = \(100.0, 200.0\)"):
+        envs.TurnTask(radius_range_m=(100.0, 200.0))
+    with pytest.raises(ValueError, match="aero = 'quasi-steady': no usable open-loop flutter point"):
+        envs.FlutterMarginEnv(aero="quasi-steady")
