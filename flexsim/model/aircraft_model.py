@@ -20,6 +20,7 @@ from __future__ import annotations
 from enum import Enum
 
 import numpy as np
+from scipy.linalg.lapack import dgesv as _dgesv
 
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound
@@ -256,12 +257,12 @@ class AircraftModel:
         nq = st.dofs.nq
         pos, eul, q, xi, vel = self.unpack(x)
         v, w, s = vel[0:3], vel[3:6], vel[6 : 6 + nq]
-        m = st.inertia.mass_matrix(q)
+        m, dtdq, mdot_v = st.inertia.evaluate(vel, q, s)
         p = m @ vel
-        f = -st.inertia.mdot_v(vel, q, s)
+        f = -mdot_v
         f[0:3] -= _cross(w, p[0:3])
         f[3:6] -= _cross(v, p[0:3]) + _cross(w, p[3:6])
-        f[6 : 6 + nq] += st.inertia.dT_dq(vel, q) - st.k_bending @ q
+        f[6 : 6 + nq] += dtdq - st.k_bending @ q
         f[6 + nq :] -= st.k_torsion @ xi
         if self._c_el is not None:
             f[6:] -= self._c_el @ vel[6:]
@@ -304,7 +305,9 @@ class AircraftModel:
             a = self._active
             m, f = m[np.ix_(a, a)], f[a]
         dx = np.empty_like(x)
-        vdot = np.linalg.solve(m, f)
+        _, _, vdot, info = _dgesv(m, f)
+        if info != 0:
+            raise np.linalg.LinAlgError(f"system matrix of the equations of motion is singular (LAPACK dgesv info = {info})")
         dx[lay.velocity] = vdot
         if lay.n_inflow:
             if not self._all_active:

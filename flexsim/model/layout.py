@@ -12,6 +12,7 @@ R, Theta, v, omega are empty; in a quasi-rigid model q, xi, s, eta are empty.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -37,74 +38,74 @@ class StateLayout:
     nxi: int
     n_inflow: int = 0
 
-    @property
+    @cached_property
     def _n6(self) -> int:
         return 3 if self.rigid else 0
 
-    @property
+    @cached_property
     def position(self) -> slice:
         """R = [X, Y, Z] [m], inertial north-east-down."""
         return slice(0, self._n6)
 
-    @property
+    @cached_property
     def euler(self) -> slice:
         """[phi, theta, psi] [rad]."""
         return slice(self._n6, 2 * self._n6)
 
-    @property
+    @cached_property
     def q(self) -> slice:
         """Bending coordinates [m]."""
         a = 2 * self._n6
         return slice(a, a + self.nq)
 
-    @property
+    @cached_property
     def xi(self) -> slice:
         """Torsion coordinates [rad]."""
         a = 2 * self._n6 + self.nq
         return slice(a, a + self.nxi)
 
-    @property
+    @cached_property
     def velocity(self) -> slice:
         """The active part of V = [v, omega, s, eta] (eq. 9)."""
         a = 2 * self._n6 + self.nq + self.nxi
         return slice(a, a + 2 * self._n6 + self.nq + self.nxi)
 
-    @property
+    @cached_property
     def v(self) -> slice:
         """Body-axes velocity of o, [U, V, W] [m/s]."""
         a = self.velocity.start
         return slice(a, a + self._n6)
 
-    @property
+    @cached_property
     def omega(self) -> slice:
         """Body angular velocity [P, Q, R] [rad/s]."""
         a = self.velocity.start + self._n6
         return slice(a, a + self._n6)
 
-    @property
+    @cached_property
     def s(self) -> slice:
         """Bending rates [m/s]."""
         a = self.velocity.start + 2 * self._n6
         return slice(a, a + self.nq)
 
-    @property
+    @cached_property
     def eta(self) -> slice:
         """Torsion rates [rad/s]."""
         a = self.velocity.start + 2 * self._n6 + self.nq
         return slice(a, a + self.nxi)
 
-    @property
+    @cached_property
     def inflow(self) -> slice:
         """Finite-state inflow states [m/s]."""
         a = self.velocity.stop
         return slice(a, a + self.n_inflow)
 
-    @property
+    @cached_property
     def n_states(self) -> int:
         """Length of the state vector."""
         return self.inflow.stop
 
-    @property
+    @cached_property
     def configuration(self) -> slice:
         """Positions block [R, Theta, q, xi] (the generalized coordinates)."""
         return slice(0, self.velocity.start)

@@ -66,12 +66,7 @@ class InertiaPolynomial:
 
     def mass_matrix(self, q: np.ndarray) -> np.ndarray:
         """M(q), shape (n_v, n_v) (eqs. 8-10), for bending coordinates q (nq,) [m]."""
-        m = self.m0.copy()
-        hq = self.h @ q
-        m[:, _W] += hq
-        m[_W, :] += hq.T
-        m[_W, _W] += np.einsum("adkl,k,l->ad", self.m2, q, q)
-        return m
+        return self.evaluate(np.zeros(self.m0.shape[0]), q, np.zeros_like(q))[0]
 
     def dT_dq(self, v: np.ndarray, q: np.ndarray) -> np.ndarray:
         """Partial derivative of T = 1/2 V^T M(q) V with respect to q (eq. 33), shape (nq,) [N].
@@ -82,14 +77,36 @@ class InertiaPolynomial:
             Global velocity vector V.
         q : ndarray, shape (nq,)
         """
-        w = v[_W]
-        return np.einsum("i,ibk,b->k", v, self.h, w) + np.einsum("a,adkl,l,d->k", w, self.m2, q, w)
+        return self.evaluate(v, q, np.zeros_like(q))[1]
 
     def mdot_v(self, v: np.ndarray, q: np.ndarray, s: np.ndarray) -> np.ndarray:
         """dM/dt V = sum_k s_k (dM/dq_k) V, shape (n_v,), with s = dq/dt (nq,) [m/s]."""
+        return self.evaluate(v, q, s)[2]
+
+    def evaluate(self, v: np.ndarray, q: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """M(q), dT/dq and dM/dt V in one pass sharing the contractions (the right-hand side's path).
+
+        With m2q = M2 . q (3, 3, nq) and the symmetry M2[a, d, k, l] = M2[d, a, l, k]:
+        M_oo += m2q . q;  dT/dq = V^T H_k omega + omega^T m2q[:, :, k] omega;
+        (dM/dt V)_o += (m2q . s) omega + (m2q . s)^T omega.
+
+        Returns
+        -------
+        m : ndarray, shape (n_v, n_v)
+        dT_dq : ndarray, shape (nq,)
+        mdot_v : ndarray, shape (n_v,)
+        """
         w = v[_W]
+        m = self.m0.copy()
+        hq = self.h @ q
+        m[:, _W] += hq
+        m[_W, :] += hq.T
+        m2q = self.m2 @ q  # (3, 3, nq)
+        m[_W, _W] += m2q @ q
+        nq = q.size
+        dtdq = w @ ((v @ self.h.reshape(v.size, 3 * nq)) + w @ m2q.reshape(3, 3 * nq)).reshape(3, nq)
         hs = self.h @ s  # (n_v, 3)
-        out = hs @ w
-        out[_W] += hs.T @ v
-        out[_W] += np.einsum("adkl,k,l,d->a", self.m2, s, q, w) + np.einsum("adkl,l,k,d->a", self.m2, s, q, w)
-        return out
+        mdot = hs @ w
+        m2qs = m2q @ s
+        mdot[_W] += hs.T @ v + m2qs @ w + m2qs.T @ w
+        return m, dtdq, mdot
