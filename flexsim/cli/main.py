@@ -193,6 +193,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     np.set_printoptions(precision=5)
     try:
         return int(args.func(args))
+    except BrokenPipeError:  # output piped into e.g. `head`
+        sys.stderr.close()
+        return 0
     except (FlexsimError, FileNotFoundError, KeyError, ValueError, RuntimeError) as exc:
         print(f"flexsim {args.command}: error: {exc}", file=sys.stderr)
         return 2

@@ -4,7 +4,8 @@ Linearising eq. (33) about q = xi = 0, V = 0 without aerodynamics and gravity le
 M(0) V_dot = -K [q; xi] with V = d/dt [R, Theta, q, xi] at zero attitude, so the modes solve the
 symmetric-definite problem K phi = omega^2 M(0) phi (eqs. 8, 15). A free aircraft has six zero
 frequencies (rigid-body modes); a restrained one has none. Each mode is labelled with the degree of
-freedom carrying the largest share of its kinetic energy, phi_i (M phi)_i / (phi^T M phi).
+freedom carrying the largest share of its kinetic energy, phi_i (M phi)_i (rigid-body coordinates of an
+elastic mode carry none, since M phi has no momentum), as a fraction of the sum of the positive shares.
 """
 
 from __future__ import annotations
@@ -110,7 +111,7 @@ def _dominant(labels: list[str], phi: np.ndarray, energy: np.ndarray) -> tuple[s
     component axes are mirror images with z_i down on both, so symmetric bending has equal signs of
     q_R, q_L, while symmetric torsion (both noses up) has opposite signs of xi_R, xi_L.
     """
-    total = energy.sum()
+    total = energy[energy > 0].sum()
     shares = dict(zip(labels, energy / total))
     coords = dict(zip(labels, phi))
     best = max(shares, key=shares.get)
