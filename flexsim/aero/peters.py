@@ -476,10 +476,9 @@ class FlappedSection:
         rho: ArrayLike,
     ) -> NDArray:
         """Drag (...) [N/m], positive aft along the reference chord; see :func:`peters_drag` (real inputs)."""
-        h, hd, hdd = self._h(q), self._h(q_dot), self._h(q_ddot)
-        loads = generalized_loads(self.matrices, h, hd, hdd, u0, u0_dot, lambda0, rho, self.b)
-        w = downwash(self.matrices, h, hd, u0, self.b)
-        return peters_drag(self.matrices, h, w, loads, lambda0, rho, self.b)
+        loads = self.generalized_loads(q, q_dot, q_ddot, u0, u0_dot, lambda0, rho)
+        w = self.downwash(q, q_dot, u0)
+        return peters_drag(self.matrices, self._h(q), w, loads, lambda0, rho, self.b)
 
 
 def flapped_section(n_terms: int, a: ArrayLike, d: ArrayLike, b: ArrayLike) -> FlappedSection:
