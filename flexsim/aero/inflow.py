@@ -26,6 +26,8 @@ from math import factorial
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from flexsim._arrays import readonly
+
 MIN_STATES = 1
 MAX_STATES = 10
 
@@ -70,11 +72,6 @@ def _check_n_states(n_states: object) -> int:
     return int(n_states)
 
 
-def _readonly(array: NDArray) -> NDArray:
-    array.flags.writeable = False
-    return array
-
-
 @lru_cache(maxsize=MAX_STATES)
 def _build(n: int) -> InflowCoefficients:
     order = np.arange(1, n + 1)
@@ -92,12 +89,12 @@ def _build(n: int) -> InflowCoefficients:
     a_inv = np.linalg.inv(a_mat)
     return InflowCoefficients(
         n_states=n,
-        A=_readonly(a_mat),
-        A_inv=_readonly(a_inv),
-        A_inv_c=_readonly(a_inv @ c_vec),
-        b=_readonly(b_vec),
-        c=_readonly(c_vec),
-        d=_readonly(d_vec),
+        A=readonly(a_mat),
+        A_inv=readonly(a_inv),
+        A_inv_c=readonly(a_inv @ c_vec),
+        b=readonly(b_vec),
+        c=readonly(c_vec),
+        d=readonly(d_vec),
     )
 
 

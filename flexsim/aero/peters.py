@@ -34,6 +34,8 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from flexsim._arrays import readonly
+
 _LOAD_SIGNS = np.array([1.0, -1.0, -1.0])
 
 
@@ -47,11 +49,6 @@ def _check_n_terms(n_terms: object, minimum: int = 1) -> int:
 def _col(x: ArrayLike) -> NDArray:
     """Append a trailing axis so a per-section scalar broadcasts against ``(..., n)`` vectors."""
     return np.asarray(x)[..., None]
-
-
-def _readonly(array: NDArray) -> NDArray:
-    array.flags.writeable = False
-    return array
 
 
 def chebyshev_derivative_matrix(n_terms: int) -> NDArray[np.float64]:
@@ -165,7 +162,7 @@ def _build_matrices(n: int) -> PetersMatrices:
         speed_rate_matrix,
         inflow_load_vector,
     )
-    return PetersMatrices(n, *(_readonly(build(n)) for build in builders))
+    return PetersMatrices(n, *(readonly(build(n)) for build in builders))
 
 
 def peters_matrices(n_terms: int) -> PetersMatrices:
@@ -500,11 +497,11 @@ def flapped_section(n_terms: int, a: ArrayLike, d: ArrayLike, b: ArrayLike) -> F
     """
     n = _check_n_terms(n_terms, minimum=2)
     geometry = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (a, d, b)))
-    a, d, b = (_readonly(x.copy()) for x in geometry)
+    a, d, b = (readonly(x.copy()) for x in geometry)
     projection = transformation_matrix(n + 2, a, d, b)
     deformation = projection.copy()
     deformation[..., n:, :] = 0.0
-    return FlappedSection(n, a, d, b, _readonly(deformation), _readonly(projection), peters_matrices(n + 2))
+    return FlappedSection(n, a, d, b, readonly(deformation), readonly(projection), peters_matrices(n + 2))
 
 
 @dataclass(frozen=True, eq=False)

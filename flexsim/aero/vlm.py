@@ -38,6 +38,8 @@ from typing import Literal, Sequence, get_args
 import numpy as np
 from numpy.typing import ArrayLike
 
+from flexsim._arrays import readonly
+
 __all__ = [
     "LiftingSurface", "SurfaceLoads", "VlmResult", "plot_lift_slope", "sectional_lift_slope", "solve_vlm",
 ]
@@ -54,12 +56,6 @@ CORE_RADIUS_FRACTION: float = 1.0e-6
 """Default cut-off radius of the vortex segments as a fraction of the bound-segment length."""
 _ROWS_PER_CHUNK_BUDGET: int = 1_500_000
 """Number of (control point, horseshoe) pairs evaluated at once during assembly (memory bound)."""
-
-
-def _readonly(array: np.ndarray) -> np.ndarray:
-    """Mark ``array`` read-only (results and surfaces are immutable) and return it."""
-    array.flags.writeable = False
-    return array
 
 
 def _is_count(value: object) -> bool:
@@ -146,8 +142,8 @@ class LiftingSurface:
             )
         if self.spacing not in _SPACINGS:
             raise ValueError(f"spacing must be one of {_SPACINGS}, got {self.spacing!r}")
-        object.__setattr__(self, "le_m", _readonly(le))
-        object.__setattr__(self, "chord_m", _readonly(chord))
+        object.__setattr__(self, "le_m", readonly(le))
+        object.__setattr__(self, "chord_m", readonly(chord))
         object.__setattr__(self, "n_chordwise", int(self.n_chordwise))
         object.__setattr__(self, "n_spanwise", tuple(int(n) for n in counts))
         object.__setattr__(self, "mirror", bool(self.mirror))
@@ -522,16 +518,16 @@ def solve_vlm(
         loads.append(
             SurfaceLoads(
                 name=surface.name,
-                y_m=_readonly(lat.strip_y.copy()),
-                z_m=_readonly(lat.strip_z.copy()),
-                eta=_readonly(lat.strip_y / semispan),
-                chord_m=_readonly(lat.strip_chord.copy()),
-                width_m=_readonly(lat.strip_width.copy()),
-                dihedral_rad=_readonly(lat.strip_dihedral.copy()),
-                cl=_readonly(cn_alpha * sin_alpha),
-                cl_alpha_per_rad=_readonly(cn_alpha / cos_dihedral),
+                y_m=readonly(lat.strip_y.copy()),
+                z_m=readonly(lat.strip_z.copy()),
+                eta=readonly(lat.strip_y / semispan),
+                chord_m=readonly(lat.strip_chord.copy()),
+                width_m=readonly(lat.strip_width.copy()),
+                dihedral_rad=readonly(lat.strip_dihedral.copy()),
+                cl=readonly(cn_alpha * sin_alpha),
+                cl_alpha_per_rad=readonly(cn_alpha / cos_dihedral),
                 pieces_y_m=lat.pieces,
-                piece_index=_readonly(lat.strip_piece.copy()),
+                piece_index=readonly(lat.strip_piece.copy()),
                 semispan_m=semispan,
                 area_m2=area,
                 lift_slope_per_rad=surface_lift / area,
