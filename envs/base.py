@@ -27,13 +27,49 @@ from envs.config import (AERO_MODELS, TURBULENCE_LEVELS, ActuatorRates, FlightLi
 from envs.dynamics import SENSOR_COMPONENTS, FlightDynamics, Measurements, StepOutcome
 from envs.parallel import limit_blas_threads
 
-__all__ = ["FlexSimEnv", "Episode", "LogSample", "TERMINATION_REASONS"]
+__all__ = ["FlexSimEnv", "Episode", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
 
 #: Values of ``info["termination_reason"]`` ("" while flying).
 TERMINATION_REASONS = ("non_finite", "crash", "structural_limit", "gimbal_lock", "envelope")
 #: Physical control names of the flight logs.
 LOG_CONTROL_NAMES = ("thrust_N", "aileron_rad", "elevator_rad", "rudder_rad")
 _HISTORY = 500  # samples of the flight path kept for rendering
+
+
+#: Action Space section shared by every FlexSim env docstring (gymnasium's template), see :func:`shared_docs`.
+ACTION_SPACE_DOC = """    ``Box(low=[0, -1, -1, -1], high=[1, 1, 1, 1], dtype=float32)``, normalised; mapped linearly to the
+    aircraft's limits (``Aircraft.control_limits()``; GTM values shown). Out-of-range values are clipped
+    (``info["action_clipped"]``); NaN/inf or a wrong shape raise ``ValueError``. The applied controls
+    then move towards the command at most at the actuator rates (``ActuatorRates``).
+
+    | Num | Action   | Min | Max | Physical range (GTM)        | Rate limit      |
+    |-----|----------|-----|-----|-----------------------------|-----------------|
+    | 0   | thrust   | 0   | 1   | 0 to 356 kN (two engines)   | 25 % max / s    |
+    | 1   | aileron  | -1  | 1   | -25 to 25 deg (TE down > 0) | 60 deg/s        |
+    | 2   | elevator | -1  | 1   | -25 to 25 deg (TE down > 0) | 40 deg/s        |
+    | 3   | rudder   | -1  | 1   | -25 to 25 deg (TE left > 0) | 60 deg/s        |
+"""
+
+#: Observation table header and the rows 0-9 common to every FlexSim env.
+OBSERVATION_BASE_ROWS_DOC = """    | Num   | Observation                                        | Min    | Max   | Unit   |
+    |-------|----------------------------------------------------|--------|-------|--------|
+    | 0-2   | roll phi, pitch theta, heading psi (wrapped)       | -pi    | pi    | rad    |
+    | 3-5   | body rates p, q, r                                 | -10    | 10    | rad/s  |
+    | 6     | airspeed (relative to the air at the body origin)  | 0      | 600   | m/s    |
+    | 7-8   | angle of attack alpha, sideslip beta               | -pi    | pi    | rad    |
+    | 9     | altitude                                           | -1000  | 25000 | m      |
+"""
+
+
+def shared_docs(cls):
+    """Class decorator: fill the ``<action space>`` and ``<observation rows 0-9>`` lines of ``cls.__doc__``."""
+    doc = cls.__doc__ or ""
+    for marker, text in (("    <action space>\n", ACTION_SPACE_DOC), ("    <observation rows 0-9>\n", OBSERVATION_BASE_ROWS_DOC)):
+        if marker not in doc:
+            raise RuntimeError(f"{cls.__name__} docstring lacks the {marker.strip()} line")
+        doc = doc.replace(marker, text)
+    cls.__doc__ = doc
+    return cls
 
 
 @dataclass(frozen=True)

@@ -12,7 +12,7 @@ from flexsim.aircraft.definition import Aircraft
 from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
 from flexsim.trim import SteadyManoeuvre
 
-from envs.base import Episode, FlexSimEnv
+from envs.base import Episode, FlexSimEnv, shared_docs
 from envs.config import RewardTerm, TrackingReward
 from envs.dynamics import Measurements
 from envs.episodes import perturbed_state, turbulence_field
@@ -108,6 +108,7 @@ class FlutterMarginTask:
         object.__setattr__(self, "fin_twist_rate_range_rad_s", (a, b))
 
 
+@shared_docs
 class FlutterMarginEnv(FlexSimEnv):
     """
     ## Description
@@ -123,20 +124,12 @@ class FlutterMarginEnv(FlexSimEnv):
     sampled rudder feedback can still damp it (see ``examples/agents/flutter_margin_baseline.py``).
 
     ## Action Space
-    As ``FlexSim/GTM-LevelHold-v0``: ``Box([0, -1, -1, -1], [1, 1, 1, 1], float32)`` = [thrust (0-356 kN),
-    aileron, elevator, rudder (-25 to 25 deg)], clipped when out of range, ``ValueError`` on NaN/inf or a wrong
-    shape, rate-limited (25 % thrust/s, 60/40/60 deg/s).
+    <action space>
 
     ## Observation Space
     ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
 
-    | Num   | Observation                                        | Min    | Max   | Unit   |
-    |-------|----------------------------------------------------|--------|-------|--------|
-    | 0-2   | roll phi, pitch theta, heading psi (wrapped)       | -pi    | pi    | rad    |
-    | 3-5   | body rates p, q, r                                 | -10    | 10    | rad/s  |
-    | 6     | airspeed                                           | 0      | 600   | m/s    |
-    | 7-8   | angle of attack alpha, sideslip beta               | -pi    | pi    | rad    |
-    | 9     | altitude                                           | -1000  | 25000 | m      |
+    <observation rows 0-9>
     | 10    | fin tip twist rate (the rewarded structural error) | -1000  | 1000  | rad/s  |
     | 11    | flutter-speed deficit max(0, V_f - V)              | -600   | 600   | m/s    |
     | 12    | airspeed error V - V_target                        | -300   | 300   | m/s    |

@@ -11,7 +11,7 @@ from flexsim.sim.disturbances import OneMinusCosineGust, combine
 from flexsim.structure.kinematics import dcm_321
 from flexsim.trim import SteadyManoeuvre
 
-from envs.base import Episode, FlexSimEnv
+from envs.base import Episode, FlexSimEnv, shared_docs
 from envs.config import RewardTerm, TrackingReward
 from envs.dynamics import Measurements
 from envs.episodes import perturbed_state, turbulence_field
@@ -74,6 +74,7 @@ class GustAlleviationTask:
         return SteadyManoeuvre.level(self.altitude_m, mach=self.mach)
 
 
+@shared_docs
 class GustAlleviationEnv(FlexSimEnv):
     """
     ## Description
@@ -85,20 +86,12 @@ class GustAlleviationEnv(FlexSimEnv):
     :class:`flexsim.sim.disturbances.OneMinusCosineGust`; Dryden turbulence can be added.
 
     ## Action Space
-    As ``FlexSim/GTM-LevelHold-v0``: ``Box([0, -1, -1, -1], [1, 1, 1, 1], float32)`` = [thrust (0-356 kN),
-    aileron, elevator, rudder (-25 to 25 deg)], clipped when out of range, ``ValueError`` on NaN/inf or a wrong
-    shape, rate-limited (25 % thrust/s, 60/40/60 deg/s).
+    <action space>
 
     ## Observation Space
     ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
 
-    | Num   | Observation                                        | Min    | Max   | Unit   |
-    |-------|----------------------------------------------------|--------|-------|--------|
-    | 0-2   | roll phi, pitch theta, heading psi (wrapped)       | -pi    | pi    | rad    |
-    | 3-5   | body rates p, q, r                                 | -10    | 10    | rad/s  |
-    | 6     | airspeed (relative to the air at the body origin)  | 0      | 600   | m/s    |
-    | 7-8   | angle of attack alpha, sideslip beta               | -pi    | pi    | rad    |
-    | 9     | altitude                                           | -1000  | 25000 | m      |
+    <observation rows 0-9>
     | 10    | mean wing-tip deflection minus its trim value      | -50    | 50    | m      |
     | 11    | mean wing-root bending moment increment / |1-g value| | -50  | 50    | -      |
     | 12    | pitch error theta - theta_trim                     | -pi    | pi    | rad    |

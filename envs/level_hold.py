@@ -9,7 +9,7 @@ import numpy as np
 
 from flexsim.trim import SteadyManoeuvre
 
-from envs.base import Episode, FlexSimEnv
+from envs.base import Episode, FlexSimEnv, shared_docs
 from envs.config import RewardTerm, TrackingReward
 from envs.dynamics import Measurements
 from envs.episodes import perturbed_state, turbulence_field, wrap_angle
@@ -50,6 +50,7 @@ class LevelHoldTask:
         return SteadyManoeuvre.level(self.altitude_m, mach=self.mach)
 
 
+@shared_docs
 class LevelHoldEnv(FlexSimEnv):
     """
     ## Description
@@ -61,30 +62,14 @@ class LevelHoldEnv(FlexSimEnv):
     actuator rate limits.
 
     ## Action Space
-    ``Box(low=[0, -1, -1, -1], high=[1, 1, 1, 1], dtype=float32)``, normalised; mapped linearly to the
-    aircraft's limits (``Aircraft.control_limits()``; GTM values shown). Out-of-range values are clipped
-    (``info["action_clipped"]``); NaN/inf or a wrong shape raise ``ValueError``. The applied controls
-    then move towards the command at most at the actuator rates (``ActuatorRates``).
-
-    | Num | Action   | Min | Max | Physical range (GTM)        | Rate limit      |
-    |-----|----------|-----|-----|-----------------------------|-----------------|
-    | 0   | thrust   | 0   | 1   | 0 to 356 kN (two engines)   | 25 % max / s    |
-    | 1   | aileron  | -1  | 1   | -25 to 25 deg (TE down > 0) | 60 deg/s        |
-    | 2   | elevator | -1  | 1   | -25 to 25 deg (TE down > 0) | 40 deg/s        |
-    | 3   | rudder   | -1  | 1   | -25 to 25 deg (TE left > 0) | 60 deg/s        |
+    <action space>
 
     ## Observation Space
     ``Box(29,)`` float32 with finite bounds; values are clipped to them (and NaN replaced by 0), so
     observations stay finite even at termination. ``env.observation_structure`` maps block names to
     slices, ``env.observation_names`` names every entry.
 
-    | Num   | Observation                                        | Min    | Max   | Unit   |
-    |-------|----------------------------------------------------|--------|-------|--------|
-    | 0-2   | roll phi, pitch theta, heading psi (wrapped)       | -pi    | pi    | rad    |
-    | 3-5   | body rates p, q, r                                 | -10    | 10    | rad/s  |
-    | 6     | airspeed (relative to the air at the body origin)  | 0      | 600   | m/s    |
-    | 7-8   | angle of attack alpha, sideslip beta               | -pi    | pi    | rad    |
-    | 9     | altitude                                           | -1000  | 25000 | m      |
+    <observation rows 0-9>
     | 10    | altitude error h - h_ref                           | -5000  | 5000  | m      |
     | 11    | airspeed error V - V_ref                           | -300   | 300   | m/s    |
     | 12    | heading error psi - psi_ref (wrapped)              | -pi    | pi    | rad    |

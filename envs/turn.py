@@ -9,7 +9,7 @@ import numpy as np
 
 from flexsim.trim import SteadyManoeuvre
 
-from envs.base import Episode, FlexSimEnv
+from envs.base import Episode, FlexSimEnv, shared_docs
 from envs.config import RewardTerm, TrackingReward
 from envs.dynamics import Measurements
 from envs.episodes import perturbed_state, turbulence_field
@@ -62,6 +62,7 @@ class TurnTask:
         return SteadyManoeuvre.turn(self.altitude_m, radius_m, mach=self.mach)
 
 
+@shared_docs
 class TurnEnv(FlexSimEnv):
     """
     ## Description
@@ -76,20 +77,12 @@ class TurnEnv(FlexSimEnv):
     companion of a turn; it can still be switched on).
 
     ## Action Space
-    As ``FlexSim/GTM-LevelHold-v0``: ``Box([0, -1, -1, -1], [1, 1, 1, 1], float32)`` = [thrust (0-356 kN),
-    aileron, elevator, rudder (-25 to 25 deg)], clipped when out of range, ``ValueError`` on NaN/inf or a wrong
-    shape, rate-limited (25 % thrust/s, 60/40/60 deg/s).
+    <action space>
 
     ## Observation Space
     ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
 
-    | Num   | Observation                                        | Min    | Max   | Unit   |
-    |-------|----------------------------------------------------|--------|-------|--------|
-    | 0-2   | roll phi, pitch theta, heading psi (wrapped)       | -pi    | pi    | rad    |
-    | 3-5   | body rates p, q, r                                 | -10    | 10    | rad/s  |
-    | 6     | airspeed                                           | 0      | 600   | m/s    |
-    | 7-8   | angle of attack alpha, sideslip beta               | -pi    | pi    | rad    |
-    | 9     | altitude                                           | -1000  | 25000 | m      |
+    <observation rows 0-9>
     | 10    | turn-rate error psi_dot - V_ref / R                | -1     | 1     | rad/s  |
     | 11    | commanded turn rate V_ref / R (> 0 right)          | -1     | 1     | rad/s  |
     | 12    | altitude error                                     | -5000  | 5000  | m      |
