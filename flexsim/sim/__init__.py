@@ -5,7 +5,8 @@ Modules: :mod:`flexsim.sim.simulate` (``simulate``, ``SimEvent``, ``HoldingRadau
 :mod:`flexsim.sim.outputs` (names and output maps shared by results and logs),
 :mod:`flexsim.sim.recording` (log paths, the log sink), :mod:`flexsim.sim.disturbances`
 (``OneMinusCosineGust``, ``DrydenTurbulence``, ``combine``), :mod:`flexsim.sim.manoeuvres`
-(``build_manoeuvre``, ``manoeuvre_names``). Import the function as ``from flexsim.sim.simulate import simulate``; the package
+(``build_manoeuvre``, ``manoeuvre_names``), :mod:`flexsim.sim.fixed_step` (``ETD2RK``, the fixed-step
+exponential integrator of the gymnasium environments). Import the function as ``from flexsim.sim.simulate import simulate``; the package
 does not re-export it, so that ``flexsim.sim.simulate`` always names the module.
 """
 

@@ -1,0 +1,154 @@
+"""The fixed-step exponential integrator ETD2RK (flexsim.sim.fixed_step) against closed forms.
+
+Sources and tolerances:
+* phi functions: phi_1(z) = (e^z - 1)/z, phi_2(z) = (e^z - 1 - z)/z^2 (phi_1(0) = 1, phi_2(0) = 1/2;
+  Hochbruck & Ostermann 2010, section 2.3); for a diagonalisable J = S D S^-1, phi(hJ) = S phi(hD) S^-1.
+  Rounding of scipy's expm: 1e-10 relative (the stiff entry, hJ = -20, has e^{hJ} = 2e-9).
+* Linear problems x' = J x + g with the method's J: exact for every step size (Cox & Matthews 2002,
+  section 2): x(t) = e^{tJ} x0 + t phi_1(tJ) g, to 1e-9 relative over 1 s in steps of 20 ms and 5 ms, with stiff
+  (-1000 1/s, -577 +- 1395i 1/s) and lightly growing oscillatory (0.2 +- 178i 1/s) modes.
+* Order 2 for a J that is not the Jacobian: the observed order log2(e(h) / e(h/2)) is 2 +- 0.2 for
+  (a) the stiff linear system above over 0.2 s with J = A + P, P a random non-stiff perturbation
+  (entries ~2 1/s), h = 1.25 ms to 0.16 ms (asymptotic range: h * 178 rad/s <= 0.22), exact
+  solution e^{tA} x0; (b) the logistic equation x' = x (1 - x), x(t) = 1 / (1 + (1/x0 - 1) e^-t),
+  with J = 0 (the method is then Heun's) and J = 1 - 2 x0.
+* Stiff order 2 (Hochbruck & Ostermann 2005, SIAM J. Numer. Anal. 43, 1069-1090: the error bound
+  C h^2 does not depend on the stiffness): Prothero-Robinson y' = lambda (y - sin t) + cos t,
+  y(t) = sin t, J = lambda: error(t = 1) / h^2 < 0.08 for lambda = -10, -1e4 and -1e6 and h = 0.1 to
+  0.0125 (the non-stiff limit of the constant is 0.0701, measured); for lambda = -1e4 and -1e6 the
+  error is O(h / |lambda|), below that bound (the observed order is 1 there); for lambda = -10 the
+  observed order is 2 +- 0.2.
+* Invalid J, h or x shapes raise ValueError naming the argument and the value.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.linalg import expm
+
+from flexsim.sim.fixed_step import ETD2RK, phi_functions
+
+
+def _phi_scalar(z):
+    if z == 0.0:
+        return 1.0, 0.5
+    return math.expm1(z) / z, (math.expm1(z) - z) / (z * z)
+
+
+def _stiff_matrix():
+    """Real 7 x 7 matrix with eigenvalues -1000, -577 +- 1395i, 0.2 +- 178i, -3, 0 (a fixed random basis)."""
+    blocks = np.zeros((7, 7))
+    blocks[0, 0] = -1000.0
+    blocks[1:3, 1:3] = [[-577.0, 1395.0], [-1395.0, -577.0]]
+    blocks[3:5, 3:5] = [[0.2, 178.0], [-178.0, 0.2]]
+    blocks[5, 5] = -3.0
+    s = np.eye(7) + 0.3 * np.random.default_rng(3).standard_normal((7, 7))
+    return s @ blocks @ np.linalg.inv(s)
+
+
+def _observed_orders(errors):
+    e = np.asarray(errors)
+    return np.log2(e[:-1] / e[1:])
+
+
+def test_phi_functions_diagonal_and_similar_matrices():
+    h = 0.02
+    d = np.array([-1000.0, -3.0, 0.0, 2.5])
+    e, p1, p2 = phi_functions(np.diag(d), h)
+    for i, lam in enumerate(d):
+        f1, f2 = _phi_scalar(h * lam)
+        assert e[i, i] == pytest.approx(math.exp(h * lam), rel=1e-10, abs=1e-15)
+        assert p1[i, i] == pytest.approx(f1, rel=1e-10)
+        assert p2[i, i] == pytest.approx(f2, rel=1e-10)
+    np.testing.assert_allclose(e - np.diag(np.diag(e)), 0.0, atol=1e-15)
+    s = np.eye(4) + 0.2 * np.random.default_rng(1).standard_normal((4, 4))
+    _, q1, q2 = phi_functions(s @ np.diag(d) @ np.linalg.inv(s), h)
+    np.testing.assert_allclose(q1, s @ p1 @ np.linalg.inv(s), rtol=0, atol=1e-10)
+    np.testing.assert_allclose(q2, s @ p2 @ np.linalg.inv(s), rtol=0, atol=1e-10)
+
+
+@pytest.mark.parametrize("h", [0.02, 0.005])
+def test_linear_problem_is_integrated_exactly(h):
+    a = _stiff_matrix()
+    g = np.linspace(-1.0, 1.0, 7)
+    x0 = np.arange(1.0, 8.0)
+    method = ETD2RK(a, h)
+    calls = []
+
+    def f(t, x, forcing):
+        calls.append(t)
+        return a @ x + forcing
+
+    x, t, steps = x0.copy(), 0.0, round(1.0 / h)
+    for _ in range(steps):
+        x = method.step(f, t, x, (g,))
+        t += h
+    _, phi1, _ = phi_functions(a, t)
+    exact = expm(t * a) @ x0 + t * phi1 @ g
+    np.testing.assert_allclose(x, exact, rtol=1e-9, atol=1e-9 * np.abs(exact).max())
+    assert len(calls) == method.nfev_per_step * steps
+    assert calls[:2] == [0.0, h]
+
+
+def test_order_two_with_a_perturbed_jacobian():
+    a = _stiff_matrix()
+    perturbation = 2.0 * np.random.default_rng(7).standard_normal((7, 7))
+    x0 = np.arange(1.0, 8.0)
+    exact = expm(0.2 * a) @ x0
+    errors = []
+    for n in (160, 320, 640, 1280):
+        method = ETD2RK(a + perturbation, 0.2 / n)
+        x = x0.copy()
+        for k in range(n):
+            x = method.step(lambda t, y: a @ y, k * method.h, x)
+        errors.append(np.abs(x - exact).max())
+    orders = _observed_orders(errors)
+    assert np.all(np.abs(orders - 2.0) < 0.2), (errors, orders)
+
+
+@pytest.mark.parametrize("lam", [-10.0, -1e4, -1e6])
+def test_prothero_robinson_error_is_order_two_uniformly_in_stiffness(lam):
+    def f(t, y):
+        return lam * (y - np.sin(t)) + np.cos(t)
+
+    steps = (10, 20, 40, 80)
+    errors = []
+    for n in steps:
+        method = ETD2RK([[lam]], 1.0 / n)
+        y = np.zeros(1)
+        for k in range(n):
+            y = method.step(f, k * method.h, y)
+        errors.append(abs(y[0] - math.sin(1.0)))
+    scaled = np.array(errors) * np.array(steps) ** 2
+    assert np.all(scaled < 0.08), scaled
+    if lam == -10.0:
+        orders = _observed_orders(errors)
+        assert np.all(np.abs(orders - 2.0) < 0.2), (errors, orders)
+
+
+@pytest.mark.parametrize("jac", [0.0, 1.0 - 2.0 * 0.1])
+def test_order_two_logistic(jac):
+    x0 = 0.1
+    exact = 1.0 / (1.0 + (1.0 / x0 - 1.0) * math.exp(-2.0))
+    errors = []
+    for n in (10, 20, 40, 80):
+        method = ETD2RK([[jac]], 2.0 / n)
+        x = np.array([x0])
+        for k in range(n):
+            x = method.step(lambda t, y: y * (1.0 - y), k * method.h, x)
+        errors.append(abs(x[0] - exact))
+    orders = _observed_orders(errors)
+    assert np.all(np.abs(orders - 2.0) < 0.2), (errors, orders)
+
+
+def test_invalid_arguments_are_named():
+    with pytest.raises(ValueError, match=r"jac: must be a non-empty square matrix \(n, n\), got shape \(2, 3\)"):
+        ETD2RK(np.zeros((2, 3)), 0.01)
+    with pytest.raises(ValueError, match=r"jac: must be finite, got jac\[0, 1\] = nan"):
+        ETD2RK([[0.0, math.nan], [0.0, 0.0]], 0.01)
+    for h in (0.0, -1e-3, math.inf, "x"):
+        with pytest.raises(ValueError, match=r"h = .*: must be a finite number > 0 \[s\]"):
+            ETD2RK(np.eye(2), h)
+    with pytest.raises(ValueError, match=r"x: expected shape \(2,\) to match jac, got shape \(3,\)"):
+        ETD2RK(np.eye(2), 0.01).step(lambda t, y: y, 0.0, np.zeros(3))
