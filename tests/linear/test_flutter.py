@@ -70,15 +70,15 @@ def test_gtm_rigid_body_roots_and_vacuum_classification():
 @pytest.fixture(scope="module")
 def sea_level_level_flutter():
     analysis = FlutterAnalysis(load_aircraft("gtm"), "unsteady")
-    return analysis, analysis.search(SteadyManoeuvre.level(0.0, mach=0.6), mach_range=(0.8, 0.95), mach_step=0.05)
+    return analysis, analysis.search(SteadyManoeuvre.level(0.0, mach=0.6), mach_range=(0.6, 0.7), mach_step=0.05)
 
 
 def test_wide_turn_and_zero_climb_tend_to_level_flight(sea_level_level_flutter):
     analysis, level = sea_level_level_flutter
     assert level.mode.kind == "elastic" and level.trim.residual < 1e-8
-    wide = analysis.search(SteadyManoeuvre.turn(0.0, 1e6, mach=0.6), mach_range=(0.8, 0.95), mach_step=0.05)
+    wide = analysis.search(SteadyManoeuvre.turn(0.0, 1e6, mach=0.6), mach_range=(0.6, 0.7), mach_step=0.05)
     assert wide.mach == pytest.approx(level.mach, rel=0.005)
-    flat = analysis.search(SteadyManoeuvre.climb(0.0, 0.0, mach=0.6), mach_range=(0.8, 0.95), mach_step=0.05)
+    flat = analysis.search(SteadyManoeuvre.climb(0.0, 0.0, mach=0.6), mach_range=(0.6, 0.7), mach_step=0.05)
     assert flat.mach == pytest.approx(level.mach, abs=2e-4)
 
 
