@@ -11,7 +11,7 @@ from pathlib import Path
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.paper_data import GLIDE_9144, TABLE_QS, TABLE_US
 from flexsim.linear.study import MODELS as _MODELS
-from flexsim.linear.study import StudyCase, climb_cases, glide_from_climb, plot_study, run_study, turn_cases, write_results
+from flexsim.linear.study import StudyCase, climb_cases, glide_from_climb, plot_study, plot_trim, run_study, turn_cases, write_results
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.trim import SteadyManoeuvre, trim
 
@@ -77,8 +77,12 @@ def _sweep(args: argparse.Namespace) -> int:
     out = Path(args.out)
     csv_path, json_path = write_results(rows, out, f"flutter_{kind}")
     png = plot_study(rows, kind, out / f"flutter_{kind}.png")
+    figures = [png]
+    top = max(args.altitudes)
+    if any(r["altitude_m"] == top and "mach" in r for r in rows):
+        figures.append(plot_trim(rows, kind, out / f"flutter_{kind}_trim_{top:.0f}m.png", altitude_m=top))
     ok = sum("mach" in r for r in rows)
-    print(f"{ok}/{len(rows)} flutter points; results: {csv_path}, {json_path}; figure: {png}")
+    print(f"{ok}/{len(rows)} flutter points; results: {csv_path}, {json_path}; figures: {', '.join(map(str, figures))}")
     if kind == "climb":
         glide = glide_from_climb(rows)
         if glide:

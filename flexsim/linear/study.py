@@ -24,7 +24,7 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-__all__ = ["StudyCase", "turn_cases", "climb_cases", "run_case", "run_chain", "run_study", "write_results", "plot_study", "glide_from_climb"]
+__all__ = ["StudyCase", "turn_cases", "climb_cases", "run_case", "run_chain", "run_study", "write_results", "plot_study", "plot_trim", "glide_from_climb"]
 
 MODELS = {"QS": "quasi-steady", "US": "theodorsen", "FS": "unsteady"}
 PAPER_ALTITUDES_M = (0.0, 3048.0, 6096.0, 9144.0)
@@ -226,6 +226,45 @@ def plot_study(rows: list[dict], kind: str, path: str | Path) -> Path:
             ax.set_xlabel(xlabel)
     axes[0, 0].legend()
     fig.suptitle(f"Flutter versus {'turn radius' if kind == 'turn' else 'climb angle'} (flexsim, notional GTM)")
+    out = Path(path)
+    fig.savefig(out, dpi=110)
+    return out
+
+
+#: Trim quantities drawn by :func:`plot_trim` (paper Figs. 10 and 15): row key, axis label.
+TRIM_PANELS = (("theta_deg", "θ [deg]"), ("thrust_kN", "T_e [kN]"), ("elevator_deg", "δ_e [deg]"),
+               ("tip_deflection_m", "w_w(L_w) [m]"), ("tip_twist_deg", "ψ_w(L_w) [deg]"))
+
+
+def plot_trim(rows: list[dict], kind: str, path: str | Path, altitude_m: float = 9144.0) -> Path:
+    """Trim at the flutter point versus R or gamma at one altitude (the paper's Figs. 10 and 15, lower panels).
+
+    One panel per quantity of :data:`TRIM_PANELS` (pitch, thrust, elevator, wing-tip deflection and
+    twist), QS and US curves. Raises ``ValueError`` when no row has that altitude.
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    xkey, xlabel, scale = ("turn_radius_m", "R [km]", 1e-3) if kind == "turn" else ("climb_angle_deg", "γ [deg]", 1.0)
+    at_h = [r for r in rows if r["altitude_m"] == altitude_m and "mach" in r]
+    if not at_h:
+        raise ValueError(f"altitude_m = {altitude_m!r}: no flutter point at this altitude in the rows "
+                         f"(altitudes present: {sorted({r['altitude_m'] for r in rows})})")
+    fig = Figure(figsize=(12.0, 2.8), layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(1, len(TRIM_PANELS))
+    for model, style in (("QS", "o--"), ("US", "s-"), ("FS", "^-.")):
+        sel = sorted((r[xkey] * scale, *(r[k] for k, _ in TRIM_PANELS)) for r in at_h if r["model"] == model)
+        if sel:
+            cols = np.array(sel).T
+            for ax, y in zip(axes, cols[1:]):
+                ax.plot(cols[0], y, style, label=model)
+    for ax, (_, label) in zip(axes, TRIM_PANELS):
+        ax.set_ylabel(label)
+        ax.set_xlabel(xlabel)
+        ax.grid(alpha=0.3)
+    axes[0].legend()
+    fig.suptitle(f"Trim at the flutter point, h = {altitude_m:.0f} m (flexsim, notional GTM)")
     out = Path(path)
     fig.savefig(out, dpi=110)
     return out

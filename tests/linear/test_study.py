@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from flexsim.linear.study import StudyCase, glide_from_climb, plot_study, run_study, write_results
+from flexsim.linear.study import StudyCase, glide_from_climb, plot_study, plot_trim, run_study, write_results
 
 
 def test_small_turn_study_runs_in_parallel_and_writes_outputs(tmp_path):
@@ -21,6 +21,10 @@ def test_small_turn_study_runs_in_parallel_and_writes_outputs(tmp_path):
     assert len(json.loads(json_path.read_text())) == 3 and csv_path.read_text().count("\n") == 4
     png = plot_study(rows, "turn", tmp_path / "turn.png")
     assert png.read_bytes()[:4] == b"\x89PNG"
+    trim_png = plot_trim(rows, "turn", tmp_path / "trim.png", altitude_m=0.0)
+    assert trim_png.read_bytes()[:4] == b"\x89PNG"
+    with pytest.raises(ValueError, match="altitude_m = 9144.0: no flutter point"):
+        plot_trim(rows, "turn", tmp_path / "none.png", altitude_m=9144.0)
 
 
 def test_glide_interpolated_where_thrust_vanishes():
