@@ -7,8 +7,9 @@ Importing this package registers (idempotently) the environment ids of :data:`EN
     env = gym.make("FlexSim/GTM-LevelHold-v0")
 
 or, without the import, ``gym.make("envs:FlexSim/GTM-LevelHold-v0")``. Each environment is a thin adapter
-that steps the one nonlinear model ``AircraftModel.rhs`` with ``scipy.integrate.solve_ivp`` over each
-control period (:mod:`envs.dynamics`); see ``docs/environments.md``.
+that integrates the one nonlinear model ``AircraftModel.rhs`` over each control period (:mod:`envs.dynamics`:
+ETD2RK about the trim by default for the finite-state model, or ``scipy.integrate.solve_ivp``); see
+``docs/environments.md``.
 """
 
 from __future__ import annotations

@@ -79,7 +79,7 @@ class Episode:
     Attributes
     ----------
     manoeuvre : SteadyManoeuvre
-        The trim the aircraft starts from (and whose Jacobian Radau uses).
+        The trim the aircraft starts from (and whose Jacobian ETD2RK and Radau use).
     x0 : ndarray
         Initial state (the trim state plus perturbations).
     wind : callable or None
@@ -131,7 +131,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     metadata: ClassVar[dict] = {"render_modes": ["human", "rgb_array"], "render_fps": 50}
     task_type: ClassVar[type]
     default_turbulence: ClassVar[str] = "none"
-    #: Whether the task's subject is a lightly damped high-frequency structural mode (integrator "auto" -> DOP853).
+    #: Whether the task's subject is a lightly damped high-frequency structural mode (see ``IntegratorSettings.resolve``).
     undamped_structure: ClassVar[bool] = False
     #: (name, bound) of the task errors in the observation, in order; set by each task class.
     task_errors_spec: ClassVar[tuple[tuple[str, float], ...]] = ()

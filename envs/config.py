@@ -21,13 +21,18 @@ __all__ = [
     "TrackingReward",
     "TURBULENCE_LEVELS",
     "INTEGRATOR_METHODS",
+    "FIXED_STEP_METHODS",
     "AERO_MODELS",
 ]
 
 #: Turbulence levels accepted by the ``turbulence`` argument (MIL-F-8785C severities, or none).
 TURBULENCE_LEVELS = ("none", "light", "moderate", "severe")
 #: Integration methods accepted by :class:`IntegratorSettings` (``"auto"`` picks by aerodynamic model).
-INTEGRATOR_METHODS = ("auto", "DOP853", "Radau")
+INTEGRATOR_METHODS = ("auto", "ETD2RK", "DOP853", "Radau")
+#: The fixed-step methods among them (:mod:`flexsim.sim.fixed_step`); the others are ``solve_ivp`` methods.
+FIXED_STEP_METHODS = ("ETD2RK",)
+#: Allowed range of :attr:`IntegratorSettings.max_step_s` [s].
+MAX_STEP_RANGE_S = (1e-4, 0.05)
 #: Aerodynamic models of the time-domain model.
 AERO_MODELS = ("unsteady", "quasi-steady")
 
@@ -73,26 +78,36 @@ class ActuatorRates:
 
 @dataclass(frozen=True)
 class IntegratorSettings:
-    """How each control period is integrated with ``scipy.integrate.solve_ivp``.
+    """How each control period is integrated.
 
     Attributes
     ----------
-    method : {"auto", "DOP853", "Radau"}
-        ``"auto"`` (default) uses Radau with the constant Jacobian of the trim for the finite-state
-        (``"unsteady"``) model, whose inflow states are stiff (eigenvalues down to about -650 1/s,
-        |lambda| up to 1500 1/s on the GTM), and DOP853 for the quasi-steady model and for tasks whose
-        subject is a lightly damped high-frequency structural mode (flutter): at the default tolerances
-        Radau damps the 179 rad/s fin flutter mode numerically (its amplitude after 5 s is 22 % low),
-        DOP853 does not (measured in ``benchmarks/bench_envs.py``; see ``docs/environments.md``).
+    method : {"auto", "ETD2RK", "DOP853", "Radau"}
+        ``"auto"`` (default) uses ETD2RK for the finite-state (``"unsteady"``) model and DOP853 for the
+        quasi-steady model. ETD2RK (:class:`flexsim.sim.fixed_step.ETD2RK`) is a fixed-step second-order
+        exponential integrator whose linear part is the Jacobian of the trim the episode starts from
+        (computed once per trim): it integrates ``rhs`` itself, treats the stiff finite-state inflow
+        states (eigenvalues down to about -650 1/s, |lambda| up to 1500 1/s on the GTM) and the
+        structural modes exactly to first order about the trim, and does not damp them numerically
+        (the 178 rad/s fin flutter mode keeps its growth rate), with 2 right-hand sides per step. DOP853
+        and Radau are ``scipy.integrate.solve_ivp`` methods with error control (``rtol``, :meth:`atol`);
+        Radau gets the constant trim Jacobian and damps lightly damped high-frequency modes (the fin
+        flutter amplitude after 5 s is 22 % low at the default tolerances). Measured in
+        ``benchmarks/bench_envs.py``; see ``docs/environments.md``.
     rtol : float
-        Relative tolerance (default 1e-3; the error is dominated by ``atol`` on the small states).
+        Relative tolerance of DOP853 and Radau (default 1e-3; the error is dominated by ``atol`` on the
+        small states). Not used by ETD2RK.
     atol_scale : float
-        Multiplies the per-state absolute tolerances of :meth:`atol` (default 10).
+        Multiplies the per-state absolute tolerances of :meth:`atol` (default 10). Not used by ETD2RK.
+    max_step_s : float
+        Largest step of ETD2RK [s], in [1e-4, 0.05] (default 0.005): each control period is split into
+        ``ceil(period / max_step_s)`` equal steps (4 per period at 50 Hz). Not used by DOP853 and Radau.
     """
 
     method: str = "auto"
     rtol: float = 1e-3
     atol_scale: float = 10.0
+    max_step_s: float = 0.005
 
     def __post_init__(self) -> None:
         if self.method not in INTEGRATOR_METHODS:
@@ -102,13 +117,26 @@ class IntegratorSettings:
             raise ValueError(f"rtol = {self.rtol!r}: must be in [1e-12, 1e-2]")
         object.__setattr__(self, "rtol", rtol)
         object.__setattr__(self, "atol_scale", _positive("atol_scale", self.atol_scale))
+        lo, hi = MAX_STEP_RANGE_S
+        step = _positive("max_step_s", self.max_step_s)
+        if not lo <= step <= hi:
+            raise ValueError(f"max_step_s = {self.max_step_s!r}: must be in [{lo:g}, {hi:g}] s")
+        object.__setattr__(self, "max_step_s", step)
 
     def resolve(self, aero: str, undamped_structure: bool = False) -> str:
-        """The solve_ivp method used for aerodynamic model ``aero``; ``undamped_structure`` asks for an
-        integrator without numerical damping of the high-frequency structural modes (DOP853)."""
+        """The method used for aerodynamic model ``aero``.
+
+        ``undamped_structure`` says that the task's subject is a lightly damped high-frequency structural
+        mode; both automatic choices (ETD2RK, DOP853) leave such modes undamped, so it does not change the
+        choice (it did when ``"auto"`` picked Radau for the finite-state model).
+        """
         if self.method != "auto":
             return self.method
-        return "Radau" if aero == "unsteady" and not undamped_structure else "DOP853"
+        return "ETD2RK" if aero == "unsteady" else "DOP853"
+
+    def substeps(self, period_s: float) -> int:
+        """Number of equal ETD2RK steps per control period of ``period_s`` [s]: ceil(period / max_step_s)."""
+        return max(1, math.ceil(period_s / self.max_step_s * (1.0 - 1e-12)))
 
     def atol(self, layout) -> np.ndarray:
         """Per-state absolute tolerances for a :class:`~flexsim.model.layout.StateLayout`.

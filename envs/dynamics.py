@@ -2,17 +2,21 @@
 
 :class:`FlightDynamics` is the only place where the environments touch the model. It holds one
 :class:`~flexsim.model.aircraft_model.AircraftModel` (whose ``rhs(t, x, u)`` is integrated unchanged),
-trims it with :func:`flexsim.trim.trim`, computes the constant Jacobian for Radau with
-:func:`flexsim.linear.linearize.jacobian`, and integrates a control period with
-``scipy.integrate.solve_ivp``:
+trims it with :func:`flexsim.trim.trim`, computes the Jacobian of the trim with
+:func:`flexsim.linear.linearize.jacobian` (once per trim, cached), and integrates a control period:
 
 * zero-order hold: the control vector is constant over the period;
 * actuator rate limits: the applied controls move towards the commanded ones by at most rate * dt per
   period (:meth:`FlightDynamics.rate_limit`), then are held;
-* a restart per period (the right-hand side changes with the controls), warm-started with
-  ``first_step`` = the step size the solver reached in the previous period, shortened so that a whole
-  number of steps fills the period (a clipped last step would make Radau factorise again);
-* a terminal event at altitude 0 (crash).
+* ETD2RK (:mod:`flexsim.sim.fixed_step`, the default for the finite-state model): a fixed number of
+  equal steps per period with the trim Jacobian as its linear part (its matrix functions are computed
+  once per trim); after every step the state is checked for non-finite values and for a crossing of
+  altitude 0 (crash), located by linear interpolation between the two steps;
+* DOP853 or Radau (``scipy.integrate.solve_ivp``): a restart per period (the right-hand side changes
+  with the controls), warm-started with ``first_step`` = the step size the solver reached in the
+  previous period, shortened so that a whole number of steps fills the period (a clipped last step
+  would make Radau factorise again); Radau gets the constant trim Jacobian; a terminal event at
+  altitude 0 (crash).
 
 :class:`Measurements` are the outputs the environments observe (air data, attitude, structural sensors)
 computed from the state; nothing here depends on gymnasium.
@@ -30,11 +34,12 @@ from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import speed_of_sound
 from flexsim.linear.linearize import jacobian
 from flexsim.model.aircraft_model import AircraftModel
+from flexsim.sim.fixed_step import ETD2RK
 from flexsim.structure.kinematics import dcm_321, euler_rate_matrix_inverse
 from flexsim.structure.shapes import bending_shapes, torsion_shapes
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
-from envs.config import ActuatorRates, IntegratorSettings
+from envs.config import FIXED_STEP_METHODS, ActuatorRates, IntegratorSettings
 
 __all__ = ["FlightDynamics", "Measurements", "StepOutcome", "WindHolder", "SENSOR_COMPONENTS"]
 
@@ -46,6 +51,12 @@ STRUCTURE_NODES = 9
 TRIM_CACHE = 16
 #: Remaining fraction of a period below which a solver stop counts as having reached its end.
 _SLIVER = 1e-12
+
+
+def _evict(cache: dict) -> None:
+    """Drop the oldest entries of an insertion-ordered cache beyond :data:`TRIM_CACHE`."""
+    while len(cache) > TRIM_CACHE:
+        del cache[next(iter(cache))]
 
 
 class WindHolder:
@@ -117,7 +128,9 @@ class StepOutcome:
     failure : str
         Empty, or why the integration failed (non-finite state, solver failure, model error).
     nfev, nlu : int
-        Right-hand-side evaluations and LU factorisations.
+        Right-hand-side evaluations and LU factorisations of the period (ETD2RK: 2 evaluations per step
+        and no factorisation; its matrix functions are computed once per trim, in
+        :meth:`FlightDynamics.start`).
     """
 
     x: np.ndarray
@@ -152,6 +165,7 @@ class FlightDynamics:
     aircraft : Aircraft
     aero : {"unsteady", "quasi-steady"}
     integrator : IntegratorSettings
+        Method and tolerances or step (``method="auto"`` resolved with ``aero`` and ``undamped_structure``).
     rates : ActuatorRates
     control_dt_s : float
         Control period [s].
@@ -161,6 +175,13 @@ class FlightDynamics:
     undamped_structure : bool
         The task needs the high-frequency structural modes free of numerical damping (see
         :meth:`IntegratorSettings.resolve`).
+
+    Attributes
+    ----------
+    method : str
+        The integration method in use.
+    substeps : int
+        ETD2RK steps per control period (0 for the ``solve_ivp`` methods).
     """
 
     def __init__(self, aircraft: Aircraft, aero: str, integrator: IntegratorSettings, rates: ActuatorRates,
@@ -177,16 +198,20 @@ class FlightDynamics:
         self.rtol = integrator.rtol
         self.atol = integrator.atol(self.layout)
         self.dt = float(control_dt_s)
+        self.substeps = integrator.substeps(self.dt) if self.method in FIXED_STEP_METHODS else 0
         lo, hi = aircraft.control_limits()
         self.u_low, self.u_high = lo, hi
         self.rate_limits = rates.limits(float(hi[0]))
         self._trims: dict[SteadyManoeuvre, TrimPoint] = {}
         self._jacobians: dict[SteadyManoeuvre, np.ndarray] = {}
+        self._steppers: dict[SteadyManoeuvre, ETD2RK] = {}
+        self._stepper: ETD2RK | None = None
         self._point_maps = {c.name: self.model.structure.point_maps(c.name, np.linspace(0.0, c.length_m, STRUCTURE_NODES))
                             for c in aircraft.components}
         self._jac = None
         self._h_next = None
         z = self.layout.position.start + 2
+        self._z = z
 
         def ground(t: float, y: np.ndarray, u: np.ndarray) -> float:
             return -y[z]
@@ -202,27 +227,39 @@ class FlightDynamics:
         if point is None:
             point = trim(self.model, manoeuvre)
         self._trims[manoeuvre] = point
-        while len(self._trims) > TRIM_CACHE:
-            del self._trims[next(iter(self._trims))]
+        _evict(self._trims)
         return point
 
     def start(self, manoeuvre: SteadyManoeuvre) -> None:
         """Prepare an episode flown about the trim of ``manoeuvre``; the wind field is reset to still air.
 
-        For Radau, the constant Jacobian d rhs / dx at that (still-air) trim is computed once and cached
-        per manoeuvre: it only steers the Newton iterations, the accuracy is set by the error control.
-        Install the episode's wind field after this call (``self.wind.field``).
+        For Radau and ETD2RK, the Jacobian d rhs / dx at that (still-air) trim is computed once and cached
+        per manoeuvre (:data:`TRIM_CACHE` of them): for Radau it only steers the Newton iterations (the
+        error control sets the accuracy); for ETD2RK it is the linear part, whose matrix functions for
+        the step ``dt / substeps`` are computed here too, once per manoeuvre. Install the episode's wind
+        field after this call (``self.wind.field``).
         """
         self._h_next = None
         if self.wind is not None:
             self.wind.field = None
-        if self.method != "Radau":
-            self._jac = None
+        self._jac, self._stepper = None, None
+        if self.method not in ("Radau", *FIXED_STEP_METHODS):
             return
-        if manoeuvre not in self._jacobians:
+        jac = self._jacobians.pop(manoeuvre, None)
+        if jac is None:
             point = self.trim(manoeuvre)
-            self._jacobians[manoeuvre] = jacobian(self.model, point.x, point.u)[0]
-        self._jac = self._jacobians[manoeuvre]
+            jac = jacobian(self.model, point.x, point.u)[0]
+        self._jacobians[manoeuvre] = jac
+        _evict(self._jacobians)
+        if self.method == "Radau":
+            self._jac = jac
+            return
+        stepper = self._steppers.pop(manoeuvre, None)
+        if stepper is None:
+            stepper = ETD2RK(jac, self.dt / self.substeps)
+        self._steppers[manoeuvre] = stepper
+        _evict(self._steppers)
+        self._stepper = stepper
 
     # ------------------------------------------------------------------ actuators
     def rate_limit(self, applied: np.ndarray, command: np.ndarray) -> np.ndarray:
@@ -232,7 +269,13 @@ class FlightDynamics:
 
     # ------------------------------------------------------------------ integration
     def advance(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float) -> StepOutcome:
-        """Integrate ``rhs`` from t0 to t1 [s] with the controls ``u`` held (zero-order hold)."""
+        """Integrate ``rhs`` from t0 to t1 [s] with the controls ``u`` held (zero-order hold).
+
+        With ETD2RK, t1 - t0 must be the control period ``dt`` (its step is fixed) and :meth:`start`
+        must have been called.
+        """
+        if self.substeps:
+            return self._advance_fixed(x, u, t0, t1)
         span = t1 - t0
         first = None if self._h_next is None else min(self._h_next, span)
         options = {"jac": self._jac} if self.method == "Radau" else {}
@@ -262,6 +305,35 @@ class FlightDynamics:
             self._h_next = span
         crashed = sol.status == 1
         return StepOutcome(sol.y[:, -1].copy(), float(sol.t[-1]), crashed, "", sol.nfev, sol.nlu)
+
+    def _advance_fixed(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float) -> StepOutcome:
+        """ETD2RK over one period: ``substeps`` equal steps, each checked for non-finite states and a crash."""
+        stepper = self._stepper
+        if stepper is None:
+            raise RuntimeError("advance() called before start(): ETD2RK needs the trim Jacobian")
+        span = t1 - t0
+        if not abs(span - self.dt) <= 1e-9 * self.dt:
+            raise ValueError(f"t1 - t0 = {span!r} s: ETD2RK steps whole control periods, must be dt = {self.dt!r} s")
+        k, z, h = self.substeps, self._z, stepper.h
+        rhs = self.model.rhs
+        nfev = 0
+        t = t0
+        for i in range(1, k + 1):
+            t_next = t1 if i == k else t0 + i * h
+            nfev += stepper.nfev_per_step
+            try:
+                with np.errstate(all="ignore"):
+                    x_next = stepper.step(rhs, t, x, (u,))
+            except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+                return StepOutcome(x.copy(), t, False, f"model error: {exc}", nfev)
+            if not np.all(np.isfinite(x_next)):
+                return StepOutcome(x.copy(), t, False, f"non-finite state: ETD2RK step {i} of {k} from t = {t:.6g} s", nfev)
+            if x_next[z] >= 0.0 > x[z]:
+                # altitude -x[z] crosses 0 within this step: the ground event, interpolated linearly
+                s = x[z] / (x[z] - x_next[z])
+                return StepOutcome(x + s * (x_next - x), t + s * (t_next - t), True, "", nfev)
+            x, t = x_next, t_next
+        return StepOutcome(x, t1, False, "", nfev)
 
     # ------------------------------------------------------------------ outputs
     def measure(self, x: np.ndarray, t: float) -> Measurements:

@@ -122,7 +122,9 @@ class GustAlleviationEnv(FlexSimEnv):
     As ``FlexSim/GTM-LevelHold-v0`` with ``task=GustAlleviationTask(...)``; ``turbulence`` default "none".
 
     ## Version History
-    * v0: initial version (flexsim issue 6).
+    * v0: initial version (flexsim issue 6); default integrator ETD2RK (5 ms steps) instead of Radau for
+      the finite-state model, same trajectories to within the integration error, several times faster
+      (docs/environments.md).
     """
 
     task_type = GustAlleviationTask
