@@ -23,9 +23,12 @@ args = parser.parse_args()
 ref = Path(args.reference)
 SCALE = {"wing_ei": 1.0, "wing_gj": 1.0, "fuselage_ei": 1.0, "fuselage_gj": 1.0, "htail_stiffness": 1.0, "vtail_stiffness": 1.0,
          "mass": 1.0}
+DAMPING = 0.0
 if args.calibration:
     with open(args.calibration, "rb") as fh:
-        fitted = tomllib.load(fh)["scaling"]
+        calibration = tomllib.load(fh)
+    fitted = calibration["scaling"]
+    DAMPING = float(calibration.get("fixed", {}).get("structural_damping_ratio", 0.0))
     unknown = sorted(set(fitted) - set(SCALE))
     if unknown:
         raise SystemExit(f"{args.calibration}: [scaling] {unknown[0]}: not one of {', '.join(SCALE)}")
@@ -56,6 +59,7 @@ w('schema_version = 1')
 w('name = "GTM-notional-A"' if args.calibration else 'name = "GTM-notional-A-uncalibrated"')
 if args.calibration:
     w('# stiffness factors (docs/calibration.md): ' + ", ".join(f"{k} = {v:.4g}" for k, v in SCALE.items()))
+    w(f'structural_damping_ratio = {DAMPING}   # modal damping of every elastic mode (assumed; the paper has none)')
 w('description = "Notional full-scale NASA GTM (757-200 class, 100 t) from public data; structure estimated, see gtm.md"')
 w('')
 w('[frame]')

@@ -462,6 +462,10 @@ class Aircraft:
     design_origin_m : ndarray, shape (3,), or None
         For files written in a design frame (x aft, y right, z up): the body origin o in that frame
         [m], so that results can be reported back in the file's axes.
+    structural_damping_ratio : float
+        Modal damping ratio zeta [-] of every clamped elastic mode (``StructuralModel.damping``), in
+        [0, 0.1]; 0 (the paper's undamped structure) unless the file sets it. Models built on the aircraft
+        use it unless given another value.
     """
 
     name: str
@@ -471,6 +475,7 @@ class Aircraft:
     description: str = ""
     source: str = "<python>"
     design_origin_m: np.ndarray | None = None
+    structural_damping_ratio: float = 0.0
 
     def to_design_frame(self, point_m: np.ndarray) -> np.ndarray:
         """A body-axes point [m] in the file's design frame (x aft, y right, z up) [m]."""
@@ -479,6 +484,7 @@ class Aircraft:
         return self.design_origin_m + np.array([-1.0, 1.0, -1.0]) * np.asarray(point_m, float)
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "structural_damping_ratio", _check_scalar("structural_damping_ratio", self.structural_damping_ratio, 0.0, 0.1))
         comps = tuple(self.components)
         names = [c.name for c in comps]
         if not comps:

@@ -43,7 +43,8 @@ def _flutter(args: argparse.Namespace) -> int:
     for k in keys:
         if k not in _MODELS:
             raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
-    cases = [StudyCase(args.aircraft, k, h, mach_min=args.mach_min, mach_max=args.mach_max) for k in keys for h in args.altitudes]
+    cases = [StudyCase(args.aircraft, k, h, mach_min=args.mach_min, mach_max=args.mach_max, structural_damping=args.structural_damping)
+             for k in keys for h in args.altitudes]
     rows = run_study(cases, workers=args.workers, progress=not args.json)
     if args.json:
         print(json.dumps(rows, indent=2))
@@ -70,9 +71,9 @@ def _sweep(args: argparse.Namespace) -> int:
     kind = "turn" if args.turn else "climb"
     models = [k.strip().upper() for k in args.models.split(",")]
     if kind == "turn":
-        cases = turn_cases(args.aircraft, altitudes_m=args.altitudes, models=models)
+        cases = turn_cases(args.aircraft, altitudes_m=args.altitudes, models=models, structural_damping=args.structural_damping)
     else:
-        cases = climb_cases(args.aircraft, altitudes_m=args.altitudes, models=models)
+        cases = climb_cases(args.aircraft, altitudes_m=args.altitudes, models=models, structural_damping=args.structural_damping)
     rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=True)
     out = Path(args.out)
     csv_path, json_path = write_results(rows, out, f"flutter_{kind}")
@@ -114,6 +115,8 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_fl.add_argument("--mach-min", type=float, default=0.5)
     p_fl.add_argument("--mach-max", type=float, default=0.95)
     p_fl.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="local processes [all cores]")
+    p_fl.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
+                      help="modal damping ratio of the elastic modes [the aircraft file's; 0 = the paper's undamped structure]")
     p_fl.set_defaults(func=_flutter)
 
     p_sw = sub.add_parser("sweep", help="flutter versus turn radius or climb angle (paper Figs. 7-16)")
@@ -125,5 +128,7 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_sw.add_argument("--models", default="QS,US")
     p_sw.add_argument("--scheduler", metavar="ADDRESS", help="Dask distributed scheduler (default: local processes)")
     p_sw.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    p_sw.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
+                      help="modal damping ratio of the elastic modes [the aircraft file's]")
     p_sw.add_argument("--out", default="logs/study", help="output folder for CSV, JSON and PNG [logs/study]")
     p_sw.set_defaults(func=_sweep)

@@ -89,11 +89,13 @@ class FlutterAnalysis:
         ``theodorsen`` is the paper's "US" model (p-k); ``unsteady`` the finite-state state space.
     n_inflow : int
         Finite-state inflow states per strip (``unsteady`` and the p-k input/output matrices).
-    structural_damping : float
-        Modal damping ratio of the clamped elastic modes (default 0, as the paper).
+    structural_damping : float, optional
+        Modal damping ratio of the clamped elastic modes (default None: the aircraft's
+        ``structural_damping_ratio``; 0 reproduces the paper's undamped structure).
     """
 
-    def __init__(self, aircraft: Aircraft, aero_model: str = "theodorsen", n_inflow: int = 6, structural_damping: float = 0.0) -> None:
+    def __init__(self, aircraft: Aircraft, aero_model: str = "theodorsen", n_inflow: int = 6,
+                 structural_damping: float | None = None) -> None:
         if aero_model not in AERO_MODELS:
             raise ValueError(f"aero_model = {aero_model!r}: must be one of {', '.join(AERO_MODELS)}")
         self.aircraft = aircraft

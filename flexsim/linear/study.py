@@ -46,6 +46,8 @@ class StudyCase:
         None for a glide.
     mach_min, mach_max : float
         Search range.
+    structural_damping : float or None
+        Modal damping ratio of the elastic modes; None uses the aircraft file's value.
     """
 
     aircraft: str
@@ -55,6 +57,7 @@ class StudyCase:
     climb_angle_deg: float | None = 0.0
     mach_min: float = 0.5
     mach_max: float = 0.95
+    structural_damping: float | None = None
 
     def __post_init__(self) -> None:
         if self.model not in MODELS:
@@ -62,15 +65,19 @@ class StudyCase:
 
 
 def turn_cases(aircraft: str, radii_m: Sequence[float] = tuple(range(5000, 12001, 1000)),
-               altitudes_m: Sequence[float] = PAPER_ALTITUDES_M, models: Sequence[str] = ("QS", "US")) -> list[StudyCase]:
+               altitudes_m: Sequence[float] = PAPER_ALTITUDES_M, models: Sequence[str] = ("QS", "US"),
+               structural_damping: float | None = None) -> list[StudyCase]:
     """Level turns of the paper's Figs. 7-10 (R = 5-12 km)."""
-    return [StudyCase(aircraft, m, h, turn_radius_m=float(r)) for m in models for h in altitudes_m for r in radii_m]
+    return [StudyCase(aircraft, m, h, turn_radius_m=float(r), structural_damping=structural_damping)
+            for m in models for h in altitudes_m for r in radii_m]
 
 
 def climb_cases(aircraft: str, angles_deg: Sequence[float] = tuple(range(-15, 16, 5)),
-                altitudes_m: Sequence[float] = PAPER_ALTITUDES_M, models: Sequence[str] = ("QS", "US")) -> list[StudyCase]:
+                altitudes_m: Sequence[float] = PAPER_ALTITUDES_M, models: Sequence[str] = ("QS", "US"),
+                structural_damping: float | None = None) -> list[StudyCase]:
     """Steady climbs and descents of the paper's Figs. 12-15 (gamma = -15 to 15 deg)."""
-    return [StudyCase(aircraft, m, h, climb_angle_deg=float(g)) for m in models for h in altitudes_m for g in angles_deg]
+    return [StudyCase(aircraft, m, h, climb_angle_deg=float(g), structural_damping=structural_damping)
+            for m in models for h in altitudes_m for g in angles_deg]
 
 
 def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None) -> dict:
@@ -83,7 +90,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None) ->
     row = asdict(case)
     gamma = None if case.climb_angle_deg is None else math.radians(case.climb_angle_deg)
     try:
-        analysis = analysis or FlutterAnalysis(load_aircraft(case.aircraft), MODELS[case.model])
+        analysis = analysis or FlutterAnalysis(load_aircraft(case.aircraft), MODELS[case.model], structural_damping=case.structural_damping)
         start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_min)
         man = SteadyManoeuvre(start.speed_m_s, case.altitude_m, case.turn_radius_m, gamma)
         fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_guess=mach_guess)
@@ -110,7 +117,8 @@ def run_chain(cases: Sequence[StudyCase]) -> list[dict]:
     from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.linear.flutter import FlutterAnalysis
 
-    analysis = FlutterAnalysis(load_aircraft(cases[0].aircraft), MODELS[cases[0].model]) if cases else None
+    analysis = (FlutterAnalysis(load_aircraft(cases[0].aircraft), MODELS[cases[0].model], structural_damping=cases[0].structural_damping)
+                if cases else None)
     rows, guess = [], None
     for case in cases:
         row = run_case(case, mach_guess=guess, analysis=analysis)
@@ -139,7 +147,7 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
     cases = list(cases)
     chains: dict[tuple, list[int]] = {}
     for i, c in enumerate(cases):
-        chains.setdefault((c.aircraft, c.model, c.altitude_m), []).append(i)
+        chains.setdefault((c.aircraft, c.model, c.altitude_m, c.structural_damping), []).append(i)
     groups = list(chains.values())
     bar = tqdm(total=len(cases), desc="flutter points", disable=None if progress else True)
     rows: list[dict | None] = [None] * len(cases)

@@ -82,7 +82,8 @@ class AircraftModel:
     frozen_q, frozen_xi : array_like, optional
         Values of the elastic coordinates of a quasi-rigid model [m], [rad] (default zero).
     structural_damping : float, optional
-        Modal damping ratio zeta of every clamped elastic mode, 0 <= zeta < 1 (default 0, as the paper).
+        Modal damping ratio zeta of every clamped elastic mode, 0 <= zeta < 1 (default None: the
+        aircraft's ``structural_damping_ratio``, 0 unless its file sets it; the paper's structure is undamped).
     wind : callable, optional
         Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)``: air velocity [m/s] in inertial
         north-east-down axes at the given inertial positions (k, 3) of the aerodynamic strips at time
@@ -109,7 +110,7 @@ class AircraftModel:
         frozen_q: np.ndarray | None = None,
         frozen_xi: np.ndarray | None = None,
         wind=None,
-        structural_damping: float = 0.0,
+        structural_damping: float | None = None,
     ) -> None:
         try:
             self.variant = Variant(variant)
@@ -121,6 +122,8 @@ class AircraftModel:
             raise ValueError(f"gravity_m_s2 = {gravity_m_s2!r}: must be a finite number >= 0")
         self.aircraft = aircraft
         self.structure = StructuralModel(aircraft)
+        if structural_damping is None:
+            structural_damping = aircraft.structural_damping_ratio
         if not (np.isfinite(structural_damping) and 0.0 <= structural_damping < 1.0):
             raise ValueError(f"structural_damping = {structural_damping!r}: must be a damping ratio in [0, 1)")
         self.structural_damping = float(structural_damping)

@@ -59,6 +59,7 @@ CASES = [
     ("schema version", ("schema_version = 1", "schema_version = 7"), r"schema_version = 7: this flexsim reads version 1"),
     ("toml syntax", ("length_m = 5.0", "length_m = = 5.0"), r"not valid TOML"),
     ("negative lumped mass", ("mass_kg = 50.0", "mass_kg = -50.0"), r"lumped_masses\.tip_store\.mass_kg = -50\.0: must be in \(0\.0, inf\]"),
+    ("damping out of range", ("name = \"test wing\"", "name = \"test wing\"\nstructural_damping_ratio = 0.5"), r"structural_damping_ratio = 0\.5: must be in \[0\.0, 0\.1\]"),
     ("wrong control surface", ("[[lumped_masses]]", "[components.right_wing.control_surface]\nkind = \"rudder\"\nhinge_fraction = 0.7\nstart_m = 1.0\nend_m = 4.0\n\n[[lumped_masses]]"), r"control_surface\.kind = 'rudder': must be 'aileron' on right_wing"),
 ]
 
