@@ -1,14 +1,18 @@
-"""Speed of the gymnasium environments: steps per second at 50 Hz, solver choice, async speed-up.
+"""Speed of the gymnasium environments: steps per second at 50 Hz, integrator choice, async speed-up.
 
 1. Steps per second of one FlexSim/GTM-LevelHold-v0 (GTM m = n = 2, light turbulence) at the default
-   50 Hz control rate, for each aerodynamic model and integrator (DOP853; Radau with the constant
-   Jacobian of the trim), median over ``--repeats`` runs of ``--steps`` steps, with the right-hand-side
-   evaluations and LU factorisations per step; plus the accuracy of each choice over 25 periods
-   against DOP853 at rtol 1e-10 (altitude, pitch, tip deflection). Budget: >= 200 steps/s.
-   The flutter fidelity: over 5 s of open-loop FlexSim/GTM-FlutterMargin-v0 (fin flutter growing at
-   0.2 1/s), the fin tip twist amplitude of each method against the tight reference.
-2. Async speed-up: env steps per second of ``gymnasium.make_vec(..., num_envs=2)`` in "async" mode over
-   "sync" mode (2 cores; workers pin OpenBLAS to one thread).
+   50 Hz control rate, for each aerodynamic model and integrator: ETD2RK (fixed 5 ms steps, and 10 ms,
+   linear part the trim Jacobian), DOP853, Radau (constant trim Jacobian). Median over ``--repeats``
+   runs of ``--steps`` steps; the repeats of all integrators are interleaved (repeat 1 of each, then
+   repeat 2, ...) so that a drifting machine load affects them alike. Also the right-hand-side
+   evaluations and LU factorisations per step, the share of the step spent outside the integrator
+   (observation, reward, measurements), and the accuracy of each choice over 25 periods against DOP853
+   at rtol 1e-10 (altitude, pitch, tip deflection). Budget: >= 200 steps/s (unsteady aero).
+2. The flutter fidelity: over 5 s of open-loop FlexSim/GTM-FlutterMargin-v0 (fin flutter growing at
+   0.2 1/s), the fin tip twist amplitude of each integrator against the tight reference, and steps/s.
+3. Async speed-up: env steps per second of ``gymnasium.make_vec(..., num_envs=2)`` in "async" mode over
+   "sync" mode, default settings (2 cores; workers pin OpenBLAS to one thread), median of 3 alternating
+   runs of each.
 
 Run: python benchmarks/bench_envs.py [--repeats 5] [--steps 200]
 """
@@ -16,6 +20,7 @@ Run: python benchmarks/bench_envs.py [--repeats 5] [--steps 200]
 from __future__ import annotations
 
 import argparse
+import datetime
 import os
 import statistics
 import time
@@ -30,6 +35,13 @@ import envs  # noqa: E402
 
 ENV_ID = "FlexSim/GTM-LevelHold-v0"
 BUDGET_STEPS_S = 200.0
+#: (label, settings) of the integrators compared.
+INTEGRATORS = (
+    ("ETD2RK", envs.IntegratorSettings(method="ETD2RK")),
+    ("ETD2RK 10ms", envs.IntegratorSettings(method="ETD2RK", max_step_s=0.01)),
+    ("DOP853", envs.IntegratorSettings(method="DOP853")),
+    ("Radau", envs.IntegratorSettings(method="Radau")),
+)
 
 
 def _actions(trim: np.ndarray, n: int, seed: int) -> np.ndarray:
@@ -37,32 +49,56 @@ def _actions(trim: np.ndarray, n: int, seed: int) -> np.ndarray:
     return np.clip(trim + rng.normal(0.0, 0.02, (n, 4)), [0, -1, -1, -1], [1, 1, 1, 1]).astype(np.float32)
 
 
-def steps_per_second(aero: str, method: str, repeats: int, steps: int) -> dict[str, float]:
-    """Median steps/s, nfev and LU factorisations per step of one env."""
-    env = gym.make(ENV_ID, aero=aero, integrator=envs.IntegratorSettings(method=method), max_episode_steps=10 * steps)
-    rates, nfev, nlu = [], [], []
-    for r in range(repeats):
-        _, info = env.reset(seed=r)
-        actions = _actions(info["trim_action"], steps, r)
-        calls = lus = 0
+class _Timed:
+    """Wraps ``FlightDynamics.advance`` to add up the time spent in the integrator."""
+
+    def __init__(self, advance) -> None:
+        self.advance, self.seconds = advance, 0.0
+
+    def __call__(self, *args):
         t0 = time.perf_counter()
-        for a in actions:
-            _, _, terminated, truncated, info = env.step(a)
-            calls += info["nfev"]
-            lus += info["nlu"]
-            if terminated or truncated:
-                raise RuntimeError(f"episode ended early ({info.get('termination_reason')}) in the benchmark")
-        rates.append(steps / (time.perf_counter() - t0))
-        nfev.append(calls / steps)
-        nlu.append(lus / steps)
-    env.close()
-    return {"steps_s": statistics.median(rates), "min": min(rates), "max": max(rates), "nfev": statistics.median(nfev),
-            "nlu": statistics.median(nlu)}
+        out = self.advance(*args)
+        self.seconds += time.perf_counter() - t0
+        return out
 
 
-def accuracy(aero: str, method: str, periods: int = 25) -> np.ndarray:
+def steps_per_second(aero: str, repeats: int, steps: int) -> dict[str, dict[str, float]]:
+    """Per integrator label: median steps/s (min, max), nfev and LU per step, share of time outside ``advance``."""
+    made = {label: gym.make(ENV_ID, aero=aero, integrator=settings, max_episode_steps=10 * steps) for label, settings in INTEGRATORS}
+    timers = {}
+    for label, env in made.items():
+        dyn = env.unwrapped.dynamics
+        timers[label] = dyn.advance = _Timed(dyn.advance)
+        env.reset(seed=0)  # trim, Jacobian and matrix functions outside the timed runs
+    runs = {label: {"rate": [], "nfev": [], "nlu": [], "outside": []} for label in made}
+    for r in range(repeats):
+        for label, env in made.items():
+            _, info = env.reset(seed=r)
+            actions = _actions(info["trim_action"], steps, r)
+            calls = lus = 0
+            timers[label].seconds = 0.0
+            t0 = time.perf_counter()
+            for a in actions:
+                _, _, terminated, truncated, info = env.step(a)
+                calls += info["nfev"]
+                lus += info["nlu"]
+                if terminated or truncated:
+                    raise RuntimeError(f"episode ended early ({info.get('termination_reason')}) in the benchmark")
+            elapsed = time.perf_counter() - t0
+            runs[label]["rate"].append(steps / elapsed)
+            runs[label]["nfev"].append(calls / steps)
+            runs[label]["nlu"].append(lus / steps)
+            runs[label]["outside"].append(1.0 - timers[label].seconds / elapsed)
+    for env in made.values():
+        env.close()
+    return {label: {"steps_s": statistics.median(v["rate"]), "min": min(v["rate"]), "max": max(v["rate"]),
+                    "nfev": statistics.median(v["nfev"]), "nlu": statistics.median(v["nlu"]),
+                    "outside": statistics.median(v["outside"])} for label, v in runs.items()}
+
+
+def accuracy(aero: str, settings: envs.IntegratorSettings, periods: int = 25) -> np.ndarray:
     """Largest |error| of altitude [m], pitch [rad], wing-tip deflection [m] against DOP853 rtol 1e-10."""
-    env = gym.make(ENV_ID, aero=aero, turbulence="none", integrator=envs.IntegratorSettings(method=method))
+    env = gym.make(ENV_ID, aero=aero, turbulence="none", integrator=settings)
     _, info = env.reset(seed=5)
     base = env.unwrapped
     dyn = base.dynamics
@@ -80,10 +116,10 @@ def accuracy(aero: str, method: str, periods: int = 25) -> np.ndarray:
     return worst
 
 
-def flutter_fidelity(method: str, periods: int = 250) -> tuple[float, float, float]:
+def flutter_fidelity(settings: envs.IntegratorSettings, periods: int = 250) -> tuple[float, float, float]:
     """Open-loop FlexSim/GTM-FlutterMargin-v0 (trim controls held) for ``periods``: largest |fin tip twist|
-    over the last 0.5 s with ``method`` and with DOP853 at rtol 1e-10 [rad], and steps/s."""
-    env = gym.make("FlexSim/GTM-FlutterMargin-v0", integrator=envs.IntegratorSettings(method=method), max_episode_steps=10 * periods)
+    over the last 0.5 s with ``settings`` and with DOP853 at rtol 1e-10 [rad], and steps/s."""
+    env = gym.make("FlexSim/GTM-FlutterMargin-v0", integrator=settings, max_episode_steps=10 * periods)
     _, info = env.reset(seed=0)
     base = env.unwrapped
     dyn = base.dynamics
@@ -102,18 +138,22 @@ def flutter_fidelity(method: str, periods: int = 250) -> tuple[float, float, flo
     return float(amp[0]), float(amp[1]), periods / elapsed
 
 
-def vector_rate(mode: str, steps: int) -> float:
-    """Env steps per second (both sub-envs counted) of a 2-env vector env."""
-    venv = gym.make_vec(ENV_ID, num_envs=2, vectorization_mode=mode, max_episode_steps=10 * steps)
-    _, info = venv.reset(seed=[0, 1])
-    actions = _actions(info["trim_action"][0], steps, 0)
-    venv.step(np.stack([actions[0]] * 2))  # warm up (Jacobian, first solver start)
-    t0 = time.perf_counter()
-    for a in actions:
-        venv.step(np.stack([a, a]))
-    rate = 2 * steps / (time.perf_counter() - t0)
-    venv.close()
-    return rate
+def vector_rates(steps: int, repeats: int = 3) -> tuple[float, float]:
+    """Median env steps per second (both sub-envs counted) of a 2-env vector env, sync and async, default
+    settings; the two modes alternate ``repeats`` times (process start-up, reset and one warm-up step excluded)."""
+    rates: dict[str, list[float]] = {"sync": [], "async": []}
+    for _ in range(repeats):
+        for mode in rates:
+            venv = gym.make_vec(ENV_ID, num_envs=2, vectorization_mode=mode, max_episode_steps=10 * steps)
+            _, info = venv.reset(seed=[0, 1])
+            actions = _actions(info["trim_action"][0], steps, 0)
+            venv.step(np.stack([actions[0]] * 2))
+            t0 = time.perf_counter()
+            for a in actions:
+                venv.step(np.stack([a, a]))
+            rates[mode].append(2 * steps / (time.perf_counter() - t0))
+            venv.close()
+    return statistics.median(rates["sync"]), statistics.median(rates["async"])
 
 
 def main() -> None:
@@ -121,23 +161,29 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--steps", type=int, default=200)
     args = parser.parse_args()
-    print(f"{ENV_ID}, GTM m = n = 2, light turbulence, 50 Hz; median of {args.repeats} runs x {args.steps} steps")
-    print(f"{'aero':13s} {'method':7s} {'steps/s':>8s} {'(min-max)':>14s} {'nfev/step':>9s} {'LU/step':>7s}   "
+    print(f"{datetime.date.today()}: {ENV_ID}, GTM m = n = 2, light turbulence, 50 Hz; median of {args.repeats} interleaved "
+          f"runs x {args.steps} steps; {os.cpu_count()} cores")
+    print(f"{'aero':13s} {'method':11s} {'steps/s':>8s} {'(min-max)':>14s} {'nfev/step':>9s} {'LU/step':>7s} {'outside':>7s}   "
           f"accuracy over 0.5 s: altitude [m], pitch [rad], tip [m]")
+    unsteady = {}
     for aero in ("unsteady", "quasi-steady"):
-        for method in ("DOP853", "Radau"):
-            r = steps_per_second(aero, method, args.repeats, args.steps)
-            err = accuracy(aero, method)
-            auto = " (default)" if envs.IntegratorSettings().resolve(aero) == method else ""
-            print(f"{aero:13s} {method:7s} {r['steps_s']:8.1f} {r['min']:6.1f}-{r['max']:6.1f} {r['nfev']:9.1f} {r['nlu']:7.1f}   "
-                  f"{err[0]:.1e}, {err[1]:.1e}, {err[2]:.1e}{auto}", flush=True)
-    print(f"budget: {BUDGET_STEPS_S:.0f} steps/s (one env, unsteady aero)")
+        rates = steps_per_second(aero, args.repeats, args.steps)
+        if aero == "unsteady":
+            unsteady = rates
+        for label, settings in INTEGRATORS:
+            r = rates[label]
+            err = accuracy(aero, settings)
+            auto = " (default)" if envs.IntegratorSettings().resolve(aero) == settings.method and settings.max_step_s == 0.005 else ""
+            print(f"{aero:13s} {label:11s} {r['steps_s']:8.1f} {r['min']:6.1f}-{r['max']:6.1f} {r['nfev']:9.1f} {r['nlu']:7.1f} "
+                  f"{100 * r['outside']:6.1f}%   {err[0]:.1e}, {err[1]:.1e}, {err[2]:.1e}{auto}", flush=True)
+    print(f"budget: {BUDGET_STEPS_S:.0f} steps/s (one env, unsteady aero); ETD2RK / Radau = "
+          f"{unsteady['ETD2RK']['steps_s'] / unsteady['Radau']['steps_s']:.2f}, ETD2RK / DOP853 = "
+          f"{unsteady['ETD2RK']['steps_s'] / unsteady['DOP853']['steps_s']:.2f} (medians of the same run)")
     print("flutter fidelity, FlexSim/GTM-FlutterMargin-v0 open loop, 5 s: fin tip twist amplitude over the last 0.5 s")
-    for method in ("DOP853", "Radau"):
-        amp, ref, rate = flutter_fidelity(method)
-        print(f"  {method:7s} {amp:.3e} rad vs reference {ref:.3e} rad ({100 * (amp / ref - 1):+.1f} %), {rate:.1f} steps/s", flush=True)
-    sync = vector_rate("sync", args.steps)
-    asyn = vector_rate("async", args.steps)
+    for label, settings in INTEGRATORS:
+        amp, ref, rate = flutter_fidelity(settings)
+        print(f"  {label:11s} {amp:.3e} rad vs reference {ref:.3e} rad ({100 * (amp / ref - 1):+.1f} %), {rate:.1f} steps/s", flush=True)
+    sync, asyn = vector_rates(args.steps)
     print(f"vector env, 2 envs, default settings: sync {sync:.1f} env-steps/s, async {asyn:.1f} env-steps/s, "
           f"speed-up {asyn / sync:.2f} (on {os.cpu_count()} cores)")
 
