@@ -47,10 +47,14 @@ class FlutterPoint:
         The crossing mode.
     mode_shape : ndarray (complex), shape (n_v,)
         Displacement amplitudes over [R, Theta, q, xi]-rates order of V (eq. 9), i.e. shape / lambda,
-        normalised so that the fuselage's first bending coordinate q_f1 = 1 m (paper Figs. 11, 16); by the
-        largest elastic coordinate when there is no flexible fuselage.
+        normalised so that the fuselage's first bending coordinate q_f1 = 1 m (paper Figs. 11, 16) when
+        it takes part (|q_f1| >= 1e-3 of the largest elastic amplitude); otherwise (an antisymmetric mode
+        in symmetric flight, where q_f1 vanishes by symmetry, or no flexible fuselage) so that the
+        largest elastic coordinate is 1.
     labels : tuple of str
         DOF label of every entry of ``mode_shape``.
+    normalised_by : str
+        Label of the coordinate set to 1 in ``mode_shape``.
     rigid_instabilities : tuple of (float, complex, str)
         (Mach, eigenvalue, dominant DOF) of unstable rigid-body modes met during the search.
     evaluations : int
@@ -67,16 +71,23 @@ class FlutterPoint:
     labels: tuple[str, ...]
     rigid_instabilities: tuple = field(default=())
     evaluations: int = 0
+    normalised_by: str = ""
 
 
-def _normalised_shape(model: AircraftModel, mode: Mode) -> np.ndarray:
+#: Smallest |q_f1| relative to the largest elastic amplitude for which the mode is normalised by q_f1.
+Q_F1_PARTICIPATION = 1e-3
+
+
+def _normalised_shape(model: AircraftModel, mode: Mode) -> tuple[np.ndarray, int]:
+    """Mode displacements normalised as in the paper (q_f1 = 1 m), see :attr:`FlutterPoint.mode_shape`."""
     disp = mode.shape / mode.eigenvalue
     dofs = model.structure.dofs
-    fus = dofs.v_bending("fuselage") if "fuselage" in dofs.component_names else slice(0, 0)
-    if fus.stop > fus.start and abs(disp[fus.start]) > 1e-12 * np.abs(disp).max():
-        return disp / disp[fus.start]
     el = disp[6:]
-    return disp / el[np.argmax(np.abs(el))]
+    largest = 6 + int(np.argmax(np.abs(el)))
+    fus = dofs.v_bending("fuselage") if "fuselage" in dofs.component_names else slice(0, 0)
+    if fus.stop > fus.start and abs(disp[fus.start]) >= Q_F1_PARTICIPATION * abs(disp[largest]):
+        return disp / disp[fus.start], fus.start
+    return disp / disp[largest], largest
 
 
 class FlutterAnalysis:
@@ -207,6 +218,7 @@ class FlutterAnalysis:
     def _point(self, manoeuvre: SteadyManoeuvre, mach_f: float, a_sound: float, state: dict) -> FlutterPoint:
         point, spec = self.evaluate(manoeuvre.with_speed(mach_f * a_sound))
         mode = spec.critical("elastic")
+        shape, ref = _normalised_shape(self.qs, mode)
         return FlutterPoint(
             aero_model=self.aero_model,
             mach=float(mach_f),
@@ -214,8 +226,9 @@ class FlutterAnalysis:
             frequency_rad_s=mode.frequency_rad_s,
             trim=point,
             mode=mode,
-            mode_shape=_normalised_shape(self.qs, mode),
+            mode_shape=shape,
             labels=self.qs.structure.dofs.labels,
+            normalised_by=self.qs.structure.dofs.labels[ref],
             rigid_instabilities=tuple(state["rigid"]),
             evaluations=state["n"] + 1,
         )

@@ -54,9 +54,11 @@ def test_uniform_stiffness_scale_scales_frequencies_by_its_square_root(base):
 def test_bundled_gtm_is_the_uncalibrated_one_with_the_fitted_factors(base):
     """gtm.toml = gtm_uncalibrated.toml x tools/gtm_calibration.toml (6 significant digits in the files: 1e-5)."""
     with open(CALIBRATION_FILE, "rb") as fh:
-        factors = tomllib.load(fh)["scaling"]
-    expected = StructuralScaling(**factors).apply(base)
+        calibration = tomllib.load(fh)
+    expected = StructuralScaling(**calibration["scaling"]).apply(base)
     gtm = load_aircraft("gtm")
+    assert base.structural_damping_ratio == 0.0
+    assert gtm.structural_damping_ratio == calibration["fixed"]["structural_damping_ratio"]
     for c0, c1 in zip(expected.components, gtm.components):
         for name in ("ei_nm2", "gj_nm2", "mass_kg_per_m", "torsional_inertia_kg_m", "cg_offset_m", "chord_m", "ea_fraction"):
             np.testing.assert_allclose(getattr(c1.sections, name), getattr(c0.sections, name), rtol=1e-5, err_msg=f"{c0.name}.{name}")

@@ -44,7 +44,7 @@ def _perturbed_state(model, seed=1):
 
 
 def test_energy_and_momenta_conserved_in_vacuum(gtm):
-    model = AircraftModel(gtm, gravity_m_s2=0.0, aero=None)
+    model = AircraftModel(gtm, gravity_m_s2=0.0, aero=None, structural_damping=0.0)  # conservative: no damping
     x0 = _perturbed_state(model)
     sol = solve_ivp(model.rhs, (0.0, 10.0), x0, args=(np.zeros(4),), method="DOP853", rtol=1e-8, atol=1e-10)
     assert sol.success
@@ -63,7 +63,7 @@ def test_energy_and_momenta_conserved_in_vacuum(gtm):
 def test_free_fall_accelerates_at_g_without_rotation_or_deformation(gtm):
     # Exact result: with G(q) [g_b; 0] = [C_i g_b; 0], gravity gives M V_dot = M [g_b; 0], so
     # V_dot = [g_b, 0, ...]: the inertial velocity grows as g t along Z, nothing else moves.
-    model = AircraftModel(gtm, aero=None)
+    model = AircraftModel(gtm, aero=None, structural_damping=0.0)
     x0 = model.pack(euler_rad=[0.2, -0.1, 0.5])
     dx = model.rhs(0.0, x0, np.zeros(4))
     lay = model.layout
