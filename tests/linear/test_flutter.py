@@ -19,6 +19,7 @@ import pytest
 
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound, wind_tunnel_flutter
+from flexsim.linear.paper_data import TABLE_US
 from flexsim.linear.stability import spectrum
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.trim import SteadyManoeuvre, trim
@@ -103,3 +104,20 @@ def test_no_crossing_is_reported_clearly():
         analysis.search(SteadyManoeuvre.level(9144.0, mach=0.6), mach_range=(0.55, 0.65), mach_step=0.05)
     with pytest.raises(ValueError, match="aero_model = 'wake'"):
         FlutterAnalysis(load_aircraft("gtm"), "wake")
+
+
+@pytest.mark.parametrize("altitude_m, mach_range", [(0.0, (0.65, 0.75)), (3048.0, (0.7, 0.8))])
+def test_calibrated_gtm_us_flutter_within_3_percent_of_table_3(altitude_m, mach_range):
+    """Paper Table 3 (US): M_F 0.6742 at 0 m, 0.7433 (34.923 rad/s) at 3048 m; docs/calibration.md.
+
+    The two altitudes the calibration meets (3 % in Mach, 10 % in frequency at 3048 m); 6096 and 9144 m
+    are +11.6 % and +17.1 % (documented, not asserted). Finite state and p-k agree within 2 % (issue 4).
+    """
+    paper = {row[0]: row for row in TABLE_US}[altitude_m]
+    gtm = load_aircraft("gtm")
+    pk = FlutterAnalysis(gtm, "theodorsen").search(SteadyManoeuvre.level(altitude_m, mach=0.7), mach_range=mach_range)
+    fs = FlutterAnalysis(gtm, "unsteady").search(SteadyManoeuvre.level(altitude_m, mach=0.7), mach_range=mach_range)
+    assert pk.mach == pytest.approx(paper[1], rel=0.03)
+    assert fs.mach == pytest.approx(pk.mach, rel=0.02)
+    if altitude_m > 0.0:  # the paper's sea-level point is another mode (17.8 rad/s)
+        assert pk.frequency_rad_s == pytest.approx(paper[2], rel=0.10)
