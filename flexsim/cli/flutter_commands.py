@@ -50,7 +50,8 @@ def _flutter(args: argparse.Namespace) -> int:
         print(json.dumps(rows, indent=2))
         return 0
     paper = {"QS": TABLE_QS, "US": TABLE_US, "FS": TABLE_US}
-    print(f"Flutter in steady level flight, {args.aircraft} (notional GTM: structure estimated from public data)")
+    print(f"Flutter in steady level flight, {args.aircraft} (the bundled GTM is notional: structure estimated from public data, "
+          "calibrated to Table 3 — docs/calibration.md)")
     header = f"{'':>4} {'h [m]':>7} {'M_F':>7} {'w_F':>8} {'theta':>7} {'T_e kN':>8} {'d_e':>7} {'w_tip m':>8} {'psi_tip':>8}"
     for key in keys:
         print(f"\n{key} ({_MODELS[key]}) — flexsim vs paper Table {'2' if key == 'QS' else '3'}")
@@ -64,6 +65,8 @@ def _flutter(args: argparse.Namespace) -> int:
                       f"{row['thrust_kN']:8.2f} {row['elevator_deg']:7.3f} {row['tip_deflection_m']:8.4f} {row['tip_twist_deg']:8.4f}   ({row['mode']})")
             if ref:
                 print(f"{'pap.':>4} {ref[0]:7.0f} {ref[1]:7.4f} {ref[2]:8.3f} {ref[3]:7.3f} {ref[4]:8.2f} {ref[5]:7.3f} {ref[6]:8.4f} {ref[7]:8.4f}")
+                if "error" not in row:
+                    print(f"{'diff':>4} {'':7} {100 * (row['mach'] / ref[1] - 1):+6.1f}% {100 * (row['omega_rad_s'] / ref[2] - 1):+7.1f}%")
     return 0
 
 
