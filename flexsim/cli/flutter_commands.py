@@ -88,11 +88,13 @@ def _sweep(args: argparse.Namespace) -> int:
     ok = sum("mach" in r for r in rows)
     print(f"{ok}/{len(rows)} flutter points; results: {csv_path}, {json_path}; figures: {', '.join(map(str, figures))}")
     if kind == "climb":
-        glide = glide_from_climb(rows)
-        if glide:
-            print(f"glide at 9144 m (T_e = 0 on the US climb curve): gamma = {glide['gamma_deg']:.2f} deg, "
-                  f"M_F = {glide['mach']:.4f}, omega_F = {glide['omega_rad_s']:.3f} rad/s "
-                  f"(paper: {GLIDE_9144[0]} deg, {GLIDE_9144[1]}, {GLIDE_9144[2]} rad/s)")
+        for model in models:
+            for h in args.altitudes:
+                glide = glide_from_climb(rows, model=model, altitude_m=h)
+                if glide:
+                    paper = f" (paper: {GLIDE_9144[0]} deg, {GLIDE_9144[1]}, {GLIDE_9144[2]} rad/s)" if h == 9144.0 and model == "US" else ""
+                    print(f"glide at {h:.0f} m (T_e = 0 on the {model} climb curve): gamma = {glide['gamma_deg']:.2f} deg, "
+                          f"M_F = {glide['mach']:.4f}, omega_F = {glide['omega_rad_s']:.3f} rad/s{paper}")
     for r in rows:
         if "error" in r:
             print(f"  no flutter point: {r['model']} h={r['altitude_m']:.0f} R={r['turn_radius_m']} gamma={r['climb_angle_deg']}: {r['error'][:100]}")
