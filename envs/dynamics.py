@@ -318,21 +318,21 @@ class FlightDynamics:
         rhs = self.model.rhs
         nfev = 0
         t = t0
-        for i in range(1, k + 1):
-            t_next = t1 if i == k else t0 + i * h
-            nfev += stepper.nfev_per_step
-            try:
-                with np.errstate(all="ignore"):
+        with np.errstate(all="ignore"):
+            for i in range(1, k + 1):
+                t_next = t1 if i == k else t0 + i * h
+                nfev += stepper.nfev_per_step
+                try:
                     x_next = stepper.step(rhs, t, x, (u,))
-            except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
-                return StepOutcome(x.copy(), t, False, f"model error: {exc}", nfev)
-            if not np.all(np.isfinite(x_next)):
-                return StepOutcome(x.copy(), t, False, f"non-finite state: ETD2RK step {i} of {k} from t = {t:.6g} s", nfev)
-            if x_next[z] >= 0.0 > x[z]:
-                # altitude -x[z] crosses 0 within this step: the ground event, interpolated linearly
-                s = x[z] / (x[z] - x_next[z])
-                return StepOutcome(x + s * (x_next - x), t + s * (t_next - t), True, "", nfev)
-            x, t = x_next, t_next
+                except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+                    return StepOutcome(x.copy(), t, False, f"model error: {exc}", nfev)
+                if not np.all(np.isfinite(x_next)):
+                    return StepOutcome(x.copy(), t, False, f"non-finite state: ETD2RK step {i} of {k} from t = {t:.6g} s", nfev)
+                if x_next[z] >= 0.0 > x[z]:
+                    # altitude -x[z] crosses 0 within this step: the ground event, interpolated linearly
+                    s = x[z] / (x[z] - x_next[z])
+                    return StepOutcome(x + s * (x_next - x), t + s * (t_next - t), True, "", nfev)
+                x, t = x_next, t_next
         return StepOutcome(x, t1, False, "", nfev)
 
     # ------------------------------------------------------------------ outputs
