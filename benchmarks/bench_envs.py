@@ -9,10 +9,11 @@
    (observation, reward, measurements), and the accuracy of each choice over 25 periods against DOP853
    at rtol 1e-10 (altitude, pitch, tip deflection). Budget: >= 200 steps/s (unsteady aero).
 2. The flutter fidelity: over 5 s of open-loop FlexSim/GTM-FlutterMargin-v0 (fin flutter growing at
-   0.2 1/s), the fin tip twist amplitude of each integrator against the tight reference, and steps/s.
+   about 0.25 1/s), the fin tip twist amplitude of each integrator against the tight reference, and steps/s.
 3. Async speed-up: env steps per second of ``gymnasium.make_vec(..., num_envs=2)`` in "async" mode over
-   "sync" mode, default settings (2 cores; workers pin OpenBLAS to one thread), median of 3 alternating
-   runs of each.
+   "sync" mode, default settings (2 cores; workers pin OpenBLAS to one thread), median of the ratios of 5
+   alternating runs of each, with the number of cores other processes kept busy meanwhile (the speed-up needs a
+   free core per worker).
 
 Run: python benchmarks/bench_envs.py [--repeats 5] [--steps 200]
 """
@@ -21,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import datetime
+import math
 import os
 import statistics
 import time
@@ -138,22 +140,47 @@ def flutter_fidelity(settings: envs.IntegratorSettings, periods: int = 250) -> t
     return float(amp[0]), float(amp[1]), periods / elapsed
 
 
-def vector_rates(steps: int, repeats: int = 3) -> tuple[float, float]:
-    """Median env steps per second (both sub-envs counted) of a 2-env vector env, sync and async, default
-    settings; the two modes alternate ``repeats`` times (process start-up, reset and one warm-up step excluded)."""
+def _cpu_seconds(pids: list[int]) -> tuple[float, float] | None:
+    """(busy CPU seconds of the whole machine, CPU seconds of the processes ``pids``), from /proc (None
+    where it is missing)."""
+    try:
+        with open("/proc/stat") as f:
+            ticks = [int(v) for v in f.readline().split()[1:]]
+        mine = 0
+        for pid in pids:
+            with open(f"/proc/{pid}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            mine += int(fields[11]) + int(fields[12])  # utime, stime
+    except OSError:
+        return None
+    hz = os.sysconf("SC_CLK_TCK")
+    return (sum(ticks) - ticks[3] - ticks[4]) / hz, mine / hz
+
+
+def vector_rates(steps: int, repeats: int = 5) -> tuple[list[float], list[float], float]:
+    """Env steps per second (both sub-envs counted) of a 2-env vector env, sync and async, default settings,
+    one per repeat, and the median number of cores other processes kept busy meanwhile (NaN if unknown);
+    the two modes alternate ``repeats`` times (process start-up, reset and one warm-up step excluded)."""
     rates: dict[str, list[float]] = {"sync": [], "async": []}
+    others = []
     for _ in range(repeats):
         for mode in rates:
             venv = gym.make_vec(ENV_ID, num_envs=2, vectorization_mode=mode, max_episode_steps=10 * steps)
+            pids = [os.getpid()] + [p.pid for p in getattr(venv, "processes", [])]
             _, info = venv.reset(seed=[0, 1])
             actions = _actions(info["trim_action"][0], steps, 0)
             venv.step(np.stack([actions[0]] * 2))
+            before = _cpu_seconds(pids)
             t0 = time.perf_counter()
             for a in actions:
                 venv.step(np.stack([a, a]))
-            rates[mode].append(2 * steps / (time.perf_counter() - t0))
+            wall = time.perf_counter() - t0
+            after = _cpu_seconds(pids)
             venv.close()
-    return statistics.median(rates["sync"]), statistics.median(rates["async"])
+            rates[mode].append(2 * steps / wall)
+            if before is not None and after is not None:
+                others.append(((after[0] - before[0]) - (after[1] - before[1])) / wall)
+    return rates["sync"], rates["async"], statistics.median(others) if others else math.nan
 
 
 def main() -> None:
@@ -183,9 +210,11 @@ def main() -> None:
     for label, settings in INTEGRATORS:
         amp, ref, rate = flutter_fidelity(settings)
         print(f"  {label:11s} {amp:.3e} rad vs reference {ref:.3e} rad ({100 * (amp / ref - 1):+.1f} %), {rate:.1f} steps/s", flush=True)
-    sync, asyn = vector_rates(args.steps)
-    print(f"vector env, 2 envs, default settings: sync {sync:.1f} env-steps/s, async {asyn:.1f} env-steps/s, "
-          f"speed-up {asyn / sync:.2f} (on {os.cpu_count()} cores)")
+    sync, asyn, others = vector_rates(args.steps)
+    ratios = [a / s for s, a in zip(sync, asyn)]
+    print(f"vector env, 2 envs, default settings, {len(ratios)} alternating runs: sync {statistics.median(sync):.1f} env-steps/s, "
+          f"async {statistics.median(asyn):.1f} env-steps/s, speed-up {statistics.median(ratios):.2f} (runs {min(ratios):.2f}-{max(ratios):.2f}; "
+          f"{os.cpu_count()} cores; other processes kept {others:.1f} cores busy meanwhile)")
 
 
 if __name__ == "__main__":
