@@ -92,7 +92,7 @@ class Objective:
                     (row["tip_twist_deg"] / paper[7] - 1.0) / TOL_STATIC]
         self.history.append({"factors": factors, "rows": rows, "cost": float(0.5 * np.sum(np.square(res)))})
         print(json.dumps({k: round(v, 4) for k, v in factors.items()}),
-              " ".join(f"{r.get('mach', float('nan')):.4f}" for r in rows), f"cost {self.history[-1]['cost']:.2f}", flush=True)
+              " ".join(f"{r.get('mach', float('nan')):.4f}" for r in rows), f"sum of squares / 2 {self.history[-1]['cost']:.2f}", flush=True)
         return np.array(res)
 
 
