@@ -2,8 +2,8 @@
 
 The notional GTM (``flexsim/aircraft/data/gtm.md``) is assembled from public data; its stiffness
 distributions are thin-box estimates and its gross mass is uncertain (100-157 t). :class:`StructuralScaling`
-is the set of dimensionless factors
-the calibration against the paper's Table 3 adjusts (``studies/calibrate_gtm.py``, ``docs/calibration.md``);
+is the set of dimensionless factors the calibration against the paper's Table 3 adjusts
+(``studies/calibrate_gtm.py``, ``docs/calibration.md``);
 :meth:`StructuralScaling.apply` returns a new :class:`~flexsim.aircraft.definition.Aircraft` whose
 section tables (and masses) are multiplied by them. Geometry and aerodynamics do not change.
 

@@ -10,6 +10,7 @@ from flexsim.aircraft.calibration import BOUNDS, StructuralScaling
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.modes import in_vacuo_modes
 from flexsim.model.aircraft_model import AircraftModel
+from flexsim.structure.model import StructuralModel
 
 CALIBRATION_FILE = Path(__file__).resolve().parents[2] / "tools" / "gtm_calibration.toml"
 
@@ -49,6 +50,19 @@ def test_uniform_stiffness_scale_scales_frequencies_by_its_square_root(base):
     f0 = in_vacuo_modes(AircraftModel(base, aero=None)).frequencies_rad_s[6:]
     f1 = in_vacuo_modes(AircraftModel(scaled, aero=None)).frequencies_rad_s[6:]
     np.testing.assert_allclose(f1, np.sqrt(k) * f0, rtol=1e-9)
+
+
+def test_mass_factor_scales_mass_and_inertia_and_keeps_frequencies(base):
+    """Option B scaling: M -> k M and K -> k K, so m and J scale by k and every omega is unchanged (1e-9)."""
+    k = 1.5
+    heavy = StructuralScaling(mass=k).apply(base)
+    mp0, mp1 = StructuralModel(base).mass_properties, StructuralModel(heavy).mass_properties
+    assert mp1.mass_kg == pytest.approx(k * mp0.mass_kg, rel=1e-12)
+    np.testing.assert_allclose(mp1.cg_m, mp0.cg_m, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(mp1.inertia_cg_kg_m2, k * mp0.inertia_cg_kg_m2, rtol=1e-12, atol=1e-6)
+    f0 = in_vacuo_modes(AircraftModel(base, aero=None)).frequencies_rad_s[6:]
+    f1 = in_vacuo_modes(AircraftModel(heavy, aero=None)).frequencies_rad_s[6:]
+    np.testing.assert_allclose(f1, f0, rtol=1e-9)
 
 
 def test_bundled_gtm_is_the_uncalibrated_one_with_the_fitted_factors(base):
