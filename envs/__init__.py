@@ -1,4 +1,4 @@
-"""Gymnasium environments of flexsim: the flexible notional GTM in four control tasks.
+"""Gymnasium environments of flexsim: the flexible notional GTM in four control tasks (five ids).
 
 Importing this package registers (idempotently) the environment ids of :data:`ENV_IDS`::
 
@@ -18,7 +18,7 @@ import gymnasium as gym
 
 from envs.base import FlexSimEnv
 from envs.config import ActuatorRates, FlightLimits, InitialPerturbation, IntegratorSettings, RewardTerm, TrackingReward
-from envs.flutter_margin import FlutterMarginEnv, FlutterMarginTask
+from envs.flutter_margin import FlutterMarginEnv, FlutterMarginTask, WingFlutterMarginEnv, WingFlutterMarginTask
 from envs.gust_alleviation import GustAlleviationEnv, GustAlleviationTask
 from envs.level_hold import LevelHoldEnv, LevelHoldTask
 from envs.turn import TurnEnv, TurnTask
@@ -26,7 +26,7 @@ from envs.wrappers import FlightLogRecorder
 
 __all__ = [
     "ENV_IDS", "register_envs", "FlexSimEnv", "LevelHoldEnv", "TurnEnv", "GustAlleviationEnv", "FlutterMarginEnv",
-    "LevelHoldTask", "TurnTask", "GustAlleviationTask", "FlutterMarginTask", "ActuatorRates", "FlightLimits",
+    "WingFlutterMarginEnv", "LevelHoldTask", "TurnTask", "GustAlleviationTask", "FlutterMarginTask", "WingFlutterMarginTask", "ActuatorRates", "FlightLimits",
     "InitialPerturbation", "IntegratorSettings", "RewardTerm", "TrackingReward", "FlightLogRecorder",
 ]
 
@@ -36,6 +36,7 @@ ENV_IDS: dict[str, tuple[str, int]] = {
     "FlexSim/GTM-Turn-v0": ("envs.turn:TurnEnv", 1000),
     "FlexSim/GTM-GustAlleviation-v0": ("envs.gust_alleviation:GustAlleviationEnv", 500),
     "FlexSim/GTM-FlutterMargin-v0": ("envs.flutter_margin:FlutterMarginEnv", 1000),
+    "FlexSim/GTM-FlutterMargin-v1": ("envs.flutter_margin:WingFlutterMarginEnv", 1000),
 }
 
 

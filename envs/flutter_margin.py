@@ -1,4 +1,8 @@
-"""FlexSim/GTM-FlutterMargin-v0: fly just beyond the open-loop flutter speed and keep the structure stable."""
+"""FlexSim/GTM-FlutterMargin-v0 and -v1: fly just beyond the open-loop flutter speed and keep the structure stable.
+
+v0 (:class:`FlutterMarginEnv`): fin flutter of ``gtm_uncalibrated``; v1 (:class:`WingFlutterMarginEnv`):
+antisymmetric wing flutter of the calibrated ``gtm``.
+"""
 
 from __future__ import annotations
 
@@ -18,7 +22,11 @@ from envs.config import RewardTerm, TrackingReward
 from envs.dynamics import Measurements
 from envs.episodes import perturbed_state, turbulence_field
 
-__all__ = ["FlutterMarginTask", "FlutterMarginEnv", "FlutterCondition", "flutter_condition"]
+__all__ = ["FlutterMarginTask", "WingFlutterMarginTask", "FlutterMarginEnv", "WingFlutterMarginEnv", "FlutterCondition",
+           "flutter_condition", "SUBJECTS"]
+
+#: Structural subjects of the task: the rewarded tip twist rate and the seeded first-torsion rate.
+SUBJECTS = ("fin", "wing_antisymmetric")
 
 
 @dataclass(frozen=True)
@@ -77,7 +85,20 @@ class FlutterMarginTask:
         Mach range searched for the flutter point (default 0.8-0.95).
     fin_twist_rate_range_rad_s : tuple of float
         |initial fin-torsion rate| ~ U(range) [rad/s], random sign (default 0.3-0.6 rad/s): seeds the
-        flutter mode.
+        flutter mode (``subject="fin"``).
+    subject : str
+        ``"fin"`` (default, v0): the rewarded error ``fin_twist_rate_rad_s`` is the fin tip twist rate and
+        the episode is seeded with a fin first-torsion rate. ``"wing_antisymmetric"`` (v1): the rewarded
+        error ``wing_twist_rate_rad_s`` is the antisymmetric wing tip twist rate 0.5 (psi_R' + psi_L') of
+        the torsion coordinates (a positive coordinate is nose-up on the right wing and nose-down on the
+        left one, ``docs/conventions.md``, so equal coordinates are the antisymmetric twist) and both wing
+        halves get the same first-torsion rate.
+    wing_twist_rate_range_rad_s : tuple of float
+        |initial antisymmetric wing first-torsion rate| ~ U(range) [rad/s], random sign
+        (``subject="wing_antisymmetric"``; default 0.05-0.1 rad/s).
+    wing_tip_twist_limit_rad : float
+        Structural limit on |tip twist| of either wing half [rad] (default inf: none; v1 0.1 rad), on top
+        of ``FlightLimits``.
     reward : TrackingReward
         Costs on ``fin_twist_rate_rad_s`` (weight 0.3, saturating at 0.5 rad/s), ``flutter_speed_deficit_m_s``
         (0.2, 1 m/s below the flutter speed), ``airspeed_error_m_s`` (0.15, 3 m/s), ``altitude_error_m`` (0.15,
@@ -92,8 +113,15 @@ class FlutterMarginTask:
         terms=(RewardTerm("fin_twist_rate_rad_s", 0.3, 0.5), RewardTerm("flutter_speed_deficit_m_s", 0.2, 1.0),
                RewardTerm("airspeed_error_m_s", 0.15, 3.0), RewardTerm("altitude_error_m", 0.15, 15.0)),
         control_rate_weight=0.1)
+    subject: str = "fin"
+    wing_twist_rate_range_rad_s: tuple[float, float] = (0.05, 0.1)
+    wing_tip_twist_limit_rad: float = math.inf
 
     def __post_init__(self) -> None:
+        if self.subject not in SUBJECTS:
+            raise ValueError(f"subject = {self.subject!r}: must be one of {', '.join(SUBJECTS)}")
+        if not self.wing_tip_twist_limit_rad > 0.0:
+            raise ValueError(f"wing_tip_twist_limit_rad = {self.wing_tip_twist_limit_rad!r}: must be > 0 rad")
         SteadyManoeuvre.level(self.altitude_m, mach=0.5)
         if not self.altitude_m > 0.0:
             raise ValueError(f"altitude_m = {self.altitude_m!r}: must be > 0 m (altitude <= 0 is a crash)")
@@ -107,6 +135,33 @@ class FlutterMarginTask:
         if not 0.0 <= a <= b <= 10.0:
             raise ValueError(f"fin_twist_rate_range_rad_s = {self.fin_twist_rate_range_rad_s!r}: must be (lo, hi), 0 <= lo <= hi <= 10 rad/s")
         object.__setattr__(self, "fin_twist_rate_range_rad_s", (a, b))
+        a, b = (float(v) for v in self.wing_twist_rate_range_rad_s)
+        if not 0.0 <= a <= b <= 10.0:
+            raise ValueError(f"wing_twist_rate_range_rad_s = {self.wing_twist_rate_range_rad_s!r}: must be (lo, hi), 0 <= lo <= hi <= 10 rad/s")
+        object.__setattr__(self, "wing_twist_rate_range_rad_s", (a, b))
+
+    @property
+    def rate_error(self) -> str:
+        """Name of the rewarded structural error (the first task error)."""
+        return "fin_twist_rate_rad_s" if self.subject == "fin" else "wing_twist_rate_rad_s"
+
+
+@dataclass(frozen=True)
+class WingFlutterMarginTask(FlutterMarginTask):
+    """The v1 flutter-margin task: antisymmetric wing flutter of the calibrated GTM.
+
+    As :class:`FlutterMarginTask` with ``subject="wing_antisymmetric"``, ``flutter_mach_range`` 0.5-0.95,
+    ``wing_tip_twist_limit_rad`` 0.1 rad and the reward's first term on ``wing_twist_rate_rad_s``
+    (weight 0.3, saturating at 0.2 rad/s).
+    """
+
+    flutter_mach_range: tuple[float, float] = (0.5, 0.95)
+    reward: TrackingReward = TrackingReward(
+        terms=(RewardTerm("wing_twist_rate_rad_s", 0.3, 0.2), RewardTerm("flutter_speed_deficit_m_s", 0.2, 1.0),
+               RewardTerm("airspeed_error_m_s", 0.15, 3.0), RewardTerm("altitude_error_m", 0.15, 15.0)),
+        control_rate_weight=0.1)
+    subject: str = "wing_antisymmetric"
+    wing_tip_twist_limit_rad: float = 0.1
 
 
 @shared_docs
@@ -117,8 +172,8 @@ class FlutterMarginEnv(FlexSimEnv):
     flutter speed: at the flutter Mach number found by ``flexsim.linear.flutter.FlutterAnalysis`` with the
     env's aerodynamic model, plus ``task.mach_margin`` (0.01). v0 flies the **uncalibrated** notional GTM
     (``aircraft="gtm_uncalibrated"``, the default of this env only): the task was designed for its fin
-    flutter. (The calibrated default GTM, ``docs/calibration.md``, flutters first in a 39 rad/s mode of
-    heave, fuselage bending and wing torsion at M 0.66; a task for that mode would be a new version.)
+    flutter. (The calibrated default GTM, ``docs/calibration.md``, flutters first in an antisymmetric
+    37 rad/s wing-torsion mode at M 0.69 at 300 m: ``FlexSim/GTM-FlutterMargin-v1``.)
     With the finite-state model the flutter point is M 0.887 (179 rad/s = 28.5 Hz) at 300 m
     (M 0.885 at sea level): a **fin bending-torsion mode**, dominated by the
     vertical stabilizer's first torsion mode coupled with its first bending mode and the horizontal
@@ -184,19 +239,26 @@ class FlutterMarginEnv(FlexSimEnv):
     def __init__(self, *, aircraft: str | Path | Aircraft = "gtm_uncalibrated", **kwargs) -> None:
         super().__init__(aircraft=aircraft, **kwargs)
         task = self.task
+        if task.rate_error != self.task_errors_spec[0][0]:
+            raise ValueError(f"task.subject = {task.subject!r}: {type(self).__name__} observes {self.task_errors_spec[0][0]}, "
+                             f"not {task.rate_error} (use {'FlutterMarginEnv' if task.subject == 'fin' else 'WingFlutterMarginEnv'})")
         self.flutter = flutter_condition(self.aircraft, self.dynamics.aero, task.altitude_m, task.flutter_mach_range)
         self.target = SteadyManoeuvre.level(task.altitude_m, mach=self.flutter.mach + task.mach_margin)
-        name = "vtail"
+        names = ("vtail",) if task.subject == "fin" else ("right_wing", "left_wing")
         dofs, lay = self.dynamics.model.structure.dofs, self.dynamics.layout
-        if dofs.torsion[name].stop == dofs.torsion[name].start:
-            raise ValueError(f"aircraft {self.aircraft.name!r}: the fin ({name}) needs at least one torsion mode for this task")
-        self._fin_eta = lay.eta.start + dofs.torsion[name].start
+        for name in names:
+            if dofs.torsion[name].stop == dofs.torsion[name].start:
+                raise ValueError(f"aircraft {self.aircraft.name!r}: {name} needs at least one torsion mode for this task")
+        self._seed_eta = [lay.eta.start + dofs.torsion[name].start for name in names]
+        self._rate_range = task.fin_twist_rate_range_rad_s if task.subject == "fin" else task.wing_twist_rate_range_rad_s
 
     def _new_episode(self, rng: np.random.Generator) -> Episode:
         point = self.dynamics.trim(self.target)
         x0 = perturbed_state(point.x, self.dynamics.layout, rng, self.perturbation)
-        lo, hi = self.task.fin_twist_rate_range_rad_s
-        x0[self._fin_eta] += float(rng.uniform(lo, hi)) * (1.0 if rng.random() < 0.5 else -1.0)
+        lo, hi = self._rate_range
+        rate = float(rng.uniform(lo, hi)) * (1.0 if rng.random() < 0.5 else -1.0)
+        for i in self._seed_eta:
+            x0[i] += rate
         wind = turbulence_field(self.turbulence, self.task.altitude_m, x0[self.dynamics.layout.position], 0.0, rng)
         reference = {"altitude_m": self.task.altitude_m, "airspeed_m_s": self.target.speed_m_s, "target_mach": self.target.mach,
                      "flutter_mach": self.flutter.mach, "flutter_speed_m_s": self.flutter.speed_m_s,
@@ -206,11 +268,94 @@ class FlutterMarginEnv(FlexSimEnv):
     def _task_errors(self, meas: Measurements) -> dict[str, float]:
         ref = self._reference
         margin = meas.airspeed_m_s - ref["flutter_speed_m_s"]
-        return {"fin_twist_rate_rad_s": meas.tip_twist_rate_rad_s["vtail"],
+        rates = meas.tip_twist_rate_rad_s
+        rate = rates["vtail"] if self.task.subject == "fin" else 0.5 * (rates["right_wing"] + rates["left_wing"])
+        return {self.task.rate_error: rate,
                 "flutter_speed_deficit_m_s": max(0.0, -margin) if math.isfinite(margin) else math.nan,
                 "airspeed_error_m_s": meas.airspeed_m_s - ref["airspeed_m_s"],
                 "altitude_error_m": meas.altitude_m - ref["altitude_m"],
                 "flutter_margin_m_s": margin}
 
+    def _termination(self, outcome, meas: Measurements) -> str:
+        reason = super()._termination(outcome, meas)
+        limit = self.task.wing_tip_twist_limit_rad
+        if not reason and math.isfinite(limit) and not max(abs(meas.tip_twist_rad["right_wing"]), abs(meas.tip_twist_rad["left_wing"])) <= limit:
+            return "structural_limit"
+        return reason
+
     def task_label(self) -> str:
         return f"GTM flutter margin M {self.target.mach:.3f} (M_f {self.flutter.mach:.3f})"
+
+
+@shared_docs
+class WingFlutterMarginEnv(FlutterMarginEnv):
+    """
+    ## Description
+    Active flutter suppression on the **calibrated** default GTM (``aircraft="gtm"``, ``docs/calibration.md``,
+    1 % modal structural damping). The aircraft flies level at 300 m at its open-loop flutter Mach number
+    (``flexsim.linear.flutter.FlutterAnalysis`` with the env's aerodynamic model, searched over M 0.5-0.95)
+    plus ``task.mach_margin`` (0.01). With the finite-state model the flutter point is M 0.6904 (234.1 m/s,
+    36.93 rad/s = 5.88 Hz) at 300 m: an **antisymmetric wing mode**, first torsion and first bending of
+    the two wing halves out of phase (right wing nose-up while the left is nose-down) with sideslip, roll
+    and yaw. At M_f + 0.01 it grows at +0.42 1/s (sampled linear model at the trim; open loop the
+    antisymmetric tip twist-rate amplitude grows about 1.5 times per second and the wing tip twist limit
+    ends every episode after 6-14 s). Hold the speed above the flutter speed and the altitude, and damp the
+    antisymmetric wing torsion; the ailerons (antisymmetric) are its natural control. The flutter mode is
+    well below the Nyquist frequency of the default 50 Hz control rate (see
+    ``examples/agents/baselines.py``, ``WingFlutterAileronDamper``).
+
+    ## Action Space
+    <action space>
+
+    ## Observation Space
+    ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
+
+    <observation rows 0-9>
+    | 10    | antisymmetric wing tip twist rate 0.5 (psi_R' + psi_L') (the rewarded structural error) | -1000 | 1000 | rad/s |
+    | 11    | flutter-speed deficit max(0, V_f - V)              | -600   | 600   | m/s    |
+    | 12    | airspeed error V - V_target                        | -300   | 300   | m/s    |
+    | 13    | altitude error                                     | -5000  | 5000  | m      |
+    | 14    | flutter margin V - V_f                             | -600   | 600   | m/s    |
+    | 15-26 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
+    | 27-30 | applied controls, normalised                       | 0/-1   | 1     | -      |
+
+    Twists are torsion coordinates (``docs/conventions.md``): positive is nose-up on the right wing and
+    nose-down on the left one, so equal right and left values are an antisymmetric twist.
+
+    ## Rewards
+    ``alive`` +1; ``wing_twist_rate_rad_s`` -0.3 min((e/0.2 rad/s)^2, 1); ``flutter_speed_deficit_m_s``
+    -0.2 min((e/1 m/s)^2, 1); ``airspeed_error_m_s`` -0.15 min((e/3 m/s)^2, 1); ``altitude_error_m``
+    -0.15 min((e/15 m)^2, 1); ``control_rate`` -0.1 min(mean((da/0.1)^2), 1); ``termination`` -100.
+    Parts in ``info["reward_parts"]``.
+
+    ## Starting State
+    Trim at the target Mach number (M 0.7004), perturbed (``InitialPerturbation``) and with the same
+    first-torsion rate on both wing halves (an antisymmetric twist rate) of random sign and magnitude
+    ``task.wing_twist_rate_range_rad_s`` (0.05-0.1 rad/s, ``self.np_random``). ``info["reference"]`` at
+    reset reports the flutter point and the target.
+
+    ## Episode End
+    ### Termination
+    As ``FlexSim/GTM-LevelHold-v0`` (crash, structural limit, non-finite state, gimbal lock, envelope),
+    plus a wing structural limit: |tip twist| of either wing half beyond ``task.wing_tip_twist_limit_rad``
+    (0.1 rad, 5.7 deg; the trim twist is 0.023 rad) is ``"structural_limit"`` — the limit that ends the
+    open-loop episodes (the 5.5 m wing tip deflection and 0.1 rad fin twist limits are not reached).
+    ### Truncation
+    ``max_episode_steps`` = 1000 (20 s at 50 Hz).
+
+    ## Arguments
+    As ``FlexSim/GTM-LevelHold-v0`` with ``task=WingFlutterMarginTask(...)`` (a ``FlutterMarginTask`` with
+    ``subject="wing_antisymmetric"``); ``turbulence`` default "none", ``aircraft`` default ``"gtm"``. The
+    flutter search (about 3 s) runs once per process and aircraft file.
+
+    ## Version History
+    * v1: the flutter task on the calibrated default ``gtm`` (antisymmetric wing flutter, ailerons); v0
+      unchanged (fin flutter of ``gtm_uncalibrated``).
+    * v0: see ``FlexSim/GTM-FlutterMargin-v0`` (``FlutterMarginEnv``).
+    """
+
+    task_type = WingFlutterMarginTask
+    task_errors_spec = (("wing_twist_rate_rad_s", 1000.0),) + FlutterMarginEnv.task_errors_spec[1:]
+
+    def __init__(self, *, aircraft: str | Path | Aircraft = "gtm", **kwargs) -> None:
+        super().__init__(aircraft=aircraft, **kwargs)

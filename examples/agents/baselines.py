@@ -1,4 +1,4 @@
-"""Classical baselines of the four flexsim tasks (LQR on the linearised model; PID + fin damper for flutter).
+"""Classical baselines of the flexsim tasks (LQR on the linearised model; PID + fin or aileron damper for flutter).
 
 Each policy is designed from the environment's own model at a trim (``lqr_design``) and then acts on
 observations only (run from ``examples/agents`` or put it on ``sys.path``; these are scripts, not a package)::
@@ -19,9 +19,10 @@ import math
 
 import numpy as np
 
-from lqr_design import StateFeedback, checked_feedback, design_fin_damper, design_rigid_lqr, rigid_state_from_obs
+from lqr_design import (StateFeedback, _discrete_full_model, _rigid_indices, checked_feedback, design_fin_damper, design_rigid_lqr,
+                        rigid_state_from_obs)
 
-__all__ = ["LevelHoldLqr", "TurnLqr", "GustLqr", "FlutterPidDamper", "RandomPolicy", "make_baseline", "BASELINES"]
+__all__ = ["LevelHoldLqr", "TurnLqr", "GustLqr", "FlutterPidDamper", "WingFlutterAileronDamper", "RandomPolicy", "make_baseline", "BASELINES"]
 
 _ALL = ("z_m", "phi_rad", "theta_rad", "psi_rad", "u_m_s", "v_m_s", "w_m_s", "p_rad_s", "q_rad_s", "r_rad_s")
 
@@ -132,6 +133,69 @@ class FlutterPidDamper(_LqrPolicy):
         return u
 
 
+class WingFlutterAileronDamper(_LqrPolicy):
+    """FlutterMargin-v1: the holds of :class:`FlutterPidDamper` plus an antisymmetric-aileron twist-rate damper.
+
+    * damper: aileron = trim - k x (antisymmetric wing tip twist rate 0.5 (psi_R' + psi_L'), observation
+      ``wing_twist_rate_rad_s``), k = 0.015 rad per rad/s. Chosen on the environment's own linearisation
+      at the trim (full model discretised with the 50 Hz zero-order hold, together with the holds): the
+      largest growth rate of the modes faster than 20 rad/s (:func:`elastic_growth`) is +0.42 1/s without
+      the damper and -0.24 1/s with it; the closed loop is stable for k in about 0.0075-0.024, and its
+      largest growth rate over all modes (``lqr_design.checked_feedback``) is -0.028 1/s, a slow
+      rigid-body mode;
+    * speed, pitch, altitude and roll holds: as :class:`FlutterPidDamper` (thrust on airspeed, elevator on
+      theta, q and altitude, aileron on bank).
+
+    ``self.lqr.full_model_growth`` (all modes) and ``self.elastic_growth`` (modes faster than 20 rad/s)
+    report the check (made at the first reset).
+    """
+
+    damper_gain = 0.015
+    gains = FlutterPidDamper.gains
+
+    def __init__(self, env) -> None:
+        super().__init__(env)
+        self._i_rate = self.names.index("wing_twist_rate_rad_s")
+        self.elastic_growth = math.nan
+
+    def reset(self, info: dict) -> None:
+        if self.lqr is not None:
+            return
+        dyn = self.env.dynamics
+        point = dyn.trim(self.env.target)
+        row = np.zeros(dyn.layout.n_states)
+        for c in ("right_wing", "left_wing"):
+            row[dyn.sensors[c].eta_idx] += 0.5 * dyn.sensors[c].psi_tip
+        damper = np.zeros((4, dyn.layout.n_states))
+        damper[1] = self.damper_gain * row
+        self.lqr = checked_feedback(dyn.model, point.x, point.u, self.gains, self.env.dt, extra_feedback=damper)
+        self.elastic_growth = elastic_growth(self.env, self.gains, damper)
+
+    def controls(self, obs: np.ndarray) -> np.ndarray:
+        u = super().controls(obs)
+        u[1] -= self.damper_gain * float(np.asarray(obs, float)[self._i_rate])
+        return u
+
+
+def elastic_growth(env, gains: dict, extra_feedback: np.ndarray) -> float:
+    """Largest growth rate [1/s] of the sampled closed loop's modes faster than 20 rad/s (the elastic modes)
+    at the trim of ``env.target`` (full linearisation, zero-order hold at the control period)."""
+    dyn = env.dynamics
+    point = dyn.trim(env.target)
+    lay = dyn.layout
+    fb = checked_feedback(dyn.model, point.x, point.u, gains, env.dt)
+    drop = [lay.position.start, lay.position.start + 1, lay.euler.start + 2]
+    ad, bd, keep = _discrete_full_model(dyn.model, point.x, point.u, env.dt, drop)
+    states = fb.states
+    rigid = np.zeros((4, len(keep)))
+    cols = [keep.index(i) for i in _rigid_indices(lay, states)]
+    rigid[:, cols] = fb.gain
+    z = np.linalg.eigvals(ad - bd @ (rigid + np.asarray(extra_feedback, float)[:, keep]))
+    s = np.log(z.astype(complex)) / env.dt
+    fast = s[np.abs(s.imag) > 20.0]
+    return float(fast.real.max())
+
+
 class RandomPolicy:
     """Uniform random actions from the action space (seeded at every reset)."""
 
@@ -148,7 +212,8 @@ class RandomPolicy:
 
 
 BASELINES = {"FlexSim/GTM-LevelHold-v0": LevelHoldLqr, "FlexSim/GTM-Turn-v0": TurnLqr,
-             "FlexSim/GTM-GustAlleviation-v0": GustLqr, "FlexSim/GTM-FlutterMargin-v0": FlutterPidDamper}
+             "FlexSim/GTM-GustAlleviation-v0": GustLqr, "FlexSim/GTM-FlutterMargin-v0": FlutterPidDamper,
+             "FlexSim/GTM-FlutterMargin-v1": WingFlutterAileronDamper}
 
 
 def make_baseline(env_id: str, env):

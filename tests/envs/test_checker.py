@@ -1,6 +1,6 @@
 """Registration and gymnasium's env checker.
 
-Checks: the four ids are registered once (registering again is a no-op); ``gymnasium.utils.env_checker.
+Checks: the five ids are registered once (registering again is a no-op); ``gymnasium.utils.env_checker.
 check_env`` passes without warnings for every id (render check skipped: "human" would open a viewer);
 the spaces are float32 Boxes with finite bounds and ``observation_structure`` tiles the observation.
 Tolerances: exact (structural checks).
@@ -21,7 +21,7 @@ def test_ids_registered_once():
     envs.register_envs()
     assert set(envs.ENV_IDS) <= set(gym.registry)
     assert all(gym.registry[k] is before[k] for k in envs.ENV_IDS)
-    assert [gym.registry[k].max_episode_steps for k in envs.ENV_IDS] == [1000, 1000, 500, 1000]
+    assert [gym.registry[k].max_episode_steps for k in envs.ENV_IDS] == [1000, 1000, 500, 1000, 1000]
 
 
 @pytest.mark.parametrize("env_id", list(envs.ENV_IDS))
@@ -59,3 +59,23 @@ def test_invalid_arguments_name_field_and_range():
         envs.TurnTask(radius_range_m=(100.0, 200.0))
     with pytest.raises(ValueError, match="aero = 'quasi-steady': no usable open-loop flutter point"):
         envs.FlutterMarginEnv(aero="quasi-steady")
+    with pytest.raises(ValueError, match="subject = 'tail'"):
+        envs.FlutterMarginTask(subject="tail")
+    with pytest.raises(ValueError, match="FlutterMarginEnv observes fin_twist_rate_rad_s, not wing_twist_rate_rad_s"):
+        envs.FlutterMarginEnv(task=envs.WingFlutterMarginTask())
+
+
+def test_flutter_margin_v1_seeds_antisymmetric_wing_torsion():
+    """v1: calibrated gtm, flutter at M 0.690 (36.9 rad/s) at 300 m; the seed is an equal first-torsion rate
+    on both wing halves (antisymmetric in the coordinates of docs/conventions.md), observed at index 10."""
+    env = gym.make("FlexSim/GTM-FlutterMargin-v1")
+    u = env.unwrapped
+    assert abs(u.flutter.mach - 0.6904) < 2e-3 and abs(u.flutter.frequency_rad_s - 36.93) < 0.2
+    assert "wing" in u.flutter.mode
+    obs, info = env.reset(seed=4)
+    meas = u.dynamics.measure(u._x, 0.0)
+    right, left = meas.tip_twist_rate_rad_s["right_wing"], meas.tip_twist_rate_rad_s["left_wing"]
+    assert 0.04 < abs(right) < 0.11 and abs(right - left) < 0.02 * abs(right)
+    assert u.observation_names[10] == "wing_twist_rate_rad_s"
+    assert obs[10] == pytest.approx(0.5 * (right + left), rel=1e-5)
+    env.close()

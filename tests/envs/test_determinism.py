@@ -44,7 +44,8 @@ def test_level_hold_200_steps_identical_for_same_seed():
         assert data_equivalence(ra, rb, exact=True)
 
 
-@pytest.mark.parametrize("env_id", ["FlexSim/GTM-Turn-v0", "FlexSim/GTM-GustAlleviation-v0", "FlexSim/GTM-FlutterMargin-v0"])
+@pytest.mark.parametrize("env_id", ["FlexSim/GTM-Turn-v0", "FlexSim/GTM-GustAlleviation-v0", "FlexSim/GTM-FlutterMargin-v0",
+                                    "FlexSim/GTM-FlutterMargin-v1"])
 def test_other_tasks_20_steps_identical_for_same_seed(env_id):
     a = _rollout(env_id, 3, 20)
     b = _rollout(env_id, 3, 20)
