@@ -61,14 +61,26 @@ OBSERVATION_BASE_ROWS_DOC = """    | Num   | Observation                        
 """
 
 
+#: The v0 entry of the Version History of the tasks whose default integrator moved from Radau to ETD2RK.
+V0_HISTORY_DOC = """\
+    * v0: initial version (flexsim issue 6); default integrator ETD2RK (5 ms steps) instead of Radau for
+      the finite-state model, same trajectories to within the integration error, about 7 times faster
+      (LevelHold: 574 against 82 steps/s, docs/environments.md).
+"""
+
+
 def shared_docs(cls):
-    """Class decorator: fill the ``<action space>`` and ``<observation rows 0-9>`` lines of ``cls.__doc__``."""
+    """Class decorator: fill the shared lines of ``cls.__doc__``.
+
+    ``<action space>`` and ``<observation rows 0-9>`` are required; ``<v0 history>`` (the Version History
+    entry :data:`V0_HISTORY_DOC`) is filled where present.
+    """
     doc = cls.__doc__ or ""
     for marker, text in (("    <action space>\n", ACTION_SPACE_DOC), ("    <observation rows 0-9>\n", OBSERVATION_BASE_ROWS_DOC)):
         if marker not in doc:
             raise RuntimeError(f"{cls.__name__} docstring lacks the {marker.strip()} line")
         doc = doc.replace(marker, text)
-    cls.__doc__ = doc
+    cls.__doc__ = doc.replace("    <v0 history>\n", V0_HISTORY_DOC)
     return cls
 
 

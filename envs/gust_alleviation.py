@@ -122,9 +122,7 @@ class GustAlleviationEnv(FlexSimEnv):
     As ``FlexSim/GTM-LevelHold-v0`` with ``task=GustAlleviationTask(...)``; ``turbulence`` default "none".
 
     ## Version History
-    * v0: initial version (flexsim issue 6); default integrator ETD2RK (5 ms steps) instead of Radau for
-      the finite-state model, same trajectories to within the integration error, about 7 times faster
-      (LevelHold: 574 against 82 steps/s, docs/environments.md).
+    <v0 history>
     """
 
     task_type = GustAlleviationTask
