@@ -70,6 +70,32 @@ def flutter_condition(aircraft: Aircraft, aero: str, altitude_m: float, mach_ran
     return _cached_condition(aircraft.source, aircraft.name, aero, float(altitude_m), tuple(mach_range))
 
 
+#: Observation rows 11-30 of both flutter-margin versions (docstring tables).
+_OBSERVATION_ROWS_11_30_DOC = """\
+    | 11    | flutter-speed deficit max(0, V_f - V)              | -600   | 600   | m/s    |
+    | 12    | airspeed error V - V_target                        | -300   | 300   | m/s    |
+    | 13    | altitude error                                     | -5000  | 5000  | m      |
+    | 14    | flutter margin V - V_f                             | -600   | 600   | m/s    |
+    | 15-26 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
+    | 27-30 | applied controls, normalised                       | 0/-1   | 1     | -      |
+"""
+
+
+def _flutter_docs(cls):
+    """Class decorator: fill ``<observation rows 11-30>``, then the shared lines (:func:`shared_docs`)."""
+    cls.__doc__ = (cls.__doc__ or "").replace("    <observation rows 11-30>\n", _OBSERVATION_ROWS_11_30_DOC)
+    return shared_docs(cls)
+
+
+def _flutter_reward(rate_error: str, rate_scale: float) -> TrackingReward:
+    """The flutter-margin reward: ``rate_error`` (weight 0.3, saturating at ``rate_scale``), flutter-speed
+    deficit (0.2, 1 m/s), airspeed error (0.15, 3 m/s), altitude error (0.15, 15 m); control rate 0.1."""
+    return TrackingReward(
+        terms=(RewardTerm(rate_error, 0.3, rate_scale), RewardTerm("flutter_speed_deficit_m_s", 0.2, 1.0),
+               RewardTerm("airspeed_error_m_s", 0.15, 3.0), RewardTerm("altitude_error_m", 0.15, 15.0)),
+        control_rate_weight=0.1)
+
+
 @dataclass(frozen=True)
 class FlutterMarginTask:
     """Parameters of the flutter-margin task.
@@ -109,10 +135,7 @@ class FlutterMarginTask:
     mach_margin: float = 0.01
     flutter_mach_range: tuple[float, float] = (0.8, 0.95)
     fin_twist_rate_range_rad_s: tuple[float, float] = (0.3, 0.6)
-    reward: TrackingReward = TrackingReward(
-        terms=(RewardTerm("fin_twist_rate_rad_s", 0.3, 0.5), RewardTerm("flutter_speed_deficit_m_s", 0.2, 1.0),
-               RewardTerm("airspeed_error_m_s", 0.15, 3.0), RewardTerm("altitude_error_m", 0.15, 15.0)),
-        control_rate_weight=0.1)
+    reward: TrackingReward = _flutter_reward("fin_twist_rate_rad_s", 0.5)
     subject: str = "fin"
     wing_twist_rate_range_rad_s: tuple[float, float] = (0.05, 0.1)
     wing_tip_twist_limit_rad: float = math.inf
@@ -131,14 +154,12 @@ class FlutterMarginTask:
         if not 0.0 < lo < hi < 1.0:
             raise ValueError(f"flutter_mach_range = {self.flutter_mach_range!r}: must satisfy 0 < lo < hi < 1")
         object.__setattr__(self, "flutter_mach_range", (lo, hi))
-        a, b = (float(v) for v in self.fin_twist_rate_range_rad_s)
-        if not 0.0 <= a <= b <= 10.0:
-            raise ValueError(f"fin_twist_rate_range_rad_s = {self.fin_twist_rate_range_rad_s!r}: must be (lo, hi), 0 <= lo <= hi <= 10 rad/s")
-        object.__setattr__(self, "fin_twist_rate_range_rad_s", (a, b))
-        a, b = (float(v) for v in self.wing_twist_rate_range_rad_s)
-        if not 0.0 <= a <= b <= 10.0:
-            raise ValueError(f"wing_twist_rate_range_rad_s = {self.wing_twist_rate_range_rad_s!r}: must be (lo, hi), 0 <= lo <= hi <= 10 rad/s")
-        object.__setattr__(self, "wing_twist_rate_range_rad_s", (a, b))
+        for name in ("fin_twist_rate_range_rad_s", "wing_twist_rate_range_rad_s"):
+            value = getattr(self, name)
+            a, b = (float(v) for v in value)
+            if not 0.0 <= a <= b <= 10.0:
+                raise ValueError(f"{name} = {value!r}: must be (lo, hi), 0 <= lo <= hi <= 10 rad/s")
+            object.__setattr__(self, name, (a, b))
 
     @property
     def rate_error(self) -> str:
@@ -156,15 +177,12 @@ class WingFlutterMarginTask(FlutterMarginTask):
     """
 
     flutter_mach_range: tuple[float, float] = (0.5, 0.95)
-    reward: TrackingReward = TrackingReward(
-        terms=(RewardTerm("wing_twist_rate_rad_s", 0.3, 0.2), RewardTerm("flutter_speed_deficit_m_s", 0.2, 1.0),
-               RewardTerm("airspeed_error_m_s", 0.15, 3.0), RewardTerm("altitude_error_m", 0.15, 15.0)),
-        control_rate_weight=0.1)
+    reward: TrackingReward = _flutter_reward("wing_twist_rate_rad_s", 0.2)
     subject: str = "wing_antisymmetric"
     wing_tip_twist_limit_rad: float = 0.1
 
 
-@shared_docs
+@_flutter_docs
 class FlutterMarginEnv(FlexSimEnv):
     """
     ## Description
@@ -190,12 +208,7 @@ class FlutterMarginEnv(FlexSimEnv):
 
     <observation rows 0-9>
     | 10    | fin tip twist rate (the rewarded structural error) | -1000  | 1000  | rad/s  |
-    | 11    | flutter-speed deficit max(0, V_f - V)              | -600   | 600   | m/s    |
-    | 12    | airspeed error V - V_target                        | -300   | 300   | m/s    |
-    | 13    | altitude error                                     | -5000  | 5000  | m      |
-    | 14    | flutter margin V - V_f                             | -600   | 600   | m/s    |
-    | 15-26 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
-    | 27-30 | applied controls, normalised                       | 0/-1   | 1     | -      |
+    <observation rows 11-30>
 
     ## Rewards
     ``alive`` +1; ``fin_twist_rate_rad_s`` -0.3 min((e/0.5 rad/s)^2, 1); ``flutter_speed_deficit_m_s``
@@ -287,7 +300,7 @@ class FlutterMarginEnv(FlexSimEnv):
         return f"GTM flutter margin M {self.target.mach:.3f} (M_f {self.flutter.mach:.3f})"
 
 
-@shared_docs
+@_flutter_docs
 class WingFlutterMarginEnv(FlutterMarginEnv):
     """
     ## Description
@@ -312,12 +325,7 @@ class WingFlutterMarginEnv(FlutterMarginEnv):
 
     <observation rows 0-9>
     | 10    | antisymmetric wing tip twist rate 0.5 (psi_R' + psi_L') (the rewarded structural error) | -1000 | 1000 | rad/s |
-    | 11    | flutter-speed deficit max(0, V_f - V)              | -600   | 600   | m/s    |
-    | 12    | airspeed error V - V_target                        | -300   | 300   | m/s    |
-    | 13    | altitude error                                     | -5000  | 5000  | m      |
-    | 14    | flutter margin V - V_f                             | -600   | 600   | m/s    |
-    | 15-26 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
-    | 27-30 | applied controls, normalised                       | 0/-1   | 1     | -      |
+    <observation rows 11-30>
 
     Twists are torsion coordinates (``docs/conventions.md``): positive is nose-up on the right wing and
     nose-down on the left one, so equal right and left values are an antisymmetric twist.
