@@ -33,7 +33,7 @@ import gymnasium as gym  # noqa: E402
 import numpy as np  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
 
-import envs  # noqa: E402
+from flexsim import envs  # noqa: E402
 
 ENV_ID = "FlexSim/GTM-LevelHold-v0"
 BUDGET_STEPS_S = 200.0

@@ -1,8 +1,8 @@
 """The common gymnasium adapter of the flexsim tasks: spaces, action mapping, stepping, termination.
 
-The physics lives in :mod:`envs.dynamics` (and below it in flexsim); a task subclass only says how an
+The physics lives in :mod:`flexsim.envs.dynamics` (and below it in flexsim); a task subclass only says how an
 episode starts (trim, perturbation, wind), which errors it tracks and how they are rewarded
-(:class:`~envs.config.TrackingReward`).
+(:class:`~flexsim.envs.config.TrackingReward`).
 """
 
 from __future__ import annotations
@@ -22,10 +22,10 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.trim import SteadyManoeuvre
 
-from envs.config import (AERO_MODELS, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
+from flexsim.envs.config import (AERO_MODELS, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
                          IntegratorSettings, TrackingReward)
-from envs.dynamics import SENSOR_COMPONENTS, FlightDynamics, Measurements, StepOutcome
-from envs.parallel import limit_blas_threads
+from flexsim.envs.dynamics import SENSOR_COMPONENTS, FlightDynamics, Measurements, StepOutcome
+from flexsim.envs.parallel import limit_blas_threads
 
 __all__ = ["FlexSimEnv", "Episode", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
 
@@ -108,7 +108,7 @@ class Episode:
 
 @dataclass(frozen=True)
 class LogSample:
-    """One flight-log sample of the current state (see :class:`envs.wrappers.FlightLogRecorder`)."""
+    """One flight-log sample of the current state (see :class:`flexsim.envs.wrappers.FlightLogRecorder`)."""
 
     time_s: float
     position_ned_m: np.ndarray
@@ -396,7 +396,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             return None
         if self._x is None:
             raise RuntimeError("render() called before reset()")
-        from envs.rendering import RerunStreamer, RgbRenderer
+        from flexsim.envs.rendering import RerunStreamer, RgbRenderer
 
         if self._renderer is None:
             self._renderer = RgbRenderer() if self.render_mode == "rgb_array" else RerunStreamer()

@@ -39,7 +39,7 @@ from flexsim.structure.kinematics import dcm_321, euler_rate_matrix_inverse
 from flexsim.structure.shapes import bending_shapes, torsion_shapes
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
-from envs.config import FIXED_STEP_METHODS, ActuatorRates, IntegratorSettings
+from flexsim.envs.config import FIXED_STEP_METHODS, ActuatorRates, IntegratorSettings
 
 __all__ = ["FlightDynamics", "Measurements", "StepOutcome", "WindHolder", "SENSOR_COMPONENTS"]
 

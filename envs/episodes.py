@@ -9,7 +9,7 @@ import numpy as np
 from flexsim.model.layout import StateLayout
 from flexsim.sim.disturbances import DrydenTurbulence
 
-from envs.config import InitialPerturbation
+from flexsim.envs.config import InitialPerturbation
 
 __all__ = ["perturbed_state", "turbulence_field", "wrap_angle", "TURBULENCE_GRID_POINTS"]
 

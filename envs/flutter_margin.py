@@ -17,10 +17,10 @@ from flexsim.aircraft.definition import Aircraft
 from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
 from flexsim.trim import SteadyManoeuvre
 
-from envs.base import Episode, FlexSimEnv, shared_docs
-from envs.config import RewardTerm, TrackingReward
-from envs.dynamics import Measurements
-from envs.episodes import perturbed_state, turbulence_field
+from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
+from flexsim.envs.config import RewardTerm, TrackingReward
+from flexsim.envs.dynamics import Measurements
+from flexsim.envs.episodes import perturbed_state, turbulence_field
 
 __all__ = ["FlutterMarginTask", "WingFlutterMarginTask", "FlutterMarginEnv", "WingFlutterMarginEnv", "FlutterCondition",
            "flutter_condition", "SUBJECTS"]

@@ -11,10 +11,10 @@ from flexsim.sim.disturbances import OneMinusCosineGust, combine
 from flexsim.structure.kinematics import dcm_321
 from flexsim.trim import SteadyManoeuvre
 
-from envs.base import Episode, FlexSimEnv, shared_docs
-from envs.config import RewardTerm, TrackingReward
-from envs.dynamics import Measurements
-from envs.episodes import perturbed_state, turbulence_field
+from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
+from flexsim.envs.config import RewardTerm, TrackingReward
+from flexsim.envs.dynamics import Measurements
+from flexsim.envs.episodes import perturbed_state, turbulence_field
 
 __all__ = ["GustAlleviationTask", "GustAlleviationEnv"]
 

@@ -14,7 +14,7 @@ import numpy as np
 from flexsim.io.flight_log import ENU_FROM_NED, viewer_pose
 from flexsim.structure.kinematics import dcm_321
 
-from envs.dynamics import SENSOR_COMPONENTS, Measurements
+from flexsim.envs.dynamics import SENSOR_COMPONENTS, Measurements
 
 __all__ = ["RgbRenderer", "RerunStreamer"]
 

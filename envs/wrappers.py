@@ -10,7 +10,7 @@ import gymnasium as gym
 
 from flexsim.io.flight_log import FlightLogWriter
 
-from envs.base import LOG_CONTROL_NAMES, FlexSimEnv
+from flexsim.envs.base import LOG_CONTROL_NAMES, FlexSimEnv
 
 __all__ = ["FlightLogRecorder"]
 

@@ -3,7 +3,7 @@
 Each policy is designed from the environment's own model at a trim (``lqr_design``) and then acts on
 observations only (run from ``examples/agents`` or put it on ``sys.path``; these are scripts, not a package)::
 
-    import gymnasium as gym, envs
+    import gymnasium as gym, flexsim.envs
     from baselines import make_baseline
     env = gym.make("FlexSim/GTM-LevelHold-v0")
     policy = make_baseline("FlexSim/GTM-LevelHold-v0", env)

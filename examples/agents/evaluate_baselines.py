@@ -20,7 +20,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import gymnasium as gym  # noqa: E402
 import numpy as np  # noqa: E402
 
-import envs  # noqa: E402,F401  (registers the ids)
+from flexsim import envs  # noqa: E402,F401  (registers the ids)
 from baselines import BASELINES, RandomPolicy, make_baseline, run_episode  # noqa: E402
 
 

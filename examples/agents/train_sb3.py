@@ -18,7 +18,7 @@ from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import envs  # noqa: E402  (registers the FlexSim/* ids)
+from flexsim import envs  # noqa: E402  (registers the FlexSim/* ids)
 
 ALGORITHMS = ("SAC", "PPO", "TD3")
 

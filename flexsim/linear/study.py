@@ -136,7 +136,7 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
     cases : iterable of StudyCase
     scheduler : str, optional
         Address of a Dask distributed scheduler (``tcp://host:8786``); needs ``dask[distributed]``
-        (``pip install flexsim[dask]``). Default: local processes.
+        (``pip install ".[dask]"`` from the checkout). Default: local processes.
     workers : int, optional
         Local processes (default: all cores).
     progress : bool
@@ -161,7 +161,7 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
         try:
             from dask.distributed import Client, as_completed
         except ImportError as exc:  # optional dependency
-            raise RuntimeError(f"--scheduler {scheduler!r} needs dask.distributed: pip install 'flexsim[dask]' ({exc})") from None
+            raise RuntimeError(f"--scheduler {scheduler!r} needs dask.distributed: pip install \".[dask]\" from the flexsim checkout ({exc})") from None
         with Client(scheduler) as client:
             futures = {client.submit(run_chain, [cases[i] for i in g], pure=False): k for k, g in enumerate(groups)}
             for fut in as_completed(futures):

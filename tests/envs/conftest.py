@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-import envs  # noqa: F401  (registers the FlexSim/* ids)
+from flexsim import envs  # noqa: F401  (registers the FlexSim/* ids)
 
 AGENTS = Path(__file__).resolve().parents[2] / "examples" / "agents"
 

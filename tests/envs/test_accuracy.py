@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-import envs
+from flexsim import envs
 
 
 def _errors(env_id, periods, noise, **kwargs):

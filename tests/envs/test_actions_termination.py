@@ -14,7 +14,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-import envs
+from flexsim import envs
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-import envs
+from flexsim import envs
 
 
 def _mean_return(env_id, policy_name, seeds, max_steps=None, **kwargs):

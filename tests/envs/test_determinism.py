@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from gymnasium.utils.env_checker import data_equivalence
 
-import envs
+from flexsim import envs
 
 
 def _rollout(env_id, seed, steps, **kwargs):

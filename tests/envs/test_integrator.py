@@ -20,7 +20,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-import envs
+from flexsim import envs
 from flexsim.sim.fixed_step import ETD2RK
 
 

@@ -14,7 +14,7 @@ import pytest
 from flexsim.io.flight_log import read_flight_log
 from flexsim.io.rerun_view import log_to_recording
 
-import envs
+from flexsim import envs
 
 
 def test_rgb_array_render():
@@ -75,7 +75,7 @@ def test_human_mode_streams_to_rerun_without_spawning():
     # in-memory one beforehand, so the drawing code runs against rerun-sdk without any viewer.
     import rerun as rr
 
-    from envs.rendering import RerunStreamer
+    from flexsim.envs.rendering import RerunStreamer
 
     env = envs.LevelHoldEnv(aero="quasi-steady", render_mode="human")
     streamer = RerunStreamer()

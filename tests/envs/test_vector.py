@@ -12,7 +12,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-import envs
+from flexsim import envs
 
 
 def _run(mode, method):
