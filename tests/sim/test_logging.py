@@ -17,6 +17,7 @@ import sys
 import textwrap
 import time
 from collections import Counter
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -131,7 +132,10 @@ def test_sigkill_leaves_a_log_readable_up_to_about_one_second_before(tmp_path):
     path = tmp_path / "killed.mcap"
     script = tmp_path / "run.py"
     script.write_text(_KILL_SCRIPT)
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    # The child imports this checkout's flexsim, installed or not (helpers run tests without installing).
+    root = str(Path(__file__).resolve().parents[2])
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1",
+           "PYTHONPATH": os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH")) if p)}
     proc = subprocess.Popen([sys.executable, str(script), str(path)], stdout=subprocess.PIPE, text=True, env=env)
     reported = 0.0
     deadline = time.monotonic() + 60.0
