@@ -62,7 +62,7 @@ def _flutter(args: argparse.Namespace) -> int:
                 print(f"{'ours':>4} {row['altitude_m']:7.0f}  no flutter point: {row['error'][:110]}")
             else:
                 print(f"{'ours':>4} {row['altitude_m']:7.0f} {row['mach']:7.4f} {row['omega_rad_s']:8.3f} {row['theta_deg']:7.3f} "
-                      f"{row['thrust_kN']:8.2f} {row['elevator_deg']:7.3f} {row['tip_deflection_m']:8.4f} {row['tip_twist_deg']:8.4f}   ({row['mode']})")
+                      f"{row['thrust_kN']:8.2f} {row['elevator_deg']:7.3f} {row['tip_deflection_m']:8.4f} {row['tip_twist_deg']:8.4f}   ({row['mode_symmetry']}: {row['mode']})")
             if ref:
                 print(f"{'pap.':>4} {ref[0]:7.0f} {ref[1]:7.4f} {ref[2]:8.3f} {ref[3]:7.3f} {ref[4]:8.2f} {ref[5]:7.3f} {ref[6]:8.4f} {ref[7]:8.4f}")
                 if "error" not in row:

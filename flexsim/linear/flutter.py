@@ -20,6 +20,7 @@ from scipy.optimize import brentq
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import speed_of_sound
 from flexsim.errors import FlexsimError
+from flexsim.linear.participation import Participation, describe_mode
 from flexsim.linear.stability import Mode, Spectrum, spectrum
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
@@ -55,6 +56,15 @@ class FlutterPoint:
         DOF label of every entry of ``mode_shape``.
     normalised_by : str
         Label of the coordinate set to 1 in ``mode_shape``.
+    mode_symmetry : {"symmetric", "antisymmetric", "mixed", "n/a"}
+        From the physical mirror of the two halves' coordinates (:mod:`flexsim.structure.mirror`): at
+        least 90 % of the mode's kinetic energy in the mirror-symmetric (antisymmetric) part; "n/a" for
+        an aircraft that is not left-right symmetric.
+    symmetric_fraction : float
+        Share of the mode's kinetic energy in its mirror-symmetric part [-].
+    participation : tuple of Participation
+        Leading linear coordinates [m] then leading angles [deg] of ``mode_shape`` with their phase
+        relative to the normalising coordinate (paper Figs. 11, 16; :mod:`flexsim.linear.participation`).
     rigid_instabilities : tuple of (float, complex, str)
         (Mach, eigenvalue, dominant DOF) of unstable rigid-body modes met during the search.
     evaluations : int
@@ -72,22 +82,9 @@ class FlutterPoint:
     rigid_instabilities: tuple = field(default=())
     evaluations: int = 0
     normalised_by: str = ""
-
-
-#: Smallest |q_f1| relative to the largest elastic amplitude for which the mode is normalised by q_f1.
-Q_F1_PARTICIPATION = 1e-3
-
-
-def _normalised_shape(model: AircraftModel, mode: Mode) -> tuple[np.ndarray, int]:
-    """Mode displacements normalised as in the paper (q_f1 = 1 m), see :attr:`FlutterPoint.mode_shape`."""
-    disp = mode.shape / mode.eigenvalue
-    dofs = model.structure.dofs
-    el = disp[6:]
-    largest = 6 + int(np.argmax(np.abs(el)))
-    fus = dofs.v_bending("fuselage") if "fuselage" in dofs.component_names else slice(0, 0)
-    if fus.stop > fus.start and abs(disp[fus.start]) >= Q_F1_PARTICIPATION * abs(disp[largest]):
-        return disp / disp[fus.start], fus.start
-    return disp / disp[largest], largest
+    mode_symmetry: str = "n/a"
+    symmetric_fraction: float = math.nan
+    participation: tuple[Participation, ...] = ()
 
 
 class FlutterAnalysis:
@@ -218,7 +215,7 @@ class FlutterAnalysis:
     def _point(self, manoeuvre: SteadyManoeuvre, mach_f: float, a_sound: float, state: dict) -> FlutterPoint:
         point, spec = self.evaluate(manoeuvre.with_speed(mach_f * a_sound))
         mode = spec.critical("elastic")
-        shape, ref = _normalised_shape(self.qs, mode)
+        desc = describe_mode(self.qs.structure, mode.shape, mode.eigenvalue)
         return FlutterPoint(
             aero_model=self.aero_model,
             mach=float(mach_f),
@@ -226,9 +223,12 @@ class FlutterAnalysis:
             frequency_rad_s=mode.frequency_rad_s,
             trim=point,
             mode=mode,
-            mode_shape=shape,
+            mode_shape=desc.shape,
             labels=self.qs.structure.dofs.labels,
-            normalised_by=self.qs.structure.dofs.labels[ref],
+            normalised_by=self.qs.structure.dofs.labels[desc.normalised_by],
+            mode_symmetry=desc.symmetry,
+            symmetric_fraction=desc.symmetric_fraction,
+            participation=desc.leading,
             rigid_instabilities=tuple(state["rigid"]),
             evaluations=state["n"] + 1,
         )

@@ -20,7 +20,9 @@ flight-dynamics modes, while a fuselage-bending mode strongly coupled to pitch a
 aerodynamics (the paper's flutter mode, q_f1 dominant) stays an elastic mode. Restrained models have only
 elastic modes. Modes that
 are almost pure inflow (aerodynamic lag states, structural energy below 1e-9 of the vector) are labelled
-"aerodynamic". The dominant DOF is the one with the largest share Re(conj(phi_i) (M phi)_i).
+"aerodynamic". The dominant DOF is the one with the largest share Re(conj(phi_i) (M phi)_i); a tie
+between mirror coordinates (right and left halves within 1e-4, :data:`flexsim.structure.mirror.TIE_RTOL`)
+names the right half, so labels do not flip between halves on round-off.
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ import numpy as np
 from flexsim.aero.theodorsen import theodorsen_function
 from flexsim.linear.linearize import LinearModel, jacobian, linearize
 from flexsim.model.aircraft_model import AircraftModel
+from flexsim.structure.mirror import ranked
 
 __all__ = ["Mode", "Spectrum", "spectrum"]
 
@@ -102,7 +105,8 @@ def _classify(model: AircraftModel, lin: LinearModel, vals: np.ndarray, vecs: np
     mass = model.structure.inertia.mass_matrix(q)
     active = model.active_dofs
     m_act = mass[np.ix_(active, active)]
-    labels = [model.structure.dofs.labels[i] for i in active]
+    labels_full = model.structure.dofs.labels
+    mirror = model.structure.mirror
     free = lay.rigid
     cut = 0.5 * _first_elastic_frequency(model) if free else 0.0
     mp = model.structure.mass_properties
@@ -126,9 +130,11 @@ def _classify(model: AircraftModel, lin: LinearModel, vals: np.ndarray, vecs: np
             frac_el = float(np.clip(1.0 - rigid_energy / total, 0.0, 1.0))
         else:
             frac_el = 1.0
-        j = int(np.argmax(share))
+        full_share = np.full(model.structure.dofs.n_v, -np.inf)
+        full_share[active] = share
+        j = ranked(full_share, mirror, candidates=[int(i) for i in active])[0]
         rigid = frac_el < 0.5 and abs(vals[k]) < cut
-        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, labels[j], full))
+        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, labels_full[j], full))
     modes.sort(key=lambda m: -m.eigenvalue.real)
     return Spectrum(tuple(modes), aero_model)
 

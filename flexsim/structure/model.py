@@ -16,6 +16,7 @@ from flexsim.aircraft.definition import Aircraft
 from flexsim.structure.inertia import InertiaPolynomial
 from flexsim.structure.kinematic_map import DofIndex, PointMaps, point_maps
 from flexsim.structure.loads import ThrustMap
+from flexsim.structure.mirror import MirrorOperator, mirror_operator
 from flexsim.structure.stiffness import stiffness_matrices
 
 __all__ = ["StructuralModel", "MassProperties"]
@@ -73,6 +74,11 @@ class StructuralModel:
     def point_maps(self, component: str, x: np.ndarray) -> PointMaps:
         """Kinematic maps of points at stations ``x`` [m] of ``component`` (eqs. 5-6, 18)."""
         return point_maps(self.aircraft, self.dofs, self.aircraft.component(component), x)
+
+    @cached_property
+    def mirror(self) -> MirrorOperator | None:
+        """Left-right mirror of the coordinates V (:mod:`flexsim.structure.mirror`); None if asymmetric."""
+        return mirror_operator(self.aircraft, self.dofs)
 
     @cached_property
     def stiffness(self) -> np.ndarray:

@@ -121,3 +121,47 @@ def test_calibrated_gtm_us_flutter_within_3_percent_of_table_3(altitude_m, mach_
     assert fs.mach == pytest.approx(pk.mach, rel=0.02)
     if altitude_m > 0.0:  # the paper's sea-level point is another mode (17.8 rad/s)
         assert pk.frequency_rad_s == pytest.approx(paper[2], rel=0.10)
+
+
+def test_flutter_point_reports_symmetry_and_participation(sea_level_level_flutter):
+    """Issue 15 item c: the calibrated GTM's level-flight flutter mode is antisymmetric (the mirror image of its
+    motion is minus itself: symmetric energy share 0 to round-off); its participation lists linear [m] and
+    angle [deg] coordinates by decreasing magnitude, the normalising coordinate first with magnitude 1, phase 0."""
+    _, level = sea_level_level_flutter
+    assert level.mode_symmetry == "antisymmetric"
+    assert level.symmetric_fraction < 1e-8
+    linear = [p for p in level.participation if p.kind == "linear"]
+    angles = [p for p in level.participation if p.kind == "angle"]
+    assert linear and angles and all(p.unit == "m" for p in linear) and all(p.unit == "deg" for p in angles)
+    assert [p.magnitude for p in linear] == sorted((p.magnitude for p in linear), reverse=True) or \
+        max(abs(a.magnitude - b.magnitude) for a, b in zip(linear, sorted(linear, key=lambda p: -p.magnitude))) <= 1e-4
+    ref = next(p for p in level.participation if p.label == level.normalised_by)
+    assert ref.magnitude == pytest.approx(1.0 if ref.unit == "m" else math.degrees(1.0)) and ref.phase_deg == pytest.approx(0.0, abs=1e-9)
+    # antisymmetric wing motion: left bending 1 is right bending 1 with opposite sign (phase 180 deg)
+    by = {p.label: p for p in level.participation}
+    if "right_wing bending 1" in by and "left_wing bending 1" in by:
+        assert by["left_wing bending 1"].magnitude == pytest.approx(by["right_wing bending 1"].magnitude, rel=1e-4)
+        assert abs(abs(by["left_wing bending 1"].phase_deg - by["right_wing bending 1"].phase_deg) - 180.0) < 1e-3
+
+
+def test_labels_do_not_flip_between_halves_on_round_off():
+    """A symmetric and an antisymmetric wing mode, perturbed by 1e-9 noise 50 times: the same normalising
+    coordinate, the same participation order, the same symmetry every time (ties: right half first)."""
+    from flexsim.linear.participation import describe_mode
+    from flexsim.structure.model import StructuralModel
+
+    st = StructuralModel(load_aircraft("gtm"))
+    labels = st.dofs.labels
+    rng = np.random.default_rng(1)
+    for sign, expected in ((1.0, "antisymmetric"), (-1.0, "symmetric")):
+        base = np.zeros(st.dofs.n_v, dtype=complex)
+        base[labels.index("right_wing torsion 1")], base[labels.index("left_wing torsion 1")] = 1.0, sign
+        base[labels.index("right_wing bending 1")], base[labels.index("left_wing bending 1")] = 0.5j, -sign * 0.5j
+        seen = set()
+        for _ in range(50):
+            noisy = base + 1e-9 * (rng.standard_normal(base.size) + 1j * rng.standard_normal(base.size))
+            d = describe_mode(st, noisy, 30j)
+            seen.add((labels[d.normalised_by], tuple(p.label for p in d.leading[:2]), d.symmetry))
+        assert len(seen) == 1
+        (ref, _, sym), = seen
+        assert ref == "right_wing torsion 1" and sym == expected
