@@ -30,7 +30,7 @@ from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
 from flexsim.sim.disturbances import OneMinusCosineGust  # noqa: E402
 from flexsim.sim.manoeuvres import build_manoeuvre  # noqa: E402
 from flexsim.sim.simulate import simulate  # noqa: E402
-from flexsim.structure.kinematics import dcm_321  # noqa: E402
+from flexsim.kinematics import dcm_321  # noqa: E402
 from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
 
 BUDGET_RTF = 10.0

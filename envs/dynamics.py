@@ -35,7 +35,7 @@ from flexsim.atmosphere import speed_of_sound
 from flexsim.linear.linearize import jacobian
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.fixed_step import ETD2RK
-from flexsim.structure.kinematics import dcm_321, euler_rate_matrix_inverse
+from flexsim.kinematics import dcm_321, euler_rate_matrix_inverse
 from flexsim.structure.shapes import bending_shapes, torsion_shapes
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexsim.sim.disturbances import OneMinusCosineGust, combine
-from flexsim.structure.kinematics import dcm_321
+from flexsim.kinematics import dcm_321
 from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs

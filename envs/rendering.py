@@ -12,7 +12,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from flexsim.io.flight_log import ENU_FROM_NED, viewer_pose
-from flexsim.structure.kinematics import dcm_321
+from flexsim.kinematics import dcm_321
 
 from flexsim.envs.dynamics import SENSOR_COMPONENTS, Measurements
 

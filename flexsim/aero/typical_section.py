@@ -2,8 +2,8 @@
 
 Source: Hodges & Pierce, *Introduction to Structural Dynamics and Aeroelasticity*, 2nd ed. (2011) ch. 5
 (equations of motion, Peters finite-state and Theodorsen flutter); ``shared/reference/aero-kinematics.md``
-§3.2 (benchmark values). Aerodynamics from :func:`flexsim.aero.peters.rigid_section_terms` (strip kernel),
-:mod:`flexsim.aero.inflow` and :mod:`flexsim.aero.theodorsen`.
+§3.2 (benchmark values). Aerodynamics from :mod:`flexsim.aero.theodorsen` (the rigid-section
+loads) and :mod:`flexsim.aero.inflow` (Peters finite-state inflow).
 
 Non-dimensionalisation: semichord ``b = 1``, density ``ρ = 1``, pitch frequency ``ω_θ = 1``, mass
 ``m = μπρb²``. Speeds are therefore ``U/(bω_θ)``, eigenvalues and frequencies are in units of ``ω_θ``,
@@ -23,7 +23,6 @@ from scipy.linalg import eigvals
 from scipy.optimize import brentq
 
 from flexsim.aero.inflow import inflow_coefficients
-from flexsim.aero.peters import rigid_section_terms
 from flexsim.aero.theodorsen import theodorsen_function, theodorsen_operator
 
 MODELS = ("peters", "quasi_steady", "theodorsen")
@@ -114,19 +113,22 @@ class _LinearAero:
 
 
 def _peters_linear_aero(section: TypicalSection, speed: float) -> _LinearAero:
-    """Linearise the strip kernel :func:`rigid_section_terms` (exactly linear at constant ``u0``).
+    """Rigid-section Peters airloads, exactly linear at constant ``u0`` (``b = ρ = 1``).
 
-    Evaluates it (vectorised) at unit ``θ``, ``ḣ`` and ``θ̇``; ``b = ρ = 1``.
+    Peters' rigid-section loads are Theodorsen's non-circulatory terms plus the circulatory lift of the
+    3/4-chord downwash ``Q`` less the inflow ``λ0`` (reference §1.5; with ``λ0 = (1 - C)Q`` they are
+    Theodorsen's loads, paper eq. 27), so they are assembled from :func:`theodorsen_operator`:
+    ``[L, M_EA] = mass q̈ + damping q̇ + circulation (Q - λ0)``, ``Q = downwash_displacement·q +
+    downwash_rate·q̇``; the inflow forcing is ``ẇ0 + ẇ1/2 = Q̇``.
     """
-    unit = np.eye(3)
-    terms = rigid_section_terms(unit[0], unit[1], unit[2], speed, 0.0, 1.0, 1.0, section.a)
+    op = theodorsen_operator(section.a, 1.0, 1.0, speed)
     return _LinearAero(
-        mass=terms.apparent_mass[0],
-        damping=terms.velocity[1:].T,
-        stiffness=np.column_stack([np.zeros(2), terms.velocity[0]]),
-        lambda0=terms.lambda0[0],
-        inflow_acceleration=terms.inflow_acceleration[0],
-        inflow_velocity=terms.inflow_velocity[1:],
+        mass=op.mass,
+        damping=op.damping + np.outer(op.circulation, op.downwash_rate),
+        stiffness=op.stiffness + np.outer(op.circulation, op.downwash_displacement),
+        lambda0=-op.circulation,
+        inflow_acceleration=op.downwash_rate,
+        inflow_velocity=op.downwash_displacement,
     )
 
 

@@ -20,11 +20,11 @@ from typing import Iterable
 import numpy as np
 
 from flexsim.errors import AircraftDefinitionError
-from flexsim.structure.kinematics import dcm_321
-from flexsim.structure.shapes import MAX_MODES
+from flexsim.kinematics import dcm_321
 
 __all__ = [
     "COMPONENT_NAMES",
+    "MAX_MODES",
     "SectionTable",
     "StripAero",
     "ControlSurface",
@@ -33,6 +33,9 @@ __all__ = [
     "Engine",
     "Aircraft",
 ]
+
+#: Largest number of bending or torsion shape functions per component accepted by flexsim.
+MAX_MODES = 10
 
 #: The paper's components, in the order of the global velocity vector (eq. 9).
 COMPONENT_NAMES = ("fuselage", "right_wing", "left_wing", "right_htail", "left_htail", "vtail")

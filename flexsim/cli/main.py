@@ -113,7 +113,8 @@ def _modes(args: argparse.Namespace) -> int:
 
 
 def _aero(args: argparse.Namespace) -> int:
-    from flexsim.aero.strips import StripSet, vlm_surfaces
+    from flexsim.aero.lift_slopes import vlm_surfaces
+    from flexsim.model.strips import StripSet
     from flexsim.aero.vlm import plot_lift_slope, solve_vlm
 
     aircraft = _aircraft(args)

@@ -26,7 +26,7 @@ from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.layout import StateLayout
-from flexsim.structure.kinematics import dcm_321, euler_rate_matrix_inverse
+from flexsim.kinematics import dcm_321, euler_rate_matrix_inverse
 from flexsim.structure.model import StructuralModel
 
 __all__ = ["Variant", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES"]

@@ -4,7 +4,7 @@ Sources: Tuzcu & Nguyen (2014) eqs. (25)-(31); Peters-Johnson rigid-strip loads 
 ``shared/reference/aero-kinematics.md`` sections 1.3-1.6 (pi rho normalisation); Peters, Karunamoorthy &
 Cao (1995) finite-state inflow (reference section 2.1).
 
-For every strip (see :mod:`flexsim.aero.strips`) the Chebyshev downwash coefficients follow from the
+For every strip (see :mod:`flexsim.model.strips`) the Chebyshev downwash coefficients follow from the
 kinematic map of its elastic-axis point, in strip axes (chord direction d, plunge direction n, pitch axis p)::
 
     u0 = -d^T A(q) V                             chordwise air speed [m/s]
@@ -45,7 +45,7 @@ from typing import NamedTuple
 import numpy as np
 
 from flexsim.aero.inflow import inflow_coefficients
-from flexsim.aero.strips import StripSet
+from flexsim.model.strips import StripSet
 from flexsim.structure.model import StructuralModel
 
 __all__ = ["AeroOptions", "AeroCoupling", "AERO_MODELS", "StripLoads", "StripKinematics"]

@@ -35,7 +35,7 @@ from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.disturbances import OneMinusCosineGust
 from flexsim.sim.result import SimulationResult
 from flexsim.sim.simulate import ControlSchedule, simulate
-from flexsim.structure.kinematics import dcm_321
+from flexsim.kinematics import dcm_321
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
 __all__ = ["ManoeuvreSetup", "build_manoeuvre", "manoeuvre_names", "goland_flutter_speed", "pulse_schedule",

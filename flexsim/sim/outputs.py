@@ -13,7 +13,7 @@ import numpy as np
 
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.structure.kinematics import dcm_321
+from flexsim.kinematics import dcm_321
 from flexsim.structure.shapes import bending_shapes, torsion_shapes
 
 __all__ = ["OutputMaps", "CONTROL_LOG_NAMES", "WINGS", "STRUCTURE_NODES"]

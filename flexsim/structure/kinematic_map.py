@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexsim.aircraft.definition import Aircraft, Component
-from flexsim.structure.kinematics import skew
+from flexsim.kinematics import skew
 from flexsim.structure.shapes import bending_shapes, torsion_shapes
 
 __all__ = ["DofIndex", "PointMaps", "point_maps"]

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexsim.aircraft.definition import Aircraft, Component
-from flexsim.structure.kinematics import skew
+from flexsim.kinematics import skew
 
 __all__ = ["Quadrature", "beam_quadrature", "MassPoints", "mass_points"]
 

@@ -20,6 +20,8 @@ from functools import lru_cache
 import numpy as np
 from scipy.optimize import brentq
 
+from flexsim.aircraft.definition import MAX_MODES
+
 __all__ = [
     "MAX_MODES",
     "cantilever_beta_l",
@@ -27,8 +29,6 @@ __all__ = [
     "torsion_shapes",
 ]
 
-#: Largest number of bending or torsion shape functions per component accepted by flexsim.
-MAX_MODES = 10
 
 
 @lru_cache(maxsize=None)

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexsim.atmosphere import mach_to_true_airspeed, speed_of_sound
-from flexsim.structure.kinematics import dcm_321, euler_rate_matrix
+from flexsim.kinematics import dcm_321, euler_rate_matrix
 
 __all__ = ["SteadyManoeuvre"]
 

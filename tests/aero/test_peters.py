@@ -12,7 +12,7 @@ import pytest
 from numpy.polynomial import chebyshev
 
 from flexsim.aero import peters as pj
-from flexsim.aero.theodorsen import theodorsen_function, theodorsen_load_matrix
+from flexsim.aero.theodorsen import theodorsen_function, theodorsen_load_matrix, theodorsen_operator
 
 A_EA, D_HINGE = -0.3, 0.5  # reference §1.7 set-up, rho = b = U = 1
 
@@ -178,27 +178,32 @@ def test_matrix_form_equals_downwash_form():
     np.testing.assert_allclose(got, expected, rtol=1e-12, atol=1e-12)
 
 
-def test_rigid_section_terms_equal_general_model():
-    """Rigid strip specialisation (reference §1.5) equals the general T-projected loads for random states
-    (vectorised over 5 strips, incl. u̇0, λ0); tol 1e-12. Also checks the inflow forcing split."""
+def test_rigid_section_loads_equal_theodorsen_operator_in_time_domain():
+    """Rigid section (reference §1.5): the general T-projected loads equal Theodorsen's non-circulatory
+    terms plus the circulatory lift of Q - λ0, with Q = w0 + w1/2 Theodorsen's 3/4-chord downwash
+    (NACA Rep. 496; paper eq. 27 with λ0 = (1 - C)Q), for random states at constant u0; tol 1e-12.
+    Also checks the inflow forcing ẇ0 + ẇ1/2 = Q̇ (reference §2.1)."""
     rng = np.random.default_rng(2)
     n = 5
     theta, h_dot, theta_dot, h_ddot, theta_ddot, lam = rng.normal(size=(6, n))
-    u0, u0_dot, rho, b = rng.uniform(0.5, 3.0, size=(4, n))
+    u0, rho, b = rng.uniform(0.5, 3.0, size=(3, n))
     a = rng.uniform(-0.5, 0.5, size=n)
-    terms = pj.rigid_section_terms(theta, h_dot, theta_dot, u0, u0_dot, rho, b, a)
-    got = terms.loads(np.stack([h_ddot, theta_ddot], axis=-1), lam)
     for i in range(n):
+        op = theodorsen_operator(a[i], rho[i], b[i], u0[i])
+        q2, qd2, qdd2 = np.array([0.0, theta[i]]), np.array([h_dot[i], theta_dot[i]]), np.array([h_ddot[i], theta_ddot[i]])
+        q34 = op.downwash_displacement @ q2 + op.downwash_rate @ qd2
+        expected = op.mass @ qdd2 + op.damping @ qd2 + op.stiffness @ q2 + op.circulation * (q34 - lam[i])
         section = pj.flapped_section(2, a[i], 0.5, b[i])
         q, qd, qdd = [0.0, theta[i], 0.0], [h_dot[i], theta_dot[i], 0.0], [h_ddot[i], theta_ddot[i], 0.0]
-        expected = section.loads(q, qd, qdd, u0[i], u0_dot[i], lam[i], rho[i])[:2]
-        np.testing.assert_allclose(got[i], expected, rtol=1e-12, atol=1e-12)
+        got = section.loads(q, qd, qdd, u0[i], 0.0, lam[i], rho[i])[:2]
+        np.testing.assert_allclose(got, expected, rtol=1e-12, atol=1e-12)
         w = section.downwash(q, qd, u0[i])
-        assert terms.downwash[i] == pytest.approx(pj.circulatory_downwash(w), rel=1e-12)
-    accelerations = np.stack([h_ddot, theta_ddot], -1)
-    forcing = np.sum(terms.inflow_acceleration * accelerations, -1) + terms.inflow_velocity
-    expected_forcing = h_ddot + u0 * theta_dot + u0_dot * theta + b * (0.5 - a) * theta_ddot  # reference §2.1
-    np.testing.assert_allclose(forcing, expected_forcing, rtol=1e-12, atol=1e-12)
+        assert q34 == pytest.approx(pj.circulatory_downwash(w), rel=1e-12)
+        w_dot = section.downwash(qd, qdd, u0[i])  # constant u0: w is linear in (q, q_dot)
+        forcing = op.downwash_rate @ qdd2 + op.downwash_displacement @ qd2
+        expected_forcing = h_ddot[i] + u0[i] * theta_dot[i] + b[i] * (0.5 - a[i]) * theta_ddot[i]
+        assert forcing == pytest.approx(expected_forcing, rel=1e-12, abs=1e-12)
+        assert pj.circulatory_downwash(w_dot) == pytest.approx(expected_forcing, rel=1e-12, abs=1e-12)
 
 
 def test_flapped_section_vectorised_over_strips():

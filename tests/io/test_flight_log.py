@@ -32,7 +32,7 @@ from flexsim.io.flight_log import (
     read_flight_log,
     viewer_pose,
 )
-from flexsim.structure.kinematics import dcm_321
+from flexsim.kinematics import dcm_321
 
 STATE_NAMES = ["u_m_s", "w_m_s", "q_1", "q_2", "xi_1"]
 CONTROL_NAMES = ["thrust_N", "aileron_rad", "elevator_rad", "rudder_rad"]

@@ -1,8 +1,9 @@
 """Strip aerodynamics coupled to the structure (issue 3), on the restrained Goland wing.
 
-* The strip loads assembled into generalized forces equal the project's Peters rigid-section kernel
-  (reference aero-kinematics.md 1.3-1.5, verified there against Theodorsen) applied strip by strip,
-  including the apparent-mass terms for arbitrary accelerations (1e-9 relative).
+* The strip loads assembled into generalized forces equal Theodorsen's closed-form rigid-section loads
+  with C = 1 (NACA Rep. 496; Hodges & Pierce 2011 ch. 5; the quasi-steady limit of Peters' loads,
+  paper eq. 27) applied strip by strip, including the apparent-mass terms for arbitrary accelerations
+  (1e-9 relative).
 * Added mass in still air: a uniform cantilever with the CG on the elastic axis at mid-chord (a = 0) has
   closed-form frequencies with m -> m + pi rho b^2 and I_theta -> I_theta + pi rho b^4 / 8 (Theodorsen's
   apparent mass; Bisplinghoff, Ashley & Halfman 1955 ch. 5). Strip quadrature error O(1/N^2): 200 strips,
@@ -19,7 +20,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.linalg import eigh
 
-from flexsim.aero.peters import rigid_section_terms
+from flexsim.aero.theodorsen import theodorsen_operator
 from flexsim.aircraft.definition import StripAero
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.atmosphere import isa_density
@@ -45,7 +46,7 @@ def _tunnel(aircraft, speed, aero="quasi-steady"):
                          restrained_velocity_m_s=[speed, 0.0, 0.0], altitude_m=0.0)
 
 
-def test_generalized_airloads_equal_peters_rigid_section_kernel():
+def test_generalized_airloads_equal_theodorsen_closed_form_strip_by_strip():
     aircraft, wing = _goland()
     speed = 80.0
     model = _tunnel(aircraft, speed)
@@ -63,9 +64,14 @@ def test_generalized_airloads_equal_peters_rigid_section_kernel():
     L = wing.length_m
     ub, pt = bending_shapes(xs, L, d.nq), torsion_shapes(xs, L, d.nxi)
     s, eta = vel[6 : 6 + d.nq], vel[6 + d.nq :]
-    terms = rigid_section_terms(theta=pt @ xi, h_dot=ub @ s, theta_dot=pt @ eta, u0=speed, u0_dot=0.0, rho=RHO0, b=b, a=a)
+    pos = np.stack([np.zeros(xs.size), pt @ xi], axis=-1)  # [h, theta]; h itself does not enter
+    rate = np.stack([ub @ s, pt @ eta], axis=-1)
     acc = np.stack([ub @ vdot[6 : 6 + d.nq], pt @ vdot[6 + d.nq :]], axis=-1)
-    loads = terms.loads(acc, 0.0)  # [L up, M_EA nose up] per span
+    loads = np.empty((xs.size, 2))  # [L up, M_EA nose up] per span, C = 1 (lambda0 = 0)
+    for j in range(xs.size):
+        op = theodorsen_operator(a[j], RHO0, b[j], speed)
+        q34 = op.downwash_displacement @ pos[j] + op.downwash_rate @ rate[j]
+        loads[j] = op.mass @ acc[j] + op.damping @ rate[j] + op.stiffness @ pos[j] + op.circulation * q34
     expected = np.r_[ub.T @ (-width * loads[:, 0]), pt.T @ (width * loads[:, 1])]
     np.testing.assert_allclose(q_aero[6:], expected, rtol=1e-9, atol=1e-9 * np.abs(expected).max())
 

@@ -68,7 +68,7 @@ def test_free_fall_accelerates_at_g_without_rotation_or_deformation(gtm):
     dx = model.rhs(0.0, x0, np.zeros(4))
     lay = model.layout
     c = dx[lay.v]
-    from flexsim.structure.kinematics import dcm_321
+    from flexsim.kinematics import dcm_321
 
     np.testing.assert_allclose(dcm_321(0.2, -0.1, 0.5).T @ c, [0.0, 0.0, G], atol=1e-9 * G)
     np.testing.assert_allclose(dx[lay.omega], 0.0, atol=1e-12)

@@ -14,7 +14,7 @@
 import numpy as np
 import pytest
 
-from flexsim.aero.strips import vlm_surfaces
+from flexsim.aero.lift_slopes import vlm_surfaces
 from flexsim.aero.vlm import solve_vlm
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound

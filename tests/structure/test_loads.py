@@ -13,7 +13,7 @@ import pytest
 
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.structure.kinematics import dcm_321
+from flexsim.kinematics import dcm_321
 from flexsim.structure.loads import generalized_force
 from flexsim.structure.model import StructuralModel
 from flexsim.structure.sections import mass_points

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from flexsim.structure.kinematics import dcm_321, euler_rate_matrix, euler_rate_matrix_inverse, skew
+from flexsim.kinematics import dcm_321, euler_rate_matrix, euler_rate_matrix_inverse, skew
 
 
 def _rx(a):

@@ -1,4 +1,4 @@
-"""Aerodynamic strips on the aircraft: geometry, kinematic projections and lift-curve slopes.
+"""Aerodynamic strips on the structure: geometry, control surfaces and kinematic projections (coupling).
 
 Source: Tuzcu & Nguyen (2014), "Aerodynamic and Gravity Forces" (eqs. 25-31) and "Numerical Model":
 the 2-D theory is applied at N_w and N_h spanwise locations of each wing and stabilizer half, with
@@ -10,7 +10,9 @@ the component's elastic axis. In component axes it has a chord direction d (towa
 positive down) and the pitch axis p = d x n (nose-up rotation; for a swept beam p . x_i = cos(Lambda), so a
 torsion phi gives the paper's pitch alpha = phi cos(Lambda)). The strip's motion comes from the structural
 kinematic map G(q) of its elastic-axis point; this module stores the projections of G on d, n and p, so
-the coupling needs only a few dense products per right-hand-side call.
+the coupling (:mod:`flexsim.model.coupling`) needs only a few dense products per right-hand-side call.
+This is strip-structure coupling and therefore lives in :mod:`flexsim.model`; the lift-curve slopes from
+the vortex lattice come from :mod:`flexsim.aero.lift_slopes`.
 """
 
 from __future__ import annotations
@@ -19,15 +21,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flexsim.aero.vlm import LiftingSurface, solve_vlm
-from flexsim.aircraft.definition import Aircraft
+from flexsim.aero.lift_slopes import strip_lift_slopes
 from flexsim.structure.model import StructuralModel
 
-__all__ = ["StripSet", "FLAP_KINDS", "vlm_surfaces", "strip_lift_slopes"]
+__all__ = ["StripSet", "FLAP_KINDS"]
 
 #: Control-surface kinds in the order of the control vector entries u[1:4].
 FLAP_KINDS = ("aileron", "elevator", "rudder")
-_BODY_TO_VLM = np.array([-1.0, 1.0, -1.0])
 
 
 @dataclass(frozen=True, eq=False)
@@ -191,58 +191,3 @@ class StripSet:
             proj_p=np.einsum("sk,skv->sv", p, g0[:, 3:6, :]),
             position_body_m=cat["pos"],
         )
-
-
-def vlm_surfaces(aircraft: Aircraft) -> tuple[LiftingSurface, ...]:
-    """Vortex-lattice surfaces of the wing and horizontal-stabilizer halves (paper Fig. 5).
-
-    Each half follows its elastic axis and streamwise chords (leading edge at ea_fraction * chord ahead of
-    the axis) at the section-table stations, and is extended inboard to the centreline with its root
-    chord to carry the lift across the fuselage. Coordinates: VLM frame (x aft, y right, z up).
-    """
-    out = []
-    for comp in aircraft.components:
-        if comp.aero is None or comp.name == "vtail":
-            continue
-        s = comp.sections.station_m
-        axes = comp.axes_in_body
-        ea = comp.root_m[None, :] + s[:, None] * axes[:, 0][None, :]
-        chord_b = axes @ comp.chord_direction  # chord direction in body axes
-        le = ea - (comp.sections.ea_fraction * comp.sections.chord_m)[:, None] * chord_b[None, :]
-        le = le * _BODY_TO_VLM
-        chord = comp.sections.chord_m.copy()
-        root = le[0].copy()
-        root[1] = 0.0
-        le = np.vstack([root, le])
-        chord = np.concatenate([[chord[0]], chord])
-        if le[-1, 1] < 0:  # left half: sections must run with increasing y
-            le, chord = le[::-1], chord[::-1]
-        n_seg = le.shape[0] - 1
-        per_seg = max(1, int(np.ceil(36 / n_seg)))
-        out.append(LiftingSurface(comp.name, le, chord, n_chordwise=4, n_spanwise=per_seg))
-    return tuple(out)
-
-
-def strip_lift_slopes(aircraft: Aircraft, components: tuple[str, ...], position_body_m: np.ndarray) -> np.ndarray:
-    """Incompressible sectional Cl_alpha [1/rad] at strip points from the wing + stabilizer VLM.
-
-    Parameters
-    ----------
-    aircraft : Aircraft
-    components : tuple of str, length n_s
-    position_body_m : ndarray, shape (n_s, 3)
-        Strip elastic-axis points, body axes [m] (their y locates the streamwise strip).
-
-    Returns
-    -------
-    ndarray, shape (n_s,)
-        NaN for strips of components not in the lattice (the fin).
-    """
-    result = solve_vlm(vlm_surfaces(aircraft), mach=0.0)
-    out = np.full(len(components), np.nan)
-    names = {s.name for s in result.surfaces}
-    comp = np.array(components)
-    for name in names:
-        idx = np.flatnonzero(comp == name)
-        out[idx] = result.surface(name).lift_slope_at(position_body_m[idx, 1])
-    return out

@@ -1,0 +1,72 @@
+"""Sectional lift-curve slopes of the aircraft's strips from a vortex lattice of wing + stabilizer.
+
+Source: Tuzcu & Nguyen (2014), "Numerical Model": Cl_alpha of each strip from a vortex-lattice model of
+wing + horizontal stabilizer (Fig. 5-6); the fin is not in the lattice. Geometry only (the aircraft
+definition), no structure: the strips themselves are built in :mod:`flexsim.model.strips`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from flexsim.aero.vlm import LiftingSurface, solve_vlm
+from flexsim.aircraft.definition import Aircraft
+
+__all__ = ["vlm_surfaces", "strip_lift_slopes"]
+
+_BODY_TO_VLM = np.array([-1.0, 1.0, -1.0])
+
+
+def vlm_surfaces(aircraft: Aircraft) -> tuple[LiftingSurface, ...]:
+    """Vortex-lattice surfaces of the wing and horizontal-stabilizer halves (paper Fig. 5).
+
+    Each half follows its elastic axis and streamwise chords (leading edge at ea_fraction * chord ahead of
+    the axis) at the section-table stations, and is extended inboard to the centreline with its root
+    chord to carry the lift across the fuselage. Coordinates: VLM frame (x aft, y right, z up).
+    """
+    out = []
+    for comp in aircraft.components:
+        if comp.aero is None or comp.name == "vtail":
+            continue
+        s = comp.sections.station_m
+        axes = comp.axes_in_body
+        ea = comp.root_m[None, :] + s[:, None] * axes[:, 0][None, :]
+        chord_b = axes @ comp.chord_direction  # chord direction in body axes
+        le = ea - (comp.sections.ea_fraction * comp.sections.chord_m)[:, None] * chord_b[None, :]
+        le = le * _BODY_TO_VLM
+        chord = comp.sections.chord_m.copy()
+        root = le[0].copy()
+        root[1] = 0.0
+        le = np.vstack([root, le])
+        chord = np.concatenate([[chord[0]], chord])
+        if le[-1, 1] < 0:  # left half: sections must run with increasing y
+            le, chord = le[::-1], chord[::-1]
+        n_seg = le.shape[0] - 1
+        per_seg = max(1, int(np.ceil(36 / n_seg)))
+        out.append(LiftingSurface(comp.name, le, chord, n_chordwise=4, n_spanwise=per_seg))
+    return tuple(out)
+
+
+def strip_lift_slopes(aircraft: Aircraft, components: tuple[str, ...], position_body_m: np.ndarray) -> np.ndarray:
+    """Incompressible sectional Cl_alpha [1/rad] at strip points from the wing + stabilizer VLM.
+
+    Parameters
+    ----------
+    aircraft : Aircraft
+    components : tuple of str, length n_s
+    position_body_m : ndarray, shape (n_s, 3)
+        Strip elastic-axis points, body axes [m] (their y locates the streamwise strip).
+
+    Returns
+    -------
+    ndarray, shape (n_s,)
+        NaN for strips of components not in the lattice (the fin).
+    """
+    result = solve_vlm(vlm_surfaces(aircraft), mach=0.0)
+    out = np.full(len(components), np.nan)
+    names = {s.name for s in result.surfaces}
+    comp = np.array(components)
+    for name in names:
+        idx = np.flatnonzero(comp == name)
+        out[idx] = result.surface(name).lift_slope_at(position_body_m[idx, 1])
+    return out
