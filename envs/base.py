@@ -19,6 +19,7 @@ from gymnasium import spaces
 
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.trim import SteadyManoeuvre
 
@@ -167,6 +168,11 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ValueError(f"turbulence = {turbulence!r}: must be one of {', '.join(TURBULENCE_LEVELS)}")
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode = {render_mode!r}: must be None or one of {', '.join(self.metadata['render_modes'])}")
+        no_viewer = viewer_unavailable_reason()
+        if render_mode == "human" and no_viewer is not None:
+            raise ViewerUnavailableError(f"render_mode = 'human': cannot open a Rerun viewer: {no_viewer}; use "
+                                         "render_mode='rgb_array' here, or record episodes with FlightLogRecorder and "
+                                         "save them with `flexsim view LOG --save run.rrd`")
         task = self.task_type() if task is None else task
         if not isinstance(task, self.task_type):
             raise ValueError(f"task = {task!r}: must be a {self.task_type.__name__}")
@@ -183,7 +189,10 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self.limits = limits or FlightLimits()
         self.perturbation = perturbation or InitialPerturbation()
         self.render_mode = render_mode
-        self.metadata = {**type(self).metadata, "render_fps": rate}
+        # The modes this instance offers: without a display "human" cannot work, so gymnasium's check_env (which
+        # makes every listed mode) checks "rgb_array" only there; the class metadata lists both.
+        modes = [m for m in type(self).metadata["render_modes"] if m != "human" or no_viewer is None]
+        self.metadata = {**type(self).metadata, "render_modes": modes, "render_fps": rate}
         self.dynamics = FlightDynamics(self.aircraft, aero, integrator or IntegratorSettings(), actuator_rates or ActuatorRates(),
                                        self.dt, windy=self._needs_wind(), undamped_structure=self.undamped_structure)
         self.reward_definition: TrackingReward = task.reward

@@ -2,7 +2,9 @@
 
 Both draw the deformed beams of every component (``PointMaps.positions``, body axes) placed with the
 aircraft's attitude, and the recent flight path. ``human`` starts a Rerun viewer on its first frame only
-(nothing is spawned before ``render()`` is called in that mode).
+(nothing is spawned before ``render()`` is called in that mode), through the recording
+(:func:`flexsim.io.rerun_view.spawn_viewer`); where no viewer can open (a headless machine) the environment
+refuses ``render_mode="human"`` at construction (:func:`flexsim.io.viewer.viewer_unavailable_reason`) and ``rgb_array`` still works.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from flexsim.kinematics import dcm_321
 from flexsim.envs.dynamics import SENSOR_COMPONENTS, Measurements
 
 __all__ = ["RgbRenderer", "RerunStreamer"]
+
 
 _COLORS = {"fuselage": "#444444", "right_wing": "#0072b2", "left_wing": "#d55e00", "right_htail": "#56b4e9",
            "left_htail": "#e69f00", "vtail": "#009e73"}
@@ -97,9 +100,12 @@ class RerunStreamer:
     def _recording(self):
         import rerun as rr
 
+        from flexsim.io.rerun_view import spawn_viewer
+
         if self._rec is None:
-            self._rec = rr.RecordingStream(self._application_id)
-            self._rec.spawn()
+            rec = rr.RecordingStream(self._application_id)
+            rec.set_sinks(rr.GrpcSink(spawn_viewer(rec)))
+            self._rec = rec
             self._rec.log("/world", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
             self._rec.log("/world/aircraft", rr.ViewCoordinates.FRD, static=True)
         return self._rec

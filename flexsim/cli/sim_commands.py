@@ -2,7 +2,7 @@
 
     flexsim simulate MANOEUVRE|SCRIPT.py [--duration S] [--log PATH | --no-log] [--aero unsteady|quasi-steady]
                      [--method auto|Radau|DOP853|...] [--rtol R]
-    flexsim view LOG.mcap [--save FILE.rrd]
+    flexsim view LOG.mcap [--save FILE.rrd] [--connect URL] [--port N]
 
 MANOEUVRE is a registered manoeuvre (:func:`flexsim.sim.manoeuvres.manoeuvre_names`); a SCRIPT.py is run
 as ``__main__`` with ``--duration``, ``--log`` and ``--aero`` passed on (scripts read them with
@@ -81,8 +81,24 @@ def _run_script(path: Path, args: argparse.Namespace) -> int:
     return 0
 
 
+def _port(text: str) -> int:
+    """argparse type: a TCP port number in [1, 65535]."""
+    try:
+        port = int(text)
+    except ValueError:
+        port = 0
+    if not 1 <= port <= 65535:
+        raise argparse.ArgumentTypeError(f"--port = {text!r}: must be an integer in [1, 65535]")
+    return port
+
+
 def _view(args: argparse.Namespace) -> int:
     from flexsim.io.flight_log import FlightLogRecoveryWarning, read_flight_log
+    from flexsim.io.viewer import HEADLESS_HINT, ViewerUnavailableError, viewer_unavailable_reason
+
+    no_viewer = viewer_unavailable_reason() if not args.save and args.connect is None else None
+    if no_viewer is not None:  # fail before importing rerun and reading the log
+        raise ViewerUnavailableError(f"cannot open a Rerun viewer: {no_viewer}; {HEADLESS_HINT}")
     from flexsim.io.rerun_view import log_to_recording
 
     with warnings.catch_warnings(record=True) as caught:
@@ -96,11 +112,15 @@ def _view(args: argparse.Namespace) -> int:
           f"{'complete' if log.complete else 'incomplete (recovered)'}")
     for event in log.events:
         print(f"  [{event.level}] t = {event.t_s:.3f} s: {event.text}")
-    if args.save:
+    if args.save and args.connect is None:
         log_to_recording(log, rrd_path=args.save)
         print(f"Rerun recording saved to {args.save} (open it with: rerun {args.save})")
-    else:
-        log_to_recording(log, spawn=True)
+        return 0
+    where = args.connect or f"a new Rerun viewer on port {args.port}"
+    print(f"sending the log to {where} ...", flush=True)
+    log_to_recording(log, rrd_path=args.save, spawn=args.connect is None, connect=args.connect, viewer_port=args.port)
+    if args.save:
+        print(f"Rerun recording saved to {args.save} (open it with: rerun {args.save})")
     return 0
 
 
@@ -124,4 +144,9 @@ def add_sim_commands(subparsers: argparse._SubParsersAction) -> None:
     p_view = subparsers.add_parser("view", help="show a flight log in Rerun, or save it as a Rerun recording")
     p_view.add_argument("log", metavar="LOG.mcap", help="flight log written by flexsim simulate")
     p_view.add_argument("--save", metavar="FILE.rrd", help="write a Rerun recording instead of opening a viewer")
+    p_view.add_argument("--connect", metavar="URL",
+                        help="stream to a Rerun viewer or server already running at URL (rerun+http://HOST:9876/proxy) "
+                             "instead of starting one (with --save: both)")
+    p_view.add_argument("--port", type=_port, default=9876, metavar="N",
+                        help="port of the viewer to start (a viewer already listening there is reused) [9876]")
     p_view.set_defaults(func=_view)

@@ -13,6 +13,12 @@ time from 0), and no wall-clock timeline, so the same log always gives the same 
   ``/plots/controls/<name>``, ``/plots/tip_deflections`` (signals named ``tip_*``),
   ``/plots/modal/bending`` and ``/plots/modal/torsion`` (states named ``q_*`` and ``xi_*``);
 * ``/events``: ``TextLog``.
+
+Viewing: :func:`log_to_recording` with ``spawn=True`` starts a Rerun viewer through the recording
+(:func:`spawn_viewer`: ``rerun.spawn(recording=rec)``, rerun-sdk 0.41) and streams to it over gRPC; with
+``connect=URL`` it streams to a viewer or server that is already running. Where no viewer window can open
+(no ``DISPLAY``/``WAYLAND_DISPLAY`` on Linux), :func:`spawn_viewer` raises :class:`ViewerUnavailableError` at
+once, naming the headless alternatives (save an ``.rrd`` file, or connect to a viewer elsewhere).
 """
 
 from __future__ import annotations
@@ -27,8 +33,14 @@ import rerun as rr
 import rerun.blueprint as rrb
 
 from flexsim.io.flight_log import FlightLog, read_flight_log, viewer_pose
+from flexsim.io.viewer import HEADLESS_HINT, ViewerUnavailableError, viewer_unavailable_reason
+
+__all__ = ["APPLICATION_ID", "TIMELINE", "VIEWER_PORT", "ViewerUnavailableError", "default_blueprint", "log_to_recording",
+           "spawn_viewer", "viewer_unavailable_reason"]
 
 APPLICATION_ID = "flexsim"
+#: Port of a spawned viewer (Rerun's default).
+VIEWER_PORT = 9876
 TIMELINE = "sim_time"
 MAX_PATH_POINTS = 20_000
 _TEXT_LOG_LEVEL = {"info": rr.TextLogLevel.INFO, "warning": rr.TextLogLevel.WARN,
@@ -149,8 +161,38 @@ def _send_events(rec: rr.RecordingStream, log: FlightLog) -> None:
                                    level=[_TEXT_LOG_LEVEL[e.level] for e in log.events]))
 
 
+def spawn_viewer(rec: rr.RecordingStream, *, port: int = VIEWER_PORT, executable: str | None = None) -> str:
+    """Start a Rerun viewer for ``rec`` (not yet connected) and return the gRPC URL to stream to.
+
+    Parameters
+    ----------
+    rec : rerun.RecordingStream
+        The recording the viewer is started for; passed to ``rerun.spawn(recording=rec)`` (rerun-sdk 0.41
+        ignores ``spawn`` without an enabled recording, which is why the module-level call never opened one).
+    port : int, optional
+        Port the viewer listens on [9876, Rerun's default]; an already running viewer on that port is reused.
+    executable : str, optional
+        Path of the ``rerun`` executable to start (default: the one installed with rerun-sdk).
+
+    Raises
+    ------
+    ViewerUnavailableError
+        At once, if no viewer window can open here (:func:`viewer_unavailable_reason`), or if the viewer
+        process cannot be started.
+    """
+    reason = viewer_unavailable_reason()
+    if reason is not None:
+        raise ViewerUnavailableError(f"cannot open a Rerun viewer: {reason}; {HEADLESS_HINT}")
+    try:
+        rr.spawn(port=port, connect=False, recording=rec, executable_path=executable)
+    except Exception as exc:  # rerun raises RuntimeError/OSError variants when the executable cannot start
+        raise ViewerUnavailableError(f"cannot start the Rerun viewer ({exc}); {HEADLESS_HINT}") from exc
+    return f"rerun+http://127.0.0.1:{port}/proxy"
+
+
 def log_to_recording(log: FlightLog | str | os.PathLike, *, rrd_path: str | os.PathLike | None = None,
-                     spawn: bool = False) -> None:
+                     spawn: bool = False, connect: str | None = None, viewer_port: int = VIEWER_PORT,
+                     viewer_executable: str | None = None) -> None:
     """Send a flight log to Rerun: save it as an ``.rrd`` file and/or show it in a viewer.
 
     Parameters
@@ -161,18 +203,28 @@ def log_to_recording(log: FlightLog | str | os.PathLike, *, rrd_path: str | os.P
     rrd_path : path, optional
         Write the recording, with its default blueprint, to this ``.rrd`` file (headless).
     spawn : bool, optional
-        Start a Rerun viewer and stream the recording to it.
+        Start a Rerun viewer (:func:`spawn_viewer`) and stream the recording to it.
+    connect : str, optional
+        Stream the recording to a viewer or Rerun server already running at this gRPC URL
+        (``rerun+http://HOST:PORT/proxy``) instead of spawning one.
+    viewer_port, viewer_executable : optional
+        Port and executable of a spawned viewer (see :func:`spawn_viewer`).
 
     Raises
     ------
     ValueError
-        If neither ``rrd_path`` nor ``spawn`` is given, or ``rrd_path`` does not end in ``.rrd``.
+        If neither ``rrd_path``, ``spawn`` nor ``connect`` is given, both ``spawn`` and ``connect`` are, or
+        ``rrd_path`` does not end in ``.rrd``.
     FileNotFoundError
         If the directory of ``rrd_path`` does not exist.
+    ViewerUnavailableError
+        If a viewer cannot be spawned (before anything is sent) or does not take the recording.
     """
-    if rrd_path is None and not spawn:
-        raise ValueError("log_to_recording: give rrd_path (save an .rrd file) and/or spawn=True "
-                         "(open a viewer); got neither")
+    if rrd_path is None and not spawn and connect is None:
+        raise ValueError("log_to_recording: give rrd_path (save an .rrd file), spawn=True (open a viewer) "
+                         "and/or connect=URL (stream to a running viewer); got none")
+    if spawn and connect is not None:
+        raise ValueError(f"log_to_recording: spawn=True and connect={connect!r} both given; choose one viewer")
     if rrd_path is not None:
         rrd_path = Path(rrd_path)
         if rrd_path.suffix != ".rrd":
@@ -187,9 +239,9 @@ def log_to_recording(log: FlightLog | str | os.PathLike, *, rrd_path: str | os.P
     sinks: list[rr.FileSink | rr.GrpcSink] = []
     if rrd_path is not None:
         sinks.append(rr.FileSink(str(rrd_path)))
-    if spawn:
-        rr.spawn(connect=False)
-        sinks.append(rr.GrpcSink())
+    url = spawn_viewer(rec, port=viewer_port, executable=viewer_executable) if spawn else connect
+    if url is not None:
+        sinks.append(rr.GrpcSink(url))
     rec.set_sinks(*sinks, default_blueprint=_blueprint(groups))
     try:
         if len(log.t):
@@ -197,7 +249,13 @@ def log_to_recording(log: FlightLog | str | os.PathLike, *, rrd_path: str | os.P
             _send_scene(rec, log, time)
             _send_plots(rec, groups, time)
         _send_events(rec, log)
-        rec.flush()
+        try:
+            rec.flush()
+        except RuntimeError as exc:  # the gRPC sink gave up (viewer closed, or nothing listening at the URL)
+            if url is None:
+                raise
+            raise ViewerUnavailableError(f"the Rerun viewer at {url} did not take the recording ({exc}); "
+                                         f"{HEADLESS_HINT}") from exc
     finally:
         rec.disconnect()
 
@@ -210,10 +268,15 @@ def main(argv: Sequence[str] | None = None) -> None:
     parser.add_argument("log", help="flight log (.mcap)")
     parser.add_argument("--rrd", help="also save the recording to this .rrd file")
     parser.add_argument("--no-spawn", action="store_true", help="do not open a viewer")
+    parser.add_argument("--connect", metavar="URL", help="stream to a running viewer (rerun+http://HOST:9876/proxy)")
     args = parser.parse_args(argv)
-    if args.no_spawn and args.rrd is None:
-        parser.error("--no-spawn needs --rrd")
-    log_to_recording(args.log, rrd_path=args.rrd, spawn=not args.no_spawn)
+    if args.no_spawn and args.rrd is None and args.connect is None:
+        parser.error("--no-spawn needs --rrd or --connect")
+    try:
+        log_to_recording(args.log, rrd_path=args.rrd, spawn=not args.no_spawn and args.connect is None,
+                         connect=args.connect)
+    except (ViewerUnavailableError, ValueError, FileNotFoundError) as exc:
+        parser.exit(2, f"{parser.prog}: error: {exc}\n")
 
 
 if __name__ == "__main__":

@@ -1,11 +1,13 @@
 """Registration and gymnasium's env checker.
 
 Checks: the five ids are registered once (registering again is a no-op); ``gymnasium.utils.env_checker.
-check_env`` passes without warnings for every id (render check skipped: "human" would open a viewer);
+check_env`` passes without warnings for every id, its render check included (on a headless machine the
+instances offer "rgb_array" only, and ``render_mode="human"`` fails at once with a clear message);
 the spaces are float32 Boxes with finite bounds and ``observation_structure`` tiles the observation.
 Tolerances: exact (structural checks).
 """
 
+import sys
 import warnings
 
 import gymnasium as gym
@@ -14,6 +16,7 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 from flexsim import envs
+from flexsim.io.viewer import ViewerUnavailableError
 
 
 def test_ids_registered_once():
@@ -29,7 +32,7 @@ def test_check_env_passes(env_id):
     env = gym.make(env_id)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        check_env(env.unwrapped, skip_render_check=True)
+        check_env(env.unwrapped, skip_render_check=True)  # with the render check: the test below
     space = env.observation_space
     assert space.dtype == np.float32 and np.all(np.isfinite(space.low)) and np.all(np.isfinite(space.high))
     assert env.action_space.dtype == np.float32
@@ -79,3 +82,18 @@ def test_flutter_margin_v1_seeds_antisymmetric_wing_torsion():
     assert u.observation_names[10] == "wing_twist_rate_rad_s"
     assert obs[10] == pytest.approx(0.5 * (right + left), rel=1e-5)
     env.close()
+
+
+@pytest.mark.parametrize("env_id", list(envs.ENV_IDS))
+def test_check_env_with_render_check_passes_headless(env_id, monkeypatch):
+    """gymnasium's default check_env on a machine without a display: "human" is not offered, "rgb_array" works."""
+    for name in ("DISPLAY", "WAYLAND_DISPLAY", "WAYLAND_SOCKET"):
+        monkeypatch.delenv(name, raising=False)
+    monkeypatch.setattr(sys, "platform", "linux")
+    env = gym.make(env_id)
+    assert env.unwrapped.metadata["render_modes"] == ["rgb_array"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        check_env(env.unwrapped)
+    with pytest.raises(ViewerUnavailableError, match="render_mode = 'human': cannot open a Rerun viewer: no display"):
+        gym.make(env_id, render_mode="human")

@@ -70,13 +70,14 @@ def test_flight_log_records_termination(tmp_path):
     assert log.events[-1].level == "error" and "structural_limit" in log.events[-1].text
 
 
-def test_human_mode_streams_to_rerun_without_spawning():
+def test_human_mode_streams_to_rerun_without_spawning(monkeypatch):
     # The streamer spawns a viewer on its first frame only; here its recording is replaced by an
     # in-memory one beforehand, so the drawing code runs against rerun-sdk without any viewer.
     import rerun as rr
 
     from flexsim.envs.rendering import RerunStreamer
 
+    monkeypatch.setenv("DISPLAY", ":flexsim-test")  # human mode is refused where no viewer can open
     env = envs.LevelHoldEnv(aero="quasi-steady", render_mode="human")
     streamer = RerunStreamer()
     streamer._rec = rr.RecordingStream("flexsim_env_test")
