@@ -47,13 +47,30 @@ def paper_row(model: str, h: float):
     return None
 
 
-def run(aircraft, label: str, model: str, densities, starts, altitudes=ALTITUDES) -> list[dict]:
+def paper_table() -> str:
+    """What the paper's own Tables 2-3 imply (derived from the printed values only): flutter speed, the
+    Prandtl-Glauert-scaled V^2 and dynamic pressure, q_F * theta (trim lift ~ q alpha: follows the true density
+    when constant) and T_e / sin(theta) (the paper's weight, issue 15 fact 1)."""
+    out = ["| table | h [m] | V_F [m/s] | V_F²/√(1−M²) [10³ m²/s²] | q_F/√(1−M²) [kPa] | q_F·θ [Pa rad] | T_e/sin θ [kN] |",
+           "|---|---|---|---|---|---|---|"]
+    for name, table in (("2 (QS)", TABLE_QS), ("3 (US)", TABLE_US)):
+        for h, m, _, theta, te, *_ in table:
+            v = m * speed_of_sound(h)
+            pg = 1.0 / math.sqrt(1.0 - m * m)
+            q = 0.5 * isa_density(h) * v * v
+            out.append(f"| {name} | {h:.0f} | {v:.1f} | {v * v * pg / 1e3:.1f} | {q * pg / 1e3:.1f} | "
+                       f"{q * math.radians(theta):.0f} | {te / math.sin(math.radians(theta)):.2f} |")
+    return "\n".join(out)
+
+
+def run(aircraft, label: str, model: str, densities, starts, altitudes=ALTITUDES, formulation: str = "physical") -> list[dict]:
     rows = []
     for dens in densities:
         for h, m0 in zip(altitudes, starts):
             t0 = time.time()
             fixed = dens != "true"
-            setup = Setup(aircraft, h, "density" if fixed else "none", float(dens) if fixed else 0.0, model=model)
+            setup = Setup(aircraft, h, "density" if fixed else "none", float(dens) if fixed else 0.0, model=model,
+                          formulation=formulation)
             dec = Decomposition(setup)
             try:
                 mf, wf, n = dec.flutter_mach("level", m0)
@@ -93,7 +110,11 @@ def main() -> None:
     ap.add_argument("--starts", type=float, nargs="+", default=None, help="starting Mach per altitude")
     ap.add_argument("--scaling", type=str, default=None, help="JSON of StructuralScaling factors applied to the aircraft")
     ap.add_argument("--json", type=Path, default=None)
+    ap.add_argument("--paper", action="store_true", help="only print what the paper's tables imply, and exit")
     a = ap.parse_args()
+    if a.paper:
+        print(paper_table())
+        return
     ac = load_aircraft(a.aircraft)
     label = a.aircraft
     if a.scaling:

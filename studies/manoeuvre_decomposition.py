@@ -26,8 +26,17 @@ modify the linearisation point or the linear model only, never the trim, and are
 ``prandtl_glauert``     the Prandtl-Glauert factor of the linear model frozen at the level flight's flutter Mach
 ``damping``             structural damping ratio 0 instead of the aircraft's
 ``density``             the linearised aerodynamics at one density, rho(``--rho-altitude``, default 3048 m), trim at
-                        the true density (the paper-replication hypothesis of issue 15 f)
+                        the true density (the paper-replication hypothesis of issue 15 f); with ``--fixed-density``
+                        the reference is at the fixed density and this switch restores the true one
 ======================  ===========================================================================================
+
+``--formulation eq28`` is a study-level stand-in for the paper's force resolution (eq. 28 with alpha_i0 = W/U and
+the section drag d = l alpha_i0, which is what the paper's T_e = W sin(theta) in all rows of Tables 2-3 implies):
+f = l [alpha_i0, 0, -1] - l alpha_i0 [1, 0, alpha_i0] has no component along body x, in trim and, alpha_i0 being the
+instantaneous W/U, under every perturbation. It is applied as the force of each wing/stabilizer strip in its (n, d)
+plane with zero body-x component (c_n = -L, c_d = -c_n n_x/d_x; the probe's ``bodyx`` resolution,
+``../shared/findings/paper-mechanism-probe.md`` D), in trim and in the linear model; the fin keeps flexsim's model.
+Under it the ``force_resolution`` switch is a no-op (there are no trim-alpha terms left to remove).
 
 The flutter Mach of each case is found by a secant/bisection search on the largest real part of the elastic
 modes, started from the level-flight flutter Mach of the same switch (tolerance 5e-5 in Mach), which is cheaper
@@ -109,16 +118,29 @@ class _SwitchedCoupling:
     """The aircraft's strip aerodynamics with study switches (density, Mach of the P-G factor, velocity shift,
     force resolution); everything else delegates to the wrapped :class:`AeroCoupling`."""
 
-    def __init__(self, inner, *, rho=None, mach=None, dv=None, resolution=True):
+    def __init__(self, inner, *, rho=None, mach=None, dv=None, resolution="local", aircraft=None):
         self._inner, self._rho, self._mach, self._dv = inner, rho, mach, dv
-        if not resolution:
-            orig = inner._circulatory
+        orig = inner._circulatory
+        if resolution == "normal":  # c_n = -L, c_d = 0 on every strip: no lift tilt, no drag
 
             def circulatory(kin, rho_, mach_):
                 lift, moment, tilt, drag, flow = orig(kin, rho_, mach_)
                 return lift, moment, 0.0 * tilt, 0.0 * drag, flow
 
             inner._circulatory = circulatory
+        elif resolution == "bodyx":  # wing/stabilizer strips: c_n = -L, c_d = -c_n n_x / d_x (no body-x component)
+            s = inner.strips
+            ex = np.array([aircraft.component(c).dcm[:, 0] for c in s.component])
+            ratio = np.where(s.unsteady, np.einsum("sk,sk->s", s.n, ex) / np.einsum("sk,sk->s", s.d, ex), 0.0)
+            lifting = s.unsteady
+
+            def circulatory(kin, rho_, mach_):
+                lift, moment, tilt, drag, flow = orig(kin, rho_, mach_)
+                return (lift, moment, np.where(lifting, -lift * ratio, tilt), np.where(lifting, 0.0, drag), flow)
+
+            inner._circulatory = circulatory
+        elif resolution != "local":
+            raise ValueError(f"resolution = {resolution!r}: must be local, normal or bodyx")
 
     def __getattr__(self, name):
         return getattr(self._inner, name)
@@ -163,6 +185,7 @@ class Setup:
     mach_pg: float | None = None  # level flutter Mach for the prandtl_glauert switch
     model: str = "US"  # "US" (Theodorsen p-k, the paper's Table 3) or "QS" (quasi-steady, Table 2)
     base_rho_altitude_m: float | None = None  # None: the reference linear model uses the true density
+    formulation: str = "physical"  # or "eq28": strip force normal to the chord in trim and linear model (below)
 
 
 class Decomposition:
@@ -172,6 +195,8 @@ class Decomposition:
         self.s = setup
         ac = setup.aircraft
         self.trim_model = AircraftModel(ac, aero="quasi-steady")
+        if setup.formulation == "eq28":
+            self.trim_model.aero = _SwitchedCoupling(self.trim_model.aero, resolution="bodyx", aircraft=ac)
         self._trim_guess = {}
 
     def _linear_models(self, point, level_point):
@@ -193,8 +218,10 @@ class Decomposition:
             cw["rho"] = float(isa_density(fixed))
         if s.switch == "prandtl_glauert":
             cw["mach"] = s.mach_pg
-        if s.switch == "force_resolution":
-            cw["resolution"] = False
+        if s.formulation == "eq28":
+            cw["resolution"], cw["aircraft"] = "bodyx", s.aircraft
+        elif s.switch == "force_resolution":
+            cw["resolution"] = "normal"
         if s.switch == "aero_alpha":
             cw["dv"] = level_point.x[lay.velocity][0:3] - x[lay.velocity][0:3]
         if s.switch == "rotation":
@@ -313,11 +340,12 @@ def mode_info(model: AircraftModel, mode) -> dict:
 
 
 def run(ac, aircraft_name: str, altitude_m: float, switches, rho_altitude_m: float, level_start: float,
-        cases=tuple(CASES), ref_level: tuple[float, float] | None = None, base_rho_altitude_m: float | None = None) -> list[dict]:
+        cases=tuple(CASES), ref_level: tuple[float, float] | None = None, base_rho_altitude_m: float | None = None,
+        formulation: str = "physical") -> list[dict]:
     rows = []
     for sw in switches:
         t0 = time.time()
-        setup = Setup(ac, altitude_m, sw, rho_altitude_m, base_rho_altitude_m=base_rho_altitude_m)
+        setup = Setup(ac, altitude_m, sw, rho_altitude_m, base_rho_altitude_m=base_rho_altitude_m, formulation=formulation)
         dec = Decomposition(setup)
         res = {}
         if sw in LEVEL_NEUTRAL and ref_level is not None:
@@ -372,6 +400,7 @@ def main() -> None:
     ap.add_argument("--scaling", default=None, help="JSON object of StructuralScaling factors")
     ap.add_argument("--mass-factor", type=float, default=1.0)
     ap.add_argument("--incidence", type=float, nargs=2, default=None, metavar=("WING", "HTAIL"))
+    ap.add_argument("--formulation", default="physical", choices=("physical", "eq28"))
     ap.add_argument("--fixed-density", type=float, default=None, metavar="ALT",
                     help="reference linear model at the density of ALT (the 'density' switch then restores the true one)")
     ap.add_argument("--ref-level", type=float, nargs=2, default=None, metavar=("M_F", "OMEGA_F"),
@@ -381,10 +410,10 @@ def main() -> None:
     scaling = json.loads(a.scaling) if a.scaling else None
     ac = configure(a.aircraft, scaling, a.mass_factor, tuple(a.incidence) if a.incidence else None, a.damping)
     label = json.dumps({"aircraft": a.aircraft, "scaling": scaling, "mass_factor": a.mass_factor, "incidence_deg": a.incidence,
-                        "fixed_density_alt_m": a.fixed_density, "damping": a.damping})
+                        "fixed_density_alt_m": a.fixed_density, "damping": a.damping, "formulation": a.formulation})
     print("#", label, flush=True)
     rows = run(ac, label, a.altitude, a.switches, a.rho_altitude, a.start, a.cases,
-               tuple(a.ref_level) if a.ref_level else None, a.fixed_density)
+               tuple(a.ref_level) if a.ref_level else None, a.fixed_density, a.formulation)
     print(table(rows))
     if a.json:
         a.json.write_text(json.dumps(rows, indent=1))

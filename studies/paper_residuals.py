@@ -60,6 +60,8 @@ def main() -> None:
     ap.add_argument("--incidence", type=float, nargs=2, default=None, metavar=("WING", "HTAIL"))
     ap.add_argument("--fixed-density", type=float, default=None, metavar="ALT")
     ap.add_argument("--damping", type=float, default=None)
+    ap.add_argument("--formulation", default="physical", choices=("physical", "eq28"),
+                    help="eq28: the study-level stand-in for the paper's force resolution (manoeuvre_decomposition.py)")
     ap.add_argument("--models", nargs="+", default=["US", "QS"], choices=("US", "QS"))
     ap.add_argument("--altitudes", type=float, nargs="+", default=list(ALTITUDES))
     ap.add_argument("--starts-us", type=float, nargs="+", default=None)
@@ -69,13 +71,13 @@ def main() -> None:
     scaling = json.loads(a.scaling) if a.scaling else None
     ac = configure(a.aircraft, scaling, a.mass_factor, tuple(a.incidence) if a.incidence else None, a.damping)
     label = json.dumps({"aircraft": a.aircraft, "scaling": scaling, "mass_factor": a.mass_factor, "incidence_deg": a.incidence,
-                        "fixed_density_alt_m": a.fixed_density, "damping": a.damping})
+                        "fixed_density_alt_m": a.fixed_density, "damping": a.damping, "formulation": a.formulation})
     print("#", label, flush=True)
     dens = ["true"] if a.fixed_density is None else [str(a.fixed_density)]
     rows = []
     for model in a.models:
         starts = (a.starts_us if model == "US" else a.starts_qs) or [0.72] * len(a.altitudes)
-        rows += run(ac, label, model, dens, starts, a.altitudes)
+        rows += run(ac, label, model, dens, starts, a.altitudes, a.formulation)
     print(residual_table(rows))
     if a.json:
         a.json.write_text(json.dumps(rows, indent=1))
