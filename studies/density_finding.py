@@ -63,14 +63,15 @@ def paper_table() -> str:
     return "\n".join(out)
 
 
-def run(aircraft, label: str, model: str, densities, starts, altitudes=ALTITUDES, formulation: str = "physical") -> list[dict]:
+def run(aircraft, label: str, model: str, densities, starts, altitudes=ALTITUDES, formulation: str = "physical",
+        mode_class: str = "any") -> list[dict]:
     rows = []
     for dens in densities:
         for h, m0 in zip(altitudes, starts):
             t0 = time.time()
             fixed = dens != "true"
             setup = Setup(aircraft, h, "density" if fixed else "none", float(dens) if fixed else 0.0, model=model,
-                          formulation=formulation)
+                          formulation=formulation, mode_class=mode_class)
             dec = Decomposition(setup)
             try:
                 mf, wf, n = dec.flutter_mach("level", m0)
@@ -86,7 +87,7 @@ def run(aircraft, label: str, model: str, densities, starts, altitudes=ALTITUDES
             info.update({"theta_deg": round(ts["theta_deg"], 3), "thrust_kN": round(trim_point.thrust_n / 1e3, 2),
                          "elevator_deg": round(ts["elevator_deg"], 3), "tip_deflection_m": round(ts["tip_deflection_m"], 4),
                          "tip_twist_deg": round(ts["tip_twist_deg"], 4)})
-            row = {"aircraft": label, "model": model, "density": "true" if not fixed else f"rho({float(dens):.0f} m)",
+            row = {"aircraft": label, "model": model, "mode_class": mode_class, "density": "true" if not fixed else f"rho({float(dens):.0f} m)",
                    "altitude_m": h, "M_F": round(mf, 4), "omega_F": round(wf, 3), "V_F": round(v, 1),
                    "V2PG_k": round(v * v * pg / 1e3, 2), "qPG_kPa": round(0.5 * rho_lin * v * v * pg / 1e3, 2), **info,
                    "evaluations": n, "seconds": round(time.time() - t0, 1)}

@@ -186,6 +186,7 @@ class Setup:
     model: str = "US"  # "US" (Theodorsen p-k, the paper's Table 3) or "QS" (quasi-steady, Table 2)
     base_rho_altitude_m: float | None = None  # None: the reference linear model uses the true density
     formulation: str = "physical"  # or "eq28": strip force normal to the chord in trim and linear model (below)
+    mode_class: str = "any"  # "symmetric" / "antisymmetric": only modes with more than half their energy in that class
 
 
 class Decomposition:
@@ -255,7 +256,13 @@ class Decomposition:
         else:
             spec = spectrum(qs, x, u, aero_model="theodorsen", pk_model=fs)
         self.last = (point, spec, qs)
-        return spec.max_real("elastic"), spec.critical("elastic")
+        if self.s.mode_class == "any":
+            return spec.max_real("elastic"), spec.critical("elastic")
+        want = self.s.mode_class == "symmetric"
+        cands = [m for m in spec.of_kind("elastic") if m.frequency_rad_s >= 0.5
+                 and (mode_info(qs, m)["sym_share"] > 0.5) == want]
+        crit = max(cands, key=lambda m: m.eigenvalue.real)
+        return crit.eigenvalue.real, crit
 
     def flutter_mach(self, case: str, start: float, tol: float = 5e-5) -> tuple[float, float, int]:
         """Secant with bisection safeguard from ``start``; returns (M_F, omega_F, evaluations)."""
@@ -341,11 +348,12 @@ def mode_info(model: AircraftModel, mode) -> dict:
 
 def run(ac, aircraft_name: str, altitude_m: float, switches, rho_altitude_m: float, level_start: float,
         cases=tuple(CASES), ref_level: tuple[float, float] | None = None, base_rho_altitude_m: float | None = None,
-        formulation: str = "physical") -> list[dict]:
+        formulation: str = "physical", mode_class: str = "any") -> list[dict]:
     rows = []
     for sw in switches:
         t0 = time.time()
-        setup = Setup(ac, altitude_m, sw, rho_altitude_m, base_rho_altitude_m=base_rho_altitude_m, formulation=formulation)
+        setup = Setup(ac, altitude_m, sw, rho_altitude_m, base_rho_altitude_m=base_rho_altitude_m, formulation=formulation,
+                      mode_class=mode_class)
         dec = Decomposition(setup)
         res = {}
         if sw in LEVEL_NEUTRAL and ref_level is not None:
@@ -401,6 +409,8 @@ def main() -> None:
     ap.add_argument("--mass-factor", type=float, default=1.0)
     ap.add_argument("--incidence", type=float, nargs=2, default=None, metavar=("WING", "HTAIL"))
     ap.add_argument("--formulation", default="physical", choices=("physical", "eq28"))
+    ap.add_argument("--mode-class", default="any", choices=("any", "symmetric", "antisymmetric"),
+                    help="track the most unstable mode of this class only (energy share > 1/2)")
     ap.add_argument("--fixed-density", type=float, default=None, metavar="ALT",
                     help="reference linear model at the density of ALT (the 'density' switch then restores the true one)")
     ap.add_argument("--ref-level", type=float, nargs=2, default=None, metavar=("M_F", "OMEGA_F"),
@@ -410,10 +420,11 @@ def main() -> None:
     scaling = json.loads(a.scaling) if a.scaling else None
     ac = configure(a.aircraft, scaling, a.mass_factor, tuple(a.incidence) if a.incidence else None, a.damping)
     label = json.dumps({"aircraft": a.aircraft, "scaling": scaling, "mass_factor": a.mass_factor, "incidence_deg": a.incidence,
-                        "fixed_density_alt_m": a.fixed_density, "damping": a.damping, "formulation": a.formulation})
+                        "fixed_density_alt_m": a.fixed_density, "damping": a.damping, "formulation": a.formulation,
+                        "mode_class": a.mode_class})
     print("#", label, flush=True)
     rows = run(ac, label, a.altitude, a.switches, a.rho_altitude, a.start, a.cases,
-               tuple(a.ref_level) if a.ref_level else None, a.fixed_density, a.formulation)
+               tuple(a.ref_level) if a.ref_level else None, a.fixed_density, a.formulation, a.mode_class)
     print(table(rows))
     if a.json:
         a.json.write_text(json.dumps(rows, indent=1))

@@ -66,6 +66,8 @@ def main() -> None:
     ap.add_argument("--altitudes", type=float, nargs="+", default=list(ALTITUDES))
     ap.add_argument("--starts-us", type=float, nargs="+", default=None)
     ap.add_argument("--starts-qs", type=float, nargs="+", default=None)
+    ap.add_argument("--mode-class", default="any", choices=("any", "symmetric", "antisymmetric"),
+                    help="track the crossing of the most unstable mode of this class only")
     ap.add_argument("--json", type=Path, default=None)
     a = ap.parse_args()
     scaling = json.loads(a.scaling) if a.scaling else None
@@ -77,8 +79,16 @@ def main() -> None:
     rows = []
     for model in a.models:
         starts = (a.starts_us if model == "US" else a.starts_qs) or [0.72] * len(a.altitudes)
-        rows += run(ac, label, model, dens, starts, a.altitudes, a.formulation)
+        rows += run(ac, label, model, dens, starts, a.altitudes, a.formulation, a.mode_class)
     print(residual_table(rows))
+    for r in rows:  # the glide (thrust zero, gamma unknown) at the US flutter Mach of 9144 m (paper: -3.12 deg)
+        if r["model"] == "US" and abs(r["altitude_m"] - 9144.0) < 1:
+            from manoeuvre_decomposition import Decomposition, Setup
+            from flexsim.trim import SteadyManoeuvre, trim
+
+            dec = Decomposition(Setup(ac, 9144.0, "none", 0.0, formulation=a.formulation))
+            g = trim(dec.trim_model, SteadyManoeuvre.glide(9144.0, mach=r["M_F"]), check_limits=False).summary()
+            print(f"glide at 9144 m, M {r['M_F']:.4f}: gamma {g['gamma_deg']:.3f} deg, alpha {g['alpha_deg']:.3f} deg (paper -3.12 deg)")
     if a.json:
         a.json.write_text(json.dumps(rows, indent=1))
 
