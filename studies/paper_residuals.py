@@ -52,6 +52,23 @@ def residual_table(rows: list[dict]) -> str:
     return "\n".join(out)
 
 
+def trims_at_paper(ac, formulation: str) -> str:
+    """Trim columns at the paper's own flight conditions (h, M_F of each row): the static model alone."""
+    from manoeuvre_decomposition import Decomposition, Setup
+    from flexsim.linear.paper_data import TABLE_QS, TABLE_US
+    from flexsim.trim import SteadyManoeuvre, trim
+
+    model = Decomposition(Setup(ac, 0.0, "none", 0.0, formulation=formulation)).trim_model
+    out = ["| table | h [m] | M | θ [°] | T_e [kN] | δ_e [°] | w_tip [m] | ψ_tip [°] |", "|---|---|---|---|---|---|---|---|"]
+    for name, table in (("US", TABLE_US), ("QS", TABLE_QS)):
+        for h, m, _, *paper in table:
+            p = trim(model, SteadyManoeuvre.level(h, mach=m), check_limits=False)
+            t = p.summary()
+            ours = (t["theta_deg"], p.thrust_n / 1e3, t["elevator_deg"], t["tip_deflection_m"], t["tip_twist_deg"])
+            out.append(f"| {name} | {h:.0f} | {m:.4f} | " + " | ".join(f"{v:.4g} / {q:.4g} ({100 * (v / q - 1):+.1f} %)" for v, q in zip(ours, paper)) + " |")
+    return "\n".join(out)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--aircraft", default="gtm")
@@ -68,6 +85,8 @@ def main() -> None:
     ap.add_argument("--starts-qs", type=float, nargs="+", default=None)
     ap.add_argument("--mode-class", default="any", choices=("any", "symmetric", "antisymmetric"),
                     help="track the crossing of the most unstable mode of this class only")
+    ap.add_argument("--trim-at-paper", action="store_true",
+                    help="only trim at the paper's (h, M_F) of every row of Tables 2-3 and print the trim columns")
     ap.add_argument("--json", type=Path, default=None)
     a = ap.parse_args()
     scaling = json.loads(a.scaling) if a.scaling else None
@@ -75,6 +94,9 @@ def main() -> None:
     label = json.dumps({"aircraft": a.aircraft, "scaling": scaling, "mass_factor": a.mass_factor, "incidence_deg": a.incidence,
                         "fixed_density_alt_m": a.fixed_density, "damping": a.damping, "formulation": a.formulation})
     print("#", label, flush=True)
+    if a.trim_at_paper:
+        print(trims_at_paper(ac, a.formulation))
+        return
     dens = ["true"] if a.fixed_density is None else [str(a.fixed_density)]
     rows = []
     for model in a.models:
