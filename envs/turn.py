@@ -28,7 +28,7 @@ class TurnTask:
     mach : float
         Mach number of both [-] (default 0.75).
     radius_range_m : tuple of float
-        The commanded radius |R| is drawn uniformly from this range [m] (default 7000-12000 m: bank 27 to
+        The commanded radius |R| is drawn uniformly from this range [m] (default 7000-12000 m: bank 24 to
         38 deg on the GTM at M 0.75), the direction (right R > 0, left R < 0) with probability 1/2 each.
     reward : TrackingReward
         Costs on ``turn_rate_error_rad_s`` (weight 0.4, saturating at 0.005 rad/s), ``altitude_error_m`` (0.2,
@@ -71,8 +71,8 @@ class TurnEnv(FlexSimEnv):
     episode): heading rate psi_dot = V / R at constant altitude and airspeed, with the sideslip of the steady turn.
     The steady turn is a trim of the same model (paper eqs. 36-37): bank about 34 deg for R = 8000 m.
     That trim puts the velocity along the heading (psi = track), so its body-axis sideslip is
-    asin(sin(phi) sin(theta)) (about -3.9 deg at R = 8000 m), held with about 8 deg of rudder; the
-    rewarded sideslip error is measured from this trimmed sideslip.
+    asin(sin(phi) sin(theta)) (about +4.9 deg at R = +8000 m, -4.9 deg at R = -8000 m), held with about 8.4 deg
+    of rudder; the rewarded sideslip error is measured from this trimmed sideslip.
     Still air by default (Dryden turbulence is frozen along a straight line, so it is not a natural
     companion of a turn; it can still be switched on).
 

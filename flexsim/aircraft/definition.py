@@ -113,7 +113,8 @@ class SectionTable:
         Streamwise chord of the section through the station [m] (0 for the fuselage).
     ea_fraction : ndarray, shape (k,)
         Elastic-axis position aft of the leading edge as a fraction of the chord [-]; Theodorsen's
-        a = 2 ea_fraction - 1 (the paper's GTM: a = 0.25, ea_fraction = 0.625).
+        a = 2 ea_fraction - 1 (bundled GTM wing and stabilizer: ea_fraction = 0.375, a = -0.25; see
+        ``docs/calibration.md`` section 1).
     """
 
     station_m: np.ndarray
