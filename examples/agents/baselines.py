@@ -239,3 +239,31 @@ def run_episode(env, policy, seed: int) -> tuple[float, int, str]:
             return total, steps, info.get("termination_reason", "") if terminated else ""
         if not math.isfinite(total):
             raise RuntimeError(f"non-finite return after {steps} steps")
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Command line: run one seeded episode of an environment's baseline and print its return."""
+    import argparse
+    import os
+
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    import gymnasium as gym
+
+    import flexsim.envs  # noqa: F401  (registers the ids)
+
+    parser = argparse.ArgumentParser(
+        prog="python examples/agents/baselines.py", description=__doc__.splitlines()[0],
+        epilog="Example: python examples/agents/baselines.py --env FlexSim/GTM-LevelHold-v0 --seed 0. "
+               "Compare with a random policy over many episodes: python examples/agents/evaluate_baselines.py")
+    parser.add_argument("--env", default="FlexSim/GTM-LevelHold-v0", choices=list(BASELINES), help="task id [%(default)s]")
+    parser.add_argument("--seed", type=int, default=0, help="episode seed [%(default)s]")
+    args = parser.parse_args(argv)
+    env = gym.make(args.env)
+    total, steps, reason = run_episode(env, make_baseline(args.env, env), args.seed)
+    env.close()
+    print(f"{args.env} baseline, seed {args.seed}: return {total:.2f} over {steps} steps "
+          f"({'ended by ' + reason if reason else 'time limit'})")
+
+
+if __name__ == "__main__":
+    main()

@@ -250,3 +250,38 @@ def design_fin_damper(model, x0: np.ndarray, u0: np.ndarray, dt_s: float, sensor
     result = minimize(objective, start, method="Nelder-Mead", options={"xatol": 1e-7, "fatol": 1e-4, "maxfev": 100 * m})
     gains = result.x if result.fun < objective(start) else start
     return gains, growths(np.zeros(m))[0], growths(gains)[0]
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Command line: design the level-flight LQR of LevelHold at its trim and print the gain and checks."""
+    import argparse
+    import os
+
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    import gymnasium as gym
+
+    import flexsim.envs  # noqa: F401  (registers the ids)
+
+    parser = argparse.ArgumentParser(
+        prog="python examples/agents/lqr_design.py", description=__doc__.splitlines()[0],
+        epilog="A library for examples/agents/baselines.py; run alone, it designs the LQR of "
+               "FlexSim/GTM-LevelHold-v0 (residualised elastic and inflow states, Bryson weights) and prints it.")
+    parser.add_argument("--aero", default="unsteady", choices=["unsteady", "quasi-steady"], help="aerodynamics [%(default)s]")
+    args = parser.parse_args(argv)
+    from baselines import LevelHoldLqr  # the baseline's weights (this directory is on sys.path when run as a script)
+
+    env = gym.make("FlexSim/GTM-LevelHold-v0", aero=args.aero).unwrapped
+    policy = LevelHoldLqr(env)
+    policy.reset({})
+    design = policy.lqr
+    np.set_printoptions(precision=4, suppress=False, linewidth=140)
+    print(f"LQR of FlexSim/GTM-LevelHold-v0 ({args.aero}) at {env.task.manoeuvre.describe()}")
+    print("states:", ", ".join(design.states))
+    print("gain K [N or rad per state unit], rows thrust, aileron, elevator, rudder:")
+    print(design.gain)
+    print(f"design-model closed loop: max Re(eig) = {design.closed_loop_max_real:.4f} 1/s; "
+          f"full flexible sampled loop: growth {design.full_model_growth:.4f} 1/s (< 0: stable)")
+
+
+if __name__ == "__main__":
+    main()

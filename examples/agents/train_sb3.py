@@ -3,9 +3,11 @@
     python -m pip install "stable-baselines3>=2.4"
     python examples/agents/train_sb3.py --env FlexSim/GTM-GustAlleviation-v0 --algo SAC --steps 200000 --envs 2
 
-The environments run at roughly 50-100 steps per second per core (``docs/environments.md``), so use
-several worker processes (``--envs``; each worker pins its BLAS to one thread) and expect hours, not
-minutes, for a useful policy. Observations are normalised with ``VecNormalize`` (physical units differ
+One environment steps at about 550-570 steps/s on a quiet core with its default integrator (the speed table of
+``docs/environments.md``, ``benchmarks/bench_envs.py``); the learner's updates come on top (PPO with 2 workers
+measured about 40 steps/s on a loaded 2-core machine, 2026-12-01). Use several worker processes (``--envs``;
+each worker pins its BLAS to one thread); torch is limited to one thread (``--torch-threads``), which ran PPO
+1.7 times faster than torch's default on 2 cores. Expect hours, not minutes, for a useful policy. Observations are normalised with ``VecNormalize`` (physical units differ
 by orders of magnitude); the trained model and the normalisation statistics are saved to ``--out``.
 """
 
@@ -43,8 +45,14 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--aero", default="unsteady", choices=["unsteady", "quasi-steady"])
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--out", type=Path, default=Path("sb3_flexsim"))
+    parser.add_argument("--torch-threads", type=int, default=1, help="torch intra-op threads of the learner [1]")
     args = parser.parse_args(argv)
+    if args.torch_threads < 1:
+        parser.error(f"--torch-threads = {args.torch_threads}: must be >= 1")
     sb3, make_vec_env, SubprocVecEnv, VecNormalize = _import_sb3()
+    import torch
+
+    torch.set_num_threads(args.torch_threads)
     vec_cls = SubprocVecEnv if args.envs > 1 else None
     venv = make_vec_env(args.env, n_envs=args.envs, seed=args.seed, env_kwargs={"aero": args.aero}, vec_env_cls=vec_cls)
     venv = VecNormalize(venv, norm_obs=True, norm_reward=False)
