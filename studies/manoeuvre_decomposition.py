@@ -396,6 +396,31 @@ def table(rows: list[dict]) -> str:
     return "\n".join(out)
 
 
+#: The paper's trend signs (its text after Figs. 7-10 and 12-15): d/dR from R = 5 to 12 km, d/dgamma from -15 to +15 deg.
+PAPER_SIGNS = {"dM/dR": {0.0: +1, 3048.0: -1, 6096.0: -1, 9144.0: -1}, "dw/dR": {0.0: -1, 3048.0: +1, 6096.0: +1, 9144.0: +1},
+               "dM/dg": {h: +1 for h in (0.0, 3048.0, 6096.0, 9144.0)}, "dw/dg": {h: -1 for h in (0.0, 3048.0, 6096.0, 9144.0)}}
+#: Differences below these count as unresolved (search tolerance 5e-5 in Mach): [-], [rad/s].
+RESOLVED = {"M": 1e-4, "w": 1e-3}
+
+
+def scorecard(rows: list[dict]) -> str:
+    """US trend signs against the paper's, from ``none`` rows at several altitudes (one row per altitude)."""
+    out = ["| h [m] | dM_F/dR | dω_F/dR | dM_F/dγ | dω_F/dγ | level M_F / ω_F |", "|---|---|---|---|---|---|"]
+    n_ok = n = 0
+    for r in sorted(rows, key=lambda r: r["altitude_m"]):
+        h = float(r["altitude_m"])
+        vals = {"dM/dR": r["M_R12km"] - r["M_R5km"], "dw/dR": r["w_R12km"] - r["w_R5km"],
+                "dM/dg": r["M_g+15"] - r["M_g-15"], "dw/dg": r["w_g+15"] - r["w_g-15"]}
+        cells = []
+        for key, val in vals.items():
+            ok = abs(val) > RESOLVED[key[1]] and np.sign(val) == PAPER_SIGNS[key][h]
+            n_ok, n = n_ok + ok, n + 1
+            cells.append(f"{val:+.5f} {'✔' if ok else '✘'}")
+        out.append(f"| {h:.0f} | " + " | ".join(cells) + f" | {r['M_level']:.4f} / {r['w_level']:.2f} |")
+    out.append(f"\n{n_ok}/{n} signs as the paper (a difference below {RESOLVED['M']} in Mach or {RESOLVED['w']} rad/s counts as unresolved, ✘)")
+    return "\n".join(out)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--aircraft", default="gtm")
@@ -416,7 +441,13 @@ def main() -> None:
     ap.add_argument("--ref-level", type=float, nargs=2, default=None, metavar=("M_F", "OMEGA_F"),
                     help="level flutter point of the 'none' switch from an earlier run (for split runs)")
     ap.add_argument("--json", type=Path, default=None)
+    ap.add_argument("--scorecard", type=Path, nargs="+", default=None, metavar="JSON",
+                    help="only print the trend scorecard from earlier --json outputs (their 'none' rows, one per altitude)")
     a = ap.parse_args()
+    if a.scorecard:
+        rows = [r for f in a.scorecard for r in json.loads(f.read_text()) if r["switch"] == "none"]
+        print(scorecard(rows))
+        return
     scaling = json.loads(a.scaling) if a.scaling else None
     ac = configure(a.aircraft, scaling, a.mass_factor, tuple(a.incidence) if a.incidence else None, a.damping)
     label = json.dumps({"aircraft": a.aircraft, "scaling": scaling, "mass_factor": a.mass_factor, "incidence_deg": a.incidence,
