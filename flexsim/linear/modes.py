@@ -93,23 +93,27 @@ def in_vacuo_modes(model: AircraftModel) -> ModalAnalysis:
     # Rigid-body modes: eigenvalues at round-off level relative to the stiffest mode.
     n_rigid = int(np.sum(np.abs(lam) <= 1e-10 * max(np.abs(lam).max(), 1e-300)))
     labels = [st.dofs.labels[i] for i in active]
+    mirror = st.mirror  # mirror pairs and their signs from the geometry (flexsim.structure.mirror)
+    twins = {} if mirror is None else {st.dofs.labels[i]: (st.dofs.labels[mirror.partner[i]], mirror.sign[i])
+                                       for i in active if mirror.partner[i] not in (-1, int(i))}
     modes = []
     for i in range(lam.size):
         phi = vec[:, i]
         full = np.zeros(st.dofs.n_v)
         full[active] = phi
-        label, share = _dominant(labels, phi, phi * (m @ phi))
+        label, share = _dominant(labels, phi, phi * (m @ phi), twins)
         modes.append(Mode(float(np.sqrt(max(lam[i], 0.0))), full, label, share))
     return ModalAnalysis(tuple(modes), n_rigid)
 
 
-def _dominant(labels: list[str], phi: np.ndarray, energy: np.ndarray) -> tuple[str, float]:
+def _dominant(labels: list[str], phi: np.ndarray, energy: np.ndarray, twins: dict) -> tuple[str, float]:
     """Label of the DOF with the largest kinetic-energy share, merging mirror-image pairs.
 
-    When the right- and left-hand coordinates of a pair (wings, horizontal stabilizers) carry comparable
-    energy, the mode is labelled "wings bending 1 (symmetric)" or "(antisymmetric)". Right and left
-    component axes are mirror images with z_i down on both, so symmetric bending has equal signs of
-    q_R, q_L, while symmetric torsion (both noses up) has opposite signs of xi_R, xi_L.
+    When the two coordinates of a mirror pair (``twins``: label -> (mirror label, sign of the mirror map),
+    :mod:`flexsim.structure.mirror`; wings, horizontal stabilizers) carry comparable energy, the mode is
+    labelled "wings bending 1 (symmetric)" or "(antisymmetric)": symmetric when the twin's coordinate is
+    the mirror sign times the dominant one (equal signs of q_R, q_L; opposite signs of xi_R, xi_L, both
+    noses up, as the left half's axes are the right's mirrored and turned about the span).
     """
     total = energy[energy > 0].sum()
     shares = dict(zip(labels, energy / total))
@@ -117,15 +121,13 @@ def _dominant(labels: list[str], phi: np.ndarray, energy: np.ndarray) -> tuple[s
     best = max(shares, key=shares.get)
     name = best
     share = shares[best]
-    for side, other in (("right_", "left_"), ("left_", "right_")):
-        if best.startswith(side):
-            twin = other + best[len(side):]
-            if twin in shares and shares[twin] > 0.5 * share:
-                kind = best[len(side):].split(" ")[1]
-                same_sign = coords[best] * coords[twin] > 0
-                symmetric = same_sign if kind == "bending" else not same_sign
-                part = best[len(side):].split(" ", 1)
-                plural = {"wing": "wings", "htail": "htails"}[part[0]]
-                name = f"{plural} {part[1]} ({'symmetric' if symmetric else 'antisymmetric'})"
-                share += shares[twin]
+    if best in twins:
+        twin, sign = twins[best]
+        if twin in shares and shares[twin] > 0.5 * share:
+            symmetric = coords[best] * sign * coords[twin] > 0
+            side, rest = best.split("_", 1)
+            part = rest.split(" ", 1)
+            plural = {"wing": "wings", "htail": "htails"}.get(part[0], part[0] + "s")
+            name = f"{plural} {part[1]} ({'symmetric' if symmetric else 'antisymmetric'})"
+            share += shares[twin]
     return name, float(share)
