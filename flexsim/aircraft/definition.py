@@ -40,6 +40,9 @@ MAX_MODES = 10
 #: The paper's components, in the order of the global velocity vector (eq. 9).
 COMPONENT_NAMES = ("fuselage", "right_wing", "left_wing", "right_htail", "left_htail", "vtail")
 
+#: Resolutions of the strip airloads (docs/design.md, "Force resolution"): the default first.
+FORMULATIONS = ("physical", "paper")
+
 #: Control surface kind allowed on each component (paper: ailerons antisymmetric, elevator symmetric).
 _SURFACE_KIND = {
     "right_wing": "aileron",
@@ -470,6 +473,11 @@ class Aircraft:
         Modal damping ratio zeta [-] of every clamped elastic mode (``StructuralModel.damping``), in
         [0, 0.1]; 0 (the paper's undamped structure) unless the file sets it. Models built on the aircraft
         use it unless given another value.
+    formulation : {"physical", "paper"}
+        Resolution of the strip airloads (eq. 28; docs/design.md "Force resolution"): ``physical``
+        (default: lift normal and drag along the local relative wind) or ``paper`` (the paper's eq. 28
+        with no net body-x component, as its trims imply: T_e = W sin(theta)). Models built on the
+        aircraft use it unless their :class:`~flexsim.model.coupling.AeroOptions` say otherwise.
     """
 
     name: str
@@ -480,6 +488,7 @@ class Aircraft:
     source: str = "<python>"
     design_origin_m: np.ndarray | None = None
     structural_damping_ratio: float = 0.0
+    formulation: str = "physical"
 
     def to_design_frame(self, point_m: np.ndarray) -> np.ndarray:
         """A body-axes point [m] in the file's design frame (x aft, y right, z up) [m]."""
@@ -489,6 +498,8 @@ class Aircraft:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "structural_damping_ratio", _check_scalar("structural_damping_ratio", self.structural_damping_ratio, 0.0, 0.1))
+        if self.formulation not in FORMULATIONS:
+            _fail("formulation", self.formulation, f"must be one of {', '.join(repr(f) for f in FORMULATIONS)}")
         comps = tuple(self.components)
         names = [c.name for c in comps]
         if not comps:

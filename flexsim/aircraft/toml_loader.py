@@ -36,7 +36,8 @@ SCHEMA_VERSION = 1
 _DESIGN_TO_BODY = np.diag([-1.0, 1.0, -1.0])
 
 _TOP_KEYS = {"schema_version": True, "name": True, "description": False, "frame": False,
-             "components": True, "lumped_masses": False, "engines": False, "structural_damping_ratio": False}
+             "components": True, "lumped_masses": False, "engines": False, "structural_damping_ratio": False,
+             "formulation": False}
 _COMPONENT_KEYS = {"root_m": True, "euler_deg": True, "length_m": True, "bending_modes": False,
                    "torsion_modes": False, "rigid": False, "section_inertia": False, "sweep_deg": False,
                    "sections": True, "control_surface": False, "aero": False}
@@ -272,6 +273,7 @@ def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:
             source=source,
             design_origin_m=frame.origin if frame.kind == "design" else None,
             structural_damping_ratio=doc.get("structural_damping_ratio", 0.0),
+            formulation=doc.get("formulation", "physical"),
         )
     except AircraftDefinitionError as exc:
         raise AircraftDefinitionError(f"{source}: {exc}") from None

@@ -8,11 +8,13 @@ import math
 import os
 from pathlib import Path
 
+from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.aircraft.toml_loader import load_aircraft
-from flexsim.linear.paper_data import GLIDE_9144, TABLE_QS, TABLE_US
+from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
-from flexsim.linear.study import StudyCase, climb_cases, glide_from_climb, plot_study, plot_trim, run_study, turn_cases, write_results
+from flexsim.linear.study import StudyCase, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
 from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.coupling import AeroOptions
 from flexsim.trim import SteadyManoeuvre, trim
 
 __all__ = ["add_flutter_commands"]
@@ -26,16 +28,27 @@ def _manoeuvre(args: argparse.Namespace, altitude: float, mach: float) -> Steady
 
 def _trim(args: argparse.Namespace) -> int:
     aircraft = load_aircraft(args.aircraft)
-    model = AircraftModel(aircraft, aero="quasi-steady")
+    model = AircraftModel(aircraft, aero=AeroOptions("quasi-steady", formulation=args.formulation))
     point = trim(model, _manoeuvre(args, args.altitude_m, args.mach), check_limits=not args.no_limits)
     out = point.summary()
+    out["weight_kN"] = model.structure.mass_properties.mass_kg * model.gravity_m_s2 / 1e3
     if args.json:
-        print(json.dumps(out, indent=2))
+        print(json.dumps({**out, "formulation": model.formulation}, indent=2))
         return 0
-    print(f"Trim of {aircraft.name}: {point.manoeuvre.describe()}")
+    print(f"Trim of {aircraft.name} ({model.formulation} force resolution): {point.manoeuvre.describe()}")
     for key, value in out.items():
         print(f"  {key:<18} {value: .6g}")
     return 0
+
+
+def _settings(args: argparse.Namespace, default_aircraft: str = "gtm") -> list[RunSettings]:
+    """The labelled settings of a run: the paper-replication and the physical ones on the default aircraft,
+    or the aircraft and options as given (``--formulation``, ``--linear-density-altitude-m``)."""
+    if args.paper_replication:
+        return [PAPER_REPLICATION]
+    if args.aircraft == default_aircraft and args.formulation is None and args.linear_density_altitude_m is None:
+        return [PAPER_REPLICATION, physical_settings(default_aircraft)]
+    return [RunSettings("as given", args.aircraft, args.formulation, args.linear_density_altitude_m)]
 
 
 def _flutter(args: argparse.Namespace) -> int:
@@ -43,41 +56,35 @@ def _flutter(args: argparse.Namespace) -> int:
     for k in keys:
         if k not in _MODELS:
             raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
-    cases = [StudyCase(args.aircraft, k, h, mach_min=args.mach_min, mach_max=args.mach_max, structural_damping=args.structural_damping)
-             for k in keys for h in args.altitudes]
-    rows = run_study(cases, workers=args.workers, progress=not args.json)
+    settings = _settings(args)
+    labelled = [(s.label, StudyCase(s.aircraft, k, h, mach_min=args.mach_min, mach_max=args.mach_max,
+                                    structural_damping=args.structural_damping, formulation=s.formulation,
+                                    linear_density_altitude_m=s.linear_density_altitude_m))
+                for s in settings for k in keys for h in args.altitudes]
+    rows = run_study([c for _, c in labelled], workers=args.workers, progress=not args.json)
+    for (label, _), row in zip(labelled, rows):
+        row["settings"] = label
+        if "mach" in row:
+            row["mode_matches_paper"] = mode_matches_paper(row)
+    lines, doc = flutter_report(rows, settings, keys)
     if args.json:
-        print(json.dumps(rows, indent=2))
+        print(json.dumps(doc, indent=2, default=str))
         return 0
-    paper = {"QS": TABLE_QS, "US": TABLE_US, "FS": TABLE_US}
-    print(f"Flutter in steady level flight, {args.aircraft} (the bundled GTM is notional: structure estimated from public data, "
-          "calibrated to Table 3 — docs/calibration.md)")
-    header = f"{'':>4} {'h [m]':>7} {'M_F':>7} {'w_F':>8} {'theta':>7} {'T_e kN':>8} {'d_e':>7} {'w_tip m':>8} {'psi_tip':>8}"
-    for key in keys:
-        print(f"\n{key} ({_MODELS[key]}) — flexsim vs paper Table {'2' if key == 'QS' else '3'}")
-        print(header)
-        for row in [r for r in rows if r["model"] == key]:
-            ref = next(p for p in paper[key] if p[0] == row["altitude_m"]) if row["altitude_m"] in [p[0] for p in paper[key]] else None
-            if "error" in row:
-                print(f"{'ours':>4} {row['altitude_m']:7.0f}  no flutter point: {row['error'][:110]}")
-            else:
-                print(f"{'ours':>4} {row['altitude_m']:7.0f} {row['mach']:7.4f} {row['omega_rad_s']:8.3f} {row['theta_deg']:7.3f} "
-                      f"{row['thrust_kN']:8.2f} {row['elevator_deg']:7.3f} {row['tip_deflection_m']:8.4f} {row['tip_twist_deg']:8.4f}   ({row['mode_symmetry']}: {row['mode']})")
-            if ref:
-                print(f"{'pap.':>4} {ref[0]:7.0f} {ref[1]:7.4f} {ref[2]:8.3f} {ref[3]:7.3f} {ref[4]:8.2f} {ref[5]:7.3f} {ref[6]:8.4f} {ref[7]:8.4f}")
-                if "error" not in row:
-                    print(f"{'diff':>4} {'':7} {100 * (row['mach'] / ref[1] - 1):+6.1f}% {100 * (row['omega_rad_s'] / ref[2] - 1):+7.1f}%")
+    print("\n".join(lines))
     return 0
 
 
 def _sweep(args: argparse.Namespace) -> int:
     kind = "turn" if args.turn else "climb"
     models = [k.strip().upper() for k in args.models.split(",")]
-    if kind == "turn":
-        cases = turn_cases(args.aircraft, altitudes_m=args.altitudes, models=models, structural_damping=args.structural_damping)
-    else:
-        cases = climb_cases(args.aircraft, altitudes_m=args.altitudes, models=models, structural_damping=args.structural_damping)
-    rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=True)
+    setting = PAPER_REPLICATION if args.paper_replication else RunSettings("as given", args.aircraft, args.formulation,
+                                                                            args.linear_density_altitude_m)
+    make = turn_cases if kind == "turn" else climb_cases
+    cases = make(setting.aircraft, altitudes_m=args.altitudes, models=models, structural_damping=args.structural_damping,
+                 formulation=setting.formulation, linear_density_altitude_m=setting.linear_density_altitude_m)
+    rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=not args.json)
+    for row in rows:
+        row["settings"] = setting.label
     out = Path(args.out)
     csv_path, json_path = write_results(rows, out, f"flutter_{kind}")
     png = plot_study(rows, kind, out / f"flutter_{kind}.png")
@@ -85,20 +92,33 @@ def _sweep(args: argparse.Namespace) -> int:
     top = max(args.altitudes)
     if any(r["altitude_m"] == top and "mach" in r for r in rows):
         figures.append(plot_trim(rows, kind, out / f"flutter_{kind}_trim_{top:.0f}m.png", altitude_m=top))
+    lines, doc = sweep_report(rows, kind)
+    doc["settings"] = setting.__dict__
+    score_path = out / f"flutter_{kind}_scorecard.json"
+    score_path.write_text(json.dumps(doc, indent=2, default=str))
+    if args.json:
+        print(json.dumps({"rows": rows, **doc}, indent=2, default=str))
+        return 0
     ok = sum("mach" in r for r in rows)
-    print(f"{ok}/{len(rows)} flutter points; results: {csv_path}, {json_path}; figures: {', '.join(map(str, figures))}")
-    if kind == "climb":
-        for model in models:
-            for h in args.altitudes:
-                glide = glide_from_climb(rows, model=model, altitude_m=h)
-                if glide:
-                    paper = f" (paper: {GLIDE_9144[0]} deg, {GLIDE_9144[1]}, {GLIDE_9144[2]} rad/s)" if h == 9144.0 and model == "US" else ""
-                    print(f"glide at {h:.0f} m (T_e = 0 on the {model} climb curve): gamma = {glide['gamma_deg']:.2f} deg, "
-                          f"M_F = {glide['mach']:.4f}, omega_F = {glide['omega_rad_s']:.3f} rad/s{paper}")
+    print(f"{setting.describe()}")
+    print(f"{ok}/{len(rows)} flutter points; results: {csv_path}, {json_path}, {score_path}; figures: {', '.join(map(str, figures))}")
+    print("\n".join(lines))
     for r in rows:
         if "error" in r:
             print(f"  no flutter point: {r['model']} h={r['altitude_m']:.0f} R={r['turn_radius_m']} gamma={r['climb_angle_deg']}: {r['error'][:100]}")
     return 0
+
+
+def _add_formulation(parser: argparse.ArgumentParser, replication: bool = False) -> None:
+    parser.add_argument("--formulation", choices=FORMULATIONS, default=None,
+                        help="force resolution of the strip airloads: physical (lift normal to the local wind) or paper "
+                             "(eq. 28, no body-x component: T_e = W sin theta) [the aircraft file's; physical unless it says]")
+    if replication:
+        parser.add_argument("--linear-density-altitude-m", type=float, default=None, metavar="H",
+                            help="paper-replication setting: linearised aerodynamics of the flutter search at the ISA density of "
+                                 "altitude H [m] (trims keep the true density) [the flight's true density]")
+        parser.add_argument("--paper-replication", action="store_true",
+                            help=f"run only the paper-replication settings ({PAPER_REPLICATION.describe()})")
 
 
 def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
@@ -111,6 +131,7 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_trim.add_argument("--climb-deg", type=float, default=0.0, help="flight-path angle [deg]")
     p_trim.add_argument("--glide", action="store_true", help="thrust zero, flight-path angle unknown")
     p_trim.add_argument("--no-limits", action="store_true", help="do not enforce thrust/surface limits")
+    _add_formulation(p_trim)
     p_trim.set_defaults(func=_trim)
 
     p_fl = sub.add_parser("flutter", help="flutter Mach and frequency in level flight (paper Tables 2-3)")
@@ -122,6 +143,7 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_fl.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="local processes [all cores]")
     p_fl.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
                       help="modal damping ratio of the elastic modes [the aircraft file's; 0 = the paper's undamped structure]")
+    _add_formulation(p_fl, replication=True)
     p_fl.set_defaults(func=_flutter)
 
     p_sw = sub.add_parser("sweep", help="flutter versus turn radius or climb angle (paper Figs. 7-16)")
@@ -136,4 +158,5 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_sw.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
                       help="modal damping ratio of the elastic modes [the aircraft file's]")
     p_sw.add_argument("--out", default="logs/study", help="output folder for CSV, JSON and PNG [logs/study]")
+    _add_formulation(p_sw, replication=True)
     p_sw.set_defaults(func=_sweep)

@@ -19,6 +19,8 @@ import warnings
 from pathlib import Path
 from typing import Sequence
 
+from flexsim.aircraft.definition import FORMULATIONS
+
 __all__ = ["add_sim_commands", "script_arguments"]
 
 _AERO = ("unsteady", "quasi-steady")
@@ -49,7 +51,7 @@ def _simulate(args: argparse.Namespace) -> int:
         return _run_script(Path(target), args)
     if args.log is not None and args.no_log:
         raise ValueError("--log and --no-log: give at most one")
-    setup = build_manoeuvre(target, aero=args.aero, duration_s=args.duration)
+    setup = build_manoeuvre(target, aero=args.aero, duration_s=args.duration, formulation=args.formulation)
     log_path = None if args.no_log else (args.log or default_log_path(setup.name))
     options = {"log_path": log_path, "method": args.method}
     if args.rtol is not None:
@@ -63,8 +65,8 @@ def _simulate(args: argparse.Namespace) -> int:
 def _run_script(path: Path, args: argparse.Namespace) -> int:
     if not path.is_file():
         raise FileNotFoundError(f"script {str(path)!r} not found")
-    if args.no_log or args.method != "auto" or args.rtol is not None:
-        raise ValueError("--no-log, --method and --rtol apply to named manoeuvres; a script takes --duration, --log, --aero")
+    if args.no_log or args.method != "auto" or args.rtol is not None or args.formulation is not None:
+        raise ValueError("--no-log, --method, --rtol and --formulation apply to named manoeuvres; a script takes --duration, --log, --aero")
     argv = [str(path), "--aero", args.aero]
     if args.duration is not None:
         argv += ["--duration", repr(args.duration)]
@@ -137,6 +139,8 @@ def add_sim_commands(subparsers: argparse._SubParsersAction) -> None:
     p_sim.add_argument("--log", metavar="PATH", help="flight log (.mcap) [logs/<manoeuvre>-<time>.mcap]")
     p_sim.add_argument("--no-log", action="store_true", help="do not write a flight log")
     p_sim.add_argument("--aero", choices=_AERO, default="unsteady", help="aerodynamic model [unsteady]")
+    p_sim.add_argument("--formulation", choices=FORMULATIONS, default=None,
+                       help="force resolution of the strip airloads (physical or paper, docs/design.md) [the aircraft file's]")
     p_sim.add_argument("--method", choices=["auto", *METHODS], default="auto", help="integration method [auto: Radau]")
     p_sim.add_argument("--rtol", type=float, help="relative tolerance [method's default]")
     p_sim.set_defaults(func=_simulate)

@@ -18,7 +18,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from flexsim.aircraft.definition import Aircraft
-from flexsim.atmosphere import speed_of_sound
+from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.errors import FlexsimError
 from flexsim.linear.participation import Participation, describe_mode
 from flexsim.linear.stability import Mode, Spectrum, spectrum
@@ -65,6 +65,13 @@ class FlutterPoint:
     participation : tuple of Participation
         Leading linear coordinates [m] then leading angles [deg] of ``mode_shape`` with their phase
         relative to the normalising coordinate (paper Figs. 11, 16; :mod:`flexsim.linear.participation`).
+    formulation : {"physical", "paper"}
+        Resolution of the strip airloads used (docs/design.md, "Force resolution").
+    aero_density_kg_m3 : float
+        Air density of the linearised aerodynamics of the eigen-analysis [kg/m^3]: the ISA density at the
+        flight altitude unless the analysis fixed it (``linear_aero_density_kg_m3``).
+    aero_density_fixed : bool
+        True when that density was fixed by the analysis rather than the flight's true density.
     rigid_instabilities : tuple of (float, complex, str)
         (Mach, eigenvalue, dominant DOF) of unstable rigid-body modes met during the search.
     evaluations : int
@@ -85,6 +92,9 @@ class FlutterPoint:
     mode_symmetry: str = "n/a"
     symmetric_fraction: float = math.nan
     participation: tuple[Participation, ...] = ()
+    formulation: str = "physical"
+    aero_density_kg_m3: float = math.nan
+    aero_density_fixed: bool = False
 
 
 class FlutterAnalysis:
@@ -100,27 +110,46 @@ class FlutterAnalysis:
     structural_damping : float, optional
         Modal damping ratio of the clamped elastic modes (default None: the aircraft's
         ``structural_damping_ratio``; 0 reproduces the paper's undamped structure).
+    formulation : {"physical", "paper"}, optional
+        Resolution of the strip airloads (docs/design.md, "Force resolution"); default None: the aircraft
+        file's ``formulation``.
+    linear_aero_density_kg_m3 : float, optional
+        A paper-replication setting (docs/flutter.md): the air density [kg/m^3] of the *linearised*
+        aerodynamics of every eigen-analysis, while each trim keeps the true density of its altitude.
+        Default None: the flight's true density (the physical choice). Mach number and compressibility
+        stay the flight's.
     """
 
     def __init__(self, aircraft: Aircraft, aero_model: str = "theodorsen", n_inflow: int = 6,
-                 structural_damping: float | None = None) -> None:
+                 structural_damping: float | None = None, formulation: str | None = None,
+                 linear_aero_density_kg_m3: float | None = None) -> None:
         if aero_model not in AERO_MODELS:
             raise ValueError(f"aero_model = {aero_model!r}: must be one of {', '.join(AERO_MODELS)}")
         self.aircraft = aircraft
         self.aero_model = aero_model
-        self.qs = AircraftModel(aircraft, aero="quasi-steady", structural_damping=structural_damping)
-        self.fs = (AircraftModel(aircraft, aero=AeroOptions("unsteady", n_inflow), structural_damping=structural_damping)
+        self.linear_aero_density_kg_m3 = linear_aero_density_kg_m3
+        qs_opts = AeroOptions("quasi-steady", formulation=formulation)
+        self.qs = AircraftModel(aircraft, aero=qs_opts, structural_damping=structural_damping)
+        self.formulation = self.qs.formulation
+        lin = dict(structural_damping=structural_damping, aero_density_kg_m3=linear_aero_density_kg_m3)
+        # the model of the eigen-analysis: the trim model unless the linearised aerodynamics' density is fixed
+        self.qs_linear = self.qs if linear_aero_density_kg_m3 is None else AircraftModel(aircraft, aero=qs_opts, **lin)
+        self.fs = (AircraftModel(aircraft, aero=AeroOptions("unsteady", n_inflow, formulation=formulation), **lin)
                    if aero_model != "quasi-steady" else None)
 
     def evaluate(self, manoeuvre: SteadyManoeuvre, guess: TrimPoint | None = None) -> tuple[TrimPoint, Spectrum]:
-        """Trim (limits not enforced: the paper's climbs need negative thrust) and eigen-analysis."""
+        """Trim (limits not enforced: the paper's climbs need negative thrust) and eigen-analysis.
+
+        The trim uses the true density of the manoeuvre's altitude; the eigen-analysis the density of
+        ``linear_aero_density_kg_m3`` when the analysis fixes it.
+        """
         point = trim(self.qs, manoeuvre, guess=guess, check_limits=False)
         if self.aero_model == "quasi-steady":
-            return point, spectrum(self.qs, point.x, point.u, aero_model="quasi-steady")
+            return point, spectrum(self.qs_linear, point.x, point.u, aero_model="quasi-steady")
         if self.aero_model == "unsteady":
             x = np.concatenate([point.x, np.zeros(self.fs.layout.n_inflow)])
             return point, spectrum(self.fs, x, point.u, aero_model="unsteady")
-        return point, spectrum(self.qs, point.x, point.u, aero_model="theodorsen", pk_model=self.fs)
+        return point, spectrum(self.qs_linear, point.x, point.u, aero_model="theodorsen", pk_model=self.fs)
 
     def search(self, manoeuvre: SteadyManoeuvre, *, mach_range: tuple[float, float] = (0.3, 0.95),
                mach_step: float = 0.05, tol: float = 1e-4, mach_guess: float | None = None) -> FlutterPoint:
@@ -229,6 +258,10 @@ class FlutterAnalysis:
             mode_symmetry=desc.symmetry,
             symmetric_fraction=desc.symmetric_fraction,
             participation=desc.leading,
+            formulation=self.formulation,
+            aero_density_kg_m3=(float(isa_density(float(manoeuvre.altitude_m))) if self.linear_aero_density_kg_m3 is None
+                                else float(self.linear_aero_density_kg_m3)),
+            aero_density_fixed=self.linear_aero_density_kg_m3 is not None,
             rigid_instabilities=tuple(state["rigid"]),
             evaluations=state["n"] + 1,
         )

@@ -7,7 +7,7 @@ glide point quoted in the text (9144 m: gamma = -3.12 deg, M_F = 0.7787, omega_F
 
 from __future__ import annotations
 
-__all__ = ["TABLE_QS", "TABLE_US", "COLUMNS", "GLIDE_9144"]
+__all__ = ["TABLE_QS", "TABLE_US", "COLUMNS", "GLIDE_9144", "PAPER_TREND_SIGNS", "paper_crossover_altitude_m"]
 
 COLUMNS = ("altitude_m", "mach", "omega_rad_s", "theta_deg", "thrust_kN", "elevator_deg", "tip_deflection_m", "tip_twist_deg")
 
@@ -29,3 +29,39 @@ TABLE_US = (
 
 #: Glide at 9144 m read from the climb study (paper text): gamma [deg], M_F, omega_F [rad/s].
 GLIDE_9144 = (-3.12, 0.7787, 34.939)
+
+
+def _trend_signs() -> dict:
+    """The paper's trend signs, from its text to Figs. 7-10 and 12-15 (page 21-22 of the accepted manuscript).
+
+    Turns: "M_F decreases while omega_F increases as R increases for all altitudes except the sea level
+    altitude at which M_F increases while omega_F decreases with R for the US model, and both M_F and
+    omega_F remain almost unchanged with R for the QS model." Climbs: "M_F increases while omega_F
+    decreases as gamma increases for all of the altitudes" (both models). Key: (kind, "dM_F" or
+    "domega_F", model, altitude [m]) -> -1, 0 or +1.
+    """
+    out = {}
+    for h in (0.0, 3048.0, 6096.0, 9144.0):
+        for model in ("QS", "US"):
+            if h == 0.0:
+                m, w = (1, -1) if model == "US" else (0, 0)
+            else:
+                m, w = -1, 1
+            out[("turn", "dM_F", model, h)] = m
+            out[("turn", "domega_F", model, h)] = w
+            out[("climb", "dM_F", model, h)] = 1
+            out[("climb", "domega_F", model, h)] = -1
+    return out
+
+
+#: The paper's trend signs (see :func:`_trend_signs`); for comparison beside computed trends only.
+PAPER_TREND_SIGNS = _trend_signs()
+
+
+def paper_crossover_altitude_m() -> float:
+    """Altitude [m] where the paper's M_F(US) - M_F(QS) changes sign, interpolated in Tables 2-3 (display only)."""
+    diff = [(us[0], us[1] - qs[1]) for qs, us in zip(TABLE_QS, TABLE_US)]
+    for (h0, d0), (h1, d1) in zip(diff[:-1], diff[1:]):
+        if d0 * d1 < 0:
+            return h0 + (h1 - h0) * d0 / (d0 - d1)
+    raise AssertionError("the paper's tables have a crossover between 3048 and 6096 m")

@@ -80,8 +80,9 @@ class ModeDescription:
 
 
 def _phase_deg(z: complex) -> float:
+    """Phase in (-180, 180] [deg]; within 1e-6 deg of +-180 it is 180 (no flip between -180 and 180 on round-off)."""
     ph = math.degrees(math.atan2(z.imag, z.real))
-    return 180.0 if ph <= -180.0 + 1e-9 else ph
+    return 180.0 if abs(abs(ph) - 180.0) < 1e-6 else ph
 
 
 def describe_mode(structure, velocity_shape: np.ndarray, eigenvalue: complex) -> ModeDescription:

@@ -24,6 +24,8 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
+from flexsim.atmosphere import isa_density
+
 __all__ = ["StudyCase", "turn_cases", "climb_cases", "run_case", "run_chain", "run_study", "write_results", "plot_study", "plot_trim", "glide_from_climb"]
 
 MODELS = {"QS": "quasi-steady", "US": "theodorsen", "FS": "unsteady"}
@@ -48,6 +50,11 @@ class StudyCase:
         Search range.
     structural_damping : float or None
         Modal damping ratio of the elastic modes; None uses the aircraft file's value.
+    formulation : {"physical", "paper"} or None
+        Resolution of the strip airloads; None uses the aircraft file's (docs/design.md).
+    linear_density_altitude_m : float or None
+        Paper-replication setting: the linearised aerodynamics of the flutter search use the ISA density
+        at this altitude [m] (the trims keep the true one); None: the flight's true density.
     """
 
     aircraft: str
@@ -58,39 +65,58 @@ class StudyCase:
     mach_min: float = 0.5
     mach_max: float = 0.95
     structural_damping: float | None = None
+    formulation: str | None = None
+    linear_density_altitude_m: float | None = None
 
     def __post_init__(self) -> None:
         if self.model not in MODELS:
             raise ValueError(f"model = {self.model!r}: must be one of {', '.join(MODELS)}")
+        if self.formulation is not None and self.formulation not in ("physical", "paper"):
+            raise ValueError(f"formulation = {self.formulation!r}: must be \"physical\" or \"paper\" (or None: the aircraft file's)")
+        if self.linear_density_altitude_m is not None:
+            isa_density(self.linear_density_altitude_m)  # validates the ISA range with a clear message
+
+    def analysis(self):
+        """The :class:`~flexsim.linear.flutter.FlutterAnalysis` of this case (aircraft loaded here)."""
+        from flexsim.aircraft.toml_loader import load_aircraft
+        from flexsim.linear.flutter import FlutterAnalysis
+
+        rho = None if self.linear_density_altitude_m is None else float(isa_density(self.linear_density_altitude_m))
+        return FlutterAnalysis(load_aircraft(self.aircraft), MODELS[self.model], structural_damping=self.structural_damping,
+                               formulation=self.formulation, linear_aero_density_kg_m3=rho)
+
+    @property
+    def chain_key(self) -> tuple:
+        """Cases with equal keys share one analysis and are run in order (:func:`run_chain`)."""
+        return (self.aircraft, self.model, self.altitude_m, self.structural_damping, self.formulation, self.linear_density_altitude_m)
 
 
 def turn_cases(aircraft: str, radii_m: Sequence[float] = tuple(range(5000, 12001, 1000)),
                altitudes_m: Sequence[float] = PAPER_ALTITUDES_M, models: Sequence[str] = ("QS", "US"),
-               structural_damping: float | None = None) -> list[StudyCase]:
-    """Level turns of the paper's Figs. 7-10 (R = 5-12 km)."""
-    return [StudyCase(aircraft, m, h, turn_radius_m=float(r), structural_damping=structural_damping)
+               structural_damping: float | None = None, **settings) -> list[StudyCase]:
+    """Level turns of the paper's Figs. 7-10 (R = 5-12 km); ``settings``: further :class:`StudyCase` fields."""
+    return [StudyCase(aircraft, m, h, turn_radius_m=float(r), structural_damping=structural_damping, **settings)
             for m in models for h in altitudes_m for r in radii_m]
 
 
 def climb_cases(aircraft: str, angles_deg: Sequence[float] = tuple(range(-15, 16, 5)),
                 altitudes_m: Sequence[float] = PAPER_ALTITUDES_M, models: Sequence[str] = ("QS", "US"),
-                structural_damping: float | None = None) -> list[StudyCase]:
-    """Steady climbs and descents of the paper's Figs. 12-15 (gamma = -15 to 15 deg)."""
-    return [StudyCase(aircraft, m, h, climb_angle_deg=float(g), structural_damping=structural_damping)
+                structural_damping: float | None = None, **settings) -> list[StudyCase]:
+    """Steady climbs and descents of the paper's Figs. 12-15 (gamma = -15 to 15 deg); ``settings`` as :func:`turn_cases`."""
+    return [StudyCase(aircraft, m, h, climb_angle_deg=float(g), structural_damping=structural_damping, **settings)
             for m in models for h in altitudes_m for g in angles_deg]
 
 
 def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None) -> dict:
     """Flutter search of one case; a plain dict with the flutter point and its trim, or an ``error``."""
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-    from flexsim.aircraft.toml_loader import load_aircraft
-    from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
+    from flexsim.linear.flutter import FlutterNotFound
     from flexsim.trim import SteadyManoeuvre, TrimError
 
     row = asdict(case)
     gamma = None if case.climb_angle_deg is None else math.radians(case.climb_angle_deg)
     try:
-        analysis = analysis or FlutterAnalysis(load_aircraft(case.aircraft), MODELS[case.model], structural_damping=case.structural_damping)
+        analysis = analysis or case.analysis()
         start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_min)
         man = SteadyManoeuvre(start.speed_m_s, case.altitude_m, case.turn_radius_m, gamma)
         fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_guess=mach_guess)
@@ -106,6 +132,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None) ->
         rigid_instabilities=len(fp.rigid_instabilities),
         mode_symmetry=fp.mode_symmetry, symmetric_fraction=fp.symmetric_fraction, normalised_by=fp.normalised_by,
         participation=[p.as_dict() for p in fp.participation],
+        formulation=fp.formulation, aero_density_kg_m3=fp.aero_density_kg_m3, aero_density_fixed=fp.aero_density_fixed,
     )
     return row
 
@@ -116,11 +143,7 @@ def run_chain(cases: Sequence[StudyCase]) -> list[dict]:
     The models are built once per chain; neighbouring conditions have neighbouring flutter points, so
     bracketing near the previous one saves most of the grid scan.
     """
-    from flexsim.aircraft.toml_loader import load_aircraft
-    from flexsim.linear.flutter import FlutterAnalysis
-
-    analysis = (FlutterAnalysis(load_aircraft(cases[0].aircraft), MODELS[cases[0].model], structural_damping=cases[0].structural_damping)
-                if cases else None)
+    analysis = cases[0].analysis() if cases else None
     rows, guess = [], None
     for case in cases:
         row = run_case(case, mach_guess=guess, analysis=analysis)
@@ -149,7 +172,7 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
     cases = list(cases)
     chains: dict[tuple, list[int]] = {}
     for i, c in enumerate(cases):
-        chains.setdefault((c.aircraft, c.model, c.altitude_m, c.structural_damping), []).append(i)
+        chains.setdefault(c.chain_key, []).append(i)
     groups = list(chains.values())
     bar = tqdm(total=len(cases), desc="flutter points", disable=None if progress else True)
     rows: list[dict | None] = [None] * len(cases)

@@ -84,6 +84,11 @@ class AircraftModel:
     structural_damping : float, optional
         Modal damping ratio zeta of every clamped elastic mode, 0 <= zeta < 1 (default None: the
         aircraft's ``structural_damping_ratio``, 0 unless its file sets it; the paper's structure is undamped).
+    aero_density_kg_m3 : float, optional
+        Air density the aerodynamics use [kg/m^3], instead of the ISA density at the current altitude
+        (default None: the true density). A paper-replication setting for the *linearised* aerodynamics of
+        a flutter search (:class:`flexsim.linear.flutter.FlutterAnalysis`, docs/flutter.md); Mach number
+        and compressibility keep the true altitude.
     wind : callable, optional
         Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)``: air velocity [m/s] in inertial
         north-east-down axes at the given inertial positions (k, 3) of the aerodynamic strips at time
@@ -111,6 +116,7 @@ class AircraftModel:
         frozen_xi: np.ndarray | None = None,
         wind=None,
         structural_damping: float | None = None,
+        aero_density_kg_m3: float | None = None,
     ) -> None:
         try:
             self.variant = Variant(variant)
@@ -140,6 +146,9 @@ class AircraftModel:
                 'flutter analysis (flexsim.linear); the time-domain model takes "unsteady" or "quasi-steady"'
             )
         self.aero = None if aero is None else AeroCoupling(self.structure, aero)
+        if aero_density_kg_m3 is not None and not (np.isfinite(aero_density_kg_m3) and 0.0 < aero_density_kg_m3 < 2.0):
+            raise ValueError(f"aero_density_kg_m3 = {aero_density_kg_m3!r}: must be an air density in (0, 2) kg/m^3 (or None: the ISA density)")
+        self.aero_density_kg_m3 = None if aero_density_kg_m3 is None else float(aero_density_kg_m3)
         if wind is not None and not callable(wind):
             raise ValueError(f"wind = {wind!r}: must be a callable wind(t, positions_ned_m) -> (k, 3) array")
         self.wind = wind
@@ -164,6 +173,11 @@ class AircraftModel:
         self._xi_frozen = np.zeros(dofs.nxi) if frozen_xi is None else np.asarray(frozen_xi, float)
         if self._q_frozen.shape != (dofs.nq,) or self._xi_frozen.shape != (dofs.nxi,):
             raise ValueError(f"frozen_q/frozen_xi: must have {dofs.nq} and {dofs.nxi} entries")
+
+    @property
+    def formulation(self) -> str | None:
+        """Resolution of the strip airloads in use ("physical" or "paper"), None without aerodynamics."""
+        return None if self.aero is None else self.aero.formulation
 
     @property
     def active_dofs(self) -> np.ndarray:
@@ -279,7 +293,7 @@ class AircraftModel:
         inflow_terms = None
         if self.aero is not None:
             altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
-            rho = isa_density(float(altitude))
+            rho = isa_density(float(altitude)) if self.aero_density_kg_m3 is None else self.aero_density_kg_m3
             mach = float(np.sqrt(v @ v)) / speed_of_sound(float(altitude))
             wind_c = self._strip_wind(t, x, pos, eul)
             m_a, q_a, inflow_terms = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach, wind_c)

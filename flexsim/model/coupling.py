@@ -22,7 +22,11 @@ and the loads per unit span are (Cl_alpha replaces 2 pi in the circulatory terms
 
 The circulatory lift acts normal to the local relative wind and the drag along it (eq. 28, with the
 local flow angle a0 = (w0 + w1/2 - lambda0)/u0 - alpha_chord relative to the component axes instead of
-the body's W/U): f = L (-n - a0 d) + D (d - a0 n). The drag is the induced drag of the strip,
+the body's W/U): f = L (-n - a0 d) + D (d - a0 n) (formulation "physical", the default). Formulation
+"paper" (the paper's eq. 28 with one alpha_i0 = W/U and the drag d = l alpha_i0, which its Tables 2-3
+imply through T_e = W sin(theta)): on wing and stabilizer strips f = -L n + L (n_x / d_x) d, the lift
+along -n plus the chordwise part that cancels the body-x component (n_x, d_x: body-x components of n
+and d); the fin keeps the physical resolution (eq. 31, no load in symmetric flight). The drag is the induced drag of the strip,
 L alpha_e (1 - Cl_a0/2 pi) with alpha_e = (w0 + w1/2 - lambda0)/u0 the effective angle of attack (the lift
 tilted by the 3-D induced angle implied by the vortex-lattice slope; zero in 2-D, as Peters' drag is in
 steady flow), plus an optional parasite drag. Each strip's force and moment enter the equations of motion as
@@ -45,6 +49,7 @@ from typing import NamedTuple
 import numpy as np
 
 from flexsim.aero.inflow import inflow_coefficients
+from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.model.strips import StripSet
 from flexsim.structure.model import StructuralModel
 
@@ -70,11 +75,15 @@ class AeroOptions:
         Inflow states per strip, 1..10 (default 6).
     lift_slope : {"file", "vlm", "2pi"}
         Where the sectional Cl_alpha comes from: each component's file setting, or an override.
+    formulation : {"physical", "paper"} or None
+        Resolution of the strip force (module docstring, docs/design.md "Force resolution"); None (default)
+        takes the aircraft file's ``formulation`` (itself "physical" unless the file says otherwise).
     """
 
     model: str = "unsteady"
     n_inflow: int = 6
     lift_slope: str = "file"
+    formulation: str | None = None
 
     def __post_init__(self) -> None:
         if self.model not in AERO_MODELS:
@@ -82,6 +91,8 @@ class AeroOptions:
         inflow_coefficients(self.n_inflow)  # validates 1..10 with a clear message
         if self.lift_slope not in ("file", "vlm", "2pi"):
             raise ValueError(f"lift_slope = {self.lift_slope!r}: must be \"file\", \"vlm\" or \"2pi\"")
+        if self.formulation is not None and self.formulation not in FORMULATIONS:
+            raise ValueError(f"formulation = {self.formulation!r}: must be one of {', '.join(FORMULATIONS)} (or None: the aircraft file's)")
 
 
 class StripKinematics(NamedTuple):
@@ -141,6 +152,16 @@ class AeroCoupling:
         self._inflow_idx = np.flatnonzero(s.unsteady) if self._finite_state else np.zeros(0, int)
         self.inflow = inflow_coefficients(options.n_inflow)
         self.n_inflow_states = self._inflow_idx.size * options.n_inflow
+        #: Resolution of the strip force in use ("physical" or "paper"; module docstring).
+        self.formulation = options.formulation or structure.aircraft.formulation
+        # "paper": on the wing and stabilizer strips (those with inflow, i.e. not the fin) the force has no
+        # body-x component: c_d = -c_n (n . x_b) / (d . x_b) with x_b the body x axis in component axes.
+        x_b = (np.array([structure.aircraft.component(c).dcm[:, 0] for c in s.component]) if s.n_strips else np.zeros((0, 3)))
+        self._paper_strips = s.unsteady.copy() if self.formulation == "paper" else np.zeros(s.n_strips, bool)
+        d_x = np.einsum("sk,sk->s", s.d, x_b)
+        if np.any(self._paper_strips & (np.abs(d_x) < 1e-3)):
+            raise ValueError('formulation = "paper": a wing/stabilizer strip chord is normal to body x; the force cannot be resolved without a body-x component')
+        self._n_over_d_x = np.where(self._paper_strips, np.einsum("sk,sk->s", s.n, x_b) / np.where(np.abs(d_x) < 1e-3, 1.0, d_x), 0.0)
 
     def kinematics(self, q, xi, vel, lam, u, wind_c=None) -> StripKinematics:
         """Strip velocities and Chebyshev downwash coefficients at a state (module docstring).
@@ -230,6 +251,11 @@ class AeroCoupling:
         w = s.width_m
         c_n = -lift_c - drag * flow_angle  # eq. (28): f = L (-n - a0 d) + D (d - a0 n), a0 the flow angle
         c_d = drag - lift_tilt
+        if self.formulation == "paper":
+            # eq. (28) with d = l alpha_i0: lift along -n and no body-x component (docs/design.md)
+            paper = self._paper_strips
+            c_n = np.where(paper, -lift_c, c_n)
+            c_d = np.where(paper, lift_c * self._n_over_d_x, c_d)
         # apparent mass: w_EA_dot = E V_dot + explicit part
         vs = vel[6 : 6 + self._nq]
         omega = vel[3:6]

@@ -32,6 +32,7 @@ import numpy as np
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.flutter import wind_tunnel_flutter
 from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.coupling import AeroOptions
 from flexsim.sim.disturbances import OneMinusCosineGust
 from flexsim.sim.result import SimulationResult
 from flexsim.sim.simulate import ControlSchedule, simulate
@@ -168,7 +169,7 @@ class BankController:
 
 
 # ---------------------------------------------------------------------------------------------- GTM
-def _gtm(aero: str, wind=None) -> AircraftModel:
+def _gtm(aero: AeroOptions, wind=None) -> AircraftModel:
     return AircraftModel(load_aircraft("gtm"), aero=aero, wind=wind)
 
 
@@ -176,7 +177,7 @@ def _cruise(model: AircraftModel) -> TrimPoint:
     return trim(model, SteadyManoeuvre.level(CRUISE_ALTITUDE_M, mach=CRUISE_MACH))
 
 
-def _level_turn_entry(aero: str) -> ManoeuvreSetup:
+def _level_turn_entry(aero: AeroOptions) -> ManoeuvreSetup:
     model = _gtm(aero)
     level = _cruise(model)
     turn = trim(model, SteadyManoeuvre.turn(CRUISE_ALTITUDE_M, 10_000.0, mach=CRUISE_MACH), guess=level)
@@ -189,7 +190,7 @@ def _level_turn_entry(aero: str) -> ManoeuvreSetup:
                           notes=((1.0, f"turn entry: bank command to {math.degrees(turn.phi):.1f} deg over 4 s"),))
 
 
-def _climb(aero: str) -> ManoeuvreSetup:
+def _climb(aero: AeroOptions) -> ManoeuvreSetup:
     model = _gtm(aero)
     level = _cruise(model)
     climb = trim(model, SteadyManoeuvre.climb(CRUISE_ALTITUDE_M, math.radians(3.0), mach=CRUISE_MACH), guess=level)
@@ -198,7 +199,7 @@ def _climb(aero: str) -> ManoeuvreSetup:
                           model, level, sched, 10.0, notes=((1.0, "controls ramp to the 3 deg climb trim"),))
 
 
-def _elevator_doublet(aero: str) -> ManoeuvreSetup:
+def _elevator_doublet(aero: AeroOptions) -> ManoeuvreSetup:
     model = _gtm(aero)
     level = _cruise(model)
     d = math.radians(2.0)
@@ -207,7 +208,7 @@ def _elevator_doublet(aero: str) -> ManoeuvreSetup:
                           model, level, sched, 6.0, notes=((1.0, "elevator doublet"),))
 
 
-def _aileron_roll(aero: str) -> ManoeuvreSetup:
+def _aileron_roll(aero: AeroOptions) -> ManoeuvreSetup:
     model = _gtm(aero)
     level = _cruise(model)
     sched = pulse_schedule(level.u, [(1, 1.0, 3.0, -math.radians(3.0))], ramp_s=0.1)
@@ -215,7 +216,7 @@ def _aileron_roll(aero: str) -> ManoeuvreSetup:
                           model, level, sched, 6.0, notes=((1.0, "aileron input"),))
 
 
-def _gust_encounter(aero: str) -> ManoeuvreSetup:
+def _gust_encounter(aero: AeroOptions) -> ManoeuvreSetup:
     still = _gtm(aero)
     level = _cruise(still)
     lay = still.layout
@@ -229,7 +230,7 @@ def _gust_encounter(aero: str) -> ManoeuvreSetup:
 
 
 # ---------------------------------------------------------------------------------------------- Goland
-def _goland_model(speed_m_s: float, aero: str) -> AircraftModel:
+def _goland_model(speed_m_s: float, aero: AeroOptions) -> AircraftModel:
     return AircraftModel(load_aircraft("goland_wing"), variant="restrained", restrained_velocity_m_s=[speed_m_s, 0.0, 0.0],
                          altitude_m=0.0, aero=aero)
 
@@ -247,11 +248,11 @@ def goland_flutter_speed(aero: str = "unsteady") -> float:
     return wind_tunnel_flutter(load_aircraft("goland_wing"), aero_model=aero)[0]
 
 
-def _flutter_onset(aero: str) -> ManoeuvreSetup:
+def _flutter_onset(aero: AeroOptions) -> ManoeuvreSetup:
     speed_f = goland_flutter_speed("unsteady")
     speed = 1.05 * speed_f
     model = _goland_model(speed, aero)
-    note = "" if aero == "unsteady" else (f", simulated with quasi-steady aerodynamics (whose own flutter speed is "
+    note = "" if aero.model == "unsteady" else (f", simulated with quasi-steady aerodynamics (whose own flutter speed is "
                                           f"{goland_flutter_speed('quasi-steady'):.1f} m/s)")
     return ManoeuvreSetup("flutter-onset", f"Goland wing clamped in a sea-level wind tunnel at {speed:.1f} m/s = 1.05 x its "
                           f"flutter speed {speed_f:.1f} m/s (Peters unsteady aerodynamics){note}; "
@@ -276,7 +277,8 @@ def manoeuvre_names() -> tuple[str, ...]:
     return tuple(_REGISTRY)
 
 
-def build_manoeuvre(name: str, *, aero: str = "unsteady", duration_s: float | None = None) -> ManoeuvreSetup:
+def build_manoeuvre(name: str, *, aero: str = "unsteady", duration_s: float | None = None,
+                    formulation: str | None = None) -> ManoeuvreSetup:
     """Build a named manoeuvre (see the module docstring).
 
     Parameters
@@ -287,6 +289,8 @@ def build_manoeuvre(name: str, *, aero: str = "unsteady", duration_s: float | No
         Aerodynamic model (default Peters finite-state, N = 6).
     duration_s : float, optional
         Run length [s] > 0 instead of the manoeuvre's default.
+    formulation : {"physical", "paper"}, optional
+        Resolution of the strip airloads (docs/design.md); default None: the aircraft file's.
 
     Raises
     ------
@@ -297,7 +301,7 @@ def build_manoeuvre(name: str, *, aero: str = "unsteady", duration_s: float | No
         raise ValueError(f"manoeuvre = {name!r}: unknown; valid manoeuvres: {', '.join(_REGISTRY)}")
     if aero not in _AERO_CHOICES:
         raise ValueError(f"aero = {aero!r}: must be one of {', '.join(_AERO_CHOICES)}")
-    setup = _REGISTRY[name](aero)
+    setup = _REGISTRY[name](AeroOptions(aero, formulation=formulation))
     if duration_s is not None:
         if not (isinstance(duration_s, (int, float)) and math.isfinite(duration_s) and duration_s > 0):
             raise ValueError(f"duration_s = {duration_s!r}: must be a finite number > 0 [s]")

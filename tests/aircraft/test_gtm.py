@@ -82,3 +82,20 @@ def test_gtm_topology_and_paper_table_1(gtm):
     xv = gtm.component("vtail").axes_in_body[:, 0]
     assert xv[2] < -0.8 and xv[0] < 0
     assert len(gtm.engines) == 2
+
+
+def test_paper_reproduction_gtm_weighs_the_papers_889_kN():
+    """gtm_paper (issue 15 b): W = 889.4 kN (Tables 2-3: T_e / sin(theta) = 889.41-889.47 kN) to 1e-4, reached by
+    burning centre-tank fuel only: every component table and the engines equal gtm's (gtm.md)."""
+    from flexsim.model.aircraft_model import STANDARD_GRAVITY
+
+    paper, base = load_aircraft("gtm_paper"), load_aircraft("gtm")
+    assert paper.formulation == "paper" and base.formulation == "physical"
+    mass = StructuralModel(paper).mass_properties.mass_kg
+    assert mass * STANDARD_GRAVITY == pytest.approx(889.4e3, rel=1e-4)
+    for a, b in zip(paper.components, base.components):
+        assert a.name == b.name and np.array_equal(a.sections.mass_kg_per_m, b.sections.mass_kg_per_m)
+        assert np.array_equal(a.sections.ei_nm2, b.sections.ei_nm2) and np.array_equal(a.sections.gj_nm2, b.sections.gj_nm2)
+    assert [(e.name, e.mass_kg) for e in paper.engines] == [(e.name, e.mass_kg) for e in base.engines]
+    fuel = {m.name: m.mass_kg for m in base.lumped_masses}["centre_tank_fuel"] - {m.name: m.mass_kg for m in paper.lumped_masses}["centre_tank_fuel"]
+    assert fuel == pytest.approx(StructuralModel(base).mass_properties.mass_kg - mass, rel=1e-4)

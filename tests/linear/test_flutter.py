@@ -165,3 +165,26 @@ def test_labels_do_not_flip_between_halves_on_round_off():
         assert len(seen) == 1
         (ref, _, sym), = seen
         assert ref == "right_wing torsion 1" and sym == expected
+
+
+def test_flutter_point_reports_formulation_and_density(sea_level_level_flutter):
+    _, level = sea_level_level_flutter
+    assert level.formulation == "physical" and not level.aero_density_fixed
+    assert level.aero_density_kg_m3 == pytest.approx(1.225, rel=1e-4)  # ISA sea level
+
+
+def test_linear_density_fixed_at_the_flight_altitude_reproduces_the_default():
+    """Issue 15 item f: the replication option is exact when it names the flight's own density."""
+    from flexsim.atmosphere import isa_density
+
+    gtm = load_aircraft("gtm")
+    man = SteadyManoeuvre.level(6096.0, mach=0.75)
+    default = FlutterAnalysis(gtm, "quasi-steady")
+    fixed = FlutterAnalysis(gtm, "quasi-steady", linear_aero_density_kg_m3=float(isa_density(6096.0)))
+    (p0, s0), (p1, s1) = default.evaluate(man), fixed.evaluate(man)
+    assert np.array_equal(p0.x, p1.x)
+    assert np.array_equal(np.array([m.eigenvalue for m in s0.modes]), np.array([m.eigenvalue for m in s1.modes]))
+    lower = FlutterAnalysis(gtm, "quasi-steady", linear_aero_density_kg_m3=float(isa_density(0.0)))
+    p2, s2 = lower.evaluate(man)
+    assert np.array_equal(p0.x, p2.x)  # the trim keeps the true density
+    assert s2.max_real("elastic") != s0.max_real("elastic")

@@ -1,0 +1,176 @@
+"""Printing flexsim's flutter results beside Tuzcu & Nguyen (2014): tables, critical mode, trend scorecard.
+
+The paper's values (:mod:`flexsim.linear.paper_data`) are printed beside the results and kept under a
+separate ``paper`` key in JSON; every computed field comes from the study rows
+(:mod:`flexsim.linear.study`, :mod:`flexsim.linear.scorecard`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from flexsim.linear.paper_data import GLIDE_9144, PAPER_TREND_SIGNS, TABLE_QS, TABLE_US, paper_crossover_altitude_m
+from flexsim.linear.scorecard import crossover_altitude, critical_altitude, trend_signs
+from flexsim.linear.study import MODELS, glide_from_climb
+
+__all__ = ["RunSettings", "PAPER_REPLICATION", "physical_settings", "flutter_report", "sweep_report", "mode_matches_paper"]
+
+#: The paper's critical mode (Figs. 11, 16 text), printed beside flexsim's.
+PAPER_MODE = "symmetric, q_f1 (fuselage bending 1) the largest linear coordinate"
+
+
+@dataclass(frozen=True)
+class RunSettings:
+    """One labelled set of settings of a flutter run.
+
+    Attributes
+    ----------
+    label : str
+        ``"physical"``, ``"paper-replication"`` or ``"as given"``.
+    aircraft : str
+        Bundled name or TOML path.
+    formulation : {"physical", "paper"} or None
+        None: the aircraft file's.
+    linear_density_altitude_m : float or None
+        Density of the linearised aerodynamics fixed at this altitude's ISA value [m]; None: true density.
+    """
+
+    label: str
+    aircraft: str
+    formulation: str | None = None
+    linear_density_altitude_m: float | None = None
+
+    def describe(self) -> str:
+        """One line: aircraft, force resolution, density of the linearised aerodynamics."""
+        dens = ("the flight's true density" if self.linear_density_altitude_m is None
+                else f"the ISA density of {self.linear_density_altitude_m:.0f} m")
+        form = self.formulation or "the aircraft file's"
+        return f"{self.label}: aircraft {self.aircraft}, {form} force resolution, linearised aerodynamics at {dens}"
+
+
+#: The paper-replication settings (docs/flutter.md): the paper's weight and force resolution (gtm_paper),
+#: and the density of the linearised aerodynamics the paper's results imply (None until established).
+PAPER_REPLICATION = RunSettings("paper-replication", "gtm_paper", "paper", None)
+
+
+def physical_settings(aircraft: str = "gtm") -> RunSettings:
+    """The physical settings on ``aircraft``: physical force resolution, true density."""
+    return RunSettings("physical", aircraft, "physical", None)
+
+
+def mode_matches_paper(row: dict) -> bool:
+    """True when the row's critical mode is symmetric with q_f1 the largest linear coordinate (as the paper's)."""
+    linear = [p for p in row.get("participation", []) if p["kind"] == "linear"]
+    return row.get("mode_symmetry") == "symmetric" and bool(linear) and linear[0]["label"] == "fuselage bending 1"
+
+
+def _mode_text(row: dict) -> str:
+    linear = [p for p in row.get("participation", []) if p["kind"] == "linear"]
+    lead = f", largest linear {linear[0]['label']}" if linear else ""
+    flag = "" if mode_matches_paper(row) else "  [differs from the paper's]"
+    return f"{row['mode_symmetry']}: {row['mode']}{lead}{flag}"
+
+
+_HEADER = (f"{'settings':<18} {'h [m]':>6} {'M_F [-]':>8} {'w_F [rad/s]':>11} {'theta [deg]':>11} {'T_e [kN]':>9} "
+           f"{'d_e [deg]':>9} {'w_tip [m]':>9} {'psi_tip [deg]':>13}  critical mode")
+
+
+def flutter_report(rows: list[dict], settings: list[RunSettings], models: list[str]) -> tuple[list[str], dict]:
+    """Text lines and the JSON document of ``flexsim flutter`` (level flight, paper Tables 2-3).
+
+    Rows must carry a ``settings`` label (one of ``settings``' labels).
+    """
+    paper = {"QS": TABLE_QS, "US": TABLE_US, "FS": TABLE_US}
+    lines = ["Flutter in steady level flight: flexsim beside Tuzcu & Nguyen (2014) Tables 2-3 (the bundled GTM is notional:",
+             "structure estimated from public data, calibrated to Table 3, docs/calibration.md). Settings:"]
+    lines += [f"  {s.describe()}" for s in settings]
+    lines.append(f"  paper's critical mode: {PAPER_MODE} (Figs. 11, 16)")
+    for key in models:
+        lines += ["", f"{key} ({MODELS[key]}) beside paper Table {'2' if key == 'QS' else '3'}", _HEADER]
+        table = {p[0]: p for p in paper[key]}
+        for h in sorted({r["altitude_m"] for r in rows if r["model"] == key}):
+            for s in settings:
+                for row in [r for r in rows if r["model"] == key and r["altitude_m"] == h and r["settings"] == s.label]:
+                    if "error" in row:
+                        lines.append(f"{s.label:<18} {h:6.0f}  no flutter point: {row['error'][:100]}")
+                        continue
+                    lines.append(f"{s.label:<18} {h:6.0f} {row['mach']:8.4f} {row['omega_rad_s']:11.3f} {row['theta_deg']:11.3f} "
+                                 f"{row['thrust_kN']:9.2f} {row['elevator_deg']:9.3f} {row['tip_deflection_m']:9.4f} "
+                                 f"{row['tip_twist_deg']:13.4f}  {_mode_text(row)}")
+            ref = table.get(h)
+            if ref:
+                lines.append(f"{'paper Table ' + ('2' if key == 'QS' else '3'):<18} {h:6.0f} {ref[1]:8.4f} {ref[2]:11.3f} {ref[3]:11.3f} "
+                             f"{ref[4]:9.2f} {ref[5]:9.3f} {ref[6]:9.4f} {ref[7]:13.4f}")
+                for s in settings:
+                    for row in [r for r in rows if r["model"] == key and r["altitude_m"] == h and r["settings"] == s.label and "mach" in r]:
+                        d = [100 * (row[k] / ref[i] - 1) for i, k in ((1, "mach"), (2, "omega_rad_s"), (3, "theta_deg"), (4, "thrust_kN"),
+                                                                         (5, "elevator_deg"), (6, "tip_deflection_m"), (7, "tip_twist_deg"))]
+                        lines.append(f"{'  vs paper [%]':<18} {'':6} {d[0]:+8.1f} {d[1]:+11.1f} {d[2]:+11.1f} {d[3]:+9.1f} {d[4]:+9.1f} "
+                                     f"{d[5]:+9.1f} {d[6]:+13.1f}  ({s.label})")
+    score = []
+    if "QS" in models and "US" in models:
+        lines += ["", "QS/US crossover altitude (where M_F(US) - M_F(QS) changes sign) [m]:"]
+        for s in settings:
+            sel = [r for r in rows if r["settings"] == s.label]
+            h_x = crossover_altitude(sel)
+            diffs = _us_minus_qs(sel)
+            score.append({"settings": s.label, "crossover_altitude_m": h_x, "us_minus_qs": diffs})
+            lines.append(f"  {s.label:<18} {'none' if h_x is None else f'{h_x:.0f}'}   (US - QS: "
+                         + ", ".join(f"{h:.0f} m {d:+.4f}" for h, d in diffs) + ")")
+        lines.append(f"  {'paper':<18} {paper_crossover_altitude_m():.0f}   (Tables 2-3: US below QS at 0-3048 m, above at 6096-9144 m)")
+    doc = {"rows": rows, "scorecard": score, "settings": [s.__dict__ for s in settings],
+           "paper": {"table_qs": TABLE_QS, "table_us": TABLE_US, "crossover_altitude_m": paper_crossover_altitude_m(),
+                     "critical_mode": PAPER_MODE}}
+    return lines, doc
+
+
+def _us_minus_qs(rows: list[dict]) -> list[tuple[float, float]]:
+    qs = {r["altitude_m"]: r["mach"] for r in rows if r["model"] == "QS" and "mach" in r}
+    us = {r["altitude_m"]: r["mach"] for r in rows if r["model"] == "US" and "mach" in r}
+    return [(h, us[h] - qs[h]) for h in sorted(set(qs) & set(us))]
+
+
+def _sign(s: int | None) -> str:
+    return {1: "+", -1: "-", 0: "0", None: "n/a"}[s]
+
+
+def sweep_report(rows: list[dict], kind: str) -> tuple[list[str], dict]:
+    """Text lines and the JSON scorecard of ``flexsim sweep --turn|--climb`` beside the paper's trends."""
+    signs = trend_signs(rows, kind)
+    unit = "1/km" if kind == "turn" else "1/deg"
+    x = "R" if kind == "turn" else "gamma"
+    lines = ["", f"Trend scorecard ({kind}; sign of the least-squares slope over the study, 0 = change below the search "
+             "resolution 1e-4; paper: its text to Figs. 7-10, 12-15)",
+             f"{'model':<6} {'h [m]':>6} {'quantity':<16} {'slope [' + unit + ']':>16} {'change':>10} {'sign':>5} {'paper':>6}  match"]
+    for t in signs:
+        mark = "" if t.match is None else ("yes" if t.match else "NO")
+        lines.append(f"{t.model:<6} {t.altitude_m:6.0f} {t.quantity:<16} {t.slope:16.4e} {t.change:+10.5f} {_sign(t.sign):>5} "
+                     f"{_sign(t.paper_sign):>6}  {mark}")
+    score: dict = {"kind": kind, "trends": [t.as_dict() for t in signs]}
+    for model in sorted({t.model for t in signs}):
+        judged = [t for t in signs if t.model == model and t.match is not None]
+        if judged:
+            n = sum(t.match for t in judged)
+            score[f"matches_{model}"] = [n, len(judged)]
+            lines.append(f"{model}: {n} of {len(judged)} trend signs as the paper's")
+    paper: dict = {"trend_signs": {f"{k[0]} {k[1]}/d{x} {k[2]} {k[3]:.0f} m": v for k, v in PAPER_TREND_SIGNS.items() if k[0] == kind}}
+    if kind == "turn":
+        h_c = critical_altitude(signs)
+        score["critical_altitude_m"] = h_c
+        paper["critical_altitude"] = "between 0 and 3048 m (US dM_F/dR changes sign)"
+        lines.append(f"critical altitude (US dM_F/dR changes sign) [m]: {'none' if h_c is None else f'{h_c:.0f}'}; "
+                     f"paper: {paper['critical_altitude']}")
+    else:
+        glides = []
+        for model in sorted({r["model"] for r in rows}):
+            for h in sorted({r["altitude_m"] for r in rows}):
+                g = glide_from_climb(rows, model=model, altitude_m=h)
+                if g:
+                    glides.append({"model": model, "altitude_m": h, **g})
+                    lines.append(f"glide at {h:.0f} m (T_e = 0 on the {model} climb curve): gamma = {g['gamma_deg']:.2f} deg, "
+                                 f"M_F = {g['mach']:.4f}, omega_F = {g['omega_rad_s']:.3f} rad/s")
+        score["glide"] = glides
+        paper["glide_9144_US"] = {"gamma_deg": GLIDE_9144[0], "mach": GLIDE_9144[1], "omega_rad_s": GLIDE_9144[2]}
+        lines.append(f"paper glide at 9144 m (US): gamma = {GLIDE_9144[0]} deg, M_F = {GLIDE_9144[1]}, omega_F = {GLIDE_9144[2]} rad/s")
+    return lines, {"scorecard": score, "paper": paper}
+
