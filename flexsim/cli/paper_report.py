@@ -48,8 +48,9 @@ class RunSettings:
         return f"{self.label}: aircraft {self.aircraft}, {form} force resolution, linearised aerodynamics at {dens}"
 
 
-#: The paper-replication settings (docs/flutter.md): the paper's weight and force resolution (gtm_paper),
-#: and the density of the linearised aerodynamics the paper's results imply (None until established).
+#: The paper-replication settings: the paper's weight and force resolution (gtm_paper). The density of the
+#: linearised aerodynamics stays the true one: docs/flutter.md finds the paper's altitude trend implies one
+#: fixed density but does not identify its value (--linear-density-altitude-m H sets one).
 PAPER_REPLICATION = RunSettings("paper-replication", "gtm_paper", "paper", None)
 
 
