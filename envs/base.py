@@ -262,10 +262,29 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         return np.clip(a, self.action_space.low, self.action_space.high).astype(np.float32)
 
     def _check_action(self, action: Any) -> tuple[np.ndarray, bool]:
+        what = "must be 4 real numbers [thrust, aileron, elevator, rudder]"
         try:
-            a = np.asarray(action, dtype=np.float64)
+            raw = np.asarray(action)
         except (TypeError, ValueError):
-            raise ValueError(f"action = {action!r}: must be 4 numbers [thrust, aileron, elevator, rudder]") from None
+            raise ValueError(f"action = {action!r}: {what}") from None
+        # Only real numbers: numeric strings, booleans and complex values would otherwise be
+        # converted silently by numpy (a string '0.5' parsed, True read as 1, an imaginary part dropped).
+        if raw.dtype.kind == "O" or not isinstance(action, np.ndarray):
+            try:
+                items = np.asarray(action, dtype=object).ravel()
+            except (TypeError, ValueError):
+                raise ValueError(f"action = {action!r}: {what}") from None
+            bad = [v for v in items if isinstance(v, (bool, np.bool_, str, bytes, complex, np.complexfloating))
+                   or not isinstance(v, (int, float, np.integer, np.floating))]
+            if bad:
+                raise ValueError(f"action = {action!r}: {what}, got {type(bad[0]).__name__} {bad[0]!r}")
+        elif raw.dtype.kind not in "iuf":
+            kind = {"b": "booleans", "c": "complex numbers", "U": "strings", "S": "bytes"}.get(raw.dtype.kind, f"dtype {raw.dtype}")
+            raise ValueError(f"action = {action!r}: {what}, got {kind}")
+        try:
+            a = np.asarray(raw, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"action = {action!r}: {what}") from None
         if a.shape != (4,):
             raise ValueError(f"action: expected shape (4,) [thrust, aileron, elevator, rudder], got shape {a.shape}")
         bad = np.flatnonzero(~np.isfinite(a))

@@ -57,6 +57,7 @@ class FlightLogRecorder(gym.Wrapper):
         self.paths: list[Path] = []
         self._writer: FlightLogWriter | None = None
         self._episode = -1
+        self._last_sample_t = float("-inf")
 
     def _episode_path(self, k: int) -> Path:
         name = self.pattern.name
@@ -66,6 +67,11 @@ class FlightLogRecorder(gym.Wrapper):
 
     def _write(self) -> None:
         sample = self.env.unwrapped.log_sample()
+        if sample.time_s <= self._last_sample_t:
+            # A step that failed before time advanced (``non_finite`` in the first sub-step) has no new
+            # sample; the termination event below still records what happened.
+            return
+        self._last_sample_t = sample.time_s
         self._writer.write(sample.time_s, position_m=sample.position_ned_m, euler_rad=sample.euler_rad, state=sample.state,
                            controls=sample.controls, signals=sample.signals, structure=sample.structure)
 
@@ -84,6 +90,7 @@ class FlightLogRecorder(gym.Wrapper):
                                        signal_names=base.signal_names(), structure_topology={k: len(v) for k, v in nodes.items()},
                                        metadata=metadata)
         self.paths.append(path)
+        self._last_sample_t = float("-inf")
         self._writer.event(0.0, f"reset: {type(base).__name__}, seed {seed}, reference {info.get('reference', {})}")
         self._write()
         return obs, info

@@ -53,6 +53,43 @@ _SURFACE_KIND = {
 }
 
 
+#: Plausible ranges of the definition's quantities (SI), checked on construction. They bound every
+#: aircraft from a model glider to the largest transport (An-225: 84 m long, 88 m span, 640 t) with a
+#: margin, so that unit mistakes (millimetres, N mm^2, grams) and typing slips (1e30) are caught with a
+#: message instead of producing absurd frequencies or inertias. Name -> (low, high, unit).
+PLAUSIBLE = {
+    "length_m": (0.05, 150.0, "m"),
+    "mass_kg_per_m": (0.0, 1.0e5, "kg/m"),
+    "torsional_inertia_kg_m": (0.0, 1.0e5, "kg m^2/m"),
+    "ei_nm2": (1.0, 1.0e12, "N m^2"),
+    "gj_nm2": (1.0, 1.0e12, "N m^2"),
+    "chord_m": (0.0, 50.0, "m"),
+    "position_m": (-500.0, 500.0, "m"),
+    "euler_rad": (-2.0 * np.pi, 2.0 * np.pi, "rad (+-360 deg)"),
+    "mass_kg": (0.0, 1.0e6, "kg"),
+    "inertia_kg_m2": (0.0, 1.0e9, "kg m^2"),
+    "max_thrust_n": (0.0, 2.0e6, "N"),
+    "total_mass_kg": (0.0, 2.0e6, "kg"),
+    "elastic_frequency_rad_s": (0.1, 1.0e5, "rad/s"),
+}
+#: Largest number of stations in one section table (a few hundred describe any beam).
+MAX_STATIONS = 10_000
+
+
+def _in_plausible(where: str, arr: np.ndarray, key: str, lo_open: bool = False) -> None:
+    """Raise AircraftDefinitionError naming the first entry of ``arr`` outside ``PLAUSIBLE[key]``."""
+    lo, hi, unit = PLAUSIBLE[key]
+    a = np.atleast_1d(np.asarray(arr, float))
+    ok = ((a > lo) if lo_open else (a >= lo)) & (a <= hi)
+    bad = np.flatnonzero(~ok.ravel())
+    if bad.size:
+        i = int(bad[0])
+        index = "" if np.ndim(arr) == 0 else f"[{', '.join(map(str, np.unravel_index(i, a.shape)))}]"
+        bracket = "(" if lo_open else "["
+        _fail(f"{where}{index}", float(a.ravel()[i]),
+              f"outside the plausible range {bracket}{lo:g}, {hi:g}] {unit} (check the units)")
+
+
 def _plain(value: object) -> object:
     """numpy values as plain Python numbers/lists, so messages read ``[1.5, 1.4]``."""
     if isinstance(value, np.ndarray):
@@ -149,6 +186,8 @@ class SectionTable:
                 _fail(f"{w}.{name}", getattr(self, name), "must be a 1-D list of numbers")
             arrays[name] = arr
         k = arrays["station_m"].size
+        if k > MAX_STATIONS:
+            raise AircraftDefinitionError(f"{w}.station_m: {k} stations: at most {MAX_STATIONS} are allowed")
         if k < 2:
             _fail(f"{w}.station_m", getattr(self, "station_m"), "needs at least two stations (root and tip)")
         for name, arr in arrays.items():
@@ -171,6 +210,9 @@ class SectionTable:
             if bad.size:
                 i = int(bad[0])
                 _fail(f"{w}.{name}[{i}]", float(arrays[name][i]), "must be > 0")
+        for name in ("mass_kg_per_m", "torsional_inertia_kg_m", "ei_nm2", "gj_nm2", "chord_m"):
+            _in_plausible(f"{w}.{name}", arrays[name], name)
+        _in_plausible(f"{w}.station_m[-1] (length)", st[-1], "length_m")
         ea = arrays["ea_fraction"]
         bad = np.flatnonzero((ea < 0.0) | (ea > 1.0))
         if bad.size:
@@ -186,6 +228,11 @@ class SectionTable:
                 float(ith[i]),
                 f"must be >= mass_kg_per_m * cg_offset_m^2 = {need[i]:.6g} (inertia about the elastic axis)",
             )
+        bad = np.flatnonzero(np.abs(e) > arrays["chord_m"] + 1e-12)
+        bad = bad[arrays["chord_m"][bad] > 0.0]
+        if bad.size:
+            i = int(bad[0])
+            _fail(f"{w}.cg_offset_m[{i}]", float(e[i]), f"must be within one chord of the elastic axis (|cg_offset_m| <= chord_m = {arrays['chord_m'][i]:g} m)")
         chordless = arrays["chord_m"] == 0.0
         bad = np.flatnonzero(chordless & (e != 0.0))
         if bad.size:
@@ -316,6 +363,8 @@ class Component:
             _fail("components", self.name, f"unknown component; allowed: {', '.join(COMPONENT_NAMES)}")
         object.__setattr__(self, "root_m", _frozen_array(f"{w}.root_m", self.root_m, (3,)))
         object.__setattr__(self, "euler_rad", _frozen_array(f"{w}.euler", self.euler_rad, (3,)))
+        _in_plausible(f"{w}.root_m", self.root_m, "position_m")
+        _in_plausible(f"{w}.euler", self.euler_rad, "euler_rad")
         for attr in ("bending_modes", "torsion_modes"):
             v = getattr(self, attr)
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not 0 <= v <= MAX_MODES:
@@ -325,10 +374,17 @@ class Component:
         if self.rigid:
             object.__setattr__(self, "bending_modes", 0)
             object.__setattr__(self, "torsion_modes", 0)
+        sec = self.sections
+        if self.bending_modes and not np.any(sec.mass_kg_per_m > 0.0):
+            _fail(f"{w}.sections.mass_kg_per_m", sec.mass_kg_per_m.tolist(), "a beam with bending modes needs mass (all entries are 0); set rigid = true or give the mass")
+        if self.torsion_modes and not np.any(sec.torsional_inertia_kg_m > 0.0):
+            _fail(f"{w}.sections.torsional_inertia_kg_m", sec.torsional_inertia_kg_m.tolist(), "a beam with torsion modes needs torsional inertia (all entries are 0)")
         if self.section_inertia not in ("chordwise", "axisymmetric"):
             _fail(f"{w}.section_inertia", self.section_inertia, 'must be "chordwise" or "axisymmetric"')
         if self.section_inertia == "chordwise" and abs(self.chord_direction[0]) > np.sin(np.deg2rad(80.0)):
-            _fail(f"{w}.section_inertia", self.section_inertia, 'needs a component swept less than 80 deg from the flow; use "axisymmetric"')
+            _fail(f"{w}.euler_deg", np.rad2deg(self.euler_rad).round(6).tolist(),
+                  'points the beam within 10 deg of the flow (x_i along body x), which a "chordwise" section cannot '
+                  'have (angles are in degrees; for a fuselage-like beam set section_inertia = "axisymmetric")')
         cs = self.control_surface
         if cs is not None:
             allowed = _SURFACE_KIND.get(self.name)
@@ -423,7 +479,9 @@ class LumpedMass:
     def __post_init__(self) -> None:
         w = f"{self.where}.{self.name}"
         object.__setattr__(self, "position_m", _frozen_array(f"{w}.position_m", self.position_m, (3,)))
+        _in_plausible(f"{w}.position_m", self.position_m, "position_m")
         _check_scalar(f"{w}.mass_kg", self.mass_kg, 0.0, np.inf, lo_open=True)
+        _in_plausible(f"{w}.mass_kg", self.mass_kg, "mass_kg", lo_open=True)
         object.__setattr__(self, "mass_kg", float(self.mass_kg))
         inertia = np.array(self.inertia_kg_m2, dtype=float) if np.ndim(self.inertia_kg_m2) else None
         if inertia is not None and inertia.shape == (3,):
@@ -431,6 +489,7 @@ class LumpedMass:
         inertia = _frozen_array(f"{w}.inertia_kg_m2", inertia if inertia is not None else self.inertia_kg_m2, (3, 3))
         if not np.allclose(inertia, inertia.T) or np.linalg.eigvalsh(inertia).min() < -1e-9 * max(1.0, np.abs(inertia).max()):
             _fail(f"{w}.inertia_kg_m2", inertia.tolist(), "must be a symmetric positive semi-definite tensor")
+        _in_plausible(f"{w}.inertia_kg_m2", np.abs(inertia), "inertia_kg_m2")
         object.__setattr__(self, "inertia_kg_m2", inertia)
 
 
@@ -449,6 +508,7 @@ class Engine(LumpedMass):
     def __post_init__(self) -> None:
         super().__post_init__()
         _check_scalar(f"{self.where}.{self.name}.max_thrust_n", self.max_thrust_n, 0.0, np.inf, lo_open=True)
+        _in_plausible(f"{self.where}.{self.name}.max_thrust_n", self.max_thrust_n, "max_thrust_n", lo_open=True)
         object.__setattr__(self, "max_thrust_n", float(self.max_thrust_n))
 
 
@@ -513,7 +573,8 @@ class Aircraft:
         fus = self.component("fuselage") if "fuselage" in names else None
         if fus is not None:
             if np.any(fus.root_m != 0.0):
-                _fail("components.fuselage.root_m", fus.root_m.tolist(), "must be [0, 0, 0] in body axes: the fuselage is clamped at the body origin o (paper: x_f y_f z_f coincides with xyz)")
+                where = "components.fuselage.root_m" + ("" if self.design_origin_m is None else f" (design frame: {self.to_design_frame(fus.root_m).tolist()})")
+                _fail(where, fus.root_m.tolist(), "must be [0, 0, 0] in body axes: the fuselage is clamped at the body origin o (paper: x_f y_f z_f coincides with xyz)")
             if np.any(fus.euler_rad != 0.0):
                 _fail("components.fuselage.euler", fus.euler_rad.tolist(), "must be [0, 0, 0] (paper Table 1)")
             for c in comps:
@@ -533,6 +594,16 @@ class Aircraft:
             s = comp.station_of(item.position_m)
             if not -1e-9 * comp.length_m <= s <= comp.length_m * (1 + 1e-9):
                 _fail(f"{w}.position_m", item.position_m.tolist(), f"projects to station {s:.4g} m, off component {comp.name} (0 to {comp.length_m:.4g} m)")
+            off = item.position_m - comp.root_m - s * comp.axes_in_body[:, 0]
+            reach = max(10.0, comp.length_m)
+            if np.linalg.norm(off) > reach:
+                _fail(f"{w}.position_m", item.position_m.tolist(), f"lies {np.linalg.norm(off):.4g} m from the elastic axis of {comp.name}: "
+                      f"a lumped mass rides on its component, at most max(10 m, length) = {reach:.4g} m away")
+        total = sum(float(np.trapezoid(c.sections.mass_kg_per_m, c.sections.station_m)) for c in comps)
+        total += sum(m.mass_kg for m in (*self.lumped_masses, *self.engines))
+        if not total > 0.0:
+            _fail("total mass", total, "must be > 0 kg (every mass_kg_per_m is 0 and there are no lumped masses)")
+        _in_plausible("total mass", total, "total_mass_kg", lo_open=True)
 
     def component(self, name: str) -> Component:
         """The component called ``name`` (KeyError listing the available ones otherwise)."""

@@ -25,6 +25,8 @@ from flexsim.aircraft.definition import (
     ControlSurface,
     Engine,
     LumpedMass,
+    MAX_STATIONS,
+    PLAUSIBLE,
     SectionTable,
     StripAero,
 )
@@ -33,6 +35,10 @@ from flexsim.errors import AircraftDefinitionError
 __all__ = ["load_aircraft", "parse_aircraft", "bundled_aircraft_names", "resolve_aircraft_path"]
 
 SCHEMA_VERSION = 1
+#: Largest aircraft file read [bytes]: the bundled files are about 10 kB; a table of a few hundred
+#: stations per beam stays far below. Bigger files are refused before they are read, so a runaway
+#: generator (e.g. 700 000 stations, 49 MB) fails at once instead of running for minutes.
+MAX_FILE_BYTES = 2_000_000
 _DESIGN_TO_BODY = np.diag([-1.0, 1.0, -1.0])
 
 _TOP_KEYS = {"schema_version": True, "name": True, "description": False, "frame": False,
@@ -84,7 +90,13 @@ def load_aircraft(aircraft: str | Path) -> Aircraft:
     """
     path = resolve_aircraft_path(aircraft)
     try:
-        text = path.read_text(encoding="utf-8")
+        size = path.stat().st_size
+        if size > MAX_FILE_BYTES:
+            raise AircraftDefinitionError(f"{path}: file size = {size} bytes: at most {MAX_FILE_BYTES} bytes are read "
+                                          f"(an aircraft file is normally about 10 kB)")
+        if size == 0:
+            raise AircraftDefinitionError(f"{path}: the file is empty (0 bytes), not an aircraft definition")
+        text = path.read_text(encoding="utf-8-sig")  # a leading UTF-8 byte-order mark is allowed
     except (OSError, UnicodeDecodeError) as exc:
         raise AircraftDefinitionError(f"{path}: cannot be read: {exc}") from None
     return parse_aircraft(text, source=str(path))
@@ -112,12 +124,17 @@ def _number(where: str, value: Any) -> float:
 def _vector(where: str, value: Any, n: int = 3) -> np.ndarray:
     if not isinstance(value, list) or len(value) != n:
         raise AircraftDefinitionError(f"{where} = {value!r}: must be a list of {n} numbers")
-    return np.array([_number(f"{where}[{i}]", v) for i, v in enumerate(value)])
+    out = np.array([_number(f"{where}[{i}]", v) for i, v in enumerate(value)])
+    if not np.all(np.isfinite(out)):
+        raise AircraftDefinitionError(f"{where} = {value!r}: must be finite")
+    return out
 
 
 def _numbers(where: str, value: Any) -> np.ndarray:
     if not isinstance(value, list) or not value:
         raise AircraftDefinitionError(f"{where} = {value!r}: must be a non-empty list of numbers")
+    if len(value) > MAX_STATIONS:
+        raise AircraftDefinitionError(f"{where}: {len(value)} entries: at most {MAX_STATIONS} stations are allowed")
     return np.array([_number(f"{where}[{i}]", v) for i, v in enumerate(value)])
 
 
@@ -165,8 +182,11 @@ def _component(name: str, table: Any, frame: _Frame) -> Component:
         raise AircraftDefinitionError(f"{where}: unknown component; allowed: {', '.join(COMPONENT_NAMES)}")
     _check_keys(where, table, _COMPONENT_KEYS)
     length = _number(f"{where}.length_m", table["length_m"])
-    if length <= 0:
+    if not length > 0:
         raise AircraftDefinitionError(f"{where}.length_m = {length}: must be > 0")
+    lo, hi, unit = PLAUSIBLE["length_m"]
+    if not lo <= length <= hi:  # also catches nan and inf, which defeat the station comparison below
+        raise AircraftDefinitionError(f"{where}.length_m = {length}: outside the plausible range [{lo:g}, {hi:g}] {unit} (check the units)")
     surface = None
     if "control_surface" in table:
         cs = table["control_surface"]
@@ -251,10 +271,17 @@ def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:
         ``"<source>: <field> = <value>: <what is allowed>"``.
     """
     try:
+        if len(text) > MAX_FILE_BYTES:
+            raise AircraftDefinitionError(f"text of {len(text)} characters: at most {MAX_FILE_BYTES} are read")
+        if not text.strip():
+            raise AircraftDefinitionError("the file is empty, not an aircraft definition")
+        text = text.removeprefix("\ufeff")
         try:
             doc = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise AircraftDefinitionError(f"not valid TOML: {exc}") from None
+        except RecursionError:
+            raise AircraftDefinitionError("not valid TOML for flexsim: arrays or tables nested too deeply") from None
         _check_keys("<top level>", doc, _TOP_KEYS)
         version = doc["schema_version"]
         if version != SCHEMA_VERSION:

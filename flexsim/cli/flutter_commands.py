@@ -6,13 +6,15 @@ import argparse
 import json
 import math
 import os
+import sys
 from pathlib import Path
 
 from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.cli.validation import check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
 from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
-from flexsim.linear.study import StudyCase, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
+from flexsim.linear.study import StudyCase, StudyRecord, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.trim import SteadyManoeuvre, trim
@@ -21,19 +23,20 @@ __all__ = ["add_flutter_commands"]
 
 
 def _manoeuvre(args: argparse.Namespace, altitude: float, mach: float) -> SteadyManoeuvre:
-    gamma = None if getattr(args, "glide", False) else math.radians(getattr(args, "climb_deg", 0.0) or 0.0)
-    radius = args.turn_radius_m if getattr(args, "turn_radius_m", None) else math.inf
+    gamma = None if getattr(args, "glide", False) else math.radians(getattr(args, "climb_deg", None) or 0.0)
+    radius = args.turn_radius_m if getattr(args, "turn_radius_m", None) is not None else math.inf
     return SteadyManoeuvre(mach * SteadyManoeuvre.level(altitude, mach=0.5).speed_m_s / 0.5, altitude, radius, gamma)
 
 
 def _trim(args: argparse.Namespace) -> int:
+    check_trim_options(args)
     aircraft = load_aircraft(args.aircraft)
     model = AircraftModel(aircraft, aero=AeroOptions("quasi-steady", formulation=args.formulation))
     point = trim(model, _manoeuvre(args, args.altitude_m, args.mach), check_limits=not args.no_limits)
     out = point.summary()
     out["weight_kN"] = model.structure.mass_properties.mass_kg * model.gravity_m_s2 / 1e3
     if args.json:
-        print(json.dumps({**out, "formulation": model.formulation}, indent=2))
+        print(json_text({**out, "formulation": model.formulation}))
         return 0
     print(f"Trim of {aircraft.name} ({model.formulation} force resolution): {point.manoeuvre.describe()}")
     for key, value in out.items():
@@ -56,6 +59,10 @@ def _flutter(args: argparse.Namespace) -> int:
     for k in keys:
         if k not in _MODELS:
             raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
+    check_mach_range(args.mach_min, args.mach_max)
+    check_altitudes(args.altitudes)
+    check_workers(args.workers)
+    check_damping(args.structural_damping)
     settings = _settings(args)
     labelled = [(s.label, StudyCase(s.aircraft, k, h, mach_min=args.mach_min, mach_max=args.mach_max,
                                     structural_damping=args.structural_damping, formulation=s.formulation,
@@ -68,7 +75,7 @@ def _flutter(args: argparse.Namespace) -> int:
             row["mode_matches_paper"] = mode_matches_paper(row)
     lines, doc = flutter_report(rows, settings, keys)
     if args.json:
-        print(json.dumps(doc, indent=2, default=str))
+        print(json_text(doc))
         return 0
     print("\n".join(lines))
     return 0
@@ -77,15 +84,32 @@ def _flutter(args: argparse.Namespace) -> int:
 def _sweep(args: argparse.Namespace) -> int:
     kind = "turn" if args.turn else "climb"
     models = [k.strip().upper() for k in args.models.split(",")]
+    for k in models:
+        if k not in _MODELS:
+            raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
+    check_altitudes(args.altitudes)
+    check_workers(args.workers)
+    check_damping(args.structural_damping)
+    out = check_out_dir(args.out)
+    record = StudyRecord(out / f"flutter_{kind}.jsonl", resume=args.resume)
+    if record.done:
+        print(f"resuming: {len(record.done)} finished points read from {record.path}", file=sys.stderr)
     setting = PAPER_REPLICATION if args.paper_replication else RunSettings("as given", args.aircraft, args.formulation,
                                                                             args.linear_density_altitude_m)
     make = turn_cases if kind == "turn" else climb_cases
     cases = make(setting.aircraft, altitudes_m=args.altitudes, models=models, structural_damping=args.structural_damping,
                  formulation=setting.formulation, linear_density_altitude_m=setting.linear_density_altitude_m)
-    rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=not args.json)
+    try:
+        rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=True, record=record)
+    except KeyboardInterrupt:
+        record.close()
+        kept = sum(1 for _ in record.path.open()) if record.path.exists() else 0
+        print(f"flexsim sweep: interrupted; {kept} finished points are kept in {record.path} "
+              f"(run the same command with --resume to continue)", file=sys.stderr)
+        raise
+    record.close()
     for row in rows:
         row["settings"] = setting.label
-    out = Path(args.out)
     csv_path, json_path = write_results(rows, out, f"flutter_{kind}")
     png = plot_study(rows, kind, out / f"flutter_{kind}.png")
     figures = [png]
@@ -97,11 +121,12 @@ def _sweep(args: argparse.Namespace) -> int:
     score_path = out / f"flutter_{kind}_scorecard.json"
     score_path.write_text(json.dumps(doc, indent=2, default=str))
     if args.json:
-        print(json.dumps({"rows": rows, **doc}, indent=2, default=str))
+        print(json_text({"rows": rows, **doc}))
         return 0
     ok = sum("mach" in r for r in rows)
     print(f"{setting.describe()}")
-    print(f"{ok}/{len(rows)} flutter points; results: {csv_path}, {json_path}, {score_path}; figures: {', '.join(map(str, figures))}")
+    print(f"{ok}/{len(rows)} flutter points; results: {csv_path}, {json_path}, {score_path} (points as they finished: "
+          f"{record.path}); figures: {', '.join(map(str, figures))}")
     print("\n".join(lines))
     for r in rows:
         if "error" in r:
@@ -128,7 +153,7 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_trim.add_argument("--altitude-m", type=float, default=9144.0)
     p_trim.add_argument("--mach", type=float, default=0.78)
     p_trim.add_argument("--turn-radius-m", type=float, default=None, help="steady turn of this radius [m]")
-    p_trim.add_argument("--climb-deg", type=float, default=0.0, help="flight-path angle [deg]")
+    p_trim.add_argument("--climb-deg", type=float, default=None, help="flight-path angle [deg] [0]")
     p_trim.add_argument("--glide", action="store_true", help="thrust zero, flight-path angle unknown")
     p_trim.add_argument("--no-limits", action="store_true", help="do not enforce thrust/surface limits")
     _add_formulation(p_trim)
@@ -153,10 +178,13 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     group.add_argument("--climb", action="store_true", help="climbs and descents, gamma = -15..15 deg")
     p_sw.add_argument("--altitudes", type=float, nargs="+", default=[0.0, 3048.0, 6096.0, 9144.0], metavar="H")
     p_sw.add_argument("--models", default="QS,US")
-    p_sw.add_argument("--scheduler", metavar="ADDRESS", help="Dask distributed scheduler (default: local processes)")
+    p_sw.add_argument("--scheduler", metavar="ADDRESS", help="Dask distributed scheduler (default: local processes); "
+                      "tasks and results are exchanged pickled: give only the address of a cluster you trust")
     p_sw.add_argument("--workers", type=int, default=os.cpu_count() or 1)
     p_sw.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
                       help="modal damping ratio of the elastic modes [the aircraft file's]")
-    p_sw.add_argument("--out", default="logs/study", help="output folder for CSV, JSON and PNG [logs/study]")
+    p_sw.add_argument("--out", default="logs/study", help="output folder for CSV, JSON and PNG [logs/study]; every "
+                      "point is also written to flutter_<kind>.jsonl as it finishes")
+    p_sw.add_argument("--resume", action="store_true", help="skip the points already in --out (after an interrupted run)")
     _add_formulation(p_sw, replication=True)
     p_sw.set_defaults(func=_sweep)

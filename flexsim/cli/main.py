@@ -20,7 +20,6 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse  # noqa: E402
-import json  # noqa: E402
 import sys  # noqa: E402
 from typing import Sequence
 
@@ -28,6 +27,7 @@ import numpy as np
 
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import bundled_aircraft_names, load_aircraft
+from flexsim.cli.validation import SanitisedStream, check_count, check_mach, check_plot_path, json_text, printable
 from flexsim.errors import FlexsimError
 from flexsim.linear.modes import in_vacuo_modes
 from flexsim.model.aircraft_model import AircraftModel, Variant
@@ -65,7 +65,7 @@ def _info(args: argparse.Namespace) -> int:
     if aircraft.design_origin_m is not None:
         out["cg_design_m"] = aircraft.to_design_frame(mp.cg_m).tolist()
     if args.json:
-        print(json.dumps(out, indent=2))
+        print(json_text(out))
         return 0
     print(f"{aircraft.name}  ({aircraft.source})")
     print(f"  components       : {', '.join(aircraft.component_names)}")
@@ -79,13 +79,14 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _modes(args: argparse.Namespace) -> int:
+    check_count(args.count)
     aircraft = _aircraft(args)
     model = AircraftModel(aircraft, variant=args.variant, gravity_m_s2=0.0)
     analysis = in_vacuo_modes(model)
     modes = analysis.modes[: args.count] if args.count else analysis.modes
     if args.json:
         print(
-            json.dumps(
+            json_text(
                 {
                     "aircraft": aircraft.name,
                     "variant": model.variant.value,
@@ -101,7 +102,6 @@ def _modes(args: argparse.Namespace) -> int:
                         for m in modes
                     ],
                 },
-                indent=2,
             )
         )
         return 0
@@ -117,11 +117,14 @@ def _aero(args: argparse.Namespace) -> int:
     from flexsim.model.strips import StripSet
     from flexsim.aero.vlm import plot_lift_slope, solve_vlm
 
+    from flexsim.cli.validation import PRANDTL_GLAUERT_MACH_MAX
+
+    check_mach("aero", args.mach, allow_zero=True)
+    plot = check_plot_path(args.plot) if args.plot else None
     aircraft = _aircraft(args)
-    if not 0.0 <= args.mach < 0.95:
-        raise ValueError(f"--mach = {args.mach}: must be in [0, 0.95)")
     strips = StripSet.from_model(StructuralModel(aircraft))
-    factor = 1.0 / np.sqrt(1.0 - args.mach**2)  # Prandtl-Glauert (paper, "Numerical Model")
+    mach = min(args.mach, PRANDTL_GLAUERT_MACH_MAX)  # the model's cap (flexsim.model.coupling)
+    factor = 1.0 / np.sqrt(1.0 - mach**2)  # Prandtl-Glauert (paper, "Numerical Model")
     rows = [
         {
             "component": name,
@@ -137,9 +140,9 @@ def _aero(args: argparse.Namespace) -> int:
         lattice = [s for s in vlm_surfaces(aircraft)]
         if not lattice:
             raise ValueError(f"aircraft {aircraft.name!r} has no wing or stabilizer strips for the vortex lattice")
-        plot_lift_slope(solve_vlm(lattice, mach=args.mach, compressibility="prandtl_glauert"), args.plot)
+        plot_lift_slope(solve_vlm(lattice, mach=mach, compressibility="prandtl_glauert"), plot)
     if args.json:
-        print(json.dumps({"aircraft": aircraft.name, "mach": args.mach, "strips": rows}, indent=2))
+        print(json_text({"aircraft": aircraft.name, "mach": args.mach, "strips": rows}))
         return 0
     print(f"Aerodynamic strips of {aircraft.name} at M = {args.mach:.3f} (Cl_alpha with Prandtl-Glauert)")
     print(f"{'component':<12} {'x_i [m]':>8} {'y [m]':>8} {'chord [m]':>9} {'a':>6} {'Cl_alpha':>9}")
@@ -192,14 +195,21 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = _parser()
     args = parser.parse_args(argv)
     np.set_printoptions(precision=5)
+    stdout = sys.stdout
+    sys.stdout = SanitisedStream(stdout)  # names from files are printed with escape sequences shown, not run
     try:
         return int(args.func(args))
     except BrokenPipeError:  # output piped into e.g. `head`
         sys.stderr.close()
         return 0
-    except (FlexsimError, FileNotFoundError, KeyError, ValueError, RuntimeError) as exc:
-        print(f"flexsim {args.command}: error: {exc}", file=sys.stderr)
+    except KeyboardInterrupt:
+        print(f"flexsim {args.command}: interrupted", file=sys.stderr)
+        return 130
+    except (FlexsimError, OSError, KeyError, ValueError, RuntimeError) as exc:
+        print(f"flexsim {args.command}: error: {printable(str(exc))}", file=sys.stderr)
         return 2
+    finally:
+        sys.stdout = stdout
 
 
 if __name__ == "__main__":

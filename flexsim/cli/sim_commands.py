@@ -51,6 +51,10 @@ def _simulate(args: argparse.Namespace) -> int:
         return _run_script(Path(target), args)
     if args.log is not None and args.no_log:
         raise ValueError("--log and --no-log: give at most one")
+    if args.log is not None:
+        from flexsim.cli.validation import check_log_path
+
+        check_log_path("simulate", args.log)
     setup = build_manoeuvre(target, aero=args.aero, duration_s=args.duration, formulation=args.formulation)
     log_path = None if args.no_log else (args.log or default_log_path(setup.name))
     options = {"log_path": log_path, "method": args.method}

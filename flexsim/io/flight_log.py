@@ -42,7 +42,6 @@ from foxglove_schemas_protobuf.PointCloud_pb2 import PointCloud
 from google.protobuf import descriptor_pb2, descriptor_pool, message_factory
 from google.protobuf.message import DecodeError
 from mcap.exceptions import McapError
-from mcap.reader import NonSeekingReader, SeekingReader
 from mcap.well_known import MessageEncoding, SchemaEncoding
 from mcap.writer import Writer as McapWriter
 from mcap_protobuf.decoder import DecoderFactory
@@ -224,7 +223,7 @@ class FlightLogWriter:
         self._last_ns = -1
         self._sim_flushed_s = -math.inf
         self._wall_flushed_s = time.monotonic()
-        self._mcap = McapWriter(self._file)
+        self._mcap = McapWriter(self._file, enable_data_crcs=True)
         self._mcap.start(profile="", library="flexsim")
         self._mcap.add_metadata(METADATA_RECORD, {
             "format": FORMAT_NAME, "format_version": FORMAT_VERSION,
@@ -427,7 +426,12 @@ class FlightLog:
     metadata : dict of str to str
         Run metadata given to the writer.
     complete : bool
-        False if the file had no valid footer (the writer did not finish) and was recovered.
+        False if the file had no valid footer (the writer did not finish) or is damaged, and was
+        recovered.
+    damage : tuple of str
+        Where the file is damaged (a chunk, the data section or the summary failing its CRC, an
+        unreadable record), one sentence each with the byte offset and the time span lost; empty for
+        an intact file. Every CRC the file carries is checked.
     recovered_until_s : float
         Time of the last sample read [s] (NaN if there is none).
     """
@@ -446,6 +450,7 @@ class FlightLog:
     metadata: dict[str, str] = field(default_factory=dict)
     complete: bool = True
     recovered_until_s: float = math.nan
+    damage: tuple[str, ...] = ()
 
     def signal(self, name: str) -> np.ndarray:
         """Return the signal ``name`` as an array of shape (N,).
@@ -470,34 +475,141 @@ def _decoded(messages: Iterable[Any]) -> Iterator[tuple[str, int, Any]]:
         yield channel.topic, message.log_time, decoded
 
 
-def _read_complete(path: Path) -> tuple[dict[str, dict[str, str]], list[tuple[str, int, Any]]]:
-    """Read a finished MCAP file with the seeking (summary-indexed) reader."""
-    with open(path, "rb") as stream:
-        reader = SeekingReader(stream, decoder_factories=[DecoderFactory()])
-        metadata = {record.name: dict(record.metadata) for record in reader.iter_metadata()}
-        messages = list(_decoded(reader.iter_decoded_messages(log_time_order=False)))
-    return metadata, messages
+class _Scan(NamedTuple):
+    """What one integrity-checked pass over a flight log found."""
+
+    metadata: dict[str, dict[str, str]]
+    messages: list[tuple[str, int, Any]]
+    finished: bool  # a footer was read (the writer closed the file)
+    damage: tuple[str, ...]  # where the file is damaged, one sentence each
 
 
-def _read_recovering(path: Path) -> tuple[dict[str, dict[str, str]], list[tuple[str, int, Any]]]:
-    """Read whatever records precede the damage in an unfinished or truncated MCAP file."""
+def _time_span(start_ns: int, end_ns: int) -> str:
+    return f"t = {start_ns / 1e9:.6g} .. {end_ns / 1e9:.6g} s"
+
+
+def _scan(path: Path) -> _Scan:
+    """Read every record of an MCAP flight log in file order, checking all of its checksums.
+
+    The MCAP format stores a CRC-32 per chunk (of the uncompressed records), of the whole data section
+    (in the DataEnd record; written by :class:`FlightLogWriter` since data CRCs were enabled, 0 = not
+    stored) and of the summary (in the footer). A chunk that fails its CRC, cannot be decompressed or
+    holds a message that does not decode is dropped and named; the chunks before and after it are kept.
+    A record that cannot be parsed (a damaged length or opcode) ends the sequential pass; reading resumes
+    at the next chunk listed in an intact summary section, if the file has one.
+    """
+    import io
+    import zlib
+
+    from mcap.records import Channel, Chunk, ChunkIndex, DataEnd, Footer, Message, Metadata, Schema
+    from mcap.stream_reader import StreamReader, breakup_chunk, get_chunk_data_stream
+
+    data = path.read_bytes()
+    damage: list[str] = []
+    schemas: dict[int, Any] = {}
+    channels: dict[int, Any] = {}
+    raw: list[tuple[int, int, bytes, int]] = []  # (channel id, log time, data, chunk offset)
     metadata: dict[str, dict[str, str]] = {}
-    with open(path, "rb") as stream:
+    finished = False
+
+    # The summary (if the file was finished and its summary CRC holds) lists every chunk's offset,
+    # so reading can resume past a record whose header is damaged.
+    index_offsets: list[int] = []
+    summary_ok = False
+    if len(data) >= 8 + 8 + 37 and data.endswith(_MCAP_MAGIC):
+        foot = len(data) - 8 - 29  # footer record: opcode, length, 3 x uint64 ... uint32 crc = 29 bytes + 8 magic
         try:
-            for record in NonSeekingReader(stream).iter_metadata():
-                metadata[record.name] = dict(record.metadata)
-                if {METADATA_RECORD, RUN_METADATA_RECORD} <= metadata.keys():
-                    break  # the writer puts both records first; don't decompress every chunk
-        except _READ_ERRORS:
-            pass
+            summary_start, _summary_offset_start, summary_crc = struct.unpack_from("<QQI", data, foot + 9)
+            if data[foot] == 0x02 and 0 < summary_start < foot:
+                summary_ok = summary_crc == 0 or zlib.crc32(data[summary_start : foot + 9 + 16]) == summary_crc
+                if not summary_ok:
+                    damage.append(f"the summary section (bytes {summary_start}..{foot}) fails its CRC")
+                else:
+                    for record in StreamReader(io.BytesIO(data[summary_start:foot]), skip_magic=True).records:
+                        if isinstance(record, ChunkIndex):
+                            index_offsets.append(record.chunk_start_offset)
+                        elif isinstance(record, Schema):
+                            schemas.setdefault(record.id, record)
+                        elif isinstance(record, Channel):
+                            channels.setdefault(record.id, record)
+        except (*_READ_ERRORS, Exception):  # noqa: BLE001 - any damage in the tail only disables the index
+            summary_ok = False
+    index_offsets.sort()
+
+    offset = 8
+    while offset < len(data):
+        stream = io.BytesIO(data)
+        stream.seek(offset)
+        reader = StreamReader(stream, skip_magic=True, emit_chunks=True, record_size_limit=len(data))
+        start = offset
+        try:
+            for record in reader.records:
+                end = stream.tell()
+                if isinstance(record, Chunk):
+                    span = _time_span(record.message_start_time, record.message_end_time)
+                    try:
+                        get_chunk_data_stream(record, validate_crc=True)
+                        inner = breakup_chunk(record, validate_crc=False)
+                    except (*_READ_ERRORS, McapError) as exc:
+                        damage.append(f"the chunk at byte {start} ({span}) is damaged ({type(exc).__name__}: "
+                                      f"{str(exc)[:80]}); its samples are dropped")
+                    else:
+                        for r in inner:
+                            if isinstance(r, Schema):
+                                schemas.setdefault(r.id, r)
+                            elif isinstance(r, Channel):
+                                channels.setdefault(r.id, r)
+                            elif isinstance(r, Message):
+                                raw.append((r.channel_id, r.log_time, r.data, start))
+                elif isinstance(record, Schema):
+                    schemas.setdefault(record.id, record)
+                elif isinstance(record, Channel):
+                    channels.setdefault(record.id, record)
+                elif isinstance(record, Metadata):
+                    metadata.setdefault(record.name, dict(record.metadata))
+                elif isinstance(record, DataEnd):
+                    crc = zlib.crc32(data[:start])
+                    if record.data_section_crc not in (0, crc):
+                        damage.append(f"the data section (bytes 0..{start}) fails its CRC")
+                elif isinstance(record, Footer):
+                    finished = True
+                    if not data.endswith(_MCAP_MAGIC):
+                        damage.append(f"the closing magic bytes after the footer (byte {end}) are damaged or cut")
+                    break
+                start = end
+            break  # the generator only ends through an exception or the footer
+        except (*_READ_ERRORS, McapError, OSError) as exc:
+            resume = next((o for o in index_offsets if o > start), None)
+            if resume is not None:
+                damage.append(f"the record at byte {start} is unreadable ({type(exc).__name__}); reading resumes "
+                              f"at the chunk at byte {resume} (from the summary index)")
+                offset = resume
+                continue
+            header_cut = start + 9 > len(data)
+            length = struct.unpack_from("<Q", data, start + 1)[0] if not header_cut else 0
+            if not (header_cut or start + 9 + length > len(data)) or summary_ok:
+                # the record lies inside the file: damaged, not cut (a cut is reported as incomplete)
+                damage.append(f"the record at byte {start} of {len(data)} is unreadable ({type(exc).__name__}); "
+                              f"nothing after it can be read")
+            break
+    factory = DecoderFactory()
+    decoders: dict[int, Any] = {}
     messages: list[tuple[str, int, Any]] = []
-    with open(path, "rb") as stream:
-        reader = NonSeekingReader(stream, decoder_factories=[DecoderFactory()])
+    bad_chunks: dict[int, int] = {}
+    for channel_id, log_time, payload, chunk_at in raw:
+        channel = channels.get(channel_id)
+        schema = schemas.get(channel.schema_id) if channel is not None else None
         try:
-            messages.extend(_decoded(reader.iter_decoded_messages(log_time_order=False)))
-        except _READ_ERRORS:
-            pass
-    return metadata, messages
+            if channel is None or schema is None:
+                raise KeyError(f"channel {channel_id} has no definition")
+            if channel_id not in decoders:
+                decoders[channel_id] = factory.decoder_for(channel.message_encoding, schema)
+            messages.append((channel.topic, log_time, decoders[channel_id](payload)))
+        except (*_READ_ERRORS, TypeError) as exc:
+            bad_chunks[chunk_at] = bad_chunks.get(chunk_at, 0) + 1
+    for at, n in bad_chunks.items():
+        damage.append(f"{n} message(s) of the chunk at byte {at} do not decode; they are dropped")
+    return _Scan(metadata, messages, finished, tuple(damage))
 
 
 def _points(cloud: Any, path: Path) -> np.ndarray:
@@ -557,17 +669,17 @@ def read_flight_log(path: str | os.PathLike) -> FlightLog:
     if head != _MCAP_MAGIC:
         raise FlightLogError(f"{path}: not an MCAP file (first bytes {head!r}, expected "
                              f"{_MCAP_MAGIC!r})")
-    try:
-        metadata, messages = _read_complete(path)
-        complete = True
-    except (*_READ_ERRORS, OSError):  # OSError: seeking before the start of a short file
-        metadata, messages = _read_recovering(path)
-        complete = False
+    metadata, messages, finished, damage = _scan(path)
+    complete = finished and not damage
 
     info = metadata.get(METADATA_RECORD, {})
     if info.get("format") != FORMAT_NAME:
-        reason = "it was truncated before its header records" if not complete else \
-            f"it has no '{METADATA_RECORD}' metadata record with format={FORMAT_NAME!r}"
+        if damage:
+            reason = "it is damaged before its header records: " + "; ".join(damage[:2])
+        elif not finished:
+            reason = "it was truncated before its header records"
+        else:
+            reason = f"it has no '{METADATA_RECORD}' metadata record with format={FORMAT_NAME!r}"
         raise FlightLogError(f"{path}: not a flexsim flight log ({reason})")
     if info.get("format_version") != FORMAT_VERSION:
         raise FlightLogError(f"{path}: unsupported flight-log format version "
@@ -600,7 +712,11 @@ def read_flight_log(path: str | os.PathLike) -> FlightLog:
     n_samples = len(states)
     t = _frozen(np.array([m.t for m in states], dtype=np.float64))
     recovered_until_s = float(t[-1]) if n_samples else math.nan
-    if not complete:
+    if damage:
+        warnings.warn(f"{path}: the flight log is damaged: {'; '.join(damage)}; recovered the intact part, "
+                      f"{n_samples} samples up to t = {recovered_until_s:.6g} s",
+                      FlightLogRecoveryWarning, stacklevel=2)
+    elif not complete:
         warnings.warn(f"{path}: the flight log is incomplete (no valid MCAP footer: the writer did "
                       f"not finish, e.g. the process was killed, or the file was cut); recovered "
                       f"{n_samples} samples up to t = {recovered_until_s:.6g} s",
@@ -615,4 +731,4 @@ def read_flight_log(path: str | os.PathLike) -> FlightLog:
         signals=_stack(rows["signals"], (len(signal_names),), "signal vector", path),
         state_names=state_names, control_names=control_names, signal_names=signal_names,
         structure=structure, events=events, metadata=metadata.get(RUN_METADATA_RECORD, {}),
-        complete=complete, recovered_until_s=recovered_until_s)
+        complete=complete, recovered_until_s=recovered_until_s, damage=damage)

@@ -87,6 +87,11 @@ def in_vacuo_modes(model: AircraftModel) -> ModalAnalysis:
     """
     st = model.structure
     active = model.active_dofs
+    if active.size == 0:
+        from flexsim.errors import FlexsimError
+
+        raise FlexsimError(f"aircraft {model.aircraft.name!r}, variant {model.variant.value!r}: no degree of freedom to "
+                           f"analyse (the body is restrained and every component has bending_modes = torsion_modes = 0)")
     m = st.inertia.m0[np.ix_(active, active)]
     k = st.stiffness[np.ix_(active, active)]
     lam, vec = eigh(k, m)

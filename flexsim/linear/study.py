@@ -14,9 +14,14 @@ laid out like the paper's.
 from __future__ import annotations
 
 import csv
+import hashlib
 import json
 import math
 import os
+import signal
+import sys
+import time
+from collections import OrderedDict
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -26,10 +31,12 @@ import numpy as np
 
 from flexsim.atmosphere import isa_density
 
-__all__ = ["StudyCase", "turn_cases", "climb_cases", "run_case", "run_chain", "run_study", "write_results", "plot_study", "plot_trim", "glide_from_climb"]
+__all__ = ["StudyCase", "StudyRecord", "case_key", "turn_cases", "climb_cases", "run_case", "run_chain", "run_point", "run_study", "write_results", "plot_study", "plot_trim", "glide_from_climb"]
 
 MODELS = {"QS": "quasi-steady", "US": "theodorsen", "FS": "unsteady"}
 PAPER_ALTITUDES_M = (0.0, 3048.0, 6096.0, 9144.0)
+#: Seconds to wait for a Dask scheduler before reporting that it cannot be reached.
+DASK_CONNECT_TIMEOUT_S = 10.0
 
 
 @dataclass(frozen=True)
@@ -152,56 +159,310 @@ def run_chain(cases: Sequence[StudyCase]) -> list[dict]:
     return rows
 
 
+#: Flutter analyses built in this process, keyed by content (aircraft file bytes, model, damping), so
+#: the points of one chain reuse the models (at most a few entries: one per chain a worker serves).
+_ANALYSES: "OrderedDict[tuple, object]" = OrderedDict()
+_ANALYSES_MAX = 8
+
+
+def _analysis(case: StudyCase):
+    from flexsim.aircraft.toml_loader import resolve_aircraft_path
+
+    path = resolve_aircraft_path(case.aircraft)
+    key = (hashlib.sha256(path.read_bytes()).hexdigest(), *case.chain_key[1:])
+    if key in _ANALYSES:
+        _ANALYSES.move_to_end(key)
+        return _ANALYSES[key]
+    analysis = case.analysis()
+    _ANALYSES[key] = analysis
+    while len(_ANALYSES) > _ANALYSES_MAX:
+        _ANALYSES.popitem(last=False)
+    return analysis
+
+
+def run_point(case: StudyCase, mach_guess: float | None = None) -> tuple[dict, float]:
+    """One point of a study in a worker: ``(row, wall seconds)``; any failure becomes the row's ``error``."""
+    t0 = time.perf_counter()
+    try:
+        row = run_case(case, mach_guess=mach_guess, analysis=_analysis(case))
+    except Exception as exc:  # noqa: BLE001 - one point's failure must not abort the study
+        row = asdict(case)
+        row["error"] = f"{type(exc).__name__}: {exc}"
+    return row, time.perf_counter() - t0
+
+
+def case_key(case_or_row: StudyCase | dict) -> str:
+    """Identity of a study point: the JSON of its :class:`StudyCase` fields (used to resume)."""
+    fields = StudyCase.__dataclass_fields__
+    d = asdict(case_or_row) if isinstance(case_or_row, StudyCase) else case_or_row
+    return json.dumps({k: d.get(k) for k in fields}, sort_keys=True)
+
+
+class StudyRecord:
+    """The points of a study written as JSON lines as they complete (``<out>/<stem>.jsonl``).
+
+    Each finished point is one line, flushed and synced at once, so an interrupted or killed study
+    keeps every point finished before; ``resume=True`` reads them back and the study skips them. A
+    partial last line (the process killed while writing it) is ignored and counted.
+
+    Raises
+    ------
+    FlexsimError
+        When the file already holds points and ``resume`` is False (finished work is never overwritten).
+    """
+
+    def __init__(self, path: str | Path, resume: bool = False) -> None:
+        from flexsim.errors import FlexsimError
+
+        self.path = Path(path)
+        self.done: dict[str, dict] = {}
+        self.damaged_lines = 0
+        if self.path.exists():
+            for line in self.path.read_text(encoding="utf-8", errors="replace").splitlines():
+                try:
+                    row = json.loads(line)
+                    self.done[case_key(row)] = row
+                except (ValueError, TypeError, AttributeError):
+                    self.damaged_lines += 1
+            if self.done and not resume:
+                raise FlexsimError(f"{self.path}: already holds {len(self.done)} finished points of a study; give --resume "
+                                   f"to continue it, or another --out")
+            if not resume:
+                self.path.unlink()
+            elif self.damaged_lines:
+                # rewrite without the partial line(s), so new points start on a clean line
+                self.path.write_text("".join(json.dumps(r, default=str) + "\n" for r in self.done.values()))
+        self._file = self.path.open("a", encoding="utf-8")
+
+    def append(self, row: dict) -> None:
+        self._file.write(json.dumps(row, default=str) + "\n")
+        self._file.flush()
+        os.fsync(self._file.fileno())
+
+    def close(self) -> None:
+        self._file.close()
+
+
+def _describe(case: StudyCase) -> str:
+    turn = "" if case.turn_radius_m == math.inf else f" R={case.turn_radius_m:g} m"
+    climb = " glide" if case.climb_angle_deg is None else (f" gamma={case.climb_angle_deg:g} deg" if case.climb_angle_deg else "")
+    return f"{case.model} h={case.altitude_m:g} m{turn}{climb}"
+
+
+class _Progress:
+    """A tqdm bar on a terminal; otherwise one line per completed point on stderr (visible when piped)."""
+
+    def __init__(self, total: int, done: int, enabled: bool) -> None:
+        self.total, self.count, self.enabled = total, done, enabled
+        self.bar = None
+        if enabled and sys.stderr.isatty():
+            from tqdm.auto import tqdm
+
+            self.bar = tqdm(total=total, initial=done, desc="flutter points")
+
+    def point(self, case: StudyCase, row: dict, seconds: float) -> None:
+        self.count += 1
+        if self.bar is not None:
+            self.bar.update(1)
+        elif self.enabled:
+            what = f"M_F {row['mach']:.4f}, {row['omega_rad_s']:.2f} rad/s" if "mach" in row else f"no flutter point: {str(row.get('error'))[:80]}"
+            print(f"[{self.count}/{self.total}] {_describe(case)}: {what} ({seconds:.1f} s)", file=sys.stderr, flush=True)
+
+    def note(self, text: str) -> None:
+        (self.bar.write if self.bar is not None else lambda t: print(t, file=sys.stderr, flush=True))(text)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _ignore_sigint() -> None:
+    """Process-pool initializer: Ctrl-C is handled by the parent, which stops the workers."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, workers: int | None = None,
-              progress: bool = True) -> list[dict]:
-    """Run the cases in parallel (chains of one model and altitude) and return rows in the input order.
+              progress: bool = True, record: StudyRecord | None = None, max_attempts: int = 2) -> list[dict]:
+    """Run the cases in parallel and return rows in the input order, keeping every finished point.
+
+    Cases of one model and altitude form a chain run in order, each point seeded with the previous
+    flutter Mach; chains run in parallel, one point at a time each, and every finished point is handed
+    to ``record`` (written at once) and reported by the progress display. Points already in ``record``
+    (``resume``) are skipped.
 
     Parameters
     ----------
     cases : iterable of StudyCase
     scheduler : str, optional
         Address of a Dask distributed scheduler (``tcp://host:8786``); needs ``dask[distributed]``
-        (``pip install ".[dask]"`` from the checkout). Default: local processes.
+        (``pip install ".[dask]"`` from the checkout). The client sends pickled tasks to that scheduler and unpickles
+        what it returns: give only the address of a cluster you trust. Default: local processes.
     workers : int, optional
         Local processes (default: all cores).
     progress : bool
-        Show a tqdm progress bar (auto-disabled when not a terminal).
-    """
-    from tqdm.auto import tqdm
+        Show progress: a tqdm bar on a terminal, one line per finished point on stderr otherwise.
+    record : StudyRecord, optional
+        Where finished points are written as they complete (and read from when resuming).
+    max_attempts : int
+        Times a point is started when the process computing it dies (a killed worker); after that the
+        point becomes an error row saying so. Lost points are reported on stderr.
 
+    Raises
+    ------
+    KeyboardInterrupt
+        On Ctrl-C, after stopping the workers (within about a second); finished points are in ``record``.
+    """
     cases = list(cases)
     chains: dict[tuple, list[int]] = {}
     for i, c in enumerate(cases):
         chains.setdefault(c.chain_key, []).append(i)
-    groups = list(chains.values())
-    bar = tqdm(total=len(cases), desc="flutter points", disable=None if progress else True)
-    rows: list[dict | None] = [None] * len(cases)
+    done = dict(record.done) if record is not None else {}
+    rows: list[dict | None] = [done.get(case_key(c)) for c in cases]
+    todo = [[i for i in g if rows[i] is None] for g in chains.values()]
+    todo = [g for g in todo if g]
+    guess0 = {}
+    for g in chains.values():  # resumed chains start from their last finished point
+        last = [rows[i] for i in g if rows[i] is not None and "mach" in rows[i]]
+        if last:
+            guess0[g[0]] = last[-1]["mach"]
+    bar = _Progress(len(cases), sum(r is not None for r in rows), progress)
+    attempts: dict[int, int] = {}
 
-    def store(group: list[int], result: list[dict]) -> None:
-        for i, row in zip(group, result):
-            rows[i] = row
-        bar.update(len(group))
+    def finish(i: int, row: dict, seconds: float) -> None:
+        rows[i] = row
+        if record is not None:
+            record.append(row)
+        bar.point(cases[i], row, seconds)
 
-    if scheduler:
-        try:
-            from dask.distributed import Client, as_completed
-        except ImportError as exc:  # optional dependency
-            raise RuntimeError(f"--scheduler {scheduler!r} needs dask.distributed: pip install \".[dask]\" from the flexsim checkout ({exc})") from None
-        with Client(scheduler) as client:
-            futures = {client.submit(run_chain, [cases[i] for i in g], pure=False): k for k, g in enumerate(groups)}
-            for fut in as_completed(futures):
-                store(groups[futures[fut]], fut.result())
-    else:
-        n = max(1, min(workers or os.cpu_count() or 1, len(groups)))
-        if n == 1:
-            for g in groups:
-                store(g, run_chain([cases[i] for i in g]))
+    chains_all = list(chains.values())
+    chain_of = {i: k for k, g in enumerate(chains_all) for i in g}
+
+    def guess_for(i: int) -> float | None:
+        g = chains_all[chain_of[i]]
+        prev = [rows[j] for j in g[: g.index(i)] if rows[j] is not None and "mach" in rows[j]]
+        return prev[-1]["mach"] if prev else guess0.get(g[0])
+
+    try:
+        if scheduler:
+            _run_dask(scheduler, cases, todo, guess_for, finish, bar, max_attempts)
         else:
-            with ProcessPoolExecutor(max_workers=n) as pool:
-                for g, result in zip(groups, pool.map(run_chain, [[cases[i] for i in g] for g in groups])):
-                    store(g, result)
-    bar.close()
+            n = max(1, min(workers or os.cpu_count() or 1, len(todo)))
+            if n == 1:
+                for chain in todo:
+                    for i in chain:
+                        finish(i, *run_point(cases[i], guess_for(i)))
+            else:
+                _run_pool(n, cases, todo, guess_for, finish, bar, attempts, max_attempts)
+    finally:
+        bar.close()
     return [r for r in rows if r is not None]
+
+
+def _run_pool(n, cases, todo, guess_for, finish, bar, attempts, max_attempts) -> None:
+    """Chains on a process pool, one point per chain in flight; a pool broken by a dead worker is
+    replaced and its in-flight points retried (up to ``max_attempts``)."""
+    from concurrent.futures import FIRST_COMPLETED, wait
+    from concurrent.futures.process import BrokenProcessPool
+
+    queues = [list(g) for g in todo]
+    while any(queues):
+        pool = ProcessPoolExecutor(max_workers=n, initializer=_ignore_sigint)
+        running: dict = {}
+        idle = [k for k in range(len(queues)) if queues[k]]
+        lost: list[tuple[int, int]] = []
+        broken = False
+        try:
+            while (idle or running) and not (lost or broken):
+                while idle and len(running) < n:
+                    k = idle[0]
+                    i = queues[k][0]
+                    try:
+                        fut = pool.submit(run_point, cases[i], guess_for(i))
+                    except BrokenProcessPool:  # a worker died since the last wait
+                        broken = True
+                        break
+                    idle.pop(0)
+                    attempts[i] = attempts.get(i, 0) + 1
+                    running[fut] = (k, i)
+                if not running:
+                    break
+                finished, _ = wait(running, return_when=FIRST_COMPLETED)
+                for fut in finished:
+                    k, i = running.pop(fut)
+                    try:
+                        row, seconds = fut.result()
+                    except BrokenProcessPool:
+                        lost.append((k, i))
+                        continue
+                    queues[k].pop(0)
+                    finish(i, row, seconds)
+                    if queues[k]:
+                        idle.insert(0, k)  # continue this chain next (its models are warm in a worker)
+        finally:
+            _stop_pool(pool)
+        if lost or broken:
+            lost += list(running.values())
+            names = ", ".join(_describe(cases[i]) for _, i in lost)
+            bar.note(f"warning: a worker process died; {len(lost)} point(s) in flight lost: {names}; "
+                     f"the points finished before are kept; retrying on a new process pool")
+            for k, i in lost:
+                if attempts.get(i, 0) >= max_attempts:
+                    queues[k].pop(0)
+                    row = asdict(cases[i])
+                    row["error"] = f"the worker process computing this point died {attempts[i]} times (killed or out of memory)"
+                    finish(i, row, 0.0)
+
+
+def _stop_pool(pool: ProcessPoolExecutor) -> None:
+    """Shut a pool down at once: cancel queued work and terminate the worker processes."""
+    processes = list(getattr(pool, "_processes", {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for p in processes:
+        if p.is_alive():
+            p.terminate()
+    for p in processes:
+        p.join(timeout=2.0)
+
+
+def _run_dask(scheduler, cases, todo, guess_for, finish, bar, max_attempts) -> None:
+    """Chains on a Dask cluster: one task per point; Dask itself reruns the tasks of a lost worker."""
+    try:
+        from dask.distributed import Client, as_completed
+    except ImportError as exc:  # optional dependency
+        raise RuntimeError(f"--scheduler {scheduler!r} needs dask.distributed: pip install \".[dask]\" from the flexsim checkout ({exc})") from None
+    from flexsim.errors import FlexsimError
+
+    try:
+        client = Client(scheduler, timeout=DASK_CONNECT_TIMEOUT_S, set_as_default=False)
+    except (OSError, TimeoutError) as exc:
+        raise FlexsimError(f"--scheduler {scheduler!r}: cannot connect to a Dask scheduler there ({exc})") from None
+    queues = [list(g) for g in todo]
+    futures: dict = {}
+    try:
+        for k, q in enumerate(queues):
+            i = q[0]
+            f = client.submit(run_point, cases[i], guess_for(i), pure=False, retries=max_attempts - 1)
+            futures[f] = (k, i)
+        ac = as_completed(list(futures), loop=client.loop)
+        for f in ac:
+            k, i = futures.pop(f)
+            try:
+                row, seconds = f.result()
+            except Exception as exc:  # noqa: BLE001 - e.g. KilledWorker after repeated worker deaths
+                row, seconds = asdict(cases[i]), 0.0
+                row["error"] = f"{type(exc).__name__}: {exc}"
+                bar.note(f"warning: point {_describe(cases[i])} lost on the cluster: {type(exc).__name__}")
+            queues[k].pop(0)
+            finish(i, row, seconds)
+            if queues[k]:
+                j = queues[k][0]
+                nf = client.submit(run_point, cases[j], guess_for(j), pure=False, retries=max_attempts - 1)
+                futures[nf] = (k, j)
+                ac.add(nf)
+    finally:
+        if futures:
+            client.cancel(list(futures))
+        client.close(timeout=2)
 
 
 def write_results(rows: list[dict], out_dir: str | Path, stem: str) -> tuple[Path, Path]:

@@ -70,6 +70,63 @@ class StructuralModel:
         self.inertia = InertiaPolynomial.from_aircraft(aircraft, self.dofs)
         self.k_bending, self.k_torsion = stiffness_matrices(aircraft, self.dofs)
         self.thrust = ThrustMap.from_aircraft(aircraft, self.dofs)
+        self._check_assembled()
+
+    def _dof_label(self, i: int) -> str:
+        """Name of elastic coordinate ``i`` (0-based in [s, eta]) as ``<component> bending|torsion <k>``."""
+        for kind, table, offset in (("bending", self.dofs.bending, 0), ("torsion", self.dofs.torsion, self.dofs.nq)):
+            for name, sl in table.items():
+                if sl.start + offset <= i < sl.stop + offset:
+                    return f"{name} {kind} {i - sl.start - offset + 1}"
+        return f"elastic coordinate {i}"
+
+    def _check_assembled(self) -> None:
+        """Derived quantities of the assembled structure must be physical (issue #12).
+
+        Checks, each raising :class:`~flexsim.errors.AircraftDefinitionError` with the value and the
+        allowed range: the elastic mass block M0_ee is positive definite (every shape function carries
+        mass); the inertia tensor about the CG is positive definite (cancellation from absurd masses
+        gives negative principal inertias); the clamped elastic frequencies, K_ee phi = omega^2 M0_ee phi,
+        lie in :data:`~flexsim.aircraft.definition.PLAUSIBLE` ``["elastic_frequency_rad_s"]``.
+        """
+        from scipy.linalg import eigh
+
+        from flexsim.aircraft.definition import PLAUSIBLE
+        from flexsim.errors import AircraftDefinitionError
+
+        src = self.aircraft.source
+        m0 = self.inertia.m0
+        mp = self.mass_properties
+        if not (np.isfinite(mp.mass_kg) and mp.mass_kg > 0.0):
+            raise AircraftDefinitionError(f"{src}: assembled mass = {mp.mass_kg!r} kg: must be a finite number > 0")
+        principal = np.linalg.eigvalsh(mp.inertia_cg_kg_m2)
+        if not (np.all(np.isfinite(principal)) and principal.min() > 1e-12 * max(1.0, principal.max())):
+            raise AircraftDefinitionError(
+                f"{src}: principal moments of inertia about the CG = {principal.tolist()} kg m^2: must all be > 0 "
+                f"(the inertia tensor must be positive definite; check masses and positions)")
+        n_el = self.dofs.nq + self.dofs.nxi
+        if n_el == 0:
+            return
+        m_ee = m0[6:, 6:]
+        diag = np.diag(m_ee)
+        zero = np.flatnonzero(~(diag > 1e-12 * max(1.0, np.abs(diag).max())))
+        if zero.size:
+            raise AircraftDefinitionError(
+                f"{src}: generalised mass of {self._dof_label(int(zero[0]))} = {float(diag[zero[0]]):.3g}: must be > 0 "
+                f"(the shape function moves no mass)")
+        try:
+            lam = eigh(self.stiffness[6:, 6:], m_ee, eigvals_only=True)
+        except np.linalg.LinAlgError:
+            raise AircraftDefinitionError(f"{src}: the elastic mass matrix is not positive definite (a component's "
+                                          f"shape functions move no mass)") from None
+        omega = np.sqrt(np.clip(lam, 0.0, None))
+        lo, hi, unit = PLAUSIBLE["elastic_frequency_rad_s"]
+        bad = np.flatnonzero(~((omega >= lo) & (omega <= hi)))
+        if bad.size:
+            i = int(bad[0]) if omega[bad[0]] < lo else int(bad[-1])
+            raise AircraftDefinitionError(
+                f"{src}: clamped elastic frequency {i + 1} of {omega.size} = {omega[i]:.4g} {unit}: outside the plausible "
+                f"range [{lo:g}, {hi:g}] {unit} (check the units of stiffness and mass)")
 
     def point_maps(self, component: str, x: np.ndarray) -> PointMaps:
         """Kinematic maps of points at stations ``x`` [m] of ``component`` (eqs. 5-6, 18)."""

@@ -176,12 +176,77 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         labels = _residual_labels(model)
         worst = np.argsort(-np.abs(r))[:4]
         detail = ", ".join(f"{labels[i]} = {r[i]:.3g}" for i in worst)
-        raise TrimError(f"trim failed for {manoeuvre.describe()}: scaled residual {norm:.3g} > {_TOLERANCE:g}; largest: {detail}")
+        raise TrimError(f"trim failed for {manoeuvre.describe()}: scaled residual {norm:.3g} > {_TOLERANCE:g}; largest: {detail}"
+                        f"{_demand(model, manoeuvre)}")
     x, u, gamma = prob.state(z)
     point = _trim_point(model, manoeuvre, x, u, gamma, norm)
-    if check_limits:
-        _check_limits(model, manoeuvre, point)
+    if not check_limits:
+        _check_singular(prob, z)  # without limits a singular direction would be returned as a trim
+    else:
+        try:
+            _check_limits(model, manoeuvre, point)
+        except TrimError:
+            _check_singular(prob, z)  # an absurd control from a singular system: say so instead
+            raise
     return point
+
+
+def _unknown_labels(prob: "_Problem") -> list[str]:
+    """Names of the trim unknowns z (pitch, bank, thrust or flight path, surfaces, elastic coordinates)."""
+    labels = prob.model.structure.dofs.labels
+    el = [labels[i] for i in prob.model.active_dofs][6:]
+    third = "flight-path angle gamma" if prob.man.is_glide else "thrust T_e"
+    return ["pitch theta", "bank phi", third, "aileron delta_a", "elevator delta_e", "rudder delta_r", *el][: 6 + prob.n_el]
+
+
+def _check_singular(prob: "_Problem", z: np.ndarray) -> None:
+    """Raise TrimError when the trim equations do not determine an unknown at the solution.
+
+    The Jacobian d(residual)/dz (central differences) is column-scaled; an unknown whose column
+    vanishes has no effect on the equations (e.g. an aileron inboard of every aerodynamic strip), and a
+    condition number above 1e12 means a combination of unknowns is undetermined: the "solution" along
+    that direction is arbitrary, so it is not reported as a trim.
+    """
+    n = z.size
+    jac = np.empty((n, n))
+    for j in range(n):
+        h = 1e-7 * max(1.0, abs(z[j]))
+        zp, zm = z.copy(), z.copy()
+        zp[j] += h
+        zm[j] -= h
+        jac[:, j] = (prob.residual(zp) - prob.residual(zm)) / (2 * h)
+    labels = _unknown_labels(prob)
+    col = np.linalg.norm(jac, axis=0)
+    if not np.all(np.isfinite(col)):
+        return
+    dead = np.flatnonzero(col <= 1e-9 * col.max())
+    describe = prob.man.describe()
+    if dead.size:
+        names = ", ".join(labels[i] for i in dead)
+        raise TrimError(f"trim singular for {describe}: the equations do not depend on {names} (no effect on any "
+                        f"force or moment, e.g. a control surface with no aerodynamic strip on it); the trim is "
+                        f"undetermined — check the aircraft's strips and control surfaces")
+    sv, vt = np.linalg.svd(jac / col, compute_uv=True)[1:]
+    cond = sv[0] / sv[-1] if sv[-1] > 0 else np.inf
+    if cond > 1e12:
+        null = np.abs(vt[-1])
+        names = ", ".join(labels[i] for i in np.argsort(-null)[:3])
+        raise TrimError(f"trim singular for {describe}: the trim equations are (nearly) singular, condition number "
+                        f"{cond:.3g} > 1e12, along a direction mostly in {names}; the trim is undetermined")
+
+
+def _demand(model: AircraftModel, man: SteadyManoeuvre) -> str:
+    """What the manoeuvre asks of the aircraft, to explain a trim that does not converge.
+
+    A coordinated steady turn needs the bank tan(phi) = V^2 cos(gamma) / (g R) and the load factor
+    n = 1 / cos(phi) (point-mass relations; the flexible trim differs little).
+    """
+    if man.turn_radius_m == math.inf or model.gravity_m_s2 <= 0.0:
+        return ""
+    gamma = 0.0 if man.climb_angle_rad is None else man.climb_angle_rad
+    phi = math.atan(man.speed_m_s**2 * math.cos(gamma) / (model.gravity_m_s2 * abs(man.turn_radius_m)))
+    return (f" (this turn needs a bank of about {math.degrees(phi):.0f} deg and a load factor of {1 / math.cos(phi):.2g}"
+            f"; a larger radius or a lower speed asks less)")
 
 
 def _newton_polish(fun, z: np.ndarray, iterations: int = 4) -> np.ndarray:

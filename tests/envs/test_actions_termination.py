@@ -48,6 +48,24 @@ def test_invalid_actions_raise(env):
     assert env.observation_space.contains(obs)
 
 
+@pytest.mark.parametrize("action, kind", [
+    (["0.5", "0", "0", "0"], "str"),
+    (np.array(["0.5", "0", "0", "0"]), "strings"),
+    (np.array([0.5, 0.0, 0.0, 0.0]) + 1j, "complex"),
+    (np.array([True, False, False, True]), "booleans"),
+    ([0.5, True, 0.0, 0.0], "bool"),
+    ([0.5, None, 0.0, 0.0], "NoneType"),
+    ([0.5, 0.0, 1 + 2j, 0.0], "complex"),
+])
+def test_non_real_actions_are_rejected_not_converted(env, action, kind):
+    """Numeric strings, booleans and complex values were converted silently by numpy (issue #12)."""
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match=rf"must be 4 real numbers.*{kind}"):
+        env.unwrapped.step(action)
+    obs, *_ = env.step(np.array([0.1, 0.0, -0.4, 0.0], np.int64) * 0 + np.array([0.1, 0.0, -0.4, 0.0]))
+    assert env.observation_space.contains(obs)
+
+
 def test_rate_limits_bound_control_changes(env):
     env.reset(seed=0)
     base = env.unwrapped

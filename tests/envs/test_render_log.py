@@ -88,3 +88,20 @@ def test_human_mode_streams_to_rerun_without_spawning(monkeypatch):
     streamer._rec.flush()
     assert memory.drain_as_bytes()[:4] == b"RRF2"
     env.close()
+
+
+def test_flight_log_records_non_finite_termination(tmp_path):
+    """A blow-up in the first sub-step ends the episode without advancing time: the recorder used to
+    raise "time must increase strictly" and lose the termination (issue #12, reliability finding 8)."""
+    path = tmp_path / "blowup.mcap"
+    env = envs.FlightLogRecorder(gym.make("FlexSim/GTM-LevelHold-v0", aero="quasi-steady", turbulence="none"), path)
+    _, info = env.reset(seed=0)
+    env.step(info["trim_action"])
+    base = env.unwrapped
+    base._x[base.dynamics.layout.q.start] = 1e200  # inject a blow-up state
+    *_, terminated, _, step_info = env.step(info["trim_action"])
+    env.close()
+    assert terminated and step_info["termination_reason"] == "non_finite"
+    log = read_flight_log(path)
+    assert log.complete and np.all(np.diff(log.t) > 0)
+    assert any("non_finite" in e.text and e.level == "error" for e in log.events)
