@@ -30,13 +30,10 @@ modify the linearisation point or the linear model only, never the trim, and are
                         the reference is at the fixed density and this switch restores the true one
 ======================  ===========================================================================================
 
-``--formulation eq28`` is a study-level stand-in for the paper's force resolution (eq. 28 with alpha_i0 = W/U and
-the section drag d = l alpha_i0, which is what the paper's T_e = W sin(theta) in all rows of Tables 2-3 implies):
-f = l [alpha_i0, 0, -1] - l alpha_i0 [1, 0, alpha_i0] has no component along body x, in trim and, alpha_i0 being the
-instantaneous W/U, under every perturbation. It is applied as the force of each wing/stabilizer strip in its (n, d)
-plane with zero body-x component (c_n = -L, c_d = -c_n n_x/d_x; the probe's ``bodyx`` resolution,
-``../shared/findings/paper-mechanism-probe.md`` D), in trim and in the linear model; the fin keeps flexsim's model.
-Under it the ``force_resolution`` switch is a no-op (there are no trim-alpha terms left to remove).
+``--formulation paper`` uses the library's force resolution of the paper (``AeroOptions(formulation="paper")``,
+docs/design.md "Force resolution": eq. 28 with alpha_i0 = W/U and d = l alpha_i0, no body-x component of a wing or
+stabilizer strip force, in trim and in the linear model; T_e = W sin(theta)). Under it the ``force_resolution``
+switch is a no-op (there are no trim-alpha terms left to remove).
 
 The flutter Mach of each case is found by a secant/bisection search on the largest real part of the elastic
 modes, started from the level-flight flutter Mach of the same switch (tolerance 5e-5 in Mach), which is cheaper
@@ -118,7 +115,7 @@ class _SwitchedCoupling:
     """The aircraft's strip aerodynamics with study switches (density, Mach of the P-G factor, velocity shift,
     force resolution); everything else delegates to the wrapped :class:`AeroCoupling`."""
 
-    def __init__(self, inner, *, rho=None, mach=None, dv=None, resolution="local", aircraft=None):
+    def __init__(self, inner, *, rho=None, mach=None, dv=None, resolution="local"):
         self._inner, self._rho, self._mach, self._dv = inner, rho, mach, dv
         orig = inner._circulatory
         if resolution == "normal":  # c_n = -L, c_d = 0 on every strip: no lift tilt, no drag
@@ -128,19 +125,8 @@ class _SwitchedCoupling:
                 return lift, moment, 0.0 * tilt, 0.0 * drag, flow
 
             inner._circulatory = circulatory
-        elif resolution == "bodyx":  # wing/stabilizer strips: c_n = -L, c_d = -c_n n_x / d_x (no body-x component)
-            s = inner.strips
-            ex = np.array([aircraft.component(c).dcm[:, 0] for c in s.component])
-            ratio = np.where(s.unsteady, np.einsum("sk,sk->s", s.n, ex) / np.einsum("sk,sk->s", s.d, ex), 0.0)
-            lifting = s.unsteady
-
-            def circulatory(kin, rho_, mach_):
-                lift, moment, tilt, drag, flow = orig(kin, rho_, mach_)
-                return (lift, moment, np.where(lifting, -lift * ratio, tilt), np.where(lifting, 0.0, drag), flow)
-
-            inner._circulatory = circulatory
         elif resolution != "local":
-            raise ValueError(f"resolution = {resolution!r}: must be local, normal or bodyx")
+            raise ValueError(f"resolution = {resolution!r}: must be local or normal")
 
     def __getattr__(self, name):
         return getattr(self._inner, name)
@@ -185,7 +171,7 @@ class Setup:
     mach_pg: float | None = None  # level flutter Mach for the prandtl_glauert switch
     model: str = "US"  # "US" (Theodorsen p-k, the paper's Table 3) or "QS" (quasi-steady, Table 2)
     base_rho_altitude_m: float | None = None  # None: the reference linear model uses the true density
-    formulation: str = "physical"  # or "eq28": strip force normal to the chord in trim and linear model (below)
+    formulation: str = "physical"  # or "paper": the library's force resolution of eq. 28 (AeroOptions.formulation)
     mode_class: str = "any"  # "symmetric" / "antisymmetric": only modes with more than half their energy in that class
 
 
@@ -195,9 +181,7 @@ class Decomposition:
     def __init__(self, setup: Setup):
         self.s = setup
         ac = setup.aircraft
-        self.trim_model = AircraftModel(ac, aero="quasi-steady")
-        if setup.formulation == "eq28":
-            self.trim_model.aero = _SwitchedCoupling(self.trim_model.aero, resolution="bodyx", aircraft=ac)
+        self.trim_model = AircraftModel(ac, aero=AeroOptions("quasi-steady", formulation=setup.formulation))
         self._trim_guess = {}
 
     def _linear_models(self, point, level_point):
@@ -207,8 +191,8 @@ class Decomposition:
             kw["gravity_m_s2"] = 0.0
         if s.switch == "damping":
             kw["structural_damping"] = 0.0
-        qs = AircraftModel(s.aircraft, aero="quasi-steady", **kw)
-        fs = AircraftModel(s.aircraft, aero=AeroOptions("unsteady", 6), **kw)
+        qs = AircraftModel(s.aircraft, aero=AeroOptions("quasi-steady", formulation=s.formulation), **kw)
+        fs = AircraftModel(s.aircraft, aero=AeroOptions("unsteady", 6, formulation=s.formulation), **kw)
         x, u = point.x.copy(), point.u.copy()
         lay = self.trim_model.layout
         cw = {}
@@ -219,9 +203,7 @@ class Decomposition:
             cw["rho"] = float(isa_density(fixed))
         if s.switch == "prandtl_glauert":
             cw["mach"] = s.mach_pg
-        if s.formulation == "eq28":
-            cw["resolution"], cw["aircraft"] = "bodyx", s.aircraft
-        elif s.switch == "force_resolution":
+        if s.switch == "force_resolution" and s.formulation == "physical":
             cw["resolution"] = "normal"
         if s.switch == "aero_alpha":
             cw["dv"] = level_point.x[lay.velocity][0:3] - x[lay.velocity][0:3]
@@ -433,7 +415,7 @@ def main() -> None:
     ap.add_argument("--scaling", default=None, help="JSON object of StructuralScaling factors")
     ap.add_argument("--mass-factor", type=float, default=1.0)
     ap.add_argument("--incidence", type=float, nargs=2, default=None, metavar=("WING", "HTAIL"))
-    ap.add_argument("--formulation", default="physical", choices=("physical", "eq28"))
+    ap.add_argument("--formulation", default="physical", choices=("physical", "paper"))
     ap.add_argument("--mode-class", default="any", choices=("any", "symmetric", "antisymmetric"),
                     help="track the most unstable mode of this class only (energy share > 1/2)")
     ap.add_argument("--fixed-density", type=float, default=None, metavar="ALT",

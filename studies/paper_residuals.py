@@ -77,8 +77,8 @@ def main() -> None:
     ap.add_argument("--incidence", type=float, nargs=2, default=None, metavar=("WING", "HTAIL"))
     ap.add_argument("--fixed-density", type=float, default=None, metavar="ALT")
     ap.add_argument("--damping", type=float, default=None)
-    ap.add_argument("--formulation", default="physical", choices=("physical", "eq28"),
-                    help="eq28: the study-level stand-in for the paper's force resolution (manoeuvre_decomposition.py)")
+    ap.add_argument("--formulation", default="physical", choices=("physical", "paper"),
+                    help="the library's force resolution (AeroOptions.formulation): paper = eq. 28, T_e = W sin(theta)")
     ap.add_argument("--models", nargs="+", default=["US", "QS"], choices=("US", "QS"))
     ap.add_argument("--altitudes", type=float, nargs="+", default=list(ALTITUDES))
     ap.add_argument("--starts-us", type=float, nargs="+", default=None)
