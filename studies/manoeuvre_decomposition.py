@@ -112,11 +112,12 @@ def configure(name: str, scaling: dict | None, mass_factor: float, incidence: tu
 
 
 class _SwitchedCoupling:
-    """The aircraft's strip aerodynamics with study switches (density, Mach of the P-G factor, velocity shift,
-    force resolution); everything else delegates to the wrapped :class:`AeroCoupling`."""
+    """The aircraft's strip aerodynamics with study switches (Mach of the P-G factor, velocity shift, force
+    resolution); everything else delegates to the wrapped :class:`AeroCoupling`. The density of the linearised
+    aerodynamics is the library's option ``AircraftModel(aero_density_kg_m3=...)``."""
 
-    def __init__(self, inner, *, rho=None, mach=None, dv=None, resolution="local"):
-        self._inner, self._rho, self._mach, self._dv = inner, rho, mach, dv
+    def __init__(self, inner, *, mach=None, dv=None, resolution="local"):
+        self._inner, self._mach, self._dv = inner, mach, dv
         orig = inner._circulatory
         if resolution == "normal":  # c_n = -L, c_d = 0 on every strip: no lift tilt, no drag
 
@@ -142,8 +143,7 @@ class _SwitchedCoupling:
         return self._inner.kinematics(q, xi, self._shift(vel), lam, u, wind_c)
 
     def evaluate(self, q, xi, vel, lam, u, rho, mach, wind_c=None):
-        return self._inner.evaluate(q, xi, self._shift(vel), lam, u, rho if self._rho is None else self._rho,
-                                    mach if self._mach is None else self._mach, wind_c)
+        return self._inner.evaluate(q, xi, self._shift(vel), lam, u, rho, mach if self._mach is None else self._mach, wind_c)
 
 
 class _ShiftedInertia:
@@ -191,16 +191,16 @@ class Decomposition:
             kw["gravity_m_s2"] = 0.0
         if s.switch == "damping":
             kw["structural_damping"] = 0.0
+        fixed = s.base_rho_altitude_m
+        if s.switch == "density":  # the density switch toggles between the true and one fixed density
+            fixed = s.rho_altitude_m if fixed is None else None
+        if fixed is not None:  # the library's replication option (AircraftModel.aero_density_kg_m3)
+            kw["aero_density_kg_m3"] = float(isa_density(fixed))
         qs = AircraftModel(s.aircraft, aero=AeroOptions("quasi-steady", formulation=s.formulation), **kw)
         fs = AircraftModel(s.aircraft, aero=AeroOptions("unsteady", 6, formulation=s.formulation), **kw)
         x, u = point.x.copy(), point.u.copy()
         lay = self.trim_model.layout
         cw = {}
-        fixed = s.base_rho_altitude_m
-        if s.switch == "density":  # the density switch toggles between the true and one fixed density
-            fixed = s.rho_altitude_m if fixed is None else None
-        if fixed is not None:
-            cw["rho"] = float(isa_density(fixed))
         if s.switch == "prandtl_glauert":
             cw["mach"] = s.mach_pg
         if s.switch == "force_resolution" and s.formulation == "physical":
