@@ -137,8 +137,10 @@ def add_sim_commands(subparsers: argparse._SubParsersAction) -> None:
 
     names = ", ".join(manoeuvre_names())
     p_sim = subparsers.add_parser("simulate", help="simulate a named manoeuvre or run a manoeuvre script, writing a flight log",
-                                  description=f"Simulate a named manoeuvre ({names}) or run a manoeuvre script (.py).")
-    p_sim.add_argument("manoeuvre", metavar="MANOEUVRE|SCRIPT.py", help=f"one of: {names}; or a Python script")
+                                  description=f"Simulate a named manoeuvre ({names}) or run a manoeuvre script (.py). "
+                                              "A script is Python code and is executed with your rights, like "
+                                              "'python SCRIPT.py': run only scripts you trust.")
+    p_sim.add_argument("manoeuvre", metavar="MANOEUVRE|SCRIPT.py", help=f"one of: {names}; or a Python script (executed as code)")
     p_sim.add_argument("--duration", type=float, metavar="S", help="simulated time [s] (default: the manoeuvre's)")
     p_sim.add_argument("--log", metavar="PATH", help="flight log (.mcap) [logs/<manoeuvre>-<time>.mcap]")
     p_sim.add_argument("--no-log", action="store_true", help="do not write a flight log")
