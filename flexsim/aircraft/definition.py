@@ -27,6 +27,8 @@ __all__ = [
     "MAX_MODES",
     "SectionTable",
     "StripAero",
+    "AeroSettings",
+    "COMPRESSIBILITY",
     "ControlSurface",
     "Component",
     "LumpedMass",
@@ -290,6 +292,30 @@ class StripAero:
         _check_scalar(f"{where}.incidence", self.incidence_rad, -np.deg2rad(15.0), np.deg2rad(15.0))
 
 
+#: Compressibility corrections of the sectional lift-curve slope (aircraft file ``[aero] compressibility``).
+COMPRESSIBILITY = ("prandtl-glauert", "none")
+
+
+@dataclass(frozen=True)
+class AeroSettings:
+    """Aircraft-wide aerodynamic settings (the file's top-level ``[aero]`` table).
+
+    Attributes
+    ----------
+    compressibility : {"prandtl-glauert", "none"}
+        Correction of the circulatory lift-curve slope for the flight Mach number M:
+        ``"prandtl-glauert"`` (default, the paper's "Numerical Model": Cl_alpha / sqrt(1 - M^2), M capped
+        at 0.95) or ``"none"`` (incompressible strip theory, as in the classical Goland and typical-section
+        benchmarks). Models take it unless :class:`~flexsim.model.coupling.AeroOptions` overrides it.
+    """
+
+    compressibility: str = "prandtl-glauert"
+
+    def __post_init__(self) -> None:
+        if self.compressibility not in COMPRESSIBILITY:
+            _fail("aero.compressibility", self.compressibility, f"must be one of {', '.join(repr(c) for c in COMPRESSIBILITY)}")
+
+
 @dataclass(frozen=True, eq=False)
 class ControlSurface:
     """A trailing-edge control surface on a lifting component (paper Fig. 2, eq. 26).
@@ -538,6 +564,8 @@ class Aircraft:
         (default: lift normal and drag along the local relative wind) or ``paper`` (the paper's eq. 28
         with no net body-x component, as its trims imply: T_e = W sin(theta)). Models built on the
         aircraft use it unless their :class:`~flexsim.model.coupling.AeroOptions` say otherwise.
+    aero_settings : AeroSettings
+        Aircraft-wide aerodynamic settings (the file's ``[aero]`` table).
     """
 
     name: str
@@ -549,6 +577,7 @@ class Aircraft:
     design_origin_m: np.ndarray | None = None
     structural_damping_ratio: float = 0.0
     formulation: str = "physical"
+    aero_settings: AeroSettings = field(default_factory=AeroSettings)
 
     def to_design_frame(self, point_m: np.ndarray) -> np.ndarray:
         """A body-axes point [m] in the file's design frame (x aft, y right, z up) [m]."""
@@ -560,6 +589,8 @@ class Aircraft:
         object.__setattr__(self, "structural_damping_ratio", _check_scalar("structural_damping_ratio", self.structural_damping_ratio, 0.0, 0.1))
         if self.formulation not in FORMULATIONS:
             _fail("formulation", self.formulation, f"must be one of {', '.join(repr(f) for f in FORMULATIONS)}")
+        if not isinstance(self.aero_settings, AeroSettings):
+            _fail("aero", self.aero_settings, "must be an AeroSettings")
         comps = tuple(self.components)
         names = [c.name for c in comps]
         if not comps:

@@ -20,6 +20,7 @@ import numpy as np
 
 from flexsim.aircraft.definition import (
     COMPONENT_NAMES,
+    AeroSettings,
     Aircraft,
     Component,
     ControlSurface,
@@ -43,7 +44,8 @@ _DESIGN_TO_BODY = np.diag([-1.0, 1.0, -1.0])
 
 _TOP_KEYS = {"schema_version": True, "name": True, "description": False, "frame": False,
              "components": True, "lumped_masses": False, "engines": False, "structural_damping_ratio": False,
-             "formulation": False}
+             "formulation": False, "aero": False}
+_AIRCRAFT_AERO_KEYS = {"compressibility": False}
 _COMPONENT_KEYS = {"root_m": True, "euler_deg": True, "length_m": True, "bending_modes": False,
                    "torsion_modes": False, "rigid": False, "section_inertia": False, "sweep_deg": False,
                    "sections": True, "control_surface": False, "aero": False}
@@ -255,6 +257,15 @@ def _masses(key: str, items: Any, frame: _Frame) -> list[LumpedMass]:
     return out
 
 
+def _aero_settings(table: Any) -> AeroSettings:
+    table = {} if table is None else table
+    _check_keys("aero", table, _AIRCRAFT_AERO_KEYS)
+    comp = table.get("compressibility", "prandtl-glauert")
+    if not isinstance(comp, str):
+        raise AircraftDefinitionError(f"aero.compressibility = {comp!r}: must be \"prandtl-glauert\" or \"none\"")
+    return AeroSettings(compressibility=comp)
+
+
 def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:
     """Parse the TOML text of an aircraft definition.
 
@@ -301,6 +312,7 @@ def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:
             design_origin_m=frame.origin if frame.kind == "design" else None,
             structural_damping_ratio=doc.get("structural_damping_ratio", 0.0),
             formulation=doc.get("formulation", "physical"),
+            aero_settings=_aero_settings(doc.get("aero")),
         )
     except AircraftDefinitionError as exc:
         raise AircraftDefinitionError(f"{source}: {exc}") from None

@@ -20,13 +20,14 @@ from scipy.optimize import brentq
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.errors import FlexsimError
+from flexsim.linear.linearize import jacobian
 from flexsim.linear.participation import Participation, describe_mode
 from flexsim.linear.stability import Mode, Spectrum, spectrum
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
-__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "wind_tunnel_flutter"]
+__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter"]
 
 
 class FlutterNotFound(FlexsimError, RuntimeError):
@@ -183,7 +184,7 @@ class FlutterAnalysis:
             if rig > 0:
                 crit = max((m for m in spec.of_kind("rigid")), key=lambda m: m.eigenvalue.real)
                 state["rigid"].append((mach, crit.eigenvalue, crit.dominant_dof))
-            return spec.max_real("elastic")
+            return _growth(spec)
 
         if mach_guess is not None and lo < mach_guess < hi:
             bracket = self._bracket_near(g, mach_guess, lo, hi)
@@ -196,15 +197,24 @@ class FlutterAnalysis:
                     return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state)
         grid = np.arange(lo, hi + 1e-12, mach_step)
         prev_m, prev_g = None, None
+        skipped: list[float] = []
         _, surf_hi = self.aircraft.control_limits()
         for mach in grid:
             val = g(float(mach))
             trim_point = state["last"][0]
             if np.any(np.abs(trim_point.u[1:]) > surf_hi[1:] + 1e-12):
                 state["guess"] = None  # trim needs a surface beyond its limit: not flyable, skip this speed
+                skipped.append(float(mach))
                 continue
             if val > 0:
                 if prev_m is None:
+                    if skipped:
+                        raise FlutterNotFound(
+                            f"{self.aero_model}: unstable at M = {mach:.4f}, the first flyable Mach number of the search "
+                            f"({manoeuvre.describe()}); the lower Mach numbers {skipped[0]:.3f} to {skipped[-1]:.3f} need a "
+                            "control surface beyond its limit to trim, so the crossing cannot be bracketed there "
+                            "(a lower mach_range[0] would not help)"
+                        )
                     raise FlutterNotFound(
                         f"{self.aero_model}: already unstable at the lower end of the search, M = {mach:.4f} "
                         f"({manoeuvre.describe()}); lower mach_range[0]"
@@ -267,32 +277,188 @@ class FlutterAnalysis:
         )
 
 
-def wind_tunnel_flutter(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range: tuple[float, float] = (10.0, 300.0),
-                        speed_step: float = 5.0, altitude_m: float = 0.0, tol_m_s: float = 1e-3, n_inflow: int = 6) -> tuple[float, float]:
-    """Flutter speed [m/s] and frequency [rad/s] of a restrained aircraft (e.g. a clamped wing) in an airflow.
+@dataclass(frozen=True, eq=False)
+class WindTunnelResult:
+    """Flutter and divergence of a restrained structure in an airflow (:func:`wind_tunnel`).
 
-    The structure is clamped at the body origin and the air flows at -speed along body x (zero angle
-    of attack, no gravity): the classical wind-tunnel flutter problem, e.g. the Goland wing.
+    Attributes
+    ----------
+    aero_model : str
+    density_kg_m3 : float
+        Air density of the tunnel [kg/m^3].
+    compressibility : str
+        Compressibility correction in force ("prandtl-glauert" or "none").
+    flutter_speed_m_s, flutter_frequency_rad_s : float or None
+        Lowest speed at which an oscillatory elastic mode crosses the imaginary axis [m/s], and its
+        frequency [rad/s]; None when no crossing lies in the speed range.
+    divergence_speed_m_s : float or None
+        Lowest speed at which the static aeroelastic stiffness becomes singular [m/s] (a real root
+        through zero); None when it lies outside the speed range or was not searched.
+    speed_range_m_s : tuple of float
+        The searched range [m/s].
+    """
+
+    aero_model: str
+    density_kg_m3: float
+    compressibility: str
+    flutter_speed_m_s: float | None
+    flutter_frequency_rad_s: float | None
+    divergence_speed_m_s: float | None
+    speed_range_m_s: tuple[float, float]
+
+    @property
+    def first_instability(self) -> str:
+        """Which instability comes first: "flutter", "divergence" or "none"."""
+        f, d = self.flutter_speed_m_s, self.divergence_speed_m_s
+        if f is None and d is None:
+            return "none"
+        if d is None or (f is not None and f <= d):
+            return "flutter"
+        return "divergence"
+
+
+#: Relative tolerance on "unstable": a real part counts as positive only above this fraction of the
+#: mode's |eigenvalue| (damping ratio below -1e-9). Round-off on a neutrally stable mode (e.g. +1e-14 1/s
+#: on an undamped structure without aerodynamics) is not an instability.
+UNSTABLE_DAMPING = 1e-9
+
+
+def _growth(spec: Spectrum) -> float:
+    """Largest real part of the oscillatory elastic modes, zeroed within round-off of neutral [1/s]."""
+    cands = [m for m in spec.of_kind("elastic") if m.frequency_rad_s >= 0.5]
+    if not cands:
+        return -np.inf
+    worst = max(cands, key=lambda m: m.eigenvalue.real)
+    re = worst.eigenvalue.real
+    return re if abs(re) > UNSTABLE_DAMPING * abs(worst.eigenvalue) else 0.0
+
+
+def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range: tuple[float, float] = (10.0, 300.0),
+                speed_step: float = 5.0, density_kg_m3: float | None = None, altitude_m: float = 0.0,
+                compressibility: str = "file", tol_m_s: float = 1e-3, n_inflow: int = 6,
+                flutter: bool = True, divergence: bool = True) -> WindTunnelResult:
+    """Flutter and divergence speeds of a restrained aircraft (e.g. a clamped wing) in an airflow.
+
+    The structure is clamped at the body origin and the air flows at -speed along body x (zero angle of
+    attack, no gravity): the classical wind-tunnel problem, e.g. the Goland wing. Flutter: the lowest
+    speed at which an oscillatory elastic mode crosses the imaginary axis (scan on ``speed_step``, Brent
+    to ``tol_m_s``). Divergence: the lowest speed at which det K_eff(U) = 0, K_eff = K - K_aero(U) the
+    static aeroelastic stiffness, i.e. a real root passing through zero. It is taken from the
+    quasi-steady model whatever ``aero_model``: in steady flow the wake lag vanishes (C(0) = 1, Peters'
+    lambda0 -> 0), so every model has the same static stiffness (Hodges & Pierce, *Introduction to
+    Structural Dynamics and Aeroelasticity*, 2nd ed., 2011, ch. 4).
+
+    Parameters
+    ----------
+    aircraft : Aircraft
+    aero_model : {"quasi-steady", "unsteady", "theodorsen"}
+    speed_range : (float, float)
+        Searched speeds [m/s], 0 < lo < hi.
+    speed_step : float
+        Scan step [m/s], > 0.
+    density_kg_m3 : float, optional
+        Tunnel air density [kg/m^3]; default the ISA density at ``altitude_m``.
+    altitude_m : float
+        ISA altitude [m] for the density (when not given) and the speed of sound (Mach for the
+        compressibility correction).
+    compressibility : {"file", "prandtl-glauert", "none"}
+        See :class:`~flexsim.model.coupling.AeroOptions`.
+    flutter, divergence : bool
+        Search the flutter speed, the divergence speed (default both).
+
+    Raises
+    ------
+    ValueError
+        For a bad argument (named, with the allowed range).
     """
     if aero_model not in AERO_MODELS:
         raise ValueError(f"aero_model = {aero_model!r}: must be one of {', '.join(AERO_MODELS)}")
+    lo, hi = (float(v) for v in speed_range)
+    if not (np.isfinite(lo) and np.isfinite(hi) and 0.0 < lo < hi):
+        raise ValueError(f"speed_range = {speed_range!r}: must satisfy 0 < lo < hi [m/s]")
+    if not (np.isfinite(speed_step) and 0.0 < speed_step <= hi - lo):
+        raise ValueError(f"speed_step = {speed_step!r}: must be in (0, {hi - lo:g}] m/s (the width of speed_range)")
+    if not (np.isfinite(tol_m_s) and tol_m_s > 0.0):
+        raise ValueError(f"tol_m_s = {tol_m_s!r}: must be > 0 [m/s]")
+    base = dict(variant="restrained", gravity_m_s2=0.0, altitude_m=altitude_m, air_density_kg_m3=density_kg_m3)
+
+    def model(speed: float, name: str) -> AircraftModel:
+        return AircraftModel(aircraft, aero=AeroOptions(name, n_inflow, compressibility=compressibility),
+                             restrained_velocity_m_s=[speed, 0.0, 0.0], **base)
+
+    probe = model(lo, "quasi-steady")
+    if probe.aero is None or probe.aero.strips.n_strips == 0:
+        raise ValueError(f"aircraft {aircraft.name!r} has no aerodynamic strips: a wind tunnel has nothing to act on")
+    rho = density_kg_m3 if density_kg_m3 is not None else isa_density(float(altitude_m))
 
     def spec_at(speed: float) -> Spectrum:
-        kw = dict(variant="restrained", gravity_m_s2=0.0, restrained_velocity_m_s=[speed, 0.0, 0.0], altitude_m=altitude_m)
         if aero_model == "theodorsen":
-            qs = AircraftModel(aircraft, aero="quasi-steady", **kw)
-            fs = AircraftModel(aircraft, aero=AeroOptions("unsteady", n_inflow), **kw)
-            return spectrum(qs, qs.layout.zeros(), np.zeros(4), aero_model="theodorsen", pk_model=fs)
-        model = AircraftModel(aircraft, aero=AeroOptions(aero_model, n_inflow), **kw)
-        return spectrum(model, model.layout.zeros(), np.zeros(4), aero_model=aero_model)
+            qs = model(speed, "quasi-steady")
+            return spectrum(qs, qs.layout.zeros(), np.zeros(4), aero_model="theodorsen", pk_model=model(speed, "unsteady"))
+        m = model(speed, aero_model)
+        return spectrum(m, m.layout.zeros(), np.zeros(4), aero_model=aero_model)
 
-    g: Callable[[float], float] = lambda sp: spec_at(sp).max_real("elastic")
+    speeds = np.arange(lo, hi + 1e-9 * hi, speed_step)
+    u_f = w_f = None
+    g: Callable[[float], float] = lambda sp: _growth(spec_at(sp))
     prev = None
-    for speed in np.arange(speed_range[0], speed_range[1] + 1e-9, speed_step):
+    for speed in speeds if flutter else ():
         if g(float(speed)) > 0:
             if prev is None:
-                raise FlutterNotFound(f"already unstable at {speed} m/s; lower speed_range[0]")
-            u_f = brentq(g, prev, float(speed), xtol=tol_m_s)
-            return float(u_f), spec_at(u_f).critical("elastic").frequency_rad_s
+                raise FlutterNotFound(f"{aero_model}: an elastic mode is already unstable at the lowest speed "
+                                      f"{speed:g} m/s (growth rate {g(float(speed)):.3g} 1/s); lower speed_range[0]")
+            u_f = float(brentq(g, prev, float(speed), xtol=tol_m_s))
+            w_f = spec_at(u_f).critical("elastic").frequency_rad_s
+            break
         prev = float(speed)
-    raise FlutterNotFound(f"no flutter for {speed_range[0]} <= U <= {speed_range[1]} m/s ({aero_model})")
+    u_d = _divergence_speed(lambda sp: model(sp, "quasi-steady"), speeds, tol_m_s) if divergence else None
+    comp = probe.aero.compressibility
+    return WindTunnelResult(aero_model, float(rho), comp, u_f, w_f, u_d, (lo, hi))
+
+
+def _static_stiffness_sign(model: AircraftModel) -> float:
+    """sign(det K_eff) |det K_eff|^(1/n) of the static aeroelastic stiffness per unit mass [1/s^2].
+
+    K_eff = -d(V_dot)/d[q; xi] at rest in the stream: M^-1 (K - K_aero) of the restrained quasi-steady
+    model; its determinant is positive at zero speed and changes sign at divergence.
+    """
+    lay = model.layout
+    x0 = model.layout.zeros()
+    a, _ = jacobian(model, x0, np.zeros(4))
+    conf = np.arange(lay.q.start, lay.xi.stop)
+    rows = np.arange(lay.velocity.start, lay.velocity.stop)
+    k_eff = -a[np.ix_(rows, conf)]
+    sign, logdet = np.linalg.slogdet(k_eff)
+    return float(sign * np.exp(logdet / conf.size))
+
+
+def _divergence_speed(model_at: Callable[[float], AircraftModel], speeds: np.ndarray, tol_m_s: float) -> float | None:
+    """Lowest speed in ``speeds`` (scan + Brent) at which det K_eff changes sign, or None."""
+    f = lambda sp: _static_stiffness_sign(model_at(sp))
+    prev = None
+    for speed in speeds:
+        val = f(float(speed))
+        if val <= 0.0:
+            if prev is None:
+                return float(speed)
+            return float(brentq(f, prev, float(speed), xtol=tol_m_s))
+        prev = float(speed)
+    return None
+
+
+def wind_tunnel_flutter(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range: tuple[float, float] = (10.0, 300.0),
+                        speed_step: float = 5.0, altitude_m: float = 0.0, tol_m_s: float = 1e-3, n_inflow: int = 6,
+                        density_kg_m3: float | None = None, compressibility: str = "file") -> tuple[float, float]:
+    """Flutter speed [m/s] and frequency [rad/s] of a restrained aircraft in an airflow (see :func:`wind_tunnel`).
+
+    Raises
+    ------
+    FlutterNotFound
+        When no elastic mode crosses the imaginary axis in ``speed_range``.
+    """
+    res = wind_tunnel(aircraft, aero_model=aero_model, speed_range=speed_range, speed_step=speed_step, altitude_m=altitude_m,
+                      tol_m_s=tol_m_s, n_inflow=n_inflow, density_kg_m3=density_kg_m3, compressibility=compressibility,
+                      divergence=False)
+    if res.flutter_speed_m_s is None:
+        raise FlutterNotFound(f"no flutter for {speed_range[0]} <= U <= {speed_range[1]} m/s ({aero_model})")
+    return res.flutter_speed_m_s, res.flutter_frequency_rad_s

@@ -79,6 +79,9 @@ class AircraftModel:
     altitude_m : float, optional
         Altitude of a restrained aircraft [m] (air density and speed of sound; ISA). A free aircraft
         uses its own altitude -Z.
+    air_density_kg_m3 : float, optional
+        Air density of a restrained aircraft [kg/m^3], in (0, 10], instead of the ISA density at
+        ``altitude_m`` (a wind tunnel at a given density; the speed of sound stays ISA's at ``altitude_m``).
     frozen_q, frozen_xi : array_like, optional
         Values of the elastic coordinates of a quasi-rigid model [m], [rad] (default zero).
     structural_damping : float, optional
@@ -112,6 +115,7 @@ class AircraftModel:
         restrained_euler_rad: np.ndarray | None = None,
         restrained_velocity_m_s: np.ndarray | None = None,
         altitude_m: float = 0.0,
+        air_density_kg_m3: float | None = None,
         frozen_q: np.ndarray | None = None,
         frozen_xi: np.ndarray | None = None,
         wind=None,
@@ -169,6 +173,14 @@ class AircraftModel:
             raise ValueError(f"restrained_velocity_m_s = {restrained_velocity_m_s!r}: must be 3 finite numbers [m/s]")
         self.altitude_m = float(altitude_m)
         speed_of_sound(self.altitude_m)  # validates the ISA range with a clear message
+        if air_density_kg_m3 is not None:
+            if self.variant is not Variant.RESTRAINED:
+                raise ValueError(f"air_density_kg_m3 = {air_density_kg_m3!r}: only for the restrained variant (a wind tunnel); "
+                                 "a free or quasi-rigid aircraft takes the ISA density at its own altitude")
+            if not (isinstance(air_density_kg_m3, (int, float)) and np.isfinite(air_density_kg_m3) and 0.0 < air_density_kg_m3 <= 10.0):
+                raise ValueError(f"air_density_kg_m3 = {air_density_kg_m3!r}: must be a density in (0, 10] kg/m^3")
+            air_density_kg_m3 = float(air_density_kg_m3)
+        self._rho_fixed = air_density_kg_m3
         self._q_frozen = np.zeros(dofs.nq) if frozen_q is None else np.asarray(frozen_q, float)
         self._xi_frozen = np.zeros(dofs.nxi) if frozen_xi is None else np.asarray(frozen_xi, float)
         if self._q_frozen.shape != (dofs.nq,) or self._xi_frozen.shape != (dofs.nxi,):
@@ -293,7 +305,10 @@ class AircraftModel:
         inflow_terms = None
         if self.aero is not None:
             altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
-            rho = isa_density(float(altitude)) if self.aero_density_kg_m3 is None else self.aero_density_kg_m3
+            if self._rho_fixed is not None:
+                rho = self._rho_fixed
+            else:
+                rho = isa_density(float(altitude)) if self.aero_density_kg_m3 is None else self.aero_density_kg_m3
             mach = float(np.sqrt(v @ v)) / speed_of_sound(float(altitude))
             wind_c = self._strip_wind(t, x, pos, eul)
             m_a, q_a, inflow_terms = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach, wind_c)

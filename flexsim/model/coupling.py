@@ -49,7 +49,7 @@ from typing import NamedTuple
 import numpy as np
 
 from flexsim.aero.inflow import inflow_coefficients
-from flexsim.aircraft.definition import FORMULATIONS
+from flexsim.aircraft.definition import COMPRESSIBILITY, FORMULATIONS
 from flexsim.model.strips import StripSet
 from flexsim.structure.model import StructuralModel
 
@@ -78,12 +78,17 @@ class AeroOptions:
     formulation : {"physical", "paper"} or None
         Resolution of the strip force (module docstring, docs/design.md "Force resolution"); None (default)
         takes the aircraft file's ``formulation`` (itself "physical" unless the file says otherwise).
+    compressibility : {"file", "prandtl-glauert", "none"}
+        Mach correction of the circulatory Cl_alpha: the aircraft file's ``[aero] compressibility``
+        (``"file"``, default; the file's own default is Prandtl-Glauert, the paper's), Prandtl-Glauert
+        1/sqrt(1 - M^2) with M capped at 0.95, or none (incompressible strip theory).
     """
 
     model: str = "unsteady"
     n_inflow: int = 6
     lift_slope: str = "file"
     formulation: str | None = None
+    compressibility: str = "file"
 
     def __post_init__(self) -> None:
         if self.model not in AERO_MODELS:
@@ -93,6 +98,8 @@ class AeroOptions:
             raise ValueError(f"lift_slope = {self.lift_slope!r}: must be \"file\", \"vlm\" or \"2pi\"")
         if self.formulation is not None and self.formulation not in FORMULATIONS:
             raise ValueError(f"formulation = {self.formulation!r}: must be one of {', '.join(FORMULATIONS)} (or None: the aircraft file's)")
+        if self.compressibility not in ("file", *COMPRESSIBILITY):
+            raise ValueError(f"compressibility = {self.compressibility!r}: must be \"file\", \"prandtl-glauert\" or \"none\"")
 
 
 class StripKinematics(NamedTuple):
@@ -140,6 +147,9 @@ class AeroCoupling:
 
     def __init__(self, structure: StructuralModel, options: AeroOptions) -> None:
         self.options = options
+        comp = options.compressibility
+        #: The compressibility correction in force ("prandtl-glauert" or "none"), resolved from the file.
+        self.compressibility = structure.aircraft.aero_settings.compressibility if comp == "file" else comp
         self.strips = s = StripSet.from_model(structure, options.lift_slope)
         self._nq = structure.dofs.nq
         self._ext_u = np.zeros(4)
@@ -196,6 +206,18 @@ class AeroCoupling:
         camber = s.flap_sign * ext[s.flap_index] * (s.flap_w[:, 0] + 0.5 * s.flap_w[:, 1])
         return StripKinematics(p_mat, d_mat, alpha_el, u0, w_ea, w34, w34 - lam0, w0 - lam0 - 0.5 * w2, alpha_el + camber)
 
+    def compressibility_factor(self, mach: float) -> float:
+        """beta such that Cl_alpha(M) = Cl_alpha0 / beta [-].
+
+        Prandtl-Glauert rule (H. Glauert, "The effect of compressibility on the lift of an aerofoil",
+        Proc. R. Soc. Lond. A 118, 113-119, 1928):
+        beta = sqrt(1 - M^2) with M capped at 0.95 (the paper's "Numerical Model"); 1 when the
+        correction is switched off (``compressibility = "none"``).
+        """
+        if self.compressibility == "none":
+            return 1.0
+        return float(np.sqrt(1.0 - min(mach, _MACH_CAP) ** 2))
+
     def _circulatory(self, kin: StripKinematics, rho: float, mach: float):
         """Circulatory lift, moment about the EA, lift x flow angle and drag per unit span.
 
@@ -204,7 +226,7 @@ class AeroCoupling:
         lift are formed without dividing by u0 (well defined in still air).
         """
         b = self._b
-        kfac = self._k0 / np.sqrt(1.0 - min(mach, _MACH_CAP) ** 2)  # Prandtl-Glauert on Cl_alpha
+        kfac = self._k0 / self.compressibility_factor(mach)
         two_pi_rho_b = 2.0 * np.pi * rho * b * kfac
         lift = two_pi_rho_b * kin.u0 * kin.wc
         moment = 0.5 * two_pi_rho_b * b * kin.u0 * kin.w_moment + self._ab * lift
@@ -229,7 +251,8 @@ class AeroCoupling:
         rho : float
             Air density [kg/m^3].
         mach : float
-            Flight Mach number (Prandtl-Glauert factor on Cl_alpha, capped at M = 0.95).
+            Flight Mach number (Prandtl-Glauert factor on Cl_alpha, capped at M = 0.95, unless the
+            compressibility correction is off).
         wind_c : ndarray, shape (n_s, 3), optional
             Air velocity at the strips, component axes [m/s] (its time derivative is neglected in the
             apparent-mass and inflow terms).

@@ -12,9 +12,9 @@
 * ``aileron-roll`` — GTM level trim, aileron -3 deg (right wing trailing edge up: roll right) for 2 s.
 * ``gust-encounter`` — GTM level trim flying into a 1-cos up-gust, U_ds = 10 m/s, H = 60 m (CS-25.341).
 * ``flutter-onset`` — the Goland wing clamped in a wind tunnel (sea level) at 1.05 times its flutter
-  speed with Peters' unsteady aerodynamics (found by :func:`goland_flutter_speed`, 131.6 m/s): the
+  speed with Peters' unsteady aerodynamics (found by :func:`goland_flutter_speed`, 136.2 m/s): the
   oscillation that starts from the static sag under gravity grows until the structural-limit event stops
-  the run. With ``aero="quasi-steady"`` the same tunnel speed is used (that model flutters from 63.9 m/s).
+  the run. With ``aero="quasi-steady"`` the same tunnel speed is used (that model flutters from 64.6 m/s).
 
 The GTM runs are at 9144 m and M 0.75 (the paper's 30 000 ft cruise) with the notional GTM of
 ``flexsim/aircraft/data/gtm.md``.
@@ -240,8 +240,9 @@ def goland_flutter_speed(aero: str = "unsteady") -> float:
     """Flutter speed of the clamped Goland wing at sea level [m/s] with this model
     (:func:`flexsim.linear.flutter.wind_tunnel_flutter`, cached).
 
-    Literature: 137 m/s at 70.7 rad/s (Goland 1945; Patil, Hodges & Cesnik 2001); flexsim's m = 3,
-    n = 2 model gives 131.6 m/s at 70.2 rad/s with Peters N = 6 inflow and 63.9 m/s quasi-steady.
+    Literature: 137.2 m/s at 70.7 rad/s (Goland 1945; Patil, Hodges & Cesnik 2001), incompressible;
+    flexsim's m = 3, n = 2 model (incompressible, as the bundled file sets) gives 136.2 m/s at 70.0 rad/s
+    with Peters N = 6 inflow and 64.6 m/s quasi-steady.
     """
     if aero not in _AERO_CHOICES:
         raise ValueError(f"aero = {aero!r}: must be one of {', '.join(_AERO_CHOICES)}")

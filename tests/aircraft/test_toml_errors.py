@@ -93,3 +93,16 @@ def test_file_errors_carry_the_path(tmp_path):
     path.write_text(VALID.replace("bending_modes = 2", "bending_modes = -1"))
     with pytest.raises(AircraftDefinitionError, match=re.escape(str(path)) + r": components\.right_wing\.bending_modes = -1"):
         load_aircraft(path)
+
+
+@pytest.mark.parametrize("table, fragment", [
+    ('[aero]\ncompressibility = "glauert"\n', "aero.compressibility = 'glauert': must be one of 'prandtl-glauert', 'none'"),
+    ("[aero]\ncompressibility = 1\n", "aero.compressibility = 1: must be"),
+    ("[aero]\nmach_cap = 0.9\n", "aero.mach_cap: unknown key"),
+])
+def test_aircraft_aero_settings_are_checked(table, fragment):
+    text = VALID.replace('name = "test wing"\n', f'name = "test wing"\n{table}')
+    with pytest.raises(AircraftDefinitionError, match=re.escape(fragment)):
+        parse_aircraft(text, source="t.toml")
+    ok = parse_aircraft(VALID.replace('name = "test wing"\n', 'name = "test wing"\n[aero]\ncompressibility = "none"\n'))
+    assert ok.aero_settings.compressibility == "none"

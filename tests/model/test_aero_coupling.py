@@ -25,6 +25,7 @@ from flexsim.aircraft.definition import StripAero
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.atmosphere import isa_density
 from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.coupling import AeroOptions
 from flexsim.structure.shapes import bending_shapes, cantilever_beta_l, torsion_shapes
 
 RHO0 = isa_density(0.0)
@@ -78,13 +79,18 @@ def test_generalized_airloads_equal_theodorsen_closed_form_strip_by_strip():
 
 def test_prandtl_glauert_factor_scales_circulatory_loads():
     # Paper, "Numerical Model": Cl_alpha / sqrt(1 - M^2); exact ratio of strip lifts at M = 0.6 and 0.
+    # The bundled Goland file is incompressible ([aero] compressibility = "none"): switched on per model.
     aircraft, _ = _goland()
-    model = _tunnel(aircraft, 100.0)
+    model = AircraftModel(aircraft, variant="restrained", aero=AeroOptions("quasi-steady", compressibility="prandtl-glauert"),
+                          gravity_m_s2=0.0, restrained_velocity_m_s=[100.0, 0.0, 0.0])
     d = model.structure.dofs
     q, xi, vel = np.zeros(d.nq), np.full(d.nxi, 0.01), np.r_[[100.0, 0, 0, 0, 0, 0], np.zeros(d.nq + d.nxi)]
     l0 = model.aero.strip_loads(q, xi, vel, np.zeros(0), np.zeros(4), RHO0, 0.0).lift_n_m
     l6 = model.aero.strip_loads(q, xi, vel, np.zeros(0), np.zeros(4), RHO0, 0.6).lift_n_m
     np.testing.assert_allclose(l6 / l0, 1.25, rtol=1e-12)
+    off = _tunnel(aircraft, 100.0)  # the file's setting: no correction
+    l6_off = off.aero.strip_loads(q, xi, vel, np.zeros(0), np.zeros(4), RHO0, 0.6).lift_n_m
+    np.testing.assert_allclose(l6_off, l0, rtol=1e-15)
 
 
 def test_still_air_added_mass_matches_closed_form_frequencies():

@@ -1,6 +1,6 @@
 """Time domain and eigen-analysis agree (issue 5 acceptance).
 
-The Goland wing clamped in a wind tunnel (finite-state aerodynamics, flutter at 131.6 m/s in our
+The Goland wing clamped in a wind tunnel (finite-state aerodynamics, flutter at 136.2 m/s in our
 model) is started on the real part of the eigenvector of its least-stable elastic mode, below (110 m/s)
 and above (150 m/s) the flutter speed, and simulated with the nonlinear model. A damped sinusoid
 y = A exp(sigma t) cos(omega t + phase) fitted to the tip deflection gives the growth rate and
