@@ -25,7 +25,10 @@ __all__ = ["add_flutter_commands"]
 def _manoeuvre(args: argparse.Namespace, altitude: float, mach: float) -> SteadyManoeuvre:
     gamma = None if getattr(args, "glide", False) else math.radians(getattr(args, "climb_deg", None) or 0.0)
     radius = args.turn_radius_m if getattr(args, "turn_radius_m", None) is not None else math.inf
-    return SteadyManoeuvre(mach * SteadyManoeuvre.level(altitude, mach=0.5).speed_m_s / 0.5, altitude, radius, gamma)
+    coordinated = bool(getattr(args, "coordinated", False))
+    if coordinated and radius == math.inf:
+        raise ValueError("--coordinated: applies to turns only; give --turn-radius-m")
+    return SteadyManoeuvre(mach * SteadyManoeuvre.level(altitude, mach=0.5).speed_m_s / 0.5, altitude, radius, gamma, coordinated)
 
 
 def _trim(args: argparse.Namespace) -> int:
@@ -84,6 +87,8 @@ def _flutter(args: argparse.Namespace) -> int:
 def _sweep(args: argparse.Namespace) -> int:
     kind = "turn" if args.turn else "climb"
     models = [k.strip().upper() for k in args.models.split(",")]
+    if args.coordinated and kind != "turn":
+        raise ValueError("--coordinated: applies to --turn sweeps only")
     for k in models:
         if k not in _MODELS:
             raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
@@ -91,14 +96,16 @@ def _sweep(args: argparse.Namespace) -> int:
     check_workers(args.workers)
     check_damping(args.structural_damping)
     out = check_out_dir(args.out)
-    record = StudyRecord(out / f"flutter_{kind}.jsonl", resume=args.resume)
+    stem = f"flutter_{kind}_coordinated" if args.coordinated else f"flutter_{kind}"
+    record = StudyRecord(out / f"{stem}.jsonl", resume=args.resume)
     if record.done:
         print(f"resuming: {len(record.done)} finished points read from {record.path}", file=sys.stderr)
     setting = PAPER_REPLICATION if args.paper_replication else RunSettings("as given", args.aircraft, args.formulation,
                                                                             args.linear_density_altitude_m)
     make = turn_cases if kind == "turn" else climb_cases
     cases = make(setting.aircraft, altitudes_m=args.altitudes, models=models, structural_damping=args.structural_damping,
-                 formulation=setting.formulation, linear_density_altitude_m=setting.linear_density_altitude_m)
+                 formulation=setting.formulation, linear_density_altitude_m=setting.linear_density_altitude_m,
+                 **({"coordinated": True} if args.coordinated else {}))
     try:
         rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=True, record=record)
     except KeyboardInterrupt:
@@ -110,12 +117,12 @@ def _sweep(args: argparse.Namespace) -> int:
     record.close()
     for row in rows:
         row["settings"] = setting.label
-    csv_path, json_path = write_results(rows, out, f"flutter_{kind}")
-    png = plot_study(rows, kind, out / f"flutter_{kind}.png")
+    csv_path, json_path = write_results(rows, out, stem)
+    png = plot_study(rows, kind, out / f"{stem}.png")
     figures = [png]
     top = max(args.altitudes)
     if any(r["altitude_m"] == top and "mach" in r for r in rows):
-        figures.append(plot_trim(rows, kind, out / f"flutter_{kind}_trim_{top:.0f}m.png", altitude_m=top))
+        figures.append(plot_trim(rows, kind, out / f"{stem}_trim_{top:.0f}m.png", altitude_m=top))
     lines, doc = sweep_report(rows, kind)
     doc["settings"] = setting.__dict__
     score_path = out / f"flutter_{kind}_scorecard.json"
@@ -155,6 +162,8 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_trim.add_argument("--turn-radius-m", type=float, default=None, help="steady turn of this radius [m]")
     p_trim.add_argument("--climb-deg", type=float, default=None, help="flight-path angle [deg] [0]")
     p_trim.add_argument("--glide", action="store_true", help="thrust zero, flight-path angle unknown")
+    p_trim.add_argument("--coordinated", action="store_true",
+                        help="coordinated turn: zero sideslip at the CG, heading free (default: the paper's turn, heading on track)")
     p_trim.add_argument("--no-limits", action="store_true", help="do not enforce thrust/surface limits")
     _add_formulation(p_trim)
     p_trim.set_defaults(func=_trim)
@@ -178,6 +187,7 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     group.add_argument("--climb", action="store_true", help="climbs and descents, gamma = -15..15 deg")
     p_sw.add_argument("--altitudes", type=float, nargs="+", default=[0.0, 3048.0, 6096.0, 9144.0], metavar="H")
     p_sw.add_argument("--models", default="QS,US")
+    p_sw.add_argument("--coordinated", action="store_true", help="with --turn: coordinated turns (zero sideslip, heading free)")
     p_sw.add_argument("--scheduler", metavar="ADDRESS", help="Dask distributed scheduler (default: local processes); "
                       "tasks and results are exchanged pickled: give only the address of a cluster you trust")
     p_sw.add_argument("--workers", type=int, default=os.cpu_count() or 1)

@@ -62,6 +62,8 @@ class StudyCase:
     linear_density_altitude_m : float or None
         Paper-replication setting: the linearised aerodynamics of the flutter search use the ISA density
         at this altitude [m] (the trims keep the true one); None: the flight's true density.
+    coordinated : bool
+        Turns: coordinated (zero sideslip, heading free) instead of the paper's turn.
     """
 
     aircraft: str
@@ -74,10 +76,13 @@ class StudyCase:
     structural_damping: float | None = None
     formulation: str | None = None
     linear_density_altitude_m: float | None = None
+    coordinated: bool = False
 
     def __post_init__(self) -> None:
         if self.model not in MODELS:
             raise ValueError(f"model = {self.model!r}: must be one of {', '.join(MODELS)}")
+        if self.coordinated and self.turn_radius_m == math.inf:
+            raise ValueError("coordinated = True: applies to turns only (give turn_radius_m)")
         if self.formulation is not None and self.formulation not in ("physical", "paper"):
             raise ValueError(f"formulation = {self.formulation!r}: must be \"physical\" or \"paper\" (or None: the aircraft file's)")
         if self.linear_density_altitude_m is not None:
@@ -125,7 +130,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None) ->
     try:
         analysis = analysis or case.analysis()
         start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_min)
-        man = SteadyManoeuvre(start.speed_m_s, case.altitude_m, case.turn_radius_m, gamma)
+        man = SteadyManoeuvre(start.speed_m_s, case.altitude_m, case.turn_radius_m, gamma, case.coordinated)
         fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_guess=mach_guess)
     except (FlutterNotFound, TrimError, ValueError) as exc:
         row["error"] = str(exc)
@@ -133,7 +138,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None) ->
     s = fp.trim.summary()
     row.update(
         mach=fp.mach, omega_rad_s=fp.frequency_rad_s, mode=fp.mode.dominant_dof,
-        theta_deg=s["theta_deg"], phi_deg=s["phi_deg"], gamma_deg=s["gamma_deg"], thrust_kN=s["thrust_kN"],
+        theta_deg=s["theta_deg"], phi_deg=s["phi_deg"], sideslip_deg=s["sideslip_deg"], gamma_deg=s["gamma_deg"], thrust_kN=s["thrust_kN"],
         aileron_deg=s["aileron_deg"], elevator_deg=s["elevator_deg"], rudder_deg=s["rudder_deg"],
         tip_deflection_m=s["tip_deflection_m"], tip_twist_deg=s["tip_twist_deg"], evaluations=fp.evaluations,
         rigid_instabilities=len(fp.rigid_instabilities),

@@ -9,6 +9,14 @@ gamma > 0 climbing) and Theta_dot = [0, 0, Omega], Omega = V cos(gamma) / R, so 
 (eq. 37 for gamma = 0; eq. 39 for Omega = 0, where v = V [cos(theta - gamma), 0, sin(theta - gamma)]).
 The equations stay time-invariant because X, Y and psi do not appear in them; the climbing turn (R and
 gamma together) is time-invariant too and is included.
+
+The paper's turn keeps the heading on the track (psi = Omega t), which implies a sideslip
+beta = asin(sin(phi) sin(theta)) at the body origin: a slipping, cross-controlled turn. A **coordinated turn**
+(``coordinated=True``, beyond the paper) frees the heading: psi = chi + Delta_psi with the track chi = Omega t,
+so that v = C(phi, theta, Delta_psi) R_dot(chi = 0), and adds the condition of zero sideslip at the
+centre of gravity, v_cg,y = (v + omega x r_cg)_y = 0 (Stevens & Lewis, *Aircraft Control and Simulation*,
+2nd ed., 2003, sec. 3.6, "coordinated turn": zero sideslip, bank and heading rate related by the turn
+constraint; for gamma = 0 and beta = 0 it reduces to tan(phi) = G / cos(alpha), G = Omega V / g).
 """
 
 from __future__ import annotations
@@ -39,12 +47,16 @@ class SteadyManoeuvre:
     climb_angle_rad : float or None
         Flight-path angle gamma [rad] (> 0 climbing); None for a glide, where gamma is an unknown and the
         thrust is zero.
+    coordinated : bool
+        Turns only: zero sideslip at the centre of gravity with the heading free (module docstring)
+        instead of the paper's heading-on-track turn (default False, the paper's eqs. 36-37).
     """
 
     speed_m_s: float
     altitude_m: float
     turn_radius_m: float = math.inf
     climb_angle_rad: float | None = 0.0
+    coordinated: bool = False
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.speed_m_s) and 1.0 <= self.speed_m_s <= 400.0):
@@ -54,6 +66,11 @@ class SteadyManoeuvre:
             raise ValueError(f"turn_radius_m = {self.turn_radius_m!r}: must be inf (straight) or |R| >= 100 m")
         if self.climb_angle_rad is not None and not abs(self.climb_angle_rad) <= math.radians(30.0):
             raise ValueError(f"climb_angle_rad = {self.climb_angle_rad!r}: must be within +-30 deg (or None for a glide)")
+        if not isinstance(self.coordinated, bool):
+            raise ValueError(f"coordinated = {self.coordinated!r}: must be True or False")
+        if self.coordinated and self.turn_radius_m == math.inf:
+            raise ValueError("coordinated = True: applies to turns only (give a finite turn radius); straight flight "
+                             "is symmetric and has no sideslip to coordinate")
 
     # ------------------------------------------------------------------ constructors
     @classmethod
@@ -62,9 +79,10 @@ class SteadyManoeuvre:
         return cls(_speed(altitude_m, speed_m_s, mach), altitude_m)
 
     @classmethod
-    def turn(cls, altitude_m: float, radius_m: float, *, speed_m_s: float | None = None, mach: float | None = None) -> "SteadyManoeuvre":
-        """Steady level turn of radius R, eqs. (36)-(37)."""
-        return cls(_speed(altitude_m, speed_m_s, mach), altitude_m, turn_radius_m=radius_m)
+    def turn(cls, altitude_m: float, radius_m: float, *, speed_m_s: float | None = None, mach: float | None = None,
+             coordinated: bool = False) -> "SteadyManoeuvre":
+        """Steady level turn of radius R: eqs. (36)-(37), or coordinated (zero sideslip, heading free)."""
+        return cls(_speed(altitude_m, speed_m_s, mach), altitude_m, turn_radius_m=radius_m, coordinated=coordinated)
 
     @classmethod
     def climb(cls, altitude_m: float, climb_angle_rad: float, *, speed_m_s: float | None = None, mach: float | None = None) -> "SteadyManoeuvre":
@@ -77,9 +95,11 @@ class SteadyManoeuvre:
         return cls(_speed(altitude_m, speed_m_s, mach), altitude_m, climb_angle_rad=None)
 
     @classmethod
-    def climbing_turn(cls, altitude_m: float, radius_m: float, climb_angle_rad: float, *, speed_m_s: float | None = None, mach: float | None = None) -> "SteadyManoeuvre":
+    def climbing_turn(cls, altitude_m: float, radius_m: float, climb_angle_rad: float, *, speed_m_s: float | None = None,
+                      mach: float | None = None, coordinated: bool = False) -> "SteadyManoeuvre":
         """Steady climbing (or descending) turn: R and gamma together (time-invariant, not in the paper)."""
-        return cls(_speed(altitude_m, speed_m_s, mach), altitude_m, turn_radius_m=radius_m, climb_angle_rad=climb_angle_rad)
+        return cls(_speed(altitude_m, speed_m_s, mach), altitude_m, turn_radius_m=radius_m, climb_angle_rad=climb_angle_rad,
+                   coordinated=coordinated)
 
     # ------------------------------------------------------------------ derived
     @property
@@ -94,12 +114,12 @@ class SteadyManoeuvre:
 
     def with_speed(self, speed_m_s: float) -> "SteadyManoeuvre":
         """The same manoeuvre at another speed (used by the flutter search)."""
-        return SteadyManoeuvre(speed_m_s, self.altitude_m, self.turn_radius_m, self.climb_angle_rad)
+        return SteadyManoeuvre(speed_m_s, self.altitude_m, self.turn_radius_m, self.climb_angle_rad, self.coordinated)
 
     def describe(self) -> str:
         """Human-readable name, e.g. "level turn R = 5000 m at M 0.740, H = 9144 m"."""
         gamma = "glide" if self.is_glide else f"gamma = {math.degrees(self.climb_angle_rad):+.2f} deg"
-        turn = "" if self.turn_radius_m == math.inf else f"turn R = {self.turn_radius_m:.0f} m, "
+        turn = "" if self.turn_radius_m == math.inf else f"{'coordinated ' if self.coordinated else ''}turn R = {self.turn_radius_m:.0f} m, "
         kind = "level flight" if (not turn and not self.is_glide and self.climb_angle_rad == 0.0) else "steady flight"
         return f"{kind} ({turn}{gamma}) at M {self.mach:.4f} (V = {self.speed_m_s:.2f} m/s), H = {self.altitude_m:.0f} m"
 
@@ -107,15 +127,18 @@ class SteadyManoeuvre:
         """Omega = V cos(gamma) / R [rad/s] (0 for straight flight)."""
         return 0.0 if self.turn_radius_m == math.inf else self.speed_m_s * math.cos(gamma) / self.turn_radius_m
 
-    def body_rates(self, phi: float, theta: float, gamma: float) -> tuple[np.ndarray, np.ndarray]:
+    def body_rates(self, phi: float, theta: float, gamma: float, heading_offset: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """Body velocity v and angular velocity omega of the steady manoeuvre (eqs. 35, 37, 39).
 
         Parameters
         ----------
         phi, theta : float
-            Bank and pitch angles [rad] (psi = 0: the equations do not depend on it).
+            Bank and pitch angles [rad].
         gamma : float
             Flight-path angle [rad].
+        heading_offset : float
+            Heading minus track, psi - chi [rad] (0 in the paper's turn; free in a coordinated turn).
+            The track is taken as chi = 0: the equations do not depend on it.
 
         Returns
         -------
@@ -123,7 +146,7 @@ class SteadyManoeuvre:
         omega : ndarray, shape (3,)  [rad/s], body axes
         """
         r_dot = self.speed_m_s * np.array([math.cos(gamma), 0.0, -math.sin(gamma)])
-        v = dcm_321(phi, theta, 0.0) @ r_dot
+        v = dcm_321(phi, theta, heading_offset) @ r_dot
         omega = euler_rate_matrix(phi, theta) @ np.array([0.0, 0.0, self.turn_rate(gamma)])
         return v, omega
 

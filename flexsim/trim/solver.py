@@ -4,7 +4,8 @@ Unknowns: pitch theta, bank phi, controls [T_e, delta_a, delta_e, delta_r] (the 
 replaces T_e in a glide, where T_e = 0) and the static elastic coordinates q, xi. The manoeuvre fixes the
 velocities v, omega (:meth:`SteadyManoeuvre.body_rates`); the elastic rates and the inflow states are zero.
 Equations: the model's own right-hand side, V_dot = 0 (6 rigid-body + all elastic equations) — a square
-system solved by scipy's MINPACK hybrid method. The residual reported is the norm of V_dot scaled by g
+system solved by scipy's MINPACK hybrid method. A coordinated turn adds the heading offset psi - chi as an
+unknown and zero sideslip at the centre of gravity as an equation. The residual reported is the norm of V_dot scaled by g
 (translations, elastic coordinates) and g / 5 m (rotations); trim converges to ~1e-12.
 """
 
@@ -18,6 +19,7 @@ from scipy.optimize import root
 
 from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel, Variant
+from flexsim.structure.kinematics import dcm_321
 from flexsim.structure.shapes import bending_shapes, torsion_shapes
 from flexsim.trim.manoeuvre import SteadyManoeuvre
 
@@ -45,9 +47,19 @@ class TrimPoint:
     theta, phi, gamma : float
         Pitch, bank and flight-path angles [rad].
     alpha, beta : float
-        Angle of attack atan(W/U) and sideslip asin(V/|v|) of the body axes [rad].
+        Angle of attack atan(W/U) and sideslip asin(V/|v|) of the body axes at the body origin o [rad].
     load_factor : float
-        Aerodynamic + thrust force along -z_body over the weight [-].
+        Aerodynamic + thrust force along -z_body over the weight [-] (normal load factor n_z).
+    heading_offset : float
+        Heading minus track psi - chi [rad] (0 except in a coordinated turn).
+    sideslip_cg : float
+        Sideslip of the centre of gravity's velocity v + omega x r_cg, asin(v_cg,y / |v_cg|) [rad] (undeformed
+        CG); zero in a coordinated turn. At o (``beta``) it differs in a turn by the yaw rate times the arm.
+    load_factor_total : float
+        |aerodynamic + thrust force| / weight [-]: in a steady level turn sqrt(1 + (V^2/gR)^2) = 1/cos(mu).
+    bank_wind : float
+        Bank angle mu of the wind axes (velocity of the CG, zero-sideslip lateral axis), 3-2-1 Euler roll of
+        the wind frame [rad] (Stevens & Lewis sec. 2.4); in a coordinated level turn tan(mu) = V^2/(gR).
     tip_deflection_m, tip_twist_rad : float
         Right-wing tip bending w_w(L_w) (positive down, paper's sign) [m] and torsion psi_w(L_w) (positive
         nose up) [rad], as in the paper's Tables 2-3.
@@ -67,6 +79,10 @@ class TrimPoint:
     tip_deflection_m: float
     tip_twist_rad: float
     residual: float
+    heading_offset: float = 0.0
+    sideslip_cg: float = 0.0
+    load_factor_total: float = 0.0
+    bank_wind: float = 0.0
 
     @property
     def thrust_n(self) -> float:
@@ -87,7 +103,12 @@ class TrimPoint:
             "aileron_deg": math.degrees(self.u[1]),
             "elevator_deg": math.degrees(self.u[2]),
             "rudder_deg": math.degrees(self.u[3]),
+            "sideslip_deg": math.degrees(self.sideslip_cg),
+            "sideslip_origin_deg": math.degrees(self.beta),
+            "heading_offset_deg": math.degrees(self.heading_offset),
+            "bank_wind_deg": math.degrees(self.bank_wind),
             "load_factor": self.load_factor,
+            "load_factor_total": self.load_factor_total,
             "tip_deflection_m": self.tip_deflection_m,
             "tip_twist_deg": math.degrees(self.tip_twist_rad),
             "residual": self.residual,
@@ -109,6 +130,8 @@ class _Problem:
         n_vel = lay.velocity.stop - lay.velocity.start
         self.scale = np.full(n_vel, 1.0 / g)
         self.scale[3:6] = _ROT_LENGTH / g
+        self.coordinated = manoeuvre.coordinated
+        self.r_cg = model.structure.mass_properties.cg_m
 
     def state(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         theta, phi = z[0], z[1]
@@ -118,10 +141,11 @@ class _Problem:
             gamma, thrust = self.man.climb_angle_rad, z[2] * self.weight
         u = np.array([thrust, z[3], z[4], z[5]])
         lay = self.model.layout
-        v, omega = self.man.body_rates(phi, theta, gamma)
+        dpsi = z[-1] if self.coordinated else 0.0
+        v, omega = self.man.body_rates(phi, theta, gamma, dpsi)
         x = lay.zeros()
         x[lay.position] = [0.0, 0.0, -self.man.altitude_m]
-        x[lay.euler] = [phi, theta, 0.0]
+        x[lay.euler] = [phi, theta, dpsi]
         x[lay.q.start : lay.xi.stop] = z[6 : 6 + self.n_el]
         x[lay.v] = v
         x[lay.omega] = omega
@@ -129,7 +153,12 @@ class _Problem:
 
     def residual(self, z: np.ndarray) -> np.ndarray:
         x, u, _ = self.state(z)
-        return self.model.rhs(0.0, x, u)[self.model.layout.velocity] * self.scale
+        lay = self.model.layout
+        r = self.model.rhs(0.0, x, u)[lay.velocity] * self.scale
+        if not self.coordinated:
+            return r
+        v_cg = x[lay.v] + np.cross(x[lay.omega], self.r_cg)
+        return np.append(r, v_cg[1] / self.man.speed_m_s)  # zero sideslip at the CG
 
 
 def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint | None = None, check_limits: bool = True) -> TrimPoint:
@@ -157,12 +186,14 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
     """
     prob = _Problem(model, manoeuvre)
     lay = model.layout
-    z0 = np.zeros(6 + prob.n_el)
+    z0 = np.zeros(6 + prob.n_el + (1 if manoeuvre.coordinated else 0))
     if guess is not None:
         z0[0], z0[1] = guess.theta, guess.phi
         z0[2] = guess.gamma if manoeuvre.is_glide else guess.u[0] / prob.weight
         z0[3:6] = guess.u[1:]
-        z0[6:] = guess.x[lay.q.start : lay.xi.stop]
+        z0[6 : 6 + prob.n_el] = guess.x[lay.q.start : lay.xi.stop]
+        if manoeuvre.coordinated:
+            z0[-1] = guess.heading_offset
     else:
         omega = manoeuvre.turn_rate(0.0)
         z0[0] = 0.08
@@ -179,7 +210,7 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         raise TrimError(f"trim failed for {manoeuvre.describe()}: scaled residual {norm:.3g} > {_TOLERANCE:g}; largest: {detail}"
                         f"{_demand(model, manoeuvre)}")
     x, u, gamma = prob.state(z)
-    point = _trim_point(model, manoeuvre, x, u, gamma, norm)
+    point = _trim_point(model, manoeuvre, x, u, gamma, norm, float(z[-1]) if manoeuvre.coordinated else 0.0)
     if not check_limits:
         _check_singular(prob, z)  # without limits a singular direction would be returned as a trim
     else:
@@ -292,7 +323,23 @@ def _check_limits(model: AircraftModel, manoeuvre: SteadyManoeuvre, point: TrimP
             )
 
 
-def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np.ndarray, gamma: float, residual: float) -> TrimPoint:
+def _wind_bank(euler: np.ndarray, v_cg: np.ndarray) -> float:
+    """Bank angle mu of the wind axes [rad] (Stevens & Lewis, 2nd ed., sec. 2.4).
+
+    Wind axes: x_w along the CG velocity, y_w the body y axis made normal to it, z_w = x_w x y_w; mu is the
+    3-2-1 roll angle of that frame relative to north-east-down.
+    """
+    c = dcm_321(*euler)  # body <- NED
+    x_w = v_cg / np.linalg.norm(v_cg)
+    y_w = np.array([0.0, 1.0, 0.0]) - x_w[1] * x_w
+    y_w /= np.linalg.norm(y_w)
+    z_w = np.cross(x_w, y_w)
+    c_w = np.stack([x_w, y_w, z_w]) @ c  # wind <- NED
+    return float(math.atan2(c_w[1, 2], c_w[2, 2]))
+
+
+def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np.ndarray, gamma: float, residual: float,
+                heading_offset: float = 0.0) -> TrimPoint:
     lay = model.layout
     st = model.structure
     _, eul, q, xi, vel = model.unpack(x)
@@ -308,6 +355,7 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
         h = man.altitude_m
         _, q_a, _ = model.aero.evaluate(q, xi, vel, x[lay.inflow], u, isa_density(float(h)), speed / speed_of_sound(float(h)))
         force = force + q_a[0:3]
+    v_cg = v + np.cross(vel[3:6], st.mass_properties.cg_m)
     weight = st.mass_properties.mass_kg * max(model.gravity_m_s2, 1e-9)
     tip_w = tip_t = 0.0
     if "right_wing" in model.aircraft.component_names:
@@ -330,4 +378,8 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
         tip_deflection_m=tip_w,
         tip_twist_rad=tip_t,
         residual=residual,
+        heading_offset=heading_offset,
+        sideslip_cg=math.asin(v_cg[1] / float(np.linalg.norm(v_cg))),
+        load_factor_total=float(np.linalg.norm(force) / weight),
+        bank_wind=_wind_bank(eul, v_cg),
     )
