@@ -6,6 +6,7 @@
     flexsim aero  [AIRCRAFT] [--mach M] [--plot FILE.png] [--json]
     flexsim trim  [AIRCRAFT] [--altitude-m H] [--mach M] [--turn-radius-m R] [--climb-deg G | --glide]
     flexsim flutter [AIRCRAFT] [--altitudes H ...] [--models QS,US] [--workers N] [--json]
+    flexsim validate [CASE ...] [--json]
     flexsim sweep (--turn | --climb) [AIRCRAFT] [--altitudes H ...] [--scheduler ADDRESS] [--out DIR]
 
 AIRCRAFT is a bundled name (``gtm``, ``goland_wing``) or the path of a TOML file (default ``gtm``).
@@ -187,6 +188,9 @@ def _parser() -> argparse.ArgumentParser:
     from flexsim.cli.sim_commands import add_sim_commands
 
     add_sim_commands(sub)
+    from flexsim.cli.validate_command import add_validate_command
+
+    add_validate_command(sub)
     return parser
 
 
