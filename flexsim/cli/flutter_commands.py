@@ -38,12 +38,23 @@ def _trim(args: argparse.Namespace) -> int:
     point = trim(model, _manoeuvre(args, args.altitude_m, args.mach), check_limits=not args.no_limits)
     out = point.summary()
     out["weight_kN"] = model.structure.mass_properties.mass_kg * model.gravity_m_s2 / 1e3
+    roots = _roots(aircraft, point, args.roots, args.formulation) if args.roots else None
     if args.json:
-        print(json_text({**out, "formulation": model.formulation}))
+        extra = {"roots": roots} if roots is not None else {}
+        print(json_text({**out, "formulation": model.formulation, **extra}))
         return 0
     print(f"Trim of {aircraft.name} ({model.formulation} force resolution): {point.manoeuvre.describe()}")
     for key, value in out.items():
         print(f"  {key:<18} {value: .6g}")
+    if roots is not None:
+        counts = {k: sum(r["kind"] == k for r in roots["modes"]) for k in ("rigid", "elastic", "aerodynamic")}
+        print(f"Roots of the linearised trim ({roots['aero_model']}): {counts['rigid']} rigid-body, {counts['elastic']} elastic, "
+              f"{counts['aerodynamic']} aerodynamic-lag")
+        print(f"  {'kind':<12} {'real [1/s]':>11} {'imag [rad/s]':>12} {'zeta':>8}  dominant DOF")
+        for r in roots["modes"]:
+            if r["kind"] != "aerodynamic" and r["imag"] >= 0.0:
+                print(f"  {r['kind']:<12} {r['real']:11.5f} {r['imag']:12.5f} {r['damping_ratio']:8.4f}  {r['dominant_dof']}")
+        print("  (aerodynamic-lag roots: --json lists them)")
     return 0
 
 
@@ -55,6 +66,22 @@ def _settings(args: argparse.Namespace, default_aircraft: str = "gtm") -> list[R
     if args.aircraft == default_aircraft and args.formulation is None and args.linear_density_altitude_m is None:
         return [PAPER_REPLICATION, physical_settings(default_aircraft)]
     return [RunSettings("as given", args.aircraft, args.formulation, args.linear_density_altitude_m)]
+
+
+def _roots(aircraft, point, aero_model: str, formulation: str | None = None) -> dict:
+    """Eigenvalues of the linearised trim with their classification (rigid-body, elastic, aerodynamic-lag)."""
+    import numpy as np
+
+    from flexsim.linear.stability import spectrum
+
+    model = AircraftModel(aircraft, aero=AeroOptions(aero_model, formulation=formulation))
+    x = np.concatenate([point.x, np.zeros(model.layout.n_inflow)])
+    spec = spectrum(model, x, point.u, aero_model=aero_model)
+    modes = sorted(spec.modes, key=lambda m: ({"rigid": 0, "elastic": 1, "aerodynamic": 2}[m.kind], abs(m.eigenvalue)))
+    return {"aero_model": aero_model, "modes": [
+        {"kind": m.kind, "real": m.eigenvalue.real, "imag": m.eigenvalue.imag, "damping_ratio": m.damping_ratio,
+         "dominant_dof": m.dominant_dof, "elastic_fraction": m.elastic_fraction,
+         "inflow_participation": m.inflow_participation} for m in modes]}
 
 
 def _flutter(args: argparse.Namespace) -> int:
@@ -166,6 +193,9 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
                         help="coordinated turn: zero sideslip at the CG, heading free (default: the paper's turn, heading on track)")
     p_trim.add_argument("--no-limits", action="store_true", help="do not enforce thrust/surface limits")
     _add_formulation(p_trim)
+    p_trim.add_argument("--roots", nargs="?", const="unsteady", choices=["unsteady", "quasi-steady"], default=None,
+                        help="also list the roots of the linearised trim, told apart as rigid-body, elastic and "
+                             "aerodynamic-lag [unsteady]")
     p_trim.set_defaults(func=_trim)
 
     p_fl = sub.add_parser("flutter", help="flutter Mach and frequency in level flight (paper Tables 2-3)")

@@ -18,11 +18,13 @@ rigid-body dominated when more than half of its energy is rigid-body motion AND 
 is below half the first in-vacuo elastic frequency: the paper's "first 12 eigenvalues" are the
 flight-dynamics modes, while a fuselage-bending mode strongly coupled to pitch and heave through the tail's
 aerodynamics (the paper's flutter mode, q_f1 dominant) stays an elastic mode. Restrained models have only
-elastic modes. Modes that
-are almost pure inflow (aerodynamic lag states, structural energy below 1e-9 of the vector) are labelled
-"aerodynamic". The dominant DOF is the one with the largest share Re(conj(phi_i) (M phi)_i); a tie
-between mirror coordinates (right and left halves within 1e-4, :data:`flexsim.structure.mirror.TIE_RTOL`)
-names the right half, so labels do not flip between halves on round-off.
+elastic modes. Aerodynamic-lag roots (the finite-state wake) are labelled "aerodynamic": a model with n_struct
+structural states has n_struct structural roots, those least tied to the inflow states by their participation
+factors (Perez-Arriaga, Verghese & Schweppe 1982: p_ik = |w_ki v_ik| normalised, left and right
+eigenvectors; independent of the states' units; conjugate pairs kept together); the others, and roots with
+no structural energy at all, are aerodynamic. The dominant DOF is the one with the largest share
+Re(conj(phi_i) (M phi)_i); a tie between mirror coordinates (right and left halves within 1e-4,
+:data:`flexsim.structure.mirror.TIE_RTOL`) names the right half, so labels do not flip between halves on round-off.
 """
 
 from __future__ import annotations
@@ -49,6 +51,8 @@ class Mode:
     eigenvalue : complex
         [1/s]; frequency = |Im|, damping ratio = -Re/|eigenvalue|.
     kind : {"rigid", "elastic", "aerodynamic"}
+        ``aerodynamic``: an aerodynamic-lag root, more than half of its participation in the inflow states
+        (module docstring); otherwise rigid-body or elastic by its kinetic energy.
     elastic_fraction : float
         Share of the kinetic energy in elastic DOFs [-].
     dominant_dof : str
@@ -56,6 +60,8 @@ class Mode:
     shape : ndarray (complex), shape (n_v,)
         Velocity part of the eigenvector over V = [v, omega, s, eta] (eq. 9); the configuration part is
         shape / eigenvalue.
+    inflow_participation : float
+        Sum of the participation factors of the inflow states in this mode, in [0, 1] [-].
     """
 
     eigenvalue: complex
@@ -63,6 +69,7 @@ class Mode:
     elastic_fraction: float
     dominant_dof: str
     shape: np.ndarray
+    inflow_participation: float = 0.0
 
     @property
     def frequency_rad_s(self) -> float:
@@ -111,8 +118,22 @@ def _classify(model: AircraftModel, lin: LinearModel, vals: np.ndarray, vecs: np
     cut = 0.5 * _first_elastic_frequency(model) if free else 0.0
     mp = model.structure.mass_properties
     j_inv = np.linalg.inv(mp.inertia_cg_kg_m2)
+    inflow_rows = np.array([pos[i] for i in range(lay.inflow.start, lay.inflow.stop)], dtype=int)
+    inflow_share = _inflow_participation(vecs, inflow_rows)
+    # as many structural roots as structural states: those least tied to the inflow states
+    n_struct = vals.size - inflow_rows.size
+    lag = np.zeros(vals.size, bool)
+    lag[np.argsort(inflow_share, kind="stable")[n_struct:]] = True
+    for k in np.flatnonzero(~lag):  # a conjugate pair is one root pair: never split it at the cut
+        if vals[k].imag != 0.0:
+            lag[int(np.argmin(np.abs(vals - np.conj(vals[k]))))] = False
     modes = []
     for k in range(vals.size):
+        if lag[k]:
+            full = np.zeros(model.structure.dofs.n_v, dtype=complex)
+            full[active] = vecs[vel_rows, k]
+            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", full, float(inflow_share[k])))
+            continue
         phi = vecs[vel_rows, k]
         m_phi = m_act @ phi
         share = np.real(np.conj(phi) * m_phi)
@@ -121,7 +142,7 @@ def _classify(model: AircraftModel, lin: LinearModel, vals: np.ndarray, vecs: np
         full = np.zeros(model.structure.dofs.n_v, dtype=complex)
         full[active] = phi
         if total <= 1e-9 * scale * np.abs(m_act).max() or total <= 0:
-            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", full))
+            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", full, float(inflow_share[k])))
             continue
         if free:
             p_lin = m_phi[0:3]
@@ -134,9 +155,28 @@ def _classify(model: AircraftModel, lin: LinearModel, vals: np.ndarray, vecs: np
         full_share[active] = share
         j = ranked(full_share, mirror, candidates=[int(i) for i in active])[0]
         rigid = frac_el < 0.5 and abs(vals[k]) < cut
-        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, labels_full[j], full))
+        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, labels_full[j], full, float(inflow_share[k])))
     modes.sort(key=lambda m: -m.eigenvalue.real)
     return Spectrum(tuple(modes), aero_model)
+
+
+def _inflow_participation(vecs: np.ndarray, inflow_rows: np.ndarray) -> np.ndarray:
+    """Share of the inflow states in every mode: sum over them of the participation factors.
+
+    Participation factor of state i in mode k: p_ik = |w_ki v_ik| / sum_j |w_kj v_jk|, with v_k the right and
+    w_k the left eigenvector (W = V^-1). It does not depend on the units or scaling of the states
+    (Perez-Arriaga, Verghese & Schweppe, IEEE Trans. PAS 101(9), 1982; Kundur, *Power System Stability and
+    Control*, 1994, sec. 12.2.3). Zero for every mode when there are no inflow states.
+    """
+    if inflow_rows.size == 0:
+        return np.zeros(vecs.shape[1])
+    try:
+        left = np.linalg.inv(vecs)
+    except np.linalg.LinAlgError:
+        left = np.linalg.pinv(vecs)
+    part = np.abs(left.T * vecs)  # part[i, k] = |w_ki v_ik|
+    total = part.sum(axis=0)
+    return part[inflow_rows].sum(axis=0) / np.where(total > 0, total, 1.0)
 
 
 def _first_elastic_frequency(model: AircraftModel) -> float:
