@@ -7,9 +7,6 @@
 * ``level-turn-entry`` — GTM from level flight into a steady level turn of radius 10 km: a bank-angle
   feedback on the aileron (20 Hz, zero-order hold) follows a smooth bank command to the turn trim's bank
   while the other controls blend from the level to the turn trim (paper eqs. 36-37).
-* ``coordinated-turn`` — GTM held open loop at its coordinated-turn trim (zero sideslip at the CG, heading
-  free) at 9144 m, M 0.78, R = 5 km for 30 s: a steady state of the nonlinear model, so altitude, bank and
-  turn rate stay constant (a check of the trim and the model together).
 * ``climb`` — GTM from level flight, elevator and thrust ramped to the 3 deg climb trim (eqs. 38-39).
 * ``elevator-doublet`` — GTM level trim, elevator +2 deg / -2 deg, 0.5 s each.
 * ``aileron-roll`` — GTM level trim, aileron -3 deg (right wing trailing edge up: roll right) for 2 s.
@@ -268,7 +265,6 @@ def _flutter_onset(aero: AeroOptions) -> ManoeuvreSetup:
 
 _REGISTRY: dict[str, Callable[[str], ManoeuvreSetup]] = {
     "level-turn-entry": _level_turn_entry,
-    "coordinated-turn": _coordinated_turn,
     "climb": _climb,
     "elevator-doublet": _elevator_doublet,
     "aileron-roll": _aileron_roll,
