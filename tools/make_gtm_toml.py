@@ -268,4 +268,29 @@ for side, sign in (("right", 1.0), ("left", -1.0)):
     w(f'inertia_kg_m2 = {fmt([K * 2200.0, K * 9900.0, K * 9900.0])}')
     w('max_thrust_n = 178000.0')
     w('')
+# Parasite (zero-lift) drag of the calibrated default (not in the paper; docs/options.md "Drag"): drag areas
+# f = C_fe S_wet with Raymer's equivalent skin-friction coefficient C_fe = 0.0026 for civil transports
+# (Raymer, Aircraft Design: A Conceptual Approach, 6th ed., 2018, sec. 12.5). Wetted areas: fuselage
+# pi D L (1 - 2/lambda)^(2/3) (1 + 1/lambda^2) with L = 44.35 m, D = 3.76 m (Torenbeek 1982, app. F): 466.2 m^2;
+# wing 2 x 155.2 m^2 = S_exposed (1.977 + 0.52 t/c), S_exposed = 181.25 - 3.76 x 7.74 m^2, t/c = 0.12 (Raymer
+# ch. 7); horizontal tail 2 x 45.7 m^2 (exposed 45 of 50.4 m^2, t/c = 0.10); fin 69.6 m^2 (34.3 m^2); nacelle and
+# pylon 46 m^2 each (RB211-535 class, 2.5 m x 6.0 m). Points: fuselage mid-length, 40 % span of each surface
+# on its elastic axis, the engines. Total f = 2.677 m^2: C_D0 = 0.0148 on 181.25 m^2.
+if args.calibration and not args.paper:  # the paper-replication file keeps the paper's induced drag only
+    for name, comp, pos, area in (
+        ("fuselage", "fuselage", (22.175, 0.0, 0.0), 1.212),
+        ("right_wing_profile", "right_wing", (23.944, 8.688, -0.943), 0.4035),
+        ("left_wing_profile", "left_wing", (23.944, -8.688, -0.943), 0.4035),
+        ("right_nacelle", "right_wing", (19.93, 6.56, -2.2), 0.1196),
+        ("left_nacelle", "left_wing", (19.93, -6.56, -2.2), 0.1196),
+        ("right_htail_profile", "right_htail", (40.821, 3.822, 1.013), 0.1187),
+        ("left_htail_profile", "left_htail", (40.821, -3.822, 1.013), 0.1187),
+        ("fin_profile", "vtail", (40.375, 0.0, 4.77), 0.181),
+    ):
+        w('[[aero.drag]]')
+        w(f'name = "{name}"')
+        w(f'component = "{comp}"')
+        w(f'position_m = [{pos[0]}, {pos[1]}, {pos[2]}]')
+        w(f'drag_area_m2 = {area}')
+        w('')
 print("\n".join(out))

@@ -28,6 +28,7 @@ __all__ = [
     "SectionTable",
     "StripAero",
     "AeroSettings",
+    "DragItem",
     "COMPRESSIBILITY",
     "ControlSurface",
     "Component",
@@ -296,6 +297,31 @@ class StripAero:
 COMPRESSIBILITY = ("prandtl-glauert", "none")
 
 
+@dataclass(frozen=True, eq=False)
+class DragItem:
+    """A parasite-drag item: a body in the flow with drag area f = C_D0 S (not in the paper).
+
+    Attributes
+    ----------
+    name : str
+    component : str
+        The component it is attached to (its drag loads that component's structure).
+    position_m : ndarray, shape (3,)
+        Point where the drag acts, body axes [m] (e.g. a nacelle's centre, a fuselage's centre of area).
+    drag_area_m2 : float
+        f = C_D0 S_ref-contribution [m^2], in [0, 100]: the drag is 1/2 rho |v|^2 f along the local air velocity.
+    """
+
+    name: str
+    component: str
+    position_m: np.ndarray
+    drag_area_m2: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "position_m", _frozen_array(f"aero.drag.{self.name}.position_m", self.position_m, (3,)))
+        object.__setattr__(self, "drag_area_m2", _check_scalar(f"aero.drag.{self.name}.drag_area_m2", self.drag_area_m2, 0.0, 100.0))
+
+
 @dataclass(frozen=True)
 class AeroSettings:
     """Aircraft-wide aerodynamic settings (the file's top-level ``[aero]`` table).
@@ -307,13 +333,21 @@ class AeroSettings:
         ``"prandtl-glauert"`` (default, the paper's "Numerical Model": Cl_alpha / sqrt(1 - M^2), M capped
         at 0.95) or ``"none"`` (incompressible strip theory, as in the classical Goland and typical-section
         benchmarks). Models take it unless :class:`~flexsim.model.coupling.AeroOptions` overrides it.
+    drag : tuple of DragItem
+        Parasite-drag items (zero-lift drag of fuselage, nacelles, tails, wing profile; not in the paper,
+        default none). Models apply them unless ``AeroOptions(parasite_drag=False)``.
     """
 
     compressibility: str = "prandtl-glauert"
+    drag: tuple = ()
 
     def __post_init__(self) -> None:
         if self.compressibility not in COMPRESSIBILITY:
             _fail("aero.compressibility", self.compressibility, f"must be one of {', '.join(repr(c) for c in COMPRESSIBILITY)}")
+        object.__setattr__(self, "drag", tuple(self.drag))
+        names = [d.name for d in self.drag]
+        if len(set(names)) != len(names):
+            _fail("aero.drag names", names, "must be unique")
 
 
 @dataclass(frozen=True, eq=False)
@@ -635,6 +669,14 @@ class Aircraft:
         if not total > 0.0:
             _fail("total mass", total, "must be > 0 kg (every mass_kg_per_m is 0 and there are no lumped masses)")
         _in_plausible("total mass", total, "total_mass_kg", lo_open=True)
+        for d in self.aero_settings.drag:
+            w = f"aero.drag.{d.name}"
+            if d.component not in names:
+                _fail(f"{w}.component", d.component, f"must be one of the defined components: {', '.join(names)}")
+            comp = self.component(d.component)
+            s = comp.station_of(d.position_m)
+            if not -0.05 * comp.length_m <= s <= comp.length_m * 1.05:
+                _fail(f"{w}.position_m", d.position_m.tolist(), f"projects to station {s:.4g} m, off component {comp.name} (0 to {comp.length_m:.4g} m)")
 
     def component(self, name: str) -> Component:
         """The component called ``name`` (KeyError listing the available ones otherwise)."""
@@ -683,6 +725,7 @@ class Aircraft:
             components=tuple(c for c in self.components if c.name in keep),
             lumped_masses=tuple(m for m in self.lumped_masses if m.component in keep),
             engines=tuple(e for e in self.engines if e.component in keep),
+            aero_settings=replace(self.aero_settings, drag=tuple(d for d in self.aero_settings.drag if d.component in keep)),
             name=f"{self.name}[{','.join(keep)}]",
         )
 

@@ -24,6 +24,7 @@ from flexsim.aircraft.definition import (
     Aircraft,
     Component,
     ControlSurface,
+    DragItem,
     Engine,
     LumpedMass,
     MAX_STATIONS,
@@ -45,7 +46,8 @@ _DESIGN_TO_BODY = np.diag([-1.0, 1.0, -1.0])
 _TOP_KEYS = {"schema_version": True, "name": True, "description": False, "frame": False,
              "components": True, "lumped_masses": False, "engines": False, "structural_damping_ratio": False,
              "formulation": False, "aero": False}
-_AIRCRAFT_AERO_KEYS = {"compressibility": False}
+_AIRCRAFT_AERO_KEYS = {"compressibility": False, "drag": False}
+_DRAG_KEYS = {"name": True, "component": True, "position_m": True, "drag_area_m2": True}
 _COMPONENT_KEYS = {"root_m": True, "euler_deg": True, "length_m": True, "bending_modes": False,
                    "torsion_modes": False, "rigid": False, "section_inertia": False, "sweep_deg": False,
                    "sections": True, "control_surface": False, "aero": False}
@@ -257,13 +259,23 @@ def _masses(key: str, items: Any, frame: _Frame) -> list[LumpedMass]:
     return out
 
 
-def _aero_settings(table: Any) -> AeroSettings:
+def _aero_settings(table: Any, frame: "_Frame") -> AeroSettings:
     table = {} if table is None else table
     _check_keys("aero", table, _AIRCRAFT_AERO_KEYS)
     comp = table.get("compressibility", "prandtl-glauert")
     if not isinstance(comp, str):
         raise AircraftDefinitionError(f"aero.compressibility = {comp!r}: must be \"prandtl-glauert\" or \"none\"")
-    return AeroSettings(compressibility=comp)
+    items = table.get("drag", [])
+    if not isinstance(items, list):
+        raise AircraftDefinitionError(f"aero.drag = {items!r}: must be an array of tables ([[aero.drag]])")
+    drag = []
+    for i, item in enumerate(items):
+        where = f"aero.drag[{i}]"
+        _check_keys(where, item, _DRAG_KEYS)
+        drag.append(DragItem(name=str(item["name"]), component=str(item["component"]),
+                             position_m=frame.point(_vector(f"{where}.position_m", item["position_m"])),
+                             drag_area_m2=_number(f"{where}.drag_area_m2", item["drag_area_m2"])))
+    return AeroSettings(compressibility=comp, drag=tuple(drag))
 
 
 def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:
@@ -312,7 +324,7 @@ def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:
             design_origin_m=frame.origin if frame.kind == "design" else None,
             structural_damping_ratio=doc.get("structural_damping_ratio", 0.0),
             formulation=doc.get("formulation", "physical"),
-            aero_settings=_aero_settings(doc.get("aero")),
+            aero_settings=_aero_settings(doc.get("aero"), frame),
         )
     except AircraftDefinitionError as exc:
         raise AircraftDefinitionError(f"{source}: {exc}") from None

@@ -25,6 +25,7 @@ from scipy.linalg.lapack import dgesv as _dgesv
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.model.coupling import AeroCoupling, AeroOptions
+from flexsim.model.drag import ParasiteDrag
 from flexsim.model.layout import StateLayout
 from flexsim.kinematics import dcm_321, euler_rate_matrix_inverse
 from flexsim.structure.model import StructuralModel
@@ -153,6 +154,9 @@ class AircraftModel:
         if aero_density_kg_m3 is not None and not (np.isfinite(aero_density_kg_m3) and 0.0 < aero_density_kg_m3 < 2.0):
             raise ValueError(f"aero_density_kg_m3 = {aero_density_kg_m3!r}: must be an air density in (0, 2) kg/m^3 (or None: the ISA density)")
         self.aero_density_kg_m3 = None if aero_density_kg_m3 is None else float(aero_density_kg_m3)
+        has_drag = aero is not None and aero.parasite_drag and aircraft.aero_settings.drag
+        #: Parasite drag of the file's drag items (:mod:`flexsim.model.drag`), or None.
+        self.parasite_drag = ParasiteDrag(self.structure) if has_drag else None
         if wind is not None and not callable(wind):
             raise ValueError(f"wind = {wind!r}: must be a callable wind(t, positions_ned_m) -> (k, 3) array")
         self.wind = wind
@@ -305,16 +309,44 @@ class AircraftModel:
         inflow_terms = None
         if self.aero is not None:
             altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
-            if self._rho_fixed is not None:
-                rho = self._rho_fixed
-            else:
-                rho = isa_density(float(altitude)) if self.aero_density_kg_m3 is None else self.aero_density_kg_m3
+            rho = self.air_density(x)
             mach = float(np.sqrt(v @ v)) / speed_of_sound(float(altitude))
             wind_c = self._strip_wind(t, x, pos, eul)
             m_a, q_a, inflow_terms = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach, wind_c)
             m = m + m_a
             f = f + q_a
+            if self.parasite_drag is not None:
+                f = f + self.parasite_drag.generalized_force(q, vel, rho)
         return m, f, inflow_terms
+
+    def air_density(self, x: np.ndarray) -> float:
+        """Air density of the aerodynamics at state x [kg/m^3]: the restrained model's tunnel density, else the
+        fixed ``aero_density_kg_m3`` if given, else ISA at the altitude -Z (restrained: ``altitude_m``)."""
+        if self._rho_fixed is not None:
+            return self._rho_fixed
+        if self.aero_density_kg_m3 is not None:
+            return self.aero_density_kg_m3
+        altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
+        return isa_density(float(altitude))
+
+    def aerodynamic_force(self, x: np.ndarray, u: np.ndarray, t: float = 0.0) -> np.ndarray:
+        """Generalized aerodynamic force at a state, without the apparent-mass terms, shape (n_v,).
+
+        Strip airloads (explicit part of :meth:`AeroCoupling.evaluate`) plus parasite drag; rows 0-2 are the
+        resultant force in body axes [N], rows 3-5 the moment about o [N m]. Zero without aerodynamics.
+        """
+        pos, eul, q, xi, vel = self.unpack(x)
+        out = np.zeros(self.structure.dofs.n_v)
+        if self.aero is None:
+            return out
+        altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
+        rho = self.air_density(x)
+        mach = float(np.sqrt(vel[0:3] @ vel[0:3])) / speed_of_sound(float(altitude))
+        _, q_a, _ = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach, self._strip_wind(t, x, pos, eul))
+        out += q_a
+        if self.parasite_drag is not None:
+            out += self.parasite_drag.generalized_force(q, vel, rho)
+        return out
 
     def rhs(self, t: float, x: np.ndarray, u: np.ndarray) -> np.ndarray:
         """State derivative x_dot = rhs(t, x, u) of the nonlinear model (eqs. 4, 33).

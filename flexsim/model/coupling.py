@@ -82,6 +82,9 @@ class AeroOptions:
         Mach correction of the circulatory Cl_alpha: the aircraft file's ``[aero] compressibility``
         (``"file"``, default; the file's own default is Prandtl-Glauert, the paper's), Prandtl-Glauert
         1/sqrt(1 - M^2) with M capped at 0.95, or none (incompressible strip theory).
+    parasite_drag : bool
+        Apply the aircraft file's parasite-drag items (``[[aero.drag]]``, :mod:`flexsim.model.drag`;
+        default True; an aircraft without items has none).
     """
 
     model: str = "unsteady"
@@ -89,6 +92,7 @@ class AeroOptions:
     lift_slope: str = "file"
     formulation: str | None = None
     compressibility: str = "file"
+    parasite_drag: bool = True
 
     def __post_init__(self) -> None:
         if self.model not in AERO_MODELS:
@@ -100,6 +104,8 @@ class AeroOptions:
             raise ValueError(f"formulation = {self.formulation!r}: must be one of {', '.join(FORMULATIONS)} (or None: the aircraft file's)")
         if self.compressibility not in ("file", *COMPRESSIBILITY):
             raise ValueError(f"compressibility = {self.compressibility!r}: must be \"file\", \"prandtl-glauert\" or \"none\"")
+        if not isinstance(self.parasite_drag, bool):
+            raise ValueError(f"parasite_drag = {self.parasite_drag!r}: must be True or False")
 
 
 class StripKinematics(NamedTuple):

@@ -60,6 +60,9 @@ class TrimPoint:
     bank_wind : float
         Bank angle mu of the wind axes (velocity of the CG, zero-sideslip lateral axis), 3-2-1 Euler roll of
         the wind frame [rad] (Stevens & Lewis sec. 2.4); in a coordinated level turn tan(mu) = V^2/(gR).
+    lift_n, drag_n : float
+        Aerodynamic force (strips and parasite drag, no thrust) resolved in the wind axes of the CG: lift
+        along -z_w and drag along -x_w [N]. In a glide gamma = -atan(D/L).
     tip_deflection_m, tip_twist_rad : float
         Right-wing tip bending w_w(L_w) (positive down, paper's sign) [m] and torsion psi_w(L_w) (positive
         nose up) [rad], as in the paper's Tables 2-3.
@@ -83,6 +86,8 @@ class TrimPoint:
     sideslip_cg: float = 0.0
     load_factor_total: float = 0.0
     bank_wind: float = 0.0
+    lift_n: float = 0.0
+    drag_n: float = 0.0
 
     @property
     def thrust_n(self) -> float:
@@ -100,6 +105,9 @@ class TrimPoint:
             "gamma_deg": math.degrees(self.gamma),
             "alpha_deg": math.degrees(self.alpha),
             "thrust_kN": self.thrust_n / 1e3,
+            "lift_kN": self.lift_n / 1e3,
+            "drag_kN": self.drag_n / 1e3,
+            "lift_to_drag": self.lift_n / self.drag_n if self.drag_n else float("inf"),
             "aileron_deg": math.degrees(self.u[1]),
             "elevator_deg": math.degrees(self.u[2]),
             "rudder_deg": math.degrees(self.u[3]),
@@ -323,18 +331,28 @@ def _check_limits(model: AircraftModel, manoeuvre: SteadyManoeuvre, point: TrimP
             )
 
 
+def _wind_axes(v_cg: np.ndarray) -> np.ndarray:
+    """Rows x_w, y_w, z_w of the wind axes in body components: x_w along the CG velocity, y_w the body y
+    axis made normal to it, z_w = x_w x y_w (Stevens & Lewis 2003, sec. 2.4)."""
+    x_w = v_cg / np.linalg.norm(v_cg)
+    y_w = np.array([0.0, 1.0, 0.0]) - x_w[1] * x_w
+    y_w /= np.linalg.norm(y_w)
+    return np.stack([x_w, y_w, np.cross(x_w, y_w)])
+
+
+def _lift_drag(force_b: np.ndarray, v_cg: np.ndarray) -> tuple[float, float]:
+    """Lift -F . z_w and drag -F . x_w [N] of the aerodynamic force F (body axes) in the wind axes of the CG."""
+    w = _wind_axes(v_cg)
+    return float(-force_b @ w[2]), float(-force_b @ w[0])
+
+
 def _wind_bank(euler: np.ndarray, v_cg: np.ndarray) -> float:
     """Bank angle mu of the wind axes [rad] (Stevens & Lewis, 2nd ed., sec. 2.4).
 
     Wind axes: x_w along the CG velocity, y_w the body y axis made normal to it, z_w = x_w x y_w; mu is the
     3-2-1 roll angle of that frame relative to north-east-down.
     """
-    c = dcm_321(*euler)  # body <- NED
-    x_w = v_cg / np.linalg.norm(v_cg)
-    y_w = np.array([0.0, 1.0, 0.0]) - x_w[1] * x_w
-    y_w /= np.linalg.norm(y_w)
-    z_w = np.cross(x_w, y_w)
-    c_w = np.stack([x_w, y_w, z_w]) @ c  # wind <- NED
+    c_w = _wind_axes(v_cg) @ dcm_321(*euler)  # wind <- body <- NED
     return float(math.atan2(c_w[1, 2], c_w[2, 2]))
 
 
@@ -348,14 +366,10 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
     alpha = math.atan2(v[2], v[0])
     beta = math.asin(v[1] / speed)
     # aerodynamic + thrust force along -z_body over the weight
-    force = st.thrust.force(u[0], q)[0:3]
-    if model.aero is not None:
-        from flexsim.atmosphere import isa_density, speed_of_sound
-
-        h = man.altitude_m
-        _, q_a, _ = model.aero.evaluate(q, xi, vel, x[lay.inflow], u, isa_density(float(h)), speed / speed_of_sound(float(h)))
-        force = force + q_a[0:3]
+    aero_force = model.aerodynamic_force(x, u)[0:3]
+    force = st.thrust.force(u[0], q)[0:3] + aero_force
     v_cg = v + np.cross(vel[3:6], st.mass_properties.cg_m)
+    lift, drag = _lift_drag(aero_force, v_cg)
     weight = st.mass_properties.mass_kg * max(model.gravity_m_s2, 1e-9)
     tip_w = tip_t = 0.0
     if "right_wing" in model.aircraft.component_names:
@@ -382,4 +396,6 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
         sideslip_cg=math.asin(v_cg[1] / float(np.linalg.norm(v_cg))),
         load_factor_total=float(np.linalg.norm(force) / weight),
         bank_wind=_wind_bank(eul, v_cg),
+        lift_n=lift,
+        drag_n=drag,
     )

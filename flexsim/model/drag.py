@@ -1,0 +1,89 @@
+"""Zero-lift (parasite) drag of the aircraft's parts: fuselage, nacelles, tails, wing profile drag.
+
+Not in the paper, whose drag is the strips' induced drag only. Each drag item of the aircraft file
+(``[[aero.drag]]``: component, point, drag area f = C_D0 S [m^2]) carries the force of a body in the flow
+(Raymer, *Aircraft Design: A Conceptual Approach*, 6th ed., 2018, sec. 12.5, component build-up):
+
+    f_i = -1/2 rho f |v_p| v_p,        v_p = A_i(q) V + omega_sec x rho_i
+
+along the local air velocity at the item's point p (component axes), v_p the velocity of the point relative
+to still air: the velocity of its elastic-axis station plus the section's rotation times the offset rho_i of
+the point from the axis. The generalized force follows from virtual work at that point (eqs. 17-24):
+Q = A_i(q)^T f_i + B_i^T (rho_i x f_i), so the drag also pitches and yaws the aircraft and loads the
+structure (e.g. nacelle drag below a swept wing). Units: SI; shapes in :class:`ParasiteDrag`.
+
+Simplification (documented in docs/options.md): the drag items see the aircraft's motion in still air, not
+the wind field (a gust's change of the parasite drag is neglected; the strips do see the wind).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from flexsim.structure.model import StructuralModel
+
+__all__ = ["ParasiteDrag"]
+
+
+class ParasiteDrag:
+    """Drag items of an aircraft, with their kinematic maps (built once; :meth:`generalized_force` per call).
+
+    Parameters
+    ----------
+    structure : StructuralModel
+        Its aircraft's ``aero_settings.drag`` items are used.
+
+    Attributes
+    ----------
+    names : tuple of str
+    area_m2 : ndarray, shape (k,)
+        Drag areas f = C_D0 S [m^2].
+    """
+
+    def __init__(self, structure: StructuralModel) -> None:
+        items = structure.aircraft.aero_settings.drag
+        self.names = tuple(d.name for d in items)
+        self.area_m2 = np.array([d.drag_area_m2 for d in items], dtype=float)
+        n_v, nq = structure.dofs.n_v, structure.dofs.nq
+        k = len(items)
+        self._g0 = np.zeros((k, 6, n_v))
+        self._g1 = np.zeros((k, 3, 3, nq))
+        self._offset = np.zeros((k, 3))
+        for j, d in enumerate(items):
+            comp = structure.aircraft.component(d.component)
+            station = float(np.clip(comp.station_of(d.position_m), 0.0, comp.length_m))
+            maps = structure.point_maps(d.component, np.array([station]))
+            self._g0[j], self._g1[j] = maps.g0[0], maps.g1[0]
+            self._offset[j] = comp.dcm @ (d.position_m - maps.r0[0])  # rho_i, component axes
+
+    @property
+    def n_items(self) -> int:
+        """Number of drag items k."""
+        return self.area_m2.size
+
+    def point_velocities(self, q: np.ndarray, vel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Velocities v_p (k, 3) of the items' points and the maps A(q) (k, 3, n_v), component axes."""
+        a = self._g0[:, 0:3, :].copy()
+        a[:, :, 3:6] += self._g1 @ q
+        omega = self._g0[:, 3:6, :] @ vel
+        return a @ vel + np.cross(omega, self._offset), a
+
+    def generalized_force(self, q: np.ndarray, vel: np.ndarray, rho: float) -> np.ndarray:
+        """Q_drag, shape (n_v,): generalized force of every item's drag (module docstring) [N, N m].
+
+        Parameters
+        ----------
+        q : ndarray, shape (nq,)
+            Bending coordinates [m].
+        vel : ndarray, shape (n_v,)
+            Global velocity vector V.
+        rho : float
+            Air density [kg/m^3].
+        """
+        if not self.n_items:
+            return np.zeros(vel.size)
+        vp, a = self.point_velocities(q, vel)
+        speed = np.linalg.norm(vp, axis=1)
+        f = -0.5 * rho * (self.area_m2 * speed)[:, None] * vp
+        moment = np.cross(self._offset, f)
+        return np.einsum("kav,ka->v", a, f) + np.einsum("kav,ka->v", self._g0[:, 3:6, :], moment)
