@@ -336,14 +336,20 @@ class AeroSettings:
     drag : tuple of DragItem
         Parasite-drag items (zero-lift drag of fuselage, nacelles, tails, wing profile; not in the paper,
         default none). Models apply them unless ``AeroOptions(parasite_drag=False)``.
+    bending_incidence : bool
+        Swept-wing bending-incidence coupling (default False, the paper's model): the strips' streamwise
+        pitch includes sin(Lambda) times the bending slope (docs/options.md).
     """
 
     compressibility: str = "prandtl-glauert"
     drag: tuple = ()
+    bending_incidence: bool = False
 
     def __post_init__(self) -> None:
         if self.compressibility not in COMPRESSIBILITY:
             _fail("aero.compressibility", self.compressibility, f"must be one of {', '.join(repr(c) for c in COMPRESSIBILITY)}")
+        if not isinstance(self.bending_incidence, bool):
+            _fail("aero.bending_incidence", self.bending_incidence, "must be true or false")
         object.__setattr__(self, "drag", tuple(self.drag))
         names = [d.name for d in self.drag]
         if len(set(names)) != len(names):

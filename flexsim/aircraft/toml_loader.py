@@ -46,7 +46,7 @@ _DESIGN_TO_BODY = np.diag([-1.0, 1.0, -1.0])
 _TOP_KEYS = {"schema_version": True, "name": True, "description": False, "frame": False,
              "components": True, "lumped_masses": False, "engines": False, "structural_damping_ratio": False,
              "formulation": False, "aero": False}
-_AIRCRAFT_AERO_KEYS = {"compressibility": False, "drag": False}
+_AIRCRAFT_AERO_KEYS = {"compressibility": False, "drag": False, "bending_incidence": False}
 _DRAG_KEYS = {"name": True, "component": True, "position_m": True, "drag_area_m2": True}
 _COMPONENT_KEYS = {"root_m": True, "euler_deg": True, "length_m": True, "bending_modes": False,
                    "torsion_modes": False, "rigid": False, "section_inertia": False, "sweep_deg": False,
@@ -275,7 +275,7 @@ def _aero_settings(table: Any, frame: "_Frame") -> AeroSettings:
         drag.append(DragItem(name=str(item["name"]), component=str(item["component"]),
                              position_m=frame.point(_vector(f"{where}.position_m", item["position_m"])),
                              drag_area_m2=_number(f"{where}.drag_area_m2", item["drag_area_m2"])))
-    return AeroSettings(compressibility=comp, drag=tuple(drag))
+    return AeroSettings(compressibility=comp, drag=tuple(drag), bending_incidence=table.get("bending_incidence", False))
 
 
 def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:

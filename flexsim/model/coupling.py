@@ -85,6 +85,10 @@ class AeroOptions:
     parasite_drag : bool
         Apply the aircraft file's parasite-drag items (``[[aero.drag]]``, :mod:`flexsim.model.drag`;
         default True; an aircraft without items has none).
+    bending_incidence : bool or None
+        Swept-wing bending-incidence coupling: the strips' pitch includes the streamwise rotation of the
+        bending slope, (p . -y_i) U_i'(x) q_i = sin(Lambda) w' (:func:`_bending_slope_pitch`). None (default)
+        takes the aircraft file's ``[aero] bending_incidence`` (itself False: the paper's model).
     """
 
     model: str = "unsteady"
@@ -93,6 +97,7 @@ class AeroOptions:
     formulation: str | None = None
     compressibility: str = "file"
     parasite_drag: bool = True
+    bending_incidence: bool | None = None
 
     def __post_init__(self) -> None:
         if self.model not in AERO_MODELS:
@@ -104,8 +109,35 @@ class AeroOptions:
             raise ValueError(f"formulation = {self.formulation!r}: must be one of {', '.join(FORMULATIONS)} (or None: the aircraft file's)")
         if self.compressibility not in ("file", *COMPRESSIBILITY):
             raise ValueError(f"compressibility = {self.compressibility!r}: must be \"file\", \"prandtl-glauert\" or \"none\"")
+        if self.bending_incidence is not None and not isinstance(self.bending_incidence, bool):
+            raise ValueError(f"bending_incidence = {self.bending_incidence!r}: must be True, False or None (the file's)")
         if not isinstance(self.parasite_drag, bool):
             raise ValueError(f"parasite_drag = {self.parasite_drag!r}: must be True or False")
+
+
+def _bending_slope_pitch(structure: StructuralModel, strips: StripSet) -> np.ndarray:
+    """Strip pitch rate per unit V from the own bending slope, shape (n_s, n_v) (not in the paper).
+
+    The Euler-Bernoulli section of a bent beam rotates by the slope, Omega = -y_i U_i'(x) s_i (the rotation
+    eq. 6 applies to the fuselage's bending at the attachment, here for the component's own bending). Its
+    component along the strip's pitch axis p pitches the streamwise section: alpha_b = (p . -y_i) U_i'(x) q_i.
+    For a wing swept by Lambda, p = (cos Lambda, -sin Lambda, 0) in component axes, so alpha_b = sin(Lambda) w'
+    with w' the slope in z_i: upward bending of a swept-back wing washes the tips out (Bisplinghoff, Ashley &
+    Halfman, *Aeroelasticity*, 1955, sec. 8-4; Hodges & Pierce 2011, sec. 4.3). Zero for unswept surfaces.
+    The same map gives the pitch rate and, by virtual work, the strip moment's generalized force on q.
+    """
+    from flexsim.structure.shapes import bending_shapes
+
+    out = np.zeros((strips.n_strips, structure.dofs.n_v))
+    comps = np.array(strips.component)
+    for name in dict.fromkeys(strips.component):
+        comp = structure.aircraft.component(name)
+        if not comp.bending_modes:
+            continue
+        idx = np.flatnonzero(comps == name)
+        slope = bending_shapes(strips.station_m[idx], comp.length_m, comp.bending_modes, derivative=1)  # (k, m) [1/m]
+        out[np.ix_(idx, np.arange(structure.dofs.n_v)[structure.dofs.v_bending(name)])] = -strips.p[idx, 1][:, None] * slope
+    return out
 
 
 class StripKinematics(NamedTuple):
@@ -163,7 +195,11 @@ class AeroCoupling:
         self._ab = s.a * s.semichord_m
         self._k0 = s.lift_slope0 / (2 * np.pi)
         self._pr_w = np.pi * s.semichord_m**2 * s.width_m  # apparent mass per rho, all strips
-        self._rel = s.proj_p[:, 6:]  # elastic pitch per unit [q; xi] (B constant: angles = rates map)
+        bend = options.bending_incidence
+        #: Swept-wing bending-incidence coupling in force (the strips' pitch includes the bending slope).
+        self.bending_incidence = structure.aircraft.aero_settings.bending_incidence if bend is None else bend
+        self._proj_p = s.proj_p + (_bending_slope_pitch(structure, s) if self.bending_incidence else 0.0)
+        self._rel = self._proj_p[:, 6:]  # elastic pitch per unit [q; xi] (B constant: angles = rates map)
         self._finite_state = options.model == "unsteady"
         self._inflow_idx = np.flatnonzero(s.unsteady) if self._finite_state else np.zeros(0, int)
         self.inflow = inflow_coefficients(options.n_inflow)
@@ -193,7 +229,7 @@ class AeroCoupling:
         d_mat[:, 3:6] += s.proj_d1 @ q
         alpha_el = self._rel @ np.concatenate([q, xi]) + s.incidence_rad
         u0 = -(d_mat @ vel)
-        adot = s.proj_p @ vel
+        adot = self._proj_p @ vel
         w_n = p_mat @ vel
         if wind_c is not None:
             u0 = u0 + np.einsum("sk,sk->s", s.d, wind_c)
@@ -275,7 +311,7 @@ class AeroCoupling:
         s = self.strips
         b, ab = self._b, self._ab
         kin = self.kinematics(q, xi, vel, lam, u, wind_c)
-        p_mat, d_mat, r_mat = kin.p_mat, kin.d_mat, s.proj_p
+        p_mat, d_mat, r_mat = kin.p_mat, kin.d_mat, self._proj_p
         lift_c, moment_c, lift_tilt, drag, flow_angle = self._circulatory(kin, rho, mach)
         w = s.width_m
         c_n = -lift_c - drag * flow_angle  # eq. (28): f = L (-n - a0 d) + D (d - a0 n), a0 the flow angle
@@ -308,7 +344,7 @@ class AeroCoupling:
         row0, w_ea_x, u0, lam = terms
         idx = self._inflow_idx
         s = self.strips
-        forcing = (row0[idx] + (0.5 * s.semichord_m[idx])[:, None] * s.proj_p[idx]) @ vdot + w_ea_x[idx]
+        forcing = (row0[idx] + (0.5 * s.semichord_m[idx])[:, None] * self._proj_p[idx]) @ vdot + w_ea_x[idx]
         lam2 = lam.reshape(-1, self.options.n_inflow)
         rate = forcing[:, None] * self.inflow.A_inv_c[None, :] - (u0[idx] / s.semichord_m[idx])[:, None] * (lam2 @ self.inflow.A_inv.T)
         return rate.ravel()
