@@ -154,7 +154,9 @@ class AircraftModel:
         if aero_density_kg_m3 is not None and not (np.isfinite(aero_density_kg_m3) and 0.0 < aero_density_kg_m3 < 2.0):
             raise ValueError(f"aero_density_kg_m3 = {aero_density_kg_m3!r}: must be an air density in (0, 2) kg/m^3 (or None: the ISA density)")
         self.aero_density_kg_m3 = None if aero_density_kg_m3 is None else float(aero_density_kg_m3)
-        has_drag = aero is not None and aero.parasite_drag and aircraft.aero_settings.drag
+        # parasite drag belongs to the physical force resolution; the paper's (eq. 28) has the strips' drag only
+        has_drag = (aero is not None and aero.parasite_drag and bool(aircraft.aero_settings.drag)
+                    and self.aero.formulation == "physical")
         #: Parasite drag of the file's drag items (:mod:`flexsim.model.drag`), or None.
         self.parasite_drag = ParasiteDrag(self.structure) if has_drag else None
         if wind is not None and not callable(wind):

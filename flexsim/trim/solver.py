@@ -19,7 +19,7 @@ from scipy.optimize import root
 
 from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel, Variant
-from flexsim.structure.kinematics import dcm_321
+from flexsim.kinematics import dcm_321
 from flexsim.structure.shapes import bending_shapes, torsion_shapes
 from flexsim.trim.manoeuvre import SteadyManoeuvre
 
