@@ -38,6 +38,11 @@ def _trim(args: argparse.Namespace) -> int:
     point = trim(model, _manoeuvre(args, args.altitude_m, args.mach), check_limits=not args.no_limits)
     out = point.summary()
     out["weight_kN"] = model.structure.mass_properties.mass_kg * model.gravity_m_s2 / 1e3
+    if model.aero is not None and "right_wing" in aircraft.component_names:
+        from flexsim.trim.margin import static_margin
+
+        margin = static_margin(model, point)
+        out = {**out, "static_margin_mac": margin.fraction_of_mac, "neutral_point_aft_of_cg_m": margin.neutral_point_aft_of_cg_m}
     roots = _roots(aircraft, point, args.roots, args.formulation) if args.roots else None
     if args.json:
         extra = {"roots": roots} if roots is not None else {}
