@@ -79,3 +79,12 @@ def test_coordinated_needs_a_turn():
         SteadyManoeuvre(200.0, 1000.0, coordinated=True)
     man = SteadyManoeuvre.turn(1000.0, 8000.0, speed_m_s=200.0, coordinated=True)
     assert man.with_speed(210.0).coordinated and "coordinated turn" in man.describe()
+
+
+def test_study_cases_carry_the_coordinated_flag():
+    from flexsim.linear.study import StudyCase, turn_cases
+
+    cases = turn_cases("gtm", radii_m=(5000.0, 8000.0), altitudes_m=(0.0,), models=("QS",), coordinated=True)
+    assert len(cases) == 2 and all(c.coordinated for c in cases)
+    with pytest.raises(ValueError, match="applies to turns only"):
+        StudyCase("gtm", "QS", 0.0, coordinated=True)
