@@ -55,6 +55,8 @@ def test_total_force_is_sum_of_strip_loads(rigid):
         a0 = loads.alpha0_rad[j]  # flow angle relative to the component axes (eq. 28's alpha0)
         f_strip = loads.lift_n_m[j] * (-st.n[j] - a0 * st.d[j]) + loads.drag_n_m[j] * (st.d[j] - a0 * st.n[j])
         total += st.width_m[j] * axes @ f_strip
+    # plus the parasite-drag items of the bundled GTM (flexsim.model.drag; resultant in body axes)
+    total += rigid.parasite_drag.generalized_force(q, vel, isa_density(0.0))[0:3]
     np.testing.assert_allclose(force, total, rtol=1e-9, atol=1e-9 * np.abs(total).max())
 
 
