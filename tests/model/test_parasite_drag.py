@@ -55,6 +55,7 @@ def test_gtm_cruise_lift_to_drag_and_glide(gtm):
     assert off.parasite_drag is None
     induced = trim(off, SteadyManoeuvre.level(9144.0, mach=0.78))
     assert induced.lift_n / induced.drag_n > 50.0  # the paper's induced-drag-only aircraft
+    assert AircraftModel(gtm, aero=AeroOptions("quasi-steady", formulation="paper")).parasite_drag is None
 
 
 def test_drag_item_errors_name_the_field():
