@@ -6,7 +6,8 @@
   The paper's Tables 2-3 satisfy it to 0.003 % (T_e / sin(theta) = 889.41-889.47 kN). Tolerance 1e-6: the
   trim residual is ~1e-13, so only round-off remains.
 * "physical" (default) resolves lift normal to the local wind and drag along it: its T_e/(W sin theta) is
-  far from 1 (0.14-0.18 on the calibrated GTM, shared/findings/paper-mechanism-probe.md section D).
+  far from 1 (0.14-0.18 on the calibrated GTM with induced drag only, shared/findings/paper-mechanism-probe.md
+  section D; 0.53 with the GTM's parasite-drag items, issue 11).
 * One key in the aircraft file, one option in the API (AeroOptions.formulation overrides the file).
 * aero_density_kg_m3: fixing the aerodynamics' density at the ISA value of the flight altitude reproduces the
   default exactly (the same numbers, bit for bit).
@@ -45,7 +46,7 @@ def test_physical_formulation_is_the_default_and_differs(gtm):
     assert model.formulation == "physical"
     point = trim(model, SteadyManoeuvre.level(9144.0, mach=0.7791), check_limits=False)
     weight = model.structure.mass_properties.mass_kg * model.gravity_m_s2
-    assert point.thrust_n / (weight * math.sin(point.theta)) < 0.5
+    assert point.thrust_n / (weight * math.sin(point.theta)) < 0.7
 
 
 def test_paper_formulation_steady_lifting_strips_carry_no_body_x_force(gtm):
