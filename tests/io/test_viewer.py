@@ -80,11 +80,22 @@ def _stop(pid: int) -> None:
             return
         deadline = time.monotonic() + wait_s
         while time.monotonic() < deadline:
-            try:
-                os.kill(pid, 0)
-            except ProcessLookupError:
+            if not _running(pid):
                 return
             time.sleep(0.1)
+
+
+def _running(pid: int) -> bool:
+    """Whether ``pid`` still runs; reaps it if it is a child of this process (rerun-sdk may spawn it as one)."""
+    try:
+        done, _ = os.waitpid(pid, os.WNOHANG)
+        return done == 0
+    except ChildProcessError:  # not our child: ask the kernel
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return False
+        return True
 
 
 def test_viewer_unavailable_reason_follows_the_display():
