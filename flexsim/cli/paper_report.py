@@ -138,14 +138,15 @@ def _sign(s: int | None) -> str:
 def sweep_report(rows: list[dict], kind: str) -> tuple[list[str], dict]:
     """Text lines and the JSON scorecard of ``flexsim sweep --turn|--climb`` beside the paper's trends."""
     signs = trend_signs(rows, kind)
-    unit = "1/km" if kind == "turn" else "1/deg"
+    per = "km" if kind == "turn" else "deg"
     x = "R" if kind == "turn" else "gamma"
-    lines = ["", f"Trend scorecard ({kind}; sign of the least-squares slope over the study, 0 = change below the search "
-             "resolution 1e-4; paper: its text to Figs. 7-10, 12-15)",
-             f"{'model':<6} {'h [m]':>6} {'quantity':<16} {'slope [' + unit + ']':>16} {'change':>10} {'sign':>5} {'paper':>6}  match"]
+    lines = ["", f"Trend scorecard ({kind}; sign of the least-squares slope over the study, 0 = change over the range below the "
+             "search resolution, 1e-4 in M_F or rad/s; change = slope x range, [-] or [rad/s]; paper: its text to Figs. 7-10, 12-15)",
+             f"{'model':<6} {'h [m]':>6} {'quantity':<16} {'slope':>12} {'unit':<12} {'change':>10} {'sign':>5} {'paper':>6}  match"]
     for t in signs:
         mark = "" if t.match is None else ("yes" if t.match else "NO")
-        lines.append(f"{t.model:<6} {t.altitude_m:6.0f} {t.quantity:<16} {t.slope:16.4e} {t.change:+10.5f} {_sign(t.sign):>5} "
+        unit = f"1/{per}" if t.quantity.startswith("dM_F") else f"rad/s/{per}"
+        lines.append(f"{t.model:<6} {t.altitude_m:6.0f} {t.quantity:<16} {t.slope:12.4e} {unit:<12} {t.change:+10.5f} {_sign(t.sign):>5} "
                      f"{_sign(t.paper_sign):>6}  {mark}")
     score: dict = {"kind": kind, "trends": [t.as_dict() for t in signs]}
     for model in sorted({t.model for t in signs}):
