@@ -3,7 +3,7 @@
 :class:`FlightDynamics` is the only place where the environments touch the model. It holds one
 :class:`~flexsim.model.aircraft_model.AircraftModel` (whose ``rhs(t, x, u)`` is integrated unchanged),
 trims it with :func:`flexsim.trim.trim`, computes the Jacobian of the trim with
-:func:`flexsim.linear.linearize.jacobian` (once per trim, cached), and integrates a control period:
+:func:`flexsim.model.jacobian.jacobian` (once per trim, cached), and integrates a control period:
 
 * zero-order hold: the control vector is constant over the period;
 * actuator rate limits: the applied controls move towards the commanded ones by at most rate * dt per
@@ -32,7 +32,7 @@ from scipy.integrate import solve_ivp
 
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import speed_of_sound
-from flexsim.linear.linearize import jacobian
+from flexsim.model.jacobian import jacobian
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.fixed_step import ETD2RK
 from flexsim.kinematics import dcm_321, euler_rate_matrix_inverse
@@ -248,7 +248,7 @@ class FlightDynamics:
         jac = self._jacobians.pop(manoeuvre, None)
         if jac is None:
             point = self.trim(manoeuvre)
-            jac = jacobian(self.model, point.x, point.u)[0]
+            jac = jacobian(self.model, point.x, point.u, controls=False)[0]
         self._jacobians[manoeuvre] = jac
         _evict(self._jacobians)
         if self.method == "Radau":

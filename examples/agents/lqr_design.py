@@ -1,6 +1,6 @@
 """Controller design on the linearised flexsim model, for the classical baselines of the gymnasium tasks.
 
-The design model is :func:`flexsim.linear.linearize.jacobian` of the environment's own model at a trim
+The design model is :func:`flexsim.model.jacobian.jacobian` of the environment's own model at a trim
 (all states: rigid body, elastic, inflow). For the LQR the elastic and inflow states are residualised
 (their derivatives set to zero: quasi-static elasticity and inflow), which keeps the static aeroelastic
 effects (wing twist under load) in the rigid-body model:
@@ -33,7 +33,7 @@ import numpy as np
 from scipy.linalg import expm, solve_continuous_are
 from scipy.optimize import minimize
 
-from flexsim.linear.linearize import jacobian
+from flexsim.model.jacobian import jacobian
 
 __all__ = ["StateFeedback", "design_rigid_lqr", "checked_feedback", "rigid_state_from_obs", "design_fin_damper", "RIGID_STATES"]
 

@@ -23,6 +23,7 @@ from scipy.linalg import eigvals
 from scipy.optimize import brentq
 
 from flexsim.aero.inflow import inflow_coefficients
+from flexsim.aero.pk import pk_track
 from flexsim.aero.theodorsen import theodorsen_function, theodorsen_operator
 
 MODELS = ("peters", "quasi_steady", "theodorsen")
@@ -201,17 +202,17 @@ def wind_off_frequencies(section: TypicalSection) -> NDArray[np.float64]:
     return np.sqrt(np.sort(eigvals(stiff_s, mass_s).real))
 
 
-def _pk_candidates(section: TypicalSection, speed: float, k: float) -> NDArray[np.complex128]:
-    """Roots ``p`` of Theodorsen's flutter determinant with ``C`` frozen at reduced frequency ``k``."""
+def _pk_state_matrix(section: TypicalSection, speed: float, omega: float) -> NDArray[np.complex128]:
+    """State matrix of Theodorsen's flutter equations with ``C`` frozen at ``k = ω/U`` (units of ``ω_θ``)."""
     mass_s, stiff_s = structural_matrices(section)
     op = theodorsen_operator(section.a, 1.0, 1.0, speed)
-    c_k = theodorsen_function(k)
+    c_k = theodorsen_function(abs(omega) / speed)
     signs = _FORCE_SIGNS[:, None]
     mass = mass_s - signs * op.mass
     damping = signs * (op.damping + c_k * np.outer(op.circulation, op.downwash_rate))
     stiffness = stiff_s - signs * (op.stiffness + c_k * np.outer(op.circulation, op.downwash_displacement))
     lower = np.linalg.solve(mass, np.hstack([-stiffness, damping]))
-    return np.linalg.eigvals(np.vstack([np.hstack([np.zeros((2, 2)), np.eye(2)]), lower]))
+    return np.vstack([np.hstack([np.zeros((2, 2)), np.eye(2)]), lower])
 
 
 def pk_root(
@@ -220,9 +221,10 @@ def pk_root(
     """p-k iteration for one mode with Theodorsen's aerodynamics (Hodges & Pierce 2011, ch. 5).
 
     ``(M_s - P M_nc)p² - P(D_nc + C(k) r w_rᵀ)p + K_s - P(K_nc + C(k) r w_dᵀ) = 0`` with the
-    :class:`~flexsim.aero.theodorsen.TheodorsenOperator` parts and ``P = diag(-1, 1)``. Repeats: evaluate
-    ``C(k)`` at ``k = ωb/U``, solve for ``p``, take the root with ``Im p >= 0`` nearest ``ω``, set
-    ``ω = Im p``; until ``|Δk| < tol``. At ``Re p = 0`` this is Theodorsen's exact flutter point.
+    :class:`~flexsim.aero.theodorsen.TheodorsenOperator` parts and ``P = diag(-1, 1)``, in first-order form.
+    The start is the root with ``Im p >= 0`` nearest ``ω`` at ``k = ω/U``; the iteration is the project's
+    one p-k (:func:`flexsim.aero.pk.pk_track`): evaluate ``C(k)`` at ``k = Im p / U``, continue the root,
+    until ``|Δk| < tol``. At ``Re p = 0`` this is Theodorsen's exact flutter point.
 
     Parameters
     ----------
@@ -248,18 +250,21 @@ def pk_root(
     """
     if not speed > 0.0:
         raise ValueError(f"speed must be > 0 for the p-k method; got {speed!r}")
-    k = frequency_guess / speed
-    for _ in range(max_iter):
-        roots = _pk_candidates(section, speed, k)
-        upper = roots[roots.imag >= 0.0]
-        root = upper[np.argmin(np.abs(upper.imag - k * speed))]
-        k_new = root.imag / speed
-        if abs(k_new - k) < tol:
-            return complex(root)
-        k = k_new
-    raise RuntimeError(
-        f"p-k iteration did not converge at speed {speed!r} from frequency {frequency_guess!r}"
-    )
+
+    def a_of(omega: float) -> NDArray[np.complex128]:
+        return _pk_state_matrix(section, speed, omega)
+
+    vals, vecs = np.linalg.eig(a_of(frequency_guess))
+    upper = np.flatnonzero(vals.imag >= 0.0)
+    start = upper[np.argmin(np.abs(vals[upper].imag - frequency_guess))]
+    # |Δk| < tol  <=>  |Δ Im p| < tol U; the kernel's test is relative to max(1, |Im p|)
+    root = pk_track(a_of, vals[start], vecs[:, start], rtol=tol * speed / max(1.0, 2.0 * frequency_guess),
+                    max_iter=max_iter)
+    if not root.converged:
+        raise RuntimeError(
+            f"p-k iteration did not converge at speed {speed!r} from frequency {frequency_guess!r}"
+        )
+    return root.eigenvalue
 
 
 def pk_roots(

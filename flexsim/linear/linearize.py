@@ -1,9 +1,9 @@
 """Linearisation of the one nonlinear model about a trim (or any state).
 
-A = d rhs / dx and B = d rhs / du by central differences of :meth:`AircraftModel.rhs` with steps scaled
-to each state's magnitude (relative step 1e-6, floor 1e-7); the same right-hand side as simulation and
-trim, inflow states included (DESIGN 6). The states X, Y and psi do not appear in the equations and
-give exact zero eigenvalues; the altitude Z enters only through the air density. For the eigen-analysis
+A = d rhs / dx and B = d rhs / du by central differences of :meth:`AircraftModel.rhs`
+(:func:`flexsim.model.jacobian.jacobian`: steps scaled to each state's magnitude, structured columns over
+the inflow states); the same right-hand side as simulation and trim, inflow states included. The states
+X, Y and psi do not appear in the equations and give exact zero eigenvalues; the altitude Z enters only through the air density. For the eigen-analysis
 of a steady manoeuvre they are removed (:attr:`LinearModel.reduced`), which also freezes the density at
 the trim altitude, as the paper's time-invariant climbs require.
 """
@@ -15,43 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.jacobian import jacobian
 
-__all__ = ["LinearModel", "jacobian", "linearize"]
-
-_REL_STEP = 1e-6
-_ABS_STEP = 1e-7
-
-
-def jacobian(model: AircraftModel, x: np.ndarray, u: np.ndarray, t: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-    """Central-difference Jacobians of ``model.rhs`` at (x, u).
-
-    Parameters
-    ----------
-    model : AircraftModel
-    x : ndarray, shape (n,)
-    u : ndarray, shape (4,)
-
-    Returns
-    -------
-    a : ndarray, shape (n, n)
-    b : ndarray, shape (n, 4)
-    """
-    n = x.size
-    a = np.empty((n, n))
-    for j in range(n):
-        h = max(_ABS_STEP, _REL_STEP * abs(x[j]))
-        xp, xm = x.copy(), x.copy()
-        xp[j] += h
-        xm[j] -= h
-        a[:, j] = (model.rhs(t, xp, u) - model.rhs(t, xm, u)) / (2 * h)
-    b = np.empty((n, 4))
-    for j in range(4):
-        h = max(1e-3 if j == 0 else 1e-7, _REL_STEP * abs(u[j]))
-        up, um = u.copy(), u.copy()
-        up[j] += h
-        um[j] -= h
-        b[:, j] = (model.rhs(t, x, up) - model.rhs(t, x, um)) / (2 * h)
-    return a, b
+__all__ = ["LinearModel", "linearize"]
 
 
 @dataclass(frozen=True, eq=False)

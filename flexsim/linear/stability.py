@@ -30,15 +30,20 @@ Re(conj(phi_i) (M phi)_i); a tie between mirror coordinates (right and left halv
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
+from flexsim.aero.pk import pk_roots
 from flexsim.aero.theodorsen import theodorsen_function
-from flexsim.linear.linearize import LinearModel, jacobian, linearize
+from flexsim.linear.linearize import LinearModel, linearize
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.structure.mirror import ranked
 
-__all__ = ["Mode", "Spectrum", "spectrum"]
+__all__ = ["Mode", "Spectrum", "spectrum", "pk_state_matrix", "PK_METHODS"]
+
+#: Ways of continuing a p-k root from one iteration to the next (see :mod:`flexsim.aero.pk`).
+PK_METHODS = ("inverse-iteration", "eig")
 
 
 
@@ -194,7 +199,7 @@ def _first_elastic_frequency(model: AircraftModel) -> float:
 
 
 def spectrum(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, *, aero_model: str = "unsteady",
-             pk_model: AircraftModel | None = None) -> Spectrum:
+             pk_model: AircraftModel | None = None, pk_method: str = "inverse-iteration") -> Spectrum:
     """Eigen-analysis of ``model`` linearised about (x0, u0).
 
     Parameters
@@ -208,18 +213,40 @@ def spectrum(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, *, aero_model
     pk_model : AircraftModel, optional
         A finite-state (``unsteady``) model of the same aircraft, used to build the lambda0 input and
         w0 + w1/2 output matrices of the p-k method; ``model`` must then be the quasi-steady model.
+    pk_method : {"inverse-iteration", "eig"}
+        How each p-k step continues a root (:mod:`flexsim.aero.pk`): shifted inverse iteration with a full
+        ``eig`` fallback (default), or a full ``eig`` every step (the reference; same roots, slower).
     """
+    if pk_method not in PK_METHODS:
+        raise ValueError(f"pk_method = {pk_method!r}: must be one of {', '.join(PK_METHODS)}")
     lin = linearize(model, x0, u0)
     if aero_model != "theodorsen":
         vals, vecs = np.linalg.eig(lin.a)
         return _classify(model, lin, vals, vecs, aero_model)
     if pk_model is None:
         raise ValueError('aero_model = "theodorsen" needs pk_model: the finite-state model of the same aircraft')
-    return _pk(model, pk_model, lin, x0, u0)
+    return _pk(model, pk_model, lin, pk_method)
 
 
-def _pk(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel, x0: np.ndarray, u0: np.ndarray) -> Spectrum:
-    """p-k iteration with Theodorsen's C(k) at every strip (paper eq. 27, the "US" model)."""
+def pk_state_matrix(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel) -> Callable[[float], np.ndarray]:
+    """The p-k state matrix A(omega) of the "US" model (paper eq. 27) over the kept states of ``lin``.
+
+    A(omega) = A_qs + B_lambda diag(1 - C(k_j)) C_w with k_j = omega b_j / u0_j at every unsteady strip:
+    B_lambda = d x_dot / d lambda0_j (finite-state model, central differences) and C_w = d (w0 + w1/2)_j / dx.
+
+    Parameters
+    ----------
+    qs_model, fs_model : AircraftModel
+        Quasi-steady and finite-state models of the same aircraft.
+    lin : LinearModel
+        Linearisation of ``qs_model`` (its A is A_qs; its x0, u0 the trim).
+
+    Returns
+    -------
+    callable
+        ``a_of(omega [rad/s]) -> ndarray (complex), shape (m, m)``.
+    """
+    x0, u0 = lin.x0, lin.u0
     coupling = fs_model.aero
     strips = coupling.strips
     idx = np.flatnonzero(strips.unsteady)
@@ -231,9 +258,9 @@ def _pk(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel, x0: 
     # input matrix: d x_dot / d lambda0_j (perturb the strip's inflow states by 2 eps: lambda0 = 1/2 b^T lam)
     b_lam = np.empty((lay_qs.n_states, idx.size))
     eps = 1e-4
-    for c, j in enumerate(range(idx.size)):
+    for c in range(idx.size):
         xp, xm = x_fs.copy(), x_fs.copy()
-        sl = slice(lay_fs.inflow.start + j * n_in, lay_fs.inflow.start + (j + 1) * n_in)
+        sl = slice(lay_fs.inflow.start + c * n_in, lay_fs.inflow.start + (c + 1) * n_in)
         xp[sl] += 2 * eps
         xm[sl] -= 2 * eps
         b_lam[:, c] = (fs_model.rhs(0.0, xp, u0) - fs_model.rhs(0.0, xm, u0))[: lay_qs.n_states] / (2 * eps)
@@ -259,24 +286,19 @@ def _pk(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel, x0: 
         one_minus_c = 1.0 - theodorsen_function(np.abs(omega) * b_over_u)
         return lin.a + (b_k * one_minus_c[None, :]) @ c_k
 
+    return a_of
+
+
+def _pk(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel, method: str) -> Spectrum:
+    """p-k iteration with Theodorsen's C(k) at every strip (paper eq. 27, the "US" model)."""
+    a_of = pk_state_matrix(qs_model, fs_model, lin)
     vals0, vecs0 = np.linalg.eig(lin.a)
     out_vals, out_vecs = vals0.astype(complex).copy(), vecs0.astype(complex).copy()
-    for k in range(vals0.size):
-        p = vals0[k]
-        if p.imag <= 0.5 or p.real < -20.0:
-            continue
-        vec = vecs0[:, k]
-        for _ in range(30):
-            vals, vecs = np.linalg.eig(a_of(p.imag))
-            corr = np.abs(vecs.conj().T @ vec) / (np.linalg.norm(vecs, axis=0) * np.linalg.norm(vec))
-            m = int(np.argmax(corr - 1e-3 * np.abs(vals - p) / max(abs(p), 1.0)))
-            p_new, vec = vals[m], vecs[:, m]
-            if abs(p_new.imag - p.imag) < 1e-7 * max(1.0, abs(p.imag)):
-                p = p_new
-                break
-            p = p_new
-        out_vals[k], out_vecs[:, k] = p, vec
+    track = np.flatnonzero((vals0.imag > 0.5) & (vals0.real >= -20.0))
+    roots = pk_roots(a_of, vals0[track], vecs0[:, track], inverse_iteration=method == "inverse-iteration")
+    for k, root in zip(track, roots):
+        out_vals[k], out_vecs[:, k] = root.eigenvalue, root.vector
         conj = np.argmin(np.abs(vals0 - np.conj(vals0[k])))
         if conj != k:
-            out_vals[conj], out_vecs[:, conj] = np.conj(p), np.conj(vec)
+            out_vals[conj], out_vecs[:, conj] = np.conj(root.eigenvalue), np.conj(root.vector)
     return _classify(qs_model, lin, out_vals, out_vecs, "theodorsen")

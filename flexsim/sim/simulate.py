@@ -11,7 +11,7 @@ controller (zero-order hold). Restarting at every log chunk instead cost 2.2x th
 response with Radau (LU refactorisations), see ``docs/simulation.md``.
 
 Default method (measured, ``benchmarks/bench_simulate.py`` and ``docs/simulation.md``): with aerodynamics,
-**Radau** with a constant Jacobian computed by :func:`flexsim.linear.linearize.jacobian` at the initial
+**Radau** with a constant Jacobian computed by :func:`flexsim.model.jacobian.jacobian` at the initial
 state. The finite-state inflow and apparent-mass states give well-damped eigenvalues down to about
 -650 s^-1 (|lambda| up to 1500 s^-1 on the GTM), which hold an explicit method at its stability limit:
 DOP853 needs ~4300 right-hand sides per simulated second whatever the tolerance. Without aerodynamics the
@@ -31,7 +31,7 @@ import numpy as np
 from scipy.integrate import BDF, DOP853, LSODA, RK23, RK45, Radau
 from scipy.optimize import brentq
 
-from flexsim.linear.linearize import jacobian
+from flexsim.model.jacobian import jacobian
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.controls import ControlSchedule, Controls
 from flexsim.sim.outputs import OutputMaps
@@ -299,7 +299,7 @@ def simulate(
         rejected.
     method : str
         ``"auto"`` (:func:`default_method`), or one of :data:`METHODS`. Implicit methods (Radau, BDF, LSODA)
-        use a constant Jacobian from :func:`~flexsim.linear.linearize.jacobian` at the initial state.
+        use a constant Jacobian from :func:`~flexsim.model.jacobian.jacobian` at the initial state.
     rtol : float, optional
         Relative tolerance; default 1e-3 for implicit and 1e-6 for explicit methods (accuracy checks in
         ``docs/simulation.md``).
@@ -374,7 +374,7 @@ def simulate(
 
     u0 = ctrl.held(0.0, x0) if ctrl.controller is not None else ctrl.schedule(0.0)
     wall0 = time.perf_counter()
-    jac_matrix = jacobian(model, x0, u0)[0] if implicit else None
+    jac_matrix = jacobian(model, x0, u0, controls=False)[0] if implicit else None
     counters = {"nfev": 0, "njev": 0, "nlu": 0, "nonfinite": 0}
     sink = None
     if path is not None:
