@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import speed_of_sound
 from flexsim.model.jacobian import jacobian
@@ -230,6 +231,7 @@ class FlightDynamics:
         _evict(self._trims)
         return point
 
+    @single_blas_thread
     def start(self, manoeuvre: SteadyManoeuvre) -> None:
         """Prepare an episode flown about the trim of ``manoeuvre``; the wind field is reset to still air.
 
@@ -268,6 +270,7 @@ class FlightDynamics:
         return applied + np.clip(command - applied, -step, step)
 
     # ------------------------------------------------------------------ integration
+    @single_blas_thread
     def advance(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float) -> StepOutcome:
         """Integrate ``rhs`` from t0 to t1 [s] with the controls ``u`` held (zero-order hold).
 

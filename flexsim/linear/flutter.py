@@ -17,6 +17,7 @@ from typing import Callable
 import numpy as np
 from scipy.optimize import brentq
 
+from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.errors import FlexsimError
@@ -138,6 +139,7 @@ class FlutterAnalysis:
         self.fs = (AircraftModel(aircraft, aero=AeroOptions("unsteady", n_inflow, formulation=formulation), **lin)
                    if aero_model != "quasi-steady" else None)
 
+    @single_blas_thread
     def evaluate(self, manoeuvre: SteadyManoeuvre, guess: TrimPoint | None = None) -> tuple[TrimPoint, Spectrum]:
         """Trim (limits not enforced: the paper's climbs need negative thrust) and eigen-analysis.
 
@@ -152,6 +154,7 @@ class FlutterAnalysis:
             return point, spectrum(self.fs, x, point.u, aero_model="unsteady")
         return point, spectrum(self.qs_linear, point.x, point.u, aero_model="theodorsen", pk_model=self.fs)
 
+    @single_blas_thread
     def search(self, manoeuvre: SteadyManoeuvre, *, mach_range: tuple[float, float] = (0.3, 0.95),
                mach_step: float = 0.05, tol: float = 1e-4, mach_guess: float | None = None) -> FlutterPoint:
         """Lowest flutter Mach number of ``manoeuvre`` (its speed is replaced by the searched one).
@@ -333,6 +336,7 @@ def _growth(spec: Spectrum) -> float:
     return re if abs(re) > UNSTABLE_DAMPING * abs(worst.eigenvalue) else 0.0
 
 
+@single_blas_thread
 def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range: tuple[float, float] = (10.0, 300.0),
                 speed_step: float = 5.0, density_kg_m3: float | None = None, altitude_m: float = 0.0,
                 compressibility: str = "file", tol_m_s: float = 1e-3, n_inflow: int = 6,

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from flexsim._threads import single_blas_thread
 from flexsim.model.aircraft_model import AircraftModel
 
 __all__ = ["JACOBIAN_METHODS", "jacobian"]
@@ -44,6 +45,7 @@ def _column(model: AircraftModel, t: float, x: np.ndarray, u: np.ndarray, direct
     return (model.rhs(t, x + h * direction, u) - model.rhs(t, x - h * direction, u)) / (2 * h)
 
 
+@single_blas_thread
 def jacobian(model: AircraftModel, x: np.ndarray, u: np.ndarray, t: float = 0.0, *,
              method: str = "structured", controls: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
     """Central-difference Jacobians of ``model.rhs`` at (t, x, u) (module docstring).

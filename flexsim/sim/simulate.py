@@ -31,6 +31,7 @@ import numpy as np
 from scipy.integrate import BDF, DOP853, LSODA, RK23, RK45, Radau
 from scipy.optimize import brentq
 
+from flexsim._threads import single_blas_thread
 from flexsim.model.jacobian import jacobian
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.controls import ControlSchedule, Controls
@@ -262,6 +263,7 @@ class _Sampler:
         return np.concatenate(self.t), np.concatenate(self.x), np.concatenate(self.u)
 
 
+@single_blas_thread
 def simulate(
     model: AircraftModel,
     initial: TrimPoint | np.ndarray,
@@ -450,9 +452,16 @@ def _integrate(model, ctrl, x0, u0, t_end, method, rtol, atol, max_step, jac_mat
                     return np.broadcast_to(u_held, (np.size(t), 4)) if np.ndim(t) else u_held
             else:
                 sched = ctrl.schedule
+                u_a = sched(float(a))
+                if np.array_equal(u_a, sched(float(b))):
+                    # constant on the segment (its ends are consecutive breakpoints): no interpolation per rhs
+                    u_a.setflags(write=False)
 
-                def u_of(t, sched=sched):
-                    return sched.at(t) if np.ndim(t) else sched(t)
+                    def u_of(t, u_c=u_a):
+                        return np.broadcast_to(u_c, (np.size(t), 4)) if np.ndim(t) else u_c
+                else:
+                    def u_of(t, sched=sched):
+                        return sched.at(t) if np.ndim(t) else sched(t)
 
             current[0] = u_of
             options = {"rtol": rtol, "atol": atol, "max_step": max_step}

@@ -85,6 +85,23 @@ def test_schedule_is_interpolated_and_held(quasi_steady):
     assert result.signal("theta_deg")[-1] != pytest.approx(result.signal("theta_deg")[0], abs=1e-6)  # it responds
 
 
+def test_constant_segments_skip_the_interpolation(quasi_steady, monkeypatch):
+    """Segments where the schedule is constant hand the rhs the held vector: interpolated only at the
+    segment ends, not per right-hand side, with results identical to the interpolated ones."""
+    point = trim(quasi_steady, SteadyManoeuvre.level(H, mach=MACH))
+    u0 = point.u
+    sched = ControlSchedule([0.0, 0.2, 0.3], [u0, u0, u0 + [0, 0, math.radians(1.0), 0]])
+    calls = []
+    original = ControlSchedule.__call__
+    monkeypatch.setattr(ControlSchedule, "__call__", lambda self, t: calls.append(t) or original(self, t))
+    result = simulate(quasi_steady, point, 0.4, controls=sched, output_rate_hz=50.0)
+    in_ramp = [t for t in calls if 0.2 < t < 0.3]
+    outside = [t for t in calls if not 0.2 <= t <= 0.3]
+    assert result.nfev > 50 and in_ramp  # the ramp segment interpolates per rhs
+    assert len(outside) <= 4  # the constant segments [0, 0.2] and [0.3, 0.4]: their ends only
+    np.testing.assert_allclose(result.u, sched.at(result.t), atol=0.0)
+
+
 def test_feedback_controller_is_sampled_every_period_and_held(vacuum):
     x0 = vacuum.pack(position_m=[0, 0, -H], velocity=np.r_[200.0, 0.0, 0.0, np.zeros(vacuum.structure.dofs.n_v - 3)])
     calls = []
