@@ -46,11 +46,12 @@ import math
 from collections.abc import Callable
 
 import numpy as np
+from scipy.integrate import DenseOutput, OdeSolver
 from scipy.linalg import expm
 
 from flexsim._arrays import readonly
 
-__all__ = ["phi_functions", "ETD2RK"]
+__all__ = ["phi_functions", "ETD2RK", "ETD2RKSolver"]
 
 
 def _check_matrix(name: str, a: np.ndarray) -> np.ndarray:
@@ -139,7 +140,8 @@ class ETD2RK:
         """The linear part J (read-only), shape (n, n) [1/s]."""
         return self._jac
 
-    def step(self, fun: Callable[..., np.ndarray], t: float, x: np.ndarray, args: tuple = ()) -> np.ndarray:
+    def step(self, fun: Callable[..., np.ndarray], t: float, x: np.ndarray, args: tuple = (),
+             k1: np.ndarray | None = None) -> np.ndarray:
         """One step from (t, x) to t + h.
 
         Parameters
@@ -152,6 +154,8 @@ class ETD2RK:
             State at t.
         args : tuple
             Extra arguments of ``fun`` (e.g. held controls).
+        k1 : ndarray, shape (n,), optional
+            ``fun(t, x, *args)`` if already known (saves one evaluation).
 
         Returns
         -------
@@ -160,7 +164,75 @@ class ETD2RK:
         """
         if np.shape(x) != (self.n,):
             raise ValueError(f"x: expected shape ({self.n},) to match jac, got shape {np.shape(x)}")
-        k1 = fun(t, x, *args)
+        if k1 is None:
+            k1 = fun(t, x, *args)
         a = x + self._h_phi1 @ k1
         k2 = fun(t + self.h, a, *args)
         return a + self._h_phi2 @ (k2 - k1 - self._jac @ (a - x))
+
+
+class ETD2RKSolver(OdeSolver):
+    """ETD2RK with fixed steps behind scipy's ``OdeSolver`` interface (for :func:`flexsim.sim.simulate`).
+
+    Steps of exactly ``step`` [s] from ``t0`` (the last one of an interval shortened to land on
+    ``t_bound``; one :class:`ETD2RK` per distinct step, kept in ``cache`` across solvers). The state
+    derivative at the end of a step is the first evaluation of the next, so a step costs two evaluations
+    of ``fun``. Dense output: the cubic Hermite interpolant of the states and derivatives at both ends
+    (third order, below the method's own error at the step end).
+
+    Parameters
+    ----------
+    fun, t0, y0, t_bound
+        As for every scipy ``OdeSolver``.
+    jac : ndarray, shape (n, n)
+        The fixed linear part J [1/s] (normally the Jacobian at the initial state).
+    step : float
+        The fixed step h [s] > 0.
+    cache : dict, optional
+        ``{h: ETD2RK}`` shared between the solvers of one run (the matrix functions cost one ``expm`` of a
+        3n x 3n matrix per h).
+    """
+
+    def __init__(self, fun, t0, y0, t_bound, jac, step, cache=None, vectorized=False, **extraneous):
+        super().__init__(fun, t0, y0, t_bound, vectorized)
+        self._jac = _check_matrix("jac", jac)
+        self.h_step = _check_step(step)
+        self._cache = {} if cache is None else cache
+        self.f = self.fun(self.t, self.y)
+        self._f_old = None
+        self.njev, self.nlu = 0, 0
+
+    def _method(self, h: float) -> ETD2RK:
+        key = round(h, 12)
+        if key not in self._cache:
+            self._cache[key] = ETD2RK(self._jac, h)
+        return self._cache[key]
+
+    def _step_impl(self):
+        remaining = self.t_bound - self.t
+        h = self.h_step if remaining > self.h_step * (1.0 + 1e-9) else remaining
+        y_new = self._method(h).step(self.fun, self.t, self.y, k1=self.f)
+        t_new = self.t_bound if h == remaining else self.t + h
+        self._y_old, self._f_old = self.y, self.f
+        self.t, self.y = t_new, y_new
+        self.f = self.fun(t_new, y_new)
+        return True, None
+
+    def _dense_output_impl(self):
+        return _Hermite(self.t_old, self.t, self._y_old, self.y, self._f_old, self.f)
+
+
+class _Hermite(DenseOutput):
+    """Cubic Hermite interpolant between (t_old, y_old, f_old) and (t, y, f)."""
+
+    def __init__(self, t_old, t, y_old, y, f_old, f):
+        super().__init__(t_old, t)
+        self.h = t - t_old
+        self.y_old, self.dy = y_old, y - y_old
+        self.f_old, self.f = f_old, f
+
+    def _call_impl(self, t):
+        s = (np.asarray(t, dtype=float) - self.t_old) / self.h
+        h01, h10, h11 = s * s * (3 - 2 * s), s * (1 - s) ** 2, s * s * (s - 1)  # h00 = 1 - h01
+        y = np.multiply.outer(self.y_old, np.ones_like(s)) + np.multiply.outer(self.dy, h01)
+        return y + self.h * (np.multiply.outer(self.f_old, h10) + np.multiply.outer(self.f, h11))

@@ -27,7 +27,7 @@ import numpy as np
 import pytest
 from scipy.linalg import expm
 
-from flexsim.sim.fixed_step import ETD2RK, phi_functions
+from flexsim.sim.fixed_step import ETD2RK, ETD2RKSolver, _Hermite, phi_functions
 
 
 def _phi_scalar(z):
@@ -152,3 +152,35 @@ def test_invalid_arguments_are_named():
             ETD2RK(np.eye(2), h)
     with pytest.raises(ValueError, match=r"x: expected shape \(2,\) to match jac, got shape \(3,\)"):
         ETD2RK(np.eye(2), 0.01).step(lambda t, y: y, 0.0, np.zeros(3))
+
+
+def test_solver_interface_exact_on_linear_problem_and_lands_on_t_bound():
+    """ETD2RKSolver (scipy OdeSolver interface): the linear problem above exactly (1e-9), two evaluations
+    per step, a shortened last step landing on t_bound, and a dense output that is the cubic Hermite
+    interpolant of the step's end values and derivatives (exact for x = t^3 from exact end data)."""
+    a = _stiff_matrix()
+    g = np.linspace(-1.0, 1.0, 7)
+    x0 = np.arange(1.0, 8.0)
+    calls = []
+
+    def f(t, x):
+        calls.append(t)
+        return a @ x + g
+
+    solver = ETD2RKSolver(f, 0.0, x0, 0.53, jac=a, step=0.02)
+    while solver.status == "running":
+        solver.step()
+    assert solver.t == 0.53
+    _, phi1, _ = phi_functions(a, 0.53)
+    exact = expm(0.53 * a) @ x0 + 0.53 * phi1 @ g
+    np.testing.assert_allclose(solver.y, exact, rtol=1e-9, atol=1e-9 * np.abs(exact).max())
+    assert len(calls) == 1 + 2 * 27  # 26 steps of 20 ms and one of 10 ms
+    # dense output: the Hermite interpolant of the step's end values and derivatives
+    dense = solver.dense_output()
+    np.testing.assert_allclose(dense(np.array([solver.t_old, solver.t])).T, [dense.y_old, solver.y], rtol=1e-14)
+    eps = 1e-8  # one-sided difference: error |x''| eps / 2 < 1e-3
+    slope = (dense(solver.t) - dense(solver.t - eps)) / eps
+    np.testing.assert_allclose(slope, solver.f, rtol=1e-4, atol=1e-4 * np.abs(solver.f).max())
+    cubic = _Hermite(0.5, 1.0, np.array([0.125]), np.array([1.0]), np.array([0.75]), np.array([3.0]))
+    ts = np.linspace(0.5, 1.0, 7)
+    np.testing.assert_allclose(cubic(ts)[0], ts**3, rtol=1e-14)  # exact for cubic polynomials
