@@ -34,6 +34,7 @@ from typing import Callable
 
 import numpy as np
 
+from flexsim._threads import single_blas_thread
 from flexsim.aero.pk import pk_roots
 from flexsim.aero.theodorsen import theodorsen_function
 from flexsim.linear.linearize import LinearModel, linearize
@@ -198,6 +199,7 @@ def _first_elastic_frequency(model: AircraftModel) -> float:
     return cached
 
 
+@single_blas_thread
 def spectrum(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, *, aero_model: str = "unsteady",
              pk_model: AircraftModel | None = None, pk_method: str = "inverse-iteration") -> Spectrum:
     """Eigen-analysis of ``model`` linearised about (x0, u0).
