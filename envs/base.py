@@ -194,7 +194,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         modes = [m for m in type(self).metadata["render_modes"] if m != "human" or no_viewer is None]
         self.metadata = {**type(self).metadata, "render_modes": modes, "render_fps": rate}
         self.dynamics = FlightDynamics(self.aircraft, aero, integrator or IntegratorSettings(), actuator_rates or ActuatorRates(),
-                                       self.dt, windy=self._needs_wind(), undamped_structure=self.undamped_structure)
+                                       self.dt, undamped_structure=self.undamped_structure)
         self.reward_definition: TrackingReward = task.reward
         lo, hi = self.dynamics.u_low, self.dynamics.u_high
         self._u_scale = hi.copy()  # 0 for a surface the aircraft does not have: its action has no effect
@@ -203,6 +203,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self.observation_space = spaces.Box(low, high, dtype=np.float32)
         self._obs_low, self._obs_high = low.astype(np.float64), high.astype(np.float64)
         self._x = None
+        self._wind = None  # the episode's wind field, passed to every dynamics call (Episode.wind)
         self._u = np.zeros(4)
         self._last_action = np.zeros(4)
         self._steps = 0
@@ -215,10 +216,6 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._renderer = None
 
     # ------------------------------------------------------------------ task hooks
-    def _needs_wind(self) -> bool:
-        """Whether episodes can have wind (turbulence here; tasks with gusts override)."""
-        return self.turbulence != "none"
-
     def _new_episode(self, rng: np.random.Generator) -> Episode:
         """The start of an episode, drawn from ``rng`` (implemented by each task class)."""
         raise NotImplementedError(f"{type(self).__name__} must implement _new_episode")
@@ -301,8 +298,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         episode = self._new_episode(self.np_random)
         point = self.dynamics.trim(episode.manoeuvre)
         self.dynamics.start(episode.manoeuvre)
-        if self.dynamics.wind is not None:
-            self.dynamics.wind.field = episode.wind
+        self._wind = episode.wind
         self._x = np.array(episode.x0, dtype=float)
         self._u = point.u.copy()
         self._last_action = self.controls_to_action(point.u).astype(np.float64)
@@ -310,7 +306,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._time = 0.0
         self._ended = False
         self._reference = dict(episode.reference)
-        meas = self.dynamics.measure(self._x, 0.0)
+        meas = self.dynamics.measure(self._x, 0.0, self._wind)
         self._errors = self._task_errors(meas)
         self._last_reward = 0.0
         self._path = [meas.position_ned_m]
@@ -329,10 +325,10 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         command = self.action_to_controls(a)
         u = self.dynamics.rate_limit(self._u, command)
         t0, t1 = self._steps * self.dt, (self._steps + 1) * self.dt
-        outcome = self.dynamics.advance(self._x, u, t0, t1)
+        outcome = self.dynamics.advance(self._x, u, t0, t1, self._wind)
         self._x, self._u, self._time = outcome.x, u, outcome.time_s
         self._steps += 1
-        meas = self.dynamics.measure(self._x, self._time)
+        meas = self.dynamics.measure(self._x, self._time, self._wind)
         reason = self._termination(outcome, meas)
         terminated = bool(reason)
         self._ended = terminated
@@ -394,7 +390,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
 
     def measurements(self) -> Measurements:
         """Outputs of the current state."""
-        return self.dynamics.measure(self._x, self._time)
+        return self.dynamics.measure(self._x, self._time, self._wind)
 
     def signal_names(self) -> tuple[str, ...]:
         """Names of the flight-log signals (:meth:`log_sample`)."""

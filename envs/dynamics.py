@@ -19,7 +19,9 @@ trims it with :func:`flexsim.trim.trim`, computes the Jacobian of the trim with
   altitude 0 (crash).
 
 :class:`Measurements` are the outputs the environments observe (air data, attitude, structural sensors)
-computed from the state; nothing here depends on gymnasium.
+computed from the state; nothing here depends on gymnasium. The episode's wind field is passed per call
+(:meth:`FlightDynamics.advance`, :meth:`FlightDynamics.measure`) and reaches ``model.rhs(t, x, u, wind)``;
+nothing here stores it, so trims are always in still air and do not depend on earlier episodes.
 """
 
 from __future__ import annotations
@@ -34,7 +36,7 @@ from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import speed_of_sound
 from flexsim.model.jacobian import jacobian
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.sim.fixed_step import ETD2RK
 from flexsim.kinematics import dcm_321, euler_rate_matrix_inverse
 from flexsim.structure.shapes import bending_shapes, torsion_shapes
@@ -42,7 +44,7 @@ from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
 from flexsim.envs.config import FIXED_STEP_METHODS, ActuatorRates, IntegratorSettings
 
-__all__ = ["FlightDynamics", "Measurements", "StepOutcome", "WindHolder", "SENSOR_COMPONENTS"]
+__all__ = ["FlightDynamics", "Measurements", "StepOutcome", "SENSOR_COMPONENTS"]
 
 #: Components carrying the structural sensors (tip deflection, twist and their rates), in order.
 SENSOR_COMPONENTS = ("right_wing", "left_wing", "vtail")
@@ -58,23 +60,6 @@ def _evict(cache: dict) -> None:
     """Drop the oldest entries of an insertion-ordered cache beyond :data:`TRIM_CACHE`."""
     while len(cache) > TRIM_CACHE:
         del cache[next(iter(cache))]
-
-
-class WindHolder:
-    """The model's wind hook: forwards to the episode's wind field, or still air when it is None.
-
-    The model is built once per environment with this holder; each reset installs a new field
-    (turbulence seed, gust), so the model itself is never rebuilt or changed.
-    """
-
-    def __init__(self) -> None:
-        self.field = None
-
-    def __call__(self, t: float, positions_ned_m: np.ndarray) -> np.ndarray:
-        """Air velocity [m/s], NED, shape (k, 3), at ``positions_ned_m`` (k, 3) [m] and time t [s]."""
-        if self.field is None:
-            return np.zeros(np.shape(positions_ned_m))
-        return np.asarray(self.field(t, positions_ned_m), dtype=float)
 
 
 @dataclass(frozen=True)
@@ -170,9 +155,6 @@ class FlightDynamics:
     rates : ActuatorRates
     control_dt_s : float
         Control period [s].
-    windy : bool
-        Build the model with a :class:`WindHolder` (needed for gusts and turbulence; costs a little per
-        right-hand side, so still-air tasks leave it out).
     undamped_structure : bool
         The task needs the high-frequency structural modes free of numerical damping (see
         :meth:`IntegratorSettings.resolve`).
@@ -186,11 +168,10 @@ class FlightDynamics:
     """
 
     def __init__(self, aircraft: Aircraft, aero: str, integrator: IntegratorSettings, rates: ActuatorRates,
-                 control_dt_s: float, windy: bool, undamped_structure: bool = False) -> None:
+                 control_dt_s: float, undamped_structure: bool = False) -> None:
         self.aircraft = aircraft
         self.aero = aero
-        self.wind = WindHolder() if windy else None
-        self.model = AircraftModel(aircraft, aero=aero, wind=self.wind)
+        self.model = AircraftModel(aircraft, aero=aero)
         self.layout = self.model.layout
         for name in SENSOR_COMPONENTS:
             aircraft.component(name)  # KeyError naming the missing component
@@ -214,7 +195,7 @@ class FlightDynamics:
         z = self.layout.position.start + 2
         self._z = z
 
-        def ground(t: float, y: np.ndarray, u: np.ndarray) -> float:
+        def ground(t: float, y: np.ndarray, u: np.ndarray, wind) -> float:
             return -y[z]
 
         ground.terminal = True
@@ -223,7 +204,7 @@ class FlightDynamics:
 
     # ------------------------------------------------------------------ trim and Jacobian
     def trim(self, manoeuvre: SteadyManoeuvre) -> TrimPoint:
-        """Trim of ``manoeuvre`` (the last ``TRIM_CACHE`` trims are cached: trims are deterministic)."""
+        """Still-air trim of ``manoeuvre`` (the last ``TRIM_CACHE`` trims are cached: trims are deterministic)."""
         point = self._trims.pop(manoeuvre, None)
         if point is None:
             point = trim(self.model, manoeuvre)
@@ -233,17 +214,14 @@ class FlightDynamics:
 
     @single_blas_thread
     def start(self, manoeuvre: SteadyManoeuvre) -> None:
-        """Prepare an episode flown about the trim of ``manoeuvre``; the wind field is reset to still air.
+        """Prepare an episode flown about the (still-air) trim of ``manoeuvre``.
 
         For Radau and ETD2RK, the Jacobian d rhs / dx at that (still-air) trim is computed once and cached
         per manoeuvre (:data:`TRIM_CACHE` of them): for Radau it only steers the Newton iterations (the
         error control sets the accuracy); for ETD2RK it is the linear part, whose matrix functions for
-        the step ``dt / substeps`` are computed here too, once per manoeuvre. Install the episode's wind
-        field after this call (``self.wind.field``).
+        the step ``dt / substeps`` are computed here too, once per manoeuvre.
         """
         self._h_next = None
-        if self.wind is not None:
-            self.wind.field = None
         self._jac, self._stepper = None, None
         if self.method not in ("Radau", *FIXED_STEP_METHODS):
             return
@@ -271,20 +249,21 @@ class FlightDynamics:
 
     # ------------------------------------------------------------------ integration
     @single_blas_thread
-    def advance(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float) -> StepOutcome:
-        """Integrate ``rhs`` from t0 to t1 [s] with the controls ``u`` held (zero-order hold).
+    def advance(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float, wind: Wind | None = None) -> StepOutcome:
+        """Integrate ``rhs`` from t0 to t1 [s] with the controls ``u`` held (zero-order hold) in the wind
+        field ``wind`` (``wind(t, positions_ned_m)``, :meth:`AircraftModel.rhs`; None: still air).
 
         With ETD2RK, t1 - t0 must be the control period ``dt`` (its step is fixed) and :meth:`start`
         must have been called.
         """
         if self.substeps:
-            return self._advance_fixed(x, u, t0, t1)
+            return self._advance_fixed(x, u, t0, t1, wind)
         span = t1 - t0
         first = None if self._h_next is None else min(self._h_next, span)
         options = {"jac": self._jac} if self.method == "Radau" else {}
         try:
             with np.errstate(all="ignore"):
-                sol = solve_ivp(self.model.rhs, (t0, t1), x, method=self.method, args=(u,), rtol=self.rtol,
+                sol = solve_ivp(self.model.rhs, (t0, t1), x, method=self.method, args=(u, wind), rtol=self.rtol,
                                 atol=self.atol, first_step=first, events=self._ground, **options)
         except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
             return StepOutcome(x, t0, False, f"model error: {exc}", 0)
@@ -309,7 +288,7 @@ class FlightDynamics:
         crashed = sol.status == 1
         return StepOutcome(sol.y[:, -1].copy(), float(sol.t[-1]), crashed, "", sol.nfev, sol.nlu)
 
-    def _advance_fixed(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float) -> StepOutcome:
+    def _advance_fixed(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float, wind: Wind | None) -> StepOutcome:
         """ETD2RK over one period: ``substeps`` equal steps, each checked for non-finite states and a crash."""
         stepper = self._stepper
         if stepper is None:
@@ -326,7 +305,7 @@ class FlightDynamics:
                 t_next = t1 if i == k else t0 + i * h
                 nfev += stepper.nfev_per_step
                 try:
-                    x_next = stepper.step(rhs, t, x, (u,))
+                    x_next = stepper.step(rhs, t, x, (u, wind))
                 except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
                     return StepOutcome(x.copy(), t, False, f"model error: {exc}", nfev)
                 if not np.all(np.isfinite(x_next)):
@@ -339,17 +318,17 @@ class FlightDynamics:
         return StepOutcome(x, t1, False, "", nfev)
 
     # ------------------------------------------------------------------ outputs
-    def measure(self, x: np.ndarray, t: float) -> Measurements:
-        """Air data, attitude and structural sensors of state ``x`` at time ``t`` [s]."""
+    def measure(self, x: np.ndarray, t: float, wind: Wind | None = None) -> Measurements:
+        """Air data, attitude and structural sensors of state ``x`` at time ``t`` [s] in the wind field ``wind``."""
         lay = self.layout
         pos = x[lay.position]
         eul = x[lay.euler]
         v = x[lay.v]
         w = x[lay.omega]
-        if self.wind is not None and self.wind.field is not None:
+        if wind is not None:
             with np.errstate(all="ignore"):
                 try:
-                    air = self.wind(t, pos[None, :])[0]
+                    air = np.asarray(wind(t, pos[None, :]), dtype=float)[0]
                     v = v - dcm_321(*eul) @ air
                 except ValueError:
                     pass

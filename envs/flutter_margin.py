@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flexsim.aircraft.definition import Aircraft
+from flexsim.aircraft.definition import Aircraft, ContentKey
 from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
 from flexsim.trim import SteadyManoeuvre
 
@@ -48,10 +48,8 @@ class FlutterCondition:
 
 
 @functools.lru_cache(maxsize=8)
-def _cached_condition(source: str, name: str, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
-    from flexsim.aircraft.toml_loader import load_aircraft
-
-    return _search(load_aircraft(source), aero, altitude_m, mach_range)
+def _cached_condition(key: ContentKey, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+    return _search(key.aircraft, aero, altitude_m, mach_range)
 
 
 def _search(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
@@ -64,10 +62,9 @@ def _search(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[
 
 
 def flutter_condition(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
-    """Flutter point of level flight (cached per aircraft file, aerodynamic model, altitude and range)."""
-    if aircraft.source.startswith("<"):
-        return _search(aircraft, aero, altitude_m, mach_range)
-    return _cached_condition(aircraft.source, aircraft.name, aero, float(altitude_m), tuple(mach_range))
+    """Flutter point of level flight of ``aircraft`` (cached by the aircraft's content, aerodynamic model,
+    altitude and range: a modified aircraft gets its own point)."""
+    return _cached_condition(aircraft.content_key(), aero, float(altitude_m), tuple(float(m) for m in mach_range))
 
 
 #: Observation rows 11-30 of both flutter-margin versions (docstring tables).

@@ -130,9 +130,6 @@ class GustAlleviationEnv(FlexSimEnv):
     task_errors_spec = (("tip_deflection_increment_m", 50.0), ("root_moment_increment", 50.0), ("pitch_error_rad", math.pi),
                         ("roll_error_rad", math.pi), ("altitude_error_m", 5000.0))
 
-    def _needs_wind(self) -> bool:
-        return True
-
     def _new_episode(self, rng: np.random.Generator) -> Episode:
         task = self.task
         manoeuvre = task.manoeuvre

@@ -14,7 +14,8 @@ field, the value and what is allowed.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+import hashlib
+from dataclasses import dataclass, field, fields, is_dataclass, replace
 from typing import Iterable
 
 import numpy as np
@@ -25,6 +26,7 @@ from flexsim.kinematics import dcm_321
 __all__ = [
     "COMPONENT_NAMES",
     "MAX_MODES",
+    "ContentKey",
     "SectionTable",
     "StripAero",
     "AeroSettings",
@@ -102,6 +104,56 @@ def _plain(value: object) -> object:
     if isinstance(value, (list, tuple)):
         return [_plain(v) for v in value]
     return value
+
+
+class ContentKey:
+    """An :class:`Aircraft` as a cache key (``functools.lru_cache``): hashed and compared by its
+    :meth:`~Aircraft.content_digest`, carrying the aircraft itself for the cached computation.
+
+    Attributes
+    ----------
+    aircraft : Aircraft
+    digest : str
+    """
+
+    __slots__ = ("aircraft", "digest")
+
+    def __init__(self, aircraft: "Aircraft") -> None:
+        self.aircraft = aircraft
+        self.digest = aircraft.content_digest()
+
+    def __hash__(self) -> int:
+        return hash(self.digest)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, ContentKey) and other.digest == self.digest
+
+    def __repr__(self) -> str:
+        return f"ContentKey({self.aircraft.name!r}, {self.digest[:12]})"
+
+
+def _feed_digest(digest, value) -> None:
+    """Feed a canonical, type-tagged serialisation of ``value`` (dataclasses, arrays, containers, scalars)."""
+    if is_dataclass(value) and not isinstance(value, type):
+        digest.update(f"<{type(value).__name__}".encode())
+        for f in fields(value):
+            digest.update(f.name.encode())
+            _feed_digest(digest, getattr(value, f.name))
+        digest.update(b">")
+    elif isinstance(value, np.ndarray):
+        digest.update(f"<array {value.dtype.str} {value.shape}>".encode())
+        digest.update(np.ascontiguousarray(value).tobytes())
+    elif isinstance(value, (tuple, list)):
+        digest.update(f"<seq {len(value)}>".encode())
+        for item in value:
+            _feed_digest(digest, item)
+    elif isinstance(value, dict):
+        digest.update(f"<map {len(value)}>".encode())
+        for key in sorted(value, key=repr):
+            _feed_digest(digest, key)
+            _feed_digest(digest, value[key])
+    else:
+        digest.update(f"<{type(value).__name__} {value!r}>".encode())
 
 
 def _fail(where: str, value: object, allowed: str) -> None:
@@ -683,6 +735,22 @@ class Aircraft:
             s = comp.station_of(d.position_m)
             if not -0.05 * comp.length_m <= s <= comp.length_m * 1.05:
                 _fail(f"{w}.position_m", d.position_m.tolist(), f"projects to station {s:.4g} m, off component {comp.name} (0 to {comp.length_m:.4g} m)")
+
+    def content_digest(self) -> str:
+        """SHA-256 (hex) of everything that defines the aircraft, all fields except ``source``.
+
+        The key for caches of results computed from an aircraft (flutter points, modes): two definitions
+        with the same content share it whatever file they came from, and any change (a scaled stiffness,
+        other modes, an edited file) gives another key. Floats enter by their exact ``repr``, arrays by
+        dtype, shape and bytes.
+        """
+        digest = hashlib.sha256()
+        _feed_digest(digest, {f.name: getattr(self, f.name) for f in fields(self) if f.name != "source"})
+        return digest.hexdigest()
+
+    def content_key(self) -> "ContentKey":
+        """This aircraft as a hashable cache key, equal for equal content (:meth:`content_digest`)."""
+        return ContentKey(self)
 
     def component(self, name: str) -> Component:
         """The component called ``name`` (KeyError listing the available ones otherwise)."""

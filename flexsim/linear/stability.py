@@ -29,6 +29,7 @@ Re(conj(phi_i) (M phi)_i); a tie between mirror coordinates (right and left halv
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Callable
 
@@ -37,6 +38,7 @@ import numpy as np
 from flexsim._threads import single_blas_thread
 from flexsim.aero.pk import pk_roots
 from flexsim.aero.theodorsen import theodorsen_function
+from flexsim.aircraft.definition import ContentKey
 from flexsim.linear.linearize import LinearModel, linearize
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.structure.mirror import ranked
@@ -186,17 +188,17 @@ def _inflow_participation(vecs: np.ndarray, inflow_rows: np.ndarray) -> np.ndarr
 
 
 def _first_elastic_frequency(model: AircraftModel) -> float:
-    """Lowest in-vacuo elastic frequency of the model's structure [rad/s] (cached on the structure)."""
-    st = model.structure
-    cached = getattr(st, "_first_elastic_rad_s", None)
-    if cached is None:
-        from flexsim.linear.modes import in_vacuo_modes
+    """Lowest in-vacuo elastic frequency of the model's aircraft [rad/s] (cached by the aircraft's content)."""
+    return _first_elastic_of(model.aircraft.content_key())
 
-        analysis = in_vacuo_modes(AircraftModel(model.aircraft, aero=None, gravity_m_s2=0.0))
-        freqs = analysis.frequencies_rad_s[analysis.n_rigid :]
-        cached = float(freqs[0]) if freqs.size else np.inf
-        st._first_elastic_rad_s = cached
-    return cached
+
+@functools.lru_cache(maxsize=16)
+def _first_elastic_of(key: ContentKey) -> float:
+    from flexsim.linear.modes import in_vacuo_modes
+
+    analysis = in_vacuo_modes(AircraftModel(key.aircraft, aero=None, gravity_m_s2=0.0))
+    freqs = analysis.frequencies_rad_s[analysis.n_rigid :]
+    return float(freqs[0]) if freqs.size else np.inf
 
 
 @single_blas_thread

@@ -13,10 +13,14 @@ with p = M V and the quasi-coordinate terms of eq. (33)
 and the kinematics R_dot = C^T v, Theta_dot = E^-1 omega, q_dot = s, xi_dot = eta (eq. 4).
 
 Trim, linearisation, simulation and the gymnasium environments all call :meth:`AircraftModel.rhs`.
+The model is immutable after construction: atmospheric disturbances (gusts, turbulence) are passed per
+call, ``rhs(t, x, u, wind)``, as python-control passes its parameters to ``updfcn(t, x, u, params)``, so
+one model serves still-air trims and any number of windy runs without being changed or reset.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from enum import Enum
 
 import numpy as np
@@ -30,10 +34,12 @@ from flexsim.model.layout import StateLayout
 from flexsim.kinematics import dcm_321, euler_rate_matrix_inverse
 from flexsim.structure.model import StructuralModel
 
-__all__ = ["Variant", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES"]
+__all__ = ["Variant", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES", "Wind"]
 
 #: Standard gravitational acceleration [m/s^2] (paper eq. 32's g).
 STANDARD_GRAVITY = 9.80665
+#: An atmospheric disturbance: ``wind(t [s], positions_ned_m (k, 3)) -> air velocity (k, 3)`` [m/s], NED.
+Wind = Callable[[float, np.ndarray], np.ndarray]
 #: The control vector u of the paper (text after eq. 33): [T_e (N), delta_a, delta_e, delta_r (rad)].
 CONTROL_NAMES = ("thrust", "aileron", "elevator", "rudder")
 
@@ -93,10 +99,6 @@ class AircraftModel:
         (default None: the true density). A paper-replication setting for the *linearised* aerodynamics of
         a flutter search (:class:`flexsim.linear.flutter.FlutterAnalysis`, docs/flutter.md); Mach number
         and compressibility keep the true altitude.
-    wind : callable, optional
-        Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)``: air velocity [m/s] in inertial
-        north-east-down axes at the given inertial positions (k, 3) of the aerodynamic strips at time
-        t [s] (gusts, turbulence; :mod:`flexsim.sim.disturbances`). None for still air.
 
     Attributes
     ----------
@@ -119,7 +121,6 @@ class AircraftModel:
         air_density_kg_m3: float | None = None,
         frozen_q: np.ndarray | None = None,
         frozen_xi: np.ndarray | None = None,
-        wind=None,
         structural_damping: float | None = None,
         aero_density_kg_m3: float | None = None,
     ) -> None:
@@ -159,9 +160,6 @@ class AircraftModel:
                     and self.aero.formulation == "physical")
         #: Parasite drag of the file's drag items (:mod:`flexsim.model.drag`), or None.
         self.parasite_drag = ParasiteDrag(self.structure) if has_drag else None
-        if wind is not None and not callable(wind):
-            raise ValueError(f"wind = {wind!r}: must be a callable wind(t, positions_ned_m) -> (k, 3) array")
-        self.wind = wind
         if self.aero is not None:
             strips = self.aero.strips
             self._strip_dcm = np.stack([self.aircraft.component(c).dcm for c in strips.component]) if strips.n_strips else np.zeros((0, 3, 3))
@@ -247,7 +245,7 @@ class AircraftModel:
         return x
 
     # ------------------------------------------------------------------ equations of motion
-    def generalized_forces(self, x: np.ndarray, u: np.ndarray, t: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    def generalized_forces(self, x: np.ndarray, u: np.ndarray, t: float = 0.0, wind: Wind | None = None) -> tuple[np.ndarray, np.ndarray]:
         """System matrix E = M(q) + M_a and right-hand side f of E V_dot = f (full size, eq. 33).
 
         Includes the aerodynamic added mass M_a and generalized forces when the model has aerodynamics.
@@ -259,35 +257,40 @@ class AircraftModel:
             Controls [T_e (N), delta_a, delta_e, delta_r (rad)].
         t : float
             Time [s] (for the wind field).
+        wind : callable, optional
+            Atmospheric disturbance (see :meth:`rhs`); None for still air.
 
         Returns
         -------
         m : ndarray, shape (n_v, n_v)
         f : ndarray, shape (n_v,)
         """
-        m, f, _ = self._assemble(x, u, t)
+        m, f, _ = self._assemble(x, u, t, wind)
         return m, f
 
-    def strip_wind(self, t: float, x: np.ndarray) -> np.ndarray | None:
+    def strip_wind(self, t: float, x: np.ndarray, wind: Wind | None) -> np.ndarray | None:
         """Air velocity at every aerodynamic strip in its component axes [m/s], shape (n_s, 3), or None.
 
-        From the model's wind field at time t [s] and the strips' inertial positions at state x.
+        From the wind field ``wind`` (see :meth:`rhs`) at time t [s] and the strips' inertial positions at
+        state x; None in still air (``wind`` None) or without aerodynamics.
         """
         pos, eul, _, _, _ = self.unpack(x)
-        return self._strip_wind(t, x, pos, eul)
+        return self._strip_wind(t, pos, eul, wind)
 
-    def _strip_wind(self, t: float, x: np.ndarray, pos: np.ndarray, eul: np.ndarray) -> np.ndarray | None:
-        if self.wind is None or self.aero is None:
+    def _strip_wind(self, t: float, pos: np.ndarray, eul: np.ndarray, wind: Wind | None) -> np.ndarray | None:
+        if wind is None or self.aero is None:
             return None
+        if not callable(wind):
+            raise ValueError(f"wind = {wind!r}: must be None or a callable wind(t, positions_ned_m) -> (k, 3) array")
         c = dcm_321(*eul)
         r_strips = self.aero.strips.position_body_m
         positions = pos[None, :] + r_strips @ c  # inertial: R + C^T r
-        w_ned = np.asarray(self.wind(t, positions), dtype=float)
+        w_ned = np.asarray(wind(t, positions), dtype=float)
         if w_ned.shape != r_strips.shape or not np.all(np.isfinite(w_ned)):
             raise ValueError(f"wind(t, positions) returned shape {w_ned.shape} or non-finite values; expected finite {r_strips.shape}")
         return np.einsum("sab,sb->sa", self._strip_dcm, w_ned @ c.T)
 
-    def _assemble(self, x: np.ndarray, u: np.ndarray, t: float = 0.0):
+    def _assemble(self, x: np.ndarray, u: np.ndarray, t: float, wind: Wind | None):
         st = self.structure
         nq = st.dofs.nq
         pos, eul, q, xi, vel = self.unpack(x)
@@ -313,7 +316,7 @@ class AircraftModel:
             altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
             rho = self.air_density(x)
             mach = float(np.sqrt(v @ v)) / speed_of_sound(float(altitude))
-            wind_c = self._strip_wind(t, x, pos, eul)
+            wind_c = self._strip_wind(t, pos, eul, wind)
             m_a, q_a, inflow_terms = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach, wind_c)
             m = m + m_a
             f = f + q_a
@@ -331,11 +334,12 @@ class AircraftModel:
         altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
         return isa_density(float(altitude))
 
-    def aerodynamic_force(self, x: np.ndarray, u: np.ndarray, t: float = 0.0) -> np.ndarray:
+    def aerodynamic_force(self, x: np.ndarray, u: np.ndarray, t: float = 0.0, wind: Wind | None = None) -> np.ndarray:
         """Generalized aerodynamic force at a state, without the apparent-mass terms, shape (n_v,).
 
         Strip airloads (explicit part of :meth:`AeroCoupling.evaluate`) plus parasite drag; rows 0-2 are the
         resultant force in body axes [N], rows 3-5 the moment about o [N m]. Zero without aerodynamics.
+        ``wind``: the disturbance (see :meth:`rhs`), None for still air.
         """
         pos, eul, q, xi, vel = self.unpack(x)
         out = np.zeros(self.structure.dofs.n_v)
@@ -344,29 +348,34 @@ class AircraftModel:
         altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
         rho = self.air_density(x)
         mach = float(np.sqrt(vel[0:3] @ vel[0:3])) / speed_of_sound(float(altitude))
-        _, q_a, _ = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach, self._strip_wind(t, x, pos, eul))
+        _, q_a, _ = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach, self._strip_wind(t, pos, eul, wind))
         out += q_a
         if self.parasite_drag is not None:
             out += self.parasite_drag.generalized_force(q, vel, rho)
         return out
 
-    def rhs(self, t: float, x: np.ndarray, u: np.ndarray) -> np.ndarray:
-        """State derivative x_dot = rhs(t, x, u) of the nonlinear model (eqs. 4, 33).
+    def rhs(self, t: float, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> np.ndarray:
+        """State derivative x_dot = rhs(t, x, u, wind) of the nonlinear model (eqs. 4, 33).
 
         Parameters
         ----------
         t : float
-            Time [s] (the model is autonomous; kept for the solve_ivp signature).
+            Time [s] (enters only through the wind field).
         x : ndarray, shape (n_states,)
         u : ndarray, shape (4,)
             Controls [T_e (N), delta_a, delta_e, delta_r (rad)].
+        wind : callable, optional
+            Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)``: air velocity [m/s] in inertial
+            north-east-down axes at the inertial positions (k, 3) of the aerodynamic strips at time t [s]
+            (gusts, turbulence; :mod:`flexsim.sim.disturbances`). None (default): still air. Passed per
+            call (``solve_ivp(model.rhs, ..., args=(u, wind))``); the model stores none.
 
         Returns
         -------
         ndarray, shape (n_states,)
         """
         lay = self.layout
-        m, f, inflow_terms = self._assemble(x, u, t)
+        m, f, inflow_terms = self._assemble(x, u, t, wind)
         if not self._all_active:
             a = self._active
             m, f = m[np.ix_(a, a)], f[a]

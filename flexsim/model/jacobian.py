@@ -41,13 +41,13 @@ _ABS_STEP = 1e-7
 _INFLOW_STEP = 1e-4
 
 
-def _column(model: AircraftModel, t: float, x: np.ndarray, u: np.ndarray, direction: np.ndarray, h: float) -> np.ndarray:
-    return (model.rhs(t, x + h * direction, u) - model.rhs(t, x - h * direction, u)) / (2 * h)
+def _column(model: AircraftModel, t: float, x: np.ndarray, u: np.ndarray, direction: np.ndarray, h: float, wind=None) -> np.ndarray:
+    return (model.rhs(t, x + h * direction, u, wind) - model.rhs(t, x - h * direction, u, wind)) / (2 * h)
 
 
 @single_blas_thread
 def jacobian(model: AircraftModel, x: np.ndarray, u: np.ndarray, t: float = 0.0, *,
-             method: str = "structured", controls: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
+             method: str = "structured", controls: bool = True, wind=None) -> tuple[np.ndarray, np.ndarray | None]:
     """Central-difference Jacobians of ``model.rhs`` at (t, x, u) (module docstring).
 
     Parameters
@@ -58,12 +58,14 @@ def jacobian(model: AircraftModel, x: np.ndarray, u: np.ndarray, t: float = 0.0,
     u : ndarray, shape (4,)
         Controls [T_e (N), delta_a, delta_e, delta_r (rad)].
     t : float
-        Time [s] (for the model's wind field).
+        Time [s] (for the wind field).
     method : {"structured", "dense"}
         ``structured``: two right-hand sides per unsteady strip for its inflow states; ``dense``: two per
         state (the reference).
     controls : bool
         Also return B = d rhs / du (8 more right-hand sides); None otherwise.
+    wind : callable, optional
+        Disturbance passed to every ``model.rhs`` call (:meth:`AircraftModel.rhs`); None: still air.
 
     Returns
     -------
@@ -85,9 +87,9 @@ def jacobian(model: AircraftModel, x: np.ndarray, u: np.ndarray, t: float = 0.0,
         h = max(_ABS_STEP, _REL_STEP * abs(x[j]))
         e = np.zeros(n)
         e[j] = 1.0
-        a[:, j] = _column(model, t, x, u, e, h)
+        a[:, j] = _column(model, t, x, u, e, h, wind)
     if structured:
-        _inflow_columns(model, t, x, u, a)
+        _inflow_columns(model, t, x, u, a, wind)
     b = None
     if controls:
         b = np.empty((n, 4))
@@ -96,11 +98,11 @@ def jacobian(model: AircraftModel, x: np.ndarray, u: np.ndarray, t: float = 0.0,
             up, um = u.copy(), u.copy()
             up[j] += h
             um[j] -= h
-            b[:, j] = (model.rhs(t, x, up) - model.rhs(t, x, um)) / (2 * h)
+            b[:, j] = (model.rhs(t, x, up, wind) - model.rhs(t, x, um, wind)) / (2 * h)
     return a, b
 
 
-def _inflow_columns(model: AircraftModel, t: float, x: np.ndarray, u: np.ndarray, a: np.ndarray) -> None:
+def _inflow_columns(model: AircraftModel, t: float, x: np.ndarray, u: np.ndarray, a: np.ndarray, wind=None) -> None:
     """Fill the inflow columns of ``a`` (module docstring: g_j (1/2 b^T) + E_j per unsteady strip)."""
     lay = model.layout
     coupling = model.aero
@@ -108,7 +110,7 @@ def _inflow_columns(model: AircraftModel, t: float, x: np.ndarray, u: np.ndarray
     coef = coupling.inflow
     idx = np.flatnonzero(coupling.strips.unsteady)
     _, _, q, xi, vel = model.unpack(x)
-    kin = coupling.kinematics(q, xi, vel, x[lay.inflow], u, model.strip_wind(t, x))
+    kin = coupling.kinematics(q, xi, vel, x[lay.inflow], u, model.strip_wind(t, x, wind))
     decay = kin.u0[idx] / coupling.strips.semichord_m[idx]  # u0_j / b_j [1/s]
     half_b = 0.5 * coef.b
     v = coef.b / (half_b @ coef.b)  # 1/2 b^T v = 1
@@ -119,7 +121,7 @@ def _inflow_columns(model: AircraftModel, t: float, x: np.ndarray, u: np.ndarray
         h = _INFLOW_STEP * max(1.0, abs(lam0))
         direction = np.zeros(x.size)
         direction[rows] = v
-        g = _column(model, t, x, u, direction, h)
+        g = _column(model, t, x, u, direction, h, wind)
         e_block = -decay[c] * coef.A_inv
         g[rows] -= e_block @ v
         a[:, rows] = np.outer(g, half_b)

@@ -1,8 +1,8 @@
-"""Atmospheric disturbances as wind fields for :class:`~flexsim.model.aircraft_model.AircraftModel`.
+"""Atmospheric disturbances as wind fields passed to :meth:`~flexsim.model.aircraft_model.AircraftModel.rhs`.
 
 Every disturbance here is a callable ``wind(t, positions_ned_m) -> (k, 3)``: the air velocity [m/s] in
 inertial north-east-down (NED) axes at k inertial positions [m] (the aerodynamic strips) at time t [s],
-the hook of ``AircraftModel(..., wind=...)``. The model evaluates the strip loads with the air velocity
+passed per call: ``model.rhs(t, x, u, wind)``, ``simulate(..., wind=...)``. The model evaluates the strip loads with the air velocity
 relative to each strip, so a disturbance reaches different strips at different times (the nose before
 the tail, one wing before the other in a yawed encounter).
 

@@ -31,7 +31,7 @@ import numpy as np
 
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.flutter import wind_tunnel_flutter
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.coupling import AeroOptions
 from flexsim.sim.disturbances import OneMinusCosineGust
 from flexsim.sim.result import SimulationResult
@@ -55,7 +55,6 @@ class ManoeuvreSetup:
     ----------
     name, description : str
     model : AircraftModel
-        With its wind field, if any.
     initial : TrimPoint or ndarray
         Initial state (a trim point where the manoeuvre starts from one).
     controls : ControlSchedule, ndarray (4,) or callable(t, x) -> u
@@ -67,6 +66,8 @@ class ManoeuvreSetup:
         Bound for the structural-limit event (None: simulate's default, 0.25 x wing length).
     notes : tuple of (t [s], text)
         Informational events for the flight log.
+    wind : callable or None
+        The disturbance the manoeuvre is flown in (passed to ``simulate``), None for still air.
     metadata : dict of str to str
         Run metadata for the flight log.
     """
@@ -81,13 +82,14 @@ class ManoeuvreSetup:
     structural_limit_m: float | None = None
     notes: tuple[tuple[float, str], ...] = ()
     metadata: dict[str, str] = field(default_factory=dict)
+    wind: Wind | None = None
 
     def simulate(self, **options) -> SimulationResult:
         """Run the manoeuvre; ``options`` go to :func:`~flexsim.sim.simulate.simulate` (e.g. ``log_path``,
         ``method``, ``rtol``, ``t_end_s`` to override the duration)."""
         t_end = options.pop("t_end_s", self.duration_s)
         meta = {"manoeuvre": self.name, "description": self.description, **self.metadata, **options.pop("metadata", {})}
-        kwargs = {"controls": self.controls, "control_period_s": self.control_period_s,
+        kwargs = {"controls": self.controls, "control_period_s": self.control_period_s, "wind": self.wind,
                   "structural_limit_m": self.structural_limit_m, "notes": self.notes, "metadata": meta}
         kwargs.update(options)
         return simulate(self.model, self.initial, t_end, **kwargs)
@@ -169,8 +171,8 @@ class BankController:
 
 
 # ---------------------------------------------------------------------------------------------- GTM
-def _gtm(aero: AeroOptions, wind=None) -> AircraftModel:
-    return AircraftModel(load_aircraft("gtm"), aero=aero, wind=wind)
+def _gtm(aero: AeroOptions) -> AircraftModel:
+    return AircraftModel(load_aircraft("gtm"), aero=aero)
 
 
 def _cruise(model: AircraftModel) -> TrimPoint:
@@ -217,16 +219,15 @@ def _aileron_roll(aero: AeroOptions) -> ManoeuvreSetup:
 
 
 def _gust_encounter(aero: AeroOptions) -> ManoeuvreSetup:
-    still = _gtm(aero)
-    level = _cruise(still)
-    lay = still.layout
+    model = _gtm(aero)
+    level = _cruise(model)
+    lay = model.layout
     velocity_ned = dcm_321(*level.x[lay.euler]).T @ level.x[lay.v]
     gust = OneMinusCosineGust.encounter(10.0, 60.0, position_ned_m=level.x[lay.position], velocity_ned_m_s=velocity_ned,
                                         start_time_s=1.0)
-    model = _gtm(aero, wind=gust)
     return ManoeuvreSetup("gust-encounter", "1-cos up-gust U_ds = 10 m/s, H = 60 m (CS-25.341) reached at t = 1 s",
                           model, level, level.u, 5.0, notes=((1.0, "the body origin enters the 1-cos gust"),),
-                          metadata={"gust": "1-cos, U_ds 10 m/s, H 60 m"})
+                          metadata={"gust": "1-cos, U_ds 10 m/s, H 60 m"}, wind=gust)
 
 
 # ---------------------------------------------------------------------------------------------- Goland

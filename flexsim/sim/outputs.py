@@ -32,6 +32,8 @@ class OutputMaps:
     Parameters
     ----------
     model : AircraftModel
+    wind : callable, optional
+        The run's disturbance (:meth:`AircraftModel.rhs`), for air data and loads; None for still air.
     n_nodes : int, optional
         Beam nodes per component for :meth:`structure` (default 11).
 
@@ -48,8 +50,9 @@ class OutputMaps:
         Flexible wings present (for tip and root quantities).
     """
 
-    def __init__(self, model: AircraftModel, n_nodes: int = STRUCTURE_NODES) -> None:
+    def __init__(self, model: AircraftModel, n_nodes: int = STRUCTURE_NODES, wind=None) -> None:
         self.model = model
+        self.wind = wind
         aircraft, dofs, lay = model.aircraft, model.structure.dofs, model.layout
         self.n_nodes = int(n_nodes)
         self.control_names = CONTROL_LOG_NAMES
@@ -129,8 +132,8 @@ class OutputMaps:
         """Velocity of the body origin relative to the air, body axes [m/s], shape (3,): v - C w(R)."""
         pos, eul, _, _, vel = self.model.unpack(x)
         v = np.asarray(vel[0:3], float)
-        if self.model.wind is not None:
-            w_ned = np.asarray(self.model.wind(t, np.asarray(pos, float)[None, :]), float)[0]
+        if self.wind is not None:
+            w_ned = np.asarray(self.wind(t, np.asarray(pos, float)[None, :]), float)[0]
             v = v - dcm_321(*eul) @ w_ned
         return v
 
@@ -185,7 +188,7 @@ class OutputMaps:
             altitude, a = self._air(x)
             rho = float(isa_density(altitude))
             mach = float(np.linalg.norm(vel[0:3])) / a
-            wind_c = model.strip_wind(t, x)  # the model's own strip wind (component axes)
+            wind_c = model.strip_wind(t, x, self.wind)  # the run's strip wind (component axes)
             _, q_a, _ = model.aero.evaluate(q, xi, vel, x[model.layout.inflow], u, rho, mach, wind_c)
             force = force + q_a[0:3]
             if self._wing_strips.size:

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.sim.outputs import OutputMaps
 
 __all__ = ["SimulationResult", "STATUSES"]
@@ -55,6 +55,8 @@ class SimulationResult:
     events : tuple of (t [s], name)
         Event crossings in time order: non-terminal user events, then the terminal event that stopped the
         run (if any).
+    wind : callable or None
+        The disturbance the run was flown in (air data and loads are computed with it); None: still air.
     """
 
     t: np.ndarray
@@ -71,6 +73,7 @@ class SimulationResult:
     wall_time_s: float
     log_path: Path | None = None
     events: tuple[tuple[float, str], ...] = ()
+    wind: Wind | None = None
 
     # ------------------------------------------------------------------ run facts
     @property
@@ -90,8 +93,8 @@ class SimulationResult:
 
     @cached_property
     def outputs(self) -> OutputMaps:
-        """Names and output maps of the model."""
-        return OutputMaps(self.model)
+        """Names and output maps of the model in the run's wind."""
+        return OutputMaps(self.model, wind=self.wind)
 
     # ------------------------------------------------------------------ states
     @cached_property

@@ -1,6 +1,6 @@
 """Time-domain simulation of the one nonlinear model, with events and a flight log written as it runs.
 
-``simulate(model, x0 | TrimPoint, t_end_s, controls=...)`` integrates ``model.rhs(t, x, u)`` (Tuzcu &
+``simulate(model, x0 | TrimPoint, t_end_s, controls=..., wind=...)`` integrates ``model.rhs(t, x, u, wind)`` (Tuzcu &
 Nguyen 2014, eqs. 4 and 33 with the strip aerodynamics of eqs. 25-31) with the integrators of
 ``scipy.integrate`` — the ``OdeSolver`` classes behind ``solve_ivp`` (Radau, DOP853, LSODA, BDF, RK45,
 RK23), stepped here one step at a time so that every accepted step is sampled from its dense output onto
@@ -33,7 +33,7 @@ from scipy.optimize import brentq
 
 from flexsim._threads import single_blas_thread
 from flexsim.model.jacobian import jacobian
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.sim.controls import ControlSchedule, Controls
 from flexsim.sim.fixed_step import ETD2RKSolver
 from flexsim.sim.outputs import OutputMaps
@@ -272,6 +272,7 @@ def simulate(
     t_end_s: float,
     *,
     controls: np.ndarray | ControlSchedule | Callable[[float, np.ndarray], np.ndarray] | None = None,
+    wind: Wind | None = None,
     method: str = "auto",
     rtol: float | None = None,
     atol: float | np.ndarray | None = None,
@@ -291,7 +292,7 @@ def simulate(
     Parameters
     ----------
     model : AircraftModel
-        Any variant; its ``wind`` (gusts, turbulence: :mod:`flexsim.sim.disturbances`) is part of it.
+        Any variant.
     initial : TrimPoint or ndarray, shape (n_states,)
         Initial state (a trim point also supplies the default controls).
     t_end_s : float
@@ -301,6 +302,9 @@ def simulate(
         feedback controller ``controls(t, x) -> u`` evaluated every ``control_period_s`` and held
         (zero-order hold). Default: the trim controls. Values beyond ``aircraft.control_limits()`` are
         rejected.
+    wind : callable, optional
+        Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)`` [m/s, NED] (gusts, turbulence:
+        :mod:`flexsim.sim.disturbances`), passed to every ``model.rhs`` call; None (default): still air.
     method : str
         ``"auto"`` (:func:`default_method`), or one of :data:`METHODS`. Implicit methods (Radau, BDF, LSODA)
         use a constant Jacobian from :func:`~flexsim.model.jacobian.jacobian` at the initial state.
@@ -369,7 +373,9 @@ def simulate(
         raise ValueError(f"max_step = {max_step!r}: ETD2RK takes fixed steps of max_step, which must be finite [s]")
     out_grid = _grid(output_rate_hz, t_end, "output_rate_hz")
     log_grid = _grid(log_rate_hz, t_end, "log_rate_hz")
-    outputs = OutputMaps(model)
+    if wind is not None and not callable(wind):
+        raise ValueError(f"wind = {wind!r}: must be None or a callable wind(t, positions_ned_m) -> (k, 3) array [m/s]")
+    outputs = OutputMaps(model, wind=wind)
     limit_names = [e for e in events if isinstance(e, str)]
     evs = _builtin_events(model, outputs, limit_names, structural_limit_m)
     for e in events:
@@ -384,7 +390,7 @@ def simulate(
 
     u0 = ctrl.held(0.0, x0) if ctrl.controller is not None else ctrl.schedule(0.0)
     wall0 = time.perf_counter()
-    jac_matrix = jacobian(model, x0, u0, controls=False)[0] if implicit or method == "ETD2RK" else None
+    jac_matrix = jacobian(model, x0, u0, controls=False, wind=wind)[0] if implicit or method == "ETD2RK" else None
     counters = {"nfev": 0, "njev": 0, "nlu": 0, "nonfinite": 0}
     sink = None
     if path is not None:
@@ -410,7 +416,7 @@ def simulate(
                 sink.schedule(float(t_note), str(text))
             sink.write(np.zeros(1), x0[None, :], u0[None, :])
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            status, reason = _integrate(model, ctrl, x0, u0, t_end, method, rtol, atol_v, max_step, jac_matrix, evs, results,
+            status, reason = _integrate(model, wind, ctrl, x0, u0, t_end, method, rtol, atol_v, max_step, jac_matrix, evs, results,
                                         logged, sink, counters, crossings, progress if callable(progress) else None, bar)
     except BaseException as exc:
         if sink is not None:
@@ -425,10 +431,10 @@ def simulate(
     t, x, u = results.arrays()
     return SimulationResult(t=t, x=x, u=u, status=status, reason=reason, model=model, method=method, rtol=float(rtol),
                             nfev=counters["nfev"], njev=counters["njev"], nlu=counters["nlu"],
-                            wall_time_s=time.perf_counter() - wall0, log_path=path, events=tuple(crossings))
+                            wall_time_s=time.perf_counter() - wall0, log_path=path, events=tuple(crossings), wind=wind)
 
 
-def _integrate(model, ctrl, x0, u0, t_end, method, rtol, atol, max_step, jac_matrix, evs, results, logged, sink,
+def _integrate(model, wind, ctrl, x0, u0, t_end, method, rtol, atol, max_step, jac_matrix, evs, results, logged, sink,
                counters, crossings, callback, bar) -> tuple[str, str]:
     """The stepping loop: a solver per control segment; sample, log and check events after every step."""
     bounds = ctrl.boundaries(t_end)
@@ -440,7 +446,7 @@ def _integrate(model, ctrl, x0, u0, t_end, method, rtol, atol, max_step, jac_mat
 
     def fun(t, y):
         counters["nfev"] += 1
-        dy = model.rhs(t, y, current[0](t))
+        dy = model.rhs(t, y, current[0](t), wind)
         if not np.all(np.isfinite(dy)):
             counters["nonfinite"] += 1
         return dy

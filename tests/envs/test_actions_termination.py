@@ -111,7 +111,7 @@ def test_structural_limit_and_non_finite_terminate():
     env.close()
     env = gym.make("FlexSim/GTM-LevelHold-v0", aero="quasi-steady", turbulence="light")
     _, info = env.reset(seed=0)
-    env.unwrapped.dynamics.wind.field = lambda t, p: np.full(np.shape(p), np.nan)
+    env.unwrapped._wind = lambda t, p: np.full(np.shape(p), np.nan)
     obs, reward, terminated, _, info = env.step(info["trim_action"])
     assert terminated and info["termination_reason"] == "non_finite"
     assert _finite_in_space(env.observation_space, obs) and math.isfinite(reward)

@@ -64,7 +64,7 @@ def test_crash_located_within_the_period():
     z = dyn.layout.position.start + 2
     sink = np.zeros(n)
     sink[z] = 10.0  # down-rate [m/s]
-    dyn.model.rhs = lambda t, x, u: sink
+    dyn.model.rhs = lambda t, x, u, wind=None: sink
     x = np.zeros(n)
     x[z] = -0.27
     first = dyn.advance(x, np.zeros(4), 0.0, 0.02)
@@ -83,7 +83,7 @@ def test_non_finite_state_and_model_error_are_reported():
     x0, u0 = env.unwrapped.state, env.unwrapped.applied_controls
     h = dyn.dt / dyn.substeps
     rhs = dyn.model.rhs
-    dyn.model.rhs = lambda t, x, u: rhs(t, x, u) if t < 2.5 * h else np.full_like(x, np.nan)
+    dyn.model.rhs = lambda t, x, u, wind=None: rhs(t, x, u, wind) if t < 2.5 * h else np.full_like(x, np.nan)
     out = dyn.advance(x0, u0, 0.0, dyn.dt)
     assert out.failure == "non-finite state: ETD2RK step 3 of 4 from t = 0.01 s"
     assert out.time_s == pytest.approx(2 * h, abs=1e-15) and np.all(np.isfinite(out.x)) and out.nfev == 6
@@ -94,7 +94,7 @@ def test_non_finite_state_and_model_error_are_reported():
     env.close()
     env = gym.make("FlexSim/GTM-LevelHold-v0", turbulence="light")
     _, info = env.reset(seed=0)
-    env.unwrapped.dynamics.wind.field = lambda t, p: np.full(np.shape(p), np.nan)
+    env.unwrapped._wind = lambda t, p: np.full(np.shape(p), np.nan)
     _, _, terminated, _, info = env.step(info["trim_action"])
     assert terminated and info["termination_reason"] == "non_finite"
     assert info["solver_failure"].startswith("model error: wind(t, positions) returned")
