@@ -2,7 +2,7 @@
 
 The right-hand side and Radau's LU factorisations are small dense linear algebra, which gains nothing
 from BLAS threads and slows down badly when several processes each start a thread pool on the same cores
-(``/work/shared/reference/ecosystem.md`` §5: 212 ms with one thread, 0.7-1.5 s with the default). An
+(``docs/reference/ecosystem.md`` §5: 212 ms with one thread, 0.7-1.5 s with the default). An
 :class:`gymnasium.vector.AsyncVectorEnv` worker forked from a parent that already loaded OpenBLAS does not
 read ``OPENBLAS_NUM_THREADS`` again, so the environments call :func:`limit_blas_threads` when they are
 built inside a worker process: it sets the variables (for processes the worker starts) and calls

@@ -1,7 +1,7 @@
 """Rigid-body kinematics: skew matrices, 3-2-1 direction cosines, Euler-rate matrices.
 
 Source: Tuzcu & Nguyen (2014), eqs. (3)-(4); the rotation sequence of the paper (psi about Z, theta about
-y1, phi about x2) and the explicit matrices of ``shared/reference/aero-kinematics.md`` section 6.1.
+y1, phi about x2) and the explicit matrices of ``docs/reference/aero-kinematics.md`` section 6.1.
 Conventions: inertial axes XYZ north-east-down, body axes xyz x forward / y right / z down.
 """
 

@@ -1,4 +1,4 @@
-"""3-2-1 direction cosines and Euler-rate matrices (paper eq. 4, reference 6.1)."""
+"""3-2-1 direction cosines and Euler-rate matrices (paper eq. 4, docs/reference/aero-kinematics.md §6.1)."""
 
 import numpy as np
 
@@ -18,7 +18,7 @@ def _rz(a):
 
 
 def test_dcm_is_product_of_elementary_rotations_and_orthonormal():
-    # C = R_x(phi) R_y(theta) R_z(psi) (reference 6.1); exact to 1e-15.
+    # C = R_x(phi) R_y(theta) R_z(psi) (docs/reference/aero-kinematics.md §6.1); exact to 1e-15.
     rng = np.random.default_rng(0)
     for phi, theta, psi in rng.uniform(-1.5, 1.5, (20, 3)):
         c = dcm_321(phi, theta, psi)

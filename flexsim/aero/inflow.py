@@ -2,7 +2,7 @@
 
 Source: Peters, Karunamoorthy & Cao (1995), "Finite-State Induced Flow Models, Part I", J. Aircraft 32(2);
 Hodges & Pierce (2011) §5.5.2 (as cited in reference §2.1); coefficients as in
-``shared/reference/aero-kinematics.md`` §2.1 ("reference §2.1"). This is the wake model behind ``λ0``
+``docs/reference/aero-kinematics.md`` §2.1 ("reference §2.1"). This is the wake model behind ``λ0``
 in the paper's eqs. 25 and 27.
 
 Equations (reference §2.1), per airfoil section:

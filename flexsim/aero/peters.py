@@ -2,7 +2,7 @@
 
 Implements the 2-D airloads of Tuzcu & Nguyen, *Flutter of Maneuvering Aircraft* (paper eqs. 25–26),
 which take them from Peters & Johnson (1994), with the matrices derived from thin-airfoil theory in
-``shared/reference/aero-kinematics.md`` §1 ("reference §1.x") and verified against Theodorsen.
+``docs/reference/aero-kinematics.md`` §1 ("reference §1.x") and verified against Theodorsen.
 
 Conventions (fixed once for the whole module)
 ---------------------------------------------

@@ -2,7 +2,7 @@
 
 Sources: Theodorsen, *General Theory of Aerodynamic Instability and the Mechanism of Flutter*, NACA Rep.
 496 (1935) — loads and the constants T1–T14; Hodges & Pierce, *Introduction to Structural Dynamics and
-Aeroelasticity*, 2nd ed. (2011) ch. 5 — typical-section form; ``shared/reference/aero-kinematics.md`` §3.1
+Aeroelasticity*, 2nd ed. (2011) ch. 5 — typical-section form; ``docs/reference/aero-kinematics.md`` §3.1
 and §1.7 (test values). Used as the reference model for the Peters airloads and as the paper's "US"
 frequency-domain flutter model (paper eq. 27).
 

@@ -1,7 +1,7 @@
 """Typical-section (2-DOF plunge/pitch) aeroelastic model built on the project's 2-D kernels.
 
 Source: Hodges & Pierce, *Introduction to Structural Dynamics and Aeroelasticity*, 2nd ed. (2011) ch. 5
-(equations of motion, Peters finite-state and Theodorsen flutter); ``shared/reference/aero-kinematics.md``
+(equations of motion, Peters finite-state and Theodorsen flutter); ``docs/reference/aero-kinematics.md``
 §3.2 (benchmark values). Aerodynamics from :mod:`flexsim.aero.theodorsen` (the rigid-section
 loads) and :mod:`flexsim.aero.inflow` (Peters finite-state inflow).
 

@@ -431,7 +431,7 @@ class ControlSurface:
 
     @property
     def hinge_d(self) -> float:
-        """Hinge position in semichords from mid-chord, d = 2 hinge_fraction - 1 (reference 1.6)."""
+        """Hinge position in semichords from mid-chord, d = 2 hinge_fraction - 1 (docs/reference/aero-kinematics.md §1.6)."""
         return 2.0 * self.hinge_fraction - 1.0
 
 

@@ -1,7 +1,7 @@
 """Aeroelastic coupling: strip airloads as generalized forces, apparent mass and inflow states.
 
 Sources: Tuzcu & Nguyen (2014) eqs. (25)-(31); Peters-Johnson rigid-strip loads as written in
-``shared/reference/aero-kinematics.md`` sections 1.3-1.6 (pi rho normalisation); Peters, Karunamoorthy &
+``docs/reference/aero-kinematics.md`` sections 1.3-1.6 (pi rho normalisation); Peters, Karunamoorthy &
 Cao (1995) finite-state inflow (reference section 2.1).
 
 For every strip (see :mod:`flexsim.model.strips`) the Chebyshev downwash coefficients follow from the

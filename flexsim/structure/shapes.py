@@ -2,7 +2,7 @@
 
 Bending: eigenfunctions of a uniform clamped-free Euler-Bernoulli beam; torsion: eigenfunctions of a
 uniform fixed-free shaft (Tuzcu & Nguyen 2014, text below eq. 1). Normalisation as in
-``shared/reference/aero-kinematics.md`` sections 6.2-6.3::
+``docs/reference/aero-kinematics.md`` sections 6.2-6.3::
 
     phi_n(x) = cosh(b x) - cos(b x) - sigma_n (sinh(b x) - sin(b x)),  b = beta_n L / L
     int_0^L phi_n^2 dx = L,   phi_n(L) = 2 (-1)^(n+1)

@@ -1,6 +1,6 @@
 """Tests of the Peters finite-state inflow model (flexsim.aero.inflow).
 
-Sources: shared/reference/aero-kinematics.md §2.1 (coefficients), §2.2 (accuracy against C(k), static gain,
+Sources: docs/reference/aero-kinematics.md §2.1 (coefficients), §2.2 (accuracy against C(k), static gain,
 Wagner step response); Peters, Karunamoorthy & Cao (1995). Tolerances are stated per test.
 """
 

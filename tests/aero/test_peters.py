@@ -1,6 +1,6 @@
 """Tests of the Peters–Johnson deformable-airfoil airloads (flexsim.aero.peters).
 
-Sources: shared/reference/aero-kinematics.md §1.2–1.8 (matrices, flap expansion, Theodorsen test values),
+Sources: docs/reference/aero-kinematics.md §1.2–1.8 (matrices, flap expansion, Theodorsen test values),
 Theodorsen NACA Rep. 496 (via flexsim.aero.theodorsen), Garrick NACA Rep. 567 (plunge thrust).
 Each test states its tolerance.
 """

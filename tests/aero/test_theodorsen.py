@@ -1,6 +1,6 @@
 """Tests of Theodorsen's function and exact loads (flexsim.aero.theodorsen).
 
-Sources: Theodorsen NACA Rep. 496 (1935); Hodges & Pierce (2011) ch. 5; shared/reference/aero-kinematics.md
+Sources: Theodorsen NACA Rep. 496 (1935); Hodges & Pierce (2011) ch. 5; docs/reference/aero-kinematics.md
 §3.1 (C(k) table), §1.6 (flap constants), §1.7 (load values, ρ = b = U = 1, a = -0.3, d = 0.5).
 """
 

@@ -1,6 +1,6 @@
 """Tests of the typical-section flutter model (flexsim.aero.typical_section).
 
-Sources: Hodges & Pierce (2011) ch. 5 and shared/reference/aero-kinematics.md §3.2 (a = -1/5, e = -1/10,
+Sources: Hodges & Pierce (2011) ch. 5 and docs/reference/aero-kinematics.md §3.2 (a = -1/5, e = -1/10,
 μ = 20, r² = 6/25, σ = 2/5): Peters N = 6 U_F = 2.1654, ω_F = 0.6545; exact Theodorsen U_F = 2.1839,
 ω_F = 0.6490; divergence √(μr²/(2(½ + a))) = 2.8284; eigenvalues at V = 1 and 2.
 """

@@ -1,4 +1,4 @@
-"""The bundled notional GTM against its provenance document (shared/reference/gtm-notional.md 3d).
+"""The bundled notional GTM against its provenance document (flexsim/aircraft/data/sources/gtm-notional.md 3d).
 
 The note's totals (option A): mass 100.0 t; CG x = 22.34 m aft of the nose, z = -0.60 m (design axes);
 Ixx, Iyy, Izz = 2.10, 8.08, 9.88 e6 kg m^2, Ixz = 1.4e5 kg m^2. Those totals treat the wing and tail mass

@@ -149,7 +149,7 @@ def test_wing_in_still_air_oscillates_undamped_and_conserves_energy():
 
 
 def test_inflow_forcing_uses_the_solved_accelerations_not_lagged_ones():
-    # Peters et al. 1995 (reference 2.1): lambda_dot = A^-1 [c (w0_dot + w1_dot/2) - (u0/b) lambda].
+    # Peters et al. 1995 (docs/reference/aero-kinematics.md §2.1): lambda_dot = A^-1 [c (w0_dot + w1_dot/2) - (u0/b) lambda].
     # w0_dot + w1_dot/2 is measured by central differences of w0 + w1/2 along x_dot = rhs(x): it contains
     # the accelerations that the right-hand side solves for in the same call (implicit coupling).
     model = AircraftModel(load_aircraft("gtm"), aero="unsteady")

@@ -21,7 +21,7 @@ from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.model.aircraft_model import AircraftModel
 
 SPEED = 70.0  # [m/s] at sea level: M = 0.21
-S_REF = 181.25  # [m^2] GTM reference area (shared/reference/gtm-notional.md 2a)
+S_REF = 181.25  # [m^2] GTM reference area (flexsim/aircraft/data/sources/gtm-notional.md 2a)
 
 
 @pytest.fixture(scope="module")

@@ -64,7 +64,7 @@ def test_clamped_wing_sags_q_l4_over_8ei_under_own_weight():
     exact = sec.mass_kg_per_m[0] * G * wing.length_m**4 / (8 * sec.ei_nm2[0])
     assert tip > 0  # z_w is down: the wing sags
     np.testing.assert_allclose(tip, exact, rtol=1e-2)
-    # Modal truncation error with m = 3 is 0.06 % (series of reference 6.2); assert it is that small.
+    # Modal truncation error with m = 3 is 0.06 % (series of docs/reference/aero-kinematics.md §6.2); assert it is that small.
     np.testing.assert_allclose(tip, exact, rtol=1e-3)
 
 

@@ -16,7 +16,7 @@ def test_beta_l_matches_reference_table():
 
 
 def test_bending_normalisation_and_boundary_values_all_modes():
-    # int phi^2 = L, phi(L) = 2(-1)^(n+1), phi(0) = phi'(0) = 0 (reference 6.2); Simpson-exact to 1e-6.
+    # int phi^2 = L, phi(L) = 2(-1)^(n+1), phi(0) = phi'(0) = 0 (docs/reference/aero-kinematics.md §6.2); Simpson-exact to 1e-6.
     u = bending_shapes(X, L, MAX_MODES)
     from scipy.integrate import simpson
 
@@ -51,7 +51,7 @@ def test_bending_derivatives_match_finite_differences(derivative):
 
 
 def test_torsion_shapes_closed_form():
-    # psi_n(L) = (-1)^(n+1), int psi^2 = L/2, int psi = 2L/((2n-1) pi) (reference 6.3).
+    # psi_n(L) = (-1)^(n+1), int psi^2 = L/2, int psi = 2L/((2n-1) pi) (docs/reference/aero-kinematics.md §6.3).
     from scipy.integrate import simpson
 
     p = torsion_shapes(X, L, 5)
