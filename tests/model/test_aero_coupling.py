@@ -8,9 +8,9 @@
   closed-form frequencies with m -> m + pi rho b^2 and I_theta -> I_theta + pi rho b^4 / 8 (Theodorsen's
   apparent mass; Bisplinghoff, Ashley & Halfman 1955 ch. 5). Strip quadrature error O(1/N^2): 200 strips,
   tolerance 1e-4.
-* Aerodynamic damping in the time domain: disturbed at the tip at 40 m/s (far below the wing's flutter
-  speed) the wing returns to its equilibrium; at zero airspeed it oscillates without damping and
-  conserves its energy (including the apparent-mass kinetic energy).
+* Aerodynamic damping: at 40 m/s (far below the wing's flutter speed) every eigenvalue of the linearised
+  model has a negative real part, in still air none has; in the time domain at zero airspeed the wing
+  oscillates without damping and conserves its energy (including the apparent-mass kinetic energy).
 """
 
 from dataclasses import replace
@@ -24,6 +24,7 @@ from flexsim.aero.theodorsen import theodorsen_operator
 from flexsim.aircraft.definition import StripAero
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.atmosphere import isa_density
+from flexsim.linear.linearize import jacobian
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.structure.shapes import bending_shapes, cantilever_beta_l, torsion_shapes
@@ -120,15 +121,21 @@ def _tip_release(model, t_end):
 
 
 @pytest.mark.parametrize("aero", ["quasi-steady", "unsteady"])
-def test_wing_disturbed_in_airflow_returns_to_equilibrium(aero):
+def test_wing_in_airflow_is_damped_by_the_air(aero):
+    # Lyapunov's indirect method on the linearisation of rhs about the undeformed wing (an exact equilibrium:
+    # rhs = 0): at 40 m/s, far below the flutter speed (131.6 m/s, tests/linear/test_flutter.py), every
+    # eigenvalue has Re < 0, so a disturbed wing returns to equilibrium (measured max Re -0.30 1/s
+    # quasi-steady, -0.50 1/s unsteady); in still air the same structure is undamped (|Re| at rounding level,
+    # the time-domain counterpart is the energy test below), so the damping is the air's.
     aircraft, _ = _goland()
-    model = _tunnel(aircraft, 40.0, aero=aero)
-    lay = model.layout
-    x0, sol = _tip_release(model, 4.0)
-    assert sol.success
-    amp0 = np.abs(x0[lay.q.start : lay.xi.stop]).max()
-    late = np.abs(sol.sol(np.linspace(3.0, 4.0, 200))[lay.q.start : lay.xi.stop]).max()
-    assert late < 0.05 * amp0  # measured ~1e-3 for quasi-steady: the structure is well damped by the air
+    eig = {}
+    for speed in (40.0, 0.0):
+        model = _tunnel(aircraft, speed, aero=aero)
+        x0, u0 = model.layout.zeros(), np.zeros(4)
+        assert np.abs(model.rhs(0.0, x0, u0)).max() < 1e-12
+        eig[speed] = np.linalg.eigvals(jacobian(model, x0, u0)[0])
+    assert eig[40.0].real.max() < -0.1
+    assert np.abs(eig[0.0].real).max() < 1e-9 * np.abs(eig[0.0]).max()
 
 
 def test_wing_in_still_air_oscillates_undamped_and_conserves_energy():
