@@ -76,7 +76,10 @@ def sea_level_level_flutter():
 
 def test_wide_turn_and_zero_climb_tend_to_level_flight(sea_level_level_flutter):
     analysis, level = sea_level_level_flutter
-    assert level.mode.kind == "elastic" and level.trim.residual < 1e-8
+    assert level.mode.kind == "elastic"
+    # the flutter point's trim is an equilibrium of the raw right-hand side (independent of trim's own residual)
+    dx = analysis.qs.rhs(0.0, level.trim.x, level.trim.u)
+    assert np.abs(dx[analysis.qs.layout.velocity]).max() < 1e-7
     wide = analysis.search(SteadyManoeuvre.turn(0.0, 1e6, mach=0.6), mach_range=(0.6, 0.7), mach_step=0.05)
     assert wide.mach == pytest.approx(level.mach, rel=0.005)
     flat = analysis.search(SteadyManoeuvre.climb(0.0, 0.0, mach=0.6), mach_range=(0.6, 0.7), mach_step=0.05)
@@ -89,9 +92,9 @@ def test_flutter_mode_normalised_as_in_the_paper(sea_level_level_flutter):
     shape = level.mode_shape
     ref = level.labels.index(level.normalised_by)
     assert shape[ref] == pytest.approx(1.0, abs=1e-12)
-    assert np.abs(shape[6:]).max() == pytest.approx(1.0) or level.normalised_by == "fuselage bending 1"
     i = level.labels.index("fuselage bending 1")
     if level.normalised_by != "fuselage bending 1":
+        assert np.abs(shape[6:]).max() == pytest.approx(1.0, abs=1e-12)  # normalised by its largest entry
         # in level flight the flutter mode of the calibrated GTM is antisymmetric: q_f1 vanishes by symmetry
         assert abs(shape[i]) < 1e-3
         right, left = level.labels.index("right_wing bending 1"), level.labels.index("left_wing bending 1")
