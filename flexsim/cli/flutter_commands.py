@@ -127,6 +127,17 @@ def _sweep(args: argparse.Namespace) -> int:
     check_altitudes(args.altitudes)
     check_workers(args.workers)
     check_damping(args.structural_damping)
+    points = {}
+    if kind == "turn" and args.radii_m is not None:
+        bad = [r for r in args.radii_m if not (math.isfinite(r) and r > 0.0)]
+        if bad:
+            raise ValueError(f"--radii-m {bad[0]!r}: turn radii must be finite numbers > 0 [m]")
+        points = {"radii_m": args.radii_m}
+    if kind == "climb" and args.angles_deg is not None:
+        bad = [g for g in args.angles_deg if not (math.isfinite(g) and -90.0 < g < 90.0)]
+        if bad:
+            raise ValueError(f"--angles-deg {bad[0]!r}: flight-path angles must be in (-90, 90) deg")
+        points = {"angles_deg": args.angles_deg}
     out = check_out_dir(args.out)
     stem = f"flutter_{kind}_coordinated" if args.coordinated else f"flutter_{kind}"
     record = StudyRecord(out / f"{stem}.jsonl", resume=args.resume)
@@ -137,7 +148,7 @@ def _sweep(args: argparse.Namespace) -> int:
     make = turn_cases if kind == "turn" else climb_cases
     cases = make(setting.aircraft, altitudes_m=args.altitudes, models=models, structural_damping=args.structural_damping,
                  formulation=setting.formulation, linear_density_altitude_m=setting.linear_density_altitude_m,
-                 **({"coordinated": True} if args.coordinated else {}))
+                 **({"coordinated": True} if args.coordinated else {}), **points)
     try:
         rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=True, record=record)
     except KeyboardInterrupt:
@@ -223,6 +234,10 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_sw.add_argument("--altitudes", type=float, nargs="+", default=[0.0, 3048.0, 6096.0, 9144.0], metavar="H")
     p_sw.add_argument("--models", default="QS,US")
     p_sw.add_argument("--coordinated", action="store_true", help="with --turn: coordinated turns (zero sideslip, heading free)")
+    p_sw.add_argument("--radii-m", type=float, nargs="+", default=None, metavar="R",
+                      help="turn radii [m] with --turn [the paper's 5000-12000 m in 1 km steps]")
+    p_sw.add_argument("--angles-deg", type=float, nargs="+", default=None, metavar="G",
+                      help="flight-path angles [deg] with --climb [the paper's -15..15 deg in 5 deg steps]")
     p_sw.add_argument("--scheduler", metavar="ADDRESS", help="Dask distributed scheduler (default: local processes); "
                       "tasks and results are exchanged pickled: give only the address of a cluster you trust")
     p_sw.add_argument("--workers", type=int, default=os.cpu_count() or 1)
