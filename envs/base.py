@@ -144,8 +144,6 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     metadata: ClassVar[dict] = {"render_modes": ["human", "rgb_array"], "render_fps": 50}
     task_type: ClassVar[type]
     default_turbulence: ClassVar[str] = "none"
-    #: Whether the task's subject is a lightly damped high-frequency structural mode (see ``IntegratorSettings.resolve``).
-    undamped_structure: ClassVar[bool] = False
     #: (name, bound) of the task errors in the observation, in order; set by each task class.
     task_errors_spec: ClassVar[tuple[tuple[str, float], ...]] = ()
 
@@ -194,7 +192,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         modes = [m for m in type(self).metadata["render_modes"] if m != "human" or no_viewer is None]
         self.metadata = {**type(self).metadata, "render_modes": modes, "render_fps": rate}
         self.dynamics = FlightDynamics(self.aircraft, aero, integrator or IntegratorSettings(), actuator_rates or ActuatorRates(),
-                                       self.dt, undamped_structure=self.undamped_structure)
+                                       self.dt)
         self.reward_definition: TrackingReward = task.reward
         lo, hi = self.dynamics.u_low, self.dynamics.u_high
         self._u_scale = hi.copy()  # 0 for a surface the aircraft does not have: its action has no effect

@@ -125,12 +125,11 @@ class IntegratorSettings:
             raise ValueError(f"max_step_s = {self.max_step_s!r}: must be in [{lo:g}, {hi:g}] s")
         object.__setattr__(self, "max_step_s", step)
 
-    def resolve(self, aero: str, undamped_structure: bool = False) -> str:
-        """The method used for aerodynamic model ``aero``.
+    def resolve(self, aero: str) -> str:
+        """The method used for aerodynamic model ``aero``: ETD2RK for ``"unsteady"``, DOP853 otherwise.
 
-        ``undamped_structure`` says that the task's subject is a lightly damped high-frequency structural
-        mode; both automatic choices (ETD2RK, DOP853) leave such modes undamped, so it does not change the
-        choice (it did when ``"auto"`` picked Radau for the finite-state model).
+        Both automatic choices leave lightly damped high-frequency structural modes (the flutter-margin
+        tasks' subject) free of numerical damping, so no task needs another choice.
         """
         if self.method != "auto":
             return self.method

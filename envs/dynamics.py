@@ -151,13 +151,10 @@ class FlightDynamics:
     aircraft : Aircraft
     aero : {"unsteady", "quasi-steady"}
     integrator : IntegratorSettings
-        Method and tolerances or step (``method="auto"`` resolved with ``aero`` and ``undamped_structure``).
+        Method and tolerances or step (``method="auto"`` resolved with ``aero``).
     rates : ActuatorRates
     control_dt_s : float
         Control period [s].
-    undamped_structure : bool
-        The task needs the high-frequency structural modes free of numerical damping (see
-        :meth:`IntegratorSettings.resolve`).
 
     Attributes
     ----------
@@ -168,7 +165,7 @@ class FlightDynamics:
     """
 
     def __init__(self, aircraft: Aircraft, aero: str, integrator: IntegratorSettings, rates: ActuatorRates,
-                 control_dt_s: float, undamped_structure: bool = False) -> None:
+                 control_dt_s: float) -> None:
         self.aircraft = aircraft
         self.aero = aero
         self.model = AircraftModel(aircraft, aero=aero)
@@ -176,7 +173,7 @@ class FlightDynamics:
         for name in SENSOR_COMPONENTS:
             aircraft.component(name)  # KeyError naming the missing component
         self.sensors = {name: _Sensor(self.model, name) for name in SENSOR_COMPONENTS}
-        self.method = integrator.resolve(aero, undamped_structure)
+        self.method = integrator.resolve(aero)
         self.rtol = integrator.rtol
         self.atol = integrator.atol(self.layout)
         self.dt = float(control_dt_s)

@@ -242,7 +242,6 @@ class FlutterMarginEnv(FlexSimEnv):
 
     task_type = FlutterMarginTask
     default_turbulence = "none"
-    undamped_structure = True
     task_errors_spec = (("fin_twist_rate_rad_s", 1000.0), ("flutter_speed_deficit_m_s", 600.0), ("airspeed_error_m_s", 300.0),
                         ("altitude_error_m", 5000.0), ("flutter_margin_m_s", 600.0))
 
