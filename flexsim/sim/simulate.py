@@ -107,6 +107,11 @@ class HoldingRadau(Radau):
     as an array) and an accepted step of exactly ``max_step`` followed by another one, the factors of that
     step stay valid for the next and are kept. Everything else is scipy's algorithm unchanged (the same
     steps and results).
+
+    It overrides scipy's private ``Radau._step_impl`` and uses the private attributes ``lu``, ``LU_real``,
+    ``LU_complex``, ``h_abs`` and ``t_old`` (scipy/integrate/_ivp/radau.py), so :func:`simulate` uses it only
+    with the scipy versions of :data:`HOLDING_RADAU_SCIPY` (plain Radau otherwise: the same steps, more LU
+    factorisations); ``tests/sim/test_simulate.py`` pins its steps, results and LU count against scipy's Radau.
     """
 
     def __init__(self, *args, **kwargs) -> None:
@@ -134,6 +139,20 @@ class HoldingRadau(Radau):
                 if pair[0] is not None:
                     self.LU_real, self.LU_complex = pair
         return success, message
+
+
+#: Range of scipy (major, minor) versions whose Radau internals HoldingRadau was tested against (by the tests
+#: in tests/sim/test_simulate.py, on scipy 1.17); widen it after running them on another version.
+HOLDING_RADAU_SCIPY = ((1, 17), (1, 17))
+
+
+def radau_class(version: str | None = None) -> type[Radau]:
+    """HoldingRadau for a tested scipy version (default: the installed one), else scipy's Radau."""
+    import scipy
+
+    major_minor = tuple(int(p) for p in (version or scipy.__version__).split(".")[:2])
+    lo, hi = HOLDING_RADAU_SCIPY
+    return HoldingRadau if lo <= major_minor <= hi else Radau
 
 
 def state_scales(model: AircraftModel) -> np.ndarray:
@@ -488,7 +507,7 @@ def _integrate(model, wind, ctrl, x0, u0, t_end, method, rtol, atol, max_step, j
                 options["jac"] = lambda t, y, j=jac_matrix: j
             elif method in _IMPLICIT:
                 options["jac"] = jac_matrix
-            solver = (HoldingRadau if method == "Radau" else METHODS[method])(fun, float(a), x, float(b), **options)
+            solver = (radau_class() if method == "Radau" else METHODS[method])(fun, float(a), x, float(b), **options)
             solvers.append(solver)
             steps: list[float] = []
             while solver.status == "running":

@@ -22,7 +22,7 @@ from scipy.integrate import Radau
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.result import SimulationResult
-from flexsim.sim.simulate import ControlSchedule, HoldingRadau, SimEvent, simulate, state_scales
+from flexsim.sim.simulate import HOLDING_RADAU_SCIPY, ControlSchedule, HoldingRadau, SimEvent, radau_class, simulate, state_scales
 from flexsim.trim import SteadyManoeuvre, trim
 
 H, MACH = 9144.0, 0.75
@@ -220,6 +220,16 @@ def test_holding_radau_takes_scipys_steps_with_fewer_factorisations():
     assert held.nfev == plain.nfev
     np.testing.assert_allclose(held.y, plain.y, rtol=1e-10, atol=1e-12)
     assert held.nlu < plain.nlu / 3
+
+
+def test_holding_radau_only_with_the_scipy_versions_it_was_tested_with():
+    import scipy
+
+    lo, hi = HOLDING_RADAU_SCIPY
+    assert radau_class() is HoldingRadau  # the installed scipy is one it was tested with (test above)
+    assert lo <= tuple(int(p) for p in scipy.__version__.split(".")[:2]) <= hi
+    assert radau_class(f"{hi[0]}.{hi[1] + 1}.0") is Radau and radau_class(f"{lo[0]}.{lo[1] - 1}.3") is Radau
+    assert radau_class(f"{lo[0]}.{lo[1]}.0rc1") is HoldingRadau
 
 
 def test_bad_arguments_are_rejected_with_clear_messages(quasi_steady, tmp_path):
