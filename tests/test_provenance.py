@@ -14,7 +14,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 VERBATIM = (ROOT / "docs" / "reference", ROOT / "flexsim" / "aircraft" / "data" / "sources")
-OUTSIDE = re.compile(r"shared/reference|\.\./shared|/work/|\bDESIGN \d")
+OUTSIDE = re.compile(r"(?<!docs/reference/)\bshared/(?:reference|findings)|\.\./shared|/work/|\bDESIGN \d")
 CITED = re.compile(r"(docs/reference/[\w.-]+\.\w+|aircraft/data/sources/[\w.-]+\.\w+)")
 
 
@@ -47,6 +47,7 @@ def test_nothing_cites_material_outside_the_repository():
 def test_scanner_reports_outside_and_missing_citations():
     assert len(problems("see ``shared/reference/aero-kinematics.md`` §1", "x")) == 1
     assert len(problems("Three models (DESIGN 5)", "x")) == 1
+    assert len(problems("(shared/findings/paper-mechanism-probe.md, section A)", "x")) == 1
     assert len(problems("python tools/make_gtm_toml.py ../shared/reference", "x")) == 1
     assert problems("see docs/reference/no-such-note.md", "x") == ["x: cites 'docs/reference/no-such-note.md', which is not in the repository"]
     assert problems("see docs/reference/aero-kinematics.md §2.1 and flexsim/aircraft/data/sources/gtm-notional.md", "x") == []

@@ -1,4 +1,4 @@
-"""``tools/make_gtm_toml.py`` regenerates both bundled GTM files from the repository alone (issue #10).
+"""``tools/make_gtm_toml.py`` regenerates the three bundled GTM files from the repository alone (issue #10).
 
 The tool is run from a copy of the tool alone in ``tmp_path`` (so that nothing outside the repository, such as
 a sibling ``shared/`` folder, can be read through a relative path), with the calibration file of the
@@ -19,6 +19,7 @@ DATA = ROOT / "flexsim" / "aircraft" / "data"
 @pytest.mark.parametrize(("bundled", "options"), [
     ("gtm_uncalibrated.toml", []),
     ("gtm.toml", ["--calibration", str(ROOT / "tools" / "gtm_calibration.toml")]),
+    ("gtm_paper.toml", ["--calibration", str(ROOT / "tools" / "gtm_calibration.toml"), "--paper"]),
 ])
 def test_bundled_gtm_regenerates_from_the_repository(tmp_path, bundled, options):
     tool = tmp_path / "make_gtm_toml.py"
