@@ -3,8 +3,9 @@
 * trim: level flight at M 0.75, 9144 m flies at the ISA true airspeed M a(h) (``flexsim.atmosphere``, an
   independent conversion) with gamma = phi = 0 and load factor 1 up to the thrust's share (2 %); a level turn
   of R = 9000 m banks at tan(phi) = V^2/(g R) (point-mass coordinated-turn balance, 4 %); a 3 deg climb has gamma = 3 deg.
-* flutter: one altitude, quasi-steady: the JSON row equals a direct ``FlutterAnalysis.search`` (1e-9: the CLI
-  reports what the library computes) and the text table prints the paper's Table 2 row beside ours.
+* flutter: one altitude, quasi-steady, physical force resolution: the JSON row equals a direct
+  ``FlutterAnalysis.search`` (1e-9: the CLI reports what the library computes) and the document carries the
+  paper's Table 2 row (the text table itself: tests/cli/test_paper_report.py).
 * sweep: one altitude, two climb angles (0 and 3 deg): writes CSV, JSON and PNG; the 0 deg point equals the
   level-flight flutter point of ``flexsim flutter`` (zero climb is level flight; 2e-4 as in
   tests/linear/test_flutter.py).
@@ -54,13 +55,16 @@ def level_qs():
 
 
 def test_flutter_one_altitude_quasi_steady(capsys, level_qs):
-    rows = _json(capsys, "flutter", "gtm", "--altitudes", str(H), "--models", "QS", "--workers", "1", "--json")
+    doc = _json(capsys, "flutter", "gtm", "--altitudes", str(H), "--models", "QS", "--formulation", "physical",
+                "--workers", "1", "--json")
+    rows = doc["rows"]
     assert len(rows) == 1
     row = rows[0]
     assert (row["model"], row["altitude_m"]) == ("QS", H) and "error" not in row
     assert row["mach"] == pytest.approx(level_qs.mach, rel=1e-9)
     assert row["omega_rad_s"] == pytest.approx(level_qs.frequency_rad_s, rel=1e-9)
     assert row["mode"] == level_qs.mode.dominant_dof
+    assert [list(p) for p in TABLE_QS if p[0] == H] == [list(p) for p in doc["paper"]["table_qs"] if p[0] == H]
 
 
 def test_sweep_one_altitude_two_climb_angles(capsys, tmp_path, level_qs):
@@ -78,19 +82,3 @@ def test_sweep_one_altitude_two_climb_angles(capsys, tmp_path, level_qs):
     assert [float(r["mach"]) for r in table] == pytest.approx([r["mach"] for r in rows], rel=1e-12)
     for png in ("flutter_climb.png", f"flutter_climb_trim_{H:.0f}m.png"):
         assert (out / png).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-
-
-def test_flutter_text_table_prints_the_paper_row(capsys, monkeypatch, level_qs):
-    # the text table with the search replaced by the known flutter row (the search itself is tested above)
-    import flexsim.cli.flutter_commands as commands
-
-    def rows(cases, **kwargs):
-        return [dict(model="QS", altitude_m=H, mach=level_qs.mach, omega_rad_s=level_qs.frequency_rad_s, theta_deg=0.0,
-                     thrust_kN=0.0, elevator_deg=0.0, tip_deflection_m=0.0, tip_twist_deg=0.0, mode="m", mode_symmetry="s")]
-
-    monkeypatch.setattr(commands, "run_study", rows)
-    assert main(["flutter", "gtm", "--altitudes", str(H), "--models", "QS"]) == 0
-    text = capsys.readouterr().out
-    paper = next(p for p in TABLE_QS if p[0] == H)
-    assert f"{level_qs.mach:7.4f}" in text and f"{paper[1]:7.4f}" in text
-    assert f"{100 * (level_qs.mach / paper[1] - 1):+6.1f}%" in text
