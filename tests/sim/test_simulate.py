@@ -175,8 +175,8 @@ def test_structural_limit_stops_a_fluttering_wing():
 
 def test_non_finite_state_stops_the_run(vacuum):
     class Broken(AircraftModel):
-        def rhs(self, t, x, u):
-            dx = super().rhs(t, x, u)
+        def rhs(self, t, x, u, wind=None):
+            dx = super().rhs(t, x, u, wind)
             return dx * np.nan if t > 0.05 else dx
 
     model = Broken(vacuum.aircraft, aero=None)
