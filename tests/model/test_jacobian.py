@@ -52,7 +52,7 @@ def test_structured_jacobian_equals_dense_and_exact(gtm_state):
     lay = model.layout
     calls = []
     rhs = model.rhs
-    model.rhs = lambda t, xx, uu: calls.append(1) or rhs(t, xx, uu)
+    model.rhs = lambda t, xx, uu, wind=None: calls.append(1) or rhs(t, xx, uu, wind)
     try:
         a_s, b_s = jacobian(model, x, u, t=0.3)
         n_structured = len(calls)
