@@ -28,7 +28,7 @@ def _gust(t, positions):
 def gtm_state():
     gtm = load_aircraft("gtm")
     qs = AircraftModel(gtm, aero="quasi-steady")
-    fs = AircraftModel(gtm, aero="unsteady", wind=_gust)
+    fs = AircraftModel(gtm, aero="unsteady")  # the gust is passed per call
     point = trim(qs, SteadyManoeuvre.level(3048.0, mach=0.7))
     rng = np.random.default_rng(1)
     x = np.concatenate([point.x, rng.normal(0.0, 0.5, fs.layout.n_inflow)])
@@ -42,7 +42,7 @@ def _exact_inflow_columns(model, x, u, t):
     for k, j in enumerate(range(lay.inflow.start, lay.n_states)):
         e = np.zeros(x.size)
         e[j] = 1.0
-        d1, d2 = _column(model, t, x, u, e, 1e-2), _column(model, t, x, u, e, 5e-3)
+        d1, d2 = _column(model, t, x, u, e, 1e-2, _gust), _column(model, t, x, u, e, 5e-3, _gust)
         ref[:, k] = (4.0 * d2 - d1) / 3.0
     return ref
 
@@ -54,11 +54,11 @@ def test_structured_jacobian_equals_dense_and_exact(gtm_state):
     rhs = model.rhs
     model.rhs = lambda t, xx, uu, wind=None: calls.append(1) or rhs(t, xx, uu, wind)
     try:
-        a_s, b_s = jacobian(model, x, u, t=0.3)
+        a_s, b_s = jacobian(model, x, u, t=0.3, wind=_gust)
         n_structured = len(calls)
     finally:
         del model.rhs
-    a_d, b_d = jacobian(model, x, u, t=0.3, method="dense")
+    a_d, b_d = jacobian(model, x, u, t=0.3, method="dense", wind=_gust)
     n_strips = lay.n_inflow // model.aero.options.n_inflow
     assert n_structured == 2 * (lay.inflow.start + n_strips) + 8  # 192 rhs instead of 2 n + 8 = 512
     # columns over the non-inflow states and B: the same differences, bit for bit
