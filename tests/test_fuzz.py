@@ -14,7 +14,7 @@ from importlib import resources
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from flexsim.aircraft.toml_loader import load_aircraft, parse_aircraft
@@ -88,8 +88,11 @@ def _mutate(doc, leaf, value):
     node[leaf[-1]] = value
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+# derandomize: the suite must give the same verdict on every run (CI); the example below is a case a random run found
+# (a cg offset of 2.2e153 m overflowed m e^2 before the one-chord check rejected it).
+@settings(max_examples=150, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(edits=st.lists(st.tuples(st.sampled_from(_LEAVES), _VALUES), min_size=1, max_size=3))
+@example(edits=[(("components", "right_wing", "sections", "cg_offset_m", 0), 2.2e153)])
 def test_random_goland_mutations_clear_error_or_sane(edits):
     import copy
 
@@ -154,7 +157,7 @@ def test_fixed_log_damages_are_flagged_and_never_alter_values(tmp_path, referenc
     assert outcomes.count("intact") == 0
 
 
-@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=40, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(kind=st.sampled_from(["truncate", "flip_byte", "zero_block", "random_block"]),
        fraction=st.floats(min_value=0.0, max_value=1.0), seed=st.integers(0, 2**30))
 def test_random_log_damages(tmp_path, reference_log, kind, fraction, seed):

@@ -274,15 +274,6 @@ class SectionTable:
             i = int(bad[0])
             _fail(f"{w}.ea_fraction[{i}]", float(ea[i]), "must be in [0, 1]")
         m, e, ith = arrays["mass_kg_per_m"], arrays["cg_offset_m"], arrays["torsional_inertia_kg_m"]
-        need = m * e**2
-        bad = np.flatnonzero(ith < need * (1.0 - 1e-9))
-        if bad.size:
-            i = int(bad[0])
-            _fail(
-                f"{w}.torsional_inertia_kg_m[{i}]",
-                float(ith[i]),
-                f"must be >= mass_kg_per_m * cg_offset_m^2 = {need[i]:.6g} (inertia about the elastic axis)",
-            )
         bad = np.flatnonzero(np.abs(e) > arrays["chord_m"] + 1e-12)
         bad = bad[arrays["chord_m"][bad] > 0.0]
         if bad.size:
@@ -293,6 +284,15 @@ class SectionTable:
         if bad.size:
             i = int(bad[0])
             _fail(f"{w}.cg_offset_m[{i}]", float(e[i]), "must be 0 where chord_m is 0 (no chordwise direction)")
+        need = m * e**2
+        bad = np.flatnonzero(ith < need * (1.0 - 1e-9))
+        if bad.size:
+            i = int(bad[0])
+            _fail(
+                f"{w}.torsional_inertia_kg_m[{i}]",
+                float(ith[i]),
+                f"must be >= mass_kg_per_m * cg_offset_m^2 = {need[i]:.6g} (inertia about the elastic axis)",
+            )
         for name, arr in arrays.items():
             object.__setattr__(self, name, arr)
 
