@@ -41,7 +41,7 @@ from flexsim.sim.recording import LogSink, resolve_log_path
 from flexsim.sim.result import SimulationResult
 from flexsim.trim.solver import TrimPoint
 
-__all__ = ["ControlSchedule", "SimEvent", "simulate", "state_scales", "METHODS", "DEFAULT_EVENTS", "default_method"]
+__all__ = ["ControlSchedule", "IntegrationSettings", "SimEvent", "simulate", "state_scales", "METHODS", "DEFAULT_EVENTS", "default_method"]
 
 #: Integration methods by name (scipy.integrate OdeSolver classes).
 METHODS = {"Radau": Radau, "DOP853": DOP853, "LSODA": LSODA, "BDF": BDF, "RK45": RK45, "RK23": RK23,
@@ -95,6 +95,134 @@ class _Event:
     terminal: bool
     status: str
     describe: Callable[[float, np.ndarray], str]
+
+
+@dataclass(frozen=True)
+class IntegrationSettings:
+    """The numerical settings of one run, validated on construction (:func:`simulate` builds one with
+    :meth:`resolve`, which fills in the defaults).
+
+    Attributes
+    ----------
+    method : str
+        One of :data:`METHODS` (``"auto"`` is resolved by :meth:`resolve`).
+    rtol : float
+        Relative tolerance in [1e-13, 0.1] (not used by ETD2RK).
+    atol : ndarray, shape (n_states,)
+        Absolute tolerance per state entry, > 0 and finite; stored read-only.
+    max_step : float
+        Largest step [s], > 0 (``math.inf``: no limit); the fixed step of ETD2RK, which must be finite.
+    t_end_s : float
+        End time [s], finite and > 0 (the run starts at 0).
+
+    Raises
+    ------
+    ValueError
+        A field out of range; the message names the field, its value and the allowed range.
+    """
+
+    method: str
+    rtol: float
+    atol: np.ndarray
+    max_step: float
+    t_end_s: float
+
+    def __post_init__(self) -> None:
+        if self.method not in METHODS:
+            raise ValueError(f"method = {self.method!r}: must be 'auto' or one of {', '.join(METHODS)}")
+        if isinstance(self.rtol, bool) or not (isinstance(self.rtol, (int, float)) and 1e-13 <= self.rtol <= 0.1):
+            raise ValueError(f"rtol = {self.rtol!r}: must be a number in [1e-13, 0.1]")
+        try:
+            atol = np.array(self.atol, dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(f"atol = {self.atol!r}: must be positive and finite numbers") from None
+        if atol.ndim != 1 or atol.size == 0 or not np.all(np.isfinite(atol)) or np.any(atol <= 0):
+            raise ValueError(f"atol = {self.atol!r}: must be positive and finite (one number per state entry)")
+        atol.setflags(write=False)
+        object.__setattr__(self, "atol", atol)
+        if isinstance(self.max_step, bool) or not (isinstance(self.max_step, (int, float)) and self.max_step > 0):
+            raise ValueError(f"max_step = {self.max_step!r}: must be a number > 0 [s] (math.inf for no limit)")
+        if self.method == "ETD2RK" and not math.isfinite(self.max_step):
+            raise ValueError(f"max_step = {self.max_step!r}: ETD2RK takes fixed steps of max_step, which must be finite [s]")
+        if isinstance(self.t_end_s, bool) or not (isinstance(self.t_end_s, (int, float)) and math.isfinite(self.t_end_s)
+                                                  and self.t_end_s > 0):
+            raise ValueError(f"t_end_s = {self.t_end_s!r}: must be a finite number > 0 [s]")
+        object.__setattr__(self, "rtol", float(self.rtol))
+        object.__setattr__(self, "max_step", float(self.max_step))
+        object.__setattr__(self, "t_end_s", float(self.t_end_s))
+
+    @classmethod
+    def resolve(cls, model: AircraftModel, t_end_s: float, *, method: str = "auto", rtol: float | None = None,
+                atol: float | np.ndarray | None = None, max_step: float = 0.05) -> IntegrationSettings:
+        """Settings of a run of ``model`` with :func:`simulate`'s defaults: ``"auto"`` -> :func:`default_method`,
+        ``rtol`` per method family (:data:`DEFAULT_RTOL`), ``atol = rtol * state_scales(model)``; a scalar
+        ``atol`` applies to every state entry."""
+        if method == "auto":
+            method = default_method(model)
+        if method not in METHODS:
+            raise ValueError(f"method = {method!r}: must be 'auto' or one of {', '.join(METHODS)}")
+        if rtol is None:
+            rtol = DEFAULT_RTOL["implicit" if method in _IMPLICIT else "explicit"]
+        if isinstance(rtol, bool) or not (isinstance(rtol, (int, float)) and 1e-13 <= rtol <= 0.1):
+            raise ValueError(f"rtol = {rtol!r}: must be a number in [1e-13, 0.1]")
+        n = model.layout.n_states
+        if atol is None:
+            atol_v = rtol * state_scales(model)
+        else:
+            try:
+                atol_v = np.broadcast_to(np.asarray(atol, dtype=float), (n,)).copy()
+            except (TypeError, ValueError):
+                raise ValueError(f"atol = {atol!r}: must be positive and finite (a number or {n} numbers)") from None
+            if not np.all(np.isfinite(atol_v)) or np.any(atol_v <= 0):
+                raise ValueError(f"atol = {atol!r}: must be positive and finite (a number or {n} numbers)")
+        return cls(method=method, rtol=rtol, atol=atol_v, max_step=max_step, t_end_s=t_end_s)
+
+    @property
+    def implicit(self) -> bool:
+        """An implicit scipy method (Radau, BDF, LSODA), which gets the constant Jacobian."""
+        return self.method in _IMPLICIT
+
+    @property
+    def needs_jacobian(self) -> bool:
+        """The method uses the constant Jacobian at the initial state (implicit methods and ETD2RK)."""
+        return self.implicit or self.method == "ETD2RK"
+
+
+@dataclass(frozen=True)
+class _Problem:
+    """What is integrated: the model, its disturbance, the control law, the initial state and the events."""
+
+    model: AircraftModel
+    wind: Wind | None
+    ctrl: Controls
+    x0: np.ndarray
+    u0: np.ndarray
+    jacobian: np.ndarray | None
+    events: tuple[_Event, ...]
+
+
+@dataclass(frozen=True)
+class _Sinks:
+    """Where the samples go: the result's and the log's samplers, the log, a progress callback and bar."""
+
+    results: _Sampler
+    logged: _Sampler
+    log: LogSink | None
+    callback: Callable[[float], None] | None
+    bar: object | None
+
+
+@dataclass(frozen=True)
+class _Outcome:
+    """How a run ended: ``status`` (:data:`flexsim.sim.result.STATUSES`), ``reason``, solver counts, and the
+    event crossings ``(t [s], name)`` in time order."""
+
+    status: str
+    reason: str
+    nfev: int
+    njev: int
+    nlu: int
+    crossings: tuple[tuple[float, str], ...]
 
 
 class HoldingRadau(Radau):
@@ -374,22 +502,8 @@ def simulate(
         raise ValueError(f"t_end_s = {t_end_s!r}: must be a finite number > 0 [s]")
     t_end = float(t_end_s)
     ctrl = Controls(model, controls, u_trim, control_period_s)
-    if method == "auto":
-        method = default_method(model)
-    if method not in METHODS:
-        raise ValueError(f"method = {method!r}: must be 'auto' or one of {', '.join(METHODS)}")
-    implicit = method in _IMPLICIT
-    if rtol is None:
-        rtol = DEFAULT_RTOL["implicit" if implicit else "explicit"]
-    if not (isinstance(rtol, (int, float)) and 1e-13 <= rtol <= 0.1):
-        raise ValueError(f"rtol = {rtol!r}: must be a number in [1e-13, 0.1]")
-    atol_v = rtol * state_scales(model) if atol is None else np.broadcast_to(np.asarray(atol, dtype=float), (model.layout.n_states,)).copy()
-    if not np.all(np.isfinite(atol_v)) or np.any(atol_v <= 0):
-        raise ValueError(f"atol = {atol!r}: must be positive and finite (a number or {model.layout.n_states} numbers)")
-    if not (isinstance(max_step, (int, float)) and max_step > 0):
-        raise ValueError(f"max_step = {max_step!r}: must be a number > 0 [s] (math.inf for no limit)")
-    if method == "ETD2RK" and not math.isfinite(max_step):
-        raise ValueError(f"max_step = {max_step!r}: ETD2RK takes fixed steps of max_step, which must be finite [s]")
+    settings = IntegrationSettings.resolve(model, t_end, method=method, rtol=rtol, atol=atol, max_step=max_step)
+    method, rtol = settings.method, settings.rtol
     out_grid = _grid(output_rate_hz, t_end, "output_rate_hz")
     log_grid = _grid(log_rate_hz, t_end, "log_rate_hz")
     if wind is not None and not callable(wind):
@@ -409,8 +523,8 @@ def simulate(
 
     u0 = ctrl.held(0.0, x0) if ctrl.controller is not None else ctrl.schedule(0.0)
     wall0 = time.perf_counter()
-    jac_matrix = jacobian(model, x0, u0, controls=False, wind=wind)[0] if implicit or method == "ETD2RK" else None
-    counters = {"nfev": 0, "njev": 0, "nlu": 0, "nonfinite": 0}
+    jac_matrix = jacobian(model, x0, u0, controls=False, wind=wind)[0] if settings.needs_jacobian else None
+    problem = _Problem(model=model, wind=wind, ctrl=ctrl, x0=x0, u0=u0, jacobian=jac_matrix, events=tuple(evs))
     sink = None
     if path is not None:
         meta = {"aircraft": model.aircraft.name, "aircraft_source": str(model.aircraft.source),
@@ -423,9 +537,9 @@ def simulate(
         from tqdm.auto import tqdm
 
         bar = tqdm(total=t_end, unit="sim s", disable=None)
-    crossings: list[tuple[float, str]] = []
     results = _Sampler(out_grid)
     logged = _Sampler(log_grid)
+    sinks = _Sinks(results=results, logged=logged, log=sink, callback=progress if callable(progress) else None, bar=bar)
     results.add(0.0, x0, u0)
     try:
         if sink is not None:
@@ -435,8 +549,7 @@ def simulate(
                 sink.schedule(float(t_note), str(text))
             sink.write(np.zeros(1), x0[None, :], u0[None, :])
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            status, reason = _integrate(model, wind, ctrl, x0, u0, t_end, method, rtol, atol_v, max_step, jac_matrix, evs, results,
-                                        logged, sink, counters, crossings, progress if callable(progress) else None, bar)
+            outcome = _integrate(problem, settings, sinks)
     except BaseException as exc:
         if sink is not None:
             t_fail = logged.t[-1][-1] if logged.t and logged.t[-1].size else 0.0
@@ -448,65 +561,54 @@ def simulate(
         if sink is not None:
             sink.close()
     t, x, u = results.arrays()
-    return SimulationResult(t=t, x=x, u=u, status=status, reason=reason, model=model, method=method, rtol=float(rtol),
-                            nfev=counters["nfev"], njev=counters["njev"], nlu=counters["nlu"],
-                            wall_time_s=time.perf_counter() - wall0, log_path=path, events=tuple(crossings), wind=wind)
+    return SimulationResult(t=t, x=x, u=u, status=outcome.status, reason=outcome.reason, model=model, method=method,
+                            rtol=float(rtol), nfev=outcome.nfev, njev=outcome.njev, nlu=outcome.nlu,
+                            wall_time_s=time.perf_counter() - wall0, log_path=path, events=outcome.crossings, wind=wind)
 
 
-def _integrate(model, wind, ctrl, x0, u0, t_end, method, rtol, atol, max_step, jac_matrix, evs, results, logged, sink,
-               counters, crossings, callback, bar) -> tuple[str, str]:
+def _integrate(problem: _Problem, settings: IntegrationSettings, sinks: _Sinks) -> _Outcome:
     """The stepping loop: a solver per control segment; sample, log and check events after every step."""
+    model, wind, ctrl, evs = problem.model, problem.wind, problem.ctrl, problem.events
+    method, t_end, max_step = settings.method, settings.t_end_s, settings.max_step
+    sink = sinks.log
     bounds = ctrl.boundaries(t_end)
     h_next = None
-    g_old = [ev.function(0.0, x0) for ev in evs]
-    current: list = [None]  # the control law u_of(t) of the current segment
+    g_old = [ev.function(0.0, problem.x0) for ev in evs]
+    u_of = None  # the control law u_of(t) of the current segment
     solvers: list = []
+    crossings: list[tuple[float, str]] = []
     etd_cache: dict = {}
+    nfev = nonfinite = 0
 
     def fun(t, y):
-        counters["nfev"] += 1
-        dy = model.rhs(t, y, current[0](t), wind)
+        nonlocal nfev, nonfinite
+        nfev += 1
+        dy = model.rhs(t, y, u_of(t), wind)
         if not np.all(np.isfinite(dy)):
-            counters["nonfinite"] += 1
+            nonfinite += 1
         return dy
 
     def finish(t: float, y: np.ndarray) -> None:
-        u = current[0](t)
-        results.add(t, y, u)
+        u = u_of(t)
+        sinks.results.add(t, y, u)
         if sink is not None and np.all(np.isfinite(y)):
             sink.write(np.array([t]), y[None, :], u[None, :])
 
-    try:
-        x = x0.copy()
+    def run() -> tuple[str, str]:
+        nonlocal u_of, h_next
+        x = problem.x0.copy()
         for a, b in zip(bounds[:-1], bounds[1:]):
-            if ctrl.controller is not None:
-                u_held = u0 if a == 0.0 else ctrl.held(float(a), x)
-
-                def u_of(t, u_held=u_held):
-                    return np.broadcast_to(u_held, (np.size(t), 4)) if np.ndim(t) else u_held
-            else:
-                sched = ctrl.schedule
-                u_a = sched(float(a))
-                if np.array_equal(u_a, sched(float(b))):
-                    # constant on the segment (its ends are consecutive breakpoints): no interpolation per rhs
-                    u_a.setflags(write=False)
-
-                    def u_of(t, u_c=u_a):
-                        return np.broadcast_to(u_c, (np.size(t), 4)) if np.ndim(t) else u_c
-                else:
-                    def u_of(t, sched=sched):
-                        return sched.at(t) if np.ndim(t) else sched(t)
-
-            current[0] = u_of
-            options = {"rtol": rtol, "atol": atol, "max_step": max_step}
-            if h_next is not None:
-                options["first_step"] = min(h_next, b - a)
+            u_of = _segment_controls(ctrl, float(a), float(b), x, problem.u0)
             if method == "ETD2RK":
-                options = {"jac": jac_matrix, "step": max_step, "cache": etd_cache}
-            elif method == "LSODA":
-                options["jac"] = lambda t, y, j=jac_matrix: j
-            elif method in _IMPLICIT:
-                options["jac"] = jac_matrix
+                options = {"jac": problem.jacobian, "step": max_step, "cache": etd_cache}
+            else:
+                options = {"rtol": settings.rtol, "atol": settings.atol, "max_step": max_step}
+                if h_next is not None:
+                    options["first_step"] = min(h_next, b - a)
+                if method == "LSODA":
+                    options["jac"] = lambda t, y, j=problem.jacobian: j
+                elif settings.implicit:
+                    options["jac"] = problem.jacobian
             solver = (radau_class() if method == "Radau" else METHODS[method])(fun, float(a), x, float(b), **options)
             solvers.append(solver)
             steps: list[float] = []
@@ -516,7 +618,7 @@ def _integrate(model, wind, ctrl, x0, u0, t_end, method, rtol, atol, max_step, j
                 message = solver.step()
                 if solver.status == "failed":
                     finish(solver.t, solver.y)
-                    if counters["nonfinite"]:
+                    if nonfinite:
                         return "non_finite", (f"non-finite state: the right-hand side stopped being finite near "
                                               f"t = {solver.t:.4f} s (solver: {message})")
                     return "solver_failure", f"solver failure at t = {solver.t:.4f} s: {message}"
@@ -542,12 +644,12 @@ def _integrate(model, wind, ctrl, x0, u0, t_end, method, rtol, atol, max_step, j
                     g_old[k] = g_new
                 t_reached = t_new if hit is None else hit[0]
                 inclusive = hit is not None or solver.status != "finished" or b >= t_end
-                _emit(results, logged, sink, t_reached, sol, sol(t_reached), u_of, inclusive)
+                _emit(sinks, t_reached, sol, sol(t_reached), u_of, inclusive)
                 x = y_new
-                if callback is not None:
-                    callback(t_reached)
-                if bar is not None:
-                    bar.update(t_reached - bar.n)
+                if sinks.callback is not None:
+                    sinks.callback(t_reached)
+                if sinks.bar is not None:
+                    sinks.bar.update(t_reached - sinks.bar.n)
                 if hit is not None:
                     t_ev, ev = hit
                     x_ev = sol(t_ev)
@@ -563,14 +665,38 @@ def _integrate(model, wind, ctrl, x0, u0, t_end, method, rtol, atol, max_step, j
         if sink is not None:
             sink.event(t_end, f"simulation completed at t = {t_end:g} s")
         return "completed", f"reached t_end = {t_end:g} s"
-    finally:
-        counters["njev"] += sum(getattr(s_, "njev", 0) for s_ in solvers)
-        counters["nlu"] += sum(getattr(s_, "nlu", 0) for s_ in solvers)
+
+    status, reason = run()
+    return _Outcome(status=status, reason=reason, nfev=nfev, njev=sum(getattr(s_, "njev", 0) for s_ in solvers),
+                    nlu=sum(getattr(s_, "nlu", 0) for s_ in solvers), crossings=tuple(crossings))
 
 
-def _emit(results: _Sampler, logged: _Sampler, sink: LogSink | None, t_reached: float, sol, y_reached, u_of,
-          inclusive: bool) -> None:
-    results.take(t_reached, sol, y_reached, u_of, inclusive)
-    times, xs, us = logged.take(t_reached, sol, y_reached, u_of, inclusive)
-    if sink is not None and times.size:
-        sink.write(times, xs, us)
+def _segment_controls(ctrl: Controls, a: float, b: float, x_a: np.ndarray, u0: np.ndarray) -> Callable:
+    """The control law ``u_of(t)`` on the segment [a, b] (scalar t -> (4,), array t -> (len(t), 4)): the held
+    output of a feedback controller, a constant, or the schedule's interpolation."""
+    if ctrl.controller is not None:
+        u_held = u0 if a == 0.0 else ctrl.held(a, x_a)
+
+        def u_of(t, u_held=u_held):
+            return np.broadcast_to(u_held, (np.size(t), 4)) if np.ndim(t) else u_held
+        return u_of
+    sched = ctrl.schedule
+    u_a = sched(a)
+    if np.array_equal(u_a, sched(b)):
+        # constant on the segment (its ends are consecutive breakpoints): no interpolation per rhs
+        u_a.setflags(write=False)
+
+        def u_const(t, u_c=u_a):
+            return np.broadcast_to(u_c, (np.size(t), 4)) if np.ndim(t) else u_c
+        return u_const
+
+    def u_sched(t, sched=sched):
+        return sched.at(t) if np.ndim(t) else sched(t)
+    return u_sched
+
+
+def _emit(sinks: _Sinks, t_reached: float, sol, y_reached, u_of, inclusive: bool) -> None:
+    sinks.results.take(t_reached, sol, y_reached, u_of, inclusive)
+    times, xs, us = sinks.logged.take(t_reached, sol, y_reached, u_of, inclusive)
+    if sinks.log is not None and times.size:
+        sinks.log.write(times, xs, us)

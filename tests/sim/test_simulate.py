@@ -22,7 +22,8 @@ from scipy.integrate import Radau
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.result import SimulationResult
-from flexsim.sim.simulate import HOLDING_RADAU_SCIPY, ControlSchedule, HoldingRadau, SimEvent, radau_class, simulate, state_scales
+from flexsim.sim.simulate import (HOLDING_RADAU_SCIPY, ControlSchedule, HoldingRadau, IntegrationSettings, SimEvent, radau_class,
+                                  simulate, state_scales)
 from flexsim.trim import SteadyManoeuvre, trim
 
 H, MACH = 9144.0, 0.75
@@ -254,6 +255,31 @@ def test_bad_arguments_are_rejected_with_clear_messages(quasi_steady, tmp_path):
         simulate(quasi_steady, point, 1.0, log_path=tmp_path / "nowhere" / "run.mcap")
     with pytest.raises(ValueError, match="is a directory"):
         simulate(quasi_steady, point, 1.0, log_path=tmp_path)
+
+
+def test_integration_settings_are_frozen_validated_and_resolved(quasi_steady):
+    """The numerical settings of a run are one frozen, validated object (issue #10: ``_integrate`` took 18 arguments)."""
+    n = quasi_steady.layout.n_states
+    s = IntegrationSettings.resolve(quasi_steady, 2.0)
+    assert (s.method, s.rtol, s.max_step, s.t_end_s, s.implicit, s.needs_jacobian) == ("Radau", 1e-3, 0.05, 2.0, True, True)
+    np.testing.assert_array_equal(s.atol, 1e-3 * state_scales(quasi_steady))
+    with pytest.raises(ValueError, match="read-only"):
+        s.atol[0] = 1.0
+    with pytest.raises(AttributeError):
+        s.rtol = 1e-6  # type: ignore[misc]
+    explicit = IntegrationSettings.resolve(quasi_steady, 1.0, method="DOP853", atol=1e-9)
+    assert explicit.rtol == 1e-6 and not explicit.needs_jacobian and explicit.atol.shape == (n,) and np.all(explicit.atol == 1e-9)
+    assert IntegrationSettings.resolve(quasi_steady, 1.0, method="ETD2RK").needs_jacobian
+    for kwargs, match in [({"method": "Euler"}, r"method = 'Euler': must be 'auto' or one of"),
+                          ({"rtol": 0.5}, r"rtol = 0.5: must be a number in \[1e-13, 0.1\]"),
+                          ({"atol": -1.0}, r"atol = -1.0: must be positive and finite"),
+                          ({"atol": np.ones(3)}, r"atol = .*must be positive and finite \(a number or 60 numbers\)"),
+                          ({"max_step": 0.0}, r"max_step = 0.0: must be a number > 0"),
+                          ({"method": "ETD2RK", "max_step": math.inf}, r"max_step = inf: ETD2RK takes fixed steps")]:
+        with pytest.raises(ValueError, match=match):
+            IntegrationSettings.resolve(quasi_steady, 1.0, **kwargs)
+    with pytest.raises(ValueError, match=r"t_end_s = nan: must be a finite number > 0"):
+        IntegrationSettings(method="Radau", rtol=1e-3, atol=np.ones(n), max_step=0.05, t_end_s=math.nan)
 
 
 @pytest.mark.parametrize("times, values, match", [
