@@ -20,6 +20,7 @@ from gymnasium import spaces
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
+from flexsim.io.vocabulary import CONTROL_NAMES as VOCABULARY_CONTROL_NAMES
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.trim import SteadyManoeuvre
 
@@ -32,8 +33,8 @@ __all__ = ["FlexSimEnv", "Episode", "LogSample", "TERMINATION_REASONS", "ACTION_
 
 #: Values of ``info["termination_reason"]`` ("" while flying).
 TERMINATION_REASONS = ("non_finite", "crash", "structural_limit", "gimbal_lock", "envelope")
-#: Physical control names of the flight logs.
-LOG_CONTROL_NAMES = ("thrust_N", "aileron_rad", "elevator_rad", "rudder_rad")
+#: Physical control names of the flight logs (the output vocabulary's, :mod:`flexsim.io.vocabulary`).
+LOG_CONTROL_NAMES = VOCABULARY_CONTROL_NAMES
 _HISTORY = 500  # samples of the flight path kept for rendering
 
 
@@ -391,26 +392,23 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         return self.dynamics.measure(self._x, self._time, self._wind)
 
     def signal_names(self) -> tuple[str, ...]:
-        """Names of the flight-log signals (:meth:`log_sample`)."""
-        names = ["airspeed_m_s", "mach", "alpha_rad", "beta_rad", "altitude_m", "heading_rate_rad_s"]
-        names += [f"tip_deflection_{c}_m" for c in SENSOR_COMPONENTS]
-        names += [f"twist_tip_{c}_rad" for c in SENSOR_COMPONENTS]
-        names += ["root_bending_moment_right_wing_n_m", "root_bending_moment_left_wing_n_m"]
-        names += [f"error_{name}" for name, _ in self.task_errors_spec] + ["reward"]
-        return tuple(names)
+        """Names of the flight-log signals (:meth:`log_sample`): the simulator's flight signals
+        (:attr:`flexsim.sim.outputs.OutputMaps.signal_names`), then ``error_<task error>`` and ``reward``."""
+        return self.dynamics.outputs.signal_names + tuple(f"error_{name}" for name, _ in self.task_errors_spec) + ("reward",)
 
     def log_sample(self) -> LogSample:
-        """The current sample in flight-log form (names: :meth:`signal_names`, ``dynamics.state_names()``)."""
-        m = self.measurements()
-        signals = [m.airspeed_m_s, m.mach, m.alpha_rad, m.beta_rad, m.altitude_m, m.heading_rate_rad_s]
-        signals += [m.tip_deflection_m[c] for c in SENSOR_COMPONENTS] + [m.tip_twist_rad[c] for c in SENSOR_COMPONENTS]
-        signals += [m.root_bending_moment_n_m["right_wing"], m.root_bending_moment_n_m["left_wing"]]
-        signals += list(self._errors.values()) + [self._last_reward]
-        x = self._x
+        """The current sample in flight-log form (names: :meth:`signal_names`, ``dynamics.state_names()``), computed by
+        the one output layer (:meth:`flexsim.sim.outputs.OutputMaps.signals`) in the episode's wind."""
+        x, out = self._x, self.dynamics.outputs
+        with np.errstate(all="ignore"):
+            try:
+                flight = out.signals(self._time, x, self._u, self._wind)
+            except (ValueError, ArithmeticError, np.linalg.LinAlgError):  # a failed state: logged as far as it goes
+                flight = np.full(len(out.signal_names), np.nan)
+        signals = np.concatenate([flight, np.array([*self._errors.values(), self._last_reward], float)])
         lay = self.dynamics.layout
         return LogSample(self._time, x[lay.position].copy(), x[lay.euler].copy(), x.copy(), self._u.copy(),
-                         np.nan_to_num(np.array(signals, float), nan=0.0, posinf=0.0, neginf=0.0),
-                         self.dynamics.structure_nodes(x))
+                         np.nan_to_num(signals, nan=0.0, posinf=0.0, neginf=0.0), out.structure(x))
 
     def render(self) -> np.ndarray | None:
         if self.render_mode is None:

@@ -19,7 +19,8 @@ trims it with :func:`flexsim.trim.trim`, computes the Jacobian of the trim with
   altitude 0 (crash).
 
 :class:`Measurements` are the outputs the environments observe (air data, attitude, structural sensors)
-computed from the state; nothing here depends on gymnasium. The episode's wind field is passed per call
+computed from the state by the one output layer, :class:`flexsim.sim.outputs.OutputMaps` (the same code and
+names as the simulator's results and logs); nothing here depends on gymnasium. The episode's wind field is passed per call
 (:meth:`FlightDynamics.advance`, :meth:`FlightDynamics.measure`) and reaches ``model.rhs(t, x, u, wind)``;
 nothing here stores it, so trims are always in still air and do not depend on earlier episodes.
 """
@@ -38,8 +39,8 @@ from flexsim.atmosphere import speed_of_sound
 from flexsim.model.jacobian import jacobian
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.sim.fixed_step import ETD2RK
-from flexsim.kinematics import dcm_321, euler_rate_matrix_inverse
-from flexsim.structure.shapes import bending_shapes, torsion_shapes
+from flexsim.sim.outputs import OutputMaps, air_angles, heading_rate
+from flexsim.kinematics import euler_rate_matrix_inverse
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
 from flexsim.envs.config import FIXED_STEP_METHODS, ActuatorRates, IntegratorSettings
@@ -48,8 +49,6 @@ __all__ = ["FlightDynamics", "Measurements", "StepOutcome", "SENSOR_COMPONENTS"]
 
 #: Components carrying the structural sensors (tip deflection, twist and their rates), in order.
 SENSOR_COMPONENTS = ("right_wing", "left_wing", "vtail")
-#: Number of beam nodes per component used for rendering and flight logs.
-STRUCTURE_NODES = 9
 #: Number of trims kept per environment (tasks with random targets trim every episode).
 TRIM_CACHE = 16
 #: Remaining fraction of a period below which a solver stop counts as having reached its end.
@@ -127,22 +126,6 @@ class StepOutcome:
     nlu: int = 0
 
 
-class _Sensor:
-    """Tip/root shape rows of one component (tip deflection, twist and root curvature)."""
-
-    def __init__(self, model: AircraftModel, name: str) -> None:
-        comp = model.aircraft.component(name)
-        dofs, lay = model.structure.dofs, model.layout
-        length = comp.length_m
-        self.q_idx = np.arange(lay.q.start, lay.q.stop)[dofs.bending[name]]
-        self.s_idx = np.arange(lay.s.start, lay.s.stop)[dofs.bending[name]]
-        self.xi_idx = np.arange(lay.xi.start, lay.xi.stop)[dofs.torsion[name]]
-        self.eta_idx = np.arange(lay.eta.start, lay.eta.stop)[dofs.torsion[name]]
-        self.w_tip = bending_shapes(length, length, comp.bending_modes)[0]
-        self.psi_tip = torsion_shapes(length, length, comp.torsion_modes)[0]
-        self.curv_root = bending_shapes(0.0, length, comp.bending_modes, derivative=2)[0] * float(comp.sections.ei_nm2[0])
-
-
 class FlightDynamics:
     """One flexsim model of an aircraft, with trim, Jacobian cache, actuators and the period integrator.
 
@@ -172,7 +155,13 @@ class FlightDynamics:
         self.layout = self.model.layout
         for name in SENSOR_COMPONENTS:
             aircraft.component(name)  # KeyError naming the missing component
-        self.sensors = {name: _Sensor(self.model, name) for name in SENSOR_COMPONENTS}
+        #: The output layer of the model: names, air data, structural outputs, deformed beams, flight signals.
+        self.outputs = OutputMaps(self.model)
+        missing = [name for name in SENSOR_COMPONENTS if name not in self.outputs.sensors]
+        if missing:
+            raise ValueError(f"aircraft {aircraft.name!r}: components {missing} have no elastic modes; the environments' "
+                             f"structural sensors need bending and torsion modes on {', '.join(SENSOR_COMPONENTS)}")
+        self.sensors = {name: self.outputs.sensors[name] for name in SENSOR_COMPONENTS}
         self.method = integrator.resolve(aero)
         self.rtol = integrator.rtol
         self.atol = integrator.atol(self.layout)
@@ -185,8 +174,6 @@ class FlightDynamics:
         self._jacobians: dict[SteadyManoeuvre, np.ndarray] = {}
         self._steppers: dict[SteadyManoeuvre, ETD2RK] = {}
         self._stepper: ETD2RK | None = None
-        self._point_maps = {c.name: self.model.structure.point_maps(c.name, np.linspace(0.0, c.length_m, STRUCTURE_NODES))
-                            for c in aircraft.components}
         self._jac = None
         self._h_next = None
         z = self.layout.position.start + 2
@@ -317,38 +304,31 @@ class FlightDynamics:
     # ------------------------------------------------------------------ outputs
     def measure(self, x: np.ndarray, t: float, wind: Wind | None = None) -> Measurements:
         """Air data, attitude and structural sensors of state ``x`` at time ``t`` [s] in the wind field ``wind``."""
-        lay = self.layout
+        lay, out = self.layout, self.outputs
         pos = x[lay.position]
         eul = x[lay.euler]
-        v = x[lay.v]
         w = x[lay.omega]
-        if wind is not None:
-            with np.errstate(all="ignore"):
-                try:
-                    air = np.asarray(wind(t, pos[None, :]), dtype=float)[0]
-                    v = v - dcm_321(*eul) @ air
-                except ValueError:
-                    pass
-        speed = float(np.linalg.norm(v))
         altitude = float(-pos[2])
         with np.errstate(all="ignore"):
-            alpha = math.atan2(float(v[2]), float(v[0]))
-            beta = math.asin(max(-1.0, min(1.0, float(v[1]) / speed))) if speed > 0.0 else 0.0
+            try:
+                v_air = out.air_velocity_body(t, x, wind)
+            except ValueError:  # a wind field that cannot answer at this position: still-air data
+                v_air = out.air_velocity_body(t, x, None)
+            speed, alpha, beta = air_angles(v_air)
             try:
                 mach = speed / speed_of_sound(altitude)
             except ValueError:
                 mach = math.nan
-            cos_theta = math.cos(float(eul[1]))
-            heading_rate = (float(w[1]) * math.sin(float(eul[0])) + float(w[2]) * math.cos(float(eul[0]))) / cos_theta if cos_theta else math.nan
+            heading_rate_rad_s = heading_rate(eul, x[lay.velocity])
         tips, rates, twists, twist_rates, roots = {}, {}, {}, {}, {}
         for name, s in self.sensors.items():
-            tips[name] = float(s.w_tip @ x[s.q_idx])
-            rates[name] = float(s.w_tip @ x[s.s_idx])
-            twists[name] = float(s.psi_tip @ x[s.xi_idx])
-            twist_rates[name] = float(s.psi_tip @ x[s.eta_idx])
+            tips[name] = float(s.tip_deflection_m(x))
+            rates[name] = float(s.tip_deflection_rate_m_s(x))
+            twists[name] = float(s.tip_twist_rad(x))
+            twist_rates[name] = float(s.tip_twist_rate_rad_s(x))
             if name != "vtail":
-                roots[name] = float(s.curv_root @ x[s.q_idx])
-        return Measurements(float(t), pos.copy(), eul.copy(), w.copy(), speed, alpha, beta, mach, altitude, heading_rate,
+                roots[name] = float(s.root_bending_moment_n_m(x))
+        return Measurements(float(t), pos.copy(), eul.copy(), w.copy(), speed, alpha, beta, mach, altitude, heading_rate_rad_s,
                             tips, rates, twists, twist_rates, roots)
 
     def euler_rates(self, x: np.ndarray) -> np.ndarray:
@@ -357,26 +337,9 @@ class FlightDynamics:
         return euler_rate_matrix_inverse(eul[0], eul[1]) @ x[self.layout.omega]
 
     def structure_nodes(self, x: np.ndarray) -> dict[str, np.ndarray]:
-        """Deformed beam nodes of every component in body axes [m], shape (STRUCTURE_NODES, 3) each."""
-        _, _, q, xi, _ = self.model.unpack(x)
-        return {name: maps.positions(q, xi) for name, maps in self._point_maps.items()}
+        """Deformed beam nodes of every component in body axes [m], shape (n_nodes, 3) each (:meth:`OutputMaps.structure`)."""
+        return self.outputs.structure(x)
 
     def state_names(self) -> tuple[str, ...]:
-        """A name with unit for every entry of the state vector (flight-log ``state_names``).
-
-        Bending and torsion coordinates are ``q_<component>_<k>_m`` and ``xi_<component>_<k>_rad`` (the
-        prefixes the Rerun layout plots as modal coordinates); body rates are spelled out so that the
-        pitch rate is not taken for a bending coordinate.
-        """
-        lay, dofs = self.layout, self.model.structure.dofs
-        names = ["north_m", "east_m", "down_m", "phi_rad", "theta_rad", "psi_rad"] if lay.rigid else []
-        bend = [f"{c}_{k + 1}" for c in dofs.component_names for k in range(dofs.bending[c].stop - dofs.bending[c].start)]
-        tors = [f"{c}_{k + 1}" for c in dofs.component_names for k in range(dofs.torsion[c].stop - dofs.torsion[c].start)]
-        names += [f"q_{b}_m" for b in bend] + [f"xi_{t}_rad" for t in tors]
-        if lay.rigid:
-            names += ["u_m_s", "v_m_s", "w_m_s", "roll_rate_rad_s", "pitch_rate_rad_s", "yaw_rate_rad_s"]
-        names += [f"s_{b}_m_s" for b in bend] + [f"eta_{t}_rad_s" for t in tors]
-        names += [f"inflow_{i}_m_s" for i in range(lay.n_inflow)]
-        if len(names) != lay.n_states:
-            raise RuntimeError(f"state_names: built {len(names)} names for {lay.n_states} states")
-        return tuple(names)
+        """A vocabulary name with unit for every entry of the state vector (:attr:`OutputMaps.state_names`)."""
+        return self.outputs.state_names

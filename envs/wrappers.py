@@ -18,11 +18,12 @@ __all__ = ["FlightLogRecorder"]
 class FlightLogRecorder(gym.Wrapper):
     """Record every episode to a flight log (protobuf MCAP, :class:`~flexsim.io.flight_log.FlightLogWriter`).
 
-    The logs have the simulator's format (``docs/logs.md``): the full state with names from the model's
-    layout (``q_<component>_<k>_m`` / ``xi_<component>_<k>_rad`` for the modal coordinates), the applied
-    controls ``thrust_N, aileron_rad, elevator_rad, rudder_rad``, signals (air data, ``tip_deflection_*``,
-    tip twists, root bending moments, ``error_<task error>``, ``reward``), the deformed beam nodes of every
-    component and events (reset, termination with its reason, truncation). View one with
+    The logs have the simulator's format and vocabulary (``docs/logs.md``, :mod:`flexsim.io.vocabulary`), computed
+    by the same output layer (:class:`flexsim.sim.outputs.OutputMaps`): the full state (``x_north_m``, ...,
+    ``q_<component>_<k>_m``, ``xi_<component>_<k>_rad``, ...), the applied controls ``thrust_N, aileron_rad,
+    elevator_rad, rudder_rad``, the simulator's flight signals (air data, load factor, tip deflections and twists
+    with their rates, root bending moments) followed by ``error_<task error>`` and ``reward``, the deformed beam
+    nodes of every component and events (reset, termination with its reason, truncation). View one with
     ``python -m flexsim.io.rerun_view LOG.mcap --rrd out.rrd``.
 
     Parameters

@@ -9,6 +9,7 @@ Run (headless; writes logs/aileron-roll-<time>.mcap unless --log is given):
 The same run: ``flexsim simulate aileron-roll``.
 """
 
+import math
 import os
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # before numpy: BLAS threads only slow the small dense algebra
@@ -24,8 +25,8 @@ def main(argv=None) -> None:
     print(f"{setup.name}: {setup.description}")
     result = setup.simulate(log_path=args.log or default_log_path(setup.name))
     print(result.summary())
-    p = result.signal("roll_rate_deg_s")
-    print(f"peak roll rate {p.max():.2f} deg/s, bank angle at the end {result.signal('phi_deg')[-1]:.2f} deg")
+    p = math.degrees(result.signal("omega_x_rad_s").max())
+    print(f"peak roll rate {p:.2f} deg/s, bank angle at the end {math.degrees(result.signal('phi_rad')[-1]):.2f} deg")
 
 
 if __name__ == "__main__":

@@ -13,6 +13,8 @@ import os
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # before numpy: BLAS threads only slow the small dense algebra
 
+import numpy as np  # noqa: E402
+
 from flexsim.cli.sim_commands import script_arguments  # noqa: E402
 from flexsim.sim.manoeuvres import build_manoeuvre  # noqa: E402
 from flexsim.sim.recording import default_log_path  # noqa: E402
@@ -24,7 +26,7 @@ def main(argv=None) -> None:
     print(f"{setup.name}: {setup.description}")
     result = setup.simulate(log_path=args.log or default_log_path(setup.name))
     print(result.summary())
-    gamma = result.signal("theta_deg") - result.signal("alpha_deg")
+    gamma = np.degrees(result.signal("theta_rad") - result.signal("alpha_rad"))
     print(f"altitude gained {result.altitude_m[-1] - result.altitude_m[0]:+.2f} m, "
           f"flight-path angle at the end {gamma[-1]:.2f} deg (approximate: wings level)")
 

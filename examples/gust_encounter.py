@@ -25,7 +25,7 @@ def main(argv=None) -> None:
     result = setup.simulate(log_path=args.log or default_log_path(setup.name))
     print(result.summary())
     n = result.load_factor
-    root = result.root_bending_moment_nm()
+    root = result.root_bending_moment_n_m()
     print(f"peak load factor {n.max():.3f} at t = {result.t[n.argmax()]:.3f} s, "
           f"right-wing root bending moment {root.min() / 1e6:.3f} .. {root.max() / 1e6:.3f} MN m")
 

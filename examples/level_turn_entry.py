@@ -10,6 +10,7 @@ Run (headless; writes logs/level-turn-entry-<time>.mcap unless --log is given):
 The same run: ``flexsim simulate level-turn-entry``.
 """
 
+import math
 import os
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # before numpy: BLAS threads only slow the small dense algebra
@@ -26,8 +27,8 @@ def main(argv=None) -> None:
     result = setup.simulate(log_path=args.log or default_log_path(setup.name))
     print(result.summary())
     k = result.t.size - 1
-    print(f"bank angle {result.signal('phi_deg')[k]:.2f} deg (turn trim {setup.controls.turn.phi * 57.29578:.2f} deg), "
-          f"heading change {result.signal('psi_deg')[k]:.2f} deg, load factor {result.load_factor[k]:.3f}")
+    print(f"bank angle {math.degrees(result.signal('phi_rad')[k]):.2f} deg (turn trim {setup.controls.turn.phi * 57.29578:.2f} deg), "
+          f"heading change {math.degrees(result.signal('psi_rad')[k]):.2f} deg, load factor {result.load_factor[k]:.3f}")
 
 
 if __name__ == "__main__":

@@ -107,7 +107,8 @@ def test_random_goland_mutations_clear_error_or_sane(edits):
     assert time.monotonic() - t0 < CASE_SECONDS
 
 
-STATE_NAMES, CONTROL_NAMES, SIGNAL_NAMES = ["u_m_s", "q_1", "xi_1"], ["thrust_N", "a", "e", "r"], ["airspeed_m_s"]
+STATE_NAMES, CONTROL_NAMES, SIGNAL_NAMES = (["v_x_m_s", "q_right_wing_1_m", "xi_right_wing_1_rad"],
+                                           ["thrust_N", "aileron_rad", "elevator_rad", "rudder_rad"], ["airspeed_m_s"])
 TOPOLOGY = {"right_wing": 4, "fuselage": 3}
 
 

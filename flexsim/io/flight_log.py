@@ -6,8 +6,14 @@ A flight log is an `MCAP <https://mcap.dev>`_ file with protobuf-encoded message
 (``foxglove.PointCloud`` of beam nodes in frame ``body``), ``/aircraft/state``
 (``flexsim.AircraftState``: exact t, NED position, Euler angles, state, controls, signals) and
 ``/events`` (``foxglove.Log``). Message log and publish times are the simulation time in ns from 0.
-The MCAP metadata record ``"flexsim"`` holds the format name and version, the name lists and the
-structure topology (JSON strings); the record ``"run"`` holds the caller's metadata.
+The MCAP metadata record ``"flexsim"`` holds the format name and version, the name lists with their units
+and the structure topology (JSON strings); the record ``"run"`` holds the caller's metadata.
+
+Names. Format 2 (written now) takes every state, control and signal name from the one output vocabulary,
+:data:`flexsim.io.vocabulary.QUANTITIES` (SI units and radians, the unit in the name; ``docs/logs.md``); the
+writer rejects any other name. Format 1 logs came in two dialects (the simulator's and the environments'); the
+reader translates both into the format-2 vocabulary (:func:`flexsim.io.vocabulary.upgrade_v1`), so old logs keep
+loading with today's names and units.
 
 Frames. The simulator uses inertial axes north-east-down (NED) and body axes x forward, y right,
 z down (FRD) with 3-2-1 Euler angles (see ``docs/conventions.md``). Viewers expect a z-up world, so
@@ -48,9 +54,13 @@ from mcap_protobuf.decoder import DecoderFactory
 from mcap_protobuf.schema import build_file_descriptor_set
 
 from flexsim.errors import FlexsimError
+from flexsim.io.vocabulary import VOCABULARY_VERSION, check_names, unit, upgrade_v1
 
 FORMAT_NAME = "flexsim-flight-log"
-FORMAT_VERSION = "1"
+#: Format version written (the vocabulary version: names from flexsim.io.vocabulary).
+FORMAT_VERSION = VOCABULARY_VERSION
+#: Format versions the reader reads (1: two name dialects, translated on reading).
+READABLE_VERSIONS = ("1", "2")
 METADATA_RECORD = "flexsim"
 RUN_METADATA_RECORD = "run"
 TOPIC_TF = "/tf"
@@ -177,8 +187,8 @@ class FlightLogWriter:
         is overwritten.
     state_names, control_names, signal_names : sequence of str
         Names of the entries of ``state`` (n,), ``controls`` (n_u,; 4 for flexsim's
-        [T_e, delta_a, delta_e, delta_r]) and ``signals`` (k,) passed to :meth:`write`; non-empty
-        and unique within each list.
+        [T_e, delta_a, delta_e, delta_r]) and ``signals`` (k,) passed to :meth:`write`; unique within each
+        list, and each a name of its kind in the output vocabulary (:mod:`flexsim.io.vocabulary`).
     structure_topology : mapping of str to int
         Component name (letters, digits, ``_``) -> number of beam nodes logged for it (>= 1).
     metadata : mapping of str to str, optional
@@ -205,9 +215,9 @@ class FlightLogWriter:
                                     "does not exist")
         if not os.access(path.parent, os.W_OK):
             raise ValueError(f"path: directory {str(path.parent)!r} is not writable")
-        self.state_names = _validate_names("state_names", state_names)
-        self.control_names = _validate_names("control_names", control_names)
-        self.signal_names = _validate_names("signal_names", signal_names)
+        self.state_names = check_names("state", _validate_names("state_names", state_names))
+        self.control_names = check_names("control", _validate_names("control_names", control_names))
+        self.signal_names = check_names("signal", _validate_names("signal_names", signal_names))
         self.structure_topology = self._validate_topology(structure_topology)
         metadata = dict(metadata)
         for key, value in metadata.items():
@@ -230,6 +240,9 @@ class FlightLogWriter:
             "state_names": json.dumps(self.state_names),
             "control_names": json.dumps(self.control_names),
             "signal_names": json.dumps(self.signal_names),
+            "state_units": json.dumps([unit(n) for n in self.state_names]),
+            "control_units": json.dumps([unit(n) for n in self.control_names]),
+            "signal_units": json.dumps([unit(n) for n in self.signal_names]),
             "structure_topology": json.dumps(self.structure_topology),
             "world_frame": "ENU (x east, y north, z up)",
             "body_frame": "FRD (x forward, y right, z down)",
@@ -417,8 +430,10 @@ class FlightLog:
     euler_rad : ndarray, shape (N, 3)
         3-2-1 Euler angles roll, pitch, yaw [rad].
     state, controls, signals : ndarray, shapes (N, n), (N, n_u), (N, k)
-        As written, columns named by ``state_names``, ``control_names``, ``signal_names``.
+        Columns named by ``state_names``, ``control_names``, ``signal_names`` (as written in format 2; a
+        format-1 log is translated into the format-2 vocabulary and units).
     state_names, control_names, signal_names : tuple of str
+        Names from :data:`flexsim.io.vocabulary.QUANTITIES` (units: :meth:`unit`).
     structure : dict of str to ndarray, shape (N, n_nodes, 3)
         Beam node positions per component in body axes (FRD) [m].
     events : tuple of LogEvent
@@ -434,6 +449,11 @@ class FlightLog:
         an intact file. Every CRC the file carries is checked.
     recovered_until_s : float
         Time of the last sample read [s] (NaN if there is none).
+    format_version : str
+        Format version of the file (``"1"`` or ``"2"``).
+    dialect : str
+        Format 1 only: whose names the file carried, ``"simulate"``, ``"env"`` or ``"other"``
+        (:func:`flexsim.io.vocabulary.upgrade_v1`); ``""`` for format 2.
     """
 
     t: np.ndarray
@@ -451,6 +471,13 @@ class FlightLog:
     complete: bool = True
     recovered_until_s: float = math.nan
     damage: tuple[str, ...] = ()
+    format_version: str = FORMAT_VERSION
+    dialect: str = ""
+
+    @staticmethod
+    def unit(name: str) -> str:
+        """Unit of a state, control or signal name (``"1"``: dimensionless), from the vocabulary."""
+        return unit(name)
 
     def signal(self, name: str) -> np.ndarray:
         """Return the signal ``name`` as an array of shape (N,).
@@ -681,9 +708,10 @@ def read_flight_log(path: str | os.PathLike) -> FlightLog:
         else:
             reason = f"it has no '{METADATA_RECORD}' metadata record with format={FORMAT_NAME!r}"
         raise FlightLogError(f"{path}: not a flexsim flight log ({reason})")
-    if info.get("format_version") != FORMAT_VERSION:
-        raise FlightLogError(f"{path}: unsupported flight-log format version "
-                             f"{info.get('format_version')!r}; this reader reads {FORMAT_VERSION!r}")
+    version = info.get("format_version")
+    if version not in READABLE_VERSIONS:
+        raise FlightLogError(f"{path}: unsupported flight-log format version {version!r}; this reader reads "
+                             f"{', '.join(READABLE_VERSIONS)}")
     try:
         state_names, control_names, signal_names = (
             tuple(json.loads(info[key])) for key in ("state_names", "control_names", "signal_names"))
@@ -723,12 +751,18 @@ def read_flight_log(path: str | os.PathLike) -> FlightLog:
                       FlightLogRecoveryWarning, stacklevel=2)
     rows = {key: [list(getattr(m, key)) for m in states]
             for key in ("position_ned_m", "euler_rad", "state", "controls", "signals")}
+    signals = _stack(rows["signals"], (len(signal_names),), "signal vector", path)
+    dialect = ""
+    if version == "1":  # two name dialects: translated into today's vocabulary and units
+        up = upgrade_v1(state_names, signal_names)
+        dialect, state_names, signal_names = up.dialect, up.state_names, up.signal_names
+        signals = _frozen(signals[:, list(up.signal_columns)] * np.array(up.signal_factors))
     return FlightLog(
         t=t, position_m=_stack(rows["position_ned_m"], (3,), "position", path),
         euler_rad=_stack(rows["euler_rad"], (3,), "Euler angle triple", path),
         state=_stack(rows["state"], (len(state_names),), "state", path),
         controls=_stack(rows["controls"], (len(control_names),), "control vector", path),
-        signals=_stack(rows["signals"], (len(signal_names),), "signal vector", path),
-        state_names=state_names, control_names=control_names, signal_names=signal_names,
+        signals=signals, state_names=state_names, control_names=control_names, signal_names=signal_names,
         structure=structure, events=events, metadata=metadata.get(RUN_METADATA_RECORD, {}),
-        complete=complete, recovered_until_s=recovered_until_s, damage=damage)
+        complete=complete, recovered_until_s=recovered_until_s, damage=damage, format_version=version,
+        dialect=dialect)

@@ -9,9 +9,11 @@ time from 0), and no wall-clock timeline, so the same log always gives the same 
   ``Points3D`` in body axes, so the beams move with the aircraft;
 * ``/world/flight_path``: the whole trajectory (static ``LineStrips3D``);
 * ``/plots/attitude`` (roll, pitch, yaw [deg]), ``/plots/altitude`` (-z [m]), ``/plots/speed``
-  (ground speed from the positions and any ``airspeed*`` signal [m/s]),
-  ``/plots/controls/<name>``, ``/plots/tip_deflections`` (signals named ``tip_*``),
-  ``/plots/modal/bending`` and ``/plots/modal/torsion`` (states named ``q_*`` and ``xi_*``);
+  (ground speed from the positions and the ``airspeed_m_s`` signal [m/s]),
+  ``/plots/controls/<name>``, ``/plots/tip_deflections`` (signals ``tip_deflection_<component>_m``),
+  ``/plots/tip_twists`` (``tip_twist_<component>_rad``), ``/plots/modal/bending`` and ``/plots/modal/torsion``
+  (states ``q_<component>_<k>_m`` and ``xi_<component>_<k>_rad``); series are selected by the output vocabulary
+  (:mod:`flexsim.io.vocabulary`), so logs of every format version are plotted alike;
 * ``/events``: ``TextLog``.
 
 Viewing: :func:`log_to_recording` with ``spawn=True`` starts a Rerun viewer through the recording
@@ -33,6 +35,7 @@ import rerun as rr
 import rerun.blueprint as rrb
 
 from flexsim.io.flight_log import FlightLog, read_flight_log, viewer_pose
+from flexsim.io.vocabulary import quantity
 from flexsim.io.viewer import HEADLESS_HINT, ViewerUnavailableError, viewer_unavailable_reason
 
 __all__ = ["APPLICATION_ID", "TIMELINE", "VIEWER_PORT", "ViewerUnavailableError", "default_blueprint", "log_to_recording",
@@ -58,7 +61,7 @@ def _plot_groups(log: FlightLog) -> dict[str, tuple[list[str], np.ndarray]]:
         "/plots/attitude": (["roll [deg]", "pitch [deg]", "yaw [deg]"], np.rad2deg(log.euler_rad)),
         "/plots/altitude": (["altitude [m]"], -log.position_m[:, 2:3]),
     }
-    speed_names = [n for n in log.signal_names if n.startswith("airspeed")]
+    speed_names = [n for n in log.signal_names if n == "airspeed_m_s"]
     speeds = [log.signal(n) for n in speed_names]
     if len(log.t) >= 2:
         speed_names.append("ground speed [m/s]")
@@ -68,15 +71,24 @@ def _plot_groups(log: FlightLog) -> dict[str, tuple[list[str], np.ndarray]]:
     for i, name in enumerate(log.control_names):
         groups[f"/plots/controls/{rr.escape_entity_path_part(name)}"] = (
             [name], log.controls[:, i:i + 1])
-    for path, columns, prefixes in [
-            ("/plots/tip_deflections", log.signal_names, ("tip_",)),
-            ("/plots/modal/bending", log.state_names, ("q_",)),
-            ("/plots/modal/torsion", log.state_names, ("xi_",))]:
-        index = [i for i, n in enumerate(columns) if n.startswith(prefixes)]
+    for path, columns, pattern in [
+            ("/plots/tip_deflections", log.signal_names, "tip_deflection_{component}_m"),
+            ("/plots/tip_twists", log.signal_names, "tip_twist_{component}_rad"),
+            ("/plots/modal/bending", log.state_names, "q_{component}_{k}_m"),
+            ("/plots/modal/torsion", log.state_names, "xi_{component}_{k}_rad")]:
+        index = [i for i, n in enumerate(columns) if _pattern(n) == pattern]
         if index:
             values = log.signals if columns is log.signal_names else log.state
             groups[path] = ([columns[i] for i in index], values[:, index])
     return groups
+
+
+def _pattern(name: str) -> str | None:
+    """The vocabulary pattern a name matches (:mod:`flexsim.io.vocabulary`), None for a name outside it."""
+    try:
+        return quantity(name).pattern
+    except KeyError:
+        return None
 
 
 def default_blueprint(log: FlightLog) -> rrb.Blueprint:
@@ -106,7 +118,9 @@ def _blueprint(groups: dict[str, tuple[list[str], np.ndarray]]) -> rrb.Blueprint
         plots.append(rrb.Grid(*[rrb.TimeSeriesView(origin=p, name=groups[p][0][0])
                                 for p in controls], name="Controls"))
     if "/plots/tip_deflections" in groups:
-        plots.append(rrb.TimeSeriesView(origin="/plots/tip_deflections", name="Tip deflections"))
+        plots.append(rrb.TimeSeriesView(origin="/plots/tip_deflections", name="Tip deflections [m]"))
+    if "/plots/tip_twists" in groups:
+        plots.append(rrb.TimeSeriesView(origin="/plots/tip_twists", name="Tip twists [rad]"))
     if any(p.startswith("/plots/modal/") for p in groups):
         plots.append(rrb.TimeSeriesView(origin="/plots/modal", name="Modal coordinates"))
     scene = rrb.Tabs(

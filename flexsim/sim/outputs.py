@@ -1,90 +1,125 @@
-"""Named outputs of a simulated state: state and control names, flight signals, deformed structure.
+"""The output layer: named outputs of a state — state and control names, flight signals, deformed structure.
 
-One :class:`OutputMaps` per model serves the simulation result (:mod:`flexsim.sim.result`) and the flight
-log (:mod:`flexsim.sim.recording`), so that both name and compute every quantity the same way. Frames
-and signs follow ``docs/conventions.md``: NED inertial axes, FRD body axes, 3-2-1 Euler angles; tip
-deflection positive down along z_i and tip twist positive nose up on the right wing, as in the paper's
-Tables 2-3 and :class:`~flexsim.trim.TrimPoint` (nose down on the left wing, whose y_i points forward).
+One :class:`OutputMaps` per model computes every output quantity for the simulation result
+(:mod:`flexsim.sim.result`), the simulator's flight log (:mod:`flexsim.sim.recording`) and the environments'
+observations and flight logs (:mod:`flexsim.envs.dynamics`, :mod:`flexsim.envs.wrappers`), and names each from the
+one vocabulary :data:`flexsim.io.vocabulary.QUANTITIES` (SI units and radians, the unit in the name; table in
+``docs/logs.md``). The structural outputs come from :mod:`flexsim.model.sensors`, the aerodynamic force from
+:meth:`AircraftModel.aerodynamic_force` — the same code the trim uses. The disturbance (``wind``) is passed per call,
+as to ``model.rhs``; nothing here stores it. Frames and signs follow ``docs/conventions.md``: NED inertial axes,
+FRD body axes, 3-2-1 Euler angles.
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
 import numpy as np
 
-from flexsim.atmosphere import isa_density, speed_of_sound
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.atmosphere import speed_of_sound
+from flexsim.io.vocabulary import CONTROL_NAMES, check_names
 from flexsim.kinematics import dcm_321
-from flexsim.structure.shapes import bending_shapes, torsion_shapes
+from flexsim.model.aircraft_model import AircraftModel, Wind
+from flexsim.model.sensors import ComponentSensor, structural_sensors
 
-__all__ = ["OutputMaps", "CONTROL_LOG_NAMES", "WINGS", "STRUCTURE_NODES"]
+__all__ = ["OutputMaps", "AirData", "air_angles", "heading_rate", "CONTROL_NAMES", "WINGS", "STRUCTURE_NODES"]
 
-#: Names of the control vector entries in logs and results (units in the names).
-CONTROL_LOG_NAMES = ("thrust_N", "aileron_rad", "elevator_rad", "rudder_rad")
-#: Components whose tip deflection, twist and root bending moment are reported (when present and flexible).
+#: The wing halves (root bending moments of both and the wing lift are reported when present).
 WINGS = ("right_wing", "left_wing")
-#: Beam nodes per component in the logged deformed structure (root to tip, equally spaced).
+#: Beam nodes per component in the logged and rendered deformed structure (root to tip, equally spaced).
 STRUCTURE_NODES = 11
+
+_AIR = ("airspeed_m_s", "mach", "alpha_rad", "beta_rad")
+_KINEMATIC = ("altitude_m", "heading_rate_rad_s")
+_LOADS = ("load_factor", "wing_lift_N")
+
+
+@dataclass(frozen=True)
+class AirData:
+    """Air data of the body origin o relative to the air (wind included), arrays of shape (N,).
+
+    Attributes
+    ----------
+    airspeed_m_s, alpha_rad, beta_rad, mach : ndarray
+        True airspeed [m/s], angle of attack atan2(w_a, u_a) [rad], sideslip asin(v_a / |v_a|) [rad] (0 at zero
+        airspeed), Mach number over the ISA speed of sound at the altitude [-].
+    """
+
+    airspeed_m_s: np.ndarray
+    alpha_rad: np.ndarray
+    beta_rad: np.ndarray
+    mach: np.ndarray
+
+
+def air_angles(v_air_body: np.ndarray) -> tuple[float, float, float]:
+    """Airspeed [m/s], angle of attack atan2(w_a, u_a) [rad] and sideslip asin(v_a / |v_a|) [rad] (0 at zero
+    airspeed) from the velocity relative to the air in body axes (u_a, v_a, w_a) [m/s]."""
+    ua, va, wa = (float(c) for c in v_air_body)
+    speed = float(np.linalg.norm(v_air_body))
+    beta = math.asin(max(-1.0, min(1.0, va / speed))) if speed > 0.0 else 0.0
+    return speed, math.atan2(wa, ua), beta
+
+
+def heading_rate(euler_rad: np.ndarray, velocity: np.ndarray) -> float:
+    """psi_dot = (Q sin(phi) + R cos(phi)) / cos(theta) [rad/s] (the turn rate of a level turn; NaN at
+    cos(theta) = 0) from the Euler angles [rad] and the velocity vector V = [v, omega, ...] (omega = V[3:6])."""
+    phi, theta = float(euler_rad[0]), float(euler_rad[1])
+    cos_theta = math.cos(theta)
+    if cos_theta == 0.0:
+        return math.nan
+    return (float(velocity[4]) * math.sin(phi) + float(velocity[5]) * math.cos(phi)) / cos_theta
 
 
 class OutputMaps:
-    """Names and output maps of one model (built once; pure functions of (t, x, u) afterwards).
+    """Names and output maps of one model (pure functions of (t, x, u, wind) after construction).
 
     Parameters
     ----------
     model : AircraftModel
-    wind : callable, optional
-        The run's disturbance (:meth:`AircraftModel.rhs`), for air data and loads; None for still air.
     n_nodes : int, optional
-        Beam nodes per component for :meth:`structure` (default 11).
+        Beam nodes per component for :meth:`structure` (default :data:`STRUCTURE_NODES`).
 
     Attributes
     ----------
     state_names : tuple of str
-        One name per state entry, with the unit: ``x_north_m``, ``phi_rad``, ``q_<component>_<k>_m``,
+        One vocabulary name per state entry: ``x_north_m``, ``phi_rad``, ``q_<component>_<k>_m``,
         ``xi_<component>_<k>_rad``, ``v_x_m_s``, ``omega_x_rad_s``, ``s_<component>_<k>_m_s``,
         ``eta_<component>_<k>_rad_s``, ``lambda_<component>_<strip>_<n>_m_s``.
     control_names : tuple of str
+        :data:`flexsim.io.vocabulary.CONTROL_NAMES`.
     signal_names : tuple of str
-        The flight signals of :meth:`signals` (see there).
+        The flight signals of :meth:`signals`, in its order.
+    sensors : dict of str to ComponentSensor
+        Structural outputs of every flexible component (:func:`flexsim.model.sensors.structural_sensors`).
     wings : tuple of str
-        Flexible wings present (for tip and root quantities).
+        Flexible wing halves present (structural-limit events, root bending moments).
+    n_nodes : int
     """
 
-    def __init__(self, model: AircraftModel, n_nodes: int = STRUCTURE_NODES, wind=None) -> None:
+    def __init__(self, model: AircraftModel, n_nodes: int = STRUCTURE_NODES) -> None:
         self.model = model
-        self.wind = wind
-        aircraft, dofs, lay = model.aircraft, model.structure.dofs, model.layout
         self.n_nodes = int(n_nodes)
-        self.control_names = CONTROL_LOG_NAMES
-        self.state_names = self._state_names()
-        self.wings = tuple(w for w in WINGS if w in aircraft.component_names and lay.nq + lay.nxi > 0
-                           and (aircraft.component(w).bending_modes or aircraft.component(w).torsion_modes))
-        self._tip_w: dict[str, tuple[np.ndarray, np.ndarray]] = {}
-        self._tip_t: dict[str, tuple[np.ndarray, np.ndarray]] = {}
-        self._root_m: dict[str, tuple[np.ndarray, np.ndarray]] = {}
-        for w in self.wings:
-            c = aircraft.component(w)
-            length = c.length_m
-            qi = np.arange(lay.q.start, lay.q.stop)[dofs.bending[w]]
-            xi = np.arange(lay.xi.start, lay.xi.stop)[dofs.torsion[w]]
-            self._tip_w[w] = (qi, bending_shapes(length, length, c.bending_modes)[0] if c.bending_modes else np.zeros(0))
-            self._tip_t[w] = (xi, torsion_shapes(length, length, c.torsion_modes)[0] if c.torsion_modes else np.zeros(0))
-            curvature = bending_shapes(0.0, length, c.bending_modes, derivative=2)[0] if c.bending_modes else np.zeros(0)
-            self._root_m[w] = (qi, float(c.sections.at("ei_nm2", np.array([0.0]))[0]) * curvature)
+        self.control_names = CONTROL_NAMES
+        self.state_names = check_names("state", self._state_names())
+        self.sensors: dict[str, ComponentSensor] = structural_sensors(model)
+        self.wings = tuple(w for w in WINGS if w in self.sensors)
+        lay = model.layout
         self._maps = {c.name: model.structure.point_maps(c.name, np.linspace(0.0, c.length_m, self.n_nodes))
-                      for c in aircraft.components}
+                      for c in model.aircraft.components}
         self._wing_strips = np.zeros(0, int)
         if model.aero is not None:
-            comp = np.array(model.aero.strips.component)
-            self._wing_strips = np.flatnonzero(np.isin(comp, WINGS))
-        names = ["airspeed_m_s", "altitude_m", "alpha_deg", "beta_deg", "phi_deg", "theta_deg", "psi_deg",
-                 "roll_rate_deg_s", "pitch_rate_deg_s", "yaw_rate_deg_s", "load_factor"]
-        if self._wing_strips.size:
-            names.append("wing_lift_N")
-        names += [f"tip_deflection_{w}_m" for w in self.wings]
-        names += [f"tip_twist_{w}_deg" for w in self.wings]
-        names += [f"root_bending_{w}_Nm" for w in self.wings]
-        self.signal_names = tuple(names)
+            self._wing_strips = np.flatnonzero(np.isin(np.array(model.aero.strips.component), WINGS))
+        names = list(_AIR + _KINEMATIC) + ["load_factor"] + (["wing_lift_N"] if self._wing_strips.size else [])
+        for c, s in self.sensors.items():
+            if s.w_tip.size:
+                names += [f"tip_deflection_{c}_m", f"tip_deflection_rate_{c}_m_s"]
+            if s.psi_tip.size:
+                names += [f"tip_twist_{c}_rad", f"tip_twist_rate_{c}_rad_s"]
+        names += [f"root_bending_moment_{c}_N_m" for c, s in self.sensors.items() if s.w_tip.size]
+        self.signal_names = check_names("signal", names)
+        self._index = {name: j for j, name in enumerate(self.signal_names)}
+        self._rigid_z = lay.position.start + 2 if lay.rigid else None
 
     # ------------------------------------------------------------------ names
     def _state_names(self) -> tuple[str, ...]:
@@ -117,7 +152,7 @@ class OutputMaps:
             raise RuntimeError(f"state names: built {len(names)} names for {lay.n_states} states")
         return tuple(names)
 
-    # ------------------------------------------------------------------ kinematics
+    # ------------------------------------------------------------------ kinematics and air data
     def position_euler(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Inertial NED position of the body origin [m] and Euler angles [rad] of one state, shapes (3,), (3,).
 
@@ -126,37 +161,56 @@ class OutputMaps:
         pos, eul, _, _, _ = self.model.unpack(x)
         if not self.model.layout.rigid:
             pos = np.array([0.0, 0.0, -self.model.altitude_m])
-        return np.asarray(pos, float), np.asarray(eul, float)
+        return np.array(pos, float), np.array(eul, float)
 
-    def air_velocity_body(self, t: float, x: np.ndarray) -> np.ndarray:
+    def altitude_m(self, x: np.ndarray) -> np.ndarray:
+        """Altitude -Z of the body origin [m] of state(s) x, (n,) -> scalar array or (N, n) -> (N,)."""
+        x = np.asarray(x)
+        if self._rigid_z is None:
+            return np.full(x.shape[:-1], self.model.altitude_m)
+        return -x[..., self._rigid_z]
+
+    def air_velocity_body(self, t: float, x: np.ndarray, wind: Wind | None = None) -> np.ndarray:
         """Velocity of the body origin relative to the air, body axes [m/s], shape (3,): v - C w(R)."""
         pos, eul, _, _, vel = self.model.unpack(x)
-        v = np.asarray(vel[0:3], float)
-        if self.wind is not None:
-            w_ned = np.asarray(self.wind(t, np.asarray(pos, float)[None, :]), float)[0]
+        v = np.array(vel[0:3], float)
+        if wind is not None:
+            w_ned = np.asarray(wind(t, np.asarray(pos, float)[None, :]), float)[0]
             v = v - dcm_321(*eul) @ w_ned
         return v
 
-    def tip_deflection_m(self, wing: str, x: np.ndarray) -> np.ndarray:
-        """Tip bending deflection w(L) of ``wing`` [m], positive down along z_i; x of shape (n,) or (N, n)."""
-        idx, phi = self._tip(self._tip_w, wing)
-        return np.asarray(x)[..., idx] @ phi
+    def air_data(self, t: np.ndarray, x: np.ndarray, wind: Wind | None = None) -> AirData:
+        """:class:`AirData` of samples at times t (N,) [s] with states x (N, n) in the disturbance ``wind``."""
+        t, x = np.atleast_1d(t), np.atleast_2d(x)
+        rows = np.array([air_angles(self.air_velocity_body(float(tk), xk, wind)) for tk, xk in zip(t, x)], float).reshape(-1, 3)
+        a = np.array([speed_of_sound(float(h)) for h in np.atleast_1d(self.altitude_m(x))])
+        return AirData(rows[:, 0], rows[:, 1], rows[:, 2], rows[:, 0] / a)
 
-    def tip_twist_rad(self, wing: str, x: np.ndarray) -> np.ndarray:
-        """Tip torsion psi(L) of ``wing`` [rad] (nose up on the right wing); x of shape (n,) or (N, n)."""
-        idx, psi = self._tip(self._tip_t, wing)
-        return np.asarray(x)[..., idx] @ psi
+    def heading_rate_rad_s(self, x: np.ndarray) -> np.ndarray:
+        """:func:`heading_rate` of state(s) x, (N, n) -> (N,) [rad/s]."""
+        rates = []
+        for xk in np.atleast_2d(x):
+            _, euler, _, _, velocity = self.model.unpack(xk)
+            rates.append(heading_rate(euler, velocity))
+        return np.array(rates, float)
 
-    def root_bending_moment_nm(self, wing: str, x: np.ndarray) -> np.ndarray:
-        """Mode-displacement root bending moment EI(0) w''(0) of ``wing`` [N m] (w positive down: negative when
-        the wing bends up under lift)."""
-        idx, k = self._tip(self._root_m, wing)
-        return np.asarray(x)[..., idx] @ k
+    # ------------------------------------------------------------------ structure
+    def _sensor(self, component: str) -> ComponentSensor:
+        if component not in self.sensors:
+            raise KeyError(f"component = {component!r}: no flexible component of that name; available: {list(self.sensors)}")
+        return self.sensors[component]
 
-    def _tip(self, table: dict, wing: str) -> tuple[np.ndarray, np.ndarray]:
-        if wing not in table:
-            raise KeyError(f"wing = {wing!r}: no flexible wing of that name; available: {list(self.wings)}")
-        return table[wing]
+    def tip_deflection_m(self, component: str, x: np.ndarray) -> np.ndarray:
+        """Tip bending deflection w(L) of ``component`` [m], positive along z_i (down on a wing); x (n,) or (N, n)."""
+        return self._sensor(component).tip_deflection_m(x)
+
+    def tip_twist_rad(self, component: str, x: np.ndarray) -> np.ndarray:
+        """Tip torsion psi(L) of ``component`` [rad] (nose up on the right wing); x (n,) or (N, n)."""
+        return self._sensor(component).tip_twist_rad(x)
+
+    def root_bending_moment_n_m(self, component: str, x: np.ndarray) -> np.ndarray:
+        """Mode-displacement root bending moment EI(0) w''(0) of ``component`` [N m]; x (n,) or (N, n)."""
+        return self._sensor(component).root_bending_moment_n_m(x)
 
     def structure(self, x: np.ndarray) -> dict[str, np.ndarray]:
         """Deformed beam nodes of every component, body axes (FRD) [m]: name -> (n_nodes, 3)."""
@@ -164,61 +218,77 @@ class OutputMaps:
         return {name: maps.positions(q, xi) for name, maps in self._maps.items()}
 
     # ------------------------------------------------------------------ loads
-    def _air(self, x: np.ndarray) -> tuple[float, float]:
-        lay = self.model.layout
-        altitude = float(-x[lay.position][2]) if lay.rigid else self.model.altitude_m
-        return altitude, float(speed_of_sound(altitude))
-
-    def load_factor_and_lift(self, t: float, x: np.ndarray, u: np.ndarray) -> tuple[float, float]:
+    def load_factor_and_lift(self, t: float, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> tuple[float, float]:
         """Load factor and total wing lift at one state.
 
-        Load factor: aerodynamic plus thrust force along -z_body over the weight [-], as
-        :attr:`flexsim.trim.TrimPoint.load_factor` (1 in level trim up to the thrust's share); the
-        aerodynamic force is the explicit generalized force of the strips (circulatory and the
-        velocity-dependent apparent-mass terms), without the added-mass reaction M_a V_dot, which would
-        need the accelerations (the GTM strips' added mass is 0.3 % of the aircraft's mass at 9144 m). NaN
-        without gravity. Wing lift: sum of the circulatory strip lifts of both wings [N].
+        Load factor: aerodynamic plus thrust force along -z_body over the weight [-], exactly as
+        :attr:`flexsim.trim.TrimPoint.load_factor` (:meth:`AircraftModel.aerodynamic_force`: the explicit strip
+        airloads and parasite drag, without the added-mass reaction M_a V_dot, which would need the accelerations;
+        the GTM strips' added mass is 0.3 % of the aircraft's mass at 9144 m). NaN without gravity. Wing lift: sum
+        of the circulatory strip lifts of both wings [N].
         """
         model = self.model
-        pos, eul, q, xi, vel = model.unpack(x)
+        _, _, q, xi, vel = model.unpack(x)
         st = model.structure
-        force = st.thrust.force(float(u[0]), q)[0:3]
+        force = st.thrust.force(float(u[0]), q)[0:3] + model.aerodynamic_force(x, u, t, wind)[0:3]
         lift = 0.0
-        if model.aero is not None:
-            altitude, a = self._air(x)
-            rho = float(isa_density(altitude))
-            mach = float(np.linalg.norm(vel[0:3])) / a
-            wind_c = model.strip_wind(t, x, self.wind)  # the run's strip wind (component axes)
-            _, q_a, _ = model.aero.evaluate(q, xi, vel, x[model.layout.inflow], u, rho, mach, wind_c)
-            force = force + q_a[0:3]
-            if self._wing_strips.size:
-                loads = model.aero.strip_loads(q, xi, vel, x[model.layout.inflow], u, rho, mach, wind_c)
-                w = self._wing_strips
-                lift = float(loads.lift_n_m[w] @ model.aero.strips.width_m[w])
+        if self._wing_strips.size:
+            altitude = float(self.altitude_m(x))
+            mach = float(np.linalg.norm(vel[0:3])) / speed_of_sound(altitude)
+            loads = model.aero.strip_loads(q, xi, vel, x[model.layout.inflow], u, model.air_density(x), mach,
+                                           model.strip_wind(t, x, wind))
+            w = self._wing_strips
+            lift = float(loads.lift_n_m[w] @ model.aero.strips.width_m[w])
         weight = st.mass_properties.mass_kg * model.gravity_m_s2
-        return (float(-force[2] / weight) if weight > 0 else float("nan")), lift
+        return (float(-force[2] / weight) if weight > 0 else math.nan), lift
 
     # ------------------------------------------------------------------ signals
-    def signals(self, t: float, x: np.ndarray, u: np.ndarray) -> np.ndarray:
-        """The flight signals of one sample, shape (len(signal_names),), in the order of ``signal_names``.
+    def series(self, names, t: np.ndarray, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> dict[str, np.ndarray]:
+        """Time histories of the named signals (each of :attr:`signal_names`), name -> shape (N,).
 
-        airspeed_m_s, alpha_deg, beta_deg: speed, angle of attack atan(w/u) and sideslip asin(v/|v|) of the
-        body origin relative to the air (wind included) [m/s, deg]; altitude_m = -Z [m]; phi/theta/psi_deg
-        Euler angles; roll/pitch/yaw_rate_deg_s body rates [deg/s]; load_factor and wing_lift_N (see
-        :meth:`load_factor_and_lift`); tip_deflection_<wing>_m, tip_twist_<wing>_deg,
-        root_bending_<wing>_Nm (see the methods of the same names).
+        Parameters
+        ----------
+        names : sequence of str
+        t : ndarray, shape (N,)
+            Sample times [s].
+        x : ndarray, shape (N, n_states)
+        u : ndarray, shape (N, 4)
+            Controls [T_e (N), delta_a, delta_e, delta_r (rad)].
+        wind : callable, optional
+            The disturbance (:meth:`AircraftModel.rhs`); None: still air.
+
+        Raises
+        ------
+        KeyError
+            A name that is not one of :attr:`signal_names`.
         """
-        pos, eul = self.position_euler(x)
-        _, _, _, _, vel = self.model.unpack(x)
-        va = self.air_velocity_body(t, x)
-        speed = float(np.linalg.norm(va))
-        alpha = float(np.degrees(np.arctan2(va[2], va[0])))
-        beta = float(np.degrees(np.arcsin(np.clip(va[1] / speed, -1.0, 1.0)))) if speed > 0 else 0.0
-        n_z, lift = self.load_factor_and_lift(t, x, u)
-        out = [speed, float(-pos[2]), alpha, beta, *np.degrees(eul), *np.degrees(vel[3:6]), n_z]
-        if self._wing_strips.size:
-            out.append(lift)
-        out += [float(self.tip_deflection_m(w, x)) for w in self.wings]
-        out += [float(np.degrees(self.tip_twist_rad(w, x))) for w in self.wings]
-        out += [float(self.root_bending_moment_nm(w, x)) for w in self.wings]
-        return np.array(out, dtype=float)
+        names = [names] if isinstance(names, str) else list(names)
+        unknown = [n for n in names if n not in self._index]
+        if unknown:
+            raise KeyError(f"no signal named {unknown[0]!r}; available: {list(self.signal_names)}")
+        t, x, u = np.atleast_1d(np.asarray(t, float)), np.atleast_2d(np.asarray(x, float)), np.atleast_2d(np.asarray(u, float))
+        out: dict[str, np.ndarray] = {}
+        if any(n in _AIR for n in names):
+            air = self.air_data(t, x, wind)
+            out.update(airspeed_m_s=air.airspeed_m_s, mach=air.mach, alpha_rad=air.alpha_rad, beta_rad=air.beta_rad)
+        if "altitude_m" in names:
+            out["altitude_m"] = np.asarray(self.altitude_m(x), float)
+        if "heading_rate_rad_s" in names:
+            out["heading_rate_rad_s"] = self.heading_rate_rad_s(x)
+        if any(n in _LOADS for n in names):
+            loads = np.array([self.load_factor_and_lift(float(tk), xk, uk, wind) for tk, xk, uk in zip(t, x, u)],
+                             float).reshape(-1, 2)
+            out.update(load_factor=loads[:, 0], wing_lift_N=loads[:, 1])
+        for c, s in self.sensors.items():
+            for name, f in ((f"tip_deflection_{c}_m", s.tip_deflection_m), (f"tip_deflection_rate_{c}_m_s", s.tip_deflection_rate_m_s),
+                            (f"tip_twist_{c}_rad", s.tip_twist_rad), (f"tip_twist_rate_{c}_rad_s", s.tip_twist_rate_rad_s),
+                            (f"root_bending_moment_{c}_N_m", s.root_bending_moment_n_m)):
+                if name in names:
+                    out[name] = np.asarray(f(x), float)
+        return {n: out[n] for n in names}
+
+    def signals(self, t: float, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> np.ndarray:
+        """The flight signals of one sample, shape (len(signal_names),), in the order of :attr:`signal_names`
+        (definitions: :data:`flexsim.io.vocabulary.QUANTITIES`)."""
+        cols = self.series(self.signal_names, np.array([t], float), np.asarray(x, float)[None, :], np.asarray(u, float)[None, :], wind)
+        return np.array([cols[n][0] for n in self.signal_names], dtype=float)

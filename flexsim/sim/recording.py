@@ -2,8 +2,8 @@
 
 The log format is that of :mod:`flexsim.io.flight_log` (``docs/logs.md``): per sample the body pose,
 the state (named by :attr:`OutputMaps.state_names`), the controls, the flight signals
-(:attr:`OutputMaps.signal_names`) and the deformed beams of every component (11 nodes each), plus
-events. The writer flushes at least every ``flush_interval_s`` of simulated time (and every second of
+(:attr:`OutputMaps.signal_names`, computed by :meth:`OutputMaps.signals` in the run's wind) and the deformed
+beams of every component (11 nodes each), plus events; every name is from :mod:`flexsim.io.vocabulary`. The writer flushes at least every ``flush_interval_s`` of simulated time (and every second of
 wall time), so a killed simulation leaves a log readable up to about that long before the kill.
 """
 
@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from flexsim.io.flight_log import FlightLogWriter
+from flexsim.model.aircraft_model import Wind
 from flexsim.sim.outputs import OutputMaps
 
 __all__ = ["DEFAULT_LOG_DIR", "default_log_path", "resolve_log_path", "LogSink"]
@@ -79,13 +80,17 @@ class LogSink:
         Names and output maps of the simulated model.
     metadata : mapping of str to str
         Run metadata (record ``run`` of the log).
+    wind : callable, optional
+        The run's disturbance (air data and loads of the logged signals); None: still air. A sink logs one run.
     flush_interval_s : float
         Simulated time between flushes to disk [s].
     """
 
-    def __init__(self, path: Path, outputs: OutputMaps, metadata: Mapping[str, str], flush_interval_s: float = 0.5) -> None:
+    def __init__(self, path: Path, outputs: OutputMaps, metadata: Mapping[str, str], wind: Wind | None = None,
+                 flush_interval_s: float = 0.5) -> None:
         self.path = path
         self.outputs = outputs
+        self.wind = wind
         self._writer = FlightLogWriter(
             path, state_names=outputs.state_names, control_names=outputs.control_names,
             signal_names=outputs.signal_names,
@@ -118,7 +123,7 @@ class LogSink:
             self._release(float(tk))
             pos, eul = out.position_euler(xk)
             self._writer.write(float(tk), position_m=pos, euler_rad=eul, state=xk, controls=uk,
-                               signals=out.signals(float(tk), xk, uk), structure=out.structure(xk))
+                               signals=out.signals(float(tk), xk, uk, self.wind), structure=out.structure(xk))
             self._last_ns = ns
 
     def event(self, t: float, text: str, level: str = "info") -> None:

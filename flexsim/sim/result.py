@@ -1,7 +1,9 @@
 """The result of a simulation: sampled time histories and named outputs.
 
-All quantities are SI with the unit in the name (degrees only where the name says ``_deg``); frames as
-in ``docs/conventions.md`` (NED inertial, FRD body axes, 3-2-1 Euler angles).
+All quantities are SI and radians with the unit in the name, named from the one output vocabulary
+(:mod:`flexsim.io.vocabulary`, ``docs/logs.md``) and computed by the one output layer
+(:class:`flexsim.sim.outputs.OutputMaps`), as in the flight log; frames as in ``docs/conventions.md`` (NED
+inertial, FRD body axes, 3-2-1 Euler angles).
 """
 
 from __future__ import annotations
@@ -93,8 +95,8 @@ class SimulationResult:
 
     @cached_property
     def outputs(self) -> OutputMaps:
-        """Names and output maps of the model in the run's wind."""
-        return OutputMaps(self.model, wind=self.wind)
+        """Names and output maps of the model (the run's wind is passed to them per call)."""
+        return OutputMaps(self.model)
 
     # ------------------------------------------------------------------ states
     @cached_property
@@ -135,25 +137,26 @@ class SimulationResult:
     @cached_property
     def air_velocity_body_m_s(self) -> np.ndarray:
         """Velocity of the body origin relative to the air, body axes [m/s], shape (N, 3)."""
-        return np.array([self.outputs.air_velocity_body(float(tk), xk) for tk, xk in zip(self.t, self.x)]).reshape(-1, 3)
+        return np.array([self.outputs.air_velocity_body(float(tk), xk, self.wind) for tk, xk in zip(self.t, self.x)]).reshape(-1, 3)
+
+    @cached_property
+    def _air(self):
+        return self.outputs.air_data(self.t, self.x, self.wind)
 
     @property
     def airspeed_m_s(self) -> np.ndarray:
         """True airspeed of the body origin [m/s], shape (N,)."""
-        return np.linalg.norm(self.air_velocity_body_m_s, axis=1)
+        return self._air.airspeed_m_s
 
     @property
     def alpha_rad(self) -> np.ndarray:
         """Angle of attack atan(w_a / u_a) of the body axes relative to the air [rad], shape (N,)."""
-        va = self.air_velocity_body_m_s
-        return np.arctan2(va[:, 2], va[:, 0])
+        return self._air.alpha_rad
 
     @property
     def beta_rad(self) -> np.ndarray:
         """Sideslip asin(v_a / |v_a|) [rad], shape (N,)."""
-        va = self.air_velocity_body_m_s
-        speed = np.maximum(np.linalg.norm(va, axis=1), 1e-12)
-        return np.arcsin(np.clip(va[:, 1] / speed, -1.0, 1.0))
+        return self._air.beta_rad
 
     @property
     def modal_coordinates(self) -> tuple[np.ndarray, np.ndarray]:
@@ -175,24 +178,24 @@ class SimulationResult:
         """Tip twist of ``wing`` [rad] (nose up on the right wing), shape (N,)."""
         return self.outputs.tip_twist_rad(wing, self.x)
 
-    def root_bending_moment_nm(self, wing: str = "right_wing") -> np.ndarray:
+    def root_bending_moment_n_m(self, wing: str = "right_wing") -> np.ndarray:
         """Mode-displacement root bending moment EI(0) w''(0) of ``wing`` [N m], shape (N,)."""
-        return self.outputs.root_bending_moment_nm(wing, self.x)
+        return self.outputs.root_bending_moment_n_m(wing, self.x)
 
     @cached_property
-    def _loads(self) -> np.ndarray:
-        return np.array([self.outputs.load_factor_and_lift(float(tk), xk, uk)
-                         for tk, xk, uk in zip(self.t, self.x, self.u)], dtype=float).reshape(-1, 2)
+    def _loads(self) -> dict[str, np.ndarray]:
+        return self.outputs.series(("load_factor",) + (("wing_lift_N",) if "wing_lift_N" in self.outputs.signal_names else ()),
+                                   self.t, self.x, self.u, self.wind)
 
     @property
     def load_factor(self) -> np.ndarray:
         """Aerodynamic + thrust force along -z_body over the weight [-], shape (N,)."""
-        return self._loads[:, 0]
+        return self._loads["load_factor"]
 
     @property
     def wing_lift_n(self) -> np.ndarray:
-        """Sum of the circulatory strip lifts of both wings [N], shape (N,)."""
-        return self._loads[:, 1]
+        """Sum of the circulatory strip lifts of both wings [N], shape (N,) (zeros without aerodynamics)."""
+        return self._loads.get("wing_lift_N", np.zeros(self.t.size))
 
     # ------------------------------------------------------------------ by name
     @property
@@ -201,13 +204,13 @@ class SimulationResult:
         return self.outputs.signal_names + self.outputs.state_names + self.outputs.control_names
 
     def signal(self, name: str) -> np.ndarray:
-        """Time history of a named quantity, shape (N,).
+        """Time history of a named quantity, shape (N,), named and computed as in the flight log.
 
-        Flight signals as in the flight log (``airspeed_m_s``, ``altitude_m``, ``alpha_deg``, ``beta_deg``,
-        ``phi_deg``, ``theta_deg``, ``psi_deg``, ``roll_rate_deg_s``, ``pitch_rate_deg_s``,
-        ``yaw_rate_deg_s``, ``load_factor``, ``wing_lift_N``, ``tip_deflection_<wing>_m``,
-        ``tip_twist_<wing>_deg``, ``root_bending_<wing>_Nm``), any state name (e.g. ``q_right_wing_1_m``)
-        or control name (``thrust_N``, ``aileron_rad``, ``elevator_rad``, ``rudder_rad``).
+        Flight signals (:attr:`OutputMaps.signal_names`: ``airspeed_m_s``, ``mach``, ``alpha_rad``, ``beta_rad``,
+        ``altitude_m``, ``heading_rate_rad_s``, ``load_factor``, ``wing_lift_N``, ``tip_deflection_<c>_m``,
+        ``tip_twist_<c>_rad``, their rates, ``root_bending_moment_<c>_N_m``), any state name (e.g.
+        ``q_right_wing_1_m``, ``phi_rad``, ``omega_y_rad_s``) or control name (``thrust_N``, ``aileron_rad``,
+        ``elevator_rad``, ``rudder_rad``); definitions and units: :data:`flexsim.io.vocabulary.QUANTITIES`.
 
         Raises
         ------
@@ -215,30 +218,12 @@ class SimulationResult:
             Unknown name; the message lists the available ones.
         """
         out = self.outputs
-        deg = np.degrees
-        simple = {
-            "airspeed_m_s": lambda: self.airspeed_m_s,
-            "altitude_m": lambda: self.altitude_m,
-            "alpha_deg": lambda: deg(self.alpha_rad),
-            "beta_deg": lambda: deg(self.beta_rad),
-            "phi_deg": lambda: deg(self.euler_rad[:, 0]),
-            "theta_deg": lambda: deg(self.euler_rad[:, 1]),
-            "psi_deg": lambda: deg(self.euler_rad[:, 2]),
-            "roll_rate_deg_s": lambda: deg(self.body_rates_rad_s[:, 0]),
-            "pitch_rate_deg_s": lambda: deg(self.body_rates_rad_s[:, 1]),
-            "yaw_rate_deg_s": lambda: deg(self.body_rates_rad_s[:, 2]),
-            "load_factor": lambda: self.load_factor,
-            "wing_lift_N": lambda: self.wing_lift_n,
-        }
-        if name in simple and name in out.signal_names:
-            return np.asarray(simple[name](), dtype=float)
-        for wing in out.wings:
-            if name == f"tip_deflection_{wing}_m":
-                return self.tip_deflection_m(wing)
-            if name == f"tip_twist_{wing}_deg":
-                return deg(self.tip_twist_rad(wing))
-            if name == f"root_bending_{wing}_Nm":
-                return self.root_bending_moment_nm(wing)
+        if name in out.signal_names:
+            if name in ("airspeed_m_s", "alpha_rad", "beta_rad", "mach"):
+                return np.asarray(getattr(self._air, name), dtype=float)
+            if name in self._loads:
+                return self._loads[name]
+            return out.series(name, self.t, self.x, self.u, self.wind)[name]
         if name in out.state_names:
             return self.x[:, out.state_names.index(name)]
         if name in out.control_names:

@@ -508,7 +508,7 @@ def simulate(
     log_grid = _grid(log_rate_hz, t_end, "log_rate_hz")
     if wind is not None and not callable(wind):
         raise ValueError(f"wind = {wind!r}: must be None or a callable wind(t, positions_ned_m) -> (k, 3) array [m/s]")
-    outputs = OutputMaps(model, wind=wind)
+    outputs = OutputMaps(model)
     limit_names = [e for e in events if isinstance(e, str)]
     evs = _builtin_events(model, outputs, limit_names, structural_limit_m)
     for e in events:
@@ -531,7 +531,7 @@ def simulate(
                 "variant": model.variant.value, "aero": "none" if model.aero is None else model.aero.options.model,
                 "method": method, "rtol": f"{rtol:g}", "t_end_s": f"{t_end:g}", "run_id": uuid.uuid4().hex}
         meta.update({str(k): str(v) for k, v in (metadata or {}).items()})
-        sink = LogSink(path, outputs, meta)
+        sink = LogSink(path, outputs, meta, wind=wind)
     bar = None
     if progress is True:
         from tqdm.auto import tqdm

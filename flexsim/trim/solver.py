@@ -23,7 +23,7 @@ from flexsim._threads import single_blas_thread
 from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel, Variant
 from flexsim.kinematics import dcm_321
-from flexsim.structure.shapes import bending_shapes, torsion_shapes
+from flexsim.model.sensors import structural_sensors
 from flexsim.trim.manoeuvre import SteadyManoeuvre
 
 __all__ = ["TrimPoint", "TrimError", "trim"]
@@ -385,9 +385,8 @@ def _wind_bank(euler: np.ndarray, v_cg: np.ndarray) -> float:
 
 def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np.ndarray, gamma: float, residual: float,
                 heading_offset: float = 0.0) -> TrimPoint:
-    lay = model.layout
     st = model.structure
-    _, eul, q, xi, vel = model.unpack(x)
+    _, eul, q, _, vel = model.unpack(x)
     v = vel[0:3]
     speed = float(np.linalg.norm(v))
     alpha = math.atan2(v[2], v[0])
@@ -399,13 +398,9 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
     lift, drag = _lift_drag(aero_force, v_cg)
     weight = st.mass_properties.mass_kg * max(model.gravity_m_s2, 1e-9)
     tip_w = tip_t = 0.0
-    if "right_wing" in model.aircraft.component_names:
-        wing = model.aircraft.component("right_wing")
-        d = st.dofs
-        if wing.bending_modes and lay.nq:
-            tip_w = float(bending_shapes(wing.length_m, wing.length_m, wing.bending_modes)[0] @ q[d.bending["right_wing"]])
-        if wing.torsion_modes and lay.nxi:
-            tip_t = float(torsion_shapes(wing.length_m, wing.length_m, wing.torsion_modes)[0] @ xi[d.torsion["right_wing"]])
+    wing = structural_sensors(model).get("right_wing")  # the one implementation of the structural outputs
+    if wing is not None:
+        tip_w, tip_t = float(wing.tip_deflection_m(x)), float(wing.tip_twist_rad(x))
     return TrimPoint(
         manoeuvre=man,
         x=x,

@@ -51,6 +51,12 @@ def test_flight_log_recorder_round_trip(tmp_path):
     assert log.state_names == base.dynamics.state_names() and log.state_names[6].startswith("q_fuselage_1")
     assert log.control_names == ("thrust_N", "aileron_rad", "elevator_rad", "rudder_rad")
     assert "tip_deflection_right_wing_m" in log.signal_names and "reward" in log.signal_names
+    # one vocabulary and one output layer (issue #10): the env log names and computes what a simulate() log of the
+    # same model does; the env adds its task errors and the reward after the simulator's signals
+    out = base.dynamics.outputs
+    assert log.signal_names[: len(out.signal_names)] == out.signal_names and log.format_version == "2"
+    assert log.signal_names[len(out.signal_names):] == tuple(f"error_{n}" for n, _ in base.task_errors_spec) + ("reward",)
+    np.testing.assert_array_equal(log.signals[-1, : len(out.signal_names)], out.signals(log.t[-1], state, log.controls[-1]))
     assert set(log.structure) == set(base.aircraft.component_names)
     np.testing.assert_array_equal(log.state[-1], state)
     assert log.metadata["purpose"] == "test" and log.metadata["seed"] == "1"

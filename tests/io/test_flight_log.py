@@ -34,9 +34,9 @@ from flexsim.io.flight_log import (
 )
 from flexsim.kinematics import dcm_321
 
-STATE_NAMES = ["u_m_s", "w_m_s", "q_1", "q_2", "xi_1"]
+STATE_NAMES = ["v_x_m_s", "v_z_m_s", "q_right_wing_1_m", "q_right_wing_2_m", "xi_right_wing_1_rad"]
 CONTROL_NAMES = ["thrust_N", "aileron_rad", "elevator_rad", "rudder_rad"]
-SIGNAL_NAMES = ["airspeed_m_s", "tip_z_right_m"]
+SIGNAL_NAMES = ["airspeed_m_s", "tip_deflection_right_wing_m"]
 TOPOLOGY = {"right_wing": 5, "fuselage": 3}
 
 
@@ -129,7 +129,7 @@ def test_round_trip_reproduces_arrays_names_events_and_metadata(tmp_path):
     assert log.events == (LogEvent(0.125, "error", "late"), LogEvent(0.25, "info", "gust starts"),
                           LogEvent(0.5, "warning", "load above limit"))
     assert log.metadata == {"aircraft": "gtm.toml", "run_id": "r-1"}
-    np.testing.assert_array_equal(log.signal("tip_z_right_m"), log.signals[:, 1])
+    np.testing.assert_array_equal(log.signal("tip_deflection_right_wing_m"), log.signals[:, 1])
     with pytest.raises(ValueError):
         log.state[0, 0] = 1.0  # arrays are read-only
 
@@ -137,7 +137,7 @@ def test_round_trip_reproduces_arrays_names_events_and_metadata(tmp_path):
 def test_signal_with_unknown_name_raises_key_error_listing_available_names(tmp_path):
     path = tmp_path / "run.mcap"
     _write_log(path, _random_samples(3))
-    with pytest.raises(KeyError, match="airspeed_m_s.*tip_z_right_m"):
+    with pytest.raises(KeyError, match="airspeed_m_s.*tip_deflection_right_wing_m"):
         read_flight_log(path).signal("altitude_m")
 
 
@@ -195,8 +195,8 @@ _CHILD = textwrap.dedent("""
     import numpy as np
     from flexsim.io.flight_log import FlightLogWriter
     rate_hz, speedup = float(sys.argv[2]), float(sys.argv[3])
-    with FlightLogWriter(sys.argv[1], state_names=["q_1", "xi_1"], control_names=["T", "a", "e", "r"],
-                         signal_names=["tip_z_m"], structure_topology={"right_wing": 5},
+    with FlightLogWriter(sys.argv[1], state_names=["q_right_wing_1_m", "xi_right_wing_1_rad"], control_names=["thrust_N", "aileron_rad", "elevator_rad", "rudder_rad"],
+                         signal_names=["tip_deflection_right_wing_m"], structure_topology={"right_wing": 5},
                          flush_interval_s=1.0) as writer:
         start = time.monotonic()
         for k in range(10**9):
@@ -295,8 +295,8 @@ def test_constructor_rejects_bad_arguments(tmp_path, name, overrides, error, mat
     ({"state": np.zeros(4)}, r"state: expected shape \(5,\), got shape \(4,\)"),
     ({"controls": np.zeros((4, 1))}, r"controls: expected shape \(4,\)"),
     ({"position_m": [1.0, 2.0]}, r"position_m: expected shape \(3,\)"),
-    ({"state": [0, 0, math.nan, 0, 0]}, r"state\[2\] \('q_1'\) = nan"),
-    ({"signals": [0, math.inf]}, r"signals\[1\] \('tip_z_right_m'\) = inf"),
+    ({"state": [0, 0, math.nan, 0, 0]}, r"state\[2\] \('q_right_wing_1_m'\) = nan"),
+    ({"signals": [0, math.inf]}, r"signals\[1\] \('tip_deflection_right_wing_m'\) = inf"),
     ({"structure": {"right_wing": np.zeros((5, 3))}}, r"structure: expected components"),
     ({"structure": {"right_wing": np.zeros((4, 3)), "fuselage": np.zeros((3, 3))}},
      r"structure\['right_wing'\]: expected shape \(5, 3\)"),

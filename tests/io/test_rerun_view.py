@@ -27,8 +27,8 @@ def _write_circle_log(path, n_samples=N_SAMPLES):
     span = np.linspace(0.0, HALF_SPAN_M, N_NODES)
     bank = math.atan(SPEED_M_S * omega / 9.81)
     all_nodes = []
-    with FlightLogWriter(path, state_names=["u_m_s", "q_1", "q_2", "xi_1"],
-                         control_names=CONTROL_NAMES, signal_names=["airspeed_m_s", "tip_z_right_m"],
+    with FlightLogWriter(path, state_names=["v_x_m_s", "q_right_wing_1_m", "q_right_wing_2_m", "xi_right_wing_1_rad"],
+                         control_names=CONTROL_NAMES, signal_names=["airspeed_m_s", "tip_deflection_right_wing_m"],
                          structure_topology={"right_wing": N_NODES},
                          metadata={"case": "circle"}) as writer:
         for k in range(n_samples):

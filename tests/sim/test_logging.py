@@ -50,9 +50,9 @@ def test_log_round_trip_gives_the_same_arrays(logged_run):
     assert log.state_names == out.state_names and log.control_names == ("thrust_N", "aileron_rad", "elevator_rad", "rudder_rad")
     assert log.state_names[:6] == ("x_north_m", "y_east_m", "z_down_m", "phi_rad", "theta_rad", "psi_rad")
     assert "q_right_wing_1_m" in log.state_names and "xi_vtail_2_rad" in log.state_names
-    for name in ("airspeed_m_s", "altitude_m", "alpha_deg", "load_factor", "tip_deflection_right_wing_m",
-                 "tip_twist_left_wing_deg", "root_bending_right_wing_Nm", "wing_lift_N"):
-        np.testing.assert_allclose(log.signal(name), result.signal(name), rtol=1e-12, atol=1e-12)
+    assert log.signal_names == out.signal_names and log.format_version == "2"
+    for name in log.signal_names:  # the result and the log compute every signal with the one output layer
+        np.testing.assert_allclose(log.signal(name), result.signal(name), rtol=1e-12, atol=1e-12, err_msg=name)
     assert set(log.structure) == set(COMPONENTS)
     k = 40
     for name, nodes in out.structure(result.x[k]).items():

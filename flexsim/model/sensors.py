@@ -1,0 +1,107 @@
+"""Structural outputs of a state: tip deflection, tip twist, their rates and the root bending moment.
+
+The one implementation of these outputs, used by the trim (:class:`flexsim.trim.TrimPoint`), the simulation
+outputs and logs (:class:`flexsim.sim.outputs.OutputMaps`) and the environments' observations
+(:class:`flexsim.envs.dynamics.FlightDynamics`). With the modal expansion of paper eq. (1),
+``w(x, t) = sum_k U_k(x) q_k(t)`` and ``psi(x, t) = sum_k Psi_k(x) xi_k(t)`` (clamped-free shapes,
+:mod:`flexsim.structure.shapes`), each output is a fixed row times a block of the state:
+
+* tip deflection ``w(L) = U(L) . q`` [m], along the component's z_i (down on a wing half), and its rate
+  ``U(L) . s`` [m/s] (``s = dq/dt``, paper eq. 4);
+* tip twist ``psi(L) = Psi(L) . xi`` [rad] (nose up on the right wing; the left wing's y_i points forward, so
+  nose down there), and its rate ``Psi(L) . eta`` [rad/s];
+* root bending moment ``EI(0) w''(0) = EI(0) U''(0) . q`` [N m] (mode-displacement method; w positive down:
+  negative when a wing bends up under lift).
+
+Signs and frames: ``docs/conventions.md``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from flexsim._arrays import readonly
+from flexsim.structure.shapes import bending_shapes, torsion_shapes
+
+__all__ = ["ComponentSensor", "structural_sensors"]
+
+
+@dataclass(frozen=True, eq=False)
+class ComponentSensor:
+    """Rows of one component's structural outputs (arrays read-only).
+
+    Attributes
+    ----------
+    name : str
+        Component name.
+    q_idx, s_idx, xi_idx, eta_idx : ndarray of int
+        Indices of the component's bending coordinates, their rates, torsion coordinates and their rates in
+        the state vector.
+    w_tip : ndarray, shape (n_bending,)
+        Bending shapes at the tip U_k(L) [-].
+    psi_tip : ndarray, shape (n_torsion,)
+        Torsion shapes at the tip Psi_k(L) [-].
+    root_moment : ndarray, shape (n_bending,)
+        EI(0) U_k''(0) [N m per m of q_k].
+    """
+
+    name: str
+    q_idx: np.ndarray
+    s_idx: np.ndarray
+    xi_idx: np.ndarray
+    eta_idx: np.ndarray
+    w_tip: np.ndarray
+    psi_tip: np.ndarray
+    root_moment: np.ndarray
+
+    def tip_deflection_m(self, x: np.ndarray) -> np.ndarray:
+        """w(L) [m] of state(s) x, shape (n_states,) -> scalar array or (N, n_states) -> (N,)."""
+        return np.asarray(x)[..., self.q_idx] @ self.w_tip
+
+    def tip_deflection_rate_m_s(self, x: np.ndarray) -> np.ndarray:
+        """dw(L)/dt [m/s]."""
+        return np.asarray(x)[..., self.s_idx] @ self.w_tip
+
+    def tip_twist_rad(self, x: np.ndarray) -> np.ndarray:
+        """psi(L) [rad]."""
+        return np.asarray(x)[..., self.xi_idx] @ self.psi_tip
+
+    def tip_twist_rate_rad_s(self, x: np.ndarray) -> np.ndarray:
+        """dpsi(L)/dt [rad/s]."""
+        return np.asarray(x)[..., self.eta_idx] @ self.psi_tip
+
+    def root_bending_moment_n_m(self, x: np.ndarray) -> np.ndarray:
+        """EI(0) w''(0) [N m]."""
+        return np.asarray(x)[..., self.q_idx] @ self.root_moment
+
+
+def structural_sensors(model) -> dict[str, ComponentSensor]:
+    """The :class:`ComponentSensor` of every component with elastic coordinates in the state, in file order.
+
+    Parameters
+    ----------
+    model : flexsim.model.aircraft_model.AircraftModel
+        Any variant; a quasi-rigid model (no elastic states) has none.
+    """
+    lay, dofs = model.layout, model.structure.dofs
+    out: dict[str, ComponentSensor] = {}
+    if lay.nq + lay.nxi == 0:
+        return out
+    for comp in model.aircraft.components:
+        nb, nt = comp.bending_modes, comp.torsion_modes
+        if not (nb or nt):
+            continue
+        length = comp.length_m
+        q_pos = np.arange(lay.q.start, lay.q.stop)[dofs.bending[comp.name]]
+        s_pos = np.arange(lay.s.start, lay.s.stop)[dofs.bending[comp.name]]
+        xi_pos = np.arange(lay.xi.start, lay.xi.stop)[dofs.torsion[comp.name]]
+        eta_pos = np.arange(lay.eta.start, lay.eta.stop)[dofs.torsion[comp.name]]
+        w_tip = bending_shapes(length, length, nb)[0] if nb else np.zeros(0)
+        psi_tip = torsion_shapes(length, length, nt)[0] if nt else np.zeros(0)
+        ei_root = float(comp.sections.at("ei_nm2", np.array([0.0]))[0])
+        root = ei_root * bending_shapes(0.0, length, nb, derivative=2)[0] if nb else np.zeros(0)
+        out[comp.name] = ComponentSensor(comp.name, *(readonly(np.array(a)) for a in
+                                                      (q_pos, s_pos, xi_pos, eta_pos, w_tip, psi_tip, root)))
+    return out
