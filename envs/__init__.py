@@ -9,7 +9,8 @@ Importing this package registers (idempotently) the environment ids of :data:`EN
 or, without the import, ``gym.make("flexsim.envs:FlexSim/GTM-LevelHold-v0")``. Each environment is a thin adapter
 that integrates the one nonlinear model ``AircraftModel.rhs`` over each control period (:mod:`flexsim.envs.dynamics`:
 ETD2RK about the trim by default for the finite-state model, or ``scipy.integrate.solve_ivp``); see
-``docs/environments.md``.
+``docs/environments.md``. ``gym.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")`` steps N
+aircraft of a task in one call (:mod:`flexsim.envs.vector`).
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from flexsim.envs.turn import TurnEnv, TurnTask
 from flexsim.envs.wrappers import FlightLogRecorder
 
 __all__ = [
-    "ENV_IDS", "register_envs", "FlexSimEnv", "LevelHoldEnv", "TurnEnv", "GustAlleviationEnv", "FlutterMarginEnv",
+    "ENV_IDS", "VECTOR_ENTRY_POINTS", "register_envs", "FlexSimEnv", "LevelHoldEnv", "TurnEnv", "GustAlleviationEnv", "FlutterMarginEnv",
     "WingFlutterMarginEnv", "LevelHoldTask", "TurnTask", "GustAlleviationTask", "FlutterMarginTask", "WingFlutterMarginTask", "ActuatorRates", "FlightLimits",
     "InitialPerturbation", "IntegratorSettings", "RewardTerm", "TrackingReward", "FlightLogRecorder",
 ]
@@ -39,12 +40,23 @@ ENV_IDS: dict[str, tuple[str, int]] = {
     "FlexSim/GTM-FlutterMargin-v1": ("flexsim.envs.flutter_margin:WingFlutterMarginEnv", 1000),
 }
 
+#: Registered id -> vector entry point: ``gym.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")``
+#: steps N aircraft in one call (:mod:`flexsim.envs.vector`).
+VECTOR_ENTRY_POINTS: dict[str, str] = {
+    "FlexSim/GTM-LevelHold-v0": "flexsim.envs.vector:LevelHoldVectorEnv",
+    "FlexSim/GTM-Turn-v0": "flexsim.envs.vector:TurnVectorEnv",
+    "FlexSim/GTM-GustAlleviation-v0": "flexsim.envs.vector:GustAlleviationVectorEnv",
+    "FlexSim/GTM-FlutterMargin-v0": "flexsim.envs.vector:FlutterMarginVectorEnv",
+    "FlexSim/GTM-FlutterMargin-v1": "flexsim.envs.vector:WingFlutterMarginVectorEnv",
+}
+
 
 def register_envs() -> None:
-    """Register the ids of :data:`ENV_IDS` with gymnasium (a no-op for ids already registered)."""
+    """Register the ids of :data:`ENV_IDS` with gymnasium (a no-op for ids already registered), each with its
+    vector entry point (:data:`VECTOR_ENTRY_POINTS`)."""
     for env_id, (entry_point, steps) in ENV_IDS.items():
         if env_id not in gym.registry:
-            gym.register(id=env_id, entry_point=entry_point, max_episode_steps=steps)
+            gym.register(id=env_id, entry_point=entry_point, vector_entry_point=VECTOR_ENTRY_POINTS[env_id], max_episode_steps=steps)
 
 
 register_envs()

@@ -29,7 +29,7 @@ from flexsim.envs.config import (AERO_MODELS, TURBULENCE_LEVELS, ActuatorRates, 
 from flexsim.envs.dynamics import SENSOR_COMPONENTS, FlightDynamics, Measurements, StepOutcome
 from flexsim.envs.parallel import limit_blas_threads
 
-__all__ = ["FlexSimEnv", "Episode", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
+__all__ = ["FlexSimEnv", "Episode", "ControlPeriod", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
 
 #: Values of ``info["termination_reason"]`` ("" while flying).
 TERMINATION_REASONS = ("non_finite", "crash", "structural_limit", "gimbal_lock", "envelope")
@@ -109,6 +109,29 @@ class Episode:
 
 
 @dataclass(frozen=True)
+class ControlPeriod:
+    """One control period about to be integrated (:meth:`FlexSimEnv.begin_step`).
+
+    Attributes
+    ----------
+    action : ndarray, shape (4,)
+        The checked action, clipped to the action space (float64).
+    clipped : bool
+        The action was out of range and clipped.
+    u : ndarray, shape (4,)
+        Controls held over the period after the actuator rate limits [N, rad, rad, rad].
+    t0_s, t1_s : float
+        Start and end of the period [s].
+    """
+
+    action: np.ndarray
+    clipped: bool
+    u: np.ndarray
+    t0_s: float
+    t1_s: float
+
+
+@dataclass(frozen=True)
 class LogSample:
     """One flight-log sample of the current state (see :class:`flexsim.envs.wrappers.FlightLogRecorder`)."""
 
@@ -140,6 +163,10 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     actuator_rates : ActuatorRates, optional
     limits : FlightLimits, optional
     perturbation : InitialPerturbation, optional
+    dynamics : FlightDynamics, optional
+        Run on this :class:`FlightDynamics` (a :meth:`FlightDynamics.fork` of another env's, built from the
+        same aircraft, aero, integrator, actuator rates and control rate; checked) instead of building one:
+        how :class:`flexsim.envs.vector.FlexSimVectorEnv` shares one model between its sub-environments.
     """
 
     metadata: ClassVar[dict] = {"render_modes": ["human", "rgb_array"], "render_fps": 50}
@@ -151,7 +178,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     def __init__(self, *, aircraft: str | Path | Aircraft = "gtm", aero: str = "unsteady", control_rate_hz: float = 50.0,
                  turbulence: str | None = None, render_mode: str | None = None, task: Any = None,
                  integrator: IntegratorSettings | None = None, actuator_rates: ActuatorRates | None = None,
-                 limits: FlightLimits | None = None, perturbation: InitialPerturbation | None = None) -> None:
+                 limits: FlightLimits | None = None, perturbation: InitialPerturbation | None = None,
+                 dynamics: FlightDynamics | None = None) -> None:
         #: OpenBLAS thread counts set when built in a worker process (vector envs), else None.
         self.worker_blas_threads = limit_blas_threads(1) if multiprocessing.parent_process() is not None else None
         if aero not in AERO_MODELS:
@@ -192,8 +220,19 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         # makes every listed mode) checks "rgb_array" only there; the class metadata lists both.
         modes = [m for m in type(self).metadata["render_modes"] if m != "human" or no_viewer is None]
         self.metadata = {**type(self).metadata, "render_modes": modes, "render_fps": rate}
-        self.dynamics = FlightDynamics(self.aircraft, aero, integrator or IntegratorSettings(), actuator_rates or ActuatorRates(),
-                                       self.dt)
+        integrator, actuator_rates = integrator or IntegratorSettings(), actuator_rates or ActuatorRates()
+        if dynamics is None:
+            dynamics = FlightDynamics(self.aircraft, aero, integrator, actuator_rates, self.dt)
+        elif not isinstance(dynamics, FlightDynamics):
+            raise ValueError(f"dynamics = {dynamics!r}: must be a FlightDynamics or None")
+        else:
+            mine = (self.aircraft.content_key(), aero, integrator, actuator_rates, self.dt)
+            theirs = (dynamics.aircraft.content_key(), dynamics.aero, dynamics.integrator_settings, dynamics.actuator_rates, dynamics.dt)
+            for name, a, b in zip(("aircraft", "aero", "integrator", "actuator_rates", "control period dt"), mine, theirs):
+                if a != b:
+                    raise ValueError(f"dynamics: was built with {name} = {b!r}, this env has {name} = {a!r}; pass a FlightDynamics "
+                                     "built with the same settings, or None")
+        self.dynamics = dynamics
         self.reward_definition: TrackingReward = task.reward
         lo, hi = self.dynamics.u_low, self.dynamics.u_high
         self._u_scale = hi.copy()  # 0 for a surface the aircraft does not have: its action has no effect
@@ -316,6 +355,17 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         return obs, info
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict]:
+        period = self.begin_step(action)
+        outcome = self.dynamics.advance(self._x, period.u, period.t0_s, period.t1_s, self._wind)
+        return self.finish_step(period, outcome)
+
+    def begin_step(self, action: Any) -> ControlPeriod:
+        """The first half of :meth:`step`: check and clip ``action``, apply the actuator rate limits.
+
+        The period is then integrated (``self.dynamics.advance(self.state, period.u, period.t0_s, period.t1_s,
+        self.wind)``, or many aircraft at once by :func:`flexsim.envs.vector.advance_batch`) and handed to
+        :meth:`finish_step`; :meth:`step` is exactly these three calls.
+        """
         if self._x is None:
             raise RuntimeError("step() called before reset()")
         if self._ended:
@@ -323,8 +373,12 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         a, clipped = self._check_action(action)
         command = self.action_to_controls(a)
         u = self.dynamics.rate_limit(self._u, command)
-        t0, t1 = self._steps * self.dt, (self._steps + 1) * self.dt
-        outcome = self.dynamics.advance(self._x, u, t0, t1, self._wind)
+        return ControlPeriod(a, clipped, u, self._steps * self.dt, (self._steps + 1) * self.dt)
+
+    def finish_step(self, period: ControlPeriod, outcome: StepOutcome) -> tuple[np.ndarray, float, bool, bool, dict]:
+        """The second half of :meth:`step`: take the integrated ``outcome`` of ``period``; observation,
+        reward, termination and info."""
+        a, clipped, u = period.action, period.clipped, period.u
         self._x, self._u, self._time = outcome.x, u, outcome.time_s
         self._steps += 1
         meas = self.dynamics.measure(self._x, self._time, self._wind)
@@ -376,6 +430,11 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     def state(self) -> np.ndarray:
         """A copy of the current model state (layout: ``self.dynamics.layout``)."""
         return None if self._x is None else self._x.copy()
+
+    @property
+    def wind(self):
+        """The wind field of the current episode (``wind(t, positions_ned_m)``, or None for still air)."""
+        return self._wind
 
     @property
     def applied_controls(self) -> np.ndarray:

@@ -27,6 +27,7 @@ nothing here stores it, so trims are always in still air and do not depend on ea
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass
 
@@ -151,6 +152,8 @@ class FlightDynamics:
                  control_dt_s: float) -> None:
         self.aircraft = aircraft
         self.aero = aero
+        self.integrator_settings = integrator
+        self.actuator_rates = rates
         self.model = AircraftModel(aircraft, aero=aero)
         self.layout = self.model.layout
         for name in SENSOR_COMPONENTS:
@@ -185,6 +188,24 @@ class FlightDynamics:
         ground.terminal = True
         ground.direction = -1.0
         self._ground = ground
+
+    def fork(self) -> FlightDynamics:
+        """Another :class:`FlightDynamics` of the same model for a second episode running at the same time.
+
+        It shares this one's model, sensors and caches (trims, Jacobians and ETD2RK matrix functions: each
+        a deterministic function of the manoeuvre, never changed once computed) and has its own episode
+        state (the ETD2RK stepper or Radau Jacobian of its episode, Radau's warm-start step). The
+        sub-environments of :class:`flexsim.envs.vector.FlexSimVectorEnv` run on forks of one
+        FlightDynamics, so N aircraft cost one model build, one trim and one matrix exponential.
+        """
+        twin = copy.copy(self)
+        twin._jac, twin._stepper, twin._h_next = None, None, None
+        return twin
+
+    @property
+    def stepper(self) -> ETD2RK | None:
+        """The ETD2RK step of the current episode (None for the ``solve_ivp`` methods or before :meth:`start`)."""
+        return self._stepper
 
     # ------------------------------------------------------------------ trim and Jacobian
     def trim(self, manoeuvre: SteadyManoeuvre) -> TrimPoint:

@@ -170,6 +170,31 @@ class ETD2RK:
         k2 = fun(t + self.h, a, *args)
         return a + self._h_phi2 @ (k2 - k1 - self._jac @ (a - x))
 
+    def step_rows(self, fun: Callable[[np.ndarray, np.ndarray], np.ndarray], t: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """One step of many independent systems sharing this J and h (the rows of ``x``), as matrix products.
+
+        Parameters
+        ----------
+        fun : callable
+            ``fun(t, x) -> x_dot`` for all rows at once: ``t`` shape (m,) [s], ``x`` and the result shape (m, n).
+        t : ndarray, shape (m,)
+            Time of each row [s].
+        x : ndarray, shape (m, n)
+            States at t.
+
+        Returns
+        -------
+        ndarray, shape (m, n)
+            States at t + h: row i equals ``step`` of row i to rounding (the products are evaluated as
+            GEMMs instead of GEMVs); non-finite entries propagate.
+        """
+        if np.ndim(x) != 2 or np.shape(x)[1] != self.n:
+            raise ValueError(f"x: expected shape (m, {self.n}) to match jac, got shape {np.shape(x)}")
+        k1 = fun(t, x)
+        a = x + k1 @ self._h_phi1.T
+        k2 = fun(t + self.h, a)
+        return a + (k2 - k1 - (a - x) @ self._jac.T) @ self._h_phi2.T
+
 
 class ETD2RKSolver(OdeSolver):
     """ETD2RK with fixed steps behind scipy's ``OdeSolver`` interface (for :func:`flexsim.sim.simulate`).
