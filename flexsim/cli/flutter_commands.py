@@ -11,7 +11,7 @@ from pathlib import Path
 
 from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.aircraft.toml_loader import load_aircraft
-from flexsim.cli.validation import check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
+from flexsim.cli.validation import CliError, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
 from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
 from flexsim.linear.study import StudyCase, StudyRecord, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
@@ -126,6 +126,8 @@ def _sweep(args: argparse.Namespace) -> int:
             raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
     check_altitudes(args.altitudes)
     check_workers(args.workers)
+    if args.chain_length is not None and args.chain_length < 1:
+        raise CliError(f"--chain-length = {args.chain_length}: must be an integer >= 1 (points per chain)")
     check_damping(args.structural_damping)
     points = {}
     if kind == "turn" and args.radii_m is not None:
@@ -150,7 +152,8 @@ def _sweep(args: argparse.Namespace) -> int:
                  formulation=setting.formulation, linear_density_altitude_m=setting.linear_density_altitude_m,
                  **({"coordinated": True} if args.coordinated else {}), **points)
     try:
-        rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=True, record=record)
+        rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=True, record=record,
+                         chain_length=args.chain_length)
     except KeyboardInterrupt:
         record.close()
         kept = sum(1 for _ in record.path.open()) if record.path.exists() else 0
@@ -241,6 +244,10 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_sw.add_argument("--scheduler", metavar="ADDRESS", help="Dask distributed scheduler (default: local processes); "
                       "tasks and results are exchanged pickled: give only the address of a cluster you trust")
     p_sw.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    p_sw.add_argument("--chain-length", type=int, default=None, metavar="K",
+                      help="points per chain: each model/altitude chain (each point seeded with the previous flutter "
+                      "Mach) is cut into runs of at most K points, 1 = every point its own task, so that more workers "
+                      "than chains (8 in a paper study) are used; the same K gives the same results everywhere [whole chains]")
     p_sw.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
                       help="modal damping ratio of the elastic modes [the aircraft file's]")
     p_sw.add_argument("--out", default="logs/study", help="output folder for CSV, JSON and PNG [logs/study]; every "

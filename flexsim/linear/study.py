@@ -25,7 +25,7 @@ from collections import OrderedDict
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import Callable, Iterable, Sequence
 
 import numpy as np
 
@@ -287,13 +287,15 @@ def _ignore_sigint() -> None:
 
 
 def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, workers: int | None = None,
-              progress: bool = True, record: StudyRecord | None = None, max_attempts: int = 2) -> list[dict]:
+              progress: bool = True, record: StudyRecord | None = None, max_attempts: int = 2,
+              chain_length: int | None = None, on_point: Callable[[StudyCase, dict, float], None] | None = None) -> list[dict]:
     """Run the cases in parallel and return rows in the input order, keeping every finished point.
 
     Cases of one model and altitude form a chain run in order, each point seeded with the previous
     flutter Mach; chains run in parallel, one point at a time each, and every finished point is handed
     to ``record`` (written at once) and reported by the progress display. Points already in ``record``
-    (``resume``) are skipped.
+    (``resume``) are skipped. ``chain_length`` cuts the chains into shorter ones, down to single points,
+    so that more workers than chains are used (a paper study has 8 chains of 7-8 points).
 
     Parameters
     ----------
@@ -311,6 +313,16 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
     max_attempts : int
         Times a point is started when the process computing it dies (a killed worker); after that the
         point becomes an error row saying so. Lost points are reported on stderr.
+    chain_length : int, optional
+        Points per chain (>= 1): each (model, altitude) chain is cut into runs of at most this many
+        consecutive cases, each run starting unseeded (1: every point an independent task). None
+        (default): whole chains. The cut depends only on the cases and this number, never on the
+        workers or the scheduler, so a given ``chain_length`` gives the same rows serially, on local
+        processes and on any Dask cluster. A point without a seed scans the whole Mach range: more work
+        per point, spread over more workers (``docs/performance.md``, sweeps).
+    on_point : callable, optional
+        ``on_point(case, row, seconds)`` as each point finishes (seconds: the point's wall time in its
+        worker), e.g. to collect task times.
 
     Raises
     ------
@@ -318,9 +330,13 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
         On Ctrl-C, after stopping the workers (within about a second); finished points are in ``record``.
     """
     cases = list(cases)
+    if chain_length is not None and (isinstance(chain_length, bool) or not isinstance(chain_length, int) or chain_length < 1):
+        raise ValueError(f"chain_length = {chain_length!r}: must be an integer >= 1 (points per chain) or None (whole chains)")
     chains: dict[tuple, list[int]] = {}
+    position: dict[tuple, int] = {}
     for i, c in enumerate(cases):
-        chains.setdefault(c.chain_key, []).append(i)
+        k = position[c.chain_key] = position.get(c.chain_key, -1) + 1
+        chains.setdefault((c.chain_key, 0 if chain_length is None else k // chain_length), []).append(i)
     done = dict(record.done) if record is not None else {}
     rows: list[dict | None] = [done.get(case_key(c)) for c in cases]
     todo = [[i for i in g if rows[i] is None] for g in chains.values()]
@@ -338,6 +354,8 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
         if record is not None:
             record.append(row)
         bar.point(cases[i], row, seconds)
+        if on_point is not None:
+            on_point(cases[i], row, seconds)
 
     chains_all = list(chains.values())
     chain_of = {i: k for k, g in enumerate(chains_all) for i in g}

@@ -128,3 +128,23 @@ def test_unreachable_scheduler_is_a_clear_error(fake, monkeypatch):
     monkeypatch.setattr(study, "DASK_CONNECT_TIMEOUT_S", 2.0)
     with pytest.raises(FlexsimError, match="cannot connect to a Dask scheduler"):
         run_study(CASES[:1], scheduler="tcp://127.0.0.1:9", progress=False)
+
+
+def test_chain_length_cuts_chains_the_same_way_everywhere(tmp_path, fake):
+    """chain_length k: position p of a (model, altitude) chain is seeded with the flutter Mach of p - 1 unless
+    p is a multiple of k (a new run starts unseeded); serial, process pool and a 2-worker Dask cluster give
+    the same rows (the cut depends only on the cases and k)."""
+    seen = []
+    serial = run_study(CASES, workers=1, progress=False, chain_length=2, on_point=lambda c, r, s: seen.append((c, s)))
+    assert [r["guess"] is None for r in serial] == [True, False, True, True, False, True]
+    assert serial[1]["guess"] == serial[0]["mach"] and serial[4]["guess"] == serial[3]["mach"]
+    assert sorted(c.turn_radius_m for c, _ in seen) == sorted(c.turn_radius_m for c in CASES) and all(s == 0.05 for _, s in seen)
+    assert all(r["guess"] is None for r in run_study(CASES, workers=2, progress=False, chain_length=1))
+    pool = run_study(CASES, workers=2, progress=False, chain_length=2)
+    assert pool == serial
+    distributed = pytest.importorskip("dask.distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, protocol="tcp", host="127.0.0.1",
+                                  dashboard_address=None) as cluster:
+        assert run_study(CASES, scheduler=cluster.scheduler_address, progress=False, chain_length=2) == serial
+    with pytest.raises(ValueError, match="chain_length = 0: must be an integer >= 1"):
+        run_study(CASES, chain_length=0)
