@@ -15,7 +15,17 @@
    alternating runs of each, with the number of cores other processes kept busy meanwhile (the speed-up needs a
    free core per worker).
 
-Run: python benchmarks/bench_envs.py [--repeats 5] [--steps 200]
+4. Batched envs (``--batched``, or ``--batched-only`` for this section alone): env-steps per CPU-second
+   (all processes of the run counted: "per core") of N = 1, 16, 256 aircraft of LevelHold-v0 (default
+   settings) in ``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")``
+   (:class:`flexsim.envs.vector.FlexSimVectorEnv`, one ``advance_batch`` call per step) beside the single
+   env, gymnasium's ``SyncVectorEnv`` and ``AsyncVectorEnv`` (N = 1 and 16; at 256 each of their
+   sub-envs builds its own model, trim and matrix exponential, about 1 s each, and the async one starts
+   256 processes: skipped unless ``--sync-256``); median of ``--repeats`` runs of about 512 env-steps
+   each (at least 3 steps), reset and one warm-up step excluded. Target (issue #14): >= 10,000
+   env-steps/s per core at 256 aircraft.
+
+Run: python benchmarks/bench_envs.py [--repeats 5] [--steps 200] [--batched | --batched-only] [--sync-256]
 """
 
 from __future__ import annotations
@@ -183,11 +193,78 @@ def vector_rates(steps: int, repeats: int = 5) -> tuple[list[float], list[float]
     return rates["sync"], rates["async"], statistics.median(others) if others else math.nan
 
 
+BATCH_SIZES = (1, 16, 256)
+TARGET_BATCHED = 10_000.0
+
+
+def _per_cpu_second(make, n: int, steps: int, repeats: int) -> tuple[float, float]:
+    """Median env-steps per CPU-second of all processes of the vector env ``make()`` (n envs), and per
+    wall second; ``steps`` vector steps per repeat after reset and one warm-up step."""
+    per_cpu, per_wall = [], []
+    venv = make()
+    pids = [os.getpid()] + [p.pid for p in getattr(venv, "processes", [])]
+    for r in range(repeats):
+        _, info = venv.reset(seed=100 * r)
+        trim = np.asarray(info["trim_action"], dtype=np.float64).reshape(n, 4)
+        acts = [np.clip(trim + 0.01 * np.sin(k + r + np.arange(4)), [0, -1, -1, -1], [1, 1, 1, 1]).astype(np.float32)
+                for k in range(steps + 1)]
+        venv.step(acts[0])
+        before, c0, t0 = _cpu_seconds(pids), time.process_time(), time.perf_counter()
+        for a in acts[1:]:
+            venv.step(a)
+        wall = time.perf_counter() - t0
+        after = _cpu_seconds(pids)
+        cpu = (after[1] - before[1]) if before is not None and after is not None and len(pids) > 1 else time.process_time() - c0
+        per_cpu.append(n * steps / max(cpu, 1e-9))
+        per_wall.append(n * steps / wall)
+    venv.close()
+    return statistics.median(per_cpu), statistics.median(per_wall)
+
+
+def batched_rates(repeats: int, sync_256: bool) -> None:
+    """Section 4 of the module docstring: prints a table of env-steps per CPU-second and per wall second."""
+    print(f"batched envs, {ENV_ID}, default settings: env-steps per CPU-second of the whole run (per core) / per wall "
+          f"second, median of {repeats}; {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f}", flush=True)
+    env = gym.make(ENV_ID, max_episode_steps=10_000)
+    single_cpu, single_wall = [], []
+    for r in range(repeats):
+        _, info = env.reset(seed=r)
+        acts = _actions(info["trim_action"], 101, r)
+        env.step(acts[0])
+        c0, t0 = time.thread_time(), time.perf_counter()
+        for a in acts[1:]:
+            env.step(a)
+        single_cpu.append(100 / (time.thread_time() - c0))
+        single_wall.append(100 / (time.perf_counter() - t0))
+    env.close()
+    base = statistics.median(single_cpu)
+    print(f"  {'single env (gym.make)':34s} {'N = 1':>7s} {base:9.0f} / {statistics.median(single_wall):7.0f}   1.00", flush=True)
+    for n in BATCH_SIZES:
+        steps = max(3, 512 // n)
+        modes = [("FlexSimVectorEnv (vector_entry_point)", "vector_entry_point")]
+        if n <= 16 or sync_256:
+            modes += [("gymnasium SyncVectorEnv", "sync"), ("gymnasium AsyncVectorEnv", "async")]
+        for label, mode in modes:
+            def make():
+                return gym.make_vec(ENV_ID, num_envs=n, vectorization_mode=mode, max_episode_steps=10_000)
+            cpu, wall = _per_cpu_second(make, n, steps, repeats)
+            print(f"  {label:34s} {f'N = {n}':>7s} {cpu:9.0f} / {wall:7.0f}   {cpu / base:4.2f}", flush=True)
+    print(f"  target: {TARGET_BATCHED:,.0f} env-steps/s per core at N = 256 (issue #14); last column: per-core ratio to the "
+          "single env of the same run")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--steps", type=int, default=200)
+    parser.add_argument("--batched", action="store_true", help="also section 4: batched envs at N = 1, 16, 256")
+    parser.add_argument("--batched-only", action="store_true", help="section 4 alone")
+    parser.add_argument("--sync-256", action="store_true", help="section 4: gymnasium's sync/async vector envs at N = 256 too")
     args = parser.parse_args()
+    if args.batched_only:
+        print(f"{datetime.date.today()}")
+        batched_rates(args.repeats, args.sync_256)
+        return
     print(f"{datetime.date.today()}: {ENV_ID}, GTM m = n = 2, light turbulence, 50 Hz; median of {args.repeats} interleaved "
           f"runs x {args.steps} steps; {os.cpu_count()} cores")
     print(f"{'aero':13s} {'method':11s} {'steps/s':>8s} {'(min-max)':>14s} {'nfev/step':>9s} {'LU/step':>7s} {'outside':>7s}   "
@@ -215,6 +292,8 @@ def main() -> None:
     print(f"vector env, 2 envs, default settings, {len(ratios)} alternating runs: sync {statistics.median(sync):.1f} env-steps/s, "
           f"async {statistics.median(asyn):.1f} env-steps/s, speed-up {statistics.median(ratios):.2f} (runs {min(ratios):.2f}-{max(ratios):.2f}; "
           f"{os.cpu_count()} cores; other processes kept {others:.1f} cores busy meanwhile)")
+    if args.batched:
+        batched_rates(args.repeats, args.sync_256)
 
 
 if __name__ == "__main__":
