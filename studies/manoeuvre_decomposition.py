@@ -28,6 +28,12 @@ modify the linearisation point or the linear model only, never the trim, and are
 ``density``             the linearised aerodynamics at one density, rho(``--rho-altitude``, default 3048 m), trim at
                         the true density (the paper-replication hypothesis of issue 15 f); with ``--fixed-density``
                         the reference is at the fixed density and this switch restores the true one
+``fin_normal``          (not in the default set) the fin's lift without tilt or drag in the linear model: c_n = -L,
+                        c_d = 0 on the fin's strips (bounds any resolution of the fin's lift, eq. 31)
+``fin_drag<k>``         (not in the default set) the paper's fin, eqs. 29-31: section drag *linear* in the fin's
+                        angle, d_v = q c C_Dav a_v = k l_v with k = C_Dav / C_Lav (the paper gives no value; e.g.
+                        ``fin_drag+0.1``; the sign of the paper's y_v relative to the chord is not stated, so both
+                        signs are run), resolved with the fin's flow angle, in the linear model
 ======================  ===========================================================================================
 
 ``--formulation paper`` uses the library's force resolution of the paper (``AeroOptions(formulation="paper")``,
@@ -69,10 +75,14 @@ from flexsim.atmosphere import isa_density, speed_of_sound  # noqa: E402
 from flexsim.linear.stability import spectrum  # noqa: E402
 from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
 from flexsim.model.coupling import AeroOptions  # noqa: E402
+from flexsim.structure.mirror import ranked  # noqa: E402
 from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
 
 SWITCHES = ("none", "rotation", "mass_matrix", "static_deformation", "force_resolution", "aero_alpha", "thrust",
             "gravity", "prandtl_glauert", "damping", "density")
+#: Study switches of the paper's fin model (eqs. 29-31), not in the default set: ``fin_normal`` (the fin's lift without
+#: tilt or drag) and ``fin_drag<kappa>`` (section drag linear in the fin's angle, d_v = kappa l_v, e.g. ``fin_drag+0.1``).
+FIN_SWITCHES = ("fin_normal", "fin_drag+0.1", "fin_drag-0.1", "fin_drag+0.3", "fin_drag-0.3")
 #: Switches that leave the level-flight linear model unchanged (the level case is then taken from ``none``).
 LEVEL_NEUTRAL = ("rotation", "mass_matrix", "static_deformation", "aero_alpha")
 CASES = {"level": (math.inf, 0.0), "R5km": (5000.0, 0.0), "R12km": (12000.0, 0.0),
@@ -116,9 +126,10 @@ class _SwitchedCoupling:
     resolution); everything else delegates to the wrapped :class:`AeroCoupling`. The density of the linearised
     aerodynamics is the library's option ``AircraftModel(aero_density_kg_m3=...)``."""
 
-    def __init__(self, inner, *, mach=None, dv=None, resolution="local"):
+    def __init__(self, inner, *, mach=None, dv=None, resolution="local", fin_kappa=0.0):
         self._inner, self._mach, self._dv = inner, mach, dv
         orig = inner._circulatory
+        fin = ~inner.strips.unsteady  # the fin's strips (quasi-steady, eqs. 29-31); wing and stabilizer have inflow
         if resolution == "normal":  # c_n = -L, c_d = 0 on every strip: no lift tilt, no drag
 
             def circulatory(kin, rho_, mach_):
@@ -126,8 +137,20 @@ class _SwitchedCoupling:
                 return lift, moment, 0.0 * tilt, 0.0 * drag, flow
 
             inner._circulatory = circulatory
+        elif resolution in ("fin_paper", "fin_normal"):
+            # the paper's fin (eqs. 29-31): section drag linear in the fin's angle, d_v = q c C_Dav a_v = kappa l_v
+            # (kappa = C_Dav / C_Lav), force l_v [0, a_v0, 1] + d_v [0, -1, a_v0] resolved with the fin's flow angle;
+            # "fin_normal": the fin's lift without tilt or drag (c_n = -L, c_d = 0), wing and stabilizer unchanged
+
+            def circulatory(kin, rho_, mach_):
+                lift, moment, tilt, drag, flow = orig(kin, rho_, mach_)
+                if resolution == "fin_normal":
+                    return lift, moment, np.where(fin, 0.0, tilt), np.where(fin, 0.0, drag), flow
+                return lift, moment, tilt, np.where(fin, fin_kappa * lift, drag), flow
+
+            inner._circulatory = circulatory
         elif resolution != "local":
-            raise ValueError(f"resolution = {resolution!r}: must be local or normal")
+            raise ValueError(f"resolution = {resolution!r}: must be local, normal, fin_paper or fin_normal")
 
     def __getattr__(self, name):
         return getattr(self._inner, name)
@@ -169,7 +192,7 @@ class Setup:
     switch: str
     rho_altitude_m: float
     mach_pg: float | None = None  # level flutter Mach for the prandtl_glauert switch
-    model: str = "US"  # "US" (Theodorsen p-k, the paper's Table 3) or "QS" (quasi-steady, Table 2)
+    model: str = "US"  # "US" (Theodorsen p-k, the paper's Table 3), "FS" (finite state) or "QS" (quasi-steady, Table 2)
     base_rho_altitude_m: float | None = None  # None: the reference linear model uses the true density
     formulation: str = "physical"  # or "paper": the library's force resolution of eq. 28 (AeroOptions.formulation)
     mode_class: str = "any"  # "symmetric" / "antisymmetric": only modes with more than half their energy in that class
@@ -205,6 +228,10 @@ class Decomposition:
             cw["mach"] = s.mach_pg
         if s.switch == "force_resolution" and s.formulation == "physical":
             cw["resolution"] = "normal"
+        if s.switch == "fin_normal":
+            cw["resolution"] = "fin_normal"
+        if s.switch.startswith("fin_drag"):  # fin_drag+0.1: the paper's fin with kappa = C_Dav/C_Lav = +0.1
+            cw["resolution"], cw["fin_kappa"] = "fin_paper", float(s.switch[len("fin_drag"):])
         if s.switch == "aero_alpha":
             cw["dv"] = level_point.x[lay.velocity][0:3] - x[lay.velocity][0:3]
         if s.switch == "rotation":
@@ -235,6 +262,8 @@ class Decomposition:
         qs, fs, x, u = self._linear_models(point, level)
         if self.s.model == "QS":
             spec = spectrum(qs, x, u, aero_model="quasi-steady")
+        elif self.s.model == "FS":  # finite-state state space, inflow states at zero in the steady trim
+            spec = spectrum(fs, np.concatenate([x, np.zeros(fs.layout.n_inflow)]), u, aero_model="unsteady")
         else:
             spec = spectrum(qs, x, u, aero_model="theodorsen", pk_model=fs)
         self.last = (point, spec, qs)
@@ -285,46 +314,19 @@ class Decomposition:
         return mf, mode.frequency_rad_s, n + 1
 
 
-def mirror_matrix(labels: tuple[str, ...]) -> np.ndarray:
-    """The left-right mirror P of the velocity vector V, from the DOF labels (study helper).
-
-    u, w, q and the fuselage's (vertical) bending map onto themselves; v, p, r, the fuselage torsion and the
-    fin change sign; right and left bending coordinates swap; right and left torsion coordinates swap with a
-    sign change (the left half's axes are the mirror of the right's turned about its span, paper Table 1,
-    findings paper-mechanism-probe.md A).
-    """
-    n = len(labels)
-    p = np.zeros((n, n))
-    idx = {lab: i for i, lab in enumerate(labels)}
-    for i, lab in enumerate(labels):
-        if lab in ("u", "w", "q") or lab.startswith("fuselage bending"):
-            p[i, i] = 1.0
-        elif lab in ("v", "p", "r") or lab.startswith("fuselage torsion") or lab.startswith("vtail"):
-            p[i, i] = -1.0
-        elif lab.startswith("right_") or lab.startswith("left_"):
-            side, rest = lab.split("_", 1)
-            other = ("left_" if side == "right" else "right_") + rest
-            p[idx[other], i] = -1.0 if "torsion" in rest else 1.0
-        else:
-            raise ValueError(f"mirror_matrix: no mirror rule for DOF {lab!r}")
-    return p
-
-
 def mode_info(model: AircraftModel, mode) -> dict:
-    """Symmetric share of the mode's kinetic energy (M(0)), |q_f1| / largest linear elastic displacement (bending
-    coordinates, as the paper's Figs. 11/16 rank them) and that coordinate."""
+    """Symmetric share of the mode's kinetic energy (M(0); the library's mirror operator,
+    :mod:`flexsim.structure.mirror`), |q_f1| / largest linear elastic displacement (bending coordinates, as the
+    paper's Figs. 11/16 rank them) and that coordinate."""
     labels = model.structure.dofs.labels
-    p = mirror_matrix(labels)
     m0 = model.structure.inertia.mass_matrix(np.zeros(model.structure.dofs.nq))
     phi = mode.shape
-    sym = 0.5 * (phi + p @ phi)
-    anti = phi - sym
-    es, ea = (float(np.real(np.vdot(z, m0 @ z))) for z in (sym, anti))
+    share = model.structure.mirror.symmetric_fraction(np.asarray(phi, dtype=complex), m0)
     disp = np.abs(phi / mode.eigenvalue)
     linear = [i for i, lab in enumerate(labels) if "bending" in lab]  # the linear elastic displacements [m]
     qf1 = labels.index("fuselage bending 1")
-    big = max(linear, key=lambda i: disp[i])
-    return {"sym_share": round(es / (es + ea), 3), "qf1_ratio": round(float(disp[qf1] / disp[big]), 3),
+    big = ranked(disp, model.structure.mirror, candidates=linear)[0]  # mirror ties: the right half first
+    return {"sym_share": round(share, 3), "qf1_ratio": round(float(disp[qf1] / disp[big]), 3),
             "largest": labels[big]}
 
 
@@ -407,7 +409,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--aircraft", default="gtm")
     ap.add_argument("--altitude", type=float, default=9144.0)
-    ap.add_argument("--switches", nargs="+", default=list(SWITCHES), choices=SWITCHES)
+    ap.add_argument("--switches", nargs="+", default=list(SWITCHES), choices=SWITCHES + FIN_SWITCHES)
     ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
     ap.add_argument("--rho-altitude", type=float, default=3048.0, help="altitude of the density of the 'density' switch [m]")
     ap.add_argument("--start", type=float, default=0.91, help="starting Mach of the level search")
