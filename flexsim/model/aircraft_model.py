@@ -27,6 +27,7 @@ import numpy as np
 from scipy.linalg.lapack import dgesv as _dgesv
 
 from flexsim.aircraft.definition import Aircraft
+from flexsim._arrays import Immutable
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.drag import ParasiteDrag
@@ -64,8 +65,12 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     )
 
 
-class AircraftModel:
+class AircraftModel(Immutable):
     """Equations of motion of the whole flexible aircraft (eq. 33) in first-order form.
+
+    Immutable after construction (:class:`flexsim._arrays.Immutable`): attributes cannot be set or deleted and
+    every array it holds — its own, the structure's and the aerodynamic coupling's — is read-only; disturbances
+    are an argument of :meth:`rhs`. To change an input, build a new model.
 
     Parameters
     ----------
@@ -189,6 +194,7 @@ class AircraftModel:
         self._xi_frozen = np.zeros(dofs.nxi) if frozen_xi is None else np.asarray(frozen_xi, float)
         if self._q_frozen.shape != (dofs.nq,) or self._xi_frozen.shape != (dofs.nxi,):
             raise ValueError(f"frozen_q/frozen_xi: must have {dofs.nq} and {dofs.nxi} entries")
+        self._seal()
 
     @property
     def formulation(self) -> str | None:

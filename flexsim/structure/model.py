@@ -12,6 +12,7 @@ from functools import cached_property
 
 import numpy as np
 
+from flexsim._arrays import Immutable, freeze_arrays
 from flexsim.aircraft.definition import Aircraft
 from flexsim.structure.inertia import InertiaPolynomial
 from flexsim.structure.kinematic_map import DofIndex, PointMaps, point_maps
@@ -47,7 +48,7 @@ class MassProperties:
         return float(j[0, 0]), float(j[1, 1]), float(j[2, 2]), float(-j[0, 2])
 
 
-class StructuralModel:
+class StructuralModel(Immutable):
     """Precomputed structural dynamics of an aircraft definition (eqs. 1-24, 32-33).
 
     Parameters
@@ -71,6 +72,7 @@ class StructuralModel:
         self.k_bending, self.k_torsion = stiffness_matrices(aircraft, self.dofs)
         self.thrust = ThrustMap.from_aircraft(aircraft, self.dofs)
         self._check_assembled()
+        self._seal()  # immutable from here on (flexsim._arrays.Immutable): arrays read-only, no attribute set
 
     def _dof_label(self, i: int) -> str:
         """Name of elastic coordinate ``i`` (0-based in [s, eta]) as ``<component> bending|torsion <k>``."""
@@ -135,7 +137,9 @@ class StructuralModel:
     @cached_property
     def mirror(self) -> MirrorOperator | None:
         """Left-right mirror of the coordinates V (:mod:`flexsim.structure.mirror`); None if asymmetric."""
-        return mirror_operator(self.aircraft, self.dofs)
+        mirror = mirror_operator(self.aircraft, self.dofs)
+        freeze_arrays(mirror)
+        return mirror
 
     @cached_property
     def stiffness(self) -> np.ndarray:
@@ -175,4 +179,6 @@ class StructuralModel:
         cg = s / mass
         j_o = m0[3:6, 3:6]
         j_cg = j_o - mass * (cg @ cg * np.eye(3) - np.outer(cg, cg))
-        return MassProperties(mass, cg, 0.5 * (j_cg + j_cg.T))
+        props = MassProperties(mass, cg, 0.5 * (j_cg + j_cg.T))
+        freeze_arrays(props)
+        return props

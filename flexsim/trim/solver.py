@@ -19,6 +19,7 @@ import numpy as np
 from scipy.linalg import LinAlgWarning, lu_factor, lu_solve
 from scipy.optimize import root
 
+from flexsim._arrays import readonly
 from flexsim._threads import single_blas_thread
 from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel, Variant
@@ -91,6 +92,11 @@ class TrimPoint:
     bank_wind: float = 0.0
     lift_n: float = 0.0
     drag_n: float = 0.0
+
+    def __post_init__(self) -> None:
+        # a frozen result: its arrays are read-only copies (the caller's arrays are not frozen)
+        object.__setattr__(self, "x", readonly(np.array(self.x, dtype=float)))
+        object.__setattr__(self, "u", readonly(np.array(self.u, dtype=float)))
 
     @property
     def thrust_n(self) -> float:

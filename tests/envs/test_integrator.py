@@ -56,7 +56,7 @@ def test_env_step_counts_and_defaults():
     flutter.close()
 
 
-def test_crash_located_within_the_period():
+def test_crash_located_within_the_period(monkeypatch):
     env, _ = _level_hold(aero="quasi-steady", integrator=envs.IntegratorSettings(method="ETD2RK"))
     dyn = env.unwrapped.dynamics
     n = dyn.layout.n_states
@@ -64,7 +64,8 @@ def test_crash_located_within_the_period():
     z = dyn.layout.position.start + 2
     sink = np.zeros(n)
     sink[z] = 10.0  # down-rate [m/s]
-    dyn.model.rhs = lambda t, x, u, wind=None: sink
+    # the model is immutable (issue #10): the right-hand side is replaced on its class, for this test only
+    monkeypatch.setattr(type(dyn.model), "rhs", lambda self, t, x, u, wind=None: sink)
     x = np.zeros(n)
     x[z] = -0.27
     first = dyn.advance(x, np.zeros(4), 0.0, 0.02)
@@ -77,18 +78,19 @@ def test_crash_located_within_the_period():
     env.close()
 
 
-def test_non_finite_state_and_model_error_are_reported():
+def test_non_finite_state_and_model_error_are_reported(monkeypatch):
     env, info = _level_hold(integrator=envs.IntegratorSettings(method="ETD2RK"))
     dyn = env.unwrapped.dynamics
     x0, u0 = env.unwrapped.state, env.unwrapped.applied_controls
     h = dyn.dt / dyn.substeps
-    rhs = dyn.model.rhs
-    dyn.model.rhs = lambda t, x, u, wind=None: rhs(t, x, u, wind) if t < 2.5 * h else np.full_like(x, np.nan)
+    rhs = type(dyn.model).rhs
+    monkeypatch.setattr(type(dyn.model), "rhs",
+                        lambda self, t, x, u, wind=None: rhs(self, t, x, u, wind) if t < 2.5 * h else np.full_like(x, np.nan))
     out = dyn.advance(x0, u0, 0.0, dyn.dt)
     assert out.failure == "non-finite state: ETD2RK step 3 of 4 from t = 0.01 s"
     assert out.time_s == pytest.approx(2 * h, abs=1e-15) and np.all(np.isfinite(out.x)) and out.nfev == 6
     assert not out.crashed
-    del dyn.model.rhs
+    monkeypatch.undo()
     with pytest.raises(ValueError, match=r"t1 - t0 = 0\.01 s: ETD2RK steps whole control periods, must be dt = 0\.02 s"):
         dyn.advance(x0, u0, 0.0, 0.01)
     env.close()
