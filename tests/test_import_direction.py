@@ -23,7 +23,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: Layer of every package (top-level modules of flexsim count as packages); lower may not import higher.
 LAYERS: dict[str, int] = {
-    "errors": 0, "_arrays": 0, "_threads": 0,
+    "errors": 0, "_arrays": 0, "_threads": 0, "_immutable": 0,
     "atmosphere": 1, "kinematics": 1, "io": 1,
     "aircraft": 2,
     "structure": 3,

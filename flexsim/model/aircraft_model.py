@@ -27,7 +27,7 @@ import numpy as np
 from scipy.linalg.lapack import dgesv as _dgesv
 
 from flexsim.aircraft.definition import Aircraft
-from flexsim._arrays import Immutable
+from flexsim._immutable import Immutable
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.drag import ParasiteDrag
@@ -194,7 +194,6 @@ class AircraftModel(Immutable):
         self._xi_frozen = np.zeros(dofs.nxi) if frozen_xi is None else np.asarray(frozen_xi, float)
         if self._q_frozen.shape != (dofs.nq,) or self._xi_frozen.shape != (dofs.nxi,):
             raise ValueError(f"frozen_q/frozen_xi: must have {dofs.nq} and {dofs.nxi} entries")
-        self._seal()
 
     @property
     def formulation(self) -> str | None:

@@ -48,7 +48,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from flexsim._arrays import Immutable
+from flexsim._immutable import Immutable
 from flexsim.aero.inflow import inflow_coefficients
 from flexsim.aircraft.definition import COMPRESSIBILITY, FORMULATIONS
 from flexsim.model.strips import StripSet
@@ -215,7 +215,6 @@ class AeroCoupling(Immutable):
         if np.any(self._paper_strips & (np.abs(d_x) < 1e-3)):
             raise ValueError('formulation = "paper": a wing/stabilizer strip chord is normal to body x; the force cannot be resolved without a body-x component')
         self._n_over_d_x = np.where(self._paper_strips, np.einsum("sk,sk->s", s.n, x_b) / np.where(np.abs(d_x) < 1e-3, 1.0, d_x), 0.0)
-        self._seal()  # immutable from here on (flexsim._arrays.Immutable)
 
     def kinematics(self, q, xi, vel, lam, u, wind_c=None) -> StripKinematics:
         """Strip velocities and Chebyshev downwash coefficients at a state (module docstring).

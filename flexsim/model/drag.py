@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from flexsim._arrays import Immutable
+from flexsim._immutable import Immutable
 from flexsim.structure.model import StructuralModel
 
 __all__ = ["ParasiteDrag"]
@@ -56,7 +56,6 @@ class ParasiteDrag(Immutable):
             maps = structure.point_maps(d.component, np.array([station]))
             self._g0[j], self._g1[j] = maps.g0[0], maps.g1[0]
             self._offset[j] = comp.dcm @ (d.position_m - maps.r0[0])  # rho_i, component axes
-        self._seal()  # immutable from here on (flexsim._arrays.Immutable)
 
     @property
     def n_items(self) -> int:

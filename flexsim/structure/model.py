@@ -12,7 +12,7 @@ from functools import cached_property
 
 import numpy as np
 
-from flexsim._arrays import Immutable, freeze_arrays
+from flexsim._immutable import Immutable, freeze_arrays
 from flexsim.aircraft.definition import Aircraft
 from flexsim.structure.inertia import InertiaPolynomial
 from flexsim.structure.kinematic_map import DofIndex, PointMaps, point_maps
@@ -72,7 +72,6 @@ class StructuralModel(Immutable):
         self.k_bending, self.k_torsion = stiffness_matrices(aircraft, self.dofs)
         self.thrust = ThrustMap.from_aircraft(aircraft, self.dofs)
         self._check_assembled()
-        self._seal()  # immutable from here on (flexsim._arrays.Immutable): arrays read-only, no attribute set
 
     def _dof_label(self, i: int) -> str:
         """Name of elastic coordinate ``i`` (0-based in [s, eta]) as ``<component> bending|torsion <k>``."""

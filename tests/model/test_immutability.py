@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from flexsim._arrays import Immutable
+from flexsim._immutable import Immutable
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.trim import SteadyManoeuvre, trim
