@@ -195,7 +195,7 @@ class FlutterMarginEnv(FlexSimEnv):
     stabilizers' symmetric bending; at M_f + 0.01 it grows at about 0.2 1/s. Hold the speed above the
     flutter speed, altitude, and keep the fin from diverging (the rudder is the fin's control surface).
     The flutter mode is above the Nyquist frequency of the default 50 Hz control rate (25 Hz); a
-    sampled rudder feedback can still damp it (see ``examples/agents/flutter_margin_baseline.py``).
+    sampled rudder feedback can still damp it (see ``FlutterPidDamper`` in ``examples/agents/baselines.py``).
 
     ## Action Space
     <action space>

@@ -15,12 +15,14 @@ field, the value and what is allowed.
 from __future__ import annotations
 
 import hashlib
-from dataclasses import dataclass, field, fields, is_dataclass, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Iterable
 
 import numpy as np
 
-from flexsim.errors import AircraftDefinitionError
+from flexsim.aircraft.checks import MAX_STATIONS, PLAUSIBLE, _check_scalar, _fail, _frozen_array, _in_plausible  # noqa: F401 (re-exported)
+from flexsim.aircraft.content import ContentKey, feed_digest
+from flexsim.aircraft.sections import SectionTable
 from flexsim.kinematics import dcm_321
 
 __all__ = [
@@ -56,254 +58,6 @@ _SURFACE_KIND = {
     "left_htail": "elevator",
     "vtail": "rudder",
 }
-
-
-#: Plausible ranges of the definition's quantities (SI), checked on construction. They bound every
-#: aircraft from a model glider to the largest transport (An-225: 84 m long, 88 m span, 640 t) with a
-#: margin, so that unit mistakes (millimetres, N mm^2, grams) and typing slips (1e30) are caught with a
-#: message instead of producing absurd frequencies or inertias. Name -> (low, high, unit).
-PLAUSIBLE = {
-    "length_m": (0.05, 150.0, "m"),
-    "mass_kg_per_m": (0.0, 1.0e5, "kg/m"),
-    "torsional_inertia_kg_m": (0.0, 1.0e5, "kg m^2/m"),
-    "ei_nm2": (1.0, 1.0e12, "N m^2"),
-    "gj_nm2": (1.0, 1.0e12, "N m^2"),
-    "chord_m": (0.0, 50.0, "m"),
-    "position_m": (-500.0, 500.0, "m"),
-    "euler_rad": (-2.0 * np.pi, 2.0 * np.pi, "rad (+-360 deg)"),
-    "mass_kg": (0.0, 1.0e6, "kg"),
-    "inertia_kg_m2": (0.0, 1.0e9, "kg m^2"),
-    "max_thrust_n": (0.0, 2.0e6, "N"),
-    "total_mass_kg": (0.0, 2.0e6, "kg"),
-    "elastic_frequency_rad_s": (0.1, 1.0e5, "rad/s"),
-}
-#: Largest number of stations in one section table (a few hundred describe any beam).
-MAX_STATIONS = 10_000
-
-
-def _in_plausible(where: str, arr: np.ndarray, key: str, lo_open: bool = False) -> None:
-    """Raise AircraftDefinitionError naming the first entry of ``arr`` outside ``PLAUSIBLE[key]``."""
-    lo, hi, unit = PLAUSIBLE[key]
-    a = np.atleast_1d(np.asarray(arr, float))
-    ok = ((a > lo) if lo_open else (a >= lo)) & (a <= hi)
-    bad = np.flatnonzero(~ok.ravel())
-    if bad.size:
-        i = int(bad[0])
-        index = "" if np.ndim(arr) == 0 else f"[{', '.join(map(str, np.unravel_index(i, a.shape)))}]"
-        bracket = "(" if lo_open else "["
-        _fail(f"{where}{index}", float(a.ravel()[i]),
-              f"outside the plausible range {bracket}{lo:g}, {hi:g}] {unit} (check the units)")
-
-
-def _plain(value: object) -> object:
-    """numpy values as plain Python numbers/lists, so messages read ``[1.5, 1.4]``."""
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, np.generic):
-        return value.item()
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    return value
-
-
-class ContentKey:
-    """An :class:`Aircraft` as a cache key (``functools.lru_cache``): hashed and compared by its
-    :meth:`~Aircraft.content_digest`, carrying the aircraft itself for the cached computation.
-
-    Attributes
-    ----------
-    aircraft : Aircraft
-    digest : str
-    """
-
-    __slots__ = ("aircraft", "digest")
-
-    def __init__(self, aircraft: "Aircraft") -> None:
-        self.aircraft = aircraft
-        self.digest = aircraft.content_digest()
-
-    def __hash__(self) -> int:
-        return hash(self.digest)
-
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, ContentKey) and other.digest == self.digest
-
-    def __repr__(self) -> str:
-        return f"ContentKey({self.aircraft.name!r}, {self.digest[:12]})"
-
-
-def _feed_digest(digest, value) -> None:
-    """Feed a canonical, type-tagged serialisation of ``value`` (dataclasses, arrays, containers, scalars)."""
-    if is_dataclass(value) and not isinstance(value, type):
-        digest.update(f"<{type(value).__name__}".encode())
-        for f in fields(value):
-            digest.update(f.name.encode())
-            _feed_digest(digest, getattr(value, f.name))
-        digest.update(b">")
-    elif isinstance(value, np.ndarray):
-        digest.update(f"<array {value.dtype.str} {value.shape}>".encode())
-        digest.update(np.ascontiguousarray(value).tobytes())
-    elif isinstance(value, (tuple, list)):
-        digest.update(f"<seq {len(value)}>".encode())
-        for item in value:
-            _feed_digest(digest, item)
-    elif isinstance(value, dict):
-        digest.update(f"<map {len(value)}>".encode())
-        for key in sorted(value, key=repr):
-            _feed_digest(digest, key)
-            _feed_digest(digest, value[key])
-    else:
-        digest.update(f"<{type(value).__name__} {value!r}>".encode())
-
-
-def _fail(where: str, value: object, allowed: str) -> None:
-    raise AircraftDefinitionError(f"{where} = {_plain(value)!r}: {allowed}")
-
-
-def _frozen_array(where: str, value: object, shape: tuple[int, ...] | None = None) -> np.ndarray:
-    try:
-        arr = np.array(value, dtype=float)
-    except (TypeError, ValueError):
-        _fail(where, value, "must be a number or an array of numbers")
-    if shape is not None and arr.shape != shape:
-        _fail(where, value, f"must have shape {shape}")
-    if not np.all(np.isfinite(arr)):
-        _fail(where, value, "must be finite")
-    arr.setflags(write=False)
-    return arr
-
-
-def _check_scalar(where: str, value: object, lo: float, hi: float, lo_open: bool = False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-        _fail(where, value, "must be a number")
-    v = float(value)
-    ok = (v > lo if lo_open else v >= lo) and v <= hi and np.isfinite(v)
-    if not ok:
-        bracket = "(" if lo_open else "["
-        _fail(where, value, f"must be in {bracket}{lo}, {hi}]")
-    return v
-
-
-@dataclass(frozen=True, eq=False)
-class SectionTable:
-    """Spanwise (or lengthwise) tables of a beam's section properties, linear between stations.
-
-    Attributes
-    ----------
-    station_m : ndarray, shape (k,)
-        Stations x_i along the elastic axis, strictly increasing from 0 (root) to the length [m].
-    mass_kg_per_m : ndarray, shape (k,)
-        Mass per unit length [kg/m], >= 0.
-    cg_offset_m : ndarray, shape (k,)
-        Offset of the section centre of mass from the elastic axis along the streamwise chord, positive
-        towards the trailing edge [m] (Theodorsen's x_theta * b). Must be 0 for a component without chord.
-    torsional_inertia_kg_m : ndarray, shape (k,)
-        Mass moment of inertia per unit length about the elastic axis [kg m^2/m]; must be at least
-        mass * cg_offset^2 (it includes the offset by the parallel-axis theorem).
-    ei_nm2 : ndarray, shape (k,)
-        Bending rigidity EI_i for bending along z_i [N m^2] (paper eq. 14).
-    gj_nm2 : ndarray, shape (k,)
-        Torsional rigidity GJ_i [N m^2] (paper eq. 14).
-    chord_m : ndarray, shape (k,)
-        Streamwise chord of the section through the station [m] (0 for the fuselage).
-    ea_fraction : ndarray, shape (k,)
-        Elastic-axis position aft of the leading edge as a fraction of the chord [-]; Theodorsen's
-        a = 2 ea_fraction - 1 (bundled GTM wing and stabilizer: ea_fraction = 0.375, a = -0.25; see
-        ``docs/calibration.md`` section 1).
-    """
-
-    station_m: np.ndarray
-    mass_kg_per_m: np.ndarray
-    cg_offset_m: np.ndarray
-    torsional_inertia_kg_m: np.ndarray
-    ei_nm2: np.ndarray
-    gj_nm2: np.ndarray
-    chord_m: np.ndarray
-    ea_fraction: np.ndarray
-    where: str = field(default="sections", repr=False)
-
-    def __post_init__(self) -> None:
-        w = self.where
-        names = (
-            "station_m",
-            "mass_kg_per_m",
-            "cg_offset_m",
-            "torsional_inertia_kg_m",
-            "ei_nm2",
-            "gj_nm2",
-            "chord_m",
-            "ea_fraction",
-        )
-        arrays = {}
-        for name in names:
-            arr = _frozen_array(f"{w}.{name}", getattr(self, name))
-            if arr.ndim != 1:
-                _fail(f"{w}.{name}", getattr(self, name), "must be a 1-D list of numbers")
-            arrays[name] = arr
-        k = arrays["station_m"].size
-        if k > MAX_STATIONS:
-            raise AircraftDefinitionError(f"{w}.station_m: {k} stations: at most {MAX_STATIONS} are allowed")
-        if k < 2:
-            _fail(f"{w}.station_m", getattr(self, "station_m"), "needs at least two stations (root and tip)")
-        for name, arr in arrays.items():
-            if arr.size != k:
-                _fail(f"{w}.{name}", list(arr), f"must have {k} entries, one per station")
-        st = arrays["station_m"]
-        if st[0] != 0.0:
-            _fail(f"{w}.station_m[0]", st[0], "must be 0 (the root)")
-        bad = np.flatnonzero(np.diff(st) <= 0.0)
-        if bad.size:
-            i = int(bad[0]) + 1
-            _fail(f"{w}.station_m[{i}]", float(st[i]), f"must be > station_m[{i - 1}] = {st[i - 1]} (strictly increasing)")
-        for name, lo in (("mass_kg_per_m", 0.0), ("torsional_inertia_kg_m", 0.0), ("chord_m", 0.0)):
-            bad = np.flatnonzero(arrays[name] < lo)
-            if bad.size:
-                i = int(bad[0])
-                _fail(f"{w}.{name}[{i}]", float(arrays[name][i]), f"must be >= {lo}")
-        for name in ("ei_nm2", "gj_nm2"):
-            bad = np.flatnonzero(arrays[name] <= 0.0)
-            if bad.size:
-                i = int(bad[0])
-                _fail(f"{w}.{name}[{i}]", float(arrays[name][i]), "must be > 0")
-        for name in ("mass_kg_per_m", "torsional_inertia_kg_m", "ei_nm2", "gj_nm2", "chord_m"):
-            _in_plausible(f"{w}.{name}", arrays[name], name)
-        _in_plausible(f"{w}.station_m[-1] (length)", st[-1], "length_m")
-        ea = arrays["ea_fraction"]
-        bad = np.flatnonzero((ea < 0.0) | (ea > 1.0))
-        if bad.size:
-            i = int(bad[0])
-            _fail(f"{w}.ea_fraction[{i}]", float(ea[i]), "must be in [0, 1]")
-        m, e, ith = arrays["mass_kg_per_m"], arrays["cg_offset_m"], arrays["torsional_inertia_kg_m"]
-        bad = np.flatnonzero(np.abs(e) > arrays["chord_m"] + 1e-12)
-        bad = bad[arrays["chord_m"][bad] > 0.0]
-        if bad.size:
-            i = int(bad[0])
-            _fail(f"{w}.cg_offset_m[{i}]", float(e[i]), f"must be within one chord of the elastic axis (|cg_offset_m| <= chord_m = {arrays['chord_m'][i]:g} m)")
-        chordless = arrays["chord_m"] == 0.0
-        bad = np.flatnonzero(chordless & (e != 0.0))
-        if bad.size:
-            i = int(bad[0])
-            _fail(f"{w}.cg_offset_m[{i}]", float(e[i]), "must be 0 where chord_m is 0 (no chordwise direction)")
-        need = m * e**2
-        bad = np.flatnonzero(ith < need * (1.0 - 1e-9))
-        if bad.size:
-            i = int(bad[0])
-            _fail(
-                f"{w}.torsional_inertia_kg_m[{i}]",
-                float(ith[i]),
-                f"must be >= mass_kg_per_m * cg_offset_m^2 = {need[i]:.6g} (inertia about the elastic axis)",
-            )
-        for name, arr in arrays.items():
-            object.__setattr__(self, name, arr)
-
-    @property
-    def length_m(self) -> float:
-        """Beam length L_i [m] (the last station)."""
-        return float(self.station_m[-1])
-
-    def at(self, name: str, x: np.ndarray) -> np.ndarray:
-        """Property ``name`` interpolated linearly at stations ``x`` [m] (shape (k,) -> (k,))."""
-        return np.interp(x, self.station_m, getattr(self, name))
 
 
 @dataclass(frozen=True)
@@ -745,7 +499,7 @@ class Aircraft:
         dtype, shape and bytes.
         """
         digest = hashlib.sha256()
-        _feed_digest(digest, {f.name: getattr(self, f.name) for f in fields(self) if f.name != "source"})
+        feed_digest(digest, {f.name: getattr(self, f.name) for f in fields(self) if f.name != "source"})
         return digest.hexdigest()
 
     def content_key(self) -> "ContentKey":

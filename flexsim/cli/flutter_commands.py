@@ -17,6 +17,7 @@ from flexsim.linear.study import MODELS as _MODELS
 from flexsim.linear.study import StudyCase, StudyRecord, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
+from flexsim.atmosphere import mach_to_true_airspeed
 from flexsim.trim import SteadyManoeuvre, trim
 
 __all__ = ["add_flutter_commands"]
@@ -28,7 +29,7 @@ def _manoeuvre(args: argparse.Namespace, altitude: float, mach: float) -> Steady
     coordinated = bool(getattr(args, "coordinated", False))
     if coordinated and radius == math.inf:
         raise ValueError("--coordinated: applies to turns only; give --turn-radius-m")
-    return SteadyManoeuvre(mach * SteadyManoeuvre.level(altitude, mach=0.5).speed_m_s / 0.5, altitude, radius, gamma, coordinated)
+    return SteadyManoeuvre(float(mach_to_true_airspeed(mach, altitude)), altitude, radius, gamma, coordinated)
 
 
 def _trim(args: argparse.Namespace) -> int:

@@ -28,7 +28,7 @@ from scipy.linalg.lapack import dgesv as _dgesv
 
 from flexsim.aircraft.definition import Aircraft
 from flexsim._immutable import Immutable
-from flexsim.atmosphere import isa_density, speed_of_sound
+from flexsim.atmosphere import G0, isa_density, speed_of_sound
 from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.drag import ParasiteDrag
 from flexsim.model.layout import StateLayout
@@ -37,8 +37,8 @@ from flexsim.structure.model import StructuralModel
 
 __all__ = ["Variant", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES", "Wind"]
 
-#: Standard gravitational acceleration [m/s^2] (paper eq. 32's g).
-STANDARD_GRAVITY = 9.80665
+#: Standard gravitational acceleration [m/s^2] (paper eq. 32's g): the atmosphere module's one definition.
+STANDARD_GRAVITY = G0
 #: An atmospheric disturbance: ``wind(t [s], positions_ned_m (k, 3)) -> air velocity (k, 3)`` [m/s], NED.
 Wind = Callable[[float, np.ndarray], np.ndarray]
 #: The control vector u of the paper (text after eq. 33): [T_e (N), delta_a, delta_e, delta_r (rad)].

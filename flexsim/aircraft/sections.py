@@ -1,0 +1,137 @@
+"""Section tables of a beam: spanwise (or lengthwise) section properties, linear between stations.
+
+Part of the aircraft definition (:mod:`flexsim.aircraft.definition` re-exports :class:`SectionTable`), split from
+that module to keep modules under ~800 lines. SI units, body-axes conventions and validation as there.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from flexsim.aircraft.checks import MAX_STATIONS, _fail, _frozen_array, _in_plausible
+
+__all__ = ["SectionTable"]
+
+
+@dataclass(frozen=True, eq=False)
+class SectionTable:
+    """Spanwise (or lengthwise) tables of a beam's section properties, linear between stations.
+
+    Attributes
+    ----------
+    station_m : ndarray, shape (k,)
+        Stations x_i along the elastic axis, strictly increasing from 0 (root) to the length [m].
+    mass_kg_per_m : ndarray, shape (k,)
+        Mass per unit length [kg/m], >= 0.
+    cg_offset_m : ndarray, shape (k,)
+        Offset of the section centre of mass from the elastic axis along the streamwise chord, positive
+        towards the trailing edge [m] (Theodorsen's x_theta * b). Must be 0 for a component without chord.
+    torsional_inertia_kg_m : ndarray, shape (k,)
+        Mass moment of inertia per unit length about the elastic axis [kg m^2/m]; must be at least
+        mass * cg_offset^2 (it includes the offset by the parallel-axis theorem).
+    ei_nm2 : ndarray, shape (k,)
+        Bending rigidity EI_i for bending along z_i [N m^2] (paper eq. 14).
+    gj_nm2 : ndarray, shape (k,)
+        Torsional rigidity GJ_i [N m^2] (paper eq. 14).
+    chord_m : ndarray, shape (k,)
+        Streamwise chord of the section through the station [m] (0 for the fuselage).
+    ea_fraction : ndarray, shape (k,)
+        Elastic-axis position aft of the leading edge as a fraction of the chord [-]; Theodorsen's
+        a = 2 ea_fraction - 1 (bundled GTM wing and stabilizer: ea_fraction = 0.375, a = -0.25; see
+        ``docs/calibration.md`` section 1).
+    """
+
+    station_m: np.ndarray
+    mass_kg_per_m: np.ndarray
+    cg_offset_m: np.ndarray
+    torsional_inertia_kg_m: np.ndarray
+    ei_nm2: np.ndarray
+    gj_nm2: np.ndarray
+    chord_m: np.ndarray
+    ea_fraction: np.ndarray
+    where: str = field(default="sections", repr=False)
+
+    def __post_init__(self) -> None:
+        w = self.where
+        names = (
+            "station_m",
+            "mass_kg_per_m",
+            "cg_offset_m",
+            "torsional_inertia_kg_m",
+            "ei_nm2",
+            "gj_nm2",
+            "chord_m",
+            "ea_fraction",
+        )
+        arrays = {}
+        for name in names:
+            arr = _frozen_array(f"{w}.{name}", getattr(self, name))
+            if arr.ndim != 1:
+                _fail(f"{w}.{name}", getattr(self, name), "must be a 1-D list of numbers")
+            arrays[name] = arr
+        k = arrays["station_m"].size
+        if k > MAX_STATIONS:
+            raise AircraftDefinitionError(f"{w}.station_m: {k} stations: at most {MAX_STATIONS} are allowed")
+        if k < 2:
+            _fail(f"{w}.station_m", getattr(self, "station_m"), "needs at least two stations (root and tip)")
+        for name, arr in arrays.items():
+            if arr.size != k:
+                _fail(f"{w}.{name}", list(arr), f"must have {k} entries, one per station")
+        st = arrays["station_m"]
+        if st[0] != 0.0:
+            _fail(f"{w}.station_m[0]", st[0], "must be 0 (the root)")
+        bad = np.flatnonzero(np.diff(st) <= 0.0)
+        if bad.size:
+            i = int(bad[0]) + 1
+            _fail(f"{w}.station_m[{i}]", float(st[i]), f"must be > station_m[{i - 1}] = {st[i - 1]} (strictly increasing)")
+        for name, lo in (("mass_kg_per_m", 0.0), ("torsional_inertia_kg_m", 0.0), ("chord_m", 0.0)):
+            bad = np.flatnonzero(arrays[name] < lo)
+            if bad.size:
+                i = int(bad[0])
+                _fail(f"{w}.{name}[{i}]", float(arrays[name][i]), f"must be >= {lo}")
+        for name in ("ei_nm2", "gj_nm2"):
+            bad = np.flatnonzero(arrays[name] <= 0.0)
+            if bad.size:
+                i = int(bad[0])
+                _fail(f"{w}.{name}[{i}]", float(arrays[name][i]), "must be > 0")
+        for name in ("mass_kg_per_m", "torsional_inertia_kg_m", "ei_nm2", "gj_nm2", "chord_m"):
+            _in_plausible(f"{w}.{name}", arrays[name], name)
+        _in_plausible(f"{w}.station_m[-1] (length)", st[-1], "length_m")
+        ea = arrays["ea_fraction"]
+        bad = np.flatnonzero((ea < 0.0) | (ea > 1.0))
+        if bad.size:
+            i = int(bad[0])
+            _fail(f"{w}.ea_fraction[{i}]", float(ea[i]), "must be in [0, 1]")
+        m, e, ith = arrays["mass_kg_per_m"], arrays["cg_offset_m"], arrays["torsional_inertia_kg_m"]
+        bad = np.flatnonzero(np.abs(e) > arrays["chord_m"] + 1e-12)
+        bad = bad[arrays["chord_m"][bad] > 0.0]
+        if bad.size:
+            i = int(bad[0])
+            _fail(f"{w}.cg_offset_m[{i}]", float(e[i]), f"must be within one chord of the elastic axis (|cg_offset_m| <= chord_m = {arrays['chord_m'][i]:g} m)")
+        chordless = arrays["chord_m"] == 0.0
+        bad = np.flatnonzero(chordless & (e != 0.0))
+        if bad.size:
+            i = int(bad[0])
+            _fail(f"{w}.cg_offset_m[{i}]", float(e[i]), "must be 0 where chord_m is 0 (no chordwise direction)")
+        need = m * e**2
+        bad = np.flatnonzero(ith < need * (1.0 - 1e-9))
+        if bad.size:
+            i = int(bad[0])
+            _fail(
+                f"{w}.torsional_inertia_kg_m[{i}]",
+                float(ith[i]),
+                f"must be >= mass_kg_per_m * cg_offset_m^2 = {need[i]:.6g} (inertia about the elastic axis)",
+            )
+        for name, arr in arrays.items():
+            object.__setattr__(self, name, arr)
+
+    @property
+    def length_m(self) -> float:
+        """Beam length L_i [m] (the last station)."""
+        return float(self.station_m[-1])
+
+    def at(self, name: str, x: np.ndarray) -> np.ndarray:
+        """Property ``name`` interpolated linearly at stations ``x`` [m] (shape (k,) -> (k,))."""
+        return np.interp(x, self.station_m, getattr(self, name))
