@@ -99,6 +99,18 @@ class FlutterPoint:
     aero_density_fixed: bool = False
 
 
+@dataclass
+class _SearchState:
+    """What one flutter search carries between its evaluations: the last trim (warm start of the next), the
+    number of evaluations, the last (trim, spectrum), and the rigid-body instabilities met (Mach, eigenvalue,
+    dominant coordinate)."""
+
+    guess: object = None
+    n: int = 0
+    last: tuple | None = None
+    rigid: list = field(default_factory=list)
+
+
 class FlutterAnalysis:
     """Flutter of an aircraft in a steady manoeuvre, with the paper's aerodynamic models.
 
@@ -176,17 +188,17 @@ class FlutterAnalysis:
         if not 0.0 < lo < hi < 1.0:
             raise ValueError(f"mach_range = {mach_range!r}: must satisfy 0 < lo < hi < 1")
         a_sound = speed_of_sound(float(manoeuvre.altitude_m))
-        state = {"guess": None, "n": 0, "rigid": []}
+        state = _SearchState()
 
         def g(mach: float) -> float:
             man = manoeuvre.with_speed(mach * a_sound)
-            point, spec = self.evaluate(man, state["guess"])
-            state["guess"], state["n"] = point, state["n"] + 1
-            state["last"] = (point, spec)
+            point, spec = self.evaluate(man, state.guess)
+            state.guess, state.n = point, state.n + 1
+            state.last = (point, spec)
             rig = spec.max_real("rigid", min_frequency_rad_s=0.0)
             if rig > 0:
                 crit = max((m for m in spec.of_kind("rigid")), key=lambda m: m.eigenvalue.real)
-                state["rigid"].append((mach, crit.eigenvalue, crit.dominant_dof))
+                state.rigid.append((mach, crit.eigenvalue, crit.dominant_dof))
             return _growth(spec)
 
         if mach_guess is not None and lo < mach_guess < hi:
@@ -196,7 +208,7 @@ class FlutterAnalysis:
                 # the crossing near the guess is the lowest one if the coarse grid below it is stable
                 below = [m for m in np.arange(lo, a, mach_step)]
                 if all(g(float(m)) <= 0 for m in below[-2:]):
-                    state["guess"] = None
+                    state.guess = None
                     return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state)
         grid = np.arange(lo, hi + 1e-12, mach_step)
         prev_m, prev_g = None, None
@@ -204,9 +216,9 @@ class FlutterAnalysis:
         _, surf_hi = self.aircraft.control_limits()
         for mach in grid:
             val = g(float(mach))
-            trim_point = state["last"][0]
+            trim_point = state.last[0]
             if np.any(np.abs(trim_point.u[1:]) > surf_hi[1:] + 1e-12):
-                state["guess"] = None  # trim needs a surface beyond its limit: not flyable, skip this speed
+                state.guess = None  # trim needs a surface beyond its limit: not flyable, skip this speed
                 skipped.append(float(mach))
                 continue
             if val > 0:
@@ -222,7 +234,7 @@ class FlutterAnalysis:
                         f"{self.aero_model}: already unstable at the lower end of the search, M = {mach:.4f} "
                         f"({manoeuvre.describe()}); lower mach_range[0]"
                     )
-                state["guess"] = None
+                state.guess = None
                 return self._point(manoeuvre, brentq(g, prev_m, float(mach), xtol=tol), a_sound, state)
             prev_m, prev_g = float(mach), val
         if prev_m is None:
@@ -254,7 +266,7 @@ class FlutterAnalysis:
                 return None
         return None
 
-    def _point(self, manoeuvre: SteadyManoeuvre, mach_f: float, a_sound: float, state: dict) -> FlutterPoint:
+    def _point(self, manoeuvre: SteadyManoeuvre, mach_f: float, a_sound: float, state: _SearchState) -> FlutterPoint:
         point, spec = self.evaluate(manoeuvre.with_speed(mach_f * a_sound))
         mode = spec.critical("elastic")
         desc = describe_mode(self.qs.structure, mode.shape, mode.eigenvalue)
@@ -275,8 +287,8 @@ class FlutterAnalysis:
             aero_density_kg_m3=(float(isa_density(float(manoeuvre.altitude_m))) if self.linear_aero_density_kg_m3 is None
                                 else float(self.linear_aero_density_kg_m3)),
             aero_density_fixed=self.linear_aero_density_kg_m3 is not None,
-            rigid_instabilities=tuple(state["rigid"]),
-            evaluations=state["n"] + 1,
+            rigid_instabilities=tuple(state.rigid),
+            evaluations=state.n + 1,
         )
 
 
