@@ -74,10 +74,17 @@ def rhs_rows(dynamics: Sequence[FlightDynamics], t: np.ndarray, x: np.ndarray, u
     ndarray, shape (m, n)
         x_dot of every row.
 
-    This first version loops over the rows; it is the single function to replace by a compiled kernel
-    evaluating all rows in one call.
+    Rows in still air (wind None) that share one model whose class offers ``rhs_batch(t, x, u, wind)`` (all
+    rows in one compiled call; t does not enter the equations without wind) go through it; the rest, and
+    all rows of a batch call that raised (to find which row failed), one by one through ``rhs``.
     """
     out = np.empty_like(x)
+    batch = getattr(dynamics[0].model, "rhs_batch", None) if len(dynamics) > 1 else None
+    if batch is not None and all(w is None for w in winds) and all(d.model is dynamics[0].model for d in dynamics):
+        try:
+            return np.asarray(batch(float(t[0]), x, u, None), dtype=float).reshape(x.shape)
+        except _MODEL_ERRORS:
+            pass  # evaluated row by row below, which names the failing rows
     for i, dyn in enumerate(dynamics):
         try:
             out[i] = dyn.model.rhs(float(t[i]), x[i], u[i], winds[i])

@@ -194,14 +194,17 @@ def main(argv: list[str] | None = None) -> None:
     venv = SubprocVecEnv(fns) if args.envs > 1 else DummyVecEnv(fns)
     venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, gamma=0.99)
     curve: list[tuple[int, float]] = []
-    deadline = time.monotonic() + 60.0 * args.minutes
+    deadline = [math.inf]
 
     class Budget(BaseCallback):
+        def _on_training_start(self) -> None:
+            deadline[0] = time.monotonic() + 60.0 * args.minutes  # the budget counts from the first step
+
         def _on_step(self) -> bool:
             for info in self.locals.get("infos", []):
                 if "episode" in info:
                     curve.append((self.num_timesteps, float(info["episode"]["r"])))
-            return time.monotonic() < deadline
+            return time.monotonic() < deadline[0]
 
     if args.algo == "PPO":
         model = sb3.PPO("MlpPolicy", venv, seed=args.seed, n_steps=512, batch_size=256, n_epochs=10, learning_rate=3e-4,

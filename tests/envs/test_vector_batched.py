@@ -175,3 +175,44 @@ def test_bad_input_is_named():
     with pytest.raises(ValueError, match="dynamics: was built with aero = 'quasi-steady', this env has aero = 'unsteady'"):
         envs.LevelHoldEnv(dynamics=venv.envs[0].dynamics.fork())
     venv.close()
+
+
+def test_rows_in_still_air_use_a_batched_model_kernel():
+    """rhs_rows calls a model's rhs_batch once for still-air rows of one model (the hook of a compiled batched
+    kernel) and returns what the per-row rhs gives; rows with a wind, and a batch call that raised, go row by row."""
+    from flexsim.envs.vector import rhs_rows
+
+    venv = envs.vector.LevelHoldVectorEnv(3, aero="quasi-steady", turbulence="none")
+    venv.reset(seed=0)
+    dyns = [e.dynamics for e in venv.envs]
+    model = dyns[0].model
+    calls = []
+
+    class Batched:
+        def __init__(self, fail):
+            self.fail = fail
+
+        def rhs(self, t, x, u, wind=None):
+            return model.rhs(t, x, u, wind)
+
+        def rhs_batch(self, t, xs, us, wind=None):
+            calls.append(len(xs))
+            if self.fail:
+                raise ValueError("one row is bad")
+            return np.stack([model.rhs(t, a, b) for a, b in zip(xs, us)])
+
+    x = np.array([e.state for e in venv.envs])
+    u = np.array([e.applied_controls for e in venv.envs])
+    expected = np.stack([model.rhs(0.0, a, b) for a, b in zip(x, u)])
+    for fail, n_calls in ((False, [3]), (True, [3])):
+        stub = Batched(fail)
+        for d in dyns:
+            d.model = stub
+        calls.clear()
+        errors = {}
+        np.testing.assert_array_equal(rhs_rows(dyns, np.zeros(3), x, u, [None] * 3, errors), expected)
+        assert calls == n_calls and errors == {}
+    calls.clear()
+    rhs_rows(dyns, np.zeros(3), x, u, [None, lambda t, p: np.zeros_like(p), None], {})
+    assert calls == []
+    venv.close()
