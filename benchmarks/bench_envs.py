@@ -238,7 +238,7 @@ def batched_rates(repeats: int, sync_256: bool) -> None:
         single_wall.append(100 / (time.perf_counter() - t0))
     env.close()
     base = statistics.median(single_cpu)
-    print(f"  {'single env (gym.make)':34s} {'N = 1':>7s} {base:9.0f} / {statistics.median(single_wall):7.0f}   1.00", flush=True)
+    print(f"  {'single env (gym.make)':38s} {'N = 1':>7s} {base:9.0f} / {statistics.median(single_wall):7.0f}   1.00", flush=True)
     for n in BATCH_SIZES:
         steps = max(3, 512 // n)
         modes = [("FlexSimVectorEnv (vector_entry_point)", "vector_entry_point")]
@@ -248,7 +248,7 @@ def batched_rates(repeats: int, sync_256: bool) -> None:
             def make():
                 return gym.make_vec(ENV_ID, num_envs=n, vectorization_mode=mode, max_episode_steps=10_000)
             cpu, wall = _per_cpu_second(make, n, steps, repeats)
-            print(f"  {label:34s} {f'N = {n}':>7s} {cpu:9.0f} / {wall:7.0f}   {cpu / base:4.2f}", flush=True)
+            print(f"  {label:38s} {f'N = {n}':>7s} {cpu:9.0f} / {wall:7.0f}   {cpu / base:4.2f}", flush=True)
     print(f"  target: {TARGET_BATCHED:,.0f} env-steps/s per core at N = 256 (issue #14); last column: per-core ratio to the "
           "single env of the same run")
 

@@ -117,12 +117,12 @@ def main() -> None:
     flex_rate = statistics.median(flex[0])
     rows = [("FlexSim GTM-LevelHold-v0, one env (50 Hz, flexible, 252 states)", flex_rate, "steps/s"),
             ("FlexSim GTM-LevelHold-v0, batched N = 256", flex[1], "env-steps/s (one run)")]
-    for label, code, unit in (("JSBSim c172p FGFDMExec.run()", JSBSIM, "Hz"), ("PyFlyt Fixedwing-Waypoints-v3 env.step", PYFLYT, "Hz")):
+    for label, code in (("JSBSim c172p FGFDMExec.run()", JSBSIM), ("PyFlyt Fixedwing-Waypoints-v3 env.step", PYFLYT)):
         got = _measure(args.peers_python, code, args.repeats)
         if isinstance(got, str):
             print(f"  {label}: not measured ({got})")
             continue
-        rows.append((f"{label} (model step {got[1]:.0f} {unit})", statistics.median(got[0]), "steps/s"))
+        rows.append((f"{label} ({got[1]:.0f} Hz steps)", statistics.median(got[0]), "steps/s"))
     for label, rate, unit in rows:
         print(f"  {label:72s} {rate:10.0f} {unit}   x{rate / flex_rate:8.1f} of the FlexSim single env")
 
