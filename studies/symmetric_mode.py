@@ -184,6 +184,14 @@ def bounds_table(rows: list[dict]) -> str:
         paper = [row for row in (TABLE_QS if r["model"] == "QS" else TABLE_US) if abs(row[0] - r["altitude_m"]) < 1]
         pc = f"{paper[0][1]:.4f} / {paper[0][2]:.2f}" if paper else "—"
         out.append(f"| {r['config']} | {r['model']} | {r['altitude_m']:.0f} | {sc} | {ac_} | {gap} | {pc} |")
+    by_config: dict[str, dict[float, float]] = {}
+    for r in rows:
+        crit = [c["M_F"] for c in (r["symmetric"], r["antisymmetric"]) if c]
+        if crit:
+            by_config.setdefault(r["config"], {})[r["altitude_m"]] = min(crit)
+    for cfg, m in by_config.items():
+        if 3048.0 in m and 9144.0 in m:
+            out.append(f"\n{cfg or 'config'}: critical M_F(9144 m) / M_F(3048 m) = {m[9144.0] / m[3048.0]:.3f}")
     return "\n".join(out)
 
 
@@ -235,7 +243,14 @@ def main() -> None:
             tag = [cfg["aircraft"]] + [f"{k} × {v:g}" for k, v in (cfg.get("factors") or {}).items()]
             if cfg.get("fixed_density_alt_m") is not None:
                 tag.append(f"ρ({cfg['fixed_density_alt_m']:.0f} m)")
-            rows += [{**r, "config": ", ".join(tag + ([r["config"]] if r["config"] else []))} for r in doc["rows"]]
+            rows += [{**r, "config": ", ".join(tag + ([r["config"]] if r["config"] else [])), "_base": ", ".join(tag[:len(tag) - (cfg.get("fixed_density_alt_m") is not None)]),
+                      "_rho_alt": cfg.get("fixed_density_alt_m")} for r in doc["rows"]]
+        # a fixed density rho(h*) equals the true density at h*: take that altitude's row from the true-density run
+        for r in [r for r in rows if r["_rho_alt"] is None]:
+            for cfg_name in {q["config"] for q in rows if q["_base"] == r["config"] and q["_rho_alt"] == r["altitude_m"]}:
+                if not any(q["config"] == cfg_name and q["altitude_m"] == r["altitude_m"] for q in rows):
+                    rows.append({**r, "config": cfg_name, "_rho_alt": r["altitude_m"]})
+        rows.sort(key=lambda q: (q["config"], q["altitude_m"]))
         print(bounds_table(rows))
         return
     scaling = json.loads(a.scaling) if a.scaling else None
