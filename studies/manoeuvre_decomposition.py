@@ -136,7 +136,7 @@ class _SwitchedCoupling:
                 lift, moment, tilt, drag, flow = orig(kin, rho_, mach_)
                 return lift, moment, 0.0 * tilt, 0.0 * drag, flow
 
-            inner._circulatory = circulatory
+            object.__setattr__(inner, "_circulatory", circulatory)  # study surgery on a sealed model (issue #10)
         elif resolution in ("fin_paper", "fin_normal"):
             # the paper's fin (eqs. 29-31): section drag linear in the fin's angle, d_v = q c C_Dav a_v = kappa l_v
             # (kappa = C_Dav / C_Lav), force l_v [0, a_v0, 1] + d_v [0, -1, a_v0] resolved with the fin's flow angle;
@@ -148,7 +148,7 @@ class _SwitchedCoupling:
                     return lift, moment, np.where(fin, 0.0, tilt), np.where(fin, 0.0, drag), flow
                 return lift, moment, tilt, np.where(fin, fin_kappa * lift, drag), flow
 
-            inner._circulatory = circulatory
+            object.__setattr__(inner, "_circulatory", circulatory)  # study surgery on a sealed model (issue #10)
         elif resolution != "local":
             raise ValueError(f"resolution = {resolution!r}: must be local, normal, fin_paper or fin_normal")
 
