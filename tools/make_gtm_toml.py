@@ -276,6 +276,19 @@ for side, sign in (("right", 1.0), ("left", -1.0)):
 # pylon 46 m^2 each (RB211-535 class, 2.5 m x 6.0 m). Points: fuselage mid-length, 40 % span of each surface
 # on its elastic axis, the engines. Total f = 2.677 m^2: C_D0 = 0.0148 on 181.25 m^2.
 if args.calibration and not args.paper:  # the paper-replication file keeps the paper's induced drag only
+    # Downwash of the wing at the horizontal tail (not in the paper; flexsim/model/coupling.py tail_downwash):
+    # USAF DATCOM sec. 4.4.1 (Hoak et al. 1978), d eps/d alpha at M -> 0 = 4.44 [K_A K_lambda K_H sqrt(cos L_c/4)]^1.19,
+    # K_A = 1/A - 1/(1 + A^1.7), K_lambda = (10 - 3 lambda)/7, K_H = (1 - |h_H/b|)/(2 l_H/b)^(1/3), with the reference
+    # wing of the note (section 3a): A = 7.88, taper 1.55/8.60, quarter-chord sweep 25 deg, b = 37.8 m; l_H = 20.86 m
+    # from the wing's root quarter chord (x = 17.46 + 8.60/4) to the quarter chord of the tail's mean chord
+    # (x = 40.47 m), h_H = 2.63 m the height of the tail's mean chord (z = 1.03 m) above the wing root (z = -1.6 m).
+    A_W, TAPER_W, SWEEP_W, B_W, L_H, H_H = 7.88, 1.55 / 8.60, math.radians(25.0), 37.8, 20.86, 2.63
+    k_a = 1.0 / A_W - 1.0 / (1.0 + A_W**1.7)
+    k_lambda = (10.0 - 3.0 * TAPER_W) / 7.0
+    k_h = (1.0 - abs(H_H / B_W)) / (2.0 * L_H / B_W) ** (1.0 / 3.0)
+    w('[aero]')
+    w(f'downwash_gradient = {4.44 * (k_a * k_lambda * k_h * math.sqrt(math.cos(SWEEP_W))) ** 1.19:.4f}   # d eps/d alpha at M -> 0, DATCOM 4.4.1 (tools/make_gtm_toml.py)')
+    w('')
     for name, comp, pos, area in (
         ("fuselage", "fuselage", (22.175, 0.0, 0.0), 1.212),
         ("right_wing_profile", "right_wing", (23.944, 8.688, -0.943), 0.4035),
@@ -291,5 +304,24 @@ if args.calibration and not args.paper:  # the paper-replication file keeps the 
         w(f'component = "{comp}"')
         w(f'position_m = [{pos[0]}, {pos[1]}, {pos[2]}]')
         w(f'drag_area_m2 = {area}')
+        w('')
+# Slender bodies carrying Munk's moment (not in the paper; flexsim/model/bodies.py, docs/options.md "Fuselage and
+# nacelle moments"): the fuselage, L = 44.35 m, D = 3.76 m (the drag build-up's), and each nacelle, 6.0 m x 2.5 m
+# (RB211-535 class, as above), with volume C_p pi D^2 L / 4 for a prismatic coefficient C_p = 0.8 [E] (a
+# cylindrical centre body with nose and tail cones; fuselage 394 m^3, nacelle 23.6 m^3). Reference points: the
+# fuselage's mid-length on its axis, the engines.
+if args.calibration and not args.paper:  # the paper-replication file keeps the paper's strips only
+    for name, comp, pos, length, diameter in (
+        ("fuselage", "fuselage", (22.175, 0.0, 0.0), L_F, 3.76),
+        ("right_nacelle", "right_wing", (19.93, 6.56, -2.2), 6.0, 2.5),
+        ("left_nacelle", "left_wing", (19.93, -6.56, -2.2), 6.0, 2.5),
+    ):
+        w('[[aero.body]]')
+        w(f'name = "{name}"')
+        w(f'component = "{comp}"')
+        w(f'position_m = [{pos[0]}, {pos[1]}, {pos[2]}]')
+        w(f'length_m = {length}')
+        w(f'diameter_m = {diameter}')
+        w(f'volume_m3 = {0.8 * math.pi * diameter**2 * length / 4.0:.4f}')
         w('')
 print("\n".join(out))

@@ -33,6 +33,7 @@ __all__ = [
     "StripAero",
     "AeroSettings",
     "DragItem",
+    "BodyItem",
     "COMPRESSIBILITY",
     "ControlSurface",
     "Component",
@@ -128,6 +129,44 @@ class DragItem:
         object.__setattr__(self, "drag_area_m2", _check_scalar(f"aero.drag.{self.name}.drag_area_m2", self.drag_area_m2, 0.0, 100.0))
 
 
+@dataclass(frozen=True, eq=False)
+class BodyItem:
+    """A slender body in the flow (fuselage, nacelle) carrying Munk's moment (not in the paper).
+
+    Its axis is parallel to the body x axis (a transport's fuselage and nacelles); its apparent masses
+    are those of the prolate spheroid of the same fineness ratio (:mod:`flexsim.model.bodies`).
+
+    Attributes
+    ----------
+    name : str
+    component : str
+        The component it is attached to (its moment loads that component's structure).
+    position_m : ndarray, shape (3,)
+        Reference point, body axes [m] (the centroid of its volume): where its velocity is taken.
+    length_m, diameter_m : float
+        Length l and maximum diameter d [m], 0 < d < l (fineness ratio l/d > 1).
+    volume_m3 : float
+        Volume [m^3], at most that of the cylinder pi d^2 l / 4.
+    """
+
+    name: str
+    component: str
+    position_m: np.ndarray
+    length_m: float
+    diameter_m: float
+    volume_m3: float
+
+    def __post_init__(self) -> None:
+        w = f"aero.body.{self.name}"
+        object.__setattr__(self, "position_m", _frozen_array(f"{w}.position_m", self.position_m, (3,)))
+        object.__setattr__(self, "length_m", _check_scalar(f"{w}.length_m", self.length_m, 0.0, 200.0, lo_open=True))
+        object.__setattr__(self, "diameter_m", _check_scalar(f"{w}.diameter_m", self.diameter_m, 0.0, 50.0, lo_open=True))
+        if not self.diameter_m < self.length_m:
+            _fail(f"{w}.diameter_m", self.diameter_m, f"must be smaller than length_m = {self.length_m:.6g} m (a slender body, fineness ratio > 1)")
+        cylinder = 0.25 * np.pi * self.diameter_m**2 * self.length_m
+        object.__setattr__(self, "volume_m3", _check_scalar(f"{w}.volume_m3", self.volume_m3, 0.0, cylinder, lo_open=True))
+
+
 @dataclass(frozen=True)
 class AeroSettings:
     """Aircraft-wide aerodynamic settings (the file's top-level ``[aero]`` table).
@@ -145,11 +184,20 @@ class AeroSettings:
     bending_incidence : bool
         Swept-wing bending-incidence coupling (default False, the paper's model): the strips' streamwise
         pitch includes sin(Lambda) times the bending slope (docs/options.md).
+    bodies : tuple of BodyItem
+        Slender bodies carrying Munk's moment (fuselage, nacelles; not in the paper, default none). Models
+        apply them unless ``AeroOptions(body_moments=False)``.
+    downwash_gradient : float
+        d(epsilon)/d(alpha) of the wing's downwash at the horizontal tail in incompressible flow, in [0, 1)
+        (not in the paper, whose tail sees the free stream: default 0). The tail strips see the downwash
+        epsilon = gradient x (wing lift) / (its incompressible lift per radian) (:mod:`flexsim.model.coupling`).
     """
 
     compressibility: str = "prandtl-glauert"
     drag: tuple = ()
     bending_incidence: bool = False
+    bodies: tuple = ()
+    downwash_gradient: float = 0.0
 
     def __post_init__(self) -> None:
         if self.compressibility not in COMPRESSIBILITY:
@@ -160,6 +208,14 @@ class AeroSettings:
         names = [d.name for d in self.drag]
         if len(set(names)) != len(names):
             _fail("aero.drag names", names, "must be unique")
+        object.__setattr__(self, "bodies", tuple(self.bodies))
+        gradient = _check_scalar("aero.downwash_gradient", self.downwash_gradient, 0.0, 1.0)
+        if gradient == 1.0:
+            _fail("aero.downwash_gradient", self.downwash_gradient, "must be in [0, 1): at 1 the tail would not see the angle of attack")
+        object.__setattr__(self, "downwash_gradient", gradient)
+        names = [b.name for b in self.bodies]
+        if len(set(names)) != len(names):
+            _fail("aero.body names", names, "must be unique")
 
 
 @dataclass(frozen=True, eq=False)
@@ -489,6 +545,14 @@ class Aircraft:
             s = comp.station_of(d.position_m)
             if not -0.05 * comp.length_m <= s <= comp.length_m * 1.05:
                 _fail(f"{w}.position_m", d.position_m.tolist(), f"projects to station {s:.4g} m, off component {comp.name} (0 to {comp.length_m:.4g} m)")
+        for b in self.aero_settings.bodies:
+            w = f"aero.body.{b.name}"
+            if b.component not in names:
+                _fail(f"{w}.component", b.component, f"must be one of the defined components: {', '.join(names)}")
+            comp = self.component(b.component)
+            s = comp.station_of(b.position_m)
+            if not -0.05 * comp.length_m <= s <= comp.length_m * 1.05:
+                _fail(f"{w}.position_m", b.position_m.tolist(), f"projects to station {s:.4g} m, off component {comp.name} (0 to {comp.length_m:.4g} m)")
 
     def content_digest(self) -> str:
         """SHA-256 (hex) of everything that defines the aircraft, all fields except ``source``.
@@ -553,7 +617,8 @@ class Aircraft:
             components=tuple(c for c in self.components if c.name in keep),
             lumped_masses=tuple(m for m in self.lumped_masses if m.component in keep),
             engines=tuple(e for e in self.engines if e.component in keep),
-            aero_settings=replace(self.aero_settings, drag=tuple(d for d in self.aero_settings.drag if d.component in keep)),
+            aero_settings=replace(self.aero_settings, drag=tuple(d for d in self.aero_settings.drag if d.component in keep),
+                                  bodies=tuple(b for b in self.aero_settings.bodies if b.component in keep)),
             name=f"{self.name}[{','.join(keep)}]",
         )
 

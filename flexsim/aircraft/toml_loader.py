@@ -24,6 +24,7 @@ from flexsim.aircraft.definition import (
     Aircraft,
     Component,
     ControlSurface,
+    BodyItem,
     DragItem,
     Engine,
     LumpedMass,
@@ -46,8 +47,10 @@ _DESIGN_TO_BODY = np.diag([-1.0, 1.0, -1.0])
 _TOP_KEYS = {"schema_version": True, "name": True, "description": False, "frame": False,
              "components": True, "lumped_masses": False, "engines": False, "structural_damping_ratio": False,
              "formulation": False, "aero": False}
-_AIRCRAFT_AERO_KEYS = {"compressibility": False, "drag": False, "bending_incidence": False}
+_AIRCRAFT_AERO_KEYS = {"compressibility": False, "drag": False, "bending_incidence": False, "body": False,
+                       "downwash_gradient": False}
 _DRAG_KEYS = {"name": True, "component": True, "position_m": True, "drag_area_m2": True}
+_BODY_KEYS = {"name": True, "component": True, "position_m": True, "length_m": True, "diameter_m": True, "volume_m3": True}
 _COMPONENT_KEYS = {"root_m": True, "euler_deg": True, "length_m": True, "bending_modes": False,
                    "torsion_modes": False, "rigid": False, "section_inertia": False, "sweep_deg": False,
                    "sections": True, "control_surface": False, "aero": False}
@@ -275,7 +278,18 @@ def _aero_settings(table: Any, frame: "_Frame") -> AeroSettings:
         drag.append(DragItem(name=str(item["name"]), component=str(item["component"]),
                              position_m=frame.point(_vector(f"{where}.position_m", item["position_m"])),
                              drag_area_m2=_number(f"{where}.drag_area_m2", item["drag_area_m2"])))
-    return AeroSettings(compressibility=comp, drag=tuple(drag), bending_incidence=table.get("bending_incidence", False))
+    items = table.get("body", [])
+    if not isinstance(items, list):
+        raise AircraftDefinitionError(f"aero.body = {items!r}: must be an array of tables ([[aero.body]])")
+    bodies = []
+    for i, item in enumerate(items):
+        where = f"aero.body[{i}]"
+        _check_keys(where, item, _BODY_KEYS)
+        bodies.append(BodyItem(name=str(item["name"]), component=str(item["component"]),
+                               position_m=frame.point(_vector(f"{where}.position_m", item["position_m"])),
+                               **{k: _number(f"{where}.{k}", item[k]) for k in ("length_m", "diameter_m", "volume_m3")}))
+    return AeroSettings(compressibility=comp, drag=tuple(drag), bending_incidence=table.get("bending_incidence", False),
+                        bodies=tuple(bodies), downwash_gradient=table.get("downwash_gradient", 0.0))
 
 
 def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:

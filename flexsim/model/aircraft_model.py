@@ -30,6 +30,7 @@ from flexsim.aircraft.definition import Aircraft
 from flexsim._immutable import Immutable
 from flexsim.atmosphere import G0, isa_density, speed_of_sound
 from flexsim.model.coupling import AeroCoupling, AeroOptions
+from flexsim.model.bodies import SlenderBodies
 from flexsim.model.drag import ParasiteDrag
 from flexsim.model.layout import StateLayout
 from flexsim.kinematics import dcm_321, euler_rate_matrix_inverse
@@ -165,6 +166,10 @@ class AircraftModel(Immutable):
                     and self.aero.formulation == "physical")
         #: Parasite drag of the file's drag items (:mod:`flexsim.model.drag`), or None.
         self.parasite_drag = ParasiteDrag(self.structure) if has_drag else None
+        has_bodies = (aero is not None and aero.body_moments and bool(aircraft.aero_settings.bodies)
+                      and self.aero.formulation == "physical")
+        #: Munk moments of the file's slender bodies (:mod:`flexsim.model.bodies`), or None.
+        self.bodies = SlenderBodies(self.structure) if has_bodies else None
         if self.aero is not None:
             strips = self.aero.strips
             self._strip_dcm = np.stack([self.aircraft.component(c).dcm for c in strips.component]) if strips.n_strips else np.zeros((0, 3, 3))
@@ -327,6 +332,8 @@ class AircraftModel(Immutable):
             f = f + q_a
             if self.parasite_drag is not None:
                 f = f + self.parasite_drag.generalized_force(q, vel, rho)
+            if self.bodies is not None:
+                f = f + self.bodies.generalized_force(q, vel, rho)
         return m, f, inflow_terms
 
     def air_density(self, x: np.ndarray) -> float:
@@ -342,7 +349,7 @@ class AircraftModel(Immutable):
     def aerodynamic_force(self, x: np.ndarray, u: np.ndarray, t: float = 0.0, wind: Wind | None = None) -> np.ndarray:
         """Generalized aerodynamic force at a state, without the apparent-mass terms, shape (n_v,).
 
-        Strip airloads (explicit part of :meth:`AeroCoupling.evaluate`) plus parasite drag; rows 0-2 are the
+        Strip airloads (explicit part of :meth:`AeroCoupling.evaluate`) plus parasite drag and body moments; rows 0-2 are the
         resultant force in body axes [N], rows 3-5 the moment about o [N m]. Zero without aerodynamics.
         ``wind``: the disturbance (see :meth:`rhs`), None for still air.
         """
@@ -357,6 +364,8 @@ class AircraftModel(Immutable):
         out += q_a
         if self.parasite_drag is not None:
             out += self.parasite_drag.generalized_force(q, vel, rho)
+        if self.bodies is not None:
+            out += self.bodies.generalized_force(q, vel, rho)
         return out
 
     def rhs(self, t: float, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> np.ndarray:

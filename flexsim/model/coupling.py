@@ -54,7 +54,7 @@ from flexsim.aircraft.definition import COMPRESSIBILITY, FORMULATIONS
 from flexsim.model.strips import StripSet
 from flexsim.structure.model import StructuralModel
 
-__all__ = ["AeroOptions", "AeroCoupling", "AERO_MODELS", "StripLoads", "StripKinematics"]
+__all__ = ["AeroOptions", "AeroCoupling", "AERO_MODELS", "StripLoads", "StripKinematics", "tail_downwash"]
 
 #: Aerodynamic models by name (the "theodorsen" frequency-domain model is for linear flutter analysis).
 AERO_MODELS = ("quasi-steady", "unsteady", "theodorsen")
@@ -90,6 +90,14 @@ class AeroOptions:
         Swept-wing bending-incidence coupling: the strips' pitch includes the streamwise rotation of the
         bending slope, (p . -y_i) U_i'(x) q_i = sin(Lambda) w' (:func:`_bending_slope_pitch`). None (default)
         takes the aircraft file's ``[aero] bending_incidence`` (itself False: the paper's model).
+    downwash : bool
+        The horizontal tail sees the wing's downwash with the aircraft file's ``[aero] downwash_gradient``
+        (:func:`tail_downwash`; default True; the file's default gradient 0 means none). Physical formulation
+        only, like the parasite drag.
+    body_moments : bool
+        Apply Munk's moment of the aircraft file's slender bodies (``[[aero.body]]``: fuselage, nacelles;
+        :mod:`flexsim.model.bodies`; default True; an aircraft without items has none). Like the parasite
+        drag they belong to the physical formulation and are not applied with the paper's.
     """
 
     model: str = "unsteady"
@@ -99,6 +107,8 @@ class AeroOptions:
     compressibility: str = "file"
     parasite_drag: bool = True
     bending_incidence: bool | None = None
+    downwash: bool = True
+    body_moments: bool = True
 
     def __post_init__(self) -> None:
         if self.model not in AERO_MODELS:
@@ -114,6 +124,10 @@ class AeroOptions:
             raise ValueError(f"bending_incidence = {self.bending_incidence!r}: must be True, False or None (the file's)")
         if not isinstance(self.parasite_drag, bool):
             raise ValueError(f"parasite_drag = {self.parasite_drag!r}: must be True or False")
+        if not isinstance(self.downwash, bool):
+            raise ValueError(f"downwash = {self.downwash!r}: must be True or False")
+        if not isinstance(self.body_moments, bool):
+            raise ValueError(f"body_moments = {self.body_moments!r}: must be True or False")
 
 
 def _bending_slope_pitch(structure: StructuralModel, strips: StripSet) -> np.ndarray:
@@ -139,6 +153,33 @@ def _bending_slope_pitch(structure: StructuralModel, strips: StripSet) -> np.nda
         slope = bending_shapes(strips.station_m[idx], comp.length_m, comp.bending_modes, derivative=1)  # (k, m) [1/m]
         out[np.ix_(idx, np.arange(structure.dofs.n_v)[structure.dofs.v_bending(name)])] = -strips.p[idx, 1][:, None] * slope
     return out
+
+
+def tail_downwash(wing_weight: np.ndarray, u0: np.ndarray, wc: np.ndarray, speed: float, beta: float, gradient: float) -> float:
+    """Downwash angle epsilon [rad] of the wing at the horizontal tail (not in the paper).
+
+    epsilon = (d epsilon / d alpha)_0 L_w / L_alpha0,w: the wing's circulatory lift over its incompressible
+    lift per radian, L_w = sum Cl_a0/beta rho b u0 (w0 + w1/2 - lambda0) w, L_alpha0,w = rho V^2 sum Cl_a0 b w.
+    At M -> 0 and a uniform angle of attack this is (d epsilon/d alpha)_0 alpha; at Mach M it grows with the
+    wing's lift slope, the compressibility scaling of the USAF DATCOM (sec. 4.4.1: d epsilon/d alpha at M is
+    the incompressible value times CL_alpha,w(M)/CL_alpha,w(0); Hoak et al. 1978); the downwash follows the
+    circulation the wing actually carries (flexible twist, flaps, unsteady lag). Quasi-steady: the wake's
+    travel time to the tail is neglected (no downwash lag, no Cm_alpha_dot from it).
+
+    Parameters
+    ----------
+    wing_weight : ndarray, shape (n_s,)
+        Cl_a0 b w of each wing strip over the sum of Cl_a0 b w over the wing strips; 0 on other strips [-].
+    u0, wc : ndarray, shape (n_s,)
+        Chordwise speed and w0 + w1/2 - lambda0 of every strip [m/s].
+    speed : float
+        Flight speed V [m/s].
+    beta : float
+        Compressibility factor of the strips' lift slope [-].
+    gradient : float
+        (d epsilon / d alpha) at M -> 0 [-].
+    """
+    return gradient * float(wing_weight @ (u0 * wc)) / (beta * max(speed, 1.0) ** 2)
 
 
 class StripKinematics(NamedTuple):
@@ -214,6 +255,17 @@ class AeroCoupling(Immutable):
         d_x = np.einsum("sk,sk->s", s.d, x_b)
         if np.any(self._paper_strips & (np.abs(d_x) < 1e-3)):
             raise ValueError('formulation = "paper": a wing/stabilizer strip chord is normal to body x; the force cannot be resolved without a body-x component')
+        # downwash of the wings at the horizontal tail (physical formulation; tail_downwash)
+        gradient = structure.aircraft.aero_settings.downwash_gradient if (options.downwash and self.formulation == "physical") else 0.0
+        comps = np.array(s.component)
+        wing = np.isin(comps, ("right_wing", "left_wing"))
+        tail = np.isin(comps, ("right_htail", "left_htail"))
+        #: d(epsilon)/d(alpha) at M -> 0 in force (0: the tail sees the free stream, as in the paper).
+        self.downwash_gradient = float(gradient) if wing.any() and tail.any() else 0.0
+        weight = np.where(wing, s.lift_slope0 * s.semichord_m * s.width_m, 0.0)
+        self._dw_wing_weight = weight / weight.sum() if wing.any() else weight
+        z_b = np.array([structure.aircraft.component(c).dcm[:, 2] for c in s.component]) if s.n_strips else np.zeros((0, 3))
+        self._dw_tail_nz = np.where(tail, np.einsum("sk,sk->s", s.n, z_b), 0.0)  # n . z_body of the tail strips
         self._n_over_d_x = np.where(self._paper_strips, np.einsum("sk,sk->s", s.n, x_b) / np.where(np.abs(d_x) < 1e-3, 1.0, d_x), 0.0)
 
     def kinematics(self, q, xi, vel, lam, u, wind_c=None) -> StripKinematics:
@@ -261,6 +313,20 @@ class AeroCoupling(Immutable):
             return 1.0
         return float(np.sqrt(1.0 - min(mach, _MACH_CAP) ** 2))
 
+    def _with_downwash(self, kin: StripKinematics, vel: np.ndarray, mach: float) -> StripKinematics:
+        """The tail strips' kinematics in the wing's downwash (:func:`tail_downwash`).
+
+        The downwash is an air velocity epsilon V along body z (down) at the tail: the normal velocity of each
+        tail strip relative to the air falls by epsilon V (n . z_b), and with it w0, w0 + w1/2 and the moment's
+        downwash (like a wind, it does not force the inflow states or the apparent mass).
+        """
+        if not self.downwash_gradient:
+            return kin
+        speed = float(np.sqrt(vel[0:3] @ vel[0:3]))
+        eps = tail_downwash(self._dw_wing_weight, kin.u0, kin.wc, speed, self.compressibility_factor(mach), self.downwash_gradient)
+        shift = -eps * speed * self._dw_tail_nz
+        return kin._replace(w_ea=kin.w_ea + shift, w34=kin.w34 + shift, wc=kin.wc + shift, w_moment=kin.w_moment + shift)
+
     def _circulatory(self, kin: StripKinematics, rho: float, mach: float):
         """Circulatory lift, moment about the EA, lift x flow angle and drag per unit span.
 
@@ -269,13 +335,15 @@ class AeroCoupling(Immutable):
         lift are formed without dividing by u0 (well defined in still air).
         """
         b = self._b
-        kfac = self._k0 / self.compressibility_factor(mach)
+        beta = self.compressibility_factor(mach)
+        kfac = self._k0 / beta
+        beta_i = beta if self.formulation == "physical" else 1.0  # induced angle of the compressible lift (docstring)
         two_pi_rho_b = 2.0 * np.pi * rho * b * kfac
         lift = two_pi_rho_b * kin.u0 * kin.wc
         moment = 0.5 * two_pi_rho_b * b * kin.u0 * kin.w_moment + self._ab * lift
         flow = kin.wc - kin.u0 * kin.alpha_chord  # u0 x flow angle [m/s]
         lift_tilt = two_pi_rho_b * kin.wc * flow  # L x flow angle
-        drag = two_pi_rho_b * kin.wc * kin.wc * (1.0 - self._k0) + rho * kin.u0 * kin.u0 * b * self.strips.cd0
+        drag = two_pi_rho_b * kin.wc * kin.wc * (1.0 - self._k0) / beta_i + rho * kin.u0 * kin.u0 * b * self.strips.cd0
         return lift, moment, lift_tilt, drag, flow / np.maximum(kin.u0, 1.0)
 
     def evaluate(self, q, xi, vel, lam, u, rho, mach, wind_c=None):
@@ -311,7 +379,7 @@ class AeroCoupling(Immutable):
         """
         s = self.strips
         b, ab = self._b, self._ab
-        kin = self.kinematics(q, xi, vel, lam, u, wind_c)
+        kin = self._with_downwash(self.kinematics(q, xi, vel, lam, u, wind_c), vel, mach)
         p_mat, d_mat, r_mat = kin.p_mat, kin.d_mat, self._proj_p
         lift_c, moment_c, lift_tilt, drag, flow_angle = self._circulatory(kin, rho, mach)
         w = s.width_m
@@ -352,6 +420,6 @@ class AeroCoupling(Immutable):
 
     def strip_loads(self, q, xi, vel, lam, u, rho, mach, wind_c=None) -> StripLoads:
         """Per-strip circulatory loads at a state (no apparent mass), for outputs and tests."""
-        kin = self.kinematics(q, xi, vel, lam, u, wind_c)
+        kin = self._with_downwash(self.kinematics(q, xi, vel, lam, u, wind_c), vel, mach)
         lift, moment, _, drag, flow_angle = self._circulatory(kin, rho, mach)
         return StripLoads(kin.u0, kin.w_ea, lift, moment, drag, flow_angle)

@@ -23,7 +23,21 @@ import numpy as np
 from flexsim._immutable import Immutable
 from flexsim.structure.model import StructuralModel
 
-__all__ = ["ParasiteDrag"]
+__all__ = ["ParasiteDrag", "attached_point_maps"]
+
+
+def attached_point_maps(structure: StructuralModel, component: str, position_m: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Kinematic maps of a point riding on ``component`` at ``position_m`` (body axes [m]), eqs. (5)-(6), (18).
+
+    Returns g0 (6, n_v) and g1 (3, 3, nq) of its elastic-axis station (velocity A(q) V = (g0[:3] + g1 q) V
+    with g1 on the omega columns, section rotation rate g0[3:] V; component axes) and the offset rho (3,) of the
+    point from that station in component axes [m]. The station is the point's projection on the elastic axis,
+    clipped to [0, length].
+    """
+    comp = structure.aircraft.component(component)
+    station = float(np.clip(comp.station_of(position_m), 0.0, comp.length_m))
+    maps = structure.point_maps(component, np.array([station]))
+    return maps.g0[0], maps.g1[0], comp.dcm @ (np.asarray(position_m, float) - maps.r0[0])
 
 
 class ParasiteDrag(Immutable):
@@ -51,11 +65,7 @@ class ParasiteDrag(Immutable):
         self._g1 = np.zeros((k, 3, 3, nq))
         self._offset = np.zeros((k, 3))
         for j, d in enumerate(items):
-            comp = structure.aircraft.component(d.component)
-            station = float(np.clip(comp.station_of(d.position_m), 0.0, comp.length_m))
-            maps = structure.point_maps(d.component, np.array([station]))
-            self._g0[j], self._g1[j] = maps.g0[0], maps.g1[0]
-            self._offset[j] = comp.dcm @ (d.position_m - maps.r0[0])  # rho_i, component axes
+            self._g0[j], self._g1[j], self._offset[j] = attached_point_maps(structure, d.component, d.position_m)
 
     @property
     def n_items(self) -> int:

@@ -16,10 +16,13 @@ built-in cases (``docs/validation.md`` gives the sources and the measured errors
 * ``free-flight-conservation`` — the free GTM tumbling in vacuum without gravity conserves energy, linear
   momentum and angular momentum about O (a consequence of eq. 33): relative drifts below 1e-9.
 * ``phugoid-lanchester`` — phugoid of the quasi-rigid GTM (incompressible, 6000 m, M 0.6, with its parasite
-  drag) against Lanchester's sqrt(2) g / V (5 %) and D / (sqrt(2) L) (20 %) (Lanchester 1908; Etkin & Reid
-  1996, sec. 6.4).
+  drag, without the fuselage/nacelle moments and the tail downwash: Lanchester's constant angle of attack is the
+  stiff-pitch limit) against Lanchester's sqrt(2) g / V (5 %) and D / (sqrt(2) L) (20 %) (Lanchester 1908;
+  Etkin & Reid 1996, sec. 6.4).
 * ``coordinated-turn-load-factor`` — load factor of the coordinated level turn at 9144 m, M 0.78,
-  R = 5 km against sqrt(1 + (V^2/gR)^2) and its wind-axis bank against atan(V^2/gR).
+  R = 5 km against sqrt(1 + (V^2/gR)^2) and against 1/cos(mu), mu the wind-axis bank (the bank of the lift about
+  the velocity, which the point-mass relation n = 1/cos(mu) means; the Euler roll angle phi differs from it when
+  the body is pitched: sin(mu) = sin(phi) cos(theta) at zero sideslip), and mu against atan(V^2/gR).
 
 A user case is a TOML file (:func:`load_case`) naming an aircraft file and the reference values.
 """
@@ -205,7 +208,10 @@ def _phugoid() -> list[Check]:
     from flexsim.model.coupling import AeroOptions
     from flexsim.trim import SteadyManoeuvre, trim
 
-    model = AircraftModel(load_aircraft("gtm"), aero=AeroOptions("quasi-steady", compressibility="none"), variant="quasi-rigid")
+    # Lanchester's model is the limit of a stiff pitch (constant angle of attack): the strips-only aircraft (no
+    # fuselage/nacelle moments, no tail downwash; neutral point 59 % of the chord behind the CG) is closest to it
+    options = AeroOptions("quasi-steady", compressibility="none", body_moments=False, downwash=False)
+    model = AircraftModel(load_aircraft("gtm"), aero=options, variant="quasi-rigid")
     man = SteadyManoeuvre.level(6000.0, mach=0.6)
     point = trim(model, man)
     spec = spectrum(model, point.x, point.u, aero_model="quasi-steady")
@@ -228,7 +234,12 @@ def _coordinated_turn() -> list[Check]:
     point = trim(model, SteadyManoeuvre.turn(9144.0, radius, mach=0.78, coordinated=True))
     ratio = point.manoeuvre.speed_m_s**2 / (model.gravity_m_s2 * radius)
     src = "steady level coordinated turn: n = sqrt(1 + (V^2/gR)^2), tan(mu) = V^2/(gR) (Stevens & Lewis 2003, sec. 3.6)"
+    bank = ("point-mass turn: n = L/W = 1/cos(mu), mu the bank of the lift about the velocity (wind axes); in Euler "
+            "angles sin(mu) = sin(phi) cos(theta) at zero sideslip and climb: with beta = 0 the wind and body y axes coincide "
+            "and their down components are sin(mu) cos(gamma) and sin(phi) cos(theta) (3-2-1 direction cosines, "
+            "docs/reference/aero-kinematics.md sec. 6.1; Stevens & Lewis 2003, sec. 3.6)")
     return [Check("load factor |F|/W", "-", math.hypot(1.0, ratio), point.load_factor_total, 5e-3, src),
+            Check("load factor |F|/W against 1/cos(mu)", "-", 1.0 / math.cos(point.bank_wind), point.load_factor_total, 5e-3, bank),
             Check("wind-axis bank angle", "deg", math.degrees(math.atan(ratio)), math.degrees(point.bank_wind), 5e-3, src),
             Check("sideslip at the CG", "deg", 0.0, math.degrees(point.sideslip_cg), 0.05, "coordinated: zero sideslip", absolute=True)]
 

@@ -298,32 +298,38 @@ def _demand(model: AircraftModel, man: SteadyManoeuvre) -> str:
             f"; a larger radius or a lower speed asks less)")
 
 
-def _newton_polish(fun, z: np.ndarray, iterations: int = 8) -> np.ndarray:
-    """Chord-Newton steps polishing hybr's root (it stops at ~1e-8 at high dynamic pressure).
+def _newton_polish(fun, z: np.ndarray, iterations: int = 12) -> np.ndarray:
+    """Newton steps polishing hybr's root (it stops at ~1e-8 at high dynamic pressure, or earlier when it
+    makes no progress from a distant guess).
 
-    One central-difference Jacobian and its LU serve every step (Kelley, *Iterative Methods for Linear and
-    Nonlinear Equations*, SIAM 1995, §5.4: the chord method converges linearly at a rate proportional to
-    the distance from the root, here ~1e-8); the Jacobian is rebuilt once, at the current point, if a step
-    fails to reduce the residual. Stops below 1e-13 or when a step no longer reduces the residual.
+    A central-difference Jacobian and its LU serve as long as each step reduces the residual at least tenfold
+    (the chord method, Kelley, *Iterative Methods for Linear and Nonlinear Equations*, SIAM 1995, §5.4: it
+    converges linearly at a rate proportional to the distance from the root); after a slower step, or a step
+    that fails to reduce the residual, the Jacobian is rebuilt at the current point (Newton's method, §5.1),
+    so that a start far from the root still converges quadratically. Stops below 1e-13, or when a step with a
+    fresh Jacobian no longer reduces the residual.
     """
     r = fun(z)
     lu = None
-    rebuilt = False
+    fresh = False
     for _ in range(iterations):
         if not np.all(np.isfinite(r)) or np.linalg.norm(r) < 1e-13:
             break
         if lu is None:
-            lu = _jacobian_lu(fun, z, r.size)
+            lu, fresh = _jacobian_lu(fun, z, r.size), True
             if lu is None:
                 break
         z_new = z - lu_solve(lu, r, check_finite=False)
         r_new = fun(z_new)
         if not np.linalg.norm(r_new) < np.linalg.norm(r):
-            if rebuilt:
+            if fresh:
                 break
-            lu, rebuilt = None, True  # the chord went stale: one fresh Jacobian at z
+            lu = None  # the chord went stale: a fresh Jacobian at z
             continue
-        z, r = z_new, r_new
+        slow = np.linalg.norm(r_new) > 0.1 * np.linalg.norm(r)
+        z, r, fresh = z_new, r_new, False
+        if slow:
+            lu = None
     return z
 
 

@@ -14,6 +14,8 @@
 
 import math
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -116,9 +118,13 @@ def test_calibrated_gtm_us_flutter_within_3_percent_of_table_3(altitude_m, mach_
 
     The two altitudes the calibration meets (3 % in Mach, 10 % in frequency at 3048 m); 6096 and 9144 m
     are +11.6 % and +17.1 % (documented, not asserted). Finite state and p-k agree within 2 % (issue 4).
+    The calibration was fitted to the paper's aerodynamics, strips only: the bundled file's fuselage and nacelle
+    moments and tail downwash (beyond the paper, docs/options.md) are taken out here; with them M_F is
+    +0.16 % (0 m) and +0.10 % (3048 m) higher (measured p-k: 0.68579 against 0.68466, 0.76587 against 0.76507).
     """
     paper = {row[0]: row for row in TABLE_US}[altitude_m]
     gtm = load_aircraft("gtm")
+    gtm = replace(gtm, aero_settings=replace(gtm.aero_settings, bodies=(), downwash_gradient=0.0))
     pk = FlutterAnalysis(gtm, "theodorsen").search(SteadyManoeuvre.level(altitude_m, mach=0.7), mach_range=mach_range)
     fs = FlutterAnalysis(gtm, "unsteady").search(SteadyManoeuvre.level(altitude_m, mach=0.7), mach_range=mach_range)
     assert pk.mach == pytest.approx(paper[1], rel=0.03)

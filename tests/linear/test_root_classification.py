@@ -5,7 +5,7 @@ states are the same plus the inflow states); the structural roots are those leas
 by their participation factors (Perez-Arriaga, Verghese & Schweppe 1982). With the quasi-steady model the GTM
 in cruise has 8 rigid-body roots (spiral, phugoid, Dutch roll, short period, roll) and 48 elastic ones; with
 Peters' inflow the same 48 elastic roots must appear, the flight-dynamics roots must be those of the
-quasi-steady model within the wake's effect (phugoid, Dutch roll and spiral within 2 %), and everything else
+quasi-steady model within the wake's effect (phugoid, Dutch roll and spiral within 2 %, short period 5 %), and everything else
 is an aerodynamic-lag root. Measured: 9 rigid (the roll subsidence couples with a wake root into the pair
 -4.32 +- 0.88j), 48 elastic, 191 aerodynamic.
 """
@@ -40,7 +40,8 @@ def test_unsteady_roots_are_told_apart(spectra):
     assert len(lag) == len(s_fs.modes) - len(rigid) - len(elastic)
     # the structural roots are the ones least tied to the inflow states (ranking by participation)
     assert max(m.inflow_participation for m in (*rigid, *elastic)) < min(m.inflow_participation for m in lag)
-    assert all(m.inflow_participation < 0.1 for m in rigid if abs(m.eigenvalue) < 2.0)  # phugoid, spiral, Dutch roll
+    # phugoid (u), spiral (r), Dutch roll (v); the short period (w) and the roll (p) ride on the wing's lift lag
+    assert all(m.inflow_participation < 0.1 for m in rigid if m.dominant_dof in ("u", "r", "v"))
 
 
 def test_flight_dynamics_roots_match_the_quasi_steady_ones(spectra):
@@ -48,10 +49,12 @@ def test_flight_dynamics_roots_match_the_quasi_steady_ones(spectra):
     fs_rigid = [m.eigenvalue for m in s_fs.of_kind("rigid")]
     for m in s_qs.of_kind("rigid"):
         lam = m.eigenvalue
-        if abs(lam) > 3.0:  # roll subsidence: changed by the wake lag (cluster)
+        if m.dominant_dof == "p":  # roll subsidence: changed by the wake lag (cluster)
             continue
         nearest = min(fs_rigid, key=lambda z: abs(z - lam))
-        tol = 0.02 if abs(lam) < 2.0 else 0.05  # short period: wake lag changes it by a few %
+        # short period (w-dominant): the wake lag changes it by a few % (measured 4.1 %: -0.555 +- 1.606j quasi-
+        # steady, -0.515 +- 1.661j with Peters' inflow, at the realistic static margin of 28 %)
+        tol = 0.05 if m.dominant_dof == "w" else 0.02
         assert abs(nearest - lam) <= tol * abs(lam), (lam, nearest)
 
 

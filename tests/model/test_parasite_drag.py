@@ -54,7 +54,11 @@ def test_gtm_cruise_lift_to_drag_and_glide(gtm):
     off = AircraftModel(gtm, aero=AeroOptions("quasi-steady", parasite_drag=False))
     assert off.parasite_drag is None
     induced = trim(off, SteadyManoeuvre.level(9144.0, mach=0.78))
-    assert induced.lift_n / induced.drag_n > 50.0  # the paper's induced-drag-only aircraft
+    # induced drag only: below the elliptic wing's L/D = pi A / C_L (minimum induced drag, Prandtl's lifting line;
+    # A = 7.88, S = 181.25 m^2), and not far below it (span efficiency e > 0.6 for a transport wing and its tail)
+    c_l = induced.lift_n / (0.5 * model.air_density(induced.x) * induced.manoeuvre.speed_m_s**2 * 181.25)
+    elliptic = math.pi * 7.88 / c_l
+    assert 0.6 * elliptic < induced.lift_n / induced.drag_n < elliptic
     assert AircraftModel(gtm, aero=AeroOptions("quasi-steady", formulation="paper")).parasite_drag is None
 
 

@@ -48,6 +48,10 @@ def test_coordinated_turn_satisfies_the_turn_closed_forms(model, turns):
     assert math.tan(c.phi) == pytest.approx(psi_dot * speed_cg / g / math.cos(alpha_cg), rel=1e-3)
     assert math.tan(c.bank_wind) == pytest.approx(v * v / (g * R), rel=2e-3)
     assert c.load_factor_total == pytest.approx(1.0 / math.cos(c.bank_wind), rel=1e-3)
+    # the same in Euler angles: at zero sideslip the wind and body y axes coincide, and their down components are
+    # sin(mu) cos(gamma) and sin(phi) cos(theta) (3-2-1 direction cosines, docs/reference/aero-kinematics.md
+    # sec. 6.1), so n = 1/sqrt(1 - sin^2(phi) cos^2(theta)) at gamma = 0; 1/cos(phi) is 0.6 % high at theta = 5 deg
+    assert c.load_factor_total == pytest.approx(1.0 / math.sqrt(1.0 - (math.sin(c.phi) * math.cos(c.theta)) ** 2), rel=1e-3)
     assert c.load_factor_total == pytest.approx(math.hypot(1.0, v * v / (g * R)), rel=1e-3)
 
 
