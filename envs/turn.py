@@ -28,8 +28,8 @@ class TurnTask:
     mach : float
         Mach number of both [-] (default 0.75).
     radius_range_m : tuple of float
-        The commanded radius |R| is drawn uniformly from this range [m] (default 7000-12000 m: bank 24 to
-        38 deg on the GTM at M 0.75), the direction (right R > 0, left R < 0) with probability 1/2 each.
+        The commanded radius |R| is drawn uniformly from this range [m] (default 7000-12000 m: bank 26 to
+        41 deg on the GTM at M 0.75), the direction (right R > 0, left R < 0) with probability 1/2 each.
     reward : TrackingReward
         Costs on ``turn_rate_error_rad_s`` (weight 0.4, saturating at 0.005 rad/s), ``altitude_error_m`` (0.2,
         30 m), ``airspeed_error_m_s`` (0.15, 5 m/s), ``sideslip_error_rad`` (0.1, 0.02 rad); control rate 0.15.
@@ -69,9 +69,9 @@ class TurnEnv(FlexSimEnv):
     The flexible notional GTM (see ``FlexSim/GTM-LevelHold-v0``) starts near its trim in level flight at
     9144 m and Mach 0.75 and must enter and hold a steady level turn of a commanded radius R (drawn per
     episode): heading rate psi_dot = V / R at constant altitude and airspeed, with the sideslip of the steady turn.
-    The steady turn is a trim of the same model (paper eqs. 36-37): bank about 34 deg for R = 8000 m.
+    The steady turn is a trim of the same model (paper eqs. 36-37): bank about 37 deg for R = 8000 m.
     That trim puts the velocity along the heading (psi = track), so its body-axis sideslip is
-    asin(sin(phi) sin(theta)) (about +4.9 deg at R = +8000 m, -4.9 deg at R = -8000 m), held with about 8.4 deg
+    asin(sin(phi) sin(theta)) (about +5.3 deg at R = +8000 m, -5.3 deg at R = -8000 m), held with about 6.4 deg
     of rudder; the rewarded sideslip error is measured from this trimmed sideslip.
     Still air by default (Dryden turbulence is frozen along a straight line, so it is not a natural
     companion of a turn; it can still be switched on).

@@ -1,9 +1,10 @@
-"""Effect of the issue-11 options on the GTM: drag, coordinated turn and swept-wing bending incidence.
+"""Effect of the issue-11 options on the GTM: drag, body moments and downwash, coordinated turn, bending incidence.
 
 Prints (docs/flutter.md "Options beyond the paper" and docs/options.md quote these figures):
 
 * the level-flight flutter point at sea level (finite-state unsteady model, the paper's US within 0.3 %) with
-  the bundled GTM's parasite drag on and off, and with the bending-incidence coupling on;
+  the bundled GTM's parasite drag on and off, its fuselage/nacelle moments and tail downwash off, and with the
+  bending-incidence coupling on;
 * the flutter point in a level turn of R = 5 km at sea level: the paper's heading-on-track turn against the
   coordinated turn;
 * static aeroelastic figures at 9144 m, M 0.78 (trim at 1 g: pitch, elevator, tip deflection and twist, tip
@@ -94,6 +95,7 @@ def main() -> None:
     level = SteadyManoeuvre.level(0.0, mach=0.65)
     flutter(gtm, level, "level flight, parasite drag on (bundled)")
     flutter(_with(gtm, drag=()), level, "level flight, parasite drag off")
+    flutter(_with(gtm, bodies=(), downwash_gradient=0.0), level, "level flight, body moments and downwash off")
     flutter(_with(gtm, bending_incidence=True), level, "level flight, bending incidence on")
     flutter(gtm, SteadyManoeuvre.turn(0.0, 5000.0, mach=0.65), "turn R = 5 km, paper (heading on track)")
     flutter(gtm, SteadyManoeuvre.turn(0.0, 5000.0, mach=0.65, coordinated=True), "turn R = 5 km, coordinated")

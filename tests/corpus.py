@@ -147,9 +147,11 @@ _DICT_CASES: list[tuple[str, str, str, str, Callable[[dict], None], str]] = [
     ("miss_ei", "missing", "goland_wing", "sections without ei_nm2", _del(f"{WS}.ei_nm2"), "error"),
     ("miss_length", "missing", "goland_wing", "no length_m", _del(f"{W}.length_m"), "error"),
     ("miss_right_wing_gtm", "missing", "gtm", "GTM without right_wing (its engine left)", _del(W), "error"),
-    ("miss_right_wing_and_engine", "missing", "gtm", "GTM without right_wing, its engine and its drag items (legal)",
+    ("miss_right_wing_and_engine", "missing", "gtm", "GTM without right_wing, its engine and its drag and body items (legal)",
      _all(_del(W), lambda d: d.__setitem__("engines", [e for e in d["engines"] if e["component"] != "right_wing"]),
           lambda d: d.get("aero", {}).__setitem__("drag", [i for i in d.get("aero", {}).get("drag", [])
+                                                           if i["component"] != "right_wing"]),
+          lambda d: d.get("aero", {}).__setitem__("body", [i for i in d.get("aero", {}).get("body", [])
                                                            if i["component"] != "right_wing"])), "ok"),
     ("miss_thrust", "missing", "gtm", "engine without max_thrust_n", _del("engines.0.max_thrust_n"), "error"),
     ("miss_mass_component", "missing", "gtm", "lumped mass without component", _del("lumped_masses.0.component"), "error"),

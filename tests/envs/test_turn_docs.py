@@ -4,8 +4,9 @@ The quoted numbers are read from the text itself (so editing either side without
 with ``trim(SteadyManoeuvre.turn(9144 m, R, M 0.75))`` of the bundled gtm (quasi-steady aerodynamics; the steady
 turn is the same with the finite-state model, whose inflow states are at rest in a trim): the bank range over
 R = 7-12 km (to the degree quoted), and the body-axis sideslip asin(sin phi sin theta) and rudder at R = +-8 km
-(to the 0.1 deg quoted). Measured 2026-12-01: bank 37.95 deg (7 km) to 24.23 deg (12 km), 34.20 deg at 8 km;
-sideslip +-4.931 deg, rudder +-8.412 deg at R = +-8 km.
+(to the 0.1 deg quoted). Measured 2026-12-01 (with the GTM's fuselage/nacelle moments and tail downwash,
+docs/options.md): bank 40.92 deg (7 km) to 25.94 deg (12 km), 36.78 deg at 8 km; sideslip +-5.339 deg, rudder
++-6.363 deg at R = +-8 km.
 """
 
 import math
