@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from flexsim._immutable import Immutable
 from flexsim.model.drag import attached_point_maps
 from flexsim.structure.model import StructuralModel
 
@@ -82,7 +83,7 @@ def munk_moment(v_p: np.ndarray, axis: np.ndarray, coeff: np.ndarray) -> np.ndar
     return (coeff * np.einsum("ka,ka->k", v_p, axis))[:, None] * np.cross(v_p, axis)
 
 
-class SlenderBodies:
+class SlenderBodies(Immutable):
     """Slender bodies of an aircraft with their kinematic maps (built once; :meth:`generalized_force` per call).
 
     Parameters
