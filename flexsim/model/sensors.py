@@ -28,6 +28,12 @@ from flexsim.structure.shapes import bending_shapes, torsion_shapes
 __all__ = ["ComponentSensor", "structural_sensors"]
 
 
+def _take(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
+    """Columns ``idx`` of one state (n,) or of states (N, n) (plain indexing for one state: 2x faster)."""
+    x = np.asarray(x)
+    return x[idx] if x.ndim == 1 else x[:, idx]
+
+
 @dataclass(frozen=True, eq=False)
 class ComponentSensor:
     """Rows of one component's structural outputs (arrays read-only).
@@ -58,23 +64,23 @@ class ComponentSensor:
 
     def tip_deflection_m(self, x: np.ndarray) -> np.ndarray:
         """w(L) [m] of state(s) x, shape (n_states,) -> scalar array or (N, n_states) -> (N,)."""
-        return np.asarray(x)[..., self.q_idx] @ self.w_tip
+        return _take(x, self.q_idx) @ self.w_tip
 
     def tip_deflection_rate_m_s(self, x: np.ndarray) -> np.ndarray:
         """dw(L)/dt [m/s]."""
-        return np.asarray(x)[..., self.s_idx] @ self.w_tip
+        return _take(x, self.s_idx) @ self.w_tip
 
     def tip_twist_rad(self, x: np.ndarray) -> np.ndarray:
         """psi(L) [rad]."""
-        return np.asarray(x)[..., self.xi_idx] @ self.psi_tip
+        return _take(x, self.xi_idx) @ self.psi_tip
 
     def tip_twist_rate_rad_s(self, x: np.ndarray) -> np.ndarray:
         """dpsi(L)/dt [rad/s]."""
-        return np.asarray(x)[..., self.eta_idx] @ self.psi_tip
+        return _take(x, self.eta_idx) @ self.psi_tip
 
     def root_bending_moment_n_m(self, x: np.ndarray) -> np.ndarray:
         """EI(0) w''(0) [N m]."""
-        return np.asarray(x)[..., self.q_idx] @ self.root_moment
+        return _take(x, self.q_idx) @ self.root_moment
 
 
 def structural_sensors(model) -> dict[str, ComponentSensor]:

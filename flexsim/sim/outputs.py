@@ -55,8 +55,8 @@ class AirData:
 def air_angles(v_air_body: np.ndarray) -> tuple[float, float, float]:
     """Airspeed [m/s], angle of attack atan2(w_a, u_a) [rad] and sideslip asin(v_a / |v_a|) [rad] (0 at zero
     airspeed) from the velocity relative to the air in body axes (u_a, v_a, w_a) [m/s]."""
-    ua, va, wa = (float(c) for c in v_air_body)
-    speed = float(np.linalg.norm(v_air_body))
+    ua, va, wa = float(v_air_body[0]), float(v_air_body[1]), float(v_air_body[2])
+    speed = math.hypot(ua, va, wa)
     beta = math.asin(max(-1.0, min(1.0, va / speed))) if speed > 0.0 else 0.0
     return speed, math.atan2(wa, ua), beta
 
