@@ -240,7 +240,7 @@ def main() -> None:
         for f in a.files:
             doc = json.loads(f.read_text())
             cfg = doc["config"]
-            tag = [cfg["aircraft"]] + [f"{k} × {v:g}" for k, v in (cfg.get("factors") or {}).items()]
+            tag = [f"{cfg['aircraft']} ({cfg['formulation']})"] + [f"{k} × {v:g}" for k, v in (cfg.get("factors") or {}).items()]
             if cfg.get("fixed_density_alt_m") is not None:
                 tag.append(f"ρ({cfg['fixed_density_alt_m']:.0f} m)")
             rows += [{**r, "config": ", ".join(tag + ([r["config"]] if r["config"] else [])), "_base": ", ".join(tag[:len(tag) - (cfg.get("fixed_density_alt_m") is not None)]),
