@@ -172,9 +172,11 @@ class FlutterAnalysis:
         """Lowest flutter Mach number of ``manoeuvre`` (its speed is replaced by the searched one).
 
         With ``mach_guess`` (e.g. the flutter Mach of a neighbouring manoeuvre in a study) the crossing is
-        first bracketed within +-0.01 of the guess, widening geometrically; it falls back to the full grid
-        scan when the crossing found that way might not be the lowest (an unstable point below the guess
-        is always re-checked down to the lower end of ``mach_range`` on the coarse grid).
+        first bracketed within +-0.01 of the guess, widening geometrically. That crossing is accepted when the two
+        coarse-grid points just below its bracket are stable; otherwise the full grid scan from the lower end of
+        ``mach_range`` runs. A flutter region lying wholly more than two grid steps below the bracket (a lower
+        crossing that restabilises before it) is therefore not looked for with a guess; search without one to
+        scan the whole grid.
 
         Speeds whose trim needs a control surface beyond its limit (too slow to fly the manoeuvre) are
         skipped; thrust limits are not enforced (the paper's descents need negative thrust).
