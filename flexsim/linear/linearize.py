@@ -15,8 +15,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flexsim.io.vocabulary import CONTROL_NAMES
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.jacobian import jacobian
+from flexsim.model.naming import state_names
+from flexsim.trim.solver import TrimPoint
 
 __all__ = ["LinearModel", "linearize"]
 
@@ -34,6 +37,10 @@ class LinearModel:
         Indices of the kept states in the model's state vector (all but X, Y, Z, psi).
     x0 : ndarray, shape (n,)
     u0 : ndarray, shape (4,)
+    state_names : tuple of str
+        Vocabulary names of the kept states (:func:`flexsim.model.naming.state_names`), shape (m,).
+    input_names : tuple of str
+        Names of the inputs, :data:`flexsim.io.vocabulary.CONTROL_NAMES`.
     """
 
     a: np.ndarray
@@ -41,14 +48,36 @@ class LinearModel:
     keep: np.ndarray
     x0: np.ndarray
     u0: np.ndarray
+    state_names: tuple[str, ...] = ()
+    input_names: tuple[str, ...] = CONTROL_NAMES
 
     def eig(self) -> tuple[np.ndarray, np.ndarray]:
         """Eigenvalues (m,) [1/s] and right eigenvectors (m, m) of A."""
         return np.linalg.eig(self.a)
 
 
-def linearize(model: AircraftModel, x0: np.ndarray, u0: np.ndarray) -> LinearModel:
-    """Linearise the model about (x0, u0), dropping X, Y, Z and psi for time invariance."""
+def linearize(model: AircraftModel, x0: TrimPoint | np.ndarray, u0: np.ndarray | None = None) -> LinearModel:
+    """Linearise the model about an operating point, dropping X, Y, Z and psi for time invariance.
+
+    Parameters
+    ----------
+    model : AircraftModel
+    x0 : TrimPoint or ndarray, shape (n_states,)
+        A trim point (which supplies its controls, as python-control's ``OperatingPoint``) or a state.
+    u0 : ndarray, shape (4,), optional
+        Controls [T_e (N), delta_a, delta_e, delta_r (rad)]; required with a state, not with a trim point.
+
+    Returns
+    -------
+    LinearModel
+        With the names of its states and inputs.
+    """
+    if isinstance(x0, TrimPoint):
+        if u0 is not None:
+            raise ValueError("u0: a TrimPoint supplies its own controls; give u0 only with a state vector")
+        x0, u0 = x0.x, x0.u
+    elif u0 is None:
+        raise ValueError("u0: the controls (4 numbers) are required when x0 is a state vector")
     a, b = jacobian(model, np.asarray(x0, float), np.asarray(u0, float))
     lay = model.layout
     drop = set()
@@ -56,4 +85,6 @@ def linearize(model: AircraftModel, x0: np.ndarray, u0: np.ndarray) -> LinearMod
         drop |= set(range(lay.position.start, lay.position.stop))
         drop.add(lay.euler.start + 2)
     keep = np.array([i for i in range(lay.n_states) if i not in drop], dtype=int)
-    return LinearModel(a[np.ix_(keep, keep)], b[keep], keep, np.asarray(x0, float).copy(), np.asarray(u0, float).copy())
+    names = state_names(model)
+    return LinearModel(a[np.ix_(keep, keep)], b[keep], keep, np.asarray(x0, float).copy(), np.asarray(u0, float).copy(),
+                       tuple(names[i] for i in keep))

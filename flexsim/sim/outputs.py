@@ -21,6 +21,7 @@ from flexsim.atmosphere import speed_of_sound
 from flexsim.io.vocabulary import CONTROL_NAMES, check_names
 from flexsim.kinematics import dcm_321
 from flexsim.model.aircraft_model import AircraftModel, Wind
+from flexsim.model.naming import state_names
 from flexsim.model.sensors import ComponentSensor, structural_sensors
 
 __all__ = ["OutputMaps", "AirData", "air_angles", "heading_rate", "CONTROL_NAMES", "WINGS", "STRUCTURE_NODES"]
@@ -101,7 +102,7 @@ class OutputMaps:
         self.model = model
         self.n_nodes = int(n_nodes)
         self.control_names = CONTROL_NAMES
-        self.state_names = check_names("state", self._state_names())
+        self.state_names = state_names(model)
         self.sensors: dict[str, ComponentSensor] = structural_sensors(model)
         self.wings = tuple(w for w in WINGS if w in self.sensors)
         lay = model.layout
@@ -120,37 +121,6 @@ class OutputMaps:
         self.signal_names = check_names("signal", names)
         self._index = {name: j for j, name in enumerate(self.signal_names)}
         self._rigid_z = lay.position.start + 2 if lay.rigid else None
-
-    # ------------------------------------------------------------------ names
-    def _state_names(self) -> tuple[str, ...]:
-        model = self.model
-        lay, dofs = model.layout, model.structure.dofs
-        names: list[str] = []
-        if lay.rigid:
-            names += ["x_north_m", "y_east_m", "z_down_m", "phi_rad", "theta_rad", "psi_rad"]
-        elastic = lay.nq + lay.nxi > 0
-
-        def per_component(table: dict[str, slice], prefix: str, unit: str) -> list[str]:
-            return [f"{prefix}_{c}_{k + 1}_{unit}" for c in dofs.component_names
-                    for k in range(table[c].stop - table[c].start)]
-
-        if elastic:
-            names += per_component(dofs.bending, "q", "m") + per_component(dofs.torsion, "xi", "rad")
-        if lay.rigid:
-            names += ["v_x_m_s", "v_y_m_s", "v_z_m_s", "omega_x_rad_s", "omega_y_rad_s", "omega_z_rad_s"]
-        if elastic:
-            names += per_component(dofs.bending, "s", "m_s") + per_component(dofs.torsion, "eta", "rad_s")
-        if lay.n_inflow:
-            strips = model.aero.strips
-            n_per = model.aero.options.n_inflow
-            counter: dict[str, int] = {}
-            for j, comp in enumerate(strips.component):
-                counter[comp] = counter.get(comp, 0) + 1
-                if strips.unsteady[j]:
-                    names += [f"lambda_{comp}_{counter[comp]:02d}_{n + 1}_m_s" for n in range(n_per)]
-        if len(names) != lay.n_states:
-            raise RuntimeError(f"state names: built {len(names)} names for {lay.n_states} states")
-        return tuple(names)
 
     # ------------------------------------------------------------------ kinematics and air data
     def position_euler(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
