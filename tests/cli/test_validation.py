@@ -26,6 +26,7 @@ from flexsim.cli.main import main
     (["flutter", "gtm", "--structural-damping", "0.5"], "--structural-damping = 0.5"),
     (["sweep", "--turn", "--models", "QS,ZZ"], "--models entry 'ZZ'"),
     (["sweep", "--turn", "--workers", "0"], "--workers = 0"),
+    (["sweep", "--turn", "--chain-length", "0"], "--chain-length = 0: must be an integer >= 1"),
 ])
 def test_bad_options_are_errors_before_computing(argv, needle, capsys):
     assert main(argv) == 2
