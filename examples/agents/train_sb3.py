@@ -151,8 +151,8 @@ def _plot(curve: list[tuple[int, float]], result: dict, path: Path, title: str) 
     if curve:
         steps, returns = np.array(curve).T
         ax.plot(steps, returns, ".", ms=3, color="0.6", label="training episodes (stochastic policy)")
-        k = max(1, len(returns) // 20)
-        if len(returns) >= k:
+        k = len(returns) // 20
+        if k >= 2:
             smooth = np.convolve(returns, np.ones(k) / k, mode="valid")
             ax.plot(steps[k - 1:], smooth, color="C0", label=f"running mean of {k}")
     for key, color, label in (("agent", "C0", "agent, deterministic"), ("baseline", "C3", "LQR baseline"), ("trim", "C2", "trim action held")):
@@ -192,7 +192,7 @@ def main(argv: list[str] | None = None) -> None:
     args.out.mkdir(parents=True, exist_ok=True)
     fns = [_make_env(args.env, args.aero, args.residual_scale, TRAIN_SEED + 100 * args.seed + i) for i in range(args.envs)]
     venv = SubprocVecEnv(fns) if args.envs > 1 else DummyVecEnv(fns)
-    venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, gamma=0.99)
+    venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, gamma=0.995)
     curve: list[tuple[int, float]] = []
     deadline = [math.inf]
 
@@ -208,7 +208,7 @@ def main(argv: list[str] | None = None) -> None:
 
     if args.algo == "PPO":
         model = sb3.PPO("MlpPolicy", venv, seed=args.seed, n_steps=512, batch_size=256, n_epochs=10, learning_rate=3e-4,
-                        gamma=0.99, gae_lambda=0.95, policy_kwargs={"log_std_init": -1.0, "net_arch": [64, 64]}, verbose=1)
+                        gamma=0.995, gae_lambda=0.95, policy_kwargs={"log_std_init": -1.0, "net_arch": [64, 64]}, verbose=1)
     else:
         model = getattr(sb3, args.algo)("MlpPolicy", venv, seed=args.seed, verbose=1)
     t0 = time.perf_counter()
