@@ -3,7 +3,7 @@
 Every ``import`` in ``flexsim/`` and ``envs/`` — module level and function-local, parsed with ``ast`` — may only
 go to the importing package itself or to a package of a lower layer::
 
-    errors, _arrays, _threads  <  atmosphere, kinematics, io  <  aircraft  <  structure  <  aero  <  model
+    errors, _arrays, _threads  <  atmosphere, kinematics, io, _kernels  <  aircraft  <  structure  <  aero  <  model
         <  trim  <  linear  <  sim  <  cli, envs
 
 ``io`` (file formats: the flight log, depending on ``errors`` only) is a leaf library that ``sim`` writes its logs
@@ -24,7 +24,7 @@ ROOT = Path(__file__).resolve().parents[1]
 #: Layer of every package (top-level modules of flexsim count as packages); lower may not import higher.
 LAYERS: dict[str, int] = {
     "errors": 0, "_arrays": 0, "_threads": 0, "_immutable": 0,
-    "atmosphere": 1, "kinematics": 1, "io": 1,
+    "atmosphere": 1, "kinematics": 1, "io": 1, "_kernels": 1,
     "aircraft": 2,
     "structure": 3,
     "aero": 4,

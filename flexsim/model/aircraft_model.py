@@ -12,7 +12,10 @@ with p = M V and the quasi-coordinate terms of eq. (33)
 
 and the kinematics R_dot = C^T v, Theta_dot = E^-1 omega, q_dot = s, xi_dot = eta (eq. 4).
 
-Trim, linearisation, simulation and the gymnasium environments all call :meth:`AircraftModel.rhs`.
+Trim, linearisation, simulation and the gymnasium environments all call :meth:`AircraftModel.rhs`. Its
+arithmetic is the compiled kernel :func:`flexsim._kernels.rhs` (numba, cached on disk; ``NUMBA_DISABLE_JIT=1``
+runs the same code as Python) on the model's frozen arrays (:attr:`AircraftModel.kernel_data`);
+:meth:`AircraftModel.rhs_batch` evaluates N states of one model in one call.
 The model is immutable after construction: atmospheric disturbances (gusts, turbulence) are passed per
 call, ``rhs(t, x, u, wind)``, as python-control passes its parameters to ``updfcn(t, x, u, params)``, so
 one model serves still-air trims and any number of windy runs without being changed or reset.
@@ -24,16 +27,17 @@ from collections.abc import Callable
 from enum import Enum
 
 import numpy as np
-from scipy.linalg.lapack import dgesv as _dgesv
 
+from flexsim import _kernels as _k
+from flexsim._arrays import kernel_arg as _arg
 from flexsim.aircraft.definition import Aircraft
 from flexsim._immutable import Immutable
-from flexsim.atmosphere import G0, isa_density, speed_of_sound
+from flexsim.atmosphere import G0, Z_MAX, Z_MIN, _range_error, speed_of_sound
 from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.bodies import SlenderBodies
 from flexsim.model.drag import ParasiteDrag
 from flexsim.model.layout import StateLayout
-from flexsim.kinematics import dcm_321, euler_rate_matrix_inverse
+from flexsim.kinematics import dcm_321
 from flexsim.structure.model import StructuralModel
 
 __all__ = ["Variant", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES", "Wind"]
@@ -58,12 +62,6 @@ class Variant(str, Enum):
     FREE = "free"
     RESTRAINED = "restrained"
     QUASI_RIGID = "quasi-rigid"
-
-
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.array(
-        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-    )
 
 
 class AircraftModel(Immutable):
@@ -170,9 +168,6 @@ class AircraftModel(Immutable):
                       and self.aero.formulation == "physical")
         #: Munk moments of the file's slender bodies (:mod:`flexsim.model.bodies`), or None.
         self.bodies = SlenderBodies(self.structure) if has_bodies else None
-        if self.aero is not None:
-            strips = self.aero.strips
-            self._strip_dcm = np.stack([self.aircraft.component(c).dcm for c in strips.component]) if strips.n_strips else np.zeros((0, 3, 3))
         n_inflow = 0 if self.aero is None else self.aero.n_inflow_states
         self.layout = StateLayout(rigid=rigid, nq=dofs.nq if elastic else 0, nxi=dofs.nxi if elastic else 0, n_inflow=n_inflow)
         self._active = np.concatenate(
@@ -199,6 +194,43 @@ class AircraftModel(Immutable):
         self._xi_frozen = np.zeros(dofs.nxi) if frozen_xi is None else np.asarray(frozen_xi, float)
         if self._q_frozen.shape != (dofs.nq,) or self._xi_frozen.shape != (dofs.nxi,):
             raise ValueError(f"frozen_q/frozen_xi: must have {dofs.nq} and {dofs.nxi} entries")
+        #: Frozen arrays of the compiled right-hand side (:class:`flexsim._kernels.KernelData`).
+        self.kernel_data = self._build_kernel_data()
+        self._n_strips = 0 if self.aero is None else self.aero.strips.n_strips
+        self._check_air = self.aero is not None and rigid and self._rho_fixed is None and self.aero_density_kg_m3 is None
+
+    def _build_kernel_data(self) -> _k.KernelData:
+        st, d, lay = self.structure, self.structure.dofs, self.layout
+        n_el = d.nq + d.nxi
+        nan = float("nan")
+        inertia = st.inertia
+        floats = dict(
+            floats=[self.gravity_m_s2, self.altitude_m, nan if self._rho_fixed is None else self._rho_fixed,
+                    nan if self.aero_density_kg_m3 is None else self.aero_density_kg_m3],
+            euler_fixed=self._euler_fixed, v_fixed=self._v_fixed, q_frozen=self._q_frozen, xi_frozen=self._xi_frozen,
+            m0=inertia.m0, h=inertia.h, m2=inertia.m2, k_bending=st.k_bending, k_torsion=st.k_torsion,
+            c_el=np.zeros((n_el, n_el)) if self._c_el is None else self._c_el, thrust_t0=st.thrust.t0, thrust_t1=st.thrust.t1,
+            proj_n0=np.zeros((0, d.n_v)), proj_d0=np.zeros((0, d.n_v)), proj_p=np.zeros((0, d.n_v)), rel=np.zeros((0, n_el)),
+            proj_n1=np.zeros((0, 3, d.nq)), proj_d1=np.zeros((0, 3, d.nq)), a_inv=np.zeros((1, 1)), a_inv_c=np.zeros(1),
+            b_vec=np.zeros(1), aero_floats=np.zeros(1), drag_g0=np.zeros((0, 6, d.n_v)), drag_g1=np.zeros((0, 3, 3, d.nq)),
+            body_g0=np.zeros((0, 6, d.n_v)), body_g1=np.zeros((0, 3, 3, d.nq)))
+        flags = dict(n_v=d.n_v, nq=d.nq, nxi=d.nxi, rigid=lay.rigid, use_frozen=self.variant is Variant.QUASI_RIGID,
+                     all_active=self._all_active, n_states=lay.n_states, vel_start=lay.velocity.start,
+                     inflow_start=lay.inflow.start, n_inflow=lay.n_inflow, has_aero=self.aero is not None,
+                     has_drag=self.parasite_drag is not None, has_bodies=self.bodies is not None,
+                     has_damping=self._c_el is not None, q_start=lay.q.start,
+                     xi_start=lay.xi.start, n_inflow_per_strip=1)
+        ints = dict(active=self._active)
+        if self.aero is not None:
+            floats.update(self.aero.kernel_fields[0])
+            flags.update(self.aero.kernel_fields[1]["ints"])
+            ints.update({k: v for k, v in self.aero.kernel_fields[1].items() if k != "ints"})
+        if self.parasite_drag is not None:
+            floats.update(self.parasite_drag.kernel_fields)
+        if self.bodies is not None:
+            floats.update(self.bodies.kernel_fields)
+        ints["ints"] = flags
+        return _k.pack(floats, ints)
 
     @property
     def formulation(self) -> str | None:
@@ -218,23 +250,7 @@ class AircraftModel(Immutable):
         -------
         position_m (3,), euler_rad (3,), q (nq,), xi (nxi,), velocity (n_v,)
         """
-        lay = self.layout
-        if lay.rigid:
-            pos, eul = x[lay.position], x[lay.euler]
-        else:
-            pos, eul = np.zeros(3), self._euler_fixed
-        if lay.nq or lay.nxi or self.variant is not Variant.QUASI_RIGID:
-            q, xi = x[lay.q], x[lay.xi]
-        else:
-            q, xi = self._q_frozen, self._xi_frozen
-        if self._all_active:
-            vel = x[lay.velocity]
-        else:
-            vel = np.zeros(self.structure.dofs.n_v)
-            vel[self._active] = x[lay.velocity]
-            if not lay.rigid:
-                vel[0:3] = self._v_fixed
-        return pos, eul, q, xi, vel
+        return _k.unpack(*self.kernel_data, _arg(x))
 
     def pack(self, position_m=None, euler_rad=None, q=None, xi=None, velocity=None) -> np.ndarray:
         """A state vector from full-size blocks (missing blocks are zero; inactive ones are dropped)."""
@@ -275,7 +291,8 @@ class AircraftModel(Immutable):
         m : ndarray, shape (n_v, n_v)
         f : ndarray, shape (n_v,)
         """
-        m, f, _ = self._assemble(x, u, t, wind)
+        x = self._state(x)
+        m, f, _, _, _ = _k.assemble(*self.kernel_data, x, _arg(u), *self._strip_wind(t, x, wind))
         return m, f
 
     def strip_wind(self, t: float, x: np.ndarray, wind: Wind | None) -> np.ndarray | None:
@@ -284,57 +301,38 @@ class AircraftModel(Immutable):
         From the wind field ``wind`` (see :meth:`rhs`) at time t [s] and the strips' inertial positions at
         state x; None in still air (``wind`` None) or without aerodynamics.
         """
-        pos, eul, _, _, _ = self.unpack(x)
-        return self._strip_wind(t, pos, eul, wind)
+        wind_c, has_wind = self._strip_wind(t, _arg(x), wind)
+        return wind_c if has_wind else None
 
-    def _strip_wind(self, t: float, pos: np.ndarray, eul: np.ndarray, wind: Wind | None) -> np.ndarray | None:
+    def _state(self, x) -> np.ndarray:
+        """x as a kernel argument, with the altitude checked against the ISA range when the air density needs it."""
+        x = _arg(x)
+        if self._check_air:
+            altitude = -x[2]
+            if not Z_MIN <= altitude <= Z_MAX:
+                raise _range_error(float(altitude), False)
+        return x
+
+    def _strip_wind(self, t: float, x: np.ndarray, wind: Wind | None) -> tuple[np.ndarray, bool]:
+        """(strip air velocity (n_s, 3) in component axes [m/s], whether there is wind) for the kernels.
+
+        A wind field of :mod:`flexsim.sim.disturbances` carries its arrays (``wind_data``) and is evaluated
+        inside the compiled kernel; any other callable ``wind(t, positions_ned_m)`` is called here.
+        """
         if wind is None or self.aero is None:
-            return None
+            return np.zeros((self._n_strips, 3)), False
+        data = getattr(wind, "wind_data", None)
+        if isinstance(data, _k.WindData):
+            return _k.strip_wind_at(*self.kernel_data, *data, x)
         if not callable(wind):
             raise ValueError(f"wind = {wind!r}: must be None or a callable wind(t, positions_ned_m) -> (k, 3) array")
-        c = dcm_321(*eul)
-        r_strips = self.aero.strips.position_body_m
-        positions = pos[None, :] + r_strips @ c  # inertial: R + C^T r
+        pos, eul, _, _, _ = _k.unpack(*self.kernel_data, x)
+        c = _k.dcm_321(eul[0], eul[1], eul[2])
+        positions = _k.strip_positions(*self.aero.kernel_data, pos, c)
         w_ned = np.asarray(wind(t, positions), dtype=float)
-        if w_ned.shape != r_strips.shape or not np.all(np.isfinite(w_ned)):
-            raise ValueError(f"wind(t, positions) returned shape {w_ned.shape} or non-finite values; expected finite {r_strips.shape}")
-        return np.einsum("sab,sb->sa", self._strip_dcm, w_ned @ c.T)
-
-    def _assemble(self, x: np.ndarray, u: np.ndarray, t: float, wind: Wind | None):
-        st = self.structure
-        nq = st.dofs.nq
-        pos, eul, q, xi, vel = self.unpack(x)
-        v, w, s = vel[0:3], vel[3:6], vel[6 : 6 + nq]
-        m, dtdq, mdot_v = st.inertia.evaluate(vel, q, s)
-        p = m @ vel
-        f = -mdot_v
-        f[0:3] -= _cross(w, p[0:3])
-        f[3:6] -= _cross(v, p[0:3]) + _cross(w, p[3:6])
-        f[6 : 6 + nq] += dtdq - st.k_bending @ q
-        f[6 + nq :] -= st.k_torsion @ xi
-        if self._c_el is not None:
-            f[6:] -= self._c_el @ vel[6:]
-        if self.gravity_m_s2:
-            sf, cf = np.sin(eul[0]), np.cos(eul[0])
-            st_, ct = np.sin(eul[1]), np.cos(eul[1])
-            g_b = self.gravity_m_s2 * np.array([-st_, sf * ct, cf * ct])  # C [0, 0, g] (eq. 32)
-            f += m[:, 0:3] @ g_b
-        if u[0]:
-            f += st.thrust.force(u[0], q)
-        inflow_terms = None
-        if self.aero is not None:
-            altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
-            rho = self.air_density(x)
-            mach = float(np.sqrt(v @ v)) / speed_of_sound(float(altitude))
-            wind_c = self._strip_wind(t, pos, eul, wind)
-            m_a, q_a, inflow_terms = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach, wind_c)
-            m = m + m_a
-            f = f + q_a
-            if self.parasite_drag is not None:
-                f = f + self.parasite_drag.generalized_force(q, vel, rho)
-            if self.bodies is not None:
-                f = f + self.bodies.generalized_force(q, vel, rho)
-        return m, f, inflow_terms
+        if w_ned.shape != positions.shape or not np.all(np.isfinite(w_ned)):
+            raise ValueError(f"wind(t, positions) returned shape {w_ned.shape} or non-finite values; expected finite {positions.shape}")
+        return _k.strip_wind(*self.aero.kernel_data, _arg(w_ned), c), True
 
     def air_density(self, x: np.ndarray) -> float:
         """Air density of the aerodynamics at state x [kg/m^3]: the restrained model's tunnel density, else the
@@ -343,8 +341,10 @@ class AircraftModel(Immutable):
             return self._rho_fixed
         if self.aero_density_kg_m3 is not None:
             return self.aero_density_kg_m3
-        altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
-        return isa_density(float(altitude))
+        x = _arg(x)
+        if self.layout.rigid and not Z_MIN <= -x[2] <= Z_MAX:
+            raise _range_error(float(-x[2]), False)
+        return _k.air(*self.kernel_data, x)[1]
 
     def aerodynamic_force(self, x: np.ndarray, u: np.ndarray, t: float = 0.0, wind: Wind | None = None) -> np.ndarray:
         """Generalized aerodynamic force at a state, without the apparent-mass terms, shape (n_v,).
@@ -353,23 +353,15 @@ class AircraftModel(Immutable):
         resultant force in body axes [N], rows 3-5 the moment about o [N m]. Zero without aerodynamics.
         ``wind``: the disturbance (see :meth:`rhs`), None for still air.
         """
-        pos, eul, q, xi, vel = self.unpack(x)
-        out = np.zeros(self.structure.dofs.n_v)
-        if self.aero is None:
-            return out
-        altitude = -x[self.layout.position][2] if self.layout.rigid else self.altitude_m
-        rho = self.air_density(x)
-        mach = float(np.sqrt(vel[0:3] @ vel[0:3])) / speed_of_sound(float(altitude))
-        _, q_a, _ = self.aero.evaluate(q, xi, vel, x[self.layout.inflow], u, rho, mach, self._strip_wind(t, pos, eul, wind))
-        out += q_a
-        if self.parasite_drag is not None:
-            out += self.parasite_drag.generalized_force(q, vel, rho)
-        if self.bodies is not None:
-            out += self.bodies.generalized_force(q, vel, rho)
-        return out
+        x = self._state(x)
+        return _k.aerodynamic_force(*self.kernel_data, x, _arg(u), *self._strip_wind(t, x, wind))
 
     def rhs(self, t: float, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> np.ndarray:
         """State derivative x_dot = rhs(t, x, u, wind) of the nonlinear model (eqs. 4, 33).
+
+        The compiled kernel :func:`flexsim._kernels.rhs`: E(x) V_dot = f(x) solved for the accelerations
+        (no acceleration lagged), the inflow rates with them, R_dot = C^T v, Theta_dot = E^-1 omega,
+        [q, xi]_dot = [s, eta].
 
         Parameters
         ----------
@@ -381,40 +373,57 @@ class AircraftModel(Immutable):
         wind : callable, optional
             Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)``: air velocity [m/s] in inertial
             north-east-down axes at the inertial positions (k, 3) of the aerodynamic strips at time t [s]
-            (gusts, turbulence; :mod:`flexsim.sim.disturbances`). None (default): still air. Passed per
-            call (``solve_ivp(model.rhs, ..., args=(u, wind))``); the model stores none.
+            (gusts, turbulence; :mod:`flexsim.sim.disturbances`, whose fields are evaluated inside the
+            compiled kernel). None (default): still air. Passed per call
+            (``solve_ivp(model.rhs, ..., args=(u, wind))``); the model stores none.
 
         Returns
         -------
         ndarray, shape (n_states,)
         """
-        lay = self.layout
-        m, f, inflow_terms = self._assemble(x, u, t, wind)
-        if not self._all_active:
-            a = self._active
-            m, f = m[np.ix_(a, a)], f[a]
-        dx = np.empty_like(x)
-        _, _, vdot, info = _dgesv(m, f)
-        if info != 0:
-            raise np.linalg.LinAlgError(f"system matrix of the equations of motion is singular (LAPACK dgesv info = {info})")
-        dx[lay.velocity] = vdot
-        if lay.n_inflow:
-            if not self._all_active:
-                full = np.zeros(self.structure.dofs.n_v)
-                full[self._active] = vdot
-                vdot = full
-            dx[lay.inflow] = self.aero.inflow_rate(inflow_terms, vdot)
-        vel = x[lay.velocity]
-        if lay.rigid:
-            eul = x[lay.euler]
-            c = dcm_321(*eul)
-            dx[lay.position] = c.T @ vel[0:3]
-            dx[lay.euler] = euler_rate_matrix_inverse(eul[0], eul[1]) @ vel[3:6]
-        n_el = lay.nq + lay.nxi
-        if n_el:
-            off = 6 if lay.rigid else 0
-            dx[lay.q.start : lay.xi.stop] = vel[off : off + n_el]
-        return dx
+        x = self._state(x)
+        u = _arg(u)
+        try:
+            if wind is None:
+                return _k.rhs(*self.kernel_data, *_k.NO_WIND, x, u)
+            data = getattr(wind, "wind_data", None)
+            if isinstance(data, _k.WindData) and self.aero is not None:
+                return _k.rhs(*self.kernel_data, *data, x, u)
+            return _k.rhs_strip_wind(*self.kernel_data, x, u, self._strip_wind(t, x, wind)[0])
+        except ZeroDivisionError:
+            raise np.linalg.LinAlgError("system matrix of the equations of motion is singular") from None
+
+    def rhs_batch(self, t: float, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> np.ndarray:
+        """x_dot of N states in one compiled call (batched environments; same kernel as :meth:`rhs`).
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        x : ndarray, shape (N, n_states)
+        u : ndarray, shape (N, 4)
+        wind : WindField of :mod:`flexsim.sim.disturbances` or None
+            A field with compiled data (``wind_data``), the same for all N aircraft; other callables are
+            evaluated per aircraft in Python.
+
+        Returns
+        -------
+        ndarray, shape (N, n_states)
+        """
+        xs = _arg(x)
+        us = _arg(u)
+        if xs.ndim != 2 or xs.shape[1] != self.layout.n_states or us.shape != (xs.shape[0], 4):
+            raise ValueError(f"x, u: shapes {xs.shape}, {us.shape}; expected (N, {self.layout.n_states}) and (N, 4)")
+        if self._check_air and not np.all((-xs[:, 2] >= Z_MIN) & (-xs[:, 2] <= Z_MAX)):
+            bad = -xs[:, 2][~((-xs[:, 2] >= Z_MIN) & (-xs[:, 2] <= Z_MAX))][0]
+            raise _range_error(float(bad), False)
+        data = _k.NO_WIND if wind is None else getattr(wind, "wind_data", None)
+        try:
+            if isinstance(data, _k.WindData):
+                return _k.rhs_batch(*self.kernel_data, *data, xs, us)
+            return np.stack([self.rhs(t, xi, ui, wind) for xi, ui in zip(xs, us)])
+        except ZeroDivisionError:
+            raise np.linalg.LinAlgError("system matrix of the equations of motion is singular") from None
 
     # ------------------------------------------------------------------ invariants
     def kinetic_energy(self, x: np.ndarray) -> float:

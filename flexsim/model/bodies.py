@@ -43,6 +43,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from flexsim import _kernels as _k
+from flexsim._arrays import kernel_arg
 from flexsim._immutable import Immutable
 from flexsim.model.drag import attached_point_maps
 from flexsim.structure.model import StructuralModel
@@ -69,7 +71,8 @@ def spheroid_apparent_mass(fineness: np.ndarray | float) -> tuple[np.ndarray, np
 
 
 def munk_moment(v_p: np.ndarray, axis: np.ndarray, coeff: np.ndarray) -> np.ndarray:
-    """Munk moment M = coeff (v . a)(v x a) of each body, shape (k, 3) [N m] (module docstring).
+    """Munk moment M = coeff (v . a)(v x a) of each body, shape (k, 3) [N m] (module docstring; the compiled
+    kernel :func:`flexsim._kernels.munk_moments`).
 
     Parameters
     ----------
@@ -80,7 +83,7 @@ def munk_moment(v_p: np.ndarray, axis: np.ndarray, coeff: np.ndarray) -> np.ndar
     coeff : ndarray, shape (k,)
         rho Vol (k2 - k1) [kg].
     """
-    return (coeff * np.einsum("ka,ka->k", v_p, axis))[:, None] * np.cross(v_p, axis)
+    return _k.munk_moments(kernel_arg(v_p), kernel_arg(axis), kernel_arg(coeff))
 
 
 class SlenderBodies(Immutable):
@@ -115,6 +118,10 @@ class SlenderBodies(Immutable):
             self._g0[j], self._g1[j], self._offset[j] = attached_point_maps(structure, b.component, b.position_m)
             self.axis[j] = structure.aircraft.component(b.component).dcm[:, 0]  # body x in component axes
         self._vol_dk = self.volume_m3 * (self.k2 - self.k1)
+        #: Fields of the compiled kernels :func:`flexsim._kernels.body_moments` and ``body_force`` (floats by name).
+        self.kernel_fields = dict(body_vol_dk=self._vol_dk.reshape(k), body_g0=self._g0, body_g1=self._g1,
+                                  body_offset=self._offset, body_axis=self.axis)
+        self.kernel_data = _k.pack(self.kernel_fields, {})
 
     @property
     def n_items(self) -> int:
@@ -133,14 +140,8 @@ class SlenderBodies(Immutable):
         rho : float
             Air density [kg/m^3].
         """
-        a = self._g0[:, 0:3, :].copy()
-        a[:, :, 3:6] += self._g1 @ q
-        omega = self._g0[:, 3:6, :] @ vel
-        v_p = a @ vel + np.cross(omega, self._offset)
-        return munk_moment(v_p, self.axis, rho * self._vol_dk)
+        return _k.body_moments(*self.kernel_data, kernel_arg(q), kernel_arg(vel), float(rho))
 
     def generalized_force(self, q: np.ndarray, vel: np.ndarray, rho: float) -> np.ndarray:
         """Q_body = sum_i B_i^T M_i, shape (n_v,) [N, N m] (module docstring); arguments as :meth:`moments`."""
-        if not self.n_items:
-            return np.zeros(vel.size)
-        return np.einsum("kav,ka->v", self._g0[:, 3:6, :], self.moments(q, vel, rho))
+        return _k.body_force(*self.kernel_data, kernel_arg(q), kernel_arg(vel), float(rho))

@@ -37,6 +37,11 @@ coupling returns the added-mass matrix M_a (moved to the left-hand side, E(x) x_
 explicit parts, so that the model solves for the accelerations inside the right-hand side and then
 evaluates the inflow rates with those accelerations. No acceleration is lagged.
 
+The per-call arithmetic is the compiled kernels :func:`flexsim._kernels.strip_kinematics`,
+:func:`~flexsim._kernels.circulatory`, :func:`~flexsim._kernels.aero_evaluate` and
+:func:`~flexsim._kernels.inflow_rate` (numba; :attr:`AeroCoupling.kernel_data` is their frozen data); this
+class builds the data and wraps them.
+
 Simplifications (documented in docs/design.md): control-surface rates and the u0_dot terms of Peters'
 [G] matrix are neglected; the fin is quasi-steady (lambda0 = 0, paper eqs. 29-31) with apparent mass.
 """
@@ -49,6 +54,8 @@ from typing import NamedTuple
 import numpy as np
 
 from flexsim._immutable import Immutable
+from flexsim import _kernels as _k
+from flexsim._arrays import kernel_arg as _arr
 from flexsim.aero.inflow import inflow_coefficients
 from flexsim.aircraft.definition import COMPRESSIBILITY, FORMULATIONS
 from flexsim.model.strips import StripSet
@@ -178,8 +185,10 @@ def tail_downwash(wing_weight: np.ndarray, u0: np.ndarray, wc: np.ndarray, speed
         Compressibility factor of the strips' lift slope [-].
     gradient : float
         (d epsilon / d alpha) at M -> 0 [-].
+
+    The compiled kernel :func:`flexsim._kernels.tail_downwash`.
     """
-    return gradient * float(wing_weight @ (u0 * wc)) / (beta * max(speed, 1.0) ** 2)
+    return _k.tail_downwash(_arr(wing_weight), _arr(u0), _arr(wc), float(speed), float(beta), float(gradient))
 
 
 class StripKinematics(NamedTuple):
@@ -267,6 +276,21 @@ class AeroCoupling(Immutable):
         z_b = np.array([structure.aircraft.component(c).dcm[:, 2] for c in s.component]) if s.n_strips else np.zeros((0, 3))
         self._dw_tail_nz = np.where(tail, np.einsum("sk,sk->s", s.n, z_b), 0.0)  # n . z_body of the tail strips
         self._n_over_d_x = np.where(self._paper_strips, np.einsum("sk,sk->s", s.n, x_b) / np.where(np.abs(d_x) < 1e-3, 1.0, d_x), 0.0)
+        comp_dcm = (np.stack([structure.aircraft.component(c).dcm for c in s.component]) if s.n_strips else np.zeros((0, 3, 3)))
+        coef = self.inflow
+        #: Fields of the compiled kernels (:func:`flexsim._kernels.pack`): floats and ints by name.
+        self.kernel_fields = (
+            dict(proj_n0=s.proj_n0, proj_d0=s.proj_d0, proj_n1=s.proj_n1, proj_d1=s.proj_d1, proj_p=self._proj_p, rel=self._rel,
+                 incidence=s.incidence_rad, semichord=self._b, ab=self._ab, k0=self._k0, pr_w=self._pr_w, width=s.width_m,
+                 cd0=s.cd0, flap_sign=s.flap_sign, paper_strips=self._paper_strips.astype(float), n_over_d_x=self._n_over_d_x,
+                 flap_w=s.flap_w, d=s.d, n=s.n, strip_dcm=comp_dcm, strip_pos=s.position_body_m, a_inv=coef.A_inv,
+                 a_inv_c=coef.A_inv_c, b_vec=coef.b, aero_floats=[self.downwash_gradient],
+                 dw_wing_weight=self._dw_wing_weight, dw_tail_nz=self._dw_tail_nz),
+            dict(ints=dict(finite_state=self._finite_state, n_inflow_per_strip=options.n_inflow,
+                           prandtl_glauert=self.compressibility == "prandtl-glauert", paper=self.formulation == "paper"),
+                 flap_index=s.flap_index, inflow_idx=self._inflow_idx))
+        #: The strips' packed data (:class:`flexsim._kernels.KernelData`).
+        self.kernel_data = _k.pack(*self.kernel_fields)
 
     def kinematics(self, q, xi, vel, lam, u, wind_c=None) -> StripKinematics:
         """Strip velocities and Chebyshev downwash coefficients at a state (module docstring).
@@ -274,32 +298,10 @@ class AeroCoupling(Immutable):
         ``wind_c`` (n_s, 3), optional: air velocity at each strip in its component axes [m/s]; the strip
         sees the air velocity relative to itself (gusts, turbulence).
         """
-        s = self.strips
-        b, ab = self._b, self._ab
-        p_mat = s.proj_n0.copy()
-        p_mat[:, 3:6] += s.proj_n1 @ q
-        d_mat = s.proj_d0.copy()
-        d_mat[:, 3:6] += s.proj_d1 @ q
-        alpha_el = self._rel @ np.concatenate([q, xi]) + s.incidence_rad
-        u0 = -(d_mat @ vel)
-        adot = self._proj_p @ vel
-        w_n = p_mat @ vel
-        if wind_c is not None:
-            u0 = u0 + np.einsum("sk,sk->s", s.d, wind_c)
-            w_n = w_n - np.einsum("sk,sk->s", s.n, wind_c)
-        w_ea = w_n + u0 * alpha_el
-        ext = self._ext_u.copy()
-        ext[1:] = u[1:]
-        ub = u0 * s.flap_sign * ext[s.flap_index]
-        w0 = w_ea - ab * adot + ub * s.flap_w[:, 0]
-        w1 = b * adot + ub * s.flap_w[:, 1]
-        w2 = ub * s.flap_w[:, 2]
-        lam0 = np.zeros(s.n_strips)
-        if self._finite_state:
-            lam0[self._inflow_idx] = 0.5 * (lam.reshape(-1, self.options.n_inflow) @ self.inflow.b)
-        w34 = w0 + 0.5 * w1
-        camber = s.flap_sign * ext[s.flap_index] * (s.flap_w[:, 0] + 0.5 * s.flap_w[:, 1])
-        return StripKinematics(p_mat, d_mat, alpha_el, u0, w_ea, w34, w34 - lam0, w0 - lam0 - 0.5 * w2, alpha_el + camber)
+        has_wind = wind_c is not None
+        wind = _arr(wind_c) if has_wind else np.zeros((self.strips.n_strips, 3))
+        out = _k.strip_kinematics(*self.kernel_data, _arr(q), _arr(xi), _arr(vel), _arr(lam), _arr(u), wind, has_wind)
+        return StripKinematics(*out[:9])
 
     def compressibility_factor(self, mach: float) -> float:
         """beta such that Cl_alpha(M) = Cl_alpha0 / beta [-].
@@ -309,9 +311,7 @@ class AeroCoupling(Immutable):
         beta = sqrt(1 - M^2) with M capped at 0.95 (the paper's "Numerical Model"); 1 when the
         correction is switched off (``compressibility = "none"``).
         """
-        if self.compressibility == "none":
-            return 1.0
-        return float(np.sqrt(1.0 - min(mach, _MACH_CAP) ** 2))
+        return _k.compressibility_factor(self.compressibility == "prandtl-glauert", float(mach))
 
     def _with_downwash(self, kin: StripKinematics, vel: np.ndarray, mach: float) -> StripKinematics:
         """The tail strips' kinematics in the wing's downwash (:func:`tail_downwash`).
@@ -322,9 +322,7 @@ class AeroCoupling(Immutable):
         """
         if not self.downwash_gradient:
             return kin
-        speed = float(np.sqrt(vel[0:3] @ vel[0:3]))
-        eps = tail_downwash(self._dw_wing_weight, kin.u0, kin.wc, speed, self.compressibility_factor(mach), self.downwash_gradient)
-        shift = -eps * speed * self._dw_tail_nz
+        shift = _k.downwash_shift(*self.kernel_data, _arr(vel), kin.u0, kin.wc, float(mach))
         return kin._replace(w_ea=kin.w_ea + shift, w34=kin.w34 + shift, wc=kin.wc + shift, w_moment=kin.w_moment + shift)
 
     def _circulatory(self, kin: StripKinematics, rho: float, mach: float):
@@ -334,17 +332,7 @@ class AeroCoupling(Immutable):
         effective angle of attack less the chord's own pitch and the flap camber. The products with the
         lift are formed without dividing by u0 (well defined in still air).
         """
-        b = self._b
-        beta = self.compressibility_factor(mach)
-        kfac = self._k0 / beta
-        beta_i = beta if self.formulation == "physical" else 1.0  # induced angle of the compressible lift (docstring)
-        two_pi_rho_b = 2.0 * np.pi * rho * b * kfac
-        lift = two_pi_rho_b * kin.u0 * kin.wc
-        moment = 0.5 * two_pi_rho_b * b * kin.u0 * kin.w_moment + self._ab * lift
-        flow = kin.wc - kin.u0 * kin.alpha_chord  # u0 x flow angle [m/s]
-        lift_tilt = two_pi_rho_b * kin.wc * flow  # L x flow angle
-        drag = two_pi_rho_b * kin.wc * kin.wc * (1.0 - self._k0) / beta_i + rho * kin.u0 * kin.u0 * b * self.strips.cd0
-        return lift, moment, lift_tilt, drag, flow / np.maximum(kin.u0, 1.0)
+        return _k.circulatory(*self.kernel_data, kin.u0, kin.wc, kin.w_moment, kin.alpha_chord, float(rho), float(mach))
 
     def evaluate(self, q, xi, vel, lam, u, rho, mach, wind_c=None):
         """Added mass, generalized aerodynamic force and inflow forcing at one state.
@@ -377,31 +365,12 @@ class AeroCoupling(Immutable):
         inflow : tuple
             Terms for :meth:`inflow_rate`.
         """
-        s = self.strips
-        b, ab = self._b, self._ab
-        kin = self._with_downwash(self.kinematics(q, xi, vel, lam, u, wind_c), vel, mach)
-        p_mat, d_mat, r_mat = kin.p_mat, kin.d_mat, self._proj_p
-        lift_c, moment_c, lift_tilt, drag, flow_angle = self._circulatory(kin, rho, mach)
-        w = s.width_m
-        c_n = -lift_c - drag * flow_angle  # eq. (28): f = L (-n - a0 d) + D (d - a0 n), a0 the flow angle
-        c_d = drag - lift_tilt
-        if self.formulation == "paper":
-            # eq. (28) with d = l alpha_i0: lift along -n and no body-x component (docs/design.md)
-            paper = self._paper_strips
-            c_n = np.where(paper, -lift_c, c_n)
-            c_d = np.where(paper, lift_c * self._n_over_d_x, c_d)
-        # apparent mass: w_EA_dot = E V_dot + explicit part
-        vs = vel[6 : 6 + self._nq]
-        omega = vel[3:6]
-        pdot_v = (s.proj_n1 @ vs) @ omega
-        ddot_v = (s.proj_d1 @ vs) @ omega
-        w_ea_x = pdot_v - kin.alpha_el * ddot_v + kin.u0 * (self._rel @ vel[6:])
-        row0 = p_mat - kin.alpha_el[:, None] * d_mat - ab[:, None] * r_mat
-        pr_w = rho * self._pr_w
-        lever = p_mat - ab[:, None] * r_mat
-        m_a = (pr_w[:, None] * lever).T @ row0 + ((pr_w * b * b / 8.0)[:, None] * r_mat).T @ r_mat
-        q_a = p_mat.T @ (w * c_n - pr_w * w_ea_x) + d_mat.T @ (w * c_d) + r_mat.T @ (w * moment_c + ab * pr_w * w_ea_x)
-        return m_a, q_a, (row0, w_ea_x, kin.u0, lam)
+        has_wind = wind_c is not None
+        wind = _arr(wind_c) if has_wind else np.zeros((self.strips.n_strips, 3))
+        lam = _arr(lam)
+        m_a, q_a, row0, w_ea_x, u0 = _k.aero_evaluate(*self.kernel_data, _arr(q), _arr(xi), _arr(vel), lam, _arr(u),
+                                                      float(rho), float(mach), wind, has_wind)
+        return m_a, q_a, (row0, w_ea_x, u0, lam)
 
     def inflow_rate(self, terms, vdot: np.ndarray) -> np.ndarray:
         """Finite-state inflow derivative lambda_dot (reference 2.1) with the solved accelerations.
@@ -411,12 +380,7 @@ class AeroCoupling(Immutable):
         if not self._finite_state:
             return np.zeros(0)
         row0, w_ea_x, u0, lam = terms
-        idx = self._inflow_idx
-        s = self.strips
-        forcing = (row0[idx] + (0.5 * s.semichord_m[idx])[:, None] * self._proj_p[idx]) @ vdot + w_ea_x[idx]
-        lam2 = lam.reshape(-1, self.options.n_inflow)
-        rate = forcing[:, None] * self.inflow.A_inv_c[None, :] - (u0[idx] / s.semichord_m[idx])[:, None] * (lam2 @ self.inflow.A_inv.T)
-        return rate.ravel()
+        return _k.inflow_rate(*self.kernel_data, row0, w_ea_x, u0, lam, _arr(vdot))
 
     def strip_loads(self, q, xi, vel, lam, u, rho, mach, wind_c=None) -> StripLoads:
         """Per-strip circulatory loads at a state (no apparent mass), for outputs and tests."""

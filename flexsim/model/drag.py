@@ -10,7 +10,8 @@ along the local air velocity at the item's point p (component axes), v_p the vel
 to still air: the velocity of its elastic-axis station plus the section's rotation times the offset rho_i of
 the point from the axis. The generalized force follows from virtual work at that point (eqs. 17-24):
 Q = A_i(q)^T f_i + B_i^T (rho_i x f_i), so the drag also pitches and yaws the aircraft and loads the
-structure (e.g. nacelle drag below a swept wing). Units: SI; shapes in :class:`ParasiteDrag`.
+structure (e.g. nacelle drag below a swept wing). Units: SI; shapes in :class:`ParasiteDrag`. The per-call arithmetic is the compiled kernel
+:func:`flexsim._kernels.parasite_drag`.
 
 Simplification (documented in docs/options.md): the drag items see the aircraft's motion in still air, not
 the wind field (a gust's change of the parasite drag is neglected; the strips do see the wind).
@@ -21,6 +22,8 @@ from __future__ import annotations
 import numpy as np
 
 from flexsim._immutable import Immutable
+from flexsim import _kernels as _k
+from flexsim._arrays import kernel_arg
 from flexsim.structure.model import StructuralModel
 
 __all__ = ["ParasiteDrag", "attached_point_maps"]
@@ -66,18 +69,14 @@ class ParasiteDrag(Immutable):
         self._offset = np.zeros((k, 3))
         for j, d in enumerate(items):
             self._g0[j], self._g1[j], self._offset[j] = attached_point_maps(structure, d.component, d.position_m)
+        #: Fields of the compiled kernel :func:`flexsim._kernels.parasite_drag` (floats by name).
+        self.kernel_fields = dict(drag_area=self.area_m2.reshape(k), drag_g0=self._g0, drag_g1=self._g1, drag_offset=self._offset)
+        self.kernel_data = _k.pack(self.kernel_fields, {})
 
     @property
     def n_items(self) -> int:
         """Number of drag items k."""
         return self.area_m2.size
-
-    def point_velocities(self, q: np.ndarray, vel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Velocities v_p (k, 3) of the items' points and the maps A(q) (k, 3, n_v), component axes."""
-        a = self._g0[:, 0:3, :].copy()
-        a[:, :, 3:6] += self._g1 @ q
-        omega = self._g0[:, 3:6, :] @ vel
-        return a @ vel + np.cross(omega, self._offset), a
 
     def generalized_force(self, q: np.ndarray, vel: np.ndarray, rho: float) -> np.ndarray:
         """Q_drag, shape (n_v,): generalized force of every item's drag (module docstring) [N, N m].
@@ -91,10 +90,4 @@ class ParasiteDrag(Immutable):
         rho : float
             Air density [kg/m^3].
         """
-        if not self.n_items:
-            return np.zeros(vel.size)
-        vp, a = self.point_velocities(q, vel)
-        speed = np.linalg.norm(vp, axis=1)
-        f = -0.5 * rho * (self.area_m2 * speed)[:, None] * vp
-        moment = np.cross(self._offset, f)
-        return np.einsum("kav,ka->v", a, f) + np.einsum("kav,ka->v", self._g0[:, 3:6, :], moment)
+        return _k.parasite_drag(*self.kernel_data, kernel_arg(q), kernel_arg(vel), float(rho))

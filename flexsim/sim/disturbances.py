@@ -15,6 +15,11 @@ the tail, one wing before the other in a yawed encounter).
   flight direction (Taylor's hypothesis) and generated once, from a seed, by filtering Gaussian white noise
   in the frequency domain on a periodic distance grid; interpolated linearly between grid points.
 * :func:`combine`: the sum of several wind fields.
+
+Each field carries its parameters as arrays (``wind_data``, :class:`flexsim._kernels.WindData`), so that the
+model's compiled right-hand side evaluates it at the strips without calling back into Python; ``__call__``
+runs the same kernel (:func:`flexsim._kernels.wind_ned`). Any other callable with the same signature works
+too (called from Python once per right-hand side).
 """
 
 from __future__ import annotations
@@ -24,6 +29,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from flexsim import _kernels as _k
+from flexsim._arrays import frozen_array, kernel_arg
 
 __all__ = [
     "WindField",
@@ -60,6 +68,14 @@ _POE_SIGMA_FT_S = np.array([
 ])
 
 
+def _wind_data(gusts=None, turb=None, turb_offset=None, turb_grid=None) -> _k.WindData:
+    """Frozen :class:`flexsim._kernels.WindData` (missing parts empty)."""
+    return _k.WindData(frozen_array(np.zeros((0, 12)) if gusts is None else gusts),
+                       frozen_array(np.zeros((0, 13)) if turb is None else turb),
+                       frozen_array([0] if turb_offset is None else turb_offset, np.int64),
+                       frozen_array(np.zeros((3, 1)) if turb_grid is None else turb_grid))
+
+
 def _finite(name: str, value: object, *, positive: bool = False, nonnegative: bool = False) -> float:
     """A finite float, optionally > 0 or >= 0; ValueError naming the field otherwise."""
     try:
@@ -93,7 +109,7 @@ def _positions(positions_ned_m: np.ndarray) -> np.ndarray:
     p = np.asarray(positions_ned_m, dtype=float)
     if p.ndim != 2 or p.shape[1] != 3:
         raise ValueError(f"positions_ned_m: expected shape (k, 3), got {p.shape}")
-    return p
+    return kernel_arg(p)
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,6 +148,7 @@ class OneMinusCosineGust:
     normal_ned: np.ndarray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0]))
     front_position_ned_m: np.ndarray = field(default_factory=lambda: np.zeros(3))
     persistent: bool = False
+    wind_data: _k.WindData = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "amplitude_m_s", _finite("amplitude_m_s", self.amplitude_m_s))
@@ -141,6 +158,9 @@ class OneMinusCosineGust:
         object.__setattr__(self, "front_position_ned_m", _vector3("front_position_ned_m", self.front_position_ned_m))
         if not isinstance(self.persistent, bool):
             raise ValueError(f"persistent = {self.persistent!r}: must be True or False")
+        params = np.concatenate([[self.amplitude_m_s, self.gradient_length_m], self.direction_ned, self.normal_ned,
+                                 self.front_position_ned_m, [float(self.persistent)]])
+        object.__setattr__(self, "wind_data", _wind_data(gusts=params[None, :]))
 
     @classmethod
     def encounter(
@@ -187,19 +207,11 @@ class OneMinusCosineGust:
     def profile(self, s_m: np.ndarray) -> np.ndarray:
         """Gust velocity U(s) [m/s] at penetration distances ``s_m`` [m] (any shape)."""
         s = np.asarray(s_m, dtype=float)
-        h = self.gradient_length_m
-        end = h if self.persistent else 2.0 * h
-        inside = (s >= 0.0) & (s <= end)
-        u = np.where(inside, 0.5 * self.amplitude_m_s * (1.0 - np.cos(np.pi * np.clip(s, 0.0, end) / h)), 0.0)
-        if self.persistent:
-            u = np.where(s > h, self.amplitude_m_s, u)
-        return u
+        return _k.gust_profiles(kernel_arg(s.ravel()), self.amplitude_m_s, self.gradient_length_m, self.persistent).reshape(s.shape)
 
     def __call__(self, t: float, positions_ned_m: np.ndarray) -> np.ndarray:
         """Air velocity [m/s], NED, shape (k, 3), at ``positions_ned_m`` (k, 3) [m]; independent of t."""
-        p = _positions(positions_ned_m)
-        s = (p - self.front_position_ned_m) @ self.normal_ned
-        return self.profile(s)[:, None] * self.direction_ned[None, :]
+        return _k.wind_ned(*self.wind_data, _positions(positions_ned_m))
 
 
 def dryden_spectrum(component: str, omega_rad_m: np.ndarray, sigma_m_s: float, length_m: float) -> np.ndarray:
@@ -322,6 +334,7 @@ class DrydenTurbulence:
     n_points: int = 2**17
     _grid: np.ndarray = field(init=False, repr=False, compare=False)
     _axes: np.ndarray = field(init=False, repr=False, compare=False)
+    wind_data: _k.WindData = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         sig = np.asarray(self.sigma_m_s, dtype=float)
@@ -353,9 +366,10 @@ class DrydenTurbulence:
         axes = np.array([[ch, sh, 0.0], [-sh, ch, 0.0], [0.0, 0.0, 1.0]])  # rows: d (u), right (v), down (w)
         axes.setflags(write=False)
         object.__setattr__(self, "_axes", axes)
-        grid = self._generate(int(n), spacing, sig, lengths, int(self.seed))
-        grid.setflags(write=False)
+        grid = frozen_array(self._generate(int(n), spacing, sig, lengths, int(self.seed)))
         object.__setattr__(self, "_grid", grid)
+        turb = np.concatenate([axes.ravel(), self.origin_ned_m, [spacing]])[None, :]
+        object.__setattr__(self, "wind_data", _wind_data(turb=turb, turb_offset=[0, int(n)], turb_grid=grid))
 
     @classmethod
     def mil_f_8785c(cls, altitude_m: float, severity: str = "moderate", **kwargs) -> "DrydenTurbulence":
@@ -394,23 +408,30 @@ class DrydenTurbulence:
 
     def along_track(self, xi_m: np.ndarray) -> np.ndarray:
         """Turbulence components (u, v, w) [m/s] at distances ``xi_m`` [m] along d, shape (k, 3)."""
-        pos = np.asarray(xi_m, dtype=float) / self.spacing_m
-        cell = np.floor(pos)
-        frac = pos - cell
-        i0 = np.mod(cell, self.n_points).astype(np.intp)
-        i1 = np.where(i0 + 1 == self.n_points, 0, i0 + 1)
-        return (self._grid[:, i0] * (1.0 - frac) + self._grid[:, i1] * frac).T
+        return _k.dryden_track(self._grid, self.spacing_m, kernel_arg(np.ravel(xi_m)))
 
     def __call__(self, t: float, positions_ned_m: np.ndarray) -> np.ndarray:
         """Air velocity [m/s], NED, shape (k, 3), at ``positions_ned_m`` (k, 3) [m]; independent of t."""
-        p = _positions(positions_ned_m)
-        xi = (p - self.origin_ned_m) @ self._axes[0]
-        return self.along_track(xi) @ self._axes
+        return _k.wind_ned(*self.wind_data, _positions(positions_ned_m))
 
 
 @dataclass(frozen=True)
 class _Sum:
     winds: tuple[WindField, ...]
+    #: The parts' arrays joined (None when a part is a plain callable).
+    wind_data: _k.WindData | None = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "wind_data", self._joined())
+
+    def _joined(self) -> _k.WindData | None:
+        parts = [getattr(w, "wind_data", None) for w in self.winds]
+        if not all(isinstance(p, _k.WindData) for p in parts):
+            return None
+        offsets = np.concatenate([[0], np.cumsum([p.turb_offset[-1] for p in parts if p.turb.shape[0]])]).astype(np.int64)
+        grids = [p.turb_grid for p in parts if p.turb.shape[0]]
+        return _wind_data(gusts=np.concatenate([p.gusts for p in parts]), turb=np.concatenate([p.turb for p in parts]),
+                          turb_offset=offsets, turb_grid=np.concatenate(grids, axis=1) if grids else np.zeros((3, 1)))
 
     def __call__(self, t: float, positions_ned_m: np.ndarray) -> np.ndarray:
         p = _positions(positions_ned_m)

@@ -8,7 +8,8 @@ depend on q) and the section mass matrices Mbar_p of :mod:`flexsim.structure.sec
       = M0 + [H q in the omega columns] + [(H q)^T in the omega rows] + [q^T M2 q in the omega block]
 
 The "inertia invariants" M0 (n_v, n_v), H (n_v, 3, nq) and M2 (3, 3, nq, nq) are computed once when the
-model is built; the right-hand side then needs a few small dense contractions and no loop over sections.
+model is built; the right-hand side then needs a few small dense contractions and no loop over sections
+(the compiled kernel :func:`flexsim._kernels.inertia`).
 """
 
 from __future__ import annotations
@@ -17,6 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flexsim import _kernels as _k
+from flexsim._arrays import kernel_arg
 from flexsim.aircraft.definition import Aircraft
 from flexsim.structure.kinematic_map import DofIndex, point_maps
 from flexsim.structure.sections import mass_points
@@ -96,17 +99,4 @@ class InertiaPolynomial:
         dT_dq : ndarray, shape (nq,)
         mdot_v : ndarray, shape (n_v,)
         """
-        w = v[_W]
-        m = self.m0.copy()
-        hq = self.h @ q
-        m[:, _W] += hq
-        m[_W, :] += hq.T
-        m2q = self.m2 @ q  # (3, 3, nq)
-        m[_W, _W] += m2q @ q
-        nq = q.size
-        dtdq = w @ ((v @ self.h.reshape(v.size, 3 * nq)) + w @ m2q.reshape(3, 3 * nq)).reshape(3, nq)
-        hs = self.h @ s  # (n_v, 3)
-        mdot = hs @ w
-        m2qs = m2q @ s
-        mdot[_W] += hs.T @ v + m2qs @ w + m2qs.T @ w
-        return m, dtdq, mdot
+        return _k.inertia(self.m0, self.h, self.m2, kernel_arg(v), kernel_arg(q), kernel_arg(s))
