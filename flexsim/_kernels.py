@@ -43,11 +43,12 @@ from numba import njit
 
 from flexsim._arrays import frozen_array
 
-__all__ = ["ModelData", "StructureData", "AeroData", "DragData", "WindData", "empty_aero", "empty_drag", "unpack", "air",
-           "aerodynamic_force", "strip_wind_at", "rhs_strip_wind", "dcm_321", "solve", "compressibility_factor", "rhs", "rhs_batch", "assemble", "inertia", "strip_kinematics",
-           "circulatory", "aero_evaluate", "inflow_rate", "parasite_drag", "point_velocity", "body_moments", "body_force", "munk_moments", "tail_downwash",
-           "downwash_shift", "strip_positions", "strip_wind",
-           "wind_ned", "gust_profile", "dryden_along_track", "isa_scalar", "NO_WIND"]
+__all__ = ["FLOAT_FIELDS", "INT_FIELDS", "INT_NAMES", "KernelData", "pack", "WindData", "NO_WIND", "BatchWind", "pack_winds",
+           "join_winds", "rhs", "rhs_batch", "rhs_strip_wind", "assemble", "aerodynamic_force", "unpack", "air", "inertia",
+           "strip_kinematics", "circulatory", "tail_downwash", "downwash_shift", "aero_evaluate", "inflow_rate",
+           "point_velocity", "parasite_drag", "munk_moments", "body_moments", "body_force", "strip_positions", "strip_wind",
+           "strip_wind_at", "wind_ned", "gust_profile", "gust_profiles", "dryden_along_track", "dryden_track", "isa_scalar",
+           "dcm_321", "solve", "compressibility_factor"]
 
 _jit = njit(cache=True, nogil=True)
 _entry = _jit
@@ -153,19 +154,57 @@ class WindData(NamedTuple):
     """A wind field as arrays (built by :mod:`flexsim.sim.disturbances`; the sum of its parts, NED [m/s]).
 
     gusts (n_g, 12): U_ds [m/s], H [m], direction (3), front normal (3), front point (3) [m], persistent (0/1);
-    turb (n_t, 13): rows d (u), right (v), down (w) of the axes (9), origin (3) [m], grid spacing [m];
-    turb_offset (n_t + 1,) int64: columns of each Dryden field's grid in ``turb_grid`` (3, total) [m/s].
+    turb (n_t, 15): rows d (u), right (v), down (w) of the track axes (9), origin (3) [m], grid spacing [m],
+    first and end column of the field's grid in ``turb_grid``; turb_grid (3, total points) [m/s].
     """
 
     gusts: np.ndarray
     turb: np.ndarray
-    turb_offset: np.ndarray
     turb_grid: np.ndarray
 
 
 #: Still air.
-NO_WIND = WindData(frozen_array(np.zeros((0, 12))), frozen_array(np.zeros((0, 13))), frozen_array(np.zeros(1), np.int64),
-                   frozen_array(np.zeros((3, 1))))
+NO_WIND = WindData(frozen_array(np.zeros((0, 12))), frozen_array(np.zeros((0, 15))), frozen_array(np.zeros((3, 1))))
+
+
+def join_winds(parts) -> WindData:
+    """One WindData with the parts' gusts and Dryden fields (their sum); grid columns renumbered."""
+    gusts = [p.gusts for p in parts]
+    turbs, grids, col = [], [], 0
+    for p in parts:
+        for r in range(p.turb.shape[0]):
+            row = np.array(p.turb[r])
+            grid = p.turb_grid[:, int(row[13]):int(row[14])]
+            row[13], row[14] = col, col + grid.shape[1]
+            col += grid.shape[1]
+            turbs.append(row[None, :])
+            grids.append(grid)
+    return WindData(frozen_array(np.concatenate(gusts) if gusts else np.zeros((0, 12))),
+                    frozen_array(np.concatenate(turbs) if turbs else np.zeros((0, 15))),
+                    frozen_array(np.concatenate(grids, axis=1) if grids else np.zeros((3, 1))))
+
+
+class BatchWind(NamedTuple):
+    """The winds of N aircraft packed once (:func:`pack_winds`): rows (N, 4) int64 = [first gust, end gust,
+    first Dryden field, end Dryden field] of each aircraft in the joined :class:`WindData` arrays."""
+
+    rows: np.ndarray
+    gusts: np.ndarray
+    turb: np.ndarray
+    turb_grid: np.ndarray
+
+
+def pack_winds(winds) -> BatchWind:
+    """Pack one WindData (or None: still air) per aircraft for :func:`rhs_batch` (once, e.g. per reset:
+    the Dryden grids are copied)."""
+    parts = [NO_WIND if w is None else w for w in winds]
+    rows = np.zeros((len(parts), 4), np.int64)
+    ng = nt = 0
+    for i, p in enumerate(parts):
+        rows[i] = (ng, ng + p.gusts.shape[0], nt, nt + p.turb.shape[0])
+        ng, nt = ng + p.gusts.shape[0], nt + p.turb.shape[0]
+    joined = join_winds(parts)
+    return BatchWind(frozen_array(rows, np.int64), *joined)
 
 
 # ------------------------------------------------------------------ field views
@@ -730,7 +769,7 @@ def dryden_track(grid, spacing, xi):
 
 
 @_jit
-def wind_ned(gusts, turb, turb_offset, turb_grid, positions):
+def wind_ned(gusts, turb, turb_grid, positions):
     """Air velocity [m/s], NED, at inertial positions (k, 3) [m] of a wind (:class:`WindData` arrays): the sum
     of its 1-cos gusts U(n . (r - r_front)) direction (plane fronts frozen in the air) and its Dryden fields
     sampled at the distance d . (r - origin) along their track and rotated to NED."""
@@ -746,7 +785,7 @@ def wind_ned(gusts, turb, turb_offset, turb_grid, positions):
             for a in range(3):
                 out[j, a] += val * par[2 + a]
     for t in range(turb.shape[0]):
-        grid = turb_grid[:, turb_offset[t]:turb_offset[t + 1]]
+        grid = turb_grid[:, int(turb[t, 13]):int(turb[t, 14])]
         ax = turb[t, 0:9].reshape((3, 3))
         for j in range(k):
             xi = 0.0
@@ -942,7 +981,7 @@ def aerodynamic_force(F, I, x, u, wind_c, has_wind):
 
 
 @_jit
-def strip_wind_at(F, I, gusts, turb, turb_offset, turb_grid, x):
+def strip_wind_at(F, I, gusts, turb, turb_grid, x):
     """Strip air velocity (component axes, (n_s, 3) [m/s]) of a wind (:class:`WindData` arrays) at state x,
     and whether there is any."""
     n_s = _f1(F, I, SEMICHORD).shape[0]
@@ -950,7 +989,7 @@ def strip_wind_at(F, I, gusts, turb, turb_offset, turb_grid, x):
         return np.zeros((n_s, 3)), False
     pos, eul, _, _, _ = unpack(F, I, x)
     c = dcm_321(eul[0], eul[1], eul[2])
-    w_ned = wind_ned(gusts, turb, turb_offset, turb_grid, strip_positions(F, I, pos, c))
+    w_ned = wind_ned(gusts, turb, turb_grid, strip_positions(F, I, pos, c))
     return strip_wind(F, I, w_ned, c), True
 
 
@@ -1044,7 +1083,7 @@ def _rhs(F, I, x, u, wind_c, has_wind):
 
 
 @_entry
-def rhs(F, I, gusts, turb, turb_offset, turb_grid, x, u):
+def rhs(F, I, gusts, turb, turb_grid, x, u):
     """State derivative x_dot of the nonlinear model (paper eqs. 4, 33) with a wind (:class:`WindData`
     arrays; :data:`NO_WIND`: still air).
 
@@ -1052,12 +1091,12 @@ def rhs(F, I, gusts, turb, turb_offset, turb_grid, x, u):
     lagged), R_dot = C^T v, Theta_dot = E^-1 omega, [q, xi]_dot = [s, eta]. x (n_states,), u (4,)
     [T_e (N), delta_a, delta_e, delta_r (rad)].
     """
-    return _rhs_wind(F, I, gusts, turb, turb_offset, turb_grid, x, u)
+    return _rhs_wind(F, I, gusts, turb, turb_grid, x, u)
 
 
 @_jit
-def _rhs_wind(F, I, gusts, turb, turb_offset, turb_grid, x, u):
-    wind_c, has_wind = strip_wind_at(F, I, gusts, turb, turb_offset, turb_grid, x)
+def _rhs_wind(F, I, gusts, turb, turb_grid, x, u):
+    wind_c, has_wind = strip_wind_at(F, I, gusts, turb, turb_grid, x)
     return _rhs(F, I, x, u, wind_c, has_wind)
 
 
@@ -1068,9 +1107,10 @@ def rhs_strip_wind(F, I, x, u, wind_c):
 
 
 @_entry
-def rhs_batch(F, I, gusts, turb, turb_offset, turb_grid, xs, us):
-    """x_dot of N aircraft of one model in one call: xs (N, n_states), us (N, 4) -> (N, n_states)."""
+def rhs_batch(F, I, rows, gusts, turb, turb_grid, xs, us):
+    """x_dot of N aircraft of one model in one call: xs (N, n_states), us (N, 4) -> (N, n_states); aircraft i
+    sees the gusts rows[i, 0]:rows[i, 1] and Dryden fields rows[i, 2]:rows[i, 3] (:class:`BatchWind`)."""
     out = np.empty_like(xs)
     for i in range(xs.shape[0]):
-        out[i] = _rhs_wind(F, I, gusts, turb, turb_offset, turb_grid, xs[i], us[i])
+        out[i] = _rhs_wind(F, I, gusts[rows[i, 0]:rows[i, 1]], turb[rows[i, 2]:rows[i, 3]], turb_grid, xs[i], us[i])
     return out

@@ -393,37 +393,60 @@ class AircraftModel(Immutable):
         except ZeroDivisionError:
             raise np.linalg.LinAlgError("system matrix of the equations of motion is singular") from None
 
-    def rhs_batch(self, t: float, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> np.ndarray:
-        """x_dot of N states in one compiled call (batched environments; same kernel as :meth:`rhs`).
+    def rhs_batch(self, x: np.ndarray, u: np.ndarray, winds: "_k.BatchWind | None" = None) -> np.ndarray:
+        """x_dot of N states of this model in one compiled call (batched environments; the kernel of :meth:`rhs`).
 
         Parameters
         ----------
-        t : float
-            Time [s].
         x : ndarray, shape (N, n_states)
         u : ndarray, shape (N, 4)
-        wind : WindField of :mod:`flexsim.sim.disturbances` or None
-            A field with compiled data (``wind_data``), the same for all N aircraft; other callables are
-            evaluated per aircraft in Python.
+            Controls [T_e (N), delta_a, delta_e, delta_r (rad)] of each aircraft.
+        winds : BatchWind, optional
+            One wind field per aircraft packed once by :meth:`pack_winds`; None: still air for all.
 
         Returns
         -------
         ndarray, shape (N, n_states)
+
+        Raises
+        ------
+        ValueError
+            Shapes, or an altitude outside the ISA range (the row is named).
+        numpy.linalg.LinAlgError
+            A singular system matrix in any row.
         """
         xs = _arg(x)
         us = _arg(u)
         if xs.ndim != 2 or xs.shape[1] != self.layout.n_states or us.shape != (xs.shape[0], 4):
             raise ValueError(f"x, u: shapes {xs.shape}, {us.shape}; expected (N, {self.layout.n_states}) and (N, 4)")
-        if self._check_air and not np.all((-xs[:, 2] >= Z_MIN) & (-xs[:, 2] <= Z_MAX)):
-            bad = -xs[:, 2][~((-xs[:, 2] >= Z_MIN) & (-xs[:, 2] <= Z_MAX))][0]
-            raise _range_error(float(bad), False)
-        data = _k.NO_WIND if wind is None else getattr(wind, "wind_data", None)
+        if self._check_air:
+            ok = (-xs[:, 2] >= Z_MIN) & (-xs[:, 2] <= Z_MAX)
+            if not np.all(ok):
+                row = int(np.flatnonzero(~ok)[0])
+                raise ValueError(f"row {row}: {_range_error(float(-xs[row, 2]), False)}")
+        if winds is None:
+            winds = _k.pack_winds([None] * xs.shape[0])
+        if not isinstance(winds, _k.BatchWind) or winds.rows.shape[0] != xs.shape[0]:
+            raise ValueError(f"winds = {winds!r}: must be None or AircraftModel.pack_winds(...) of {xs.shape[0]} wind fields")
         try:
-            if isinstance(data, _k.WindData):
-                return _k.rhs_batch(*self.kernel_data, *data, xs, us)
-            return np.stack([self.rhs(t, xi, ui, wind) for xi, ui in zip(xs, us)])
+            return _k.rhs_batch(*self.kernel_data, *winds, xs, us)
         except ZeroDivisionError:
             raise np.linalg.LinAlgError("system matrix of the equations of motion is singular") from None
+
+    @staticmethod
+    def pack_winds(winds) -> "_k.BatchWind":
+        """Pack one wind field per aircraft (None: still air) for :meth:`rhs_batch`, once (e.g. at reset).
+
+        The fields must be those of :mod:`flexsim.sim.disturbances` (their arrays are evaluated inside the
+        kernel); a plain Python callable cannot be batched (ValueError).
+        """
+        data = []
+        for i, w in enumerate(winds):
+            d = None if w is None else getattr(w, "wind_data", None)
+            if w is not None and not isinstance(d, _k.WindData):
+                raise ValueError(f"winds[{i}] = {w!r}: only the fields of flexsim.sim.disturbances (or None) can be batched")
+            data.append(d)
+        return _k.pack_winds(data)
 
     # ------------------------------------------------------------------ invariants
     def kinetic_energy(self, x: np.ndarray) -> float:

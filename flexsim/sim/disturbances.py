@@ -68,11 +68,10 @@ _POE_SIGMA_FT_S = np.array([
 ])
 
 
-def _wind_data(gusts=None, turb=None, turb_offset=None, turb_grid=None) -> _k.WindData:
+def _wind_data(gusts=None, turb=None, turb_grid=None) -> _k.WindData:
     """Frozen :class:`flexsim._kernels.WindData` (missing parts empty)."""
     return _k.WindData(frozen_array(np.zeros((0, 12)) if gusts is None else gusts),
-                       frozen_array(np.zeros((0, 13)) if turb is None else turb),
-                       frozen_array([0] if turb_offset is None else turb_offset, np.int64),
+                       frozen_array(np.zeros((0, 15)) if turb is None else turb),
                        frozen_array(np.zeros((3, 1)) if turb_grid is None else turb_grid))
 
 
@@ -368,8 +367,8 @@ class DrydenTurbulence:
         object.__setattr__(self, "_axes", axes)
         grid = frozen_array(self._generate(int(n), spacing, sig, lengths, int(self.seed)))
         object.__setattr__(self, "_grid", grid)
-        turb = np.concatenate([axes.ravel(), self.origin_ned_m, [spacing]])[None, :]
-        object.__setattr__(self, "wind_data", _wind_data(turb=turb, turb_offset=[0, int(n)], turb_grid=grid))
+        turb = np.concatenate([axes.ravel(), self.origin_ned_m, [spacing, 0.0, float(n)]])[None, :]
+        object.__setattr__(self, "wind_data", _wind_data(turb=turb, turb_grid=grid))
 
     @classmethod
     def mil_f_8785c(cls, altitude_m: float, severity: str = "moderate", **kwargs) -> "DrydenTurbulence":
@@ -428,10 +427,7 @@ class _Sum:
         parts = [getattr(w, "wind_data", None) for w in self.winds]
         if not all(isinstance(p, _k.WindData) for p in parts):
             return None
-        offsets = np.concatenate([[0], np.cumsum([p.turb_offset[-1] for p in parts if p.turb.shape[0]])]).astype(np.int64)
-        grids = [p.turb_grid for p in parts if p.turb.shape[0]]
-        return _wind_data(gusts=np.concatenate([p.gusts for p in parts]), turb=np.concatenate([p.turb for p in parts]),
-                          turb_offset=offsets, turb_grid=np.concatenate(grids, axis=1) if grids else np.zeros((3, 1)))
+        return _k.join_winds(parts)
 
     def __call__(self, t: float, positions_ned_m: np.ndarray) -> np.ndarray:
         p = _positions(positions_ned_m)

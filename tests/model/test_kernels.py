@@ -80,12 +80,18 @@ def unsteady():
 
 
 def test_batch_equals_single(unsteady):
-    xs = np.stack([_state(unsteady, s) for s in range(5)])
-    us = np.tile([2e4, 0.0, -0.01, 0.0], (5, 1))
-    turb = DrydenTurbulence.mil_f_8785c(2000.0, "light", seed=1)
-    batch = unsteady.rhs_batch(0.0, xs, us, turb)
-    for i in range(5):
-        np.testing.assert_array_equal(batch[i], unsteady.rhs(0.0, xs[i], us[i], turb))
+    """rhs_batch (one compiled call for N aircraft, each with its own wind) equals rhs row by row, bit for bit."""
+    xs = np.stack([_state(unsteady, s) for s in range(4)])
+    us = np.tile([2e4, 0.0, -0.01, 0.0], (4, 1))
+    winds = [DrydenTurbulence.mil_f_8785c(2000.0, "light", seed=1), None,
+             OneMinusCosineGust(5.0, 25.0, front_position_ned_m=[-8.0, 0.0, 0.0]),
+             combine(DrydenTurbulence.mil_f_8785c(2000.0, "light", seed=2), OneMinusCosineGust(3.0, 20.0))]
+    batch = unsteady.rhs_batch(xs, us, unsteady.pack_winds(winds))
+    for i in range(4):
+        np.testing.assert_array_equal(batch[i], unsteady.rhs(0.0, xs[i], us[i], winds[i]))
+    np.testing.assert_array_equal(unsteady.rhs_batch(xs, us)[1], unsteady.rhs(0.0, xs[1], us[1]))
+    with pytest.raises(ValueError, match="winds\\[0\\]"):
+        unsteady.pack_winds([lambda t, p: np.zeros_like(p)])
 
 
 def test_wind_in_kernel_equals_python_callable(unsteady):
