@@ -393,16 +393,20 @@ class AircraftModel(Immutable):
         except ZeroDivisionError:
             raise np.linalg.LinAlgError("system matrix of the equations of motion is singular") from None
 
-    def rhs_batch(self, x: np.ndarray, u: np.ndarray, winds: "_k.BatchWind | None" = None) -> np.ndarray:
+    def rhs_batch(self, t: float, x: np.ndarray, u: np.ndarray, wind=None) -> np.ndarray:
         """x_dot of N states of this model in one compiled call (batched environments; the kernel of :meth:`rhs`).
 
         Parameters
         ----------
+        t : float
+            Time [s] (the fields of :mod:`flexsim.sim.disturbances` do not depend on it).
         x : ndarray, shape (N, n_states)
         u : ndarray, shape (N, 4)
             Controls [T_e (N), delta_a, delta_e, delta_r (rad)] of each aircraft.
-        winds : BatchWind, optional
-            One wind field per aircraft packed once by :meth:`pack_winds`; None: still air for all.
+        wind : None, a wind field, a sequence of N wind fields or a BatchWind
+            Still air; one field of :mod:`flexsim.sim.disturbances` for all aircraft; one per aircraft (None
+            entries: still air); or those packed once by :meth:`pack_winds` (cheapest per call: packing copies
+            the Dryden grids).
 
         Returns
         -------
@@ -411,7 +415,8 @@ class AircraftModel(Immutable):
         Raises
         ------
         ValueError
-            Shapes, or an altitude outside the ISA range (the row is named).
+            Shapes, a wind that is not a field of :mod:`flexsim.sim.disturbances`, or an altitude outside the
+            ISA range (the row is named).
         numpy.linalg.LinAlgError
             A singular system matrix in any row.
         """
@@ -419,17 +424,21 @@ class AircraftModel(Immutable):
         us = _arg(u)
         if xs.ndim != 2 or xs.shape[1] != self.layout.n_states or us.shape != (xs.shape[0], 4):
             raise ValueError(f"x, u: shapes {xs.shape}, {us.shape}; expected (N, {self.layout.n_states}) and (N, 4)")
+        n = xs.shape[0]
         if self._check_air:
             ok = (-xs[:, 2] >= Z_MIN) & (-xs[:, 2] <= Z_MAX)
             if not np.all(ok):
                 row = int(np.flatnonzero(~ok)[0])
                 raise ValueError(f"row {row}: {_range_error(float(-xs[row, 2]), False)}")
-        if winds is None:
-            winds = _k.pack_winds([None] * xs.shape[0])
-        if not isinstance(winds, _k.BatchWind) or winds.rows.shape[0] != xs.shape[0]:
-            raise ValueError(f"winds = {winds!r}: must be None or AircraftModel.pack_winds(...) of {xs.shape[0]} wind fields")
+        if not isinstance(wind, _k.BatchWind):
+            winds = [wind] * n if (wind is None or callable(wind)) else list(wind)
+            if len(winds) != n:
+                raise ValueError(f"wind: {len(winds)} wind fields for {n} states")
+            wind = self.pack_winds(winds)
+        elif wind.rows.shape[0] != n:
+            raise ValueError(f"wind: a BatchWind of {wind.rows.shape[0]} aircraft for {n} states")
         try:
-            return _k.rhs_batch(*self.kernel_data, *winds, xs, us)
+            return _k.rhs_batch(*self.kernel_data, *wind, xs, us)
         except ZeroDivisionError:
             raise np.linalg.LinAlgError("system matrix of the equations of motion is singular") from None
 

@@ -86,10 +86,11 @@ def test_batch_equals_single(unsteady):
     winds = [DrydenTurbulence.mil_f_8785c(2000.0, "light", seed=1), None,
              OneMinusCosineGust(5.0, 25.0, front_position_ned_m=[-8.0, 0.0, 0.0]),
              combine(DrydenTurbulence.mil_f_8785c(2000.0, "light", seed=2), OneMinusCosineGust(3.0, 20.0))]
-    batch = unsteady.rhs_batch(xs, us, unsteady.pack_winds(winds))
+    batch = unsteady.rhs_batch(0.0, xs, us, unsteady.pack_winds(winds))
+    np.testing.assert_array_equal(unsteady.rhs_batch(0.0, xs, us, winds), batch)
     for i in range(4):
         np.testing.assert_array_equal(batch[i], unsteady.rhs(0.0, xs[i], us[i], winds[i]))
-    np.testing.assert_array_equal(unsteady.rhs_batch(xs, us)[1], unsteady.rhs(0.0, xs[1], us[1]))
+    np.testing.assert_array_equal(unsteady.rhs_batch(0.0, xs, us)[1], unsteady.rhs(0.0, xs[1], us[1]))
     with pytest.raises(ValueError, match="winds\\[0\\]"):
         unsteady.pack_winds([lambda t, p: np.zeros_like(p)])
 
