@@ -52,7 +52,7 @@ _MODEL_ERRORS = (ValueError, ArithmeticError, np.linalg.LinAlgError)
 
 
 def rhs_rows(dynamics: Sequence[FlightDynamics], t: np.ndarray, x: np.ndarray, u: np.ndarray, winds: Sequence,
-             errors: dict[int, Exception]) -> np.ndarray:
+             errors: dict[int, Exception], packed: Any = None) -> np.ndarray:
     """State derivatives of many aircraft: row i is ``dynamics[i].model.rhs(t[i], x[i], u[i], winds[i])``.
 
     Parameters
@@ -68,23 +68,29 @@ def rhs_rows(dynamics: Sequence[FlightDynamics], t: np.ndarray, x: np.ndarray, u
     errors : dict
         Filled with ``{row: exception}`` for rows whose model raised one of the model errors; their
         derivative rows are NaN.
+    packed : optional
+        The rows' winds packed once by the model's ``pack_winds`` (a compiled model's batch of wind data,
+        rows in this order), or None.
 
     Returns
     -------
     ndarray, shape (m, n)
         x_dot of every row.
 
-    Rows in still air (wind None) that share one model whose class offers ``rhs_batch(t, x, u, wind)`` (all
-    rows in one compiled call; t does not enter the equations without wind) go through it; the rest, and
-    all rows of a batch call that raised (to find which row failed), one by one through ``rhs``.
+    Rows that share one model whose class offers ``rhs_batch(t, x, u, wind)`` (all rows in one compiled
+    call; the wind fields of :mod:`flexsim.sim.disturbances` do not depend on t) go through it when they
+    fly in still air or their winds come ``packed``; the rest, and all rows of a batch call that raised (to
+    find which row failed), one by one through ``rhs``.
     """
     out = np.empty_like(x)
     batch = getattr(dynamics[0].model, "rhs_batch", None) if len(dynamics) > 1 else None
-    if batch is not None and all(w is None for w in winds) and all(d.model is dynamics[0].model for d in dynamics):
-        try:
-            return np.asarray(batch(float(t[0]), x, u, None), dtype=float).reshape(x.shape)
-        except _MODEL_ERRORS:
-            pass  # evaluated row by row below, which names the failing rows
+    if batch is not None and all(d.model is dynamics[0].model for d in dynamics):
+        wind = packed if packed is not None else (None if all(w is None for w in winds) else False)
+        if wind is not False:
+            try:
+                return np.asarray(batch(float(t[0]), x, u, wind), dtype=float).reshape(x.shape)
+            except _MODEL_ERRORS:
+                pass  # evaluated row by row below, which names the failing rows
     for i, dyn in enumerate(dynamics):
         try:
             out[i] = dyn.model.rhs(float(t[i]), x[i], u[i], winds[i])
@@ -96,7 +102,7 @@ def rhs_rows(dynamics: Sequence[FlightDynamics], t: np.ndarray, x: np.ndarray, u
 
 @single_blas_thread
 def advance_batch(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.ndarray,
-                  winds: Sequence, rhs: Callable = rhs_rows) -> list[StepOutcome]:
+                  winds: Sequence, rhs: Callable = rhs_rows, packed: Any = None) -> list[StepOutcome]:
     """Integrate one control period of many aircraft in one call (zero-order hold of each row's controls).
 
     Row i is what ``dynamics[i].advance(x[i], u[i], t0[i], t1[i], winds[i])`` returns (same checks: non-finite
@@ -115,7 +121,10 @@ def advance_batch(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarr
         Start and end of each period [s].
     winds : sequence, length N
     rhs : callable
-        ``rhs(dynamics, t, x, u, winds, errors) -> x_dot`` over rows (:func:`rhs_rows`).
+        ``rhs(dynamics, t, x, u, winds, errors, packed) -> x_dot`` over rows (:func:`rhs_rows`).
+    packed : optional
+        The N winds packed by the model's ``pack_winds`` (a named tuple whose ``rows`` select each
+        aircraft's wind data), or None.
 
     Returns
     -------
@@ -131,12 +140,17 @@ def advance_batch(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarr
             outcomes[i] = dyn.advance(x[i], u[i], float(t0[i]), float(t1[i]), winds[i])
     for rows in groups.values():
         for i, out in zip(rows, _advance_etd2rk([dynamics[i] for i in rows], x[rows], u[rows], t0[rows], t1[rows],
-                                                [winds[i] for i in rows], rhs)):
+                                                [winds[i] for i in rows], rhs, _subset(packed, rows))):
             outcomes[i] = out
     return outcomes  # type: ignore[return-value]
 
 
-def _advance_etd2rk(dyns, x, u, t0, t1, winds, rhs) -> list[StepOutcome]:
+def _subset(packed: Any, rows) -> Any:
+    """The packed winds of the given rows (None stays None)."""
+    return None if packed is None else packed._replace(rows=packed.rows[np.asarray(rows, dtype=np.int64)])
+
+
+def _advance_etd2rk(dyns, x, u, t0, t1, winds, rhs, packed=None) -> list[StepOutcome]:
     """ETD2RK periods of aircraft sharing one stepper (``FlightDynamics._advance_fixed`` over rows)."""
     first = dyns[0]
     stepper, k, h, dt = first.stepper, first.substeps, first.stepper.h, first.dt
@@ -156,10 +170,10 @@ def _advance_etd2rk(dyns, x, u, t0, t1, winds, rhs) -> list[StepOutcome]:
             nfev = 2 * i
             errors: dict[int, Exception] = {}
             rows_d = [dyns[j] for j in active]
-            rows_u, rows_w = u[active], [winds[j] for j in active]
+            rows_u, rows_w, rows_p = u[active], [winds[j] for j in active], _subset(packed, active)
 
             def fun(tt, xx):
-                return rhs(rows_d, tt, xx, rows_u, rows_w, errors)
+                return rhs(rows_d, tt, xx, rows_u, rows_w, errors, rows_p)
 
             xa, ta = x[active], t[active]
             x_next = stepper.step_rows(fun, ta, xa)
@@ -244,6 +258,7 @@ class FlexSimVectorEnv(VectorEnv):
         self._truncations = np.zeros(n, dtype=np.bool_)
         self._autoreset = np.zeros(n, dtype=np.bool_)
         self._needs_reset = np.ones(n, dtype=np.bool_)
+        self._packed: Any = None  # the N episode winds packed for a compiled batched rhs; None: to pack; False: cannot
 
     # ------------------------------------------------------------------ gymnasium API
     def reset(self, *, seed: int | Sequence[int | None] | None = None, options: dict | None = None) -> tuple[np.ndarray, dict]:
@@ -266,6 +281,7 @@ class FlexSimVectorEnv(VectorEnv):
         infos: dict = {}
         for i in np.flatnonzero(mask):
             self._obs[i], info = self.envs[i].reset(seed=seeds[i], options=options or None)
+            self._packed = None
             self._elapsed[i] = 0
             self._needs_reset[i] = False
             infos = self._add_info(infos, info, i)
@@ -287,6 +303,7 @@ class FlexSimVectorEnv(VectorEnv):
         if self.autoreset_mode == AutoresetMode.NEXT_STEP:
             for i in np.flatnonzero(self._autoreset):
                 self._obs[i], info = self.envs[i].reset()
+                self._packed = None
                 self._elapsed[i] = 0
                 self._terminations[i] = self._truncations[i] = False
                 infos = self._add_info(infos, info, i)
@@ -303,10 +320,11 @@ class FlexSimVectorEnv(VectorEnv):
             except ValueError as exc:
                 raise ValueError(f"actions[{i}]: {exc}") from None
         envs = [self.envs[i] for i in stepping]
+        packed = self._packed_winds()
         outcomes = advance_batch([e.dynamics for e in envs], np.array([e.state for e in envs]),
                                  np.array([periods[i].u for i in stepping]),
                                  np.array([periods[i].t0_s for i in stepping]), np.array([periods[i].t1_s for i in stepping]),
-                                 [e.wind for e in envs]) if stepping else []
+                                 [e.wind for e in envs], packed=_subset(packed, stepping) if packed else None) if stepping else []
         for i, outcome in zip(stepping, outcomes):
             obs, rewards[i], term, _, info = self.envs[i].finish_step(periods[i], outcome)
             self._elapsed[i] += 1
@@ -315,6 +333,7 @@ class FlexSimVectorEnv(VectorEnv):
             if self.autoreset_mode == AutoresetMode.SAME_STEP and (term or trunc):
                 infos = self._add_info(infos, {"final_obs": obs, "final_info": info}, i)
                 self._obs[i], info = self.envs[i].reset()
+                self._packed = None
                 self._elapsed[i] = 0
             infos = self._add_info(infos, info, i)
         ended = self._terminations | self._truncations
@@ -322,6 +341,19 @@ class FlexSimVectorEnv(VectorEnv):
         if self.autoreset_mode == AutoresetMode.DISABLED:
             self._needs_reset |= ended
         return self._obs.copy(), rewards, self._terminations.copy(), self._truncations.copy(), infos
+
+    def _packed_winds(self) -> Any:
+        """The episode winds of all sub-environments packed once per reset by the model's ``pack_winds`` (a
+        compiled model), or False where the model has none or a wind cannot be packed (evaluated per row)."""
+        if self._packed is None:
+            pack = getattr(self.envs[0].dynamics.model, "pack_winds", None)
+            self._packed = False
+            if pack is not None and all(e.dynamics.model is self.envs[0].dynamics.model for e in self.envs):
+                try:
+                    self._packed = pack([e.wind for e in self.envs])
+                except ValueError:
+                    pass
+        return self._packed
 
     def render(self) -> tuple | None:
         """One frame per sub-environment (``render_mode="rgb_array"``), else None."""
