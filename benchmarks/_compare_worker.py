@@ -90,6 +90,31 @@ def main() -> None:
         k = np.arange(0, r.t.size, 10)
         res.update(cpu_s=t, rtf=60.0 / t, nfev=int(r.nfev), altitude_m=r.altitude_m[k].tolist(),
                    tip_m=r.tip_deflection_m()[k].tolist(), airspeed_m_s=r.airspeed_m_s[k].tolist())
+    elif task.startswith("rhs-"):  # one right-hand side of the GTM at a fixed state (per call)
+        from flexsim.model.aircraft_model import AircraftModel
+
+        aero = {"rhs-fs": "unsteady", "rhs-qs": "quasi-steady", "rhs-turb": "unsteady", "rhs-vacuum": None}[task]
+        model = AircraftModel(gtm, aero=aero)
+        wind = None
+        if task == "rhs-turb":
+            from flexsim.sim.disturbances import DrydenTurbulence
+
+            wind = DrydenTurbulence.mil_f_8785c(3048.0, "moderate", seed=1)
+        rng = np.random.default_rng(0)
+        lay = model.layout
+        x = 0.01 * rng.standard_normal(lay.n_states)
+        x[lay.position] = [0.0, 0.0, -3048.0]
+        x[lay.v] = [220.0, 1.0, 8.0]
+        u = np.array([4e4, 0.01, -0.02, 0.005])
+        calls = 2000
+
+        def run():
+            for _ in range(calls):
+                dx = model.rhs(0.0, x, u, wind)
+            return dx
+
+        t, dx = _timed(run, inner)
+        res.update(cpu_s=t / calls, dx=dx.tolist())
     else:
         raise SystemExit(f"unknown task {task!r}")
     print(json.dumps(res))

@@ -9,7 +9,10 @@ simulated altitude and tip deflection). ``flexsim flutter`` is timed as a whole 
 the process tree). The load average is printed before and after. The reference tree is extracted with
 ``git archive`` (default: 00ee0f2, the numpy implementation measured in issue 14).
 
-Targets (issue 14): one US flutter point <= 0.4 s and <= 30x one dense eig of the same system (248 states);
+Also (issue 14 item 1): one right-hand side per call (unsteady, quasi-steady, with Dryden turbulence, vacuum) and
+the start-up of a process to its first right-hand side (with numba: the machine code loaded from the cache).
+
+Targets (issue 14): start-up <= 0.3 s per process; one US flutter point <= 0.4 s and <= 30x one dense eig of the same system (248 states);
 ``flexsim flutter`` <= 5 s; 60 s of simulated flight >= 100x real time.
 
 Run: python benchmarks/bench_compare.py [--reference REV] [--repeats 3] [--inner 1] [--tasks a,b,...]
@@ -31,9 +34,9 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WORKER = os.path.join(HERE, "benchmarks", "_compare_worker.py")
-TASKS = ("eval-qs", "eval-fs", "eval-us", "point-qs", "point-fs", "point-us", "jacobian-fs", "dense-eig",
+TASKS = ("rhs-fs", "rhs-qs", "rhs-turb", "rhs-vacuum", "startup", "eval-qs", "eval-fs", "eval-us", "point-qs", "point-fs", "point-us", "jacobian-fs", "dense-eig",
          "flutter-cli", "simulate-60s")
-TARGETS = {"point-us": "<= 0.4 s", "flutter-cli": "<= 5 s", "simulate-60s": ">= 100x real time"}
+TARGETS = {"startup": "<= 0.3 s", "point-us": "<= 0.4 s", "flutter-cli": "<= 5 s", "simulate-60s": ">= 100x real time"}
 
 
 def _env(tree: str) -> dict:
@@ -42,6 +45,21 @@ def _env(tree: str) -> dict:
 
 
 def _run_worker(tree: str, task: str, inner: int) -> dict:
+    if task == "startup":  # a fresh process: import, build the GTM model, first rhs (numba: machine code from the cache)
+        code = ("import numpy as np; from flexsim.aircraft.toml_loader import load_aircraft; "
+                "from flexsim.model.aircraft_model import AircraftModel; m = AircraftModel(load_aircraft('gtm')); "
+                "x = m.layout.zeros(); x[2] = -3000.0; x[m.layout.v.start] = 200.0; m.rhs(0.0, x, np.zeros(4))")
+        base = "import numpy, scipy.linalg, scipy.integrate"
+        out = {}
+        for key, src in (("all", code), ("base", base)):
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            t0 = time.perf_counter()
+            subprocess.run([sys.executable, "-c", src], cwd=tree, env=_env(tree), check=True, capture_output=True)
+            wall = time.perf_counter() - t0
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            out[key] = ((after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime), wall)
+        # the project's share: the whole process less a process importing numpy and scipy only
+        return {"cpu_s": out["all"][0] - out["base"][0], "wall_s": out["all"][1] - out["base"][1]}
     if task == "flutter-cli":
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
@@ -65,6 +83,11 @@ def _rel(a, b) -> float:
 
 
 def _difference(task: str, old: dict, new: dict) -> str:
+    if task.startswith("rhs-"):
+        d = np.max(np.abs(np.subtract(old["dx"], new["dx"]))) / np.max(np.abs(old["dx"]))
+        return f"per call; rhs max |d dx| / max |dx| = {d:.1e}"
+    if task == "startup":
+        return "import + model + first rhs, less a numpy/scipy-only process"
     if task.startswith("eval-"):
         dx = max(_rel(a, b) / 1.0 for a, b in zip(old["trim_x"], new["trim_x"]))
         de, missing = 0.0, 0
@@ -113,7 +136,7 @@ def main() -> None:
                     runs[side].append(_run_worker(tree, task, args.inner))
             med = {s: statistics.median(r["cpu_s"] for r in runs[s]) for s in runs}
             extra = ""
-            if task == "flutter-cli":
+            if task in ("flutter-cli", "startup"):
                 walls = {s: statistics.median(r["wall_s"] for r in runs[s]) for s in runs}
                 extra = f"wall {walls['ref']:.2f} -> {walls['new']:.2f} s (x{walls['ref'] / walls['new']:.2f}); CPU of the process tree"
             elif task == "dense-eig":
@@ -123,6 +146,10 @@ def main() -> None:
             else:
                 extra = _difference(task, runs["ref"][-1], runs["new"][-1])
             rows.append((task, med["ref"], med["new"], extra))
+            if task.startswith("rhs-"):
+                print(f"{task:<13} ref {med['ref'] * 1e6:8.1f} us  this {med['new'] * 1e6:8.1f} us  x{med['ref'] / med['new']:5.2f}   "
+                      f"{extra}", flush=True)
+                continue
             print(f"{task:<13} ref {med['ref']:8.3f} s   this {med['new']:8.3f} s   x{med['ref'] / med['new']:5.2f}   "
                   f"{TARGETS.get(task, '')}   {extra}", flush=True)
         if eig is not None:

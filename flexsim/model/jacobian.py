@@ -45,6 +45,22 @@ def _column(model: AircraftModel, t: float, x: np.ndarray, u: np.ndarray, direct
     return (model.rhs(t, x + h * direction, u, wind) - model.rhs(t, x - h * direction, u, wind)) / (2 * h)
 
 
+def _central_differences(model: AircraftModel, t: float, x: np.ndarray, u: np.ndarray, dx: np.ndarray, du: np.ndarray,
+                         h: np.ndarray, wind=None) -> np.ndarray:
+    """Columns (rhs(x + dx_k, u + du_k) - rhs(x - dx_k, u - du_k)) / (2 h_k), shape (n, k): all 2k right-hand
+    sides in one compiled call (:meth:`AircraftModel.rhs_batch`; each row equals ``model.rhs`` bit for bit), or
+    one by one for a wind that is a plain Python callable."""
+    xs = np.concatenate([x + dx, x - dx])
+    us = np.concatenate([u + du, u - du])
+    k = dx.shape[0]
+    batched = type(model).rhs is AircraftModel.rhs  # a subclass's own rhs is differentiated call by call
+    if batched and (wind is None or getattr(wind, "wind_data", None) is not None):
+        r = model.rhs_batch(t, xs, us, wind)
+    else:
+        r = np.stack([model.rhs(t, xi, ui, wind) for xi, ui in zip(xs, us)])
+    return ((r[:k] - r[k:]) / (2 * h)[:, None]).T
+
+
 @single_blas_thread
 def jacobian(model: AircraftModel, x: np.ndarray, u: np.ndarray, t: float = 0.0, *,
              method: str = "structured", controls: bool = True, wind=None) -> tuple[np.ndarray, np.ndarray | None]:
@@ -83,22 +99,16 @@ def jacobian(model: AircraftModel, x: np.ndarray, u: np.ndarray, t: float = 0.0,
     structured = method == "structured" and lay.n_inflow > 0
     n_direct = lay.inflow.start if structured else n
     a = np.empty((n, n))
-    for j in range(n_direct):
-        h = max(_ABS_STEP, _REL_STEP * abs(x[j]))
-        e = np.zeros(n)
-        e[j] = 1.0
-        a[:, j] = _column(model, t, x, u, e, h, wind)
+    h = np.maximum(_ABS_STEP, _REL_STEP * np.abs(x[:n_direct]))
+    dx = np.zeros((n_direct, n))
+    dx[np.arange(n_direct), np.arange(n_direct)] = h
+    a[:, :n_direct] = _central_differences(model, t, x, u, dx, np.zeros((n_direct, 4)), h, wind)
     if structured:
         _inflow_columns(model, t, x, u, a, wind)
     b = None
     if controls:
-        b = np.empty((n, 4))
-        for j in range(4):
-            h = max(1e-3 if j == 0 else 1e-7, _REL_STEP * abs(u[j]))
-            up, um = u.copy(), u.copy()
-            up[j] += h
-            um[j] -= h
-            b[:, j] = (model.rhs(t, x, up, wind) - model.rhs(t, x, um, wind)) / (2 * h)
+        hu = np.maximum([1e-3, 1e-7, 1e-7, 1e-7], _REL_STEP * np.abs(u))
+        b = _central_differences(model, t, x, u, np.zeros((4, n)), np.diag(hu), hu, wind)
     return a, b
 
 
@@ -115,13 +125,14 @@ def _inflow_columns(model: AircraftModel, t: float, x: np.ndarray, u: np.ndarray
     half_b = 0.5 * coef.b
     v = coef.b / (half_b @ coef.b)  # 1/2 b^T v = 1
     lam = x[lay.inflow].reshape(-1, n_in)
+    hs = _INFLOW_STEP * np.maximum(1.0, np.abs(lam @ half_b))
+    dirs = np.zeros((idx.size, x.size))
+    for c in range(idx.size):
+        dirs[c, lay.inflow.start + c * n_in: lay.inflow.start + (c + 1) * n_in] = v * hs[c]
+    g_all = _central_differences(model, t, x, u, dirs, np.zeros((idx.size, 4)), hs, wind)
     for c in range(idx.size):
         rows = slice(lay.inflow.start + c * n_in, lay.inflow.start + (c + 1) * n_in)
-        lam0 = float(half_b @ lam[c])
-        h = _INFLOW_STEP * max(1.0, abs(lam0))
-        direction = np.zeros(x.size)
-        direction[rows] = v
-        g = _column(model, t, x, u, direction, h, wind)
+        g = g_all[:, c].copy()
         e_block = -decay[c] * coef.A_inv
         g[rows] -= e_block @ v
         a[:, rows] = np.outer(g, half_b)
