@@ -196,6 +196,7 @@ class AircraftModel(Immutable):
             raise ValueError(f"frozen_q/frozen_xi: must have {dofs.nq} and {dofs.nxi} entries")
         #: Frozen arrays of the compiled right-hand side (:class:`flexsim._kernels.KernelData`).
         self.kernel_data = self._build_kernel_data()
+        self._packed_parts = (self.aero, self.structure.inertia, self.parasite_drag, self.bodies)
         self._n_strips = 0 if self.aero is None else self.aero.strips.n_strips
         self._check_air = self.aero is not None and rigid and self._rho_fixed is None and self.aero_density_kg_m3 is None
 
@@ -306,12 +307,21 @@ class AircraftModel(Immutable):
 
     def _state(self, x) -> np.ndarray:
         """x as a kernel argument, with the altitude checked against the ISA range when the air density needs it."""
+        self._check_parts()
         x = _arg(x)
         if self._check_air:
             altitude = -x[2]
             if not Z_MIN <= altitude <= Z_MAX:
                 raise _range_error(float(altitude), False)
         return x
+
+    def _check_parts(self) -> None:
+        """Refuse a model whose parts were swapped after construction (the kernels would ignore the new part)."""
+        p = self._packed_parts
+        if p[0] is not self.aero or p[1] is not self.structure.inertia or p[2] is not self.parasite_drag or p[3] is not self.bodies:
+            raise RuntimeError("AircraftModel: a part (aero, structure.inertia, parasite_drag, bodies) was replaced after "
+                               "construction; the compiled right-hand side uses the arrays packed when the model was built, "
+                               "so the replacement would be ignored: build a new model with the option instead")
 
     def _strip_wind(self, t: float, x: np.ndarray, wind: Wind | None) -> tuple[np.ndarray, bool]:
         """(strip air velocity (n_s, 3) in component axes [m/s], whether there is wind) for the kernels.
@@ -420,6 +430,7 @@ class AircraftModel(Immutable):
         numpy.linalg.LinAlgError
             A singular system matrix in any row.
         """
+        self._check_parts()
         xs = _arg(x)
         us = _arg(u)
         if xs.ndim != 2 or xs.shape[1] != self.layout.n_states or us.shape != (xs.shape[0], 4):

@@ -128,3 +128,14 @@ def test_solve_against_lapack():
     np.testing.assert_allclose(x, np.linalg.solve(a, b), rtol=0, atol=1e-12 * np.max(np.abs(x)))
     with pytest.raises(ZeroDivisionError):
         k.solve(np.zeros((3, 3)), np.ones(3))
+
+
+def test_replaced_part_is_refused():
+    """The kernels use the arrays packed at construction: a part swapped in afterwards (a study's surgery through
+    object.__setattr__ on the sealed model) would be ignored, so the model refuses to evaluate."""
+    model = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
+    x = _state(model, 1)
+    model.rhs(0.0, x, np.zeros(4))
+    object.__setattr__(model, "aero", AircraftModel(load_aircraft("gtm"), aero="quasi-steady").aero)
+    with pytest.raises(RuntimeError, match="replaced after construction"):
+        model.rhs(0.0, x, np.zeros(4))
