@@ -85,8 +85,13 @@ def main() -> None:
         from bench_simulate import scenario
         from flexsim.sim.simulate import simulate
 
-        model, point = scenario()
-        t, r = _timed(lambda: simulate(model, point, 60.0), inner)
+        sc = scenario()  # (model, point) before the wind was passed per call; (model, point, gust) since
+        model, point, gust = sc if len(sc) == 3 else (*sc, None)
+        method = os.environ.get("FLEXSIM_BENCH_METHOD", "auto")  # e.g. ETD2RK:0.01 (fixed step [s])
+        kw = {"wind": gust} if gust is not None else {}
+        if method.startswith("ETD2RK"):
+            kw.update(method="ETD2RK", max_step=float(method.split(":")[1]))
+        t, r = _timed(lambda: simulate(model, point, 60.0, **kw), inner)
         k = np.arange(0, r.t.size, 10)
         res.update(cpu_s=t, rtf=60.0 / t, nfev=int(r.nfev), altitude_m=r.altitude_m[k].tolist(),
                    tip_m=r.tip_deflection_m()[k].tolist(), airspeed_m_s=r.airspeed_m_s[k].tolist())
