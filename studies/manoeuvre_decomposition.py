@@ -85,6 +85,13 @@ SWITCHES = ("none", "rotation", "mass_matrix", "static_deformation", "force_reso
 FIN_SWITCHES = ("fin_normal", "fin_drag+0.1", "fin_drag-0.1", "fin_drag+0.3", "fin_drag-0.3")
 #: Switches that leave the level-flight linear model unchanged (the level case is then taken from ``none``).
 LEVEL_NEUTRAL = ("rotation", "mass_matrix", "static_deformation", "aero_alpha")
+#: Switches that patch the Python-level strip coupling or inertia of a built model (``_SwitchedCoupling``,
+#: ``_ShiftedInertia``). The compiled right-hand side (``flexsim/_kernels.py``, since 14f57d7) reads the packed
+#: arrays built at construction, not these objects, and ``AircraftModel`` refuses to evaluate a patched model
+#: (bf96e8e). Their rows in docs/flutter.md were measured on the numpy right-hand side; re-run them in a checkout of
+#: the last numpy commit: ``git worktree add /tmp/numpy-rhs b32192e`` and run this script there.
+NUMPY_RHS_SWITCHES = ("mass_matrix", "force_resolution", "aero_alpha", "prandtl_glauert") + FIN_SWITCHES
+NUMPY_RHS_COMMIT = "b32192e"
 CASES = {"level": (math.inf, 0.0), "R5km": (5000.0, 0.0), "R12km": (12000.0, 0.0),
          "g+15": (math.inf, 15.0), "g-15": (math.inf, -15.0)}
 
@@ -430,6 +437,15 @@ def main() -> None:
     ap.add_argument("--scorecard", type=Path, nargs="+", default=None, metavar="JSON",
                     help="only print the trend scorecard from earlier --json outputs (their 'none' rows, one per altitude)")
     a = ap.parse_args()
+    patched = [s for s in a.switches if s in NUMPY_RHS_SWITCHES]
+    if patched and "--switches" in sys.argv:
+        ap.error(f"--switches {' '.join(patched)}: these switches patch the model's Python-level coupling or inertia, "
+                 f"which the compiled right-hand side does not read; run them in a checkout of {NUMPY_RHS_COMMIT} "
+                 f"(git worktree add /tmp/numpy-rhs {NUMPY_RHS_COMMIT}), where the table's rows were measured")
+    if patched:
+        print(f"# skipped switches {', '.join(patched)}: they need the numpy right-hand side of {NUMPY_RHS_COMMIT} "
+              "(see NUMPY_RHS_SWITCHES)", flush=True)
+        a.switches = [s for s in a.switches if s not in NUMPY_RHS_SWITCHES]
     if a.scorecard:
         rows = [r for f in a.scorecard for r in json.loads(f.read_text()) if r["switch"] == "none"]
         print(scorecard(rows))
