@@ -23,20 +23,28 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-EARTH_RADIUS = 6_356_766.0  # r0 [m], 1976 standard
-G0 = 9.80665  # standard gravity [m/s²]
-GAS_CONSTANT = 8.31432 / 28.9644e-3  # R* / M0 [J/(kg·K)] = 287.0531 (1976 standard values)
-GAMMA = 1.4  # ratio of specific heats
-T0 = 288.15  # sea-level temperature [K]
-P0 = 101_325.0  # sea-level pressure [Pa]
-LAPSE_RATE = -0.0065  # troposphere dT/dH [K/m]
-H_TROPOPAUSE = 11_000.0  # geopotential [m]
+# The 1976 constants (§1.2) and the closed-form scalar state live once, in the compiled kernels
+# (flexsim._kernels: EARTH_RADIUS r0 [m], G0 [m/s²], GAS_CONSTANT R*/M0 = 287.0531 J/(kg·K), GAMMA, T0 288.15 K,
+# P0 101325 Pa, LAPSE_RATE -6.5 K/km, H_TROPOPAUSE 11 km geopotential, T_TROPOPAUSE 216.65 K, P_TROPOPAUSE
+# 22632.06 Pa); this module adds the range checks, geometric altitude and array evaluation.
+from flexsim._kernels import (  # noqa: E402
+    _EXPONENT,
+    _SCALE,
+    EARTH_RADIUS,
+    G0,
+    GAMMA,
+    GAS_CONSTANT,
+    H_TROPOPAUSE,
+    LAPSE_RATE,
+    P0,
+    P_TROPOPAUSE,
+    T0,
+    T_TROPOPAUSE,
+    isa_scalar,
+)
+
 H_MIN = -5_000.0  # lowest supported geopotential altitude [m]
 H_MAX = 20_000.0  # top of the isothermal layer, geopotential [m]
-T_TROPOPAUSE = T0 + LAPSE_RATE * H_TROPOPAUSE  # 216.65 K
-_EXPONENT = -G0 / (GAS_CONSTANT * LAPSE_RATE)  # 5.255877
-P_TROPOPAUSE = P0 * (T_TROPOPAUSE / T0) ** _EXPONENT  # 22632.06 Pa
-_SCALE = G0 / (GAS_CONSTANT * T_TROPOPAUSE)  # 1/m, isothermal decay rate
 Z_MIN = EARTH_RADIUS * H_MIN / (EARTH_RADIUS - H_MIN)  # geometric equivalents [m]
 Z_MAX = EARTH_RADIUS * H_MAX / (EARTH_RADIUS - H_MAX)
 
@@ -96,13 +104,8 @@ def geometric_altitude(h: ArrayLike) -> float | NDArray:
 
 
 def _state_scalar(h: float) -> tuple[float, float, float]:
-    if h <= H_TROPOPAUSE:
-        temperature = T0 + LAPSE_RATE * h
-        pressure = P0 * (temperature / T0) ** _EXPONENT
-    else:
-        temperature = T_TROPOPAUSE
-        pressure = P_TROPOPAUSE * math.exp(-_SCALE * (h - H_TROPOPAUSE))
-    return pressure / (GAS_CONSTANT * temperature), pressure, temperature
+    """(density [kg/m³], pressure [Pa], temperature [K]) at geopotential ``h`` [m] (eqs. 23, 33a/33b, 42)."""
+    return isa_scalar(float(h))
 
 
 def _state_array(h: NDArray) -> tuple[NDArray, NDArray, NDArray]:
