@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from flexsim import _kernels as _k
+
 __all__ = ["skew", "dcm_321", "euler_rate_matrix", "euler_rate_matrix_inverse"]
 
 
@@ -51,16 +53,7 @@ def dcm_321(phi: float, theta: float, psi: float) -> np.ndarray:
     -------
     ndarray, shape (3, 3)
     """
-    sf, cf = np.sin(phi), np.cos(phi)
-    st, ct = np.sin(theta), np.cos(theta)
-    sp, cp = np.sin(psi), np.cos(psi)
-    return np.array(
-        [
-            [ct * cp, ct * sp, -st],
-            [sf * st * cp - cf * sp, sf * st * sp + cf * cp, sf * ct],
-            [cf * st * cp + sf * sp, cf * st * sp - sf * cp, cf * ct],
-        ]
-    )
+    return _k.dcm_321(float(phi), float(theta), float(psi))  # the one implementation (compiled kernel)
 
 
 def euler_rate_matrix(phi: float, theta: float) -> np.ndarray:
