@@ -262,32 +262,30 @@ def _masses(key: str, items: Any, frame: _Frame) -> list[LumpedMass]:
     return out
 
 
+def _attached_items(table: Any, key: str, keys: Any, frame: "_Frame", cls: type, numbers: tuple[str, ...]) -> tuple:
+    """The ``[[aero.<key>]]`` array of tables as ``cls`` items riding on a component (name, component,
+    position_m in the file's frame [m], and the named numbers); errors name ``aero.<key>[i].<field>``."""
+    items = table.get(key, [])
+    if not isinstance(items, list):
+        raise AircraftDefinitionError(f"aero.{key} = {items!r}: must be an array of tables ([[aero.{key}]])")
+    out = []
+    for i, item in enumerate(items):
+        where = f"aero.{key}[{i}]"
+        _check_keys(where, item, keys)
+        out.append(cls(name=str(item["name"]), component=str(item["component"]),
+                       position_m=frame.point(_vector(f"{where}.position_m", item["position_m"])),
+                       **{k: _number(f"{where}.{k}", item[k]) for k in numbers}))
+    return out
+
+
 def _aero_settings(table: Any, frame: "_Frame") -> AeroSettings:
     table = {} if table is None else table
     _check_keys("aero", table, _AIRCRAFT_AERO_KEYS)
     comp = table.get("compressibility", "prandtl-glauert")
     if not isinstance(comp, str):
         raise AircraftDefinitionError(f"aero.compressibility = {comp!r}: must be \"prandtl-glauert\" or \"none\"")
-    items = table.get("drag", [])
-    if not isinstance(items, list):
-        raise AircraftDefinitionError(f"aero.drag = {items!r}: must be an array of tables ([[aero.drag]])")
-    drag = []
-    for i, item in enumerate(items):
-        where = f"aero.drag[{i}]"
-        _check_keys(where, item, _DRAG_KEYS)
-        drag.append(DragItem(name=str(item["name"]), component=str(item["component"]),
-                             position_m=frame.point(_vector(f"{where}.position_m", item["position_m"])),
-                             drag_area_m2=_number(f"{where}.drag_area_m2", item["drag_area_m2"])))
-    items = table.get("body", [])
-    if not isinstance(items, list):
-        raise AircraftDefinitionError(f"aero.body = {items!r}: must be an array of tables ([[aero.body]])")
-    bodies = []
-    for i, item in enumerate(items):
-        where = f"aero.body[{i}]"
-        _check_keys(where, item, _BODY_KEYS)
-        bodies.append(BodyItem(name=str(item["name"]), component=str(item["component"]),
-                               position_m=frame.point(_vector(f"{where}.position_m", item["position_m"])),
-                               **{k: _number(f"{where}.{k}", item[k]) for k in ("length_m", "diameter_m", "volume_m3")}))
+    drag = _attached_items(table, "drag", _DRAG_KEYS, frame, DragItem, ("drag_area_m2",))
+    bodies = _attached_items(table, "body", _BODY_KEYS, frame, BodyItem, ("length_m", "diameter_m", "volume_m3"))
     return AeroSettings(compressibility=comp, drag=tuple(drag), bending_incidence=table.get("bending_incidence", False),
                         bodies=tuple(bodies), downwash_gradient=table.get("downwash_gradient", 0.0))
 

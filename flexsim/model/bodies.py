@@ -46,7 +46,7 @@ import numpy as np
 from flexsim import _kernels as _k
 from flexsim._arrays import kernel_arg
 from flexsim._immutable import Immutable
-from flexsim.model.drag import attached_point_maps
+from flexsim.model.drag import attached_items_maps
 from flexsim.structure.model import StructuralModel
 
 __all__ = ["SlenderBodies", "spheroid_apparent_mass", "munk_moment"]
@@ -108,14 +108,10 @@ class SlenderBodies(Immutable):
         self.names = tuple(b.name for b in items)
         self.volume_m3 = np.array([b.volume_m3 for b in items], dtype=float)
         self.k1, self.k2 = spheroid_apparent_mass(np.array([b.length_m / b.diameter_m for b in items], dtype=float))
-        n_v, nq = structure.dofs.n_v, structure.dofs.nq
         k = len(items)
-        self._g0 = np.zeros((k, 6, n_v))
-        self._g1 = np.zeros((k, 3, 3, nq))
-        self._offset = np.zeros((k, 3))
+        self._g0, self._g1, self._offset = attached_items_maps(structure, items)
         self.axis = np.zeros((k, 3))
         for j, b in enumerate(items):
-            self._g0[j], self._g1[j], self._offset[j] = attached_point_maps(structure, b.component, b.position_m)
             self.axis[j] = structure.aircraft.component(b.component).dcm[:, 0]  # body x in component axes
         self._vol_dk = self.volume_m3 * (self.k2 - self.k1)
         #: Fields of the compiled kernels :func:`flexsim._kernels.body_moments` and ``body_force`` (floats by name).

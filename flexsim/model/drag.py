@@ -26,7 +26,7 @@ from flexsim import _kernels as _k
 from flexsim._arrays import kernel_arg
 from flexsim.structure.model import StructuralModel
 
-__all__ = ["ParasiteDrag", "attached_point_maps"]
+__all__ = ["ParasiteDrag", "attached_point_maps", "attached_items_maps"]
 
 
 def attached_point_maps(structure: StructuralModel, component: str, position_m: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -42,6 +42,16 @@ def attached_point_maps(structure: StructuralModel, component: str, position_m: 
     maps = structure.point_maps(component, np.array([station]))
     return maps.g0[0], maps.g1[0], comp.dcm @ (np.asarray(position_m, float) - maps.r0[0])
 
+
+
+def attached_items_maps(structure: StructuralModel, items) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`attached_point_maps` of k items (each with ``component`` and ``position_m``), stacked:
+    g0 (k, 6, n_v), g1 (k, 3, 3, nq), offsets (k, 3) [m] (component axes)."""
+    k, n_v, nq = len(items), structure.dofs.n_v, structure.dofs.nq
+    g0, g1, offset = np.zeros((k, 6, n_v)), np.zeros((k, 3, 3, nq)), np.zeros((k, 3))
+    for j, item in enumerate(items):
+        g0[j], g1[j], offset[j] = attached_point_maps(structure, item.component, item.position_m)
+    return g0, g1, offset
 
 class ParasiteDrag(Immutable):
     """Drag items of an aircraft, with their kinematic maps (built once; :meth:`generalized_force` per call).
@@ -62,13 +72,8 @@ class ParasiteDrag(Immutable):
         items = structure.aircraft.aero_settings.drag
         self.names = tuple(d.name for d in items)
         self.area_m2 = np.array([d.drag_area_m2 for d in items], dtype=float)
-        n_v, nq = structure.dofs.n_v, structure.dofs.nq
         k = len(items)
-        self._g0 = np.zeros((k, 6, n_v))
-        self._g1 = np.zeros((k, 3, 3, nq))
-        self._offset = np.zeros((k, 3))
-        for j, d in enumerate(items):
-            self._g0[j], self._g1[j], self._offset[j] = attached_point_maps(structure, d.component, d.position_m)
+        self._g0, self._g1, self._offset = attached_items_maps(structure, items)
         #: Fields of the compiled kernel :func:`flexsim._kernels.parasite_drag` (floats by name).
         self.kernel_fields = dict(drag_area=self.area_m2.reshape(k), drag_g0=self._g0, drag_g1=self._g1, drag_offset=self._offset)
         self.kernel_data = _k.pack(self.kernel_fields, {})
