@@ -40,6 +40,7 @@ __all__ = ["PkRoot", "pk_track", "pk_roots"]
 _MIN_CORRELATION = 0.9
 _RESIDUAL = 1e-13
 _SOLVES = 3
+_ROUNDS = 4
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,18 +77,18 @@ def _match(vals: np.ndarray, vecs: np.ndarray, p: complex, vec: np.ndarray, excl
     return int(np.argmax(score))
 
 
-def _inverse_step(a: np.ndarray, p: complex, vec: np.ndarray) -> tuple[complex, np.ndarray] | None:
+def _inverse_step(a: np.ndarray, p: complex, vec: np.ndarray, eye: np.ndarray) -> tuple[complex, np.ndarray] | None:
     """Shifted inverse iteration on ``a`` from (p, vec); None when it did not settle on one eigenpair.
 
-    Up to two rounds: ``_SOLVES`` solves with the shift ``p``, then (if the residual is still above
-    ``_RESIDUAL |A|_1``) as many with the Rayleigh quotient as shift.
+    Up to ``_ROUNDS`` rounds: ``_SOLVES`` solves with the shift ``p``, then (while the residual is still above
+    ``_RESIDUAL |A|_1``) as many with the Rayleigh quotient as shift (Rayleigh-quotient iteration: a start far
+    from the new eigenvalue, e.g. the first step from the frequency-independent start pair, converges in the
+    third or fourth round instead of falling back to a full ``eig``). ``eye`` is the identity of a's size.
     """
-    n = a.shape[0]
-    eye = np.eye(n)
     tol = _RESIDUAL * np.abs(a).sum(axis=0).max()
     v = vec / np.linalg.norm(vec)
     shift = p
-    for _ in range(2):
+    for _ in range(_ROUNDS):
         lu, piv, info = zgetrf(a - shift * eye)
         if info != 0:  # the shift is an eigenvalue to working precision: perturb it by round-off
             lu, piv, info = zgetrf(a - (shift + 1e-13 * max(abs(shift), 1.0)) * eye)
@@ -147,11 +148,12 @@ def pk_track(
     p, vec = complex(p0), np.asarray(v0, dtype=complex)
     full = 0
     excl = np.asarray(exclude, dtype=complex)
+    eye = np.eye(vec.size)
     for it in range(1, max_iter + 1):
         a = a_of(abs(p.imag))
         step = None
         if inverse_iteration and excl.size == 0:
-            step = _inverse_step(a, p, vec)
+            step = _inverse_step(a, p, vec, eye)
         if step is None:
             full += 1
             vals, vecs = np.linalg.eig(a)

@@ -102,13 +102,16 @@ class FlutterPoint:
 @dataclass
 class _SearchState:
     """What one flutter search carries between its evaluations: the last trim (warm start of the next), the
-    number of evaluations, the last (trim, spectrum), and the rigid-body instabilities met (Mach, eigenvalue,
-    dominant coordinate)."""
+    number of evaluations, the last (trim, spectrum), the rigid-body instabilities met (Mach, eigenvalue,
+    dominant coordinate), and every evaluation by its Mach number (Brent's method starts from the two ends of
+    the bracket, already evaluated by the scan, and returns one of the Mach numbers it evaluated: neither is
+    computed twice)."""
 
     guess: object = None
     n: int = 0
     last: tuple | None = None
     rigid: list = field(default_factory=list)
+    done: dict = field(default_factory=dict)
 
 
 class FlutterAnalysis:
@@ -193,10 +196,14 @@ class FlutterAnalysis:
         state = _SearchState()
 
         def g(mach: float) -> float:
+            mach = float(mach)
+            if mach in state.done:
+                state.last = state.done[mach]
+                return _growth(state.last[1])
             man = manoeuvre.with_speed(mach * a_sound)
             point, spec = self.evaluate(man, state.guess)
             state.guess, state.n = point, state.n + 1
-            state.last = (point, spec)
+            state.last = state.done[mach] = (point, spec)
             rig = spec.max_real("rigid", min_frequency_rad_s=0.0)
             if rig > 0:
                 crit = max((m for m in spec.of_kind("rigid")), key=lambda m: m.eigenvalue.real)
@@ -210,7 +217,6 @@ class FlutterAnalysis:
                 # the crossing near the guess is the lowest one if the coarse grid below it is stable
                 below = [m for m in np.arange(lo, a, mach_step)]
                 if all(g(float(m)) <= 0 for m in below[-2:]):
-                    state.guess = None
                     return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state)
         grid = np.arange(lo, hi + 1e-12, mach_step)
         prev_m, prev_g = None, None
@@ -236,7 +242,6 @@ class FlutterAnalysis:
                         f"{self.aero_model}: already unstable at the lower end of the search, M = {mach:.4f} "
                         f"({manoeuvre.describe()}); lower mach_range[0]"
                     )
-                state.guess = None
                 return self._point(manoeuvre, brentq(g, prev_m, float(mach), xtol=tol), a_sound, state)
             prev_m, prev_g = float(mach), val
         if prev_m is None:
@@ -269,7 +274,11 @@ class FlutterAnalysis:
         return None
 
     def _point(self, manoeuvre: SteadyManoeuvre, mach_f: float, a_sound: float, state: _SearchState) -> FlutterPoint:
-        point, spec = self.evaluate(manoeuvre.with_speed(mach_f * a_sound))
+        mach_f = float(mach_f)
+        if mach_f not in state.done:  # Brent returns a Mach number it evaluated; kept for other root finders
+            state.done[mach_f] = self.evaluate(manoeuvre.with_speed(mach_f * a_sound), state.guess)
+            state.n += 1
+        point, spec = state.done[mach_f]
         mode = spec.critical("elastic")
         desc = describe_mode(self.qs.structure, mode.shape, mode.eigenvalue)
         return FlutterPoint(
@@ -290,7 +299,7 @@ class FlutterAnalysis:
                                 else float(self.linear_aero_density_kg_m3)),
             aero_density_fixed=self.linear_aero_density_kg_m3 is not None,
             rigid_instabilities=tuple(state.rigid),
-            evaluations=state.n + 1,
+            evaluations=state.n,
         )
 
 
