@@ -1,4 +1,4 @@
-"""Gymnasium environments of flexsim: the flexible notional GTM in four control tasks (five ids).
+"""Gymnasium environments of flexsim: the flexible notional GTM in four control tasks (six ids).
 
 Importing this package registers (idempotently) the environment ids of :data:`ENV_IDS`::
 
@@ -21,12 +21,12 @@ from flexsim.envs.base import FlexSimEnv
 from flexsim.envs.config import ActuatorRates, FlightLimits, InitialPerturbation, IntegratorSettings, RewardTerm, TrackingReward
 from flexsim.envs.flutter_margin import FlutterMarginEnv, FlutterMarginTask, WingFlutterMarginEnv, WingFlutterMarginTask
 from flexsim.envs.gust_alleviation import GustAlleviationEnv, GustAlleviationTask
-from flexsim.envs.level_hold import LevelHoldEnv, LevelHoldTask
+from flexsim.envs.level_hold import LevelHoldCaptureEnv, LevelHoldEnv, LevelHoldTask
 from flexsim.envs.turn import TurnEnv, TurnTask
 from flexsim.envs.wrappers import FlightLogRecorder
 
 __all__ = [
-    "ENV_IDS", "VECTOR_ENTRY_POINTS", "register_envs", "FlexSimEnv", "LevelHoldEnv", "TurnEnv", "GustAlleviationEnv", "FlutterMarginEnv",
+    "ENV_IDS", "VECTOR_ENTRY_POINTS", "register_envs", "FlexSimEnv", "LevelHoldEnv", "LevelHoldCaptureEnv", "TurnEnv", "GustAlleviationEnv", "FlutterMarginEnv",
     "WingFlutterMarginEnv", "LevelHoldTask", "TurnTask", "GustAlleviationTask", "FlutterMarginTask", "WingFlutterMarginTask", "ActuatorRates", "FlightLimits",
     "InitialPerturbation", "IntegratorSettings", "RewardTerm", "TrackingReward", "FlightLogRecorder",
 ]
@@ -34,6 +34,7 @@ __all__ = [
 #: Registered id -> (entry point, max_episode_steps; 50 steps = 1 s at the default 50 Hz).
 ENV_IDS: dict[str, tuple[str, int]] = {
     "FlexSim/GTM-LevelHold-v0": ("flexsim.envs.level_hold:LevelHoldEnv", 1000),
+    "FlexSim/GTM-LevelHold-v1": ("flexsim.envs.level_hold:LevelHoldCaptureEnv", 1000),
     "FlexSim/GTM-Turn-v0": ("flexsim.envs.turn:TurnEnv", 1000),
     "FlexSim/GTM-GustAlleviation-v0": ("flexsim.envs.gust_alleviation:GustAlleviationEnv", 500),
     "FlexSim/GTM-FlutterMargin-v0": ("flexsim.envs.flutter_margin:FlutterMarginEnv", 1000),
@@ -44,6 +45,7 @@ ENV_IDS: dict[str, tuple[str, int]] = {
 #: steps N aircraft in one call (:mod:`flexsim.envs.vector`).
 VECTOR_ENTRY_POINTS: dict[str, str] = {
     "FlexSim/GTM-LevelHold-v0": "flexsim.envs.vector:LevelHoldVectorEnv",
+    "FlexSim/GTM-LevelHold-v1": "flexsim.envs.vector:LevelHoldCaptureVectorEnv",
     "FlexSim/GTM-Turn-v0": "flexsim.envs.vector:TurnVectorEnv",
     "FlexSim/GTM-GustAlleviation-v0": "flexsim.envs.vector:GustAlleviationVectorEnv",
     "FlexSim/GTM-FlutterMargin-v0": "flexsim.envs.vector:FlutterMarginVectorEnv",

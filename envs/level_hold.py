@@ -1,4 +1,5 @@
-"""FlexSim/GTM-LevelHold-v0: hold altitude, airspeed and heading in turbulence."""
+"""FlexSim/GTM-LevelHold-v0: hold altitude, airspeed and heading in turbulence; v1: capture them from an offset
+start under a tighter reward (v0's reward barely tells the trim controls held from a controller)."""
 
 from __future__ import annotations
 
@@ -10,11 +11,11 @@ import numpy as np
 from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
-from flexsim.envs.config import RewardTerm, TrackingReward
+from flexsim.envs.config import InitialPerturbation, RewardTerm, TrackingReward
 from flexsim.envs.dynamics import Measurements
 from flexsim.envs.episodes import perturbed_state, turbulence_field, wrap_angle
 
-__all__ = ["LevelHoldTask", "LevelHoldEnv"]
+__all__ = ["LevelHoldTask", "LevelHoldEnv", "LevelHoldCaptureEnv", "CAPTURE_REWARD", "CAPTURE_PERTURBATION"]
 
 
 @dataclass(frozen=True)
@@ -106,6 +107,8 @@ class LevelHoldEnv(FlexSimEnv):
     "rgb_array" (matplotlib image) or "human" (Rerun viewer, spawned on the first frame).
 
     ## Version History
+    * v1: ``FlexSim/GTM-LevelHold-v1`` (:class:`LevelHoldCaptureEnv`): starts up to 30 m and 3 deg off the
+      references and rewards them more tightly; v0 unchanged.
     <v0 history>
     """
 
@@ -129,3 +132,76 @@ class LevelHoldEnv(FlexSimEnv):
 
     def task_label(self) -> str:
         return "GTM level hold"
+
+
+#: The reward of ``FlexSim/GTM-LevelHold-v1``: altitude (weight 0.4, saturating at 10 m), airspeed (0.1, 5 m/s),
+#: heading (0.35, 2 deg), control rate 0.15 (the weights sum to 1 as v0's, so a flying step earns 0 to 1).
+CAPTURE_REWARD = TrackingReward(
+    terms=(RewardTerm("altitude_error_m", 0.4, 10.0), RewardTerm("airspeed_error_m_s", 0.1, 5.0),
+           RewardTerm("heading_error_rad", 0.35, math.radians(2.0))),
+    control_rate_weight=0.15)
+#: The start of ``FlexSim/GTM-LevelHold-v1``: v0's perturbation with altitude +-30 m and heading +-3 deg.
+CAPTURE_PERTURBATION = InitialPerturbation(altitude_m=30.0, heading_rad=math.radians(3.0))
+
+
+@shared_docs
+class LevelHoldCaptureEnv(LevelHoldEnv):
+    """
+    ## Description
+    ``FlexSim/GTM-LevelHold-v0`` (:class:`LevelHoldEnv`: the flexible notional GTM in level flight at 9144 m
+    and Mach 0.75, light Dryden turbulence, 20 s at 50 Hz) with two changes that make it a task on which a
+    controller visibly beats the trim controls held (the reason for v1, flexsim issue 13):
+
+    * the aircraft starts up to **30 m** off the reference altitude and **3 deg** off the reference heading
+      (``CAPTURE_PERTURBATION``; v0: 5 m, 0.57 deg), so it must capture them: held trim controls correct
+      neither (heading is neutrally stable and the altitude wanders with the phugoid);
+    * the reward saturates at **10 m**, 5 m/s and **2 deg** (``CAPTURE_REWARD``; v0: 30 m, 5 m/s, 5 deg) with
+      weights **0.4** (altitude), **0.1** (airspeed), **0.35** (heading) (v0: 0.35, 0.25, 0.25); control rate
+      0.15 as v0. The airspeed weight is small because the airspeed is measured against the air, which the
+      gusts move: no controller removes that error (the LQR baseline's airspeed error is as large as the trim
+      hold's, about 0.6 m/s rms in light turbulence).
+
+    On seeds 0-9 (docs/environments.md) the trim controls held return about half of the LQR baseline's
+    return (v0: 93 %), so what a learned controller adds is visible in its return.
+
+    ## Action Space
+    <action space>
+
+    ## Observation Space
+    As ``FlexSim/GTM-LevelHold-v0``: ``Box(29,)`` float32:
+
+    <observation rows 0-9>
+    | 10    | altitude error h - h_ref                           | -5000  | 5000  | m      |
+    | 11    | airspeed error V - V_ref                           | -300   | 300   | m/s    |
+    | 12    | heading error psi - psi_ref (wrapped)              | -pi    | pi    | rad    |
+    | 13-24 | right wing, left wing, fin tips: deflection, its rate, twist, its rate | | | m, m/s, rad, rad/s |
+    | 25-28 | applied controls, normalised like the action       | 0/-1   | 1     | -      |
+
+    ## Rewards
+    Per step (``TrackingReward``, parts in ``info["reward_parts"]``): ``alive`` +1; ``altitude_error_m``
+    -0.4 min((e/10 m)^2, 1); ``airspeed_error_m_s`` -0.1 min((e/5 m/s)^2, 1); ``heading_error_rad``
+    -0.35 min((e/2 deg)^2, 1); ``control_rate`` -0.15 min(mean((da/0.1)^2), 1); ``termination`` -100.
+
+    ## Starting State
+    The trim of level flight at (``task.altitude_m``, ``task.mach``) plus uniform perturbations
+    (``CAPTURE_PERTURBATION``: altitude +-30 m, heading +-3 deg, roll/pitch +-0.01 rad, body rates
+    +-0.005 rad/s, speed +-1 m/s); the references are the trim's altitude and airspeed and heading 0.
+
+    ## Episode End
+    As ``FlexSim/GTM-LevelHold-v0``.
+
+    ## Arguments
+    As ``FlexSim/GTM-LevelHold-v0``; ``task`` defaults to ``LevelHoldTask(reward=CAPTURE_REWARD)`` and
+    ``perturbation`` to ``CAPTURE_PERTURBATION``.
+
+    ## Version History
+    * v1: this task (flexsim issue 13): offset start and tighter reward; v0 unchanged.
+    * v0: see ``FlexSim/GTM-LevelHold-v0`` (:class:`LevelHoldEnv`).
+    """
+
+    def __init__(self, *, task: LevelHoldTask | None = None, perturbation: InitialPerturbation | None = None, **kwargs) -> None:
+        super().__init__(task=LevelHoldTask(reward=CAPTURE_REWARD) if task is None else task,
+                         perturbation=CAPTURE_PERTURBATION if perturbation is None else perturbation, **kwargs)
+
+    def task_label(self) -> str:
+        return "GTM level capture and hold"

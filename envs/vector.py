@@ -41,10 +41,10 @@ from flexsim.envs.base import FlexSimEnv
 from flexsim.envs.dynamics import FlightDynamics, StepOutcome
 from flexsim.envs.flutter_margin import FlutterMarginEnv, WingFlutterMarginEnv
 from flexsim.envs.gust_alleviation import GustAlleviationEnv
-from flexsim.envs.level_hold import LevelHoldEnv
+from flexsim.envs.level_hold import LevelHoldCaptureEnv, LevelHoldEnv
 from flexsim.envs.turn import TurnEnv
 
-__all__ = ["FlexSimVectorEnv", "LevelHoldVectorEnv", "TurnVectorEnv", "GustAlleviationVectorEnv", "FlutterMarginVectorEnv",
+__all__ = ["FlexSimVectorEnv", "LevelHoldVectorEnv", "LevelHoldCaptureVectorEnv", "TurnVectorEnv", "GustAlleviationVectorEnv", "FlutterMarginVectorEnv",
            "WingFlutterMarginVectorEnv", "advance_batch", "rhs_rows"]
 
 #: Exceptions of the model that end one aircraft's period as a "model error" (as ``FlightDynamics.advance``).
@@ -392,6 +392,12 @@ class LevelHoldVectorEnv(FlexSimVectorEnv):
     """``FlexSim/GTM-LevelHold-v0`` batched (:class:`FlexSimVectorEnv`)."""
 
     env_class = LevelHoldEnv
+
+
+class LevelHoldCaptureVectorEnv(FlexSimVectorEnv):
+    """``FlexSim/GTM-LevelHold-v1`` batched (:class:`FlexSimVectorEnv`)."""
+
+    env_class = LevelHoldCaptureEnv
 
 
 class TurnVectorEnv(FlexSimVectorEnv):

@@ -72,7 +72,7 @@ def test_source_checkout_maps_flexsim_envs_onto_the_envs_folder(tmp_path):
     assert Path(out[0]) == ROOT / "flexsim" / "__init__.py"
     assert Path(out[1]) == ROOT / "envs" / "__init__.py"
     assert Path(out[2]) == ROOT / "envs" / "base.py"
-    assert out[3] == str(sorted(["FlexSim/GTM-LevelHold-v0", "FlexSim/GTM-Turn-v0", "FlexSim/GTM-GustAlleviation-v0",
+    assert out[3] == str(sorted(["FlexSim/GTM-LevelHold-v0", "FlexSim/GTM-LevelHold-v1", "FlexSim/GTM-Turn-v0", "FlexSim/GTM-GustAlleviation-v0",
                                  "FlexSim/GTM-FlutterMargin-v0", "FlexSim/GTM-FlutterMargin-v1"]))
 
 

@@ -211,7 +211,7 @@ class RandomPolicy:
         return self.space.sample()
 
 
-BASELINES = {"FlexSim/GTM-LevelHold-v0": LevelHoldLqr, "FlexSim/GTM-Turn-v0": TurnLqr,
+BASELINES = {"FlexSim/GTM-LevelHold-v0": LevelHoldLqr, "FlexSim/GTM-LevelHold-v1": LevelHoldLqr, "FlexSim/GTM-Turn-v0": TurnLqr,
              "FlexSim/GTM-GustAlleviation-v0": GustLqr, "FlexSim/GTM-FlutterMargin-v0": FlutterPidDamper,
              "FlexSim/GTM-FlutterMargin-v1": WingFlutterAileronDamper}
 

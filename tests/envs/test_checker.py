@@ -1,6 +1,6 @@
 """Registration and gymnasium's env checker.
 
-Checks: the five ids are registered once (registering again is a no-op); ``gymnasium.utils.env_checker.
+Checks: the six ids are registered once (registering again is a no-op); ``gymnasium.utils.env_checker.
 check_env`` passes without warnings for every id, its render check included (on a headless machine the
 instances offer "rgb_array" only, and ``render_mode="human"`` fails at once with a clear message);
 the spaces are float32 Boxes with finite bounds and ``observation_structure`` tiles the observation.
@@ -24,7 +24,7 @@ def test_ids_registered_once():
     envs.register_envs()
     assert set(envs.ENV_IDS) <= set(gym.registry)
     assert all(gym.registry[k] is before[k] for k in envs.ENV_IDS)
-    assert [gym.registry[k].max_episode_steps for k in envs.ENV_IDS] == [1000, 1000, 500, 1000, 1000]
+    assert [gym.registry[k].max_episode_steps for k in envs.ENV_IDS] == [1000, 1000, 1000, 500, 1000, 1000]
 
 
 @pytest.mark.parametrize("env_id", list(envs.ENV_IDS))
