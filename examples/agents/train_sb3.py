@@ -101,24 +101,102 @@ def _make_env(env_id: str, aero: str, scale: float, seed: int):
     return thunk
 
 
+def make_batched_vec_env(env_id: str, num_envs: int, aero: str, scale: float, seed: int):
+    """An SB3 ``VecEnv`` over the batched env of ``env_id`` (``gym.make_vec(..., vectorization_mode="vector_entry_point")``,
+    all aircraft stepped in one call in this process), with the actions of :class:`TrimResidualAction`.
+
+    Episodes restart in the step that ends them (gymnasium's SameStep autoreset) and the ended episode's last
+    observation is in ``infos[i]["terminal_observation"]``, as SB3 expects; aircraft i is seeded ``seed + i``.
+    """
+    from stable_baselines3.common.vec_env import VecEnv
+
+    class BatchedVecEnv(VecEnv):
+        def __init__(self) -> None:
+            self.venv = gym.make_vec(env_id, num_envs=num_envs, vectorization_mode="vector_entry_point", aero=aero,
+                                     autoreset_mode="SameStep")
+            single = self.venv.single_action_space
+            self.low, self.high = single.low.astype(np.float64), single.high.astype(np.float64)
+            self.trim = np.zeros((num_envs, 4))
+            self.actions = None
+            self._seed = seed
+            super().__init__(num_envs, self.venv.single_observation_space, gym.spaces.Box(-1.0, 1.0, (4,), np.float32))
+
+        def _take_trim(self, info: dict) -> None:
+            mask = info.get("_trim_action")
+            if mask is not None:
+                self.trim[mask] = np.asarray(info["trim_action"], dtype=np.float64)[mask]
+
+        def reset(self):
+            obs, info = self.venv.reset(seed=self._seed)
+            self._seed = None  # later resets continue each aircraft's random stream
+            self._take_trim(info)
+            return obs
+
+        def step_async(self, actions) -> None:
+            a = self.trim + scale * np.clip(np.asarray(actions, dtype=np.float64), -1.0, 1.0)
+            self.actions = np.clip(a, self.low, self.high).astype(np.float32)
+
+        def step_wait(self):
+            obs, rewards, terminated, truncated, info = self.venv.step(self.actions)
+            dones = terminated | truncated
+            infos = [{} for _ in range(num_envs)]
+            for i in np.flatnonzero(dones):
+                infos[i]["terminal_observation"] = info["final_obs"][i]
+                infos[i]["TimeLimit.truncated"] = bool(truncated[i] and not terminated[i])
+            self._take_trim(info)
+            return obs, rewards.astype(np.float32), dones, infos
+
+        def close(self) -> None:
+            self.venv.close()
+
+        def get_attr(self, attr_name, indices=None):
+            return [getattr(self.venv.envs[i], attr_name) for i in self._get_indices(indices)]
+
+        def set_attr(self, attr_name, value, indices=None) -> None:
+            for i in self._get_indices(indices):
+                setattr(self.venv.envs[i], attr_name, value)
+
+        def env_method(self, method_name, *method_args, indices=None, **method_kwargs):
+            return [getattr(self.venv.envs[i], method_name)(*method_args, **method_kwargs) for i in self._get_indices(indices)]
+
+        def env_is_wrapped(self, wrapper_class, indices=None):
+            return [False] * len(self._get_indices(indices))
+
+    return BatchedVecEnv()
+
+
+#: Per evaluation worker process: the env of each (id, aero), its baseline policy and the loaded agent, built once.
+_WORKER_CACHE: dict = {}
+
+
 def _evaluate(job: tuple) -> tuple[str, int, float, int, str]:
-    """One seeded episode of one policy ("agent", "baseline", "trim") in a worker process."""
+    """One seeded episode of one policy ("agent", "baseline", "trim", "random") in a worker process."""
     kind, seed, env_id, aero, scale, model_path, algo, stats = job
     import flexsim.envs  # noqa: F401
-    from baselines import make_baseline
+    from baselines import RandomPolicy, make_baseline
 
-    env = gym.make(env_id, aero=aero)
+    key = (env_id, aero)
+    if key not in _WORKER_CACHE:  # one env per worker process and task: the model, trim and ETD2RK matrices are built once
+        _WORKER_CACHE[key] = gym.make(env_id, aero=aero)
+    env = _WORKER_CACHE[key]
     obs, info = env.reset(seed=seed)
     trim = np.asarray(info["trim_action"], dtype=np.float32)
     if kind == "baseline":
-        policy = make_baseline(env_id, env)
+        if (key, "baseline") not in _WORKER_CACHE:
+            _WORKER_CACHE[(key, "baseline")] = make_baseline(env_id, env)
+        policy = _WORKER_CACHE[(key, "baseline")]
         policy.reset(info)
+    elif kind == "random":
+        policy = RandomPolicy(env)
+        policy.reset(info, seed=seed)
     elif kind == "agent":
         import stable_baselines3 as sb3
         import torch
 
         torch.set_num_threads(1)
-        model = getattr(sb3, algo).load(model_path, device="cpu")
+        if (model_path, algo) not in _WORKER_CACHE:
+            _WORKER_CACHE[(model_path, algo)] = getattr(sb3, algo).load(model_path, device="cpu")
+        model = _WORKER_CACHE[(model_path, algo)]
         mean, var, clip, eps = (np.asarray(stats[k]) if k in ("mean", "var") else stats[k] for k in ("mean", "var", "clip", "eps"))
         wrapped = TrimResidualAction(env, scale)
         wrapped._trim = trim.astype(np.float64)
@@ -137,7 +215,6 @@ def _evaluate(job: tuple) -> tuple[str, int, float, int, str]:
         if terminated or truncated:
             reason = info.get("termination_reason", "") if terminated else ""
             break
-    env.close()
     return kind, seed, total, steps, reason
 
 
@@ -155,7 +232,8 @@ def _plot(curve: list[tuple[int, float]], result: dict, path: Path, title: str) 
         if k >= 2:
             smooth = np.convolve(returns, np.ones(k) / k, mode="valid")
             ax.plot(steps[k - 1:], smooth, color="C0", label=f"running mean of {k}")
-    for key, color, label in (("agent", "C0", "agent, deterministic"), ("baseline", "C3", "LQR baseline"), ("trim", "C2", "trim action held")):
+    for key, color, label in (("agent", "C0", "agent, deterministic"), ("baseline", "C3", "LQR baseline"), ("trim", "C2", "trim action held"),
+                                ("random", "C7", "random actions")):
         ax.axhline(result[key]["mean_return"], color=color, ls="--", lw=1, label=f"{label}: {result[key]['mean_return']:.0f} (eval mean)")
     ax.set_xlabel("environment steps")
     ax.set_ylabel("episode return")
@@ -168,49 +246,78 @@ def _plot(curve: list[tuple[int, float]], result: dict, path: Path, title: str) 
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--env", default="FlexSim/GTM-LevelHold-v0", choices=list(envs.ENV_IDS))
+    parser.add_argument("--env", default="FlexSim/GTM-LevelHold-v1", choices=list(envs.ENV_IDS))
     parser.add_argument("--algo", default="PPO", choices=ALGORITHMS)
-    parser.add_argument("--steps", type=int, default=1_000_000, help="most environment steps [%(default)s]")
+    parser.add_argument("--steps", type=int, default=10_000_000, help="most environment steps [%(default)s]")
     parser.add_argument("--minutes", type=float, default=15.0, help="wall-time budget of the training [%(default)s min]")
-    parser.add_argument("--envs", type=int, default=2, help="parallel worker processes [%(default)s]")
+    parser.add_argument("--vector", default="batched", choices=["batched", "subproc"],
+                        help="batched: all aircraft in one gymnasium VectorEnv in this process; subproc: one process per aircraft [%(default)s]")
+    parser.add_argument("--envs", type=int, default=16, help="aircraft flown in parallel (subproc: worker processes) [%(default)s]")
+    parser.add_argument("--workers", type=int, default=2, help="processes of the evaluation [%(default)s]")
     parser.add_argument("--aero", default="unsteady", choices=["unsteady", "quasi-steady"])
     parser.add_argument("--residual-scale", type=float, default=0.1, help="action = trim + scale * a, a in [-1, 1] [%(default)s]")
+    parser.add_argument("--gamma", type=float, default=0.99, help="discount factor [%(default)s]")
+    parser.add_argument("--n-steps", type=int, default=128, help="PPO: steps per aircraft per update [%(default)s]")
+    parser.add_argument("--batch-size", type=int, default=256, help="minibatch size [%(default)s]")
+    parser.add_argument("--epochs", type=int, default=10, help="PPO: epochs per update [%(default)s]")
+    parser.add_argument("--lr", type=float, default=3e-4, help="learning rate [%(default)s]")
+    parser.add_argument("--net", default="64,64", help="hidden layer sizes of policy and value nets [%(default)s]")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--eval-episodes", type=int, default=10, help="seeded evaluation episodes per policy [%(default)s]")
     parser.add_argument("--out", type=Path, default=Path("logs/agent"))
     parser.add_argument("--torch-threads", type=int, default=1, help="torch intra-op threads of the learner [1]")
     args = parser.parse_args(argv)
-    for name in ("steps", "envs", "torch_threads", "eval_episodes"):
+    for name in ("steps", "envs", "workers", "torch_threads", "eval_episodes", "n_steps", "batch_size", "epochs"):
         if getattr(args, name) < 1:
             parser.error(f"--{name.replace('_', '-')} = {getattr(args, name)}: must be >= 1")
     if not args.minutes > 0:
         parser.error(f"--minutes = {args.minutes}: must be > 0")
+    if not 0.0 < args.gamma < 1.0:
+        parser.error(f"--gamma = {args.gamma}: must be in (0, 1)")
+    try:
+        net = [int(n) for n in args.net.split(",")]
+        assert all(n >= 1 for n in net)
+    except (ValueError, AssertionError):
+        parser.error(f"--net = {args.net!r}: must be comma-separated positive layer sizes, e.g. 64,64")
     sb3, BaseCallback, DummyVecEnv, SubprocVecEnv, VecMonitor, VecNormalize = _import_sb3()
     import torch
 
     torch.set_num_threads(args.torch_threads)
     args.out.mkdir(parents=True, exist_ok=True)
-    fns = [_make_env(args.env, args.aero, args.residual_scale, TRAIN_SEED + 100 * args.seed + i) for i in range(args.envs)]
-    venv = SubprocVecEnv(fns) if args.envs > 1 else DummyVecEnv(fns)
-    venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, gamma=0.995)
+    first_seed = TRAIN_SEED + 100 * args.seed
+    if args.vector == "batched":
+        venv = make_batched_vec_env(args.env, args.envs, args.aero, args.residual_scale, first_seed)
+    else:
+        fns = [_make_env(args.env, args.aero, args.residual_scale, first_seed + i) for i in range(args.envs)]
+        venv = SubprocVecEnv(fns) if args.envs > 1 else DummyVecEnv(fns)
+    venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, gamma=args.gamma)
     curve: list[tuple[int, float]] = []
+    loads: list[float] = []
     deadline = [math.inf]
 
     class Budget(BaseCallback):
         def _on_training_start(self) -> None:
             deadline[0] = time.monotonic() + 60.0 * args.minutes  # the budget counts from the first step
+            self.next_load = 0.0
 
         def _on_step(self) -> bool:
             for info in self.locals.get("infos", []):
                 if "episode" in info:
                     curve.append((self.num_timesteps, float(info["episode"]["r"])))
-            return time.monotonic() < deadline[0]
+            now = time.monotonic()
+            if now >= self.next_load:  # the 1-minute load average, every 30 s
+                loads.append(os.getloadavg()[0])
+                self.next_load = now + 30.0
+            return now < deadline[0]
 
+    policy_kwargs = {"net_arch": net}
     if args.algo == "PPO":
-        model = sb3.PPO("MlpPolicy", venv, seed=args.seed, n_steps=512, batch_size=256, n_epochs=10, learning_rate=3e-4,
-                        gamma=0.995, gae_lambda=0.95, policy_kwargs={"log_std_init": -1.0, "net_arch": [64, 64]}, verbose=1)
+        model = sb3.PPO("MlpPolicy", venv, seed=args.seed, n_steps=args.n_steps, batch_size=args.batch_size, n_epochs=args.epochs,
+                        learning_rate=args.lr, gamma=args.gamma, gae_lambda=0.95, policy_kwargs={**policy_kwargs, "log_std_init": -1.0},
+                        verbose=1)
     else:
-        model = getattr(sb3, args.algo)("MlpPolicy", venv, seed=args.seed, verbose=1)
+        model = getattr(sb3, args.algo)("MlpPolicy", venv, seed=args.seed, gamma=args.gamma, learning_rate=args.lr,
+                                        batch_size=args.batch_size, policy_kwargs=policy_kwargs, verbose=1)
     t0 = time.perf_counter()
     model.learn(total_timesteps=args.steps, callback=Budget())
     train_s = time.perf_counter() - t0
@@ -223,30 +330,35 @@ def main(argv: list[str] | None = None) -> None:
     venv.close()
 
     t1 = time.perf_counter()
+    kinds = ("agent", "baseline", "trim", "random")
     jobs = [(kind, s, args.env, args.aero, args.residual_scale, str(args.out / stem), args.algo, stats)
-            for kind in ("agent", "baseline", "trim") for s in range(args.eval_episodes)]
-    with ProcessPoolExecutor(max_workers=args.envs, mp_context=multiprocessing.get_context("spawn")) as pool:
+            for kind in kinds for s in range(args.eval_episodes)]
+    with ProcessPoolExecutor(max_workers=args.workers, mp_context=multiprocessing.get_context("spawn")) as pool:
         episodes = list(pool.map(_evaluate, jobs))
     result: dict = {"env": args.env, "algo": args.algo, "train_steps": steps_done, "train_wall_s": train_s,
                     "train_steps_per_s": steps_done / train_s, "eval_wall_s": time.perf_counter() - t1,
-                    "residual_scale": args.residual_scale, "seeds": list(range(args.eval_episodes))}
-    for kind in ("agent", "baseline", "trim"):
+                    "load_average_1min": {"min": min(loads), "mean": float(np.mean(loads)), "max": max(loads), "samples": loads},
+                    "settings": {k: (str(v) if isinstance(v, Path) else v) for k, v in vars(args).items()},
+                    "seeds": list(range(args.eval_episodes))}
+    for kind in kinds:
         rows = [e for e in episodes if e[0] == kind]
         returns = np.array([e[2] for e in rows])
         result[kind] = {"mean_return": float(returns.mean()), "std_return": float(returns.std()), "returns": returns.tolist(),
                         "terminations": [e[4] for e in rows if e[4]]}
     result["agent_over_baseline"] = result["agent"]["mean_return"] / result["baseline"]["mean_return"]
+    result["trim_over_baseline"] = result["trim"]["mean_return"] / result["baseline"]["mean_return"]
     (args.out / "result.json").write_text(json.dumps(result, indent=1))
     _plot(curve, result, args.out / "learning_curve.png",
           f"{args.algo} on {args.env}, {steps_done} steps in {train_s / 60:.1f} min; eval seeds 0-{args.eval_episodes - 1}")
-    print(f"trained {steps_done} steps in {train_s:.0f} s ({steps_done / train_s:.0f} steps/s); evaluation over seeds "
-          f"0-{args.eval_episodes - 1} ({result['eval_wall_s']:.0f} s):")
-    for kind, label in (("agent", "agent (deterministic)"), ("baseline", "LQR baseline"), ("trim", "trim action held")):
+    print(f"trained {steps_done} steps in {train_s:.0f} s ({steps_done / train_s:.0f} steps/s, load average "
+          f"{min(loads):.1f}-{max(loads):.1f}); evaluation over seeds 0-{args.eval_episodes - 1} ({result['eval_wall_s']:.0f} s):")
+    for kind, label in (("agent", "agent (deterministic)"), ("baseline", "LQR baseline"), ("trim", "trim action held"),
+                        ("random", "random actions")):
         r = result[kind]
         print(f"  {label:24s} return {r['mean_return']:8.1f} +- {r['std_return']:6.1f}  terminations {len(r['terminations'])}")
     ok = result["agent_over_baseline"] >= 0.8
-    print(f"agent / LQR = {result['agent_over_baseline']:.3f} ({'meets' if ok else 'below'} the 0.8 target of issue #13); "
-          f"curve {args.out / 'learning_curve.png'}, numbers {args.out / 'result.json'}")
+    print(f"agent / LQR = {result['agent_over_baseline']:.3f} ({'meets' if ok else 'below'} the 0.8 target of issue #13), "
+          f"trim hold / LQR = {result['trim_over_baseline']:.3f}; curve {args.out / 'learning_curve.png'}, numbers {args.out / 'result.json'}")
 
 
 if __name__ == "__main__":
