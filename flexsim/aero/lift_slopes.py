@@ -7,10 +7,12 @@ definition), no structure: the strips themselves are built in :mod:`flexsim.mode
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
-from flexsim.aero.vlm import LiftingSurface, solve_vlm
-from flexsim.aircraft.definition import Aircraft
+from flexsim.aero.vlm import LiftingSurface, VlmResult, solve_vlm
+from flexsim.aircraft.definition import Aircraft, ContentKey
 
 __all__ = ["vlm_surfaces", "strip_lift_slopes"]
 
@@ -62,7 +64,7 @@ def strip_lift_slopes(aircraft: Aircraft, components: tuple[str, ...], position_
     ndarray, shape (n_s,)
         NaN for strips of components not in the lattice (the fin).
     """
-    result = solve_vlm(vlm_surfaces(aircraft), mach=0.0)
+    result = _incompressible_vlm(aircraft.content_key())
     out = np.full(len(components), np.nan)
     names = {s.name for s in result.surfaces}
     comp = np.array(components)
@@ -70,3 +72,10 @@ def strip_lift_slopes(aircraft: Aircraft, components: tuple[str, ...], position_
         idx = np.flatnonzero(comp == name)
         out[idx] = result.surface(name).lift_slope_at(position_body_m[idx, 1])
     return out
+
+
+@functools.lru_cache(maxsize=8)
+def _incompressible_vlm(key: ContentKey) -> VlmResult:
+    """The M = 0 lattice solution of an aircraft, cached by its content: every model of one aircraft (a flutter
+    analysis builds two or three) shares one solve (0.2-0.45 s each)."""
+    return solve_vlm(vlm_surfaces(key.aircraft), mach=0.0)

@@ -164,8 +164,8 @@ def run_chain(cases: Sequence[StudyCase]) -> list[dict]:
     return rows
 
 
-#: Flutter analyses built in this process, keyed by content (aircraft file bytes, model, damping), so
-#: the points of one chain reuse the models (at most a few entries: one per chain a worker serves).
+#: Flutter analyses built in this process, keyed by content (aircraft file bytes, model, damping, formulation,
+#: linearisation density), so the points of one chain, and of the other altitudes, reuse the models.
 _ANALYSES: "OrderedDict[tuple, object]" = OrderedDict()
 _ANALYSES_MAX = 8
 
@@ -174,7 +174,9 @@ def _analysis(case: StudyCase):
     from flexsim.aircraft.toml_loader import resolve_aircraft_path
 
     path = resolve_aircraft_path(case.aircraft)
-    key = (hashlib.sha256(path.read_bytes()).hexdigest(), *case.chain_key[1:])
+    # what the analysis depends on: not the altitude, so that a worker reuses it over the points of all altitudes
+    key = (hashlib.sha256(path.read_bytes()).hexdigest(), case.model, case.structural_damping, case.formulation,
+           case.linear_density_altitude_m)
     if key in _ANALYSES:
         _ANALYSES.move_to_end(key)
         return _ANALYSES[key]
