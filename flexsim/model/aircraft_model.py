@@ -23,6 +23,7 @@ one model serves still-air trims and any number of windy runs without being chan
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from enum import Enum
 
@@ -343,6 +344,12 @@ class AircraftModel(Immutable):
         if w_ned.shape != positions.shape or not np.all(np.isfinite(w_ned)):
             raise ValueError(f"wind(t, positions) returned shape {w_ned.shape} or non-finite values; expected finite {positions.shape}")
         return _k.strip_wind(*self.aero.kernel_data, _arg(w_ned), c), True
+
+    @property
+    def altitude_range_m(self) -> tuple[float, float]:
+        """Altitudes -Z [m] at which :meth:`rhs` evaluates: the ISA range (Z_MIN, Z_MAX) when the air density comes
+        from the ISA at the aircraft's altitude, else (-inf, inf) (compiled steppers check it per step)."""
+        return (Z_MIN, Z_MAX) if self._check_air else (-math.inf, math.inf)
 
     def air_density(self, x: np.ndarray) -> float:
         """Air density of the aerodynamics at state x [kg/m^3]: the restrained model's tunnel density, else the

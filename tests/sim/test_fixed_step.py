@@ -18,6 +18,10 @@ Sources and tolerances:
   0.0125 (the non-stiff limit of the constant is 0.0701, measured); for lambda = -1e4 and -1e6 the
   error is O(h / |lambda|), below that bound (the observed order is 1 there); for lambda = -10 the
   observed order is 2 +- 0.2.
+* The scaled (n x n) matrix functions equal the augmented 3n x 3n expm to 1e-12 relative (largest entry) on
+  the stiff matrix above, on a singular matrix with a nilpotent Jordan block (like the GTM's heading and
+  position), scaled by 1e4 between states, and on a random matrix with 1-norm 1e3; the fallback returns the
+  augmented result. (Skaflestad & Wright 2009; both forms are accurate to ~1e-13 here.)
 * Invalid J, h or x shapes raise ValueError naming the argument and the value.
 """
 
@@ -27,6 +31,7 @@ import numpy as np
 import pytest
 from scipy.linalg import expm
 
+from flexsim.sim import fixed_step
 from flexsim.sim.fixed_step import ETD2RK, ETD2RKSolver, _Hermite, phi_functions
 
 
@@ -66,6 +71,37 @@ def test_phi_functions_diagonal_and_similar_matrices():
     _, q1, q2 = phi_functions(s @ np.diag(d) @ np.linalg.inv(s), h)
     np.testing.assert_allclose(q1, s @ p1 @ np.linalg.inv(s), rtol=0, atol=1e-10)
     np.testing.assert_allclose(q2, s @ p2 @ np.linalg.inv(s), rtol=0, atol=1e-10)
+
+
+def _jordan_scaled_matrix():
+    """Singular 6 x 6: a nilpotent Jordan pair (psi -> y), a zero column, a stiff and an oscillatory mode, with
+    state scales from 1 to 1e4 (metres against radians)."""
+    a = np.zeros((6, 6))
+    a[0, 1] = 230.0  # y_dot = V psi
+    a[1, 2] = 1.0  # psi_dot = r
+    a[2:4, 2:4] = [[-0.5, 3.0], [-3.0, -0.5]]
+    a[4, 4] = -650.0
+    a[5, 2:5] = [1.0, -2.0, 5.0]
+    d = np.array([1e4, 1.0, 1.0, 1e-2, 1e2, 1.0])
+    return d[:, None] * a / d[None, :]
+
+
+@pytest.mark.parametrize("h", [0.02, 0.005])
+@pytest.mark.parametrize("which", ["stiff", "jordan", "random"])
+def test_scaled_phi_functions_equal_the_augmented_expm(h, which):
+    jac = {"stiff": _stiff_matrix, "jordan": _jordan_scaled_matrix,
+           "random": lambda: 1e3 / 7 * np.random.default_rng(5).standard_normal((7, 7))}[which]()
+    for got, ref in zip(phi_functions(jac, h), phi_functions(jac, h, method="augmented")):
+        assert np.abs(got - ref).max() <= 1e-12 * np.abs(ref).max()
+
+
+def test_phi_functions_fall_back_to_the_augmented_expm(monkeypatch):
+    jac = _stiff_matrix()
+    monkeypatch.setattr(fixed_step, "PHI_RESIDUAL_LIMIT", -1.0)  # no residual passes: always the fallback
+    for got, ref in zip(phi_functions(jac, 0.02), phi_functions(jac, 0.02, method="augmented")):
+        np.testing.assert_array_equal(got, ref)
+    with pytest.raises(ValueError, match="method = 'pade'"):
+        phi_functions(jac, 0.02, method="pade")
 
 
 @pytest.mark.parametrize("h", [0.02, 0.005])
