@@ -26,16 +26,20 @@ from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.config import (AERO_MODELS, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
                          IntegratorSettings, TrackingReward)
-from flexsim.envs.dynamics import SENSOR_COMPONENTS, FlightDynamics, Measurements, StepOutcome
+from flexsim.envs.batch import EpisodeBatch
+from flexsim.envs.dynamics import (SENSOR_COMPONENTS, BatchOutcome, FlightDynamics, MeasurementBatch, Measurements, StepOutcome,
+                                   advance_rows)
+from flexsim.envs.episodes import wrap_angle
 from flexsim.envs.parallel import limit_blas_threads
 
-__all__ = ["FlexSimEnv", "Episode", "ControlPeriod", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
+__all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
 
 #: Values of ``info["termination_reason"]`` ("" while flying).
 TERMINATION_REASONS = ("non_finite", "crash", "structural_limit", "gimbal_lock", "envelope")
+#: ``info["termination_reason"]`` of each termination code (:meth:`FlexSimEnv._termination_codes`; 0: flying).
+TERMINATION_CODES = ("", *TERMINATION_REASONS)
 #: Physical control names of the flight logs (the output vocabulary's, :mod:`flexsim.io.vocabulary`).
 LOG_CONTROL_NAMES = VOCABULARY_CONTROL_NAMES
-_HISTORY = 500  # samples of the flight path kept for rendering
 
 
 #: Action Space section shared by every FlexSim env docstring (gymnasium's template), see :func:`shared_docs`.
@@ -109,26 +113,34 @@ class Episode:
 
 
 @dataclass(frozen=True)
-class ControlPeriod:
-    """One control period about to be integrated (:meth:`FlexSimEnv.begin_step`).
+class RowsStep:
+    """One control period of m aircraft (:meth:`FlexSimEnv._step_rows`), arrays over the rows.
 
     Attributes
     ----------
-    action : ndarray, shape (4,)
-        The checked action, clipped to the action space (float64).
-    clipped : bool
+    obs : ndarray, shape (m, n_obs), float32
+    reward : ndarray, shape (m,)
+    terminated : ndarray of bool, shape (m,)
+    codes : ndarray of int, shape (m,)
+        Index into :data:`TERMINATION_CODES`.
+    parts : dict of str to ndarray (m,)
+        Reward parts (``TrackingReward.part_names``).
+    errors : dict of str to ndarray (m,)
+        Task errors.
+    outcome : BatchOutcome
+        The integration of the period.
+    clipped : ndarray of bool, shape (m,)
         The action was out of range and clipped.
-    u : ndarray, shape (4,)
-        Controls held over the period after the actuator rate limits [N, rad, rad, rad].
-    t0_s, t1_s : float
-        Start and end of the period [s].
     """
 
-    action: np.ndarray
-    clipped: bool
-    u: np.ndarray
-    t0_s: float
-    t1_s: float
+    obs: np.ndarray
+    reward: np.ndarray
+    terminated: np.ndarray
+    codes: np.ndarray
+    parts: dict
+    errors: dict
+    outcome: BatchOutcome
+    clipped: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -240,17 +252,11 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self.observation_structure, low, high, self.observation_names = self._observation_layout()
         self.observation_space = spaces.Box(low, high, dtype=np.float32)
         self._obs_low, self._obs_high = low.astype(np.float64), high.astype(np.float64)
-        self._x = None
-        self._wind = None  # the episode's wind field, passed to every dynamics call (Episode.wind)
-        self._u = np.zeros(4)
-        self._last_action = np.zeros(4)
-        self._steps = 0
-        self._time = 0.0
-        self._ended = False
-        self._reference: dict = {}
-        self._errors: dict = {}
-        self._last_reward = 0.0
-        self._path: list[np.ndarray] = []
+        #: The episode state (:class:`EpisodeBatch`) this env's episode lives in, at row ``self._row``: its own
+        #: batch of one, or the shared batch of a FlexSimVectorEnv (:meth:`_attach`).
+        self._batch = EpisodeBatch(1, self.dynamics.layout.n_states, len(self.task_errors_spec))
+        self._row = 0
+        self._error_names = tuple(name for name, _ in self.task_errors_spec)
         self._renderer = None
 
     # ------------------------------------------------------------------ task hooks
@@ -258,8 +264,9 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         """The start of an episode, drawn from ``rng`` (implemented by each task class)."""
         raise NotImplementedError(f"{type(self).__name__} must implement _new_episode")
 
-    def _task_errors(self, meas: Measurements) -> dict[str, float]:
-        """Task errors in the order of ``task_errors_spec`` (implemented by each task class)."""
+    def _task_errors(self, meas: MeasurementBatch, ref: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """Task errors of m aircraft, name -> (m,), in the order of ``task_errors_spec``, from their measurements and
+        targets (``ref``: name -> (m,), the episodes' ``reference``); array code (implemented by each task class)."""
         raise NotImplementedError(f"{type(self).__name__} must implement _task_errors")
 
     # ------------------------------------------------------------------ spaces
@@ -293,7 +300,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     def controls_to_action(self, u: np.ndarray) -> np.ndarray:
         """Normalised action (float32) of physical controls [N, rad, rad, rad] (inverse of :meth:`action_to_controls`)."""
         scale = self._u_scale
-        a = np.divide(np.asarray(u, float), scale, out=np.zeros(4), where=scale > 0)
+        u = np.asarray(u, float)
+        a = np.divide(u, scale, out=np.zeros_like(u), where=scale > 0)
         return np.clip(a, self.action_space.low, self.action_space.high).astype(np.float32)
 
     def _check_action(self, action: Any) -> tuple[np.ndarray, bool]:
@@ -331,101 +339,153 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         return clipped, bool(np.any(clipped != a))
 
     # ------------------------------------------------------------------ gymnasium API
+    def _attach(self, batch: EpisodeBatch, row: int) -> None:
+        """Keep this env's episode in row ``row`` of ``batch`` (a FlexSimVectorEnv's shared batch)."""
+        self._batch, self._row = batch, int(row)
+
     def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple[np.ndarray, dict]:
         super().reset(seed=seed)
         episode = self._new_episode(self.np_random)
         point = self.dynamics.trim(episode.manoeuvre)
         self.dynamics.start(episode.manoeuvre)
-        self._wind = episode.wind
-        self._x = np.array(episode.x0, dtype=float)
-        self._u = point.u.copy()
-        self._last_action = self.controls_to_action(point.u).astype(np.float64)
-        self._steps = 0
-        self._time = 0.0
-        self._ended = False
-        self._reference = dict(episode.reference)
-        meas = self.dynamics.measure(self._x, 0.0, self._wind)
-        self._errors = self._task_errors(meas)
-        self._last_reward = 0.0
-        self._path = [meas.position_ned_m]
-        obs = self._observe(meas)
-        info = {"time_s": 0.0, "trim_action": self.controls_to_action(point.u), "reference": dict(self._reference)}
+        b, i = self._batch, self._row
+        trim_action = self.controls_to_action(point.u)
+        b.begin(i, self.dynamics, episode.wind, np.asarray(episode.x0, dtype=float), point.u, trim_action.astype(np.float64),
+                episode.reference)
+        rows = np.array([i])
+        meas = self.dynamics.measure_batch(b.x[rows], b.time_s[rows], [episode.wind])
+        b.errors[i] = self._error_matrix(self._task_errors(meas, b.references(rows)))[0]
+        b.record_path(rows, meas.position_ned_m)
+        obs = self._observe_rows(meas, b.errors[rows], b.u[rows])[0]
+        info = {"time_s": 0.0, "trim_action": trim_action, "reference": dict(episode.reference)}
         if self.render_mode == "human":
             self.render()
         return obs, info
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict]:
-        period = self.begin_step(action)
-        outcome = self.dynamics.advance(self._x, period.u, period.t0_s, period.t1_s, self._wind)
-        return self.finish_step(period, outcome)
-
-    def begin_step(self, action: Any) -> ControlPeriod:
-        """The first half of :meth:`step`: check and clip ``action``, apply the actuator rate limits.
-
-        The period is then integrated (``self.dynamics.advance(self.state, period.u, period.t0_s, period.t1_s,
-        self.wind)``, or many aircraft at once by :func:`flexsim.envs.vector.advance_batch`) and handed to
-        :meth:`finish_step`; :meth:`step` is exactly these three calls.
-        """
-        if self._x is None:
-            raise RuntimeError("step() called before reset()")
-        if self._ended:
-            raise RuntimeError("step() called after the episode terminated; call reset()")
+        self._check_steppable(self._batch, self._row)
         a, clipped = self._check_action(action)
-        command = self.action_to_controls(a)
-        u = self.dynamics.rate_limit(self._u, command)
-        return ControlPeriod(a, clipped, u, self._steps * self.dt, (self._steps + 1) * self.dt)
-
-    def finish_step(self, period: ControlPeriod, outcome: StepOutcome) -> tuple[np.ndarray, float, bool, bool, dict]:
-        """The second half of :meth:`step`: take the integrated ``outcome`` of ``period``; observation,
-        reward, termination and info."""
-        a, clipped, u = period.action, period.clipped, period.u
-        self._x, self._u, self._time = outcome.x, u, outcome.time_s
-        self._steps += 1
-        meas = self.dynamics.measure(self._x, self._time, self._wind)
-        reason = self._termination(outcome, meas)
-        terminated = bool(reason)
-        self._ended = terminated
-        self._errors = self._task_errors(meas)
-        parts = self.reward_definition.parts(self._errors, a - self._last_action, terminated)
-        reward = TrackingReward.total(parts)
-        self._last_action = a
-        self._last_reward = reward
-        self._path.append(meas.position_ned_m)
-        del self._path[:-_HISTORY]
-        obs = self._observe(meas)
-        info = {"time_s": self._time, "reward_parts": parts, "termination_reason": reason, "action_clipped": clipped,
-                "task_errors": dict(self._errors), "nfev": outcome.nfev, "nlu": outcome.nlu, "solver_failure": outcome.failure}
+        out = self._step_rows(self._batch, np.array([self._row]), a[None, :], np.array([clipped]))
+        info = self._step_info(out, 0)
         if self.render_mode == "human":
             self.render()
-        return obs, reward, terminated, False, info
+        return out.obs[0], float(out.reward[0]), bool(out.terminated[0]), False, info
 
-    def _termination(self, outcome: StepOutcome, meas: Measurements) -> str:
+    @staticmethod
+    def _step_info(out: RowsStep, r: int) -> dict:
+        """The info dict of row r of a step (what :meth:`step` returns)."""
+        return {"time_s": float(out.outcome.time_s[r]), "reward_parts": {k: float(v[r]) for k, v in out.parts.items()},
+                "termination_reason": TERMINATION_CODES[out.codes[r]], "action_clipped": bool(out.clipped[r]),
+                "task_errors": {k: float(v[r]) for k, v in out.errors.items()}, "nfev": int(out.outcome.nfev[r]),
+                "nlu": int(out.outcome.nlu[r]), "solver_failure": str(out.outcome.failure[r])}
+
+    @staticmethod
+    def _check_steppable(batch: EpisodeBatch, rows) -> None:
+        if not np.all(batch.started[rows]):
+            raise RuntimeError("step() called before reset()")
+        if np.any(batch.ended[rows]):
+            raise RuntimeError("step() called after the episode terminated; call reset()")
+
+    def _step_rows(self, b: EpisodeBatch, rows: np.ndarray, a: np.ndarray, clipped: np.ndarray) -> RowsStep:
+        """One control period of the aircraft ``rows`` of ``b`` with the checked, clipped actions ``a`` (m, 4): actuator
+        rate limits, one :func:`advance_rows` call, measurements, termination, task errors, reward and observation,
+        all as array code over the rows (the single env is this with one row)."""
+        dyn = self.dynamics
+        u = dyn.rate_limit(b.u[rows], a * self._u_scale)
+        steps = b.steps[rows]
+        winds = [b.winds[i] for i in rows]
+        packed = b.packed_rows(rows)
+        outcome = advance_rows([b.dynamics[i] for i in rows], b.x[rows], u, steps * self.dt, (steps + 1) * self.dt, winds,
+                               packed=packed)
+        b.x[rows], b.u[rows], b.time_s[rows] = outcome.x, u, outcome.time_s
+        b.steps[rows] = steps + 1
+        meas = dyn.measure_batch(outcome.x, outcome.time_s, winds, packed)
+        codes = self._termination_codes(outcome, meas)
+        terminated = codes > 0
+        b.ended[rows] = terminated
+        errors = self._task_errors(meas, b.references(rows))
+        error_matrix = self._error_matrix(errors)
+        b.errors[rows] = error_matrix
+        parts = self.reward_definition.parts_batch(errors, a - b.last_action[rows], terminated)
+        reward = TrackingReward.total(parts)
+        b.last_action[rows] = a
+        b.last_reward[rows] = reward
+        b.record_path(rows, meas.position_ned_m)
+        obs = self._observe_rows(meas, error_matrix, u)
+        return RowsStep(obs, reward, terminated, codes, parts, errors, outcome, clipped)
+
+    def _error_matrix(self, errors: dict[str, np.ndarray]) -> np.ndarray:
+        """The task errors as a matrix (m, n_errors) in ``task_errors_spec`` order."""
+        names = tuple(errors)
+        if names != self._error_names:
+            raise RuntimeError(f"{type(self).__name__}._task_errors returned {names}, expected {self._error_names} (task_errors_spec)")
+        return np.column_stack([np.asarray(v, dtype=float) for v in errors.values()])
+
+    def _termination_codes(self, outcome: BatchOutcome, meas: MeasurementBatch) -> np.ndarray:
+        """Index into :data:`TERMINATION_CODES` of each row's termination (0: flying), the first that applies of
+        non-finite state or solver failure, crash, structural limit, gimbal lock, envelope."""
         lim = self.limits
-        if outcome.failure:
-            return "non_finite"
-        if outcome.crashed or meas.altitude_m <= 0.0:
-            return "crash"
-        wing = max(abs(meas.tip_deflection_m["right_wing"]), abs(meas.tip_deflection_m["left_wing"]))
-        if not wing <= lim.wing_tip_deflection_m or not abs(meas.tip_twist_rad["vtail"]) <= lim.fin_tip_twist_rad:
-            return "structural_limit"
-        if not abs(meas.euler_rad[1]) < lim.max_abs_pitch_rad:
-            return "gimbal_lock"
-        if not (meas.mach < lim.max_mach and abs(meas.alpha_rad) < lim.max_abs_alpha_rad and meas.airspeed_m_s > lim.min_airspeed_m_s):
-            return "envelope"
-        return ""
+        tip, twist = meas.tip_deflection_m, meas.tip_twist_rad
+        with np.errstate(invalid="ignore"):
+            wing = np.maximum(np.abs(tip["right_wing"]), np.abs(tip["left_wing"]))
+            conditions = [outcome.failure != "", outcome.crashed | (meas.altitude_m <= 0.0),
+                          ~(wing <= lim.wing_tip_deflection_m) | ~(np.abs(twist["vtail"]) <= lim.fin_tip_twist_rad),
+                          ~(np.abs(meas.euler_rad[:, 1]) < lim.max_abs_pitch_rad),
+                          ~((meas.mach < lim.max_mach) & (np.abs(meas.alpha_rad) < lim.max_abs_alpha_rad)
+                            & (meas.airspeed_m_s > lim.min_airspeed_m_s))]
+        return np.select(conditions, [1, 2, 3, 4, 5], 0)
 
-    def _observe(self, meas: Measurements) -> np.ndarray:
-        psi = math.remainder(float(meas.euler_rad[2]), 2.0 * math.pi) if math.isfinite(meas.euler_rad[2]) else 0.0
-        parts = [meas.euler_rad[0], meas.euler_rad[1], psi, *meas.body_rates_rad_s, meas.airspeed_m_s, meas.alpha_rad,
-                 meas.beta_rad, meas.altitude_m, *self._errors.values()]
+    def _observe_rows(self, meas: MeasurementBatch, errors: np.ndarray, u: np.ndarray) -> np.ndarray:
+        """Observations (m, n_obs) float32 of m aircraft (measurements, task errors (m, k), applied controls (m, 4))."""
+        psi = np.nan_to_num(wrap_angle(meas.euler_rad[:, 2]), nan=0.0)
+        columns = [meas.euler_rad[:, 0], meas.euler_rad[:, 1], psi, *meas.body_rates_rad_s.T, meas.airspeed_m_s, meas.alpha_rad,
+                   meas.beta_rad, meas.altitude_m, *errors.T]
         for c in SENSOR_COMPONENTS:
-            parts += [meas.tip_deflection_m[c], meas.tip_deflection_rate_m_s[c], meas.tip_twist_rad[c], meas.tip_twist_rate_rad_s[c]]
-        parts += list(self.controls_to_action(self._u))
-        obs = np.array(parts, dtype=np.float64)
+            columns += [meas.tip_deflection_m[c], meas.tip_deflection_rate_m_s[c], meas.tip_twist_rad[c], meas.tip_twist_rate_rad_s[c]]
+        columns += list(self.controls_to_action(u).T)
+        obs = np.column_stack(columns)
         obs[np.isnan(obs)] = 0.0
         return np.clip(obs, self._obs_low, self._obs_high).astype(np.float32)
 
     # ------------------------------------------------------------------ introspection
+    # The episode state, read from this env's row of its EpisodeBatch.
+    @property
+    def _x(self) -> np.ndarray | None:
+        return self._batch.x[self._row] if self._batch.started[self._row] else None
+
+    @property
+    def _u(self) -> np.ndarray:
+        return self._batch.u[self._row]
+
+    @property
+    def _wind(self):
+        return self._batch.winds[self._row]
+
+    @_wind.setter
+    def _wind(self, wind) -> None:  # another wind field for the rest of the episode (tests)
+        self._batch.winds[self._row] = wind
+        self._batch.invalidate_winds()
+
+    @property
+    def _time(self) -> float:
+        return float(self._batch.time_s[self._row])
+
+    @property
+    def _errors(self) -> dict[str, float]:
+        return {name: float(v) for name, v in zip(self._error_names, self._batch.errors[self._row])}
+
+    @property
+    def _last_reward(self) -> float:
+        return float(self._batch.last_reward[self._row])
+
+    @property
+    def _reference(self) -> dict:
+        return self._batch.reference_dicts[self._row]
+
+    @property
+    def _path(self) -> np.ndarray:
+        return self._batch.path(self._row)
+
     @property
     def state(self) -> np.ndarray:
         """A copy of the current model state (layout: ``self.dynamics.layout``)."""

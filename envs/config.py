@@ -288,17 +288,24 @@ class TrackingReward:
         return self._names
 
     def parts(self, errors: Mapping[str, float], action_change: np.ndarray, terminated: bool) -> dict[str, float]:
-        """The reward parts for task ``errors`` (name -> value), the action change and the end flag.
+        """The reward parts for task ``errors`` (name -> value), the action change and the end flag
+        (:meth:`parts_batch` of one aircraft). Non-finite errors count as saturated (cost -weight)."""
+        batch = self.parts_batch({k: np.array([float(v)]) for k, v in errors.items()}, np.asarray(action_change, float)[None, :],
+                                 np.array([bool(terminated)]))
+        return {k: float(v[0]) for k, v in batch.items()}
 
-        Non-finite errors count as saturated (cost -weight).
-        """
-        out = {"alive": float(self.alive)}
-        for term in self.terms:
-            ratio = float(errors[term.error]) / term.scale
-            out[term.error] = -term.weight * (min(ratio * ratio, 1.0) if math.isfinite(ratio) else 1.0)
-        rate = float(np.mean((np.asarray(action_change, float) / self.control_rate_scale) ** 2))
-        out["control_rate"] = -self.control_rate_weight * (min(rate, 1.0) if math.isfinite(rate) else 1.0)
-        out["termination"] = -float(self.termination_penalty) if terminated else 0.0
+    def parts_batch(self, errors: Mapping[str, np.ndarray], action_change: np.ndarray, terminated: np.ndarray) -> dict[str, np.ndarray]:
+        """The reward parts of m aircraft: task ``errors`` name -> (m,), action changes (m, 4), end flags (m,);
+        name -> (m,) in :attr:`part_names` order. Non-finite errors count as saturated (cost -weight)."""
+        m = len(terminated)
+        out = {"alive": np.full(m, float(self.alive))}
+        with np.errstate(all="ignore"):
+            for term in self.terms:
+                ratio = np.asarray(errors[term.error], dtype=float) / term.scale
+                out[term.error] = -term.weight * np.where(np.isfinite(ratio), np.minimum(ratio * ratio, 1.0), 1.0)
+            rate = np.mean((np.asarray(action_change, dtype=float) / self.control_rate_scale) ** 2, axis=1)
+        out["control_rate"] = -self.control_rate_weight * np.where(np.isfinite(rate), np.minimum(rate, 1.0), 1.0)
+        out["termination"] = np.where(terminated, -float(self.termination_penalty), 0.0)
         return out
 
     @staticmethod

@@ -38,7 +38,9 @@ from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import speed_of_sound
 from flexsim.model.jacobian import jacobian
+from flexsim import _kernels as _k
 from flexsim.model.aircraft_model import AircraftModel, Wind
+from flexsim.model.sensors import SensorBank
 from flexsim.sim.fixed_step import ETD2RK
 from flexsim.sim.outputs import OutputMaps, air_angles, heading_rate
 from flexsim.kinematics import euler_rate_matrix_inverse
@@ -46,7 +48,8 @@ from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
 from flexsim.envs.config import FIXED_STEP_METHODS, ActuatorRates, IntegratorSettings
 
-__all__ = ["FlightDynamics", "Measurements", "StepOutcome", "SENSOR_COMPONENTS"]
+__all__ = ["FlightDynamics", "Measurements", "MeasurementBatch", "StepOutcome", "BatchOutcome", "SENSOR_COMPONENTS", "advance_rows",
+           "rhs_rows"]
 
 #: Components carrying the structural sensors (tip deflection, twist and their rates), in order.
 SENSOR_COMPONENTS = ("right_wing", "left_wing", "vtail")
@@ -100,6 +103,40 @@ class Measurements:
 
 
 @dataclass(frozen=True)
+class MeasurementBatch:
+    """:class:`Measurements` of N states at once (:meth:`FlightDynamics.measure_batch`): the same fields with a
+    leading axis N (scalars become arrays (N,), vectors (N, 3); the structural dicts map a component to an
+    array (N,)), so the same array code computes the task errors and observations of one or many aircraft."""
+
+    time_s: np.ndarray
+    position_ned_m: np.ndarray
+    euler_rad: np.ndarray
+    body_rates_rad_s: np.ndarray
+    airspeed_m_s: np.ndarray
+    alpha_rad: np.ndarray
+    beta_rad: np.ndarray
+    mach: np.ndarray
+    altitude_m: np.ndarray
+    heading_rate_rad_s: np.ndarray
+    tip_deflection_m: dict
+    tip_deflection_rate_m_s: dict
+    tip_twist_rad: dict
+    tip_twist_rate_rad_s: dict
+    root_bending_moment_n_m: dict
+
+    def row(self, i: int) -> Measurements:
+        """The :class:`Measurements` of state i (floats and copies)."""
+        def f(a):
+            return float(a[i])
+
+        return Measurements(f(self.time_s), self.position_ned_m[i].copy(), self.euler_rad[i].copy(), self.body_rates_rad_s[i].copy(),
+                            f(self.airspeed_m_s), f(self.alpha_rad), f(self.beta_rad), f(self.mach), f(self.altitude_m),
+                            f(self.heading_rate_rad_s), *({k: f(v) for k, v in d.items()} for d in (
+                                self.tip_deflection_m, self.tip_deflection_rate_m_s, self.tip_twist_rad, self.tip_twist_rate_rad_s,
+                                self.root_bending_moment_n_m)))
+
+
+@dataclass(frozen=True)
 class StepOutcome:
     """Result of one control period.
 
@@ -125,6 +162,32 @@ class StepOutcome:
     failure: str
     nfev: int
     nlu: int = 0
+
+
+@dataclass(frozen=True)
+class BatchOutcome:
+    """Results of one control period of N aircraft (:func:`advance_rows`): the :class:`StepOutcome` fields as
+    arrays over the rows (``x`` (N, n), ``time_s`` (N,), ``crashed`` (N,) bool, ``failure`` (N,) object array of
+    str, ``nfev`` and ``nlu`` (N,) int)."""
+
+    x: np.ndarray
+    time_s: np.ndarray
+    crashed: np.ndarray
+    failure: np.ndarray
+    nfev: np.ndarray
+    nlu: np.ndarray
+
+    def row(self, i: int) -> StepOutcome:
+        """The :class:`StepOutcome` of row i."""
+        return StepOutcome(self.x[i].copy(), float(self.time_s[i]), bool(self.crashed[i]), str(self.failure[i]), int(self.nfev[i]),
+                           int(self.nlu[i]))
+
+    @classmethod
+    def of(cls, outcomes: list[StepOutcome]) -> BatchOutcome:
+        """The batch of single :class:`StepOutcome` s, in order."""
+        return cls(np.array([o.x for o in outcomes], dtype=float), np.array([o.time_s for o in outcomes], dtype=float),
+                   np.array([o.crashed for o in outcomes], dtype=bool), np.array([o.failure for o in outcomes], dtype=object),
+                   np.array([o.nfev for o in outcomes], dtype=np.int64), np.array([o.nlu for o in outcomes], dtype=np.int64))
 
 
 class FlightDynamics:
@@ -165,6 +228,8 @@ class FlightDynamics:
             raise ValueError(f"aircraft {aircraft.name!r}: components {missing} have no elastic modes; the environments' "
                              f"structural sensors need bending and torsion modes on {', '.join(SENSOR_COMPONENTS)}")
         self.sensors = {name: self.outputs.sensors[name] for name in SENSOR_COMPONENTS}
+        #: The structural outputs of :data:`SENSOR_COMPONENTS` in batched form (one product for N states).
+        self.sensor_bank = SensorBank.of(self.sensors, SENSOR_COMPONENTS, self.layout.n_states)
         self.method = integrator.resolve(aero)
         self.rtol = integrator.rtol
         self.atol = integrator.atol(self.layout)
@@ -324,33 +389,66 @@ class FlightDynamics:
 
     # ------------------------------------------------------------------ outputs
     def measure(self, x: np.ndarray, t: float, wind: Wind | None = None) -> Measurements:
-        """Air data, attitude and structural sensors of state ``x`` at time ``t`` [s] in the wind field ``wind``."""
-        lay, out = self.layout, self.outputs
-        pos = x[lay.position]
-        eul = x[lay.euler]
-        w = x[lay.omega]
-        altitude = float(-pos[2])
+        """Air data, attitude and structural sensors of state ``x`` at time ``t`` [s] in the wind field ``wind``
+        (:meth:`measure_batch` of one state)."""
+        return self.measure_batch(np.asarray(x, dtype=float)[None, :], np.array([float(t)]), [wind]).row(0)
+
+    def measure_batch(self, x: np.ndarray, t: np.ndarray, winds=None, packed=None) -> MeasurementBatch:
+        """:class:`MeasurementBatch` of states x (N, n) at times t (N,) [s], aircraft i in the wind ``winds[i]``.
+
+        ``winds``: a sequence of N wind fields (None entries: still air) or None (all in still air);
+        ``packed``: the same winds packed by the model's ``pack_winds`` (then the air data are computed in one
+        compiled call, :func:`flexsim._kernels.air_velocity_rows`), or None. The air data are relative to the air
+        at the body origin; a wind field that cannot answer at a position gives still-air data for that row.
+        """
+        lay = self.layout
+        x = np.asarray(x, dtype=float)
+        n = x.shape[0]
+        t = np.broadcast_to(np.asarray(t, dtype=float), (n,)).copy()
+        pos, eul = x[:, lay.position].copy(), x[:, lay.euler].copy()
+        altitude = -pos[:, 2]
+        v_air = self._air_velocity(t, x, pos, eul, winds, packed)
+        speed, alpha, beta = air_angles(v_air)
         with np.errstate(all="ignore"):
-            try:
-                v_air = out.air_velocity_body(t, x, wind)
-            except ValueError:  # a wind field that cannot answer at this position: still-air data
-                v_air = out.air_velocity_body(t, x, None)
-            speed, alpha, beta = air_angles(v_air)
-            try:
-                mach = speed / speed_of_sound(altitude)
-            except ValueError:
-                mach = math.nan
-            heading_rate_rad_s = heading_rate(eul, x[lay.velocity])
-        tips, rates, twists, twist_rates, roots = {}, {}, {}, {}, {}
-        for name, s in self.sensors.items():
-            tips[name] = float(s.tip_deflection_m(x))
-            rates[name] = float(s.tip_deflection_rate_m_s(x))
-            twists[name] = float(s.tip_twist_rad(x))
-            twist_rates[name] = float(s.tip_twist_rate_rad_s(x))
-            if name != "vtail":
-                roots[name] = float(s.root_bending_moment_n_m(x))
-        return Measurements(float(t), pos.copy(), eul.copy(), w.copy(), speed, alpha, beta, mach, altitude, heading_rate_rad_s,
-                            tips, rates, twists, twist_rates, roots)
+            mach = speed / self._sound_speed(altitude)
+        rates = heading_rate(eul, x[:, lay.velocity])
+        st = self.sensor_bank.evaluate(x)
+        parts = [{c: st[:, k, j] for j, c in enumerate(SENSOR_COMPONENTS)} for k in range(4)]
+        roots = {c: st[:, 4, j] for j, c in enumerate(SENSOR_COMPONENTS) if c != "vtail"}
+        return MeasurementBatch(t, pos, eul, x[:, lay.omega].copy(), speed, alpha, beta, mach, altitude, rates, *parts, roots)
+
+    def _air_velocity(self, t, x, pos, eul, winds, packed) -> np.ndarray:
+        """Body-axes velocity relative to the air at the body origin (N, 3) [m/s] (:meth:`measure_batch`)."""
+        v = x[:, self.layout.v]
+        if winds is None or all(w is None for w in winds):
+            return v.copy()
+        if isinstance(packed, _k.BatchWind):
+            ok = np.isfinite(pos).all(axis=1) & np.isfinite(eul).all(axis=1)
+            if ok.all():
+                return _k.air_velocity_rows(packed.rows, packed.gusts, packed.turb, packed.turb_grid, pos, eul, np.ascontiguousarray(v))
+        out = v.copy()
+        with np.errstate(all="ignore"):
+            for i, wind in enumerate(winds):
+                if wind is not None:
+                    try:
+                        out[i] = self.outputs.air_velocity_body(float(t[i]), x[i], wind)
+                    except ValueError:  # a wind field that cannot answer at this position: still-air data
+                        pass
+        return out
+
+    @staticmethod
+    def _sound_speed(altitude: np.ndarray) -> np.ndarray:
+        """ISA speed of sound at the altitudes (N,) [m/s]; NaN outside the ISA range."""
+        try:
+            return np.asarray(speed_of_sound(altitude), dtype=float)
+        except ValueError:
+            out = np.full(altitude.shape, np.nan)
+            for i, h in enumerate(altitude):
+                try:
+                    out[i] = speed_of_sound(float(h))
+                except ValueError:
+                    pass
+            return out
 
     def euler_rates(self, x: np.ndarray) -> np.ndarray:
         """Theta_dot = E^-1 omega [rad/s] of state ``x``."""
@@ -364,3 +462,170 @@ class FlightDynamics:
     def state_names(self) -> tuple[str, ...]:
         """A vocabulary name with unit for every entry of the state vector (:attr:`OutputMaps.state_names`)."""
         return self.outputs.state_names
+
+
+# ---------------------------------------------------------------------- many aircraft
+#: Exceptions of the model that end one aircraft's period as a "model error" (as :meth:`FlightDynamics.advance`).
+_MODEL_ERRORS = (ValueError, ArithmeticError, np.linalg.LinAlgError)
+
+
+def rhs_rows(dynamics, t: np.ndarray, x: np.ndarray, u: np.ndarray, winds, errors: dict, packed=None) -> np.ndarray:
+    """State derivatives of many aircraft: row i is ``dynamics[i].model.rhs(t[i], x[i], u[i], winds[i])``.
+
+    Parameters
+    ----------
+    dynamics : sequence of FlightDynamics, length m
+    t : ndarray, shape (m,)
+        Times [s].
+    x : ndarray, shape (m, n)
+        States (layout ``dynamics[i].layout``).
+    u : ndarray, shape (m, 4)
+        Controls [N, rad, rad, rad].
+    winds : sequence of wind fields or None, length m
+    errors : dict
+        Filled with ``{row: exception}`` for rows whose model raised one of the model errors (an entry already
+        there is kept); their derivative rows are NaN.
+    packed : optional
+        The rows' winds packed once by the model's ``pack_winds`` (rows in this order), or None.
+
+    Returns
+    -------
+    ndarray, shape (m, n)
+
+    Rows that share one model whose class offers ``rhs_batch(t, x, u, wind)`` (all rows in one compiled call;
+    each row equals ``rhs`` bit for bit; the wind fields of :mod:`flexsim.sim.disturbances` do not depend on t)
+    go through it when they fly in still air or their winds come ``packed``; the rest, and all rows of a batch
+    call that raised (to find which row failed), one by one through ``rhs``.
+    """
+    model = dynamics[0].model
+    batch = getattr(model, "rhs_batch", None)
+    if batch is not None and all(d.model is model for d in dynamics):
+        wind = packed if packed is not None else (None if all(w is None for w in winds) else False)
+        if wind is not False:
+            try:
+                return np.asarray(batch(float(t[0]), x, u, wind), dtype=float).reshape(x.shape)
+            except _MODEL_ERRORS:
+                pass  # evaluated row by row below, which names the failing rows
+    out = np.empty_like(x)
+    for i, dyn in enumerate(dynamics):
+        try:
+            out[i] = dyn.model.rhs(float(t[i]), x[i], u[i], winds[i])
+        except _MODEL_ERRORS as exc:
+            errors.setdefault(i, exc)  # the first error of the step (its second evaluation sees the NaN row)
+            out[i] = np.nan
+    return out
+
+
+def _subset(packed, rows):
+    """The packed winds of the given rows (None stays None)."""
+    return None if packed is None else packed._replace(rows=packed.rows[np.asarray(rows, dtype=np.int64)])
+
+
+@single_blas_thread
+def advance_rows(dynamics, x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.ndarray, winds, rhs=rhs_rows,
+                 packed=None) -> BatchOutcome:
+    """Integrate one control period of many aircraft in one call (zero-order hold of each row's controls).
+
+    Row i is what ``dynamics[i].advance(x[i], u[i], t0[i], t1[i], winds[i])`` returns (same checks: non-finite
+    state, model error, crash located by linear interpolation within the ETD2RK step). Aircraft whose ETD2RK
+    stepper is the same object (same trim Jacobian and step) are stepped together as matrix products over
+    their rows (:meth:`ETD2RK.step_rows`), with right-hand sides from ``rhs`` (:func:`rhs_rows`: one compiled
+    call for all rows); the others (the ``solve_ivp`` methods) one by one.
+
+    Parameters
+    ----------
+    dynamics : sequence of FlightDynamics, length N
+        Each aircraft's dynamics, after :meth:`FlightDynamics.start` of its episode.
+    x : ndarray, shape (N, n)
+    u : ndarray, shape (N, 4)
+    t0, t1 : ndarray, shape (N,)
+        Start and end of each period [s].
+    winds : sequence, length N
+    rhs : callable
+        ``rhs(dynamics, t, x, u, winds, errors, packed) -> x_dot`` over rows (:func:`rhs_rows`).
+    packed : optional
+        The N winds packed by the model's ``pack_winds`` (a named tuple whose ``rows`` select each aircraft's
+        wind data), or None.
+
+    Returns
+    -------
+    BatchOutcome
+    """
+    n = len(dynamics)
+    first = dynamics[0].stepper
+    if first is not None and dynamics[0].substeps and all(d.stepper is first for d in dynamics):
+        return _advance_etd2rk(dynamics, x, u, np.asarray(t0, float), np.asarray(t1, float), winds, rhs, packed)
+    outcomes: list = [None] * n
+    groups: dict[int, list[int]] = {}
+    for i, dyn in enumerate(dynamics):
+        if dyn.substeps and dyn.stepper is not None:
+            groups.setdefault(id(dyn.stepper), []).append(i)
+        else:
+            outcomes[i] = dyn.advance(x[i], u[i], float(t0[i]), float(t1[i]), winds[i])
+    for rows in groups.values():
+        part = _advance_etd2rk([dynamics[i] for i in rows], x[rows], u[rows], t0[rows], t1[rows], [winds[i] for i in rows], rhs,
+                               _subset(packed, rows))
+        for r, i in enumerate(rows):
+            outcomes[i] = part.row(r)
+    return BatchOutcome.of(outcomes)
+
+
+def _advance_etd2rk(dyns, x, u, t0, t1, winds, rhs, packed=None) -> BatchOutcome:
+    """ETD2RK periods of aircraft sharing one stepper (``FlightDynamics._advance_fixed`` over rows)."""
+    first = dyns[0]
+    stepper, k, h, dt = first.stepper, first.substeps, first.stepper.h, first.dt
+    z = first.layout.position.start + 2  # down coordinate: altitude -x[z]
+    span = t1 - t0
+    bad = np.flatnonzero(~(np.abs(span - dt) <= 1e-9 * dt))
+    if bad.size:
+        raise ValueError(f"t1 - t0 = {span[bad[0]]!r} s: ETD2RK steps whole control periods, must be dt = {dt!r} s")
+    m = len(dyns)
+    x = np.array(x, dtype=float)
+    x_end = x.copy()
+    t = np.array(t0, dtype=float)
+    t_end = np.array(t1, dtype=float)
+    crashed = np.zeros(m, dtype=np.bool_)
+    failure = np.full(m, "", dtype=object)
+    nfev = np.full(m, 2 * k, dtype=np.int64)
+    active = np.arange(m)
+    full = True  # all rows active: no row selection
+    rows_d, rows_u, rows_w, rows_p = dyns, u, winds, packed
+    with np.errstate(all="ignore"):
+        for i in range(1, k + 1):
+            errors: dict[int, Exception] = {}
+
+            def fun(tt, xx):
+                return rhs(rows_d, tt, xx, rows_u, rows_w, errors, rows_p)
+
+            xa, ta = (x, t) if full else (x[active], t[active])
+            x_next = stepper.step_rows(fun, ta, xa)
+            t_next = (t1[active] if not full else t1) if i == k else ta + h
+            stop = ~np.isfinite(x_next).all(axis=1) | ((x_next[:, z] >= 0.0) & (xa[:, z] < 0.0))
+            if errors:
+                stop[list(errors)] = True
+            for r in np.flatnonzero(stop):
+                j = active[r]
+                nfev[j] = 2 * i
+                if r in errors:
+                    x_end[j], t_end[j], failure[j] = xa[r], ta[r], f"model error: {errors[r]}"
+                elif not np.all(np.isfinite(x_next[r])):
+                    x_end[j], t_end[j] = xa[r], ta[r]
+                    failure[j] = f"non-finite state: ETD2RK step {i} of {k} from t = {float(ta[r]):.6g} s"
+                else:
+                    s = xa[r, z] / (xa[r, z] - x_next[r, z])
+                    x_end[j], t_end[j], crashed[j] = xa[r] + s * (x_next[r] - xa[r]), ta[r] + s * (t_next[r] - ta[r]), True
+            if full and not stop.any():
+                x, t = x_next, t_next
+                continue
+            keep = ~stop
+            x[active] = x_next
+            t[active] = t_next
+            active = active[keep]
+            full = False
+            if not active.size:
+                break
+            rows_d = [dyns[j] for j in active]
+            rows_u, rows_w, rows_p = u[active], [winds[j] for j in active], _subset(packed, active)
+    if active.size:
+        x_end[active] = x if full else x[active]
+    return BatchOutcome(x_end, t_end, crashed, failure, nfev, np.zeros(m, dtype=np.int64))

@@ -18,9 +18,19 @@ __all__ = ["perturbed_state", "turbulence_field", "wrap_angle", "TURBULENCE_GRID
 TURBULENCE_GRID_POINTS = 2**14
 
 
-def wrap_angle(angle_rad: float) -> float:
-    """``angle_rad`` wrapped to [-pi, pi] [rad] (NaN stays NaN)."""
-    return math.remainder(angle_rad, 2.0 * math.pi) if math.isfinite(angle_rad) else math.nan
+def wrap_angle(angle_rad):
+    """``angle_rad`` wrapped to [-pi, pi] [rad] (NaN stays NaN; an infinity gives NaN): a float, or an array of
+    the same shape for an array. The IEEE remainder by 2 pi (``math.remainder``), formed for arrays as the exact
+    ``fmod`` plus one exact (Sterbenz) correction by 2 pi; the two agree except at odd multiples of pi exactly."""
+    if np.ndim(angle_rad) == 0:
+        a = float(angle_rad)
+        return math.remainder(a, _TWO_PI) if math.isfinite(a) else math.nan
+    with np.errstate(invalid="ignore"):
+        r = np.fmod(np.asarray(angle_rad, dtype=float), _TWO_PI)
+        return np.where(r > math.pi, r - _TWO_PI, np.where(r < -math.pi, r + _TWO_PI, r))
+
+
+_TWO_PI = 2.0 * math.pi
 
 
 def perturbed_state(x_trim: np.ndarray, layout: StateLayout, rng: np.random.Generator, pert: InitialPerturbation) -> np.ndarray:

@@ -17,9 +17,9 @@ from flexsim.aircraft.definition import Aircraft, ContentKey
 from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
 from flexsim.trim import SteadyManoeuvre
 
-from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
+from flexsim.envs.base import TERMINATION_CODES, Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import RewardTerm, TrackingReward
-from flexsim.envs.dynamics import Measurements
+from flexsim.envs.dynamics import MeasurementBatch
 from flexsim.envs.episodes import perturbed_state, turbulence_field
 
 __all__ = ["FlutterMarginTask", "WingFlutterMarginTask", "FlutterMarginEnv", "WingFlutterMarginEnv", "FlutterCondition",
@@ -274,23 +274,25 @@ class FlutterMarginEnv(FlexSimEnv):
                      "flutter_frequency_rad_s": self.flutter.frequency_rad_s}
         return Episode(self.target, x0, wind, reference)
 
-    def _task_errors(self, meas: Measurements) -> dict[str, float]:
-        ref = self._reference
+    def _task_errors(self, meas: MeasurementBatch, ref: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         margin = meas.airspeed_m_s - ref["flutter_speed_m_s"]
         rates = meas.tip_twist_rate_rad_s
         rate = rates["vtail"] if self.task.subject == "fin" else 0.5 * (rates["right_wing"] + rates["left_wing"])
         return {self.task.rate_error: rate,
-                "flutter_speed_deficit_m_s": max(0.0, -margin) if math.isfinite(margin) else math.nan,
+                "flutter_speed_deficit_m_s": np.where(np.isfinite(margin), np.maximum(0.0, -margin), np.nan),
                 "airspeed_error_m_s": meas.airspeed_m_s - ref["airspeed_m_s"],
                 "altitude_error_m": meas.altitude_m - ref["altitude_m"],
                 "flutter_margin_m_s": margin}
 
-    def _termination(self, outcome, meas: Measurements) -> str:
-        reason = super()._termination(outcome, meas)
+    def _termination_codes(self, outcome, meas: MeasurementBatch) -> np.ndarray:
+        codes = super()._termination_codes(outcome, meas)
         limit = self.task.wing_tip_twist_limit_rad
-        if not reason and math.isfinite(limit) and not max(abs(meas.tip_twist_rad["right_wing"]), abs(meas.tip_twist_rad["left_wing"])) <= limit:
-            return "structural_limit"
-        return reason
+        if math.isfinite(limit):
+            twist = meas.tip_twist_rad
+            with np.errstate(invalid="ignore"):
+                over = ~(np.maximum(np.abs(twist["right_wing"]), np.abs(twist["left_wing"])) <= limit)
+            codes = np.where((codes == 0) & over, TERMINATION_CODES.index("structural_limit"), codes)
+        return codes
 
     def task_label(self) -> str:
         return f"GTM flutter margin M {self.target.mach:.3f} (M_f {self.flutter.mach:.3f})"

@@ -13,7 +13,7 @@ from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import RewardTerm, TrackingReward
-from flexsim.envs.dynamics import Measurements
+from flexsim.envs.dynamics import MeasurementBatch
 from flexsim.envs.episodes import perturbed_state, turbulence_field
 
 __all__ = ["GustAlleviationTask", "GustAlleviationEnv"]
@@ -151,14 +151,13 @@ class GustAlleviationEnv(FlexSimEnv):
         wind = gust if turbulence is None else combine(gust, turbulence)
         return Episode(manoeuvre, x0, wind, reference)
 
-    def _task_errors(self, meas: Measurements) -> dict[str, float]:
-        ref = self._reference
+    def _task_errors(self, meas: MeasurementBatch, ref: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         tip = 0.5 * (meas.tip_deflection_m["right_wing"] + meas.tip_deflection_m["left_wing"])
         root = 0.5 * (meas.root_bending_moment_n_m["right_wing"] + meas.root_bending_moment_n_m["left_wing"])
         return {"tip_deflection_increment_m": tip - ref["tip_deflection_m"],
-                "root_moment_increment": (root - ref["root_moment_n_m"]) / max(abs(ref["root_moment_n_m"]), 1.0),
-                "pitch_error_rad": float(meas.euler_rad[1]) - ref["pitch_rad"],
-                "roll_error_rad": float(meas.euler_rad[0]),
+                "root_moment_increment": (root - ref["root_moment_n_m"]) / np.maximum(np.abs(ref["root_moment_n_m"]), 1.0),
+                "pitch_error_rad": meas.euler_rad[:, 1] - ref["pitch_rad"],
+                "roll_error_rad": meas.euler_rad[:, 0].copy(),
                 "altitude_error_m": meas.altitude_m - ref["altitude_m"]}
 
     def task_label(self) -> str:

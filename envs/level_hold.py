@@ -12,7 +12,7 @@ from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import InitialPerturbation, RewardTerm, TrackingReward
-from flexsim.envs.dynamics import Measurements
+from flexsim.envs.dynamics import MeasurementBatch
 from flexsim.envs.episodes import perturbed_state, turbulence_field, wrap_angle
 
 __all__ = ["LevelHoldTask", "LevelHoldEnv", "LevelHoldCaptureEnv", "CAPTURE_REWARD", "CAPTURE_PERTURBATION"]
@@ -124,11 +124,10 @@ class LevelHoldEnv(FlexSimEnv):
         reference = {"altitude_m": self.task.altitude_m, "airspeed_m_s": manoeuvre.speed_m_s, "heading_rad": 0.0}
         return Episode(manoeuvre, x0, wind, reference)
 
-    def _task_errors(self, meas: Measurements) -> dict[str, float]:
-        ref = self._reference
+    def _task_errors(self, meas: MeasurementBatch, ref: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         return {"altitude_error_m": meas.altitude_m - ref["altitude_m"],
                 "airspeed_error_m_s": meas.airspeed_m_s - ref["airspeed_m_s"],
-                "heading_error_rad": wrap_angle(float(meas.euler_rad[2]) - ref["heading_rad"])}
+                "heading_error_rad": wrap_angle(meas.euler_rad[:, 2] - ref["heading_rad"])}
 
     def task_label(self) -> str:
         return "GTM level hold"

@@ -11,7 +11,7 @@ from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import RewardTerm, TrackingReward
-from flexsim.envs.dynamics import Measurements
+from flexsim.envs.dynamics import MeasurementBatch
 from flexsim.envs.episodes import perturbed_state, turbulence_field
 
 __all__ = ["TurnTask", "TurnEnv"]
@@ -136,10 +136,9 @@ class TurnEnv(FlexSimEnv):
                      "turn_elevator_fraction": float(action[2]), "turn_rudder_fraction": float(action[3])}
         return Episode(manoeuvre, x0, wind, reference)
 
-    def _task_errors(self, meas: Measurements) -> dict[str, float]:
-        ref = self._reference
+    def _task_errors(self, meas: MeasurementBatch, ref: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         return {"turn_rate_error_rad_s": meas.heading_rate_rad_s - ref["turn_rate_rad_s"],
-                "turn_rate_command_rad_s": ref["turn_rate_rad_s"],
+                "turn_rate_command_rad_s": ref["turn_rate_rad_s"].copy(),
                 "altitude_error_m": meas.altitude_m - ref["altitude_m"],
                 "airspeed_error_m_s": meas.airspeed_m_s - ref["airspeed_m_s"],
                 "sideslip_error_rad": meas.beta_rad - ref["turn_sideslip_rad"]}

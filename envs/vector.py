@@ -4,18 +4,19 @@
 (every FlexSim id) gives a :class:`FlexSimVectorEnv`: N sub-environments of the task class that share one
 :class:`~flexsim.envs.dynamics.FlightDynamics` (one model build, one trim, one Jacobian and one matrix
 exponential for all N; :meth:`FlightDynamics.fork`), each with its own episode (state, wind field,
-random stream). A step is
-
-1. per aircraft, :meth:`FlexSimEnv.begin_step` (action check, actuator rate limits);
-2. :func:`advance_batch`: all control periods integrated in one call: the ETD2RK steps of all aircraft
-   flown about the same trim as matrix products over the rows of an (N, n) state array, with the
-   right-hand sides of the rows from :func:`rhs_rows` (the one place to plug a compiled batched
-   kernel in); other integrators fall back to each aircraft's ``FlightDynamics.advance``;
-3. per aircraft, :meth:`FlexSimEnv.finish_step` (observation, reward, termination, info).
+random stream). All N episodes live in one :class:`~flexsim.envs.batch.EpisodeBatch` (sub-environment i is its row i), so a
+step is one pass of array code over the stepping rows, with no per-aircraft Python on the way
+(:meth:`FlexSimEnv._step_rows`, the code the single env runs with one row): the actions checked and clipped
+as one array, the actuator rate limits, one :func:`~flexsim.envs.dynamics.advance_rows` call (all ETD2RK
+substeps of all aircraft flown about one trim as matrix products over the rows of an (N, n) state array,
+the right-hand sides of all rows in one compiled call, ``AircraftModel.rhs_batch``), the measurements
+(:meth:`FlightDynamics.measure_batch`), termination, task errors, reward parts and observations; the info
+is built as gymnasium's vector info arrays directly. Other integrators fall back to each aircraft's
+``FlightDynamics.advance``.
 
 The physics is the one right-hand side ``AircraftModel.rhs``; each sub-environment's trajectory equals the
 single environment's with the same seed and actions (exactly for ``solve_ivp`` methods, to rounding for
-ETD2RK, whose products are GEMMs here: tests/envs/test_vector_batched.py).
+ETD2RK, whose products are GEMMs over different numbers of rows: tests/envs/test_vector_batched.py).
 
 Conventions (gymnasium 1.x, as :class:`gymnasium.vector.SyncVectorEnv`): ``metadata["autoreset_mode"]``
 (``NEXT_STEP`` by default; ``SAME_STEP`` and ``DISABLED`` with ``options["reset_mask"]``); ``reset(seed=s)``
@@ -33,12 +34,13 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
 
-from flexsim.envs.base import FlexSimEnv
-from flexsim.envs.dynamics import FlightDynamics, StepOutcome
+from flexsim.envs.base import TERMINATION_CODES, FlexSimEnv, RowsStep
+from flexsim.envs.batch import EpisodeBatch
+from flexsim.envs.dynamics import FlightDynamics, StepOutcome, advance_rows, rhs_rows
+from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.envs.flutter_margin import FlutterMarginEnv, WingFlutterMarginEnv
 from flexsim.envs.gust_alleviation import GustAlleviationEnv
 from flexsim.envs.level_hold import LevelHoldCaptureEnv, LevelHoldEnv
@@ -47,157 +49,11 @@ from flexsim.envs.turn import TurnEnv
 __all__ = ["FlexSimVectorEnv", "LevelHoldVectorEnv", "LevelHoldCaptureVectorEnv", "TurnVectorEnv", "GustAlleviationVectorEnv", "FlutterMarginVectorEnv",
            "WingFlutterMarginVectorEnv", "advance_batch", "rhs_rows"]
 
-#: Exceptions of the model that end one aircraft's period as a "model error" (as ``FlightDynamics.advance``).
-_MODEL_ERRORS = (ValueError, ArithmeticError, np.linalg.LinAlgError)
-
-
-def rhs_rows(dynamics: Sequence[FlightDynamics], t: np.ndarray, x: np.ndarray, u: np.ndarray, winds: Sequence,
-             errors: dict[int, Exception], packed: Any = None) -> np.ndarray:
-    """State derivatives of many aircraft: row i is ``dynamics[i].model.rhs(t[i], x[i], u[i], winds[i])``.
-
-    Parameters
-    ----------
-    dynamics : sequence of FlightDynamics, length m
-    t : ndarray, shape (m,)
-        Times [s].
-    x : ndarray, shape (m, n)
-        States (layout ``dynamics[i].layout``).
-    u : ndarray, shape (m, 4)
-        Controls [N, rad, rad, rad].
-    winds : sequence of wind fields or None, length m
-    errors : dict
-        Filled with ``{row: exception}`` for rows whose model raised one of the model errors; their
-        derivative rows are NaN.
-    packed : optional
-        The rows' winds packed once by the model's ``pack_winds`` (a compiled model's batch of wind data,
-        rows in this order), or None.
-
-    Returns
-    -------
-    ndarray, shape (m, n)
-        x_dot of every row.
-
-    Rows that share one model whose class offers ``rhs_batch(t, x, u, wind)`` (all rows in one compiled
-    call; the wind fields of :mod:`flexsim.sim.disturbances` do not depend on t) go through it when they
-    fly in still air or their winds come ``packed``; the rest, and all rows of a batch call that raised (to
-    find which row failed), one by one through ``rhs``.
-    """
-    out = np.empty_like(x)
-    batch = getattr(dynamics[0].model, "rhs_batch", None) if len(dynamics) > 1 else None
-    if batch is not None and all(d.model is dynamics[0].model for d in dynamics):
-        wind = packed if packed is not None else (None if all(w is None for w in winds) else False)
-        if wind is not False:
-            try:
-                return np.asarray(batch(float(t[0]), x, u, wind), dtype=float).reshape(x.shape)
-            except _MODEL_ERRORS:
-                pass  # evaluated row by row below, which names the failing rows
-    for i, dyn in enumerate(dynamics):
-        try:
-            out[i] = dyn.model.rhs(float(t[i]), x[i], u[i], winds[i])
-        except _MODEL_ERRORS as exc:
-            errors[i] = exc
-            out[i] = np.nan
-    return out
-
-
-@single_blas_thread
 def advance_batch(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.ndarray,
                   winds: Sequence, rhs: Callable = rhs_rows, packed: Any = None) -> list[StepOutcome]:
-    """Integrate one control period of many aircraft in one call (zero-order hold of each row's controls).
-
-    Row i is what ``dynamics[i].advance(x[i], u[i], t0[i], t1[i], winds[i])`` returns (same checks: non-finite
-    state, model error, crash located by linear interpolation within the ETD2RK step). Aircraft whose
-    ETD2RK stepper is the same object (same trim Jacobian and step) are stepped together as matrix
-    products over their rows, with right-hand sides from ``rhs`` (:func:`rhs_rows`); the others (the
-    ``solve_ivp`` methods) one by one.
-
-    Parameters
-    ----------
-    dynamics : sequence of FlightDynamics, length N
-        Each aircraft's dynamics, after :meth:`FlightDynamics.start` of its episode.
-    x : ndarray, shape (N, n)
-    u : ndarray, shape (N, 4)
-    t0, t1 : ndarray, shape (N,)
-        Start and end of each period [s].
-    winds : sequence, length N
-    rhs : callable
-        ``rhs(dynamics, t, x, u, winds, errors, packed) -> x_dot`` over rows (:func:`rhs_rows`).
-    packed : optional
-        The N winds packed by the model's ``pack_winds`` (a named tuple whose ``rows`` select each
-        aircraft's wind data), or None.
-
-    Returns
-    -------
-    list of StepOutcome, length N
-    """
-    n_rows = len(dynamics)
-    outcomes: list[StepOutcome | None] = [None] * n_rows
-    groups: dict[int, list[int]] = {}
-    for i, dyn in enumerate(dynamics):
-        if dyn.substeps and dyn.stepper is not None:
-            groups.setdefault(id(dyn.stepper), []).append(i)
-        else:
-            outcomes[i] = dyn.advance(x[i], u[i], float(t0[i]), float(t1[i]), winds[i])
-    for rows in groups.values():
-        for i, out in zip(rows, _advance_etd2rk([dynamics[i] for i in rows], x[rows], u[rows], t0[rows], t1[rows],
-                                                [winds[i] for i in rows], rhs, _subset(packed, rows))):
-            outcomes[i] = out
-    return outcomes  # type: ignore[return-value]
-
-
-def _subset(packed: Any, rows) -> Any:
-    """The packed winds of the given rows (None stays None)."""
-    return None if packed is None else packed._replace(rows=packed.rows[np.asarray(rows, dtype=np.int64)])
-
-
-def _advance_etd2rk(dyns, x, u, t0, t1, winds, rhs, packed=None) -> list[StepOutcome]:
-    """ETD2RK periods of aircraft sharing one stepper (``FlightDynamics._advance_fixed`` over rows)."""
-    first = dyns[0]
-    stepper, k, h, dt = first.stepper, first.substeps, first.stepper.h, first.dt
-    z = first.layout.position.start + 2  # down coordinate: altitude -x[z]
-    span = t1 - t0
-    bad = np.flatnonzero(~(np.abs(span - dt) <= 1e-9 * dt))
-    if bad.size:
-        raise ValueError(f"t1 - t0 = {span[bad[0]]!r} s: ETD2RK steps whole control periods, must be dt = {dt!r} s")
-    m = len(dyns)
-    out: list[StepOutcome | None] = [None] * m
-    active = np.arange(m)
-    x = np.array(x, dtype=float)
-    t = np.array(t0, dtype=float)
-    with np.errstate(all="ignore"):
-        for i in range(1, k + 1):
-            t_next = t1[active] if i == k else t0[active] + i * h
-            nfev = 2 * i
-            errors: dict[int, Exception] = {}
-            rows_d = [dyns[j] for j in active]
-            rows_u, rows_w, rows_p = u[active], [winds[j] for j in active], _subset(packed, active)
-
-            def fun(tt, xx):
-                return rhs(rows_d, tt, xx, rows_u, rows_w, errors, rows_p)
-
-            xa, ta = x[active], t[active]
-            x_next = stepper.step_rows(fun, ta, xa)
-            keep = np.ones(active.size, bool)
-            for r, j in enumerate(active):
-                if r in errors:
-                    out[j] = StepOutcome(xa[r].copy(), float(ta[r]), False, f"model error: {errors[r]}", nfev)
-                elif not np.all(np.isfinite(x_next[r])):
-                    out[j] = StepOutcome(xa[r].copy(), float(ta[r]), False,
-                                         f"non-finite state: ETD2RK step {i} of {k} from t = {float(ta[r]):.6g} s", nfev)
-                elif x_next[r, z] >= 0.0 > xa[r, z]:
-                    s = xa[r, z] / (xa[r, z] - x_next[r, z])
-                    out[j] = StepOutcome(xa[r] + s * (x_next[r] - xa[r]), float(ta[r] + s * (t_next[r] - ta[r])), True, "", nfev)
-                else:
-                    continue
-                keep[r] = False
-            x[active] = x_next
-            t[active] = t_next
-            active = active[keep]
-            if not active.size:
-                break
-    for j in active:
-        out[j] = StepOutcome(x[j].copy(), float(t1[j]), False, "", 2 * k)
-    return out  # type: ignore[return-value]
+    """:func:`~flexsim.envs.dynamics.advance_rows` as one :class:`StepOutcome` per row."""
+    out = advance_rows(dynamics, x, u, t0, t1, winds, rhs=rhs, packed=packed)
+    return [out.row(i) for i in range(len(dynamics))]
 
 
 class FlexSimVectorEnv(VectorEnv):
@@ -258,7 +114,12 @@ class FlexSimVectorEnv(VectorEnv):
         self._truncations = np.zeros(n, dtype=np.bool_)
         self._autoreset = np.zeros(n, dtype=np.bool_)
         self._needs_reset = np.ones(n, dtype=np.bool_)
-        self._packed: Any = None  # the N episode winds packed for a compiled batched rhs; None: to pack; False: cannot
+        #: The episodes of all sub-environments, row i of sub-environment i.
+        self._batch = EpisodeBatch(n, first.dynamics.layout.n_states, len(first.task_errors_spec))
+        for i, env in enumerate(self.envs):
+            env._attach(self._batch, i)
+        self._low = self.single_action_space.low.astype(np.float64)
+        self._high = self.single_action_space.high.astype(np.float64)
 
     # ------------------------------------------------------------------ gymnasium API
     def reset(self, *, seed: int | Sequence[int | None] | None = None, options: dict | None = None) -> tuple[np.ndarray, dict]:
@@ -281,7 +142,6 @@ class FlexSimVectorEnv(VectorEnv):
         infos: dict = {}
         for i in np.flatnonzero(mask):
             self._obs[i], info = self.envs[i].reset(seed=seeds[i], options=options or None)
-            self._packed = None
             self._elapsed[i] = 0
             self._needs_reset[i] = False
             infos = self._add_info(infos, info, i)
@@ -291,69 +151,102 @@ class FlexSimVectorEnv(VectorEnv):
         return self._obs.copy(), infos
 
     def step(self, actions: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict]:
-        """Step every sub-environment with its row of ``actions`` (shape (num_envs, 4)); the periods of all
-        aircraft are integrated in one :func:`advance_batch` call."""
+        """Step every sub-environment with its row of ``actions`` (shape (num_envs, 4)): one pass of array code over
+        the stepping rows (:meth:`FlexSimEnv._step_rows`, one :func:`advance_rows` call)."""
         n = self.num_envs
-        a = np.asarray(actions)
-        if a.shape[:1] != (n,):
-            raise ValueError(f"actions: expected shape ({n}, 4) (one action per sub-environment), got shape {a.shape}")
+        a, clipped = self._check_actions(actions)
         rewards = np.zeros(n, dtype=np.float64)
         infos: dict = {}
-        stepping: list[int] = []
         if self.autoreset_mode == AutoresetMode.NEXT_STEP:
             for i in np.flatnonzero(self._autoreset):
                 self._obs[i], info = self.envs[i].reset()
-                self._packed = None
                 self._elapsed[i] = 0
                 self._terminations[i] = self._truncations[i] = False
                 infos = self._add_info(infos, info, i)
-            stepping = [i for i in range(n) if not self._autoreset[i]]
+            stepping = np.flatnonzero(~self._autoreset)
         else:
             if self.autoreset_mode == AutoresetMode.DISABLED and self._needs_reset.any():
                 raise RuntimeError(f"step(): sub-environments {np.flatnonzero(self._needs_reset).tolist()} ended (or were never "
                                    "reset); with autoreset_mode 'Disabled' call reset(options={'reset_mask': ...}) for them first")
-            stepping = list(range(n))
-        periods = {}
-        for i in stepping:
-            try:
-                periods[i] = self.envs[i].begin_step(a[i])
-            except ValueError as exc:
-                raise ValueError(f"actions[{i}]: {exc}") from None
-        envs = [self.envs[i] for i in stepping]
-        packed = self._packed_winds()
-        outcomes = advance_batch([e.dynamics for e in envs], np.array([e.state for e in envs]),
-                                 np.array([periods[i].u for i in stepping]),
-                                 np.array([periods[i].t0_s for i in stepping]), np.array([periods[i].t1_s for i in stepping]),
-                                 [e.wind for e in envs], packed=_subset(packed, stepping) if packed else None) if stepping else []
-        for i, outcome in zip(stepping, outcomes):
-            obs, rewards[i], term, _, info = self.envs[i].finish_step(periods[i], outcome)
-            self._elapsed[i] += 1
-            trunc = self.max_episode_steps is not None and self._elapsed[i] >= self.max_episode_steps
-            self._obs[i], self._terminations[i], self._truncations[i] = obs, term, trunc
-            if self.autoreset_mode == AutoresetMode.SAME_STEP and (term or trunc):
-                infos = self._add_info(infos, {"final_obs": obs, "final_info": info}, i)
-                self._obs[i], info = self.envs[i].reset()
-                self._packed = None
-                self._elapsed[i] = 0
-            infos = self._add_info(infos, info, i)
+            stepping = np.arange(n)
+        if stepping.size:
+            FlexSimEnv._check_steppable(self._batch, stepping)
+            out = self.envs[0]._step_rows(self._batch, stepping, a[stepping], clipped[stepping])
+            self._elapsed[stepping] += 1
+            trunc = (self._elapsed[stepping] >= self.max_episode_steps if self.max_episode_steps is not None
+                     else np.zeros(stepping.size, dtype=np.bool_))
+            self._obs[stepping] = out.obs
+            rewards[stepping] = out.reward
+            self._terminations[stepping] = out.terminated
+            self._truncations[stepping] = trunc
+            ended = out.terminated | trunc
+            same_step = self.autoreset_mode == AutoresetMode.SAME_STEP and ended.any()
+            keep = ~ended if same_step else np.ones(stepping.size, dtype=np.bool_)
+            infos = self._step_infos(infos, stepping, out, keep)
+            if same_step:
+                for r in np.flatnonzero(ended):
+                    i = int(stepping[r])
+                    infos = self._add_info(infos, {"final_obs": out.obs[r], "final_info": self.envs[0]._step_info(out, r)}, i)
+                    self._obs[i], info = self.envs[i].reset()
+                    self._elapsed[i] = 0
+                    infos = self._add_info(infos, info, i)
         ended = self._terminations | self._truncations
         self._autoreset = ended.copy()
         if self.autoreset_mode == AutoresetMode.DISABLED:
             self._needs_reset |= ended
         return self._obs.copy(), rewards, self._terminations.copy(), self._truncations.copy(), infos
 
-    def _packed_winds(self) -> Any:
-        """The episode winds of all sub-environments packed once per reset by the model's ``pack_winds`` (a
-        compiled model), or False where the model has none or a wind cannot be packed (evaluated per row)."""
-        if self._packed is None:
-            pack = getattr(self.envs[0].dynamics.model, "pack_winds", None)
-            self._packed = False
-            if pack is not None and all(e.dynamics.model is self.envs[0].dynamics.model for e in self.envs):
-                try:
-                    self._packed = pack([e.wind for e in self.envs])
-                except ValueError:
-                    pass
-        return self._packed
+    def _check_actions(self, actions: Any) -> tuple[np.ndarray, np.ndarray]:
+        """The actions (num_envs, 4) as float64, clipped to the action space, and which rows were clipped."""
+        n = self.num_envs
+        raw = np.asarray(actions)
+        if raw.shape != (n, 4):
+            raise ValueError(f"actions: expected shape ({n}, 4) (one action per sub-environment), got shape {raw.shape}")
+        if raw.dtype.kind not in "iuf":
+            raise ValueError(f"actions: must be real numbers [thrust, aileron, elevator, rudder] per row, got dtype {raw.dtype}")
+        a = raw.astype(np.float64)
+        bad = ~np.isfinite(a)
+        if bad.any():
+            i, j = np.argwhere(bad)[0]
+            raise ValueError(f"actions[{i}]: action: values must be finite, got action[{j}] ({CONTROL_NAMES[j]}) = {a[i, j]}")
+        clipped = np.clip(a, self._low, self._high)
+        return clipped, np.any(clipped != a, axis=1)
+
+    def _step_infos(self, infos: dict, rows: np.ndarray, out: RowsStep, keep: np.ndarray) -> dict:
+        """Add the step info of ``rows[keep]`` to ``infos`` as gymnasium's vector info arrays (value array and ``_key``
+        mask per key, nested for the dicts), built from the arrays of ``out`` (as ``_add_info`` of each row's info)."""
+        n = self.num_envs
+        sel = rows[keep]
+        if not sel.size:
+            return infos
+        mask = np.zeros(n, dtype=np.bool_)
+        mask[sel] = True
+
+        def put(target: dict, key: str, values: np.ndarray, dtype) -> None:
+            if key in target:
+                array = target[key]
+            else:
+                array = np.full(n, None, dtype=object) if dtype is object else np.zeros(n, dtype=dtype)
+            array[sel] = values[keep]
+            target[key] = array
+            target[f"_{key}"] = target.get(f"_{key}", np.zeros(n, dtype=np.bool_)) | mask
+
+        def nested(key: str, values: dict) -> None:
+            sub = infos.get(key, {})
+            for name, v in values.items():
+                put(sub, name, v, np.float64)
+            infos[key] = sub
+            infos[f"_{key}"] = infos.get(f"_{key}", np.zeros(n, dtype=np.bool_)) | mask
+
+        put(infos, "time_s", out.outcome.time_s, np.float64)
+        nested("reward_parts", out.parts)
+        put(infos, "termination_reason", np.array(TERMINATION_CODES, dtype=object)[out.codes], object)
+        put(infos, "action_clipped", out.clipped, np.bool_)
+        nested("task_errors", out.errors)
+        put(infos, "nfev", out.outcome.nfev, np.int64)
+        put(infos, "nlu", out.outcome.nlu, np.int64)
+        put(infos, "solver_failure", out.outcome.failure, object)
+        return infos
 
     def render(self) -> tuple | None:
         """One frame per sub-environment (``render_mode="rgb_array"``), else None."""

@@ -44,7 +44,7 @@ from numba import njit
 from flexsim._arrays import frozen_array
 
 __all__ = ["FLOAT_FIELDS", "INT_FIELDS", "INT_NAMES", "KernelData", "pack", "WindData", "NO_WIND", "BatchWind", "pack_winds",
-           "join_winds", "rhs", "rhs_batch", "rhs_strip_wind", "assemble", "aerodynamic_force", "unpack", "air", "inertia",
+           "join_winds", "rhs", "rhs_batch", "air_velocity_rows", "rhs_strip_wind", "assemble", "aerodynamic_force", "unpack", "air", "inertia",
            "strip_kinematics", "circulatory", "tail_downwash", "downwash_shift", "aero_evaluate", "inflow_rate",
            "point_velocity", "parasite_drag", "munk_moments", "body_moments", "body_force", "strip_positions", "strip_wind",
            "strip_wind_at", "wind_ned", "gust_profile", "gust_profiles", "dryden_along_track", "dryden_track", "isa_scalar",
@@ -1250,3 +1250,17 @@ def etd2rk_rows(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_steps
         t_out[i] = t
         status[i] = st
         steps[i] = j
+
+
+@_entry
+def air_velocity_rows(rows, gusts, turb, turb_grid, pos, eul, v):
+    """Velocity of the body origin relative to the air, body axes [m/s], of N aircraft: v - C w(R), with
+    pos (N, 3) [m] NED, eul (N, 3) [rad], v (N, 3) [m/s] body, and w the wind (NED, :func:`wind_ned`) of
+    aircraft i (``rows[i]`` of a :class:`BatchWind`) at its origin; (N, 3)."""
+    out = np.empty_like(v)
+    for i in range(v.shape[0]):
+        w = wind_ned(gusts[rows[i, 0]:rows[i, 1]], turb[rows[i, 2]:rows[i, 3]], turb_grid, pos[i:i + 1])
+        c = dcm_321(eul[i, 0], eul[i, 1], eul[i, 2])
+        for a in range(3):
+            out[i, a] = v[i, a] - (c[a, 0] * w[0, 0] + c[a, 1] * w[0, 1] + c[a, 2] * w[0, 2])
+    return out

@@ -53,23 +53,34 @@ class AirData:
     mach: np.ndarray
 
 
-def air_angles(v_air_body: np.ndarray) -> tuple[float, float, float]:
+def air_angles(v_air_body: np.ndarray) -> tuple:
     """Airspeed [m/s], angle of attack atan2(w_a, u_a) [rad] and sideslip asin(v_a / |v_a|) [rad] (0 at zero
-    airspeed) from the velocity relative to the air in body axes (u_a, v_a, w_a) [m/s]."""
-    ua, va, wa = float(v_air_body[0]), float(v_air_body[1]), float(v_air_body[2])
-    speed = math.hypot(ua, va, wa)
-    beta = math.asin(max(-1.0, min(1.0, va / speed))) if speed > 0.0 else 0.0
-    return speed, math.atan2(wa, ua), beta
+    airspeed) from the velocity relative to the air in body axes (u_a, v_a, w_a) [m/s].
+
+    ``v_air_body`` of shape (3,) gives three floats; of shape (N, 3) three arrays (N,) (batched environments)."""
+    v = np.asarray(v_air_body, dtype=float)
+    ua, va, wa = v[..., 0], v[..., 1], v[..., 2]
+    with np.errstate(all="ignore"):
+        speed = np.sqrt(ua * ua + va * va + wa * wa)
+        beta = np.where(speed > 0.0, np.arcsin(np.clip(va / np.where(speed > 0.0, speed, 1.0), -1.0, 1.0)), 0.0)
+        beta = np.where(np.isnan(speed), np.nan, beta)
+    alpha = np.arctan2(wa, ua)
+    if v.ndim == 1:
+        return float(speed), float(alpha), float(beta)
+    return speed, alpha, beta
 
 
-def heading_rate(euler_rad: np.ndarray, velocity: np.ndarray) -> float:
+def heading_rate(euler_rad: np.ndarray, velocity: np.ndarray):
     """psi_dot = (Q sin(phi) + R cos(phi)) / cos(theta) [rad/s] (the turn rate of a level turn; NaN at
-    cos(theta) = 0) from the Euler angles [rad] and the velocity vector V = [v, omega, ...] (omega = V[3:6])."""
-    phi, theta = float(euler_rad[0]), float(euler_rad[1])
-    cos_theta = math.cos(theta)
-    if cos_theta == 0.0:
-        return math.nan
-    return (float(velocity[4]) * math.sin(phi) + float(velocity[5]) * math.cos(phi)) / cos_theta
+    cos(theta) = 0) from the Euler angles [rad] and the velocity vector V = [v, omega, ...] (omega = V[3:6]).
+
+    Shapes (3,) and (n_v,) give a float; (N, 3) and (N, n_v) an array (N,) (batched environments)."""
+    eul, vel = np.asarray(euler_rad, dtype=float), np.asarray(velocity, dtype=float)
+    phi, theta = eul[..., 0], eul[..., 1]
+    cos_theta = np.cos(theta)
+    with np.errstate(all="ignore"):
+        rate = np.where(cos_theta == 0.0, np.nan, (vel[..., 4] * np.sin(phi) + vel[..., 5] * np.cos(phi)) / cos_theta)
+    return float(rate) if rate.ndim == 0 else rate
 
 
 class OutputMaps:
