@@ -1,9 +1,12 @@
 """Figures quoted in README.md and docs/*.md that ``tools/regenerate_docs_figures.py`` owns are current.
 
-Fast: every ``<!-- figures:NAME -->`` region of the docs names a figure the script knows, is closed, and each
-known figure has a region (so a region cannot be orphaned or mistyped). Slow (``pytest -m slow``, several
-minutes): ``regenerate_docs_figures.py --check`` recomputes every figure (the flutter search of README's
-calibration line, 10 seeded episodes per environment for the baselines table) and must find no stale region.
+Default suite: every ``<!-- figures:NAME -->`` region of the docs names a figure the script knows, is closed, and
+each known figure has a region (so a region cannot be orphaned or mistyped); ``regenerate_docs_figures.py --check
+--fast`` recomputes the fast figures (README's calibration line, the level-flight and glide points of
+docs/flutter.md: five US flutter searches, well under a minute on a quiet 2-core machine) and must find no stale
+region. Slow (``pytest -m slow``, about 15 minutes): ``--check`` recomputes every figure (also the turn and climb
+studies of docs/flutter.md, the m = n table, the tight climb search and 10 seeded episodes per environment for
+the baselines table).
 """
 
 import importlib.util
@@ -39,6 +42,31 @@ def test_every_region_names_a_known_figure_and_every_figure_has_a_region():
         assert all(m.group("body").strip() for m in tool.regions(text)), f"{doc.relative_to(ROOT)}: an empty region"
         seen |= set(names)
     assert seen == set(tool.FIGURES)
+
+
+def test_the_fast_figures_are_current():
+    tool = _tool()
+    assert any(f.fast for f in tool.FIGURES.values()) and not all(f.fast for f in tool.FIGURES.values())
+    run = subprocess.run([sys.executable, str(TOOL), "--check", "--fast"], cwd=ROOT, capture_output=True, text=True,
+                         timeout=900)
+    assert run.returncode == 0, run.stdout + run.stderr
+
+
+def test_a_stale_region_is_reported(tmp_path, monkeypatch):
+    """``--check`` names a region whose text differs from the computed one and leaves the document alone."""
+    tool = _tool()
+    doc = tmp_path / "doc.md"
+    text = "a <!-- figures:one -->old<!-- /figures:one --> b <!-- figures:two -->2<!-- /figures:two -->\n"
+    doc.write_text(text, encoding="utf-8")
+    monkeypatch.setattr(tool, "ROOT", tmp_path)
+    monkeypatch.setattr(tool, "DOCUMENTS", [doc])
+    monkeypatch.setattr(tool, "FIGURES", {"one": tool.Figure(lambda: "new", fast=True),
+                                          "two": tool.Figure(lambda: "2", fast=True)})
+    assert tool.main(["--check"]) == 1
+    assert doc.read_text(encoding="utf-8") == text
+    assert tool.main([]) == 0
+    assert doc.read_text(encoding="utf-8") == text.replace("old", "new")
+    assert tool.main(["--check"]) == 0
 
 
 @pytest.mark.slow
