@@ -4,7 +4,11 @@ Issue 4 budgets: one flutter point (QS) <= 2 s; the whole study <= 5 min on this
 Prints medians over --repeats runs. ``--study`` also times the whole study of the paper's Figs. 7-16:
 level turns R = 5-12 km (8 radii) and climbs gamma = -15..15 deg (7 angles) at 0, 3048, 6096, 9144 m,
 QS and US (Theodorsen p-k): 120 flutter points, local processes (all cores), as ``flexsim sweep``.
-Run: python benchmarks/bench_flutter.py [--repeats 3] [--table] [--study]
+``--breakdown`` splits one US evaluation (sea level, M 0.68) into its parts — trim, linearisation, the p-k
+state matrix, the start eig, the p-k roots (with their iteration and full-eig counts), classification — and
+times one dense eig with vectors of the 248-state finite-state system beside it (issue 14: one US point
+<= 0.4 s and <= 30x that eig). CPU times of this thread (time.thread_time), medians.
+Run: python benchmarks/bench_flutter.py [--repeats 3] [--table] [--study] [--breakdown]
 """
 
 from __future__ import annotations
@@ -32,12 +36,66 @@ def _median(fn, repeats: int) -> float:
     return statistics.median(times)
 
 
+def _cpu_median(fn, repeats: int) -> tuple[float, object]:
+    out = fn()  # warm-up
+    times = []
+    for _ in range(repeats):
+        t0 = time.thread_time()
+        out = fn()
+        times.append(time.thread_time() - t0)
+    return statistics.median(times), out
+
+
+def breakdown(repeats: int) -> None:
+    """Where one US (Theodorsen p-k) evaluation spends its time, beside one dense eig of the 248-state system."""
+    import numpy as np
+
+    from flexsim.aero.pk import pk_roots
+    from flexsim.linear.linearize import linearize
+    from flexsim.linear.stability import _classify, pk_state_matrix
+    from flexsim.trim import trim
+
+    gtm = load_aircraft("gtm")
+    an = FlutterAnalysis(gtm, "theodorsen")
+    man = SteadyManoeuvre.level(0.0, mach=0.68)
+    neighbour = trim(an.qs, SteadyManoeuvre.level(0.0, mach=0.63), check_limits=False)
+    t_cold, point = _cpu_median(lambda: trim(an.qs, man, check_limits=False), repeats)
+    t_warm, _ = _cpu_median(lambda: trim(an.qs, man, guess=neighbour, check_limits=False), repeats)
+    t_lin, lin = _cpu_median(lambda: linearize(an.qs, point.x, point.u), repeats)
+    t_mat, a_of = _cpu_median(lambda: pk_state_matrix(an.qs, an.fs, lin), repeats)
+    t_eig0, (vals0, vecs0) = _cpu_median(lambda: np.linalg.eig(lin.a), repeats)
+    track = np.flatnonzero((vals0.imag > 0.5) & (vals0.real >= -20.0))
+    t_pk, roots = _cpu_median(lambda: pk_roots(a_of, vals0[track], vecs0[:, track]), repeats)
+    t_cls, _ = _cpu_median(lambda: _classify(an.qs, lin, vals0, vecs0, "theodorsen"), repeats)
+    t_eval, _ = _cpu_median(lambda: an.evaluate(man, neighbour), repeats)
+    x_fs = np.concatenate([point.x, np.zeros(an.fs.layout.n_inflow)])
+    a_fs = linearize(an.fs, x_fs, point.u).a
+    t_dense, _ = _cpu_median(lambda: np.linalg.eig(a_fs), max(repeats, 5))
+    t_zeig, _ = _cpu_median(lambda: np.linalg.eig(a_of(36.0)), max(repeats, 5))
+    its = sum(r.iterations for r in roots)
+    full = sum(r.full_eigs for r in roots)
+    print(f"one US evaluation, sea level, M 0.68 (CPU, median of {repeats}): {t_eval * 1e3:.1f} ms, of which")
+    print(f"  trim from the M 0.63 trim {t_warm * 1e3:6.1f} ms   (cold start {t_cold * 1e3:.1f} ms)")
+    print(f"  linearisation            {t_lin * 1e3:6.1f} ms   ({lin.a.shape[0]} states)")
+    print(f"  p-k state matrix         {t_mat * 1e3:6.1f} ms")
+    print(f"  start eig                {t_eig0 * 1e3:6.1f} ms")
+    print(f"  p-k roots                {t_pk * 1e3:6.1f} ms   ({track.size} roots, {its} iterations, {full} full eigs of "
+          f"{t_zeig * 1e3:.1f} ms each)")
+    print(f"  classification           {t_cls * 1e3:6.1f} ms")
+    print(f"one dense eig with vectors of the {a_fs.shape[0]}-state finite-state system: {t_dense * 1e3:.1f} ms "
+          f"(30x = {30 * t_dense:.2f} s); one US evaluation = {t_eval / t_dense:.1f}x that eig")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--table", action="store_true", help="also time `flexsim flutter` (2 settings x 4 altitudes x QS, US)")
     parser.add_argument("--study", action="store_true", help="also time the whole turn + climb study (120 points)")
+    parser.add_argument("--breakdown", action="store_true", help="also split one US evaluation into its parts")
     args = parser.parse_args()
+    print(f"load average: {open('/proc/loadavg').read().split()[:3]}; {os.cpu_count()} CPUs")
+    if args.breakdown:
+        breakdown(args.repeats)
     gtm = load_aircraft("gtm")
     man = SteadyManoeuvre.level(0.0, mach=0.85)
     for model in ("quasi-steady", "unsteady", "theodorsen"):
