@@ -41,7 +41,7 @@ from flexsim.aero.theodorsen import theodorsen_function
 from flexsim.aircraft.definition import ContentKey
 from flexsim.linear.linearize import LinearModel, linearize
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.structure.mirror import ranked
+from flexsim.structure.mirror import TIE_RTOL
 
 __all__ = ["Mode", "Spectrum", "spectrum", "pk_state_matrix", "PK_METHODS"]
 
@@ -135,37 +135,60 @@ def _classify(model: AircraftModel, lin: LinearModel, vals: np.ndarray, vecs: np
     for k in np.flatnonzero(~lag):  # a conjugate pair is one root pair: never split it at the cut
         if vals[k].imag != 0.0:
             lag[int(np.argmin(np.abs(vals - np.conj(vals[k]))))] = False
+    # every mode at once: kinetic-energy shares, elastic fraction (Koenig) and dominant DOF
+    n_v = model.structure.dofs.n_v
+    phi = vecs[vel_rows]  # (n_act, K)
+    m_phi = m_act @ phi
+    share = np.real(np.conj(phi) * m_phi)
+    total = share.sum(axis=0)
+    scale = np.real(np.sum(np.conj(vecs) * vecs, axis=0))
+    no_energy = (total <= 1e-9 * scale * np.abs(m_act).max()) | (total <= 0)
+    if free:
+        p_lin = m_phi[0:3]
+        h_cg = m_phi[3:6] - np.cross(mp.cg_m, p_lin, axis=0)
+        rigid_energy = (np.real(np.sum(np.conj(p_lin) * p_lin, axis=0)) / mp.mass_kg
+                        + np.real(np.sum(np.conj(h_cg) * (j_inv @ h_cg), axis=0)))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            frac = np.clip(1.0 - rigid_energy / total, 0.0, 1.0)
+    else:
+        frac = np.ones(vals.size)
+    shapes = np.zeros((n_v, vals.size), dtype=complex)
+    shapes[active] = phi
+    dominant = _dominant_dofs(share, active, n_v, mirror)
     modes = []
     for k in range(vals.size):
-        if lag[k]:
-            full = np.zeros(model.structure.dofs.n_v, dtype=complex)
-            full[active] = vecs[vel_rows, k]
-            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", full, float(inflow_share[k])))
+        if lag[k] or no_energy[k]:
+            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", shapes[:, k].copy(), float(inflow_share[k])))
             continue
-        phi = vecs[vel_rows, k]
-        m_phi = m_act @ phi
-        share = np.real(np.conj(phi) * m_phi)
-        total = share.sum()
-        scale = np.real(np.vdot(vecs[:, k], vecs[:, k]))
-        full = np.zeros(model.structure.dofs.n_v, dtype=complex)
-        full[active] = phi
-        if total <= 1e-9 * scale * np.abs(m_act).max() or total <= 0:
-            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", full, float(inflow_share[k])))
-            continue
-        if free:
-            p_lin = m_phi[0:3]
-            h_cg = m_phi[3:6] - np.cross(mp.cg_m, p_lin)
-            rigid_energy = np.real(np.vdot(p_lin, p_lin)) / mp.mass_kg + np.real(np.vdot(h_cg, j_inv @ h_cg))
-            frac_el = float(np.clip(1.0 - rigid_energy / total, 0.0, 1.0))
-        else:
-            frac_el = 1.0
-        full_share = np.full(model.structure.dofs.n_v, -np.inf)
-        full_share[active] = share
-        j = ranked(full_share, mirror, candidates=[int(i) for i in active])[0]
+        frac_el = float(frac[k])
         rigid = frac_el < 0.5 and abs(vals[k]) < cut
-        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, labels_full[j], full, float(inflow_share[k])))
+        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, labels_full[dominant[k]],
+                          shapes[:, k].copy(), float(inflow_share[k])))
     modes.sort(key=lambda m: -m.eigenvalue.real)
     return Spectrum(tuple(modes), aero_model)
+
+
+def _dominant_dofs(share: np.ndarray, active: np.ndarray, n_v: int, mirror) -> np.ndarray:
+    """Index over V of the largest kinetic-energy share of every mode (columns of ``share``, rows ``active``).
+
+    :func:`flexsim.structure.mirror.ranked` for all modes at once: a coordinate whose mirror partner's share is
+    within :data:`~flexsim.structure.mirror.TIE_RTOL` takes the larger of the two, and equal keys go to the
+    lower index (``argmax`` returns the first maximum).
+    """
+    full = np.full((n_v, share.shape[1]), -np.inf)
+    full[active] = share
+    key = full.copy()
+    if mirror is not None:
+        partner = np.asarray(mirror.partner)
+        k = np.flatnonzero((partner >= 0) & (partner != np.arange(n_v)))
+        v, w = full[k], full[partner[k]]
+        with np.errstate(invalid="ignore"):
+            tie = np.abs(w - v) <= TIE_RTOL * np.maximum(np.abs(w), np.abs(v))
+        key[k] = np.where(tie, np.maximum(v, w), v)
+    inactive = np.ones(n_v, bool)
+    inactive[active] = False
+    key[inactive] = -np.inf  # only the active coordinates are candidates
+    return np.argmax(key, axis=0)
 
 
 def _inflow_participation(vecs: np.ndarray, inflow_rows: np.ndarray) -> np.ndarray:
