@@ -183,6 +183,36 @@ class _Problem:
         v_cg = x[lay.v] + np.cross(x[lay.omega], self.r_cg)
         return np.append(r, v_cg[1] / self.man.speed_m_s)  # zero sideslip at the CG
 
+    def jacobian(self, z: np.ndarray) -> np.ndarray:
+        """Central-difference Jacobian d residual / dz, steps 1e-7 max(1, |z_j|): the 2 n residuals in one
+        compiled call (:meth:`AircraftModel.rhs_batch`, rows equal to ``rhs`` bit for bit), so equal to the
+        column-by-column differences of :meth:`residual` (a model class with its own ``rhs``: column by column)."""
+        n = z.size
+        if type(self.model).rhs is not AircraftModel.rhs:
+            return _fd_jacobian(self.residual, z, n)
+        lay = self.model.layout
+        h = 1e-7 * np.maximum(1.0, np.abs(z))
+        zs = np.concatenate([z + np.diag(h), z - np.diag(h)])
+        x0, u0, _ = self.state(z)
+        xs = np.tile(x0, (2 * n, 1))
+        us = np.tile(u0, (2 * n, 1))
+        # unknowns 0-2 (and the heading offset) enter the velocities and attitude: the full state map;
+        # the controls and elastic coordinates are copied into place as state() does
+        moving = [0, 1, 2] + ([n - 1] if self.coordinated else [])
+        rows = [j for j in moving] + [n + j for j in moving]
+        for r in rows:
+            xs[r], us[r], _ = self.state(zs[r])
+        copy = np.setdiff1d(np.arange(2 * n), rows)
+        if not self.man.is_glide:
+            us[copy, 0] = zs[copy, 2] * self.weight
+        us[copy, 1:] = zs[copy, 3:6]
+        xs[copy, lay.q.start : lay.xi.stop] = zs[copy, 6 : 6 + self.n_el]
+        r = self.model.rhs_batch(0.0, xs, us)[:, lay.velocity] * self.scale
+        if self.coordinated:
+            v_cg = xs[:, lay.v] + np.cross(xs[:, lay.omega], self.r_cg)
+            r = np.concatenate([r, (v_cg[:, 1] / self.man.speed_m_s)[:, None]], axis=1)
+        return ((r[:n] - r[n:]) / (2 * h)[:, None]).T
+
 
 @single_blas_thread
 def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint | None = None, check_limits: bool = True) -> TrimPoint:
@@ -225,13 +255,13 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         z0[2] = -0.03 if manoeuvre.is_glide else 0.03
     z = r = None
     if guess is not None:  # Newton from a neighbouring trim; hybr only if that does not converge
-        z = _newton_polish(prob.residual, z0)
+        z = _newton_polish(prob.residual, z0, jac_of=prob.jacobian)
         r = prob.residual(z)
         if not float(np.linalg.norm(r)) <= _WARM_TOLERANCE:
             z = None
     if z is None:
         sol = root(prob.residual, z0, method="hybr", options={"xtol": 1e-13, "maxfev": 200 * (z0.size + 1)})
-        z = _newton_polish(prob.residual, sol.x)
+        z = _newton_polish(prob.residual, sol.x, jac_of=prob.jacobian)
         r = prob.residual(z)
     norm = float(np.linalg.norm(r))
     if not np.isfinite(norm) or norm > _TOLERANCE:
@@ -269,14 +299,7 @@ def _check_singular(prob: "_Problem", z: np.ndarray) -> None:
     condition number above 1e12 means a combination of unknowns is undetermined: the "solution" along
     that direction is arbitrary, so it is not reported as a trim.
     """
-    n = z.size
-    jac = np.empty((n, n))
-    for j in range(n):
-        h = 1e-7 * max(1.0, abs(z[j]))
-        zp, zm = z.copy(), z.copy()
-        zp[j] += h
-        zm[j] -= h
-        jac[:, j] = (prob.residual(zp) - prob.residual(zm)) / (2 * h)
+    jac = prob.jacobian(z)
     labels = _unknown_labels(prob)
     col = np.linalg.norm(jac, axis=0)
     if not np.all(np.isfinite(col)):
@@ -311,7 +334,7 @@ def _demand(model: AircraftModel, man: SteadyManoeuvre) -> str:
             f"; a larger radius or a lower speed asks less)")
 
 
-def _newton_polish(fun, z: np.ndarray, iterations: int = 12) -> np.ndarray:
+def _newton_polish(fun, z: np.ndarray, iterations: int = 12, jac_of=None) -> np.ndarray:
     """Newton steps polishing hybr's root (it stops at ~1e-8 at high dynamic pressure, or earlier when it
     makes no progress from a distant guess).
 
@@ -330,7 +353,7 @@ def _newton_polish(fun, z: np.ndarray, iterations: int = 12) -> np.ndarray:
         if not np.all(np.isfinite(r)) or np.linalg.norm(r) < 1e-13:
             break
         if lu is None:
-            lu, fresh = _jacobian_lu(fun, z, r.size), True
+            lu, fresh = _jacobian_lu(fun, z, r.size, jac_of), True
             if lu is None:
                 break
         z_new = z - lu_solve(lu, r, check_finite=False)
@@ -349,8 +372,8 @@ def _newton_polish(fun, z: np.ndarray, iterations: int = 12) -> np.ndarray:
     return z
 
 
-def _jacobian_lu(fun, z: np.ndarray, m: int):
-    """LU factors of the central-difference Jacobian of ``fun`` at z (steps 1e-7 max(1, |z_j|)); None if singular."""
+def _fd_jacobian(fun, z: np.ndarray, m: int) -> np.ndarray:
+    """Central-difference Jacobian of ``fun`` at z, shape (m, z.size), steps 1e-7 max(1, |z_j|)."""
     jac = np.empty((m, z.size))
     for j in range(z.size):
         h = 1e-7 * max(1.0, abs(z[j]))
@@ -358,6 +381,13 @@ def _jacobian_lu(fun, z: np.ndarray, m: int):
         zp[j] += h
         zm[j] -= h
         jac[:, j] = (fun(zp) - fun(zm)) / (2 * h)
+    return jac
+
+
+def _jacobian_lu(fun, z: np.ndarray, m: int, jac_of=None):
+    """LU factors of the central-difference Jacobian of ``fun`` at z (steps 1e-7 max(1, |z_j|), or ``jac_of(z)``);
+    None if singular."""
+    jac = _fd_jacobian(fun, z, m) if jac_of is None else jac_of(z)
     if not np.all(np.isfinite(jac)):
         return None
     with warnings.catch_warnings():
