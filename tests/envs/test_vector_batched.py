@@ -22,6 +22,7 @@ import pytest
 from gymnasium.vector import AutoresetMode
 
 from flexsim import envs
+from flexsim.envs import dynamics
 from flexsim.envs.vector import advance_batch
 from flexsim.sim.fixed_step import ETD2RK
 
@@ -218,13 +219,14 @@ def test_rows_in_still_air_use_a_batched_model_kernel():
     venv.close()
 
 
-def test_packed_winds_reach_a_batched_model_kernel():
+def test_packed_winds_reach_a_batched_model_kernel(monkeypatch):
     """With a model offering pack_winds and rhs_batch (a compiled model's interface), the vector env packs the
     episode winds once per reset and every right-hand side of a step is one rhs_batch call over the stepping
     rows with their winds; the trajectories equal those of the row-by-row path exactly (same arithmetic)."""
     from collections import namedtuple
 
     Packed = namedtuple("Packed", ["rows", "winds"])
+    monkeypatch.setattr(dynamics, "COMPILED_ROWS_BELOW", 0)  # both runs as matrix products over the rows
     kw = dict(aero="quasi-steady", turbulence="light", integrator=envs.IntegratorSettings(method="ETD2RK"))
     plain = envs.vector.LevelHoldVectorEnv(3, **kw)
     batched = envs.vector.LevelHoldVectorEnv(3, **kw)
@@ -259,3 +261,29 @@ def test_packed_winds_reach_a_batched_model_kernel():
     assert calls == ["pack"] + [3] * 24  # one pack after the reset; 3 steps x 4 substeps x 2 evaluations
     plain.close()
     batched.close()
+
+
+def test_compiled_rows_report_as_the_single_aircraft_advance():
+    """Few rows go through the compiled ETD2RK kernel (dynamics.COMPILED_ROWS_BELOW): a crash, an altitude outside
+    the ISA range (model error, with the model's message) and a normal period equal FlightDynamics.advance of each
+    aircraft alone (same matrix-vector arithmetic: to 1e-12)."""
+    venv = envs.vector.LevelHoldVectorEnv(3, turbulence="none")  # unsteady aero: ETD2RK
+    venv.reset(seed=0)
+    dyns = [e.dynamics for e in venv.envs]
+    lay = dyns[0].layout
+    x = np.array([e.state for e in venv.envs])
+    x[0, lay.position.start + 2] = -0.05  # 5 cm above the ground, 0.3 rad nose down: ground within the first substep
+    x[0, lay.euler.start + 1] = -0.3
+    x[1, lay.position.start + 2] = -30_000.0  # above the ISA range of the model
+    u = np.array([e.applied_controls for e in venv.envs])
+    t0, t1 = np.zeros(3), np.full(3, dyns[0].dt)
+    batch = advance_batch(dyns, x, u, t0, t1, [None] * 3)
+    assert dynamics.COMPILED_ROWS_BELOW > 3
+    for i, dyn in enumerate(dyns):
+        alone = dyn.advance(x[i], u[i], 0.0, dyn.dt)
+        assert (batch[i].crashed, batch[i].failure, batch[i].nfev) == (alone.crashed, alone.failure, alone.nfev), i
+        assert batch[i].time_s == pytest.approx(alone.time_s, abs=1e-15)
+        np.testing.assert_allclose(batch[i].x, alone.x, rtol=1e-12, atol=1e-12)
+    assert batch[0].crashed and batch[1].failure.startswith("model error: ") and "ISA range" in batch[1].failure
+    assert batch[2].failure == "" and not batch[2].crashed and batch[2].time_s == dyns[0].dt
+    venv.close()
