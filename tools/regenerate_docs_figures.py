@@ -27,6 +27,8 @@ climb search, and about 4 minutes for the baselines table):
   -15..15 deg) at 9144 m and 0 m, and the glide interpolated on its US curve;
 * ``flutter-climb-tight``: docs/flutter.md, the climb effect on M_F with a Brent tolerance of 1e-7 (finite state);
 * ``convergence-mn``: docs/flutter.md, finite-state level flutter with m = n = 2, 3, 4 (copies of gtm.toml);
+* ``options-static-margin``, ``options-lift-drag``, ``options-glide`` (fast): docs/options.md, the cruise trim at
+  9144 m, M 0.78 (``flexsim trim gtm --json``) with the body options on and off: static margin, L/D, glide;
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
   (``examples/agents/evaluate_baselines.py --episodes 10``).
 
@@ -361,6 +363,61 @@ def convergence_mn() -> str:
             f"Without structural damping {m4}; {undamped}.\n")
 
 
+@functools.cache
+def _cruise_trim(altitude_m: float, mach: float, glide: bool = False, **switches) -> tuple[dict, object]:
+    """Quasi-steady trim of the bundled gtm (``flexsim trim gtm --json``) with ``AeroOptions`` switches:
+    ``(summary, static margin)``; level flight or, with ``glide``, thrust zero and gamma unknown."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.atmosphere import mach_to_true_airspeed
+    from flexsim.model.aircraft_model import AircraftModel
+    from flexsim.model.coupling import AeroOptions
+    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trim.margin import static_margin
+
+    model = AircraftModel(load_aircraft("gtm"), aero=AeroOptions("quasi-steady", **switches))
+    manoeuvre = SteadyManoeuvre(float(mach_to_true_airspeed(mach, altitude_m)), altitude_m, math.inf,
+                                None if glide else 0.0)
+    point = trim(model, manoeuvre)
+    return point.summary(), static_margin(model, point)
+
+
+#: The rows of the static-margin table of docs/options.md: label, AeroOptions switches.
+MARGIN_ROWS = (("strips only (the paper's aircraft)", {"body_moments": False, "downwash": False}),
+               ("+ fuselage and nacelle moments", {"downwash": False}),
+               ("+ tail downwash", {"body_moments": False}),
+               ("+ both (default)", {}))
+
+
+def options_static_margin() -> str:
+    """Static margin, neutral point, trim elevator and L/D at 9144 m, M 0.78 with the body options on and off."""
+    lines = ["", "| bundled GTM, 9144 m, M 0.78 | neutral point behind the CG | static margin | trim elevator | L/D |",
+             "|---|---|---|---|---|"]
+    for label, switches in MARGIN_ROWS:
+        s, m = _cruise_trim(9144.0, 0.78, **switches)
+        bold = "**" if not switches else ""
+        lines.append(f"| {label} | {bold}{m.neutral_point_aft_of_cg_m:.2f} m{bold} | {bold}{100 * m.fraction_of_mac:.1f} %{bold} | "
+                     f"{_num(s['elevator_deg'], '.2f')}° | {s['lift_to_drag']:.1f} |")
+    others = "; ".join(f"{'sea level' if h == 0 else f'{h:g} m'} M {mach:g}: {100 * _cruise_trim(h, mach)[1].fraction_of_mac:.1f} %"
+                       for h, mach in ((0.0, 0.5), (6000.0, 0.6)))
+    return "\n".join(lines) + f"\n\nDefault aircraft at other conditions: {others}.\n"
+
+
+def options_lift_drag() -> str:
+    """Lift, drag, L/D and thrust of the cruise trim at 9144 m, M 0.78 (and L/D without the parasite drag)."""
+    s, _ = _cruise_trim(9144.0, 0.78)
+    bare, _ = _cruise_trim(9144.0, 0.78, parasite_drag=False)
+    return (f"L = {s['lift_kN']:.1f} kN, D = {s['drag_kN']:.1f} kN, **L/D = {s['lift_to_drag']:.1f}** (without the "
+            f"parasite drag: {bare['lift_to_drag']:.1f}), thrust {s['thrust_kN']:.1f} kN")
+
+
+def options_glide() -> str:
+    """The glide trim at 9144 m, M 0.78, with and without the parasite drag."""
+    s, _ = _cruise_trim(9144.0, 0.78, glide=True)
+    bare, _ = _cruise_trim(9144.0, 0.78, glide=True, parasite_drag=False)
+    return (f"γ = {_num(s['gamma_deg'], '.3f')}° = −atan(D/L) with L/D = {s['lift_to_drag']:.2f} (without the parasite "
+            f"drag {_num(bare['gamma_deg'], '.2f')}°)")
+
+
 def env_baselines() -> str:
     """The markdown table of baseline and random returns (seeds 0-9, full episodes, default settings)."""
     sys.path.insert(0, str(ROOT / "examples" / "agents"))
@@ -412,6 +469,9 @@ FIGURES: dict[str, Figure] = {
     "flutter-glide-climb": Figure(flutter_glide_climb, study="climb"),
     "flutter-climb-tight": Figure(flutter_climb_tight),
     "convergence-mn": Figure(convergence_mn),
+    "options-static-margin": Figure(options_static_margin, fast=True),
+    "options-lift-drag": Figure(options_lift_drag, fast=True),
+    "options-glide": Figure(options_glide, fast=True),
     "env-baselines": Figure(env_baselines),
 }
 
