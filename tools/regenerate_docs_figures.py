@@ -29,6 +29,7 @@ climb search, and about 4 minutes for the baselines table):
 * ``convergence-mn``: docs/flutter.md, finite-state level flutter with m = n = 2, 3, 4 (copies of gtm.toml);
 * ``options-static-margin``, ``options-lift-drag``, ``options-glide`` (fast): docs/options.md, the cruise trim at
   9144 m, M 0.78 (``flexsim trim gtm --json``) with the body options on and off: static margin, L/D, glide;
+* ``validation-table`` (fast): docs/validation.md, every check of ``flexsim validate --json``;
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
   (``examples/agents/evaluate_baselines.py --episodes 10``).
 
@@ -418,6 +419,46 @@ def options_glide() -> str:
             f"drag {_num(bare['gamma_deg'], '.2f')}°)")
 
 
+def _validate_value(x: float, floor: float, fmt: str = ".5g", exact_zero: bool = True) -> str:
+    """A value of the validation table (``fmt``), ``0`` (``exact_zero``), or ``< floor`` for round-off-sized magnitudes."""
+    if x == 0.0 and exact_zero:
+        return "0"
+    return f"< {floor:.0e}".replace("e-0", "e-") if abs(x) < floor else _num(x, fmt)
+
+
+def validation_table() -> str:
+    """Every check of ``flexsim validate --json`` (all built-in cases): reference, flexsim, error, tolerance."""
+    import contextlib
+    import io
+    import json
+
+    from flexsim.cli.main import main as flexsim_main
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        code = flexsim_main(["validate", "--json"])
+    doc = json.loads(out.getvalue())
+    lines = ["", "| case | quantity | reference | flexsim | error | tol. | source of the reference |",
+             "|---|---|---|---|---|---|---|"]
+    for case in doc["cases"]:
+        if case["error"]:
+            raise RuntimeError(f"validation-table: case {case['case']} failed to run: {case['error']}")
+        for i, c in enumerate(case["checks"]):
+            unit = "" if c["unit"] == "-" else f" [{c['unit']}]"
+            relative = c["error_kind"] == "relative"
+            error = (_validate_value(100 * c["error"], 1e-4, "+.2g", exact_zero=False) + " %" if relative else
+                     f"{_validate_value(c['error'], 1e-12, exact_zero=False)} (abs.)")
+            tol = f"{100 * c['tolerance']:g} %" if relative else f"{c['tolerance']:g}{unit.strip(' []') and ' ' + c['unit']}"
+            source = c["source"] if i == 0 or c["source"] != case["checks"][i - 1]["source"] else "as above"
+            mark = "" if c["pass"] else " ✘"
+            lines.append(f"| {case['case'] if i == 0 else ''} | {c['quantity'].replace('|', chr(92) + '|')}{unit} | "
+                         f"{_validate_value(c['reference'], 1e-12)} | {_validate_value(c['flexsim'], 1e-12)} | "
+                         f"{error}{mark} | {tol} | {source.replace('|', chr(92) + '|')} |")
+    passed = sum(case["passed"] for case in doc["cases"])
+    return "\n".join(lines) + (f"\n\n{passed}/{len(doc['cases'])} cases pass "
+                               f"(`flexsim validate` exits with status {code}).\n")
+
+
 def env_baselines() -> str:
     """The markdown table of baseline and random returns (seeds 0-9, full episodes, default settings)."""
     sys.path.insert(0, str(ROOT / "examples" / "agents"))
@@ -472,6 +513,7 @@ FIGURES: dict[str, Figure] = {
     "options-static-margin": Figure(options_static_margin, fast=True),
     "options-lift-drag": Figure(options_lift_drag, fast=True),
     "options-glide": Figure(options_glide, fast=True),
+    "validation-table": Figure(validation_table, fast=True),
     "env-baselines": Figure(env_baselines),
 }
 
