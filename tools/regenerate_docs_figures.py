@@ -30,6 +30,8 @@ climb search, and about 4 minutes for the baselines table):
 * ``options-static-margin``, ``options-lift-drag``, ``options-glide`` (fast): docs/options.md, the cruise trim at
   9144 m, M 0.78 (``flexsim trim gtm --json``) with the body options on and off: static margin, L/D, glide;
 * ``validation-table`` (fast): docs/validation.md, every check of ``flexsim validate --json``;
+* ``goland-compressible``, ``goland-incompressible-102`` (fast): docs/validation.md, docs/options.md,
+  docs/design.md, the Goland wing with the Prandtl-Glauert factor on (1.225 kg/m^3) and off (1.02 kg/m^3);
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
   (``examples/agents/evaluate_baselines.py --episodes 10``).
 
@@ -459,6 +461,36 @@ def validation_table() -> str:
                                f"(`flexsim validate` exits with status {code}).\n")
 
 
+#: Goland's flutter speed at 1.225 kg/m^3 [m/s] (Goland 1945; the validation case's reference).
+GOLAND_U_F_M_S = 137.2
+
+
+@functools.cache
+def _goland(model: str, compressibility: str, density_kg_m3: float | None = None) -> tuple[float, float]:
+    """Wind-tunnel flutter speed [m/s] and frequency [rad/s] of the bundled goland_wing."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.flutter import wind_tunnel_flutter
+
+    return wind_tunnel_flutter(load_aircraft("goland_wing"), aero_model=model, compressibility=compressibility,
+                               density_kg_m3=density_kg_m3)
+
+
+def goland_compressible() -> str:
+    """The Goland wing at 1.225 kg/m^3 with the Prandtl-Glauert factor on (its file has it off)."""
+    from flexsim.atmosphere import speed_of_sound
+
+    (u_t, w_t), (u_p, _) = _goland("theodorsen", "prandtl-glauert"), _goland("unsteady", "prandtl-glauert")
+    return (f"{u_t:.2f} m/s (Theodorsen) and {u_p:.2f} m/s (Peters N = 6) at {w_t:.2f} rad/s, "
+            f"M = {u_t / float(speed_of_sound(0.0)):.2f}: {_num(100 * (u_t / GOLAND_U_F_M_S - 1), '+.1f')} % and "
+            f"{_num(100 * (u_p / GOLAND_U_F_M_S - 1), '+.1f')} % against Goland's {GOLAND_U_F_M_S} m/s")
+
+
+def goland_incompressible_102() -> str:
+    """The Goland wing at 1.02 kg/m^3 without the Prandtl-Glauert factor."""
+    (u_t, _), (u_p, _) = _goland("theodorsen", "none", 1.02), _goland("unsteady", "none", 1.02)
+    return f"{u_t:.1f} m/s (Theodorsen) and {u_p:.1f} m/s (Peters)"
+
+
 def env_baselines() -> str:
     """The markdown table of baseline and random returns (seeds 0-9, full episodes, default settings)."""
     sys.path.insert(0, str(ROOT / "examples" / "agents"))
@@ -514,6 +546,8 @@ FIGURES: dict[str, Figure] = {
     "options-lift-drag": Figure(options_lift_drag, fast=True),
     "options-glide": Figure(options_glide, fast=True),
     "validation-table": Figure(validation_table, fast=True),
+    "goland-compressible": Figure(goland_compressible, fast=True),
+    "goland-incompressible-102": Figure(goland_incompressible_102, fast=True),
     "env-baselines": Figure(env_baselines),
 }
 
