@@ -416,6 +416,8 @@ class ETD2RKSolver(OdeSolver):
         self.njev, self.nlu = 0, 0
 
     def _method(self, h: float) -> ETD2RK:
+        if abs(h - self.h_step) <= 1e-9 * self.h_step:  # a last step shortened by rounding only: the same matrices
+            h = self.h_step
         key = round(h, 12)
         if key not in self._cache:
             self._cache[key] = ETD2RK(self._jac, h)

@@ -35,13 +35,15 @@ from flexsim._threads import single_blas_thread
 from flexsim.model.jacobian import jacobian
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.sim.controls import ControlSchedule, Controls
-from flexsim.sim.fixed_step import ETD2RKSolver
+from flexsim import _kernels as _k
+from flexsim.sim.fixed_step import ETD2RK, ETD2RKSolver
 from flexsim.sim.outputs import OutputMaps
 from flexsim.sim.recording import LogSink, resolve_log_path
 from flexsim.sim.result import SimulationResult
 from flexsim.trim.solver import TrimPoint
 
-__all__ = ["ControlSchedule", "IntegrationSettings", "SimEvent", "simulate", "state_scales", "METHODS", "DEFAULT_EVENTS", "default_method"]
+__all__ = ["ControlSchedule", "IntegrationSettings", "SimEvent", "simulate", "state_scales", "METHODS", "DEFAULT_EVENTS", "default_method",
+           "DEFAULT_MAX_STEP", "RELINEARISE_DRIFT", "COMPILED_CHUNK_S"]
 
 #: Integration methods by name (scipy.integrate OdeSolver classes).
 METHODS = {"Radau": Radau, "DOP853": DOP853, "LSODA": LSODA, "BDF": BDF, "RK45": RK45, "RK23": RK23,
@@ -51,6 +53,9 @@ _IMPLICIT = ("Radau", "BDF", "LSODA")
 DEFAULT_EVENTS = ("ground", "structural_limit", "gimbal_lock")
 #: Default relative tolerance per method family (accuracy checks in docs/simulation.md).
 DEFAULT_RTOL = {"implicit": 1e-3, "explicit": 1e-6}
+#: Default largest step [s]: ETD2RK's fixed step, and the bound of the adaptive methods (so that no gust or event
+#: falls between two steps); errors of both in docs/simulation.md.
+DEFAULT_MAX_STEP = {"ETD2RK": 0.01, "other": 0.05}
 GIMBAL_LIMIT_DEG = 89.0
 #: Default structural limit: |tip deflection| of a wing beyond this fraction of its length.
 STRUCTURAL_LIMIT_FRACTION = 0.25
@@ -95,6 +100,14 @@ class _Event:
     terminal: bool
     status: str
     describe: Callable[[float, np.ndarray], str]
+    #: ``margins(ts (k,), xs (k, n)) -> (k,)``: the function at many states at once (None: called per state).
+    margins: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
+
+    def many(self, ts: np.ndarray, xs: np.ndarray) -> np.ndarray:
+        """The margin function at the states xs (k, n) at times ts (k,), shape (k,)."""
+        if self.margins is not None:
+            return np.asarray(self.margins(ts, xs), dtype=float)
+        return np.array([self.function(float(t), x) for t, x in zip(ts, xs)], dtype=float)
 
 
 @dataclass(frozen=True)
@@ -153,12 +166,16 @@ class IntegrationSettings:
 
     @classmethod
     def resolve(cls, model: AircraftModel, t_end_s: float, *, method: str = "auto", rtol: float | None = None,
-                atol: float | np.ndarray | None = None, max_step: float = 0.05) -> IntegrationSettings:
-        """Settings of a run of ``model`` with :func:`simulate`'s defaults: ``"auto"`` -> :func:`default_method`,
-        ``rtol`` per method family (:data:`DEFAULT_RTOL`), ``atol = rtol * state_scales(model)``; a scalar
-        ``atol`` applies to every state entry."""
+                atol: float | np.ndarray | None = None, max_step: float | None = None,
+                wind: Wind | None = None) -> IntegrationSettings:
+        """Settings of a run of ``model`` in ``wind`` with :func:`simulate`'s defaults: ``"auto"`` ->
+        :func:`default_method`, ``rtol`` per method family (:data:`DEFAULT_RTOL`), ``atol = rtol *
+        state_scales(model)`` (a scalar ``atol`` applies to every state entry), ``max_step`` :data:`DEFAULT_MAX_STEP`
+        per method (ETD2RK: its fixed step)."""
         if method == "auto":
-            method = default_method(model)
+            method = default_method(model, wind)
+        if max_step is None and method in METHODS:
+            max_step = DEFAULT_MAX_STEP["ETD2RK" if method == "ETD2RK" else "other"]
         if method not in METHODS:
             raise ValueError(f"method = {method!r}: must be 'auto' or one of {', '.join(METHODS)}")
         if rtol is None:
@@ -297,9 +314,13 @@ def state_scales(model: AircraftModel) -> np.ndarray:
     return scale
 
 
-def default_method(model: AircraftModel) -> str:
-    """The measured default: Radau with aerodynamics (stiff aero-lag states), DOP853 without."""
-    return "Radau" if model.aero is not None else "DOP853"
+def default_method(model: AircraftModel, wind: Wind | None = None) -> str:
+    """The measured default (``docs/simulation.md``): with aerodynamics (stiff aero-lag states) ETD2RK by the compiled
+    steps when the wind is still air or a field of :mod:`flexsim.sim.disturbances` (evaluated in the kernel), Radau
+    for any other wind callable; DOP853 without aerodynamics (a lightly damped structure, not stiff)."""
+    if model.aero is None:
+        return "DOP853"
+    return "ETD2RK" if _compiled_wind(model, wind) is not None else "Radau"
 
 
 def _initial(model: AircraftModel, initial: TrimPoint | np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
@@ -328,13 +349,15 @@ def _builtin_events(model: AircraftModel, outputs: OutputMaps, names: Sequence[s
     if "ground" in names and lay.rigid:
         iz = lay.position.start + 2
         events.append(_Event("ground", lambda t, x: -x[iz], -1, True, "ground_contact",
-                             lambda t, x: f"ground contact: the body origin reached altitude 0 m at t = {t:.4f} s"))
+                             lambda t, x: f"ground contact: the body origin reached altitude 0 m at t = {t:.4f} s",
+                             lambda ts, xs: -xs[:, iz]))
     if "gimbal_lock" in names and lay.rigid:
         ith = lay.euler.start + 1
         lim = math.radians(GIMBAL_LIMIT_DEG)
         events.append(_Event("gimbal_lock", lambda t, x: lim - abs(x[ith]), -1, True, "gimbal_lock",
                              lambda t, x: f"gimbal lock: |theta| = {math.degrees(abs(x[ith])):.2f} deg reached "
-                                          f"{GIMBAL_LIMIT_DEG:g} deg at t = {t:.4f} s (3-2-1 Euler angles singular at 90 deg)"))
+                                          f"{GIMBAL_LIMIT_DEG:g} deg at t = {t:.4f} s (3-2-1 Euler angles singular at 90 deg)",
+                             lambda ts, xs: lim - np.abs(xs[:, ith])))
     if "structural_limit" in names:
         for wing in outputs.wings:
             length = model.aircraft.component(wing).length_m
@@ -353,7 +376,10 @@ def _builtin_events(model: AircraftModel, outputs: OutputMaps, names: Sequence[s
                 return (f"structural limit: {wing} tip deflection {float(outputs.tip_deflection_m(wing, x)):+.4f} m reached "
                         f"the bound +-{bound:.4g} m at t = {t:.4f} s")
 
-            events.append(_Event(f"structural_limit:{wing}", margin, -1, True, "structural_limit", describe))
+            def margins(ts, xs, wing=wing, bound=bound):
+                return bound - np.abs(outputs.tip_deflection_m(wing, xs))
+
+            events.append(_Event(f"structural_limit:{wing}", margin, -1, True, "structural_limit", describe, margins))
     return events
 
 
@@ -423,7 +449,7 @@ def simulate(
     method: str = "auto",
     rtol: float | None = None,
     atol: float | np.ndarray | None = None,
-    max_step: float = 0.05,
+    max_step: float | None = None,
     control_period_s: float = 0.02,
     events: Sequence[str | SimEvent] = DEFAULT_EVENTS,
     structural_limit_m: float | None = None,
@@ -453,19 +479,23 @@ def simulate(
         Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)`` [m/s, NED] (gusts, turbulence:
         :mod:`flexsim.sim.disturbances`), passed to every ``model.rhs`` call; None (default): still air.
     method : str
-        ``"auto"`` (:func:`default_method`), or one of :data:`METHODS`. Implicit methods (Radau, BDF, LSODA)
-        use a constant Jacobian from :func:`~flexsim.model.jacobian.jacobian` at the initial state.
-        ``"ETD2RK"`` (:class:`~flexsim.sim.fixed_step.ETD2RKSolver`): the exponential integrator with that
-        Jacobian as its linear part and fixed steps of ``max_step``, for runs near the initial state
-        (errors against DOP853 in ``docs/simulation.md``); ``rtol`` and ``atol`` do not apply.
+        ``"auto"`` (:func:`default_method`: ETD2RK with aerodynamics in still air or a wind field of
+        :mod:`flexsim.sim.disturbances`, Radau with any other wind callable, DOP853 without aerodynamics), or
+        one of :data:`METHODS`. Implicit methods (Radau, BDF, LSODA) use a constant Jacobian from
+        :func:`~flexsim.model.jacobian.jacobian` at the initial state. ``"ETD2RK"``: the exponential integrator
+        with that Jacobian as its linear part and fixed steps of ``max_step``, by the compiled steps
+        (:meth:`~flexsim.sim.fixed_step.ETD2RK.run`; re-linearised when the flight speed or air density has changed
+        by more than :data:`RELINEARISE_DRIFT`) or, with a wind callable that is not a field of
+        :mod:`flexsim.sim.disturbances`, by :class:`~flexsim.sim.fixed_step.ETD2RKSolver` from Python (no
+        re-linearisation); errors against DOP853 in ``docs/simulation.md``; ``rtol`` and ``atol`` do not apply.
     rtol : float, optional
         Relative tolerance; default 1e-3 for implicit and 1e-6 for explicit methods (accuracy checks in
         ``docs/simulation.md``).
     atol : float or ndarray (n_states,), optional
         Absolute tolerance; default ``rtol * state_scales(model)``.
-    max_step : float
+    max_step : float, optional
         Largest step [s] (default 0.05), so that no gust or event falls between two steps; the fixed step
-        of ETD2RK.
+        of ETD2RK (default 0.01) (:data:`DEFAULT_MAX_STEP`).
     control_period_s : float
         Period of a feedback controller [s] (default 0.02).
     events : sequence of str or SimEvent
@@ -485,7 +515,8 @@ def simulate(
     notes : sequence of (t [s], text)
         Informational events for the log (e.g. when a gust arrives).
     progress : bool or callable
-        True: a tqdm progress bar; a callable is called with the sim time [s] after every accepted step.
+        True: a tqdm progress bar; a callable is called with the sim time [s] after every accepted step (the
+        compiled ETD2RK: after every chunk of :data:`COMPILED_CHUNK_S` of steps).
 
     Returns
     -------
@@ -502,7 +533,8 @@ def simulate(
         raise ValueError(f"t_end_s = {t_end_s!r}: must be a finite number > 0 [s]")
     t_end = float(t_end_s)
     ctrl = Controls(model, controls, u_trim, control_period_s)
-    settings = IntegrationSettings.resolve(model, t_end, method=method, rtol=rtol, atol=atol, max_step=max_step)
+    settings = IntegrationSettings.resolve(model, t_end, method=method, rtol=rtol, atol=atol, max_step=max_step,
+                                           wind=wind)
     method, rtol = settings.method, settings.rtol
     out_grid = _grid(output_rate_hz, t_end, "output_rate_hz")
     log_grid = _grid(log_rate_hz, t_end, "log_rate_hz")
@@ -549,7 +581,11 @@ def simulate(
                 sink.schedule(float(t_note), str(text))
             sink.write(np.zeros(1), x0[None, :], u0[None, :])
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            outcome = _integrate(problem, settings, sinks)
+            wind_data = _compiled_wind(model, wind) if method == "ETD2RK" else None
+            if wind_data is not None:
+                outcome = _integrate_compiled(problem, settings, sinks, wind_data)
+            else:
+                outcome = _integrate(problem, settings, sinks)
     except BaseException as exc:
         if sink is not None:
             t_fail = logged.t[-1][-1] if logged.t and logged.t[-1].size else 0.0
@@ -700,3 +736,199 @@ def _emit(sinks: _Sinks, t_reached: float, sol, y_reached, u_of, inclusive: bool
     times, xs, us = sinks.logged.take(t_reached, sol, y_reached, u_of, inclusive)
     if sinks.log is not None and times.size:
         sinks.log.write(times, xs, us)
+
+
+#: Simulated time per call of the compiled ETD2RK steps [s]: samples, events and the log are processed per chunk
+#: (the log is flushed every 0.5 s of simulated time, so a killed run loses at most ~1 s of it).
+COMPILED_CHUNK_S = 0.5
+#: Relative change of the flight speed or air density since the linearisation beyond which the compiled ETD2RK
+#: re-linearises (new Jacobian and matrix functions) at the end of a chunk.
+RELINEARISE_DRIFT = 0.2
+
+
+def _compiled_wind(model: AircraftModel, wind: Wind | None) -> _k.WindData | None:
+    """The wind's arrays for the compiled steps (still air: NO_WIND); None if the wind is a plain callable (the
+    steps then call ``model.rhs`` from Python: :class:`~flexsim.sim.fixed_step.ETD2RKSolver`)."""
+    if wind is None or model.aero is None:
+        return _k.NO_WIND
+    data = getattr(wind, "wind_data", None)
+    return data if isinstance(data, _k.WindData) else None
+
+
+class _Steps:
+    """Cubic Hermite interpolant over consecutive step ends (t (k+1,), x and f (k+1, n)): the dense output of
+    :class:`~flexsim.sim.fixed_step.ETD2RKSolver` for a chunk of compiled steps. ``sol(t)``: scalar t -> (n,),
+    array t (m,) -> (n, m) (as scipy's ``DenseOutput``)."""
+
+    def __init__(self, t: np.ndarray, x: np.ndarray, f: np.ndarray) -> None:
+        self.t, self.x, self.f = t, x, f
+
+    def __call__(self, t):
+        tt = np.atleast_1d(np.asarray(t, dtype=float))
+        j = np.clip(np.searchsorted(self.t, tt, side="left") - 1, 0, self.t.size - 2)
+        t0, h = self.t[j], self.t[j + 1] - self.t[j]
+        s = ((tt - t0) / h)[:, None]
+        h01, h10, h11 = s * s * (3 - 2 * s), s * (1 - s) ** 2, s * s * (s - 1)
+        y0 = self.x[j]
+        y = y0 + (self.x[j + 1] - y0) * h01 + h[:, None] * (self.f[j] * h10 + self.f[j + 1] * h11)
+        return y[0] if np.ndim(t) == 0 else y.T
+
+
+def _integrate_compiled(problem: _Problem, settings: IntegrationSettings, sinks: _Sinks, wind_data) -> _Outcome:
+    """ETD2RK by the compiled steps (:meth:`ETD2RK.run`): the steps, samples, events and log of :func:`_integrate`
+    with :class:`ETD2RKSolver`, processed per chunk of :data:`COMPILED_CHUNK_S` instead of per step."""
+    model, wind, ctrl, evs = problem.model, problem.wind, problem.ctrl, problem.events
+    t_end, h = settings.t_end_s, settings.max_step
+    sink = sinks.log
+    steppers: dict[float, ETD2RK] = {}
+    g_old = np.array([ev.function(0.0, problem.x0) for ev in evs], dtype=float)
+    crossings: list[tuple[float, str]] = []
+    nfev = 0
+    chunk = max(1, int(round(COMPILED_CHUNK_S / h)))
+    lin = {"jac": problem.jacobian, "at": _flight_condition(model, problem.x0), "count": 1}
+
+    def stepper(step: float) -> ETD2RK:  # as ETD2RKSolver._method
+        if abs(step - h) <= 1e-9 * h:
+            step = h
+        key = round(step, 12)
+        if key not in steppers:
+            steppers[key] = ETD2RK(lin["jac"], step)
+        return steppers[key]
+
+    def finish(t: float, y: np.ndarray, u_of) -> None:
+        u = u_of(t)
+        sinks.results.add(t, y, u)
+        if sink is not None and np.all(np.isfinite(y)):
+            sink.write(np.array([t]), y[None, :], u[None, :])
+
+    def run() -> tuple[str, str]:
+        nonlocal nfev, g_old
+        x = problem.x0.copy()
+        bounds = ctrl.boundaries(t_end)
+        u_of = None
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            a, b = float(a), float(b)
+            u_of = _segment_controls(ctrl, a, b, x, problem.u0)
+            u_a = np.array(u_of(a), dtype=float)
+            controls = (a, u_a, (np.asarray(u_of(b), dtype=float) - u_a) / (b - a))
+            f = model.rhs(a, x, u_a, wind)
+            nfev += 1
+            t = a
+            while b - t > 1e-12 * max(1.0, abs(b)):
+                if b - t > h * (1.0 + 1e-9):
+                    steps = stepper(h).run(model, t, x, f, b, chunk, controls, wind_data)
+                else:
+                    steps = stepper(b - t).run(model, t, x, f, b, 1, controls, wind_data, land=True)
+                k = steps.t.size - 1
+                nfev += 2 * k
+                bad = not (np.all(np.isfinite(steps.x[-1])) and np.all(np.isfinite(steps.f[-1])))
+                if bad:
+                    if np.all(np.isfinite(steps.x[-1])):
+                        model.rhs(steps.t[-1], steps.x[-1], u_of(steps.t[-1]), wind)  # raises what rhs raises there
+                    t_bad = float(steps.t[-1])
+                    steps = steps._replace(t=steps.t[:-1], x=steps.x[:-1], f=steps.f[:-1])
+                    k -= 1
+                hit = None
+                if k:
+                    sol = _Steps(steps.t, steps.x, steps.f)
+                    j_stop, hit = _chunk_events(evs, g_old, steps, sol, crossings, sink)
+                    g_old = np.array([ev.function(float(steps.t[j_stop]), steps.x[j_stop]) for ev in evs], dtype=float)
+                    t_reached = float(steps.t[j_stop]) if hit is None else hit[0]
+                    finished = hit is None and not bad and j_stop == k and t_reached >= b  # the solver's "finished"
+                    inclusive = not finished or b >= t_end
+                    _emit_steps(sinks, steps, j_stop, t_reached, sol, u_of, inclusive)
+                    if sinks.callback is not None:
+                        sinks.callback(t_reached)
+                    if sinks.bar is not None:
+                        sinks.bar.update(t_reached - sinks.bar.n)
+                if hit is not None:
+                    t_ev, ev = hit
+                    x_ev = sol(t_ev)
+                    finish(t_ev, x_ev, u_of)
+                    crossings.append((t_ev, ev.name))
+                    if sink is not None:
+                        sink.event(t_ev, ev.describe(t_ev, x_ev), "error")
+                    return ev.status, ev.describe(t_ev, x_ev)
+                if bad:
+                    finish(float(steps.t[-1]), steps.x[-1], u_of)
+                    return "non_finite", (f"non-finite state: the state or the right-hand side stopped being finite at "
+                                          f"t = {t_bad:.4f} s")
+                t_step = float(steps.t[-1])
+                t, x, f = t_step, steps.x[-1].copy(), steps.f[-1]
+                now = _flight_condition(model, x)
+                if now is not None and np.max(np.abs(now / lin["at"] - 1.0)) > RELINEARISE_DRIFT:
+                    lin["jac"] = jacobian(model, x, u_of(t), t, controls=False, wind=wind)[0]
+                    lin["at"], lin["count"] = now, lin["count"] + 1
+                    steppers.clear()
+            x = x.copy()
+        finish(t_end, x, u_of)
+        if sink is not None:
+            sink.event(t_end, f"simulation completed at t = {t_end:g} s")
+        return "completed", f"reached t_end = {t_end:g} s"
+
+    status, reason = run()
+    return _Outcome(status=status, reason=reason, nfev=nfev, njev=lin["count"], nlu=0, crossings=tuple(crossings))
+
+
+def _flight_condition(model: AircraftModel, x: np.ndarray) -> np.ndarray | None:
+    """(|v_body| [m/s], air density [kg/m^3]) at state x, on which the stiff aerodynamic eigenvalues depend (inflow
+    ~ V / b); None for a model without rigid-body states or aerodynamics (nothing drifts)."""
+    lay = model.layout
+    if not lay.rigid or model.aero is None:
+        return None
+    return np.array([float(np.linalg.norm(x[lay.v][:3])), model.air_density(x)])
+
+
+def _crossing_steps(ev: _Event, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Whether the margin crosses zero between lo and hi in the event's direction (as in :func:`_integrate`)."""
+    down = (lo >= 0) & (hi <= 0) & (lo != hi)
+    up = (lo <= 0) & (hi >= 0) & (lo != hi)
+    return down if ev.direction < 0 else up if ev.direction > 0 else down | up
+
+
+def _chunk_events(evs, g_old: np.ndarray, steps, sol, crossings: list, sink) -> tuple[int, tuple | None]:
+    """Events over a chunk of steps: (index of the step where the run stops — the first with a terminal crossing,
+    else the last —, (t, event) of the terminal hit or None). Non-terminal crossings up to that step are appended
+    to ``crossings`` and logged; times located by Brent's method on the dense output."""
+    k = steps.t.size - 1
+    if not evs:
+        return k, None
+    g = np.vstack([g_old[None, :], np.column_stack([ev.many(steps.t[1:], steps.x[1:]) for ev in evs])])
+    j_stop = k
+    for e, ev in enumerate(evs):
+        cross = _crossing_steps(ev, g[:-1, e], g[1:, e])
+        if ev.terminal and cross.any():
+            j_stop = min(j_stop, int(np.argmax(cross)) + 1)
+    hit = None
+    found = []
+    for e, ev in enumerate(evs):
+        for j in np.flatnonzero(_crossing_steps(ev, g[:j_stop, e], g[1:j_stop + 1, e])) + 1:
+            t_ev = brentq(lambda tt, ev=ev: ev.function(tt, sol(tt)), float(steps.t[j - 1]), float(steps.t[j]),
+                          xtol=4 * _EPS, rtol=4 * _EPS)
+            if ev.terminal:
+                if hit is None or t_ev < hit[0]:
+                    hit = (t_ev, ev)
+            else:
+                found.append((t_ev, ev.name))
+    for t_ev, name in sorted(found):
+        crossings.append((t_ev, name))
+        if sink is not None:
+            sink.event(t_ev, f"event {name!r} at t = {t_ev:.4f} s")
+    return j_stop, hit
+
+
+def _emit_steps(sinks: _Sinks, steps, j_stop: int, t_reached: float, sol, u_of, inclusive: bool) -> None:
+    """Samples of a chunk of compiled steps up to t_reached (within step j_stop): on the samplers' grids from the
+    dense output, or, without a grid, every step end and t_reached (as :func:`_emit` per step)."""
+    for sampler, log in ((sinks.results, None), (sinks.logged, sinks.log)):
+        if sampler.grid is None:
+            times = np.append(steps.t[1:j_stop], t_reached)
+            xs = np.vstack([steps.x[1:j_stop], sol(t_reached)[None, :]])
+            us = u_of(times)
+            sampler.t.append(times)
+            sampler.x.append(xs)
+            sampler.u.append(us)
+        else:
+            times, xs, us = sampler.take(t_reached, sol, steps.x[j_stop], u_of, inclusive)
+        if log is not None and times.size:
+            log.write(times, xs, us)

@@ -7,6 +7,13 @@ compiled steps equal the Python steps to rounding: 1e-12 relative to each state 
 products are the same BLAS calls). Rows of advance_rows equal ETD2RK.step row by row (own controls and winds) and
 FlightDynamics' semantics for the ground (linear interpolation within the step), a non-finite state (the state
 before the step) and a model error (altitude outside the ISA range: the state at which rhs fails).
+
+simulate(method="ETD2RK") by the compiled steps equals the same run by ETD2RKSolver from Python (forced by a wind
+callable that is not a disturbance field) to 1e-9 relative to each entry's largest magnitude — samples, events,
+status — with a gust, a control schedule, a feedback controller and a terminal event; the difference is the
+rounding of the control interpolation (u_a + (t - a) du/dt against np.interp), amplified over the run (measured
+<= 3e-10 over 3 s of aileron roll, 1e-17 with constant controls). A pull-up that loses more than
+RELINEARISE_DRIFT of its speed is re-linearised (njev > 1) and stays within 0.1 % of the speed of Radau at rtol 1e-6.
 """
 
 import math
@@ -20,7 +27,9 @@ from flexsim.kinematics import dcm_321
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.jacobian import jacobian
 from flexsim.sim.disturbances import OneMinusCosineGust
+from flexsim.sim import ControlSchedule, SimEvent
 from flexsim.sim.fixed_step import ETD2RK
+from flexsim.sim.simulate import RELINEARISE_DRIFT, simulate
 from flexsim.trim import SteadyManoeuvre, trim
 
 
@@ -138,3 +147,48 @@ def test_invalid_rows_arguments_are_named(gtm):
         stepper.advance_rows(model, point.x, point.u, 0.0, 0.01, 0)
     with pytest.raises(ValueError, match="wind: expected None or a BatchWind of 1 rows"):
         stepper.advance_rows(model, point.x, point.u, 0.0, 0.01, 1, wind=[None])
+
+
+def _python_wind(wind):
+    """The same wind as a plain callable: simulate then steps ETD2RK from Python (ETD2RKSolver)."""
+    return None if wind is None else (lambda t, p: wind(t, p))
+
+
+def _same_run(a, b, rel=1e-9):
+    assert (a.status, a.reason, a.events) == (b.status, b.reason, b.events)
+    np.testing.assert_array_equal(a.t, b.t)
+    np.testing.assert_array_equal(a.u, b.u)
+    assert _close(a.x, b.x) <= rel
+    assert a.nfev == b.nfev if a.completed else a.nfev >= b.nfev  # a stop: the compiled chunk went on past it
+
+
+def test_simulate_compiled_equals_the_python_steps(gtm):
+    model, point, _, gust = gtm
+    u0 = point.u
+    sched = ControlSchedule([0.0, 0.3, 0.4, 0.7, 0.8], [u0, u0, u0 + [0, math.radians(-2), math.radians(1), 0],
+                                                         u0 + [0, math.radians(-2), math.radians(1), 0], u0])
+    up = SimEvent("climbing", lambda t, x: x[model.layout.v.start + 2], direction=0, terminal=False)
+    for kwargs in ({"wind": gust, "controls": sched, "events": ("ground", up)},
+                   {"controls": lambda t, x: u0 + [0, 0, 0.002 * x[model.layout.euler.start], 0], "control_period_s": 0.05},
+                   {"wind": gust, "max_step": 0.02, "output_rate_hz": None, "log_rate_hz": 20.0}):
+        fast = simulate(model, point, 1.0, method="ETD2RK", **kwargs)
+        slow = simulate(model, point, 1.0, method="ETD2RK", **{**kwargs, "wind": _python_wind(kwargs.get("wind"))})
+        _same_run(fast, slow)
+    assert fast.t.size == 50 + 1  # every step end and t = 0
+    stop = SimEvent("pitch", lambda t, x: 0.01 - abs(x[model.layout.omega.start + 1]), terminal=True)
+    fast = simulate(model, point, 1.0, method="ETD2RK", wind=gust, events=("ground", stop))
+    slow = simulate(model, point, 1.0, method="ETD2RK", wind=_python_wind(gust), events=("ground", stop))
+    _same_run(fast, slow)
+    assert fast.status == "event" and 0.0 < fast.t[-1] < 1.0
+
+
+def test_simulate_compiled_relinearises_when_the_speed_drifts():
+    model = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
+    point = trim(model, SteadyManoeuvre.level(9144.0, mach=0.75))
+    u1 = point.u + [0.0, 0.0, math.radians(-6.0), 0.0]
+    sched = ControlSchedule([0.0, 0.5], [point.u, u1])  # a sustained pull-up: 227 -> ~150 m/s in 20 s
+    fast = simulate(model, point, 20.0, controls=sched, output_rate_hz=2.0)
+    ref = simulate(model, point, 20.0, controls=sched, output_rate_hz=2.0, method="Radau", rtol=1e-6)
+    assert fast.method == "ETD2RK" and fast.completed
+    assert fast.airspeed_m_s[-1] < (1.0 - RELINEARISE_DRIFT) * fast.airspeed_m_s[0] and fast.njev >= 2
+    np.testing.assert_allclose(fast.airspeed_m_s, ref.airspeed_m_s, rtol=1e-3)

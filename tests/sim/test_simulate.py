@@ -56,7 +56,7 @@ def test_level_trim_held_for_60_s(unsteady):
     speed_drift = np.abs(result.airspeed_m_s - point.manoeuvre.speed_m_s).max()
     altitude_drift = np.abs(result.altitude_m - H).max()
     assert speed_drift < 0.1 and altitude_drift < 1.0, (speed_drift, altitude_drift)
-    assert result.method == "Radau" and result.reason.startswith("reached t_end")
+    assert result.method == "ETD2RK" and result.reason.startswith("reached t_end")  # the default with aerodynamics
 
 
 def test_level_turn_flies_a_circle_of_the_trim_radius(unsteady):
@@ -95,7 +95,7 @@ def test_constant_segments_skip_the_interpolation(quasi_steady, monkeypatch):
     calls = []
     original = ControlSchedule.__call__
     monkeypatch.setattr(ControlSchedule, "__call__", lambda self, t: calls.append(t) or original(self, t))
-    result = simulate(quasi_steady, point, 0.4, controls=sched, output_rate_hz=50.0)
+    result = simulate(quasi_steady, point, 0.4, controls=sched, output_rate_hz=50.0, method="Radau")  # rhs from Python
     in_ramp = [t for t in calls if 0.2 < t < 0.3]
     outside = [t for t in calls if not 0.2 <= t <= 0.3]
     assert result.nfev > 50 and in_ramp  # the ramp segment interpolates per rhs
@@ -261,6 +261,9 @@ def test_integration_settings_are_frozen_validated_and_resolved(quasi_steady):
     """The numerical settings of a run are one frozen, validated object (issue #10: ``_integrate`` took 18 arguments)."""
     n = quasi_steady.layout.n_states
     s = IntegrationSettings.resolve(quasi_steady, 2.0)
+    assert (s.method, s.rtol, s.max_step, s.t_end_s, s.implicit, s.needs_jacobian) == ("ETD2RK", 1e-6, 0.01, 2.0, False, True)
+    assert IntegrationSettings.resolve(quasi_steady, 2.0, wind=lambda t, p: 0.0 * p).method == "Radau"  # a Python wind
+    s = IntegrationSettings.resolve(quasi_steady, 2.0, method="Radau")
     assert (s.method, s.rtol, s.max_step, s.t_end_s, s.implicit, s.needs_jacobian) == ("Radau", 1e-3, 0.05, 2.0, True, True)
     np.testing.assert_array_equal(s.atol, 1e-3 * state_scales(quasi_steady))
     with pytest.raises(ValueError, match="read-only"):
