@@ -116,15 +116,24 @@ class LogSink:
         Samples whose time does not advance by at least 1 ns on the previous one are skipped.
         """
         out = self.outputs
-        for tk, xk, uk in zip(np.atleast_1d(t), np.atleast_2d(x), np.atleast_2d(u)):
+        t, x, u = np.atleast_1d(np.asarray(t, float)), np.atleast_2d(np.asarray(x, float)), np.atleast_2d(np.asarray(u, float))
+        keep, last = [], self._last_ns
+        for k, tk in enumerate(t):
             ns = round(float(tk) * 1e9)
-            if ns <= self._last_ns:
-                continue
+            if ns > last:
+                keep.append(k)
+                last = ns
+        if not keep:
+            return
+        t, x, u = t[keep], x[keep], u[keep]
+        cols = out.series(out.signal_names, t, x, u, self.wind)  # all samples at once
+        signals = np.column_stack([cols[n] for n in out.signal_names])
+        for k, (tk, xk, uk) in enumerate(zip(t, x, u)):
             self._release(float(tk))
             pos, eul = out.position_euler(xk)
-            self._writer.write(float(tk), position_m=pos, euler_rad=eul, state=xk, controls=uk,
-                               signals=out.signals(float(tk), xk, uk, self.wind), structure=out.structure(xk))
-            self._last_ns = ns
+            self._writer.write(float(tk), position_m=pos, euler_rad=eul, state=xk, controls=uk, signals=signals[k],
+                               structure=out.structure(xk))
+            self._last_ns = round(float(tk) * 1e9)
 
     def event(self, t: float, text: str, level: str = "info") -> None:
         """Log an event at sim time t [s] (``level``: info, warning or error; errors are flushed at once)."""
