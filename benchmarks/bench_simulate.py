@@ -14,12 +14,18 @@ ETD2RK (``method="ETD2RK"``, the default with aerodynamics since issue 14): fixe
 each candidate's wall time to the default's are measured in the same run; the CPU time of the process is printed
 beside the wall time (on a shared machine the wall time includes waiting for a core).
 
+``--manoeuvres``: instead, the accuracy of the default (ETD2RK 10 ms), ETD2RK 20 ms and Radau rtol 1e-3 on every
+named manoeuvre of ``flexsim simulate`` against DOP853 at rtol 1e-9 (largest errors of altitude, airspeed, bank
+angle and right-wing tip deflection at the 100 Hz samples; the tip error also relative to the tip excursion).
+
 Run: python benchmarks/bench_simulate.py [--duration 60] [--repeats 3] [--quick] [--candidates Radau:1e-3,ETD2RK:0.02]
+     python benchmarks/bench_simulate.py --manoeuvres
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import statistics
 import tempfile
@@ -33,7 +39,7 @@ import numpy as np  # noqa: E402
 from flexsim.aircraft.toml_loader import load_aircraft  # noqa: E402
 from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
 from flexsim.sim.disturbances import OneMinusCosineGust  # noqa: E402
-from flexsim.sim.manoeuvres import build_manoeuvre  # noqa: E402
+from flexsim.sim.manoeuvres import build_manoeuvre, manoeuvre_names  # noqa: E402
 from flexsim.sim.simulate import simulate  # noqa: E402
 from flexsim.kinematics import dcm_321  # noqa: E402
 from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
@@ -62,14 +68,43 @@ def errors(result, reference) -> tuple[float, float, float]:
             float(np.abs(result.tip_deflection_m()[k] - reference.tip_deflection_m()[k]).max()))
 
 
+def manoeuvre_accuracy() -> None:
+    """Errors of the default and of Radau on every named manoeuvre against DOP853 at rtol 1e-9."""
+    print(f"accuracy on the named manoeuvres against DOP853 rtol 1e-9 (load average {os.getloadavg()[0]:.2f})")
+    for name in manoeuvre_names():
+        setup = build_manoeuvre(name)
+        kw = {"structural_limit_m": 100.0, "t_end_s": 3.1} if name == "flutter-onset" else {}
+        ref = setup.simulate(method="DOP853", rtol=1e-9, **kw)
+        tip_ref = ref.tip_deflection_m()
+        excursion = float(np.abs(tip_ref - tip_ref[0]).max())
+        print(f"{name}: {ref.t[-1]:g} s, {ref.status}; tip excursion {excursion:.3g} m", flush=True)
+        for method, step in (("ETD2RK", 0.01), ("ETD2RK", 0.02), ("Radau", None)):
+            r = setup.simulate(method=method, **({"max_step": step} if step else {}), **kw)
+            n = min(r.t.size, ref.t.size)
+            parts = []
+            if r.model.layout.rigid:
+                parts += [f"alt {np.abs(r.altitude_m[:n] - ref.altitude_m[:n]).max():.1e} m",
+                          f"V {np.abs(r.airspeed_m_s[:n] - ref.airspeed_m_s[:n]).max():.1e} m/s",
+                          f"phi {math.degrees(np.abs(r.euler_rad[:n, 0] - ref.euler_rad[:n, 0]).max()):.1e} deg"]
+            tip = float(np.abs(r.tip_deflection_m()[:n] - tip_ref[:n]).max())
+            parts.append(f"tip {tip:.1e} m ({tip / excursion:.1e} of the excursion)")
+            label = f"ETD2RK {step * 1e3:g} ms" if step else "Radau rtol 1e-3"
+            print(f"  {label:<16} {r.status:<10} {r.wall_time_s:6.2f} s wall, {r.nfev:6d} rhs, {r.njev} Jacobians: "
+                  + ", ".join(parts), flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--duration", type=float, default=60.0, help="simulated time [s] (default 60)")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--quick", action="store_true", help="only the default solver (ETD2RK, 10 ms) and Radau rtol 1e-3")
+    parser.add_argument("--manoeuvres", action="store_true", help="accuracy on the named manoeuvres instead")
     parser.add_argument("--candidates", default=None,
                         help="comma-separated method:rtol (ETD2RK: method:step [s]) pairs, e.g. Radau:1e-3,ETD2RK:0.02")
     args = parser.parse_args()
+    if args.manoeuvres:
+        manoeuvre_accuracy()
+        return
     model, point, gust = scenario()
     print(f"GTM m = n = 2, unsteady N = 6: {model.layout.n_states} states; level trim M 0.75 at 9144 m; "
           f"1-cos gust 2 m/s, H = 30 m at t = 1 s; {args.duration:g} s simulated; median of {args.repeats} runs; "
