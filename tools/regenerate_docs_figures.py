@@ -18,6 +18,7 @@ climb search, and about 4 minutes for the baselines table):
 * ``readme-calibration`` (fast): README.md, US (Theodorsen p-k) flutter Mach of the bundled gtm against the
   paper's Table 3 at 0, 3048, 6096, 9144 m, as ``flexsim flutter --models US`` prints it;
 * ``flutter-level`` (fast): docs/flutter.md, US level-flight M_F / omega_F at 0 and 9144 m;
+* ``flutter-level-table``: docs/flutter.md, level flight US, FS, QS against the paper's Tables 2-3;
 * ``flutter-glide`` (fast): docs/flutter.md, the direct glide trim at 9144 m (thrust zero, gamma unknown), US;
 * ``flutter-turn``, ``flutter-turn-trend``, ``flutter-turn-omega``, ``flutter-turn-tight``, ``flutter-turn-12km``,
   ``turn-effect-us``: docs/flutter.md (and docs/calibration.md), the turn study (``flexsim sweep --turn``'s
@@ -93,17 +94,22 @@ def _sci(x: float) -> str:
 # --- shared computations (each runs at most once per process) -------------------------------------------------
 
 @functools.cache
-def _level_us() -> dict[float, dict]:
-    """US level-flight flutter rows of the bundled gtm at the paper's altitudes, keyed by altitude [m]."""
+def _level(model: str) -> dict[float, dict]:
+    """Level-flight flutter rows (``flexsim flutter --models MODEL``) of the bundled gtm at the paper's altitudes,
+    keyed by altitude [m]."""
     from flexsim.linear.paper_data import TABLE_US
     from flexsim.linear.study import StudyCase, run_study
 
     altitudes = [row[0] for row in TABLE_US]
-    rows = run_study([StudyCase("gtm", "US", h) for h in altitudes], workers=2, progress=False)
+    rows = run_study([StudyCase("gtm", model, h) for h in altitudes], workers=2, progress=False)
     for row in rows:
         if "error" in row:
-            raise RuntimeError(f"no US level flutter point at {row['altitude_m']:g} m: {row['error']}")
+            raise RuntimeError(f"no {model} level flutter point at {row['altitude_m']:g} m: {row['error']}")
     return {row["altitude_m"]: row for row in rows}
+
+
+def _level_us() -> dict[float, dict]:
+    return _level("US")
 
 
 @functools.cache
@@ -161,6 +167,23 @@ def readme_calibration() -> str:
     diffs = [f"{100 * (level[h]['mach'] / ref[1] - 1):+.1f} %" for h, ref in zip(altitudes, TABLE_US)]
     return (f"US M_F {', '.join(diffs[:-1])} and {diffs[-1]} against the paper at "
             f"{', '.join(f'{h:g}' for h in altitudes[:-1])} and {altitudes[-1]:g} m")
+
+
+def flutter_level_table() -> str:
+    """Level flight against the paper's Tables 2-3: US (p-k) with its difference, FS, and QS, at 4 altitudes."""
+    from flexsim.linear.paper_data import TABLE_QS, TABLE_US
+
+    us, fs, qs = _level("US"), _level("FS"), _level("QS")
+    lines = ["", "| h [m] | paper US M_F / ω_F | flexsim US (p-k) | FS | paper QS | flexsim QS |", "|---|---|---|---|---|---|"]
+    for pu, pq in zip(TABLE_US, TABLE_QS):
+        h = pu[0]
+        lines.append(f"| {h:g} | {pu[1]:.4f} / {pu[2]:.3f} | {us[h]['mach']:.4f} / {us[h]['omega_rad_s']:.2f} "
+                     f"({100 * (us[h]['mach'] / pu[1] - 1):+.1f} %) | {fs[h]['mach']:.4f} | {pq[1]:.4f} / {pq[2]:.3f} | "
+                     f"{qs[h]['mach']:.4f} / {qs[h]['omega_rad_s']:.2f} |")
+    worst = max(abs(fs[h]["mach"] / us[h]["mach"] - 1) for h in us)
+    modes = sorted({r["mode"] for r in (*us.values(), *fs.values())})
+    return ("\n".join(lines) + f"\n\nTheodorsen p-k and finite state agree within {100 * worst:.1f} % in M_F "
+            f"(acceptance: 2 %); dominant coordinate of the critical mode (US, FS): {', '.join(modes)}.\n")
 
 
 def flutter_level() -> str:
@@ -528,6 +551,7 @@ class Figure(NamedTuple):
 FIGURES: dict[str, Figure] = {
     "readme-calibration": Figure(readme_calibration, fast=True),
     "flutter-level": Figure(flutter_level, fast=True),
+    "flutter-level-table": Figure(flutter_level_table),
     "flutter-glide": Figure(flutter_glide, fast=True),
     "flutter-turn": Figure(flutter_turn, study="turn"),
     "flutter-turn-trend": Figure(flutter_turn_trend, study="turn"),
