@@ -31,6 +31,8 @@ climb search, and about 4 minutes for the baselines table):
 * ``options-static-margin``, ``options-lift-drag``, ``options-glide`` (fast): docs/options.md, the cruise trim at
   9144 m, M 0.78 (``flexsim trim gtm --json``) with the body options on and off: static margin, L/D, glide;
 * ``validation-table`` (fast): docs/validation.md, every check of ``flexsim validate --json``;
+* ``options-coordinated-turn``, ``options-which-bank``, ``options-paper-turn`` (fast): docs/options.md, the
+  coordinated and the paper's turn at 9144 m, M 0.78, R = 5 km (``studies/coordinated_turn.py``'s trim);
 * ``goland-compressible``, ``goland-incompressible-102`` (fast): docs/validation.md, docs/options.md,
   docs/design.md, the Goland wing with the Prandtl-Glauert factor on (1.225 kg/m^3) and off (1.02 kg/m^3);
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
@@ -484,6 +486,49 @@ def validation_table() -> str:
                                f"(`flexsim validate` exits with status {code}).\n")
 
 
+@functools.cache
+def _turn_trim(coordinated: bool, altitude_m: float = 9144.0, mach: float = 0.78, radius_m: float = 5000.0):
+    """Quasi-steady trim of a level turn of the bundled gtm (``flexsim trim --turn-radius-m R [--coordinated]``):
+    ``(trim point, V^2/(gR))`` with the manoeuvre's speed (as ``studies/coordinated_turn.py``)."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.model.aircraft_model import AircraftModel
+    from flexsim.trim import SteadyManoeuvre, trim
+
+    model = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
+    man = SteadyManoeuvre.turn(altitude_m, radius_m, mach=mach, coordinated=coordinated)
+    return trim(model, man), man.speed_m_s ** 2 / (model.gravity_m_s2 * radius_m)
+
+
+def options_coordinated_turn() -> str:
+    """The coordinated turn at 9144 m, M 0.78, R = 5 km against its closed forms."""
+    p, ratio = _turn_trim(True)
+    beta = math.degrees(p.sideslip_cg)
+    beta_text = "below 1e-10°" if abs(beta) < 1e-10 else f"{_num(beta, '.2e')}°"
+    mu, closed = p.bank_wind, math.hypot(1.0, ratio)
+    return (f"sideslip at the CG {beta_text} (at o {_num(math.degrees(p.beta), '.3f')}°), φ = {math.degrees(p.phi):.3f}°, "
+            f"heading {math.degrees(p.heading_offset):.2f}° ahead of the track, rudder {_num(math.degrees(p.u[3]), '.2f')}°, "
+            f"aileron {_num(math.degrees(p.u[1]), '.2f')}°, elevator {_num(math.degrees(p.u[2]), '.2f')}°, thrust "
+            f"{p.u[0] / 1e3:.1f} kN; μ = {math.degrees(mu):.3f}° with tan μ / (V²/gR) = {math.tan(mu) / ratio:.5f}; "
+            f"|F|/W = {p.load_factor_total:.5f} against 1/cos μ = {1 / math.cos(mu):.5f} "
+            f"({_num(100 * (p.load_factor_total * math.cos(mu) - 1), '+.3f')} %) and the closed form √(1 + (V²/gR)²) = "
+            f"{closed:.5f} ({_num(100 * (p.load_factor_total / closed - 1), '+.2f')} %); n_z = {p.load_factor:.5f}")
+
+
+def options_which_bank() -> str:
+    """Euler bank against wind-axis bank in the coordinated turn: the size of the difference."""
+    p, ratio = _turn_trim(True)
+    return (f"with θ = {math.degrees(p.theta):.2f}° φ exceeds μ by {math.degrees(p.phi - p.bank_wind):.2f}°: "
+            f"1/cos φ = {1 / math.cos(p.phi):.5f} is {100 * (1 / (math.cos(p.phi) * p.load_factor_total) - 1):.2f} % "
+            f"above |F|/W, and tan φ is {100 * (math.tan(p.phi) / ratio - 1):.2f} % above V²/(gR)")
+
+
+def options_paper_turn() -> str:
+    """The paper's turn (heading on the track) at 9144 m, M 0.78, R = 5 km: its sideslip and cross controls."""
+    p, _ = _turn_trim(False)
+    return (f"{_num(math.degrees(p.beta), '.1f')}° with {_num(math.degrees(p.u[3]), '.1f')}° of rudder and "
+            f"{_num(math.degrees(p.u[1]), '.1f')}° of aileron")
+
+
 #: Goland's flutter speed at 1.225 kg/m^3 [m/s] (Goland 1945; the validation case's reference).
 GOLAND_U_F_M_S = 137.2
 
@@ -570,6 +615,9 @@ FIGURES: dict[str, Figure] = {
     "options-lift-drag": Figure(options_lift_drag, fast=True),
     "options-glide": Figure(options_glide, fast=True),
     "validation-table": Figure(validation_table, fast=True),
+    "options-coordinated-turn": Figure(options_coordinated_turn, fast=True),
+    "options-which-bank": Figure(options_which_bank, fast=True),
+    "options-paper-turn": Figure(options_paper_turn, fast=True),
     "goland-compressible": Figure(goland_compressible, fast=True),
     "goland-incompressible-102": Figure(goland_incompressible_102, fast=True),
     "env-baselines": Figure(env_baselines),
