@@ -1,34 +1,38 @@
-"""Train a Stable-Baselines3 agent on a flexsim task and compare it with the LQR baseline (SB3 and torch are
-optional, not flexsim dependencies).
+"""Train a Stable-Baselines3 agent on a flexsim task and compare it with the LQR baseline, the trim controls held and
+random actions (SB3 and torch are optional, not flexsim dependencies).
 
     python -m pip install --find-links /opt/wheels "torch==2.13.0+cpu" "stable-baselines3>=2.4"   # CPU torch
-    python examples/agents/train_sb3.py --env FlexSim/GTM-LevelHold-v0 --algo PPO --minutes 15 --envs 2 --out logs/agent
+    OMP_NUM_THREADS=1 python examples/agents/train_sb3.py --minutes 15 --out logs/agent           # PPO on LevelHold-v1
 
 Training stops at ``--steps`` environment steps or after ``--minutes`` of wall time, whichever comes first.
-Then the deterministic policy flies ``--eval-episodes`` seeded episodes (seeds 0, 1, ...; training uses
-other seeds), beside the classical baseline of ``examples/agents/baselines.py`` (LQR) and the trim action
-held, on the same seeds, in ``--envs`` processes. The script prints the three mean returns and the ratio to
-the baseline, writes them to ``<out>/result.json`` and draws the learning curve (training episode returns
-against environment steps, with the evaluation results as horizontal lines) to ``<out>/learning_curve.png``.
+Then the deterministic policy flies ``--eval-episodes`` seeded episodes (seeds 0, 1, ...; training uses seeds
+from 1000), beside the classical baseline of ``examples/agents/baselines.py`` (LQR), the trim action held and
+uniformly random actions, on the same seeds, in ``--workers`` processes. The script prints the four mean
+returns and the ratios to the baseline, writes them to ``<out>/result.json`` (with the settings, wall times
+and the 1-minute load average sampled every 30 s) and draws the learning curve (training episode returns
+against environment steps, with the evaluation means as horizontal lines) to ``<out>/learning_curve.png``.
+
+The default task is ``FlexSim/GTM-LevelHold-v1``: on v0 the trim controls held already return 93 % of the LQR
+baseline's return, so no learning can show there (docs/environments.md, "A learning agent").
 
 What the learner sees (changed from the raw env, issue #13; the env, its reward and ``info["reward_parts"]``
 are unchanged):
 
-* **Actions relative to the trim** (``TrimResidualAction``, ``--residual-scale`` s, default 0.1): the agent's
-  action a in [-1, 1]^4 commands ``clip(trim_action + s a)``, trim_action from the reset info. Why: the raw
-  action box is [0, 1] x [-1, 1]^3 of the full control ranges, and a fresh Gaussian policy centred on 0 with
-  unit spread commands zero thrust and random full-scale surfaces, which leaves the flight envelope within
-  seconds; the task (hold 9144 m within 30 m) is local to the trim. An all-zero residual is the trim hold,
-  which the evaluation reports beside the learned policy, so what learning adds is visible.
-* **Normalised observations and rewards** (SB3 ``VecNormalize``): the observations mix metres (altitude
-  9144), m/s and radians; the rewards are scaled by a running estimate of the return's spread (training only;
+* **Actions relative to the trim** (``--residual-scale`` s, default 0.1): the agent's action a in [-1, 1]^4
+  commands ``clip(trim_action + s a)``, trim_action from the reset info. Why: the raw action box is
+  [0, 1] x [-1, 1]^3 of the full control ranges, and a fresh Gaussian policy centred on 0 with unit spread
+  commands zero thrust and random full-scale surfaces, which leaves the flight envelope within seconds; the
+  task is local to the trim. An all-zero residual is the trim hold, which the evaluation reports beside
+  the learned policy, so what learning adds is visible.
+* **Normalised observations** (SB3 ``VecNormalize``): the observations mix metres (altitude 9144), m/s and
+  radians. PPO's rewards are also scaled by a running estimate of the return's spread (training only;
   evaluation returns are the env's own).
 
-Speed: one environment step is one control period (50 Hz) of the flexible 252-state model; the learner runs
-``--envs`` worker processes (each pins BLAS to one thread) and torch on ``--torch-threads`` (default 1, which
-ran PPO 1.7 times faster than torch's default on 2 cores). The batched env (``flexsim.envs.vector``) steps
-many aircraft in one process; with today's uncompiled right-hand side it gains little per core over this
-(``docs/performance.md``), and the processes use both cores.
+Speed: one environment step is one control period (50 Hz) of the flexible 252-state model. ``--vector
+batched`` (default) steps the ``--envs`` aircraft in ``--processes`` batched envs (``gym.make_vec(...,
+vectorization_mode="vector_entry_point")``, all aircraft of a process in one call; an SB3 ``VecEnv`` adapter,
+:func:`make_batched_vec_env`); ``--vector subproc`` runs one single env per process (SB3 ``SubprocVecEnv``).
+Torch runs on ``--torch-threads`` (default 1, which ran PPO 1.7 times faster than torch's default on 2 cores).
 """
 
 from __future__ import annotations
@@ -101,63 +105,129 @@ def _make_env(env_id: str, aero: str, scale: float, seed: int):
     return thunk
 
 
-def make_batched_vec_env(env_id: str, num_envs: int, aero: str, scale: float, seed: int):
-    """An SB3 ``VecEnv`` over the batched env of ``env_id`` (``gym.make_vec(..., vectorization_mode="vector_entry_point")``,
-    all aircraft stepped in one call in this process), with the actions of :class:`TrimResidualAction`.
+class ResidualBatch:
+    """``num_envs`` aircraft of ``env_id`` in one batched env (``gym.make_vec(..., vectorization_mode="vector_entry_point")``,
+    one call steps them all) with the actions of :class:`TrimResidualAction`; episodes restart in the step that ends
+    them (gymnasium's SameStep autoreset). Aircraft i is seeded ``seed + i``."""
 
-    Episodes restart in the step that ends them (gymnasium's SameStep autoreset) and the ended episode's last
-    observation is in ``infos[i]["terminal_observation"]``, as SB3 expects; aircraft i is seeded ``seed + i``.
-    """
+    def __init__(self, env_id: str, num_envs: int, aero: str, scale: float, seed: int) -> None:
+        import flexsim.envs  # noqa: F401  (registers the ids in a spawned worker)
+
+        self.venv = gym.make_vec(env_id, num_envs=num_envs, vectorization_mode="vector_entry_point", aero=aero,
+                                 autoreset_mode="SameStep")
+        single = self.venv.single_action_space
+        self.low, self.high = single.low.astype(np.float64), single.high.astype(np.float64)
+        self.observation_space = self.venv.single_observation_space
+        self.num_envs, self.scale, self.seed = num_envs, scale, seed
+        self.trim = np.zeros((num_envs, 4))
+
+    def _take_trim(self, info: dict) -> None:
+        mask = info.get("_trim_action")
+        if mask is not None:
+            self.trim[mask] = np.asarray(info["trim_action"], dtype=np.float64)[mask]
+
+    def reset(self) -> np.ndarray:
+        obs, info = self.venv.reset(seed=self.seed)
+        self.seed = None  # later resets continue each aircraft's random stream
+        self._take_trim(info)
+        return obs
+
+    def step(self, actions: np.ndarray) -> tuple:
+        """obs, rewards, dones, infos (SB3 conventions: ``terminal_observation``, ``TimeLimit.truncated``)."""
+        a = np.clip(self.trim + self.scale * np.clip(np.asarray(actions, dtype=np.float64), -1.0, 1.0), self.low, self.high)
+        obs, rewards, terminated, truncated, info = self.venv.step(a.astype(np.float32))
+        dones = terminated | truncated
+        infos: list[dict] = [{} for _ in range(self.num_envs)]
+        for i in np.flatnonzero(dones):
+            infos[i]["terminal_observation"] = info["final_obs"][i]
+            infos[i]["TimeLimit.truncated"] = bool(truncated[i] and not terminated[i])
+        self._take_trim(info)
+        return obs, rewards.astype(np.float32), dones, infos
+
+    def close(self) -> None:
+        self.venv.close()
+
+
+def _batch_worker(conn, args: tuple) -> None:
+    """Worker process of :func:`make_batched_vec_env`: one :class:`ResidualBatch`, driven over a pipe."""
+    batch = ResidualBatch(*args)
+    while True:
+        command, data = conn.recv()
+        if command == "step":
+            conn.send(batch.step(data))
+        elif command == "reset":
+            conn.send(batch.reset())
+        else:
+            batch.close()
+            conn.close()
+            return
+
+
+def make_batched_vec_env(env_id: str, num_envs: int, aero: str, scale: float, seed: int, processes: int = 1):
+    """An SB3 ``VecEnv`` of ``num_envs`` aircraft in ``processes`` batched envs (:class:`ResidualBatch`): in this
+    process (1) or in worker processes, each stepping its share of the aircraft in one call. Aircraft i is
+    seeded ``seed + i``."""
     from stable_baselines3.common.vec_env import VecEnv
+
+    sizes = [len(c) for c in np.array_split(np.arange(num_envs), processes) if len(c)]
+    starts = np.cumsum([0] + sizes[:-1])
 
     class BatchedVecEnv(VecEnv):
         def __init__(self) -> None:
-            self.venv = gym.make_vec(env_id, num_envs=num_envs, vectorization_mode="vector_entry_point", aero=aero,
-                                     autoreset_mode="SameStep")
-            single = self.venv.single_action_space
-            self.low, self.high = single.low.astype(np.float64), single.high.astype(np.float64)
-            self.trim = np.zeros((num_envs, 4))
-            self.actions = None
-            self._seed = seed
-            super().__init__(num_envs, self.venv.single_observation_space, gym.spaces.Box(-1.0, 1.0, (4,), np.float32))
-
-        def _take_trim(self, info: dict) -> None:
-            mask = info.get("_trim_action")
-            if mask is not None:
-                self.trim[mask] = np.asarray(info["trim_action"], dtype=np.float64)[mask]
+            self.local = None
+            self.pipes = []
+            if len(sizes) == 1:
+                self.local = ResidualBatch(env_id, num_envs, aero, scale, seed)
+                space = self.local.observation_space
+            else:
+                ctx = multiprocessing.get_context("spawn")
+                self.procs = []
+                for n, start in zip(sizes, starts):
+                    parent, child = ctx.Pipe()
+                    proc = ctx.Process(target=_batch_worker, args=(child, (env_id, n, aero, scale, seed + int(start))), daemon=True)
+                    proc.start()
+                    child.close()
+                    self.pipes.append(parent)
+                    self.procs.append(proc)
+                space = gym.make(env_id, aero=aero).observation_space
+            super().__init__(num_envs, space, gym.spaces.Box(-1.0, 1.0, (4,), np.float32))
 
         def reset(self):
-            obs, info = self.venv.reset(seed=self._seed)
-            self._seed = None  # later resets continue each aircraft's random stream
-            self._take_trim(info)
-            return obs
+            if self.local is not None:
+                return self.local.reset()
+            for pipe in self.pipes:
+                pipe.send(("reset", None))
+            return np.concatenate([pipe.recv() for pipe in self.pipes])
 
         def step_async(self, actions) -> None:
-            a = self.trim + scale * np.clip(np.asarray(actions, dtype=np.float64), -1.0, 1.0)
-            self.actions = np.clip(a, self.low, self.high).astype(np.float32)
+            self._actions = np.asarray(actions)
+            for pipe, n, start in zip(self.pipes, sizes, starts):
+                pipe.send(("step", self._actions[start:start + n]))
 
         def step_wait(self):
-            obs, rewards, terminated, truncated, info = self.venv.step(self.actions)
-            dones = terminated | truncated
-            infos = [{} for _ in range(num_envs)]
-            for i in np.flatnonzero(dones):
-                infos[i]["terminal_observation"] = info["final_obs"][i]
-                infos[i]["TimeLimit.truncated"] = bool(truncated[i] and not terminated[i])
-            self._take_trim(info)
-            return obs, rewards.astype(np.float32), dones, infos
+            if self.local is not None:
+                return self.local.step(self._actions)
+            parts = [pipe.recv() for pipe in self.pipes]
+            return (np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts]),
+                    np.concatenate([p[2] for p in parts]), [i for p in parts for i in p[3]])
 
         def close(self) -> None:
-            self.venv.close()
+            if self.local is not None:
+                self.local.close()
+            for pipe, proc in zip(self.pipes, getattr(self, "procs", [])):
+                pipe.send(("close", None))
+                proc.join(timeout=10)
 
         def get_attr(self, attr_name, indices=None):
-            return [getattr(self.venv.envs[i], attr_name) for i in self._get_indices(indices)]
+            if attr_name == "render_mode":
+                return [None] * len(self._get_indices(indices))
+            raise AttributeError(f"{attr_name}: the batched training env offers render_mode only")
 
         def set_attr(self, attr_name, value, indices=None) -> None:
-            for i in self._get_indices(indices):
-                setattr(self.venv.envs[i], attr_name, value)
+            raise AttributeError(f"{attr_name}: the batched training env has no settable attributes")
 
         def env_method(self, method_name, *method_args, indices=None, **method_kwargs):
-            return [getattr(self.venv.envs[i], method_name)(*method_args, **method_kwargs) for i in self._get_indices(indices)]
+            raise AttributeError(f"{method_name}: the batched training env has no env methods")
 
         def env_is_wrapped(self, wrapper_class, indices=None):
             return [False] * len(self._get_indices(indices))
@@ -165,60 +235,68 @@ def make_batched_vec_env(env_id: str, num_envs: int, aero: str, scale: float, se
     return BatchedVecEnv()
 
 
-#: Per evaluation worker process: the env of each (id, aero), its baseline policy and the loaded agent, built once.
-_WORKER_CACHE: dict = {}
+def _row(info: dict, i: int) -> dict:
+    """The info of aircraft ``i`` from a batched info dict (value arrays with ``_key`` masks, nested dicts)."""
+    return {k: (_row(v, i) if isinstance(v, dict) else v[i]) for k, v in info.items() if not k.startswith("_")}
 
 
-def _evaluate(job: tuple) -> tuple[str, int, float, int, str]:
-    """One seeded episode of one policy ("agent", "baseline", "trim", "random") in a worker process."""
-    kind, seed, env_id, aero, scale, model_path, algo, stats = job
+def _evaluate(job: tuple) -> tuple[str, list[tuple[int, float, int, str]]]:
+    """Seeded episodes of one policy ("agent", "baseline", "trim", "random") in a worker process: aircraft i of one
+    batched env (``gym.make_vec(..., vectorization_mode="vector_entry_point")``, which follows the single env of the
+    same seed and actions to rounding) flies seed ``seeds[i]``; returns (seed, return, steps, termination reason)."""
+    kind, seeds, env_id, aero, scale, model_path, algo, stats = job
     import flexsim.envs  # noqa: F401
     from baselines import RandomPolicy, make_baseline
 
-    key = (env_id, aero)
-    if key not in _WORKER_CACHE:  # one env per worker process and task: the model, trim and ETD2RK matrices are built once
-        _WORKER_CACHE[key] = gym.make(env_id, aero=aero)
-    env = _WORKER_CACHE[key]
-    obs, info = env.reset(seed=seed)
-    trim = np.asarray(info["trim_action"], dtype=np.float32)
+    n = len(seeds)
+    venv = gym.make_vec(env_id, num_envs=n, vectorization_mode="vector_entry_point", aero=aero, autoreset_mode="SameStep")
+    obs, info = venv.reset(seed=list(seeds))
+    trim = np.asarray(info["trim_action"], dtype=np.float64)
+    low, high = venv.single_action_space.low, venv.single_action_space.high
     if kind == "baseline":
-        if (key, "baseline") not in _WORKER_CACHE:
-            _WORKER_CACHE[(key, "baseline")] = make_baseline(env_id, env)
-        policy = _WORKER_CACHE[(key, "baseline")]
-        policy.reset(info)
+        policies = [make_baseline(env_id, env) for env in venv.envs]
+        for i, policy in enumerate(policies):
+            if hasattr(policy, "_designs"):
+                policy._designs = policies[0]._designs  # one LQR design per trim for all aircraft (they share one model)
+            policy.reset(_row(info, i))
+
+        def act(o):
+            return np.array([policy(row) for policy, row in zip(policies, o)])
     elif kind == "random":
-        policy = RandomPolicy(env)
-        policy.reset(info, seed=seed)
+        policies = [RandomPolicy(env) for env in venv.envs]
+        for i, (policy, seed) in enumerate(zip(policies, seeds)):
+            policy.reset(_row(info, i), seed=seed)
+
+        def act(o):
+            return np.array([policy(row) for policy, row in zip(policies, o)])
     elif kind == "agent":
         import stable_baselines3 as sb3
         import torch
 
         torch.set_num_threads(1)
-        if (model_path, algo) not in _WORKER_CACHE:
-            _WORKER_CACHE[(model_path, algo)] = getattr(sb3, algo).load(model_path, device="cpu")
-        model = _WORKER_CACHE[(model_path, algo)]
-        mean, var, clip, eps = (np.asarray(stats[k]) if k in ("mean", "var") else stats[k] for k in ("mean", "var", "clip", "eps"))
-        wrapped = TrimResidualAction(env, scale)
-        wrapped._trim = trim.astype(np.float64)
+        model = getattr(sb3, algo).load(model_path, device="cpu")
+        mean, var = np.asarray(stats["mean"]), np.asarray(stats["var"])
 
-        def policy(o):
-            z = np.clip((o - mean) / np.sqrt(var + eps), -clip, clip).astype(np.float32)
-            return wrapped.action(model.predict(z, deterministic=True)[0])
+        def act(o):
+            z = np.clip((o - mean) / np.sqrt(var + stats["eps"]), -stats["clip"], stats["clip"]).astype(np.float32)
+            return np.clip(trim + scale * np.clip(model.predict(z, deterministic=True)[0], -1.0, 1.0), low, high)
     else:
-        def policy(o):
+        def act(o):
             return trim
-    total, steps, reason = 0.0, 0, ""
-    while True:
-        obs, reward, terminated, truncated, info = env.step(policy(obs))
-        total += float(reward)
-        steps += 1
-        if terminated or truncated:
-            reason = info.get("termination_reason", "") if terminated else ""
-            break
-    return kind, seed, total, steps, reason
+    totals, steps, reasons = np.zeros(n), np.zeros(n, dtype=int), [""] * n
+    flying = np.ones(n, dtype=bool)
+    while flying.any():
+        obs, reward, terminated, truncated, info = venv.step(act(obs).astype(np.float32))
+        totals[flying] += reward[flying]
+        steps[flying] += 1
+        for i in np.flatnonzero(flying & (terminated | truncated)):
+            flying[i] = False
+            reasons[i] = str(info["final_info"]["termination_reason"][i]) if terminated[i] else ""
+    venv.close()
+    return kind, [(seed, float(totals[i]), int(steps[i]), reasons[i]) for i, seed in enumerate(seeds)]
 
 
-def _plot(curve: list[tuple[int, float]], result: dict, path: Path, title: str) -> None:
+def _plot(curve: list[tuple[int, float]], result: dict, path: Path, title: str, num_envs: int = 1) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -228,8 +306,8 @@ def _plot(curve: list[tuple[int, float]], result: dict, path: Path, title: str) 
     if curve:
         steps, returns = np.array(curve).T
         ax.plot(steps, returns, ".", ms=3, color="0.6", label="training episodes (stochastic policy)")
-        k = len(returns) // 20
-        if k >= 2:
+        k = max(len(returns) // 20, num_envs)  # at least one batch: the aircraft of a batch end their episodes together
+        if len(returns) >= 2 * k >= 4:
             smooth = np.convolve(returns, np.ones(k) / k, mode="valid")
             ax.plot(steps[k - 1:], smooth, color="C0", label=f"running mean of {k}")
     for key, color, label in (("agent", "C0", "agent, deterministic"), ("baseline", "C3", "LQR baseline"), ("trim", "C2", "trim action held"),
@@ -253,6 +331,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--vector", default="batched", choices=["batched", "subproc"],
                         help="batched: all aircraft in one gymnasium VectorEnv in this process; subproc: one process per aircraft [%(default)s]")
     parser.add_argument("--envs", type=int, default=16, help="aircraft flown in parallel (subproc: worker processes) [%(default)s]")
+    parser.add_argument("--processes", type=int, default=2, help="batched: processes sharing the --envs aircraft [%(default)s]")
     parser.add_argument("--workers", type=int, default=2, help="processes of the evaluation [%(default)s]")
     parser.add_argument("--aero", default="unsteady", choices=["unsteady", "quasi-steady"])
     parser.add_argument("--residual-scale", type=float, default=0.1, help="action = trim + scale * a, a in [-1, 1] [%(default)s]")
@@ -261,13 +340,15 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--batch-size", type=int, default=256, help="minibatch size [%(default)s]")
     parser.add_argument("--epochs", type=int, default=10, help="PPO: epochs per update [%(default)s]")
     parser.add_argument("--lr", type=float, default=3e-4, help="learning rate [%(default)s]")
+    parser.add_argument("--gradient-steps", type=int, default=1, help="SAC/TD3: gradient steps per step of the --envs aircraft [%(default)s]")
+    parser.add_argument("--learning-starts", type=int, default=1000, help="SAC/TD3: steps of random actions before learning [%(default)s]")
     parser.add_argument("--net", default="64,64", help="hidden layer sizes of policy and value nets [%(default)s]")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--eval-episodes", type=int, default=10, help="seeded evaluation episodes per policy [%(default)s]")
     parser.add_argument("--out", type=Path, default=Path("logs/agent"))
     parser.add_argument("--torch-threads", type=int, default=1, help="torch intra-op threads of the learner [1]")
     args = parser.parse_args(argv)
-    for name in ("steps", "envs", "workers", "torch_threads", "eval_episodes", "n_steps", "batch_size", "epochs"):
+    for name in ("steps", "envs", "processes", "workers", "torch_threads", "eval_episodes", "n_steps", "batch_size", "epochs", "gradient_steps"):
         if getattr(args, name) < 1:
             parser.error(f"--{name.replace('_', '-')} = {getattr(args, name)}: must be >= 1")
     if not args.minutes > 0:
@@ -286,11 +367,12 @@ def main(argv: list[str] | None = None) -> None:
     args.out.mkdir(parents=True, exist_ok=True)
     first_seed = TRAIN_SEED + 100 * args.seed
     if args.vector == "batched":
-        venv = make_batched_vec_env(args.env, args.envs, args.aero, args.residual_scale, first_seed)
+        venv = make_batched_vec_env(args.env, args.envs, args.aero, args.residual_scale, first_seed, args.processes)
     else:
         fns = [_make_env(args.env, args.aero, args.residual_scale, first_seed + i) for i in range(args.envs)]
         venv = SubprocVecEnv(fns) if args.envs > 1 else DummyVecEnv(fns)
-    venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, gamma=args.gamma)
+    # PPO: rewards scaled by the running spread of the return; SAC/TD3 learn from a replay buffer of raw rewards
+    venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=args.algo == "PPO", gamma=args.gamma)
     curve: list[tuple[int, float]] = []
     loads: list[float] = []
     deadline = [math.inf]
@@ -317,7 +399,8 @@ def main(argv: list[str] | None = None) -> None:
                         verbose=1)
     else:
         model = getattr(sb3, args.algo)("MlpPolicy", venv, seed=args.seed, gamma=args.gamma, learning_rate=args.lr,
-                                        batch_size=args.batch_size, policy_kwargs=policy_kwargs, verbose=1)
+                                        batch_size=args.batch_size, gradient_steps=args.gradient_steps,
+                                        learning_starts=args.learning_starts, policy_kwargs=policy_kwargs, verbose=1)
     t0 = time.perf_counter()
     model.learn(total_timesteps=args.steps, callback=Budget())
     train_s = time.perf_counter() - t0
@@ -331,25 +414,23 @@ def main(argv: list[str] | None = None) -> None:
 
     t1 = time.perf_counter()
     kinds = ("agent", "baseline", "trim", "random")
-    jobs = [(kind, s, args.env, args.aero, args.residual_scale, str(args.out / stem), args.algo, stats)
-            for kind in kinds for s in range(args.eval_episodes)]
+    seeds = list(range(args.eval_episodes))
+    jobs = [(kind, seeds, args.env, args.aero, args.residual_scale, str(args.out / stem), args.algo, stats) for kind in kinds]
     with ProcessPoolExecutor(max_workers=args.workers, mp_context=multiprocessing.get_context("spawn")) as pool:
-        episodes = list(pool.map(_evaluate, jobs))
+        episodes = dict(pool.map(_evaluate, jobs))
     result: dict = {"env": args.env, "algo": args.algo, "train_steps": steps_done, "train_wall_s": train_s,
                     "train_steps_per_s": steps_done / train_s, "eval_wall_s": time.perf_counter() - t1,
                     "load_average_1min": {"min": min(loads), "mean": float(np.mean(loads)), "max": max(loads), "samples": loads},
-                    "settings": {k: (str(v) if isinstance(v, Path) else v) for k, v in vars(args).items()},
-                    "seeds": list(range(args.eval_episodes))}
+                    "settings": {k: (str(v) if isinstance(v, Path) else v) for k, v in vars(args).items()}, "seeds": seeds}
     for kind in kinds:
-        rows = [e for e in episodes if e[0] == kind]
-        returns = np.array([e[2] for e in rows])
+        returns = np.array([e[1] for e in episodes[kind]])
         result[kind] = {"mean_return": float(returns.mean()), "std_return": float(returns.std()), "returns": returns.tolist(),
-                        "terminations": [e[4] for e in rows if e[4]]}
+                        "terminations": [e[3] for e in episodes[kind] if e[3]]}
     result["agent_over_baseline"] = result["agent"]["mean_return"] / result["baseline"]["mean_return"]
     result["trim_over_baseline"] = result["trim"]["mean_return"] / result["baseline"]["mean_return"]
     (args.out / "result.json").write_text(json.dumps(result, indent=1))
     _plot(curve, result, args.out / "learning_curve.png",
-          f"{args.algo} on {args.env}, {steps_done} steps in {train_s / 60:.1f} min; eval seeds 0-{args.eval_episodes - 1}")
+          f"{args.algo} on {args.env}, {steps_done} steps in {train_s / 60:.1f} min; eval seeds 0-{args.eval_episodes - 1}", args.envs)
     print(f"trained {steps_done} steps in {train_s:.0f} s ({steps_done / train_s:.0f} steps/s, load average "
           f"{min(loads):.1f}-{max(loads):.1f}); evaluation over seeds 0-{args.eval_episodes - 1} ({result['eval_wall_s']:.0f} s):")
     for kind, label in (("agent", "agent (deterministic)"), ("baseline", "LQR baseline"), ("trim", "trim action held"),
