@@ -343,6 +343,8 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--gradient-steps", type=int, default=1, help="SAC/TD3: gradient steps per step of the --envs aircraft [%(default)s]")
     parser.add_argument("--learning-starts", type=int, default=1000, help="SAC/TD3: steps of random actions before learning [%(default)s]")
     parser.add_argument("--net", default="64,64", help="hidden layer sizes of policy and value nets [%(default)s]")
+    parser.add_argument("--log-std-init", type=float, default=-1.0, help="PPO: initial log standard deviation of the actions [%(default)s]")
+    parser.add_argument("--sde", action="store_true", help="PPO: generalised state-dependent exploration (gSDE, resampled every 8 steps)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--eval-episodes", type=int, default=10, help="seeded evaluation episodes per policy [%(default)s]")
     parser.add_argument("--out", type=Path, default=Path("logs/agent"))
@@ -395,8 +397,8 @@ def main(argv: list[str] | None = None) -> None:
     policy_kwargs = {"net_arch": net}
     if args.algo == "PPO":
         model = sb3.PPO("MlpPolicy", venv, seed=args.seed, n_steps=args.n_steps, batch_size=args.batch_size, n_epochs=args.epochs,
-                        learning_rate=args.lr, gamma=args.gamma, gae_lambda=0.95, policy_kwargs={**policy_kwargs, "log_std_init": -1.0},
-                        verbose=1)
+                        learning_rate=args.lr, gamma=args.gamma, gae_lambda=0.95, use_sde=args.sde, sde_sample_freq=8 if args.sde else -1,
+                        policy_kwargs={**policy_kwargs, "log_std_init": args.log_std_init}, verbose=1)
     else:
         model = getattr(sb3, args.algo)("MlpPolicy", venv, seed=args.seed, gamma=args.gamma, learning_rate=args.lr,
                                         batch_size=args.batch_size, gradient_steps=args.gradient_steps,
