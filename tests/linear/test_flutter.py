@@ -198,3 +198,22 @@ def test_linear_density_fixed_at_the_flight_altitude_reproduces_the_default():
     p2, s2 = lower.evaluate(man)
     assert np.array_equal(p0.x, p2.x)  # the trim keeps the true density
     assert s2.max_real("elastic") != s0.max_real("elastic")
+
+
+def test_search_evaluates_each_mach_once_and_returns_an_evaluated_point():
+    """Brent's bracket ends come from the grid scan and its root is one of the Mach numbers it evaluated: no Mach
+    number is trimmed and analysed twice, and the flutter point is that evaluation (QS, sea level: grid 0.5, 0.55,
+    then Brent to 1e-4; the growth rate at M_F is within round-off of the bracket's tolerance times its slope)."""
+    analysis = FlutterAnalysis(load_aircraft("gtm"), "quasi-steady")
+    calls = []
+    evaluate = analysis.evaluate
+
+    def counted(man, guess=None):
+        calls.append(man.speed_m_s)
+        return evaluate(man, guess)
+
+    analysis.evaluate = counted
+    point = analysis.search(SteadyManoeuvre.level(0.0, mach=0.6), mach_range=(0.5, 0.95))
+    assert len(calls) == len(set(calls)) == point.evaluations
+    assert point.speed_m_s in calls
+    assert point.trim.manoeuvre.speed_m_s == point.speed_m_s

@@ -64,3 +64,26 @@ def test_restrained_wing_has_only_elastic_and_lag_roots():
     spec = spectrum(model, model.layout.zeros(), np.zeros(4))
     assert len(spec.of_kind("rigid")) == 0
     assert len(spec.of_kind("elastic")) == 2 * (3 + 2)  # m = 3 bending, n = 2 torsion: 5 pairs
+
+
+def test_vectorised_dominant_dof_equals_ranked():
+    """The dominant DOF of all modes at once equals flexsim.structure.mirror.ranked(...)[0] per mode, with mirror
+    ties (partner shares within TIE_RTOL) and inactive coordinates, on the GTM's mirror operator."""
+    from flexsim.linear.stability import _dominant_dofs
+    from flexsim.structure.mirror import TIE_RTOL, ranked
+
+    model = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
+    mirror, active, n_v = model.structure.mirror, model.active_dofs, model.structure.dofs.n_v
+    rng = np.random.default_rng(2)
+    share = rng.random((active.size, 200))
+    partner = np.asarray(mirror.partner)
+    for col in range(0, 200, 2):  # ties: a coordinate's mirror partner within (and just beyond) the tie tolerance
+        k = int(rng.choice([i for i in range(active.size) if partner[active[i]] >= 0 and partner[active[i]] != active[i]]))
+        j = int(np.flatnonzero(active == partner[active[k]])[0])
+        share[k, col] = share[:, col].max() * (1 + 0.5 * TIE_RTOL)
+        share[j, col] = share[k, col] * (1 - (0.5 if col % 4 else 2.0) * TIE_RTOL)
+    got = _dominant_dofs(share, active, n_v, mirror)
+    for col in range(share.shape[1]):
+        full = np.full(n_v, -np.inf)
+        full[active] = share[:, col]
+        assert got[col] == ranked(full, mirror, candidates=[int(i) for i in active])[0]

@@ -129,3 +129,33 @@ def test_bad_manoeuvre_arguments():
         SteadyManoeuvre.level(H)
     with pytest.raises(ValueError, match="ISA|altitude"):
         SteadyManoeuvre.level(50_000.0, mach=0.5)
+
+
+@pytest.mark.parametrize("name", ["level", "turn", "glide", "climbing turn"])
+def test_batched_trim_jacobian_equals_column_differences(models, name):
+    """The trim's Jacobian in one rhs_batch call is bit for bit the column-by-column central difference of the
+    residual (same steps, same states; rhs_batch rows equal rhs), also with a coordinated turn's extra unknown."""
+    from flexsim.trim import solver
+
+    man = MANOEUVRES[name]
+    for coordinated in ((False, True) if name == "turn" else (False,)):
+        if coordinated:
+            man = SteadyManoeuvre(man.speed_m_s, man.altitude_m, man.turn_radius_m, man.climb_angle_rad, True)
+        prob = solver._Problem(models["quasi-steady"], man)
+        z = 0.01 * np.random.default_rng(1).normal(size=6 + prob.n_el + int(coordinated))
+        z[2] += 0.05
+        a = solver._fd_jacobian(prob.residual, z, prob.residual(z).size)
+        np.testing.assert_array_equal(prob.jacobian(z), a)
+
+
+def test_trim_from_a_neighbouring_trim_equals_the_cold_trim(models):
+    """Newton from the trim at M 0.70 (instead of hybr, which stalls there) reaches the trim at M 0.75 found from
+    the default start: states equal to 1e-9 of their scale (the trim equations' conditioning), residual < 1e-8."""
+    model = models["quasi-steady"]
+    man = MANOEUVRES["climbing turn"]
+    near = trim(model, SteadyManoeuvre.climbing_turn(H, 9000.0, math.radians(2.0), mach=0.70))
+    cold, warm = trim(model, man), trim(model, man, guess=near)
+    assert warm.residual < 1e-8
+    np.testing.assert_allclose(warm.x, cold.x, rtol=0, atol=1e-9 * np.abs(cold.x[model.layout.q.start:]).max())
+    np.testing.assert_allclose(warm.u[1:], cold.u[1:], rtol=0, atol=1e-9)
+    assert warm.u[0] == pytest.approx(cold.u[0], rel=1e-9)
