@@ -5,15 +5,15 @@ and on this tree, alternately (reference, this, reference, this, ...) ``--repeat
 same machine load; each process reports the median per-thread CPU time of ``--inner`` runs after a warm-up.
 The table gives the medians over the repeats, the ratio reference / this, and the largest relative
 difference of the results (trim states, eigenvalues, flutter Mach and frequency, Jacobian entries,
-simulated altitude and tip deflection). ``flexsim flutter`` is timed as a whole command (wall and CPU of
-the process tree). The load average is printed before and after. The reference tree is extracted with
+simulated altitude and tip deflection). ``flexsim flutter`` and the whole turn + climb study (``study``) are timed as whole
+commands (wall and CPU of the process tree), with their flutter points compared. The load average is printed before and after. The reference tree is extracted with
 ``git archive`` (default: 00ee0f2, the numpy implementation measured in issue 14).
 
 Also (issue 14 item 1): one right-hand side per call (unsteady, quasi-steady, with Dryden turbulence, vacuum) and
 the start-up of a process to its first right-hand side (with numba: the machine code loaded from the cache).
 
 Targets (issue 14): start-up <= 0.3 s per process; one US flutter point <= 0.4 s and <= 30x one dense eig of the same system (248 states);
-``flexsim flutter`` <= 5 s; 60 s of simulated flight >= 100x real time.
+``flexsim flutter`` <= 5 s; the whole study <= 30 s on 2 cores; 60 s of simulated flight >= 100x real time.
 
 Run: python benchmarks/bench_compare.py [--reference REV] [--repeats 3] [--inner 1] [--tasks a,b,...]
 """
@@ -35,8 +35,14 @@ import numpy as np
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WORKER = os.path.join(HERE, "benchmarks", "_compare_worker.py")
 TASKS = ("rhs-fs", "rhs-qs", "rhs-turb", "rhs-vacuum", "startup", "eval-qs", "eval-fs", "eval-us", "point-qs", "point-fs", "point-us", "jacobian-fs", "dense-eig",
-         "flutter-cli", "simulate-60s")
-TARGETS = {"startup": "<= 0.3 s", "point-us": "<= 0.4 s", "flutter-cli": "<= 5 s", "simulate-60s": ">= 100x real time"}
+         "flutter-cli", "study", "simulate-60s")
+TARGETS = {"startup": "<= 0.3 s", "point-us": "<= 0.4 s", "flutter-cli": "<= 5 s", "study": "<= 30 s wall",
+           "simulate-60s": ">= 100x real time"}
+#: The whole turn + climb study of the paper's Figs. 7-16 (120 points, QS and US, 4 altitudes, local processes on
+#: all cores), as ``flexsim sweep --turn`` and ``--climb`` run it; prints the rows' flutter Mach numbers as JSON.
+_STUDY = ("import json; from flexsim.linear.study import climb_cases, run_study, turn_cases; "
+          "rows = run_study(turn_cases('gtm') + climb_cases('gtm'), progress=False); "
+          "print(json.dumps([[r.get('mach'), r.get('omega_rad_s'), r.get('evaluations')] for r in rows]))")
 
 
 def _env(tree: str) -> dict:
@@ -60,15 +66,20 @@ def _run_worker(tree: str, task: str, inner: int) -> dict:
             out[key] = ((after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime), wall)
         # the project's share: the whole process less a process importing numpy and scipy only
         return {"cpu_s": out["all"][0] - out["base"][0], "wall_s": out["all"][1] - out["base"][1]}
-    if task == "flutter-cli":
+    if task in ("flutter-cli", "study"):
+        cmd = ["-m", "flexsim.cli.main", "flutter", "gtm", "--json"] if task == "flutter-cli" else ["-c", _STUDY]
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "flexsim.cli.main", "flutter", "gtm", "--json"], cwd=tree, env=_env(tree),
-                       check=True, capture_output=True)
+        out = subprocess.run([sys.executable, *cmd], cwd=tree, env=_env(tree), check=True, capture_output=True, text=True)
         wall = time.perf_counter() - t0
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-        return {"cpu_s": cpu, "wall_s": wall}
+        res = {"cpu_s": cpu, "wall_s": wall}
+        if task == "flutter-cli":
+            res["rows"] = [[r.get("mach"), r.get("omega_rad_s"), r.get("evaluations")] for r in json.loads(out.stdout)["rows"]]
+        else:
+            res["rows"] = json.loads(out.stdout.strip().splitlines()[-1])
+        return res
     out = subprocess.run([sys.executable, WORKER, task, str(inner)], cwd=tree, env=_env(tree), check=True,
                          capture_output=True, text=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -80,6 +91,16 @@ def _rel(a, b) -> float:
         return float("nan")
     scale = np.maximum(np.abs(a), 1e-300)
     return float(np.max(np.abs(a - b) / scale)) if a.size else 0.0
+
+
+def _rows_difference(old: list, new: list) -> str:
+    """Largest relative difference of the flutter Mach numbers and frequencies of two runs' rows, and evaluations."""
+    pairs = [(a, b) for a, b in zip(old, new) if a[0] is not None and b[0] is not None]
+    dm = max((abs(a[0] - b[0]) / abs(a[0]) for a, b in pairs), default=float("nan"))
+    dw = max((abs(a[1] - b[1]) / abs(a[1]) for a, b in pairs), default=float("nan"))
+    missing = sum((a[0] is None) != (b[0] is None) for a, b in zip(old, new)) + abs(len(old) - len(new))
+    ev = (sum(a[2] or 0 for a in old), sum(b[2] or 0 for b in new))
+    return f"{len(pairs)} points: M_F {dm:.1e}, omega_F {dw:.1e}, {missing} found by one run only; evaluations {ev[0]} -> {ev[1]}"
 
 
 def _difference(task: str, old: dict, new: dict) -> str:
@@ -136,9 +157,11 @@ def main() -> None:
                     runs[side].append(_run_worker(tree, task, args.inner))
             med = {s: statistics.median(r["cpu_s"] for r in runs[s]) for s in runs}
             extra = ""
-            if task in ("flutter-cli", "startup"):
+            if task in ("flutter-cli", "study", "startup"):
                 walls = {s: statistics.median(r["wall_s"] for r in runs[s]) for s in runs}
                 extra = f"wall {walls['ref']:.2f} -> {walls['new']:.2f} s (x{walls['ref'] / walls['new']:.2f}); CPU of the process tree"
+                if task != "startup":
+                    extra += "; " + _rows_difference(runs["ref"][-1]["rows"], runs["new"][-1]["rows"])
             elif task == "dense-eig":
                 eig = statistics.median(r["cpu_s"] for r in runs["new"] + runs["ref"])
                 e56 = statistics.median(r["eig56_cpu_s"] for r in runs["new"] + runs["ref"])

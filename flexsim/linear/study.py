@@ -393,7 +393,7 @@ def _run_pool(n, cases, todo, guess_for, finish, bar, attempts, max_attempts) ->
     while any(queues):
         pool = ProcessPoolExecutor(max_workers=n, initializer=_ignore_sigint)
         running: dict = {}
-        idle = [k for k in range(len(queues)) if queues[k]]
+        idle = sorted((k for k in range(len(queues)) if queues[k]), key=lambda k: _longest_first(cases, queues[k]))
         lost: list[tuple[int, int]] = []
         broken = False
         try:
@@ -436,6 +436,14 @@ def _run_pool(n, cases, todo, guess_for, finish, bar, attempts, max_attempts) ->
                     row = asdict(cases[i])
                     row["error"] = f"the worker process computing this point died {attempts[i]} times (killed or out of memory)"
                     finish(i, row, 0.0)
+
+
+def _longest_first(cases: Sequence[StudyCase], chain: list[int]) -> tuple:
+    """Order in which chains start on the pool: the costliest first (p-k and finite-state searches before
+    quasi-steady ones, higher altitudes, with more grid points below the flutter Mach, before lower, longer chains
+    before shorter), so that no worker is left with one long search at the end. Only the schedule depends on it."""
+    case = cases[chain[0]]
+    return (case.model == "QS", -case.altitude_m, -len(chain))
 
 
 def _stop_pool(pool: ProcessPoolExecutor) -> None:
