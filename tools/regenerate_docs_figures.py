@@ -18,7 +18,8 @@ climb search, and about 4 minutes for the baselines table):
 * ``readme-calibration`` (fast): README.md, US (Theodorsen p-k) flutter Mach of the bundled gtm against the
   paper's Table 3 at 0, 3048, 6096, 9144 m, as ``flexsim flutter --models US`` prints it;
 * ``flutter-level`` (fast): docs/flutter.md, US level-flight M_F / omega_F at 0 and 9144 m;
-* ``flutter-level-table``: docs/flutter.md, level flight US, FS, QS against the paper's Tables 2-3;
+* ``flutter-level-table``, ``calibration-level-us``, ``calibration-level-qs``: docs/flutter.md and
+  docs/calibration.md §4, level flight US, FS, QS against the paper's Tables 2-3;
 * ``flutter-glide`` (fast): docs/flutter.md, the direct glide trim at 9144 m (thrust zero, gamma unknown), US;
 * ``flutter-turn``, ``flutter-turn-trend``, ``flutter-turn-omega``, ``flutter-turn-tight``, ``flutter-turn-12km``,
   ``turn-effect-us``: docs/flutter.md (and docs/calibration.md), the turn study (``flexsim sweep --turn``'s
@@ -186,6 +187,35 @@ def flutter_level_table() -> str:
     modes = sorted({r["mode"] for r in (*us.values(), *fs.values())})
     return ("\n".join(lines) + f"\n\nTheodorsen p-k and finite state agree within {100 * worst:.1f} % in M_F "
             f"(acceptance: 2 %); dominant coordinate of the critical mode (US, FS): {', '.join(modes)}.\n")
+
+
+def calibration_level_us() -> str:
+    """docs/calibration.md §4: US and FS level flight with frequency, tip deflection and twist against Table 3."""
+    from flexsim.linear.paper_data import TABLE_US
+
+    us, fs = _level("US"), _level("FS")
+    lines = ["", "| h [m] | paper US M_F | flexsim US (p-k) | ΔM | FS | paper ω_F | flexsim ω_F | Δω | tip w [m] ours / paper | "
+             "twist [°] ours / paper |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for h, mach, omega, _, _, _, tip, twist in TABLE_US:
+        r = us[h]
+        lines.append(f"| {h:g} | {mach:.4f} | {r['mach']:.4f} | {100 * (r['mach'] / mach - 1):+.1f} % | {fs[h]['mach']:.4f} | "
+                     f"{omega:.3f} | {r['omega_rad_s']:.2f} | {100 * (r['omega_rad_s'] / omega - 1):+.1f} % | "
+                     f"{_num(r['tip_deflection_m'], '.3f')} / {_num(tip, '.4f')} | {r['tip_twist_deg']:.2f} / {twist:.4f} |")
+    return "\n".join(lines) + "\n"
+
+
+def calibration_level_qs() -> str:
+    """docs/calibration.md §4: QS level flight against Table 2, with the critical mode."""
+    from flexsim.linear.paper_data import TABLE_QS
+
+    qs = _level("QS")
+    lines = ["", "| h [m] | paper QS M_F / ω_F (Table 2) | flexsim QS | ΔM | critical mode (largest coordinate) |",
+             "|---|---|---|---|---|"]
+    for h, mach, omega, *_ in TABLE_QS:
+        r = qs[h]
+        lines.append(f"| {h:g} | {mach:.4f} / {omega:.3f} | {r['mach']:.4f} / {r['omega_rad_s']:.2f} | "
+                     f"{_num(100 * (r['mach'] / mach - 1), '+.1f')} % | {r['mode']} |")
+    return "\n".join(lines) + "\n"
 
 
 def flutter_level() -> str:
@@ -597,6 +627,8 @@ FIGURES: dict[str, Figure] = {
     "readme-calibration": Figure(readme_calibration, fast=True),
     "flutter-level": Figure(flutter_level, fast=True),
     "flutter-level-table": Figure(flutter_level_table),
+    "calibration-level-us": Figure(calibration_level_us),
+    "calibration-level-qs": Figure(calibration_level_qs),
     "flutter-glide": Figure(flutter_glide, fast=True),
     "flutter-turn": Figure(flutter_turn, study="turn"),
     "flutter-turn-trend": Figure(flutter_turn_trend, study="turn"),
