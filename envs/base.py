@@ -437,15 +437,20 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
 
     def _observe_rows(self, meas: MeasurementBatch, errors: np.ndarray, u: np.ndarray) -> np.ndarray:
         """Observations (m, n_obs) float32 of m aircraft (measurements, task errors (m, k), applied controls (m, 4))."""
-        psi = np.nan_to_num(wrap_angle(meas.euler_rad[:, 2]), nan=0.0)
-        columns = [meas.euler_rad[:, 0], meas.euler_rad[:, 1], psi, *meas.body_rates_rad_s.T, meas.airspeed_m_s, meas.alpha_rad,
-                   meas.beta_rad, meas.altitude_m, *errors.T]
-        for c in SENSOR_COMPONENTS:
-            columns += [meas.tip_deflection_m[c], meas.tip_deflection_rate_m_s[c], meas.tip_twist_rad[c], meas.tip_twist_rate_rad_s[c]]
-        columns += list(self.controls_to_action(u).T)
-        obs = np.column_stack(columns)
-        obs[np.isnan(obs)] = 0.0
-        return np.clip(obs, self._obs_low, self._obs_high).astype(np.float32)
+        m, k = errors.shape
+        obs = np.empty((m, self._obs_low.shape[0]))
+        obs[:, 0:3] = meas.euler_rad
+        obs[:, 2] = wrap_angle(meas.euler_rad[:, 2])
+        obs[:, 3:6] = meas.body_rates_rad_s
+        obs[:, 6], obs[:, 7], obs[:, 8], obs[:, 9] = meas.airspeed_m_s, meas.alpha_rad, meas.beta_rad, meas.altitude_m
+        obs[:, 10:10 + k] = errors
+        s = 10 + k + 4 * len(SENSOR_COMPONENTS)
+        # per component: deflection, its rate, twist, its rate (the first four outputs of the SensorBank)
+        obs[:, 10 + k:s] = meas.sensors[:, 0:4, :].transpose(0, 2, 1).reshape(m, -1)
+        obs[:, s:] = self.controls_to_action(u)
+        np.nan_to_num(obs, copy=False, nan=0.0)
+        np.clip(obs, self._obs_low, self._obs_high, out=obs)
+        return obs.astype(np.float32)
 
     # ------------------------------------------------------------------ introspection
     # The episode state, read from this env's row of its EpisodeBatch.

@@ -270,6 +270,8 @@ class TrackingReward:
     control_rate_scale: float = 0.1
     termination_penalty: float = 100.0
     _names: tuple[str, ...] = field(init=False, repr=False, compare=False)
+    _scales: np.ndarray = field(init=False, repr=False, compare=False)
+    _weights: np.ndarray = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "terms", tuple(self.terms))
@@ -281,6 +283,8 @@ class TrackingReward:
             object.__setattr__(self, name, _positive(name, getattr(self, name), allow_zero=True))
         object.__setattr__(self, "control_rate_scale", _positive("control_rate_scale", self.control_rate_scale))
         object.__setattr__(self, "_names", ("alive", *names, "control_rate", "termination"))
+        object.__setattr__(self, "_scales", np.array([t.scale for t in self.terms], dtype=float))
+        object.__setattr__(self, "_weights", -np.array([*(t.weight for t in self.terms), self.control_rate_weight], dtype=float))
 
     @property
     def part_names(self) -> tuple[str, ...]:
@@ -298,13 +302,20 @@ class TrackingReward:
         """The reward parts of m aircraft: task ``errors`` name -> (m,), action changes (m, 4), end flags (m,);
         name -> (m,) in :attr:`part_names` order. Non-finite errors count as saturated (cost -weight)."""
         m = len(terminated)
-        out = {"alive": np.full(m, float(self.alive))}
+        k = len(self.terms)
+        ratios = np.empty((m, k + 1))  # columns: the terms' errors over their scales, then the control-rate mean
+        for j, term in enumerate(self.terms):
+            ratios[:, j] = errors[term.error]
         with np.errstate(all="ignore"):
-            for term in self.terms:
-                ratio = np.asarray(errors[term.error], dtype=float) / term.scale
-                out[term.error] = -term.weight * np.where(np.isfinite(ratio), np.minimum(ratio * ratio, 1.0), 1.0)
-            rate = np.mean((np.asarray(action_change, dtype=float) / self.control_rate_scale) ** 2, axis=1)
-        out["control_rate"] = -self.control_rate_weight * np.where(np.isfinite(rate), np.minimum(rate, 1.0), 1.0)
+            ratios[:, :k] /= self._scales
+            np.multiply(ratios[:, :k], ratios[:, :k], out=ratios[:, :k])
+            ratios[:, k] = np.mean((np.asarray(action_change, dtype=float) / self.control_rate_scale) ** 2, axis=1)
+        costs = np.where(np.isfinite(ratios), np.minimum(ratios, 1.0), 1.0)
+        costs *= self._weights
+        out = {"alive": np.full(m, float(self.alive))}
+        for j, term in enumerate(self.terms):
+            out[term.error] = costs[:, j]
+        out["control_rate"] = costs[:, k]
         out["termination"] = np.where(terminated, -float(self.termination_penalty), 0.0)
         return out
 

@@ -123,6 +123,8 @@ class MeasurementBatch:
     tip_twist_rad: dict
     tip_twist_rate_rad_s: dict
     root_bending_moment_n_m: dict
+    #: All structural outputs, (N, 5, len(SENSOR_COMPONENTS)) (:meth:`flexsim.model.sensors.SensorBank.evaluate`).
+    sensors: np.ndarray
 
     def row(self, i: int) -> Measurements:
         """The :class:`Measurements` of state i (floats and copies)."""
@@ -404,7 +406,7 @@ class FlightDynamics:
         lay = self.layout
         x = np.asarray(x, dtype=float)
         n = x.shape[0]
-        t = np.broadcast_to(np.asarray(t, dtype=float), (n,)).copy()
+        t = np.array(t, dtype=float) if np.shape(t) == (n,) else np.full(n, float(t))
         pos, eul = x[:, lay.position].copy(), x[:, lay.euler].copy()
         altitude = -pos[:, 2]
         v_air = self._air_velocity(t, x, pos, eul, winds, packed)
@@ -415,7 +417,7 @@ class FlightDynamics:
         st = self.sensor_bank.evaluate(x)
         parts = [{c: st[:, k, j] for j, c in enumerate(SENSOR_COMPONENTS)} for k in range(4)]
         roots = {c: st[:, 4, j] for j, c in enumerate(SENSOR_COMPONENTS) if c != "vtail"}
-        return MeasurementBatch(t, pos, eul, x[:, lay.omega].copy(), speed, alpha, beta, mach, altitude, rates, *parts, roots)
+        return MeasurementBatch(t, pos, eul, x[:, lay.omega].copy(), speed, alpha, beta, mach, altitude, rates, *parts, roots, st)
 
     def _air_velocity(self, t, x, pos, eul, winds, packed) -> np.ndarray:
         """Body-axes velocity relative to the air at the body origin (N, 3) [m/s] (:meth:`measure_batch`)."""

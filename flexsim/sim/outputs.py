@@ -60,10 +60,8 @@ def air_angles(v_air_body: np.ndarray) -> tuple:
     ``v_air_body`` of shape (3,) gives three floats; of shape (N, 3) three arrays (N,) (batched environments)."""
     v = np.asarray(v_air_body, dtype=float)
     ua, va, wa = v[..., 0], v[..., 1], v[..., 2]
-    with np.errstate(all="ignore"):
-        speed = np.sqrt(ua * ua + va * va + wa * wa)
-        beta = np.where(speed > 0.0, np.arcsin(np.clip(va / np.where(speed > 0.0, speed, 1.0), -1.0, 1.0)), 0.0)
-        beta = np.where(np.isnan(speed), np.nan, beta)
+    speed = np.sqrt(ua * ua + va * va + wa * wa)
+    beta = np.arcsin(np.clip(va / np.where(speed > 0.0, speed, 1.0), -1.0, 1.0))  # v_a = 0 at zero airspeed: 0
     alpha = np.arctan2(wa, ua)
     if v.ndim == 1:
         return float(speed), float(alpha), float(beta)
