@@ -381,9 +381,9 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
 
     @staticmethod
     def _check_steppable(batch: EpisodeBatch, rows) -> None:
-        if not np.all(batch.started[rows]):
+        if not batch.started[rows].all():
             raise RuntimeError("step() called before reset()")
-        if np.any(batch.ended[rows]):
+        if batch.ended[rows].any():
             raise RuntimeError("step() called after the episode terminated; call reset()")
 
     def _step_rows(self, b: EpisodeBatch, rows: np.ndarray, a: np.ndarray, clipped: np.ndarray) -> RowsStep:
@@ -433,7 +433,10 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
                           ~(np.abs(meas.euler_rad[:, 1]) < lim.max_abs_pitch_rad),
                           ~((meas.mach < lim.max_mach) & (np.abs(meas.alpha_rad) < lim.max_abs_alpha_rad)
                             & (meas.airspeed_m_s > lim.min_airspeed_m_s))]
-        return np.select(conditions, [1, 2, 3, 4, 5], 0)
+        codes = np.zeros(len(wing), dtype=np.int64)
+        for code in range(len(conditions), 0, -1):  # the first condition that holds wins
+            codes[conditions[code - 1]] = code
+        return codes
 
     def _observe_rows(self, meas: MeasurementBatch, errors: np.ndarray, u: np.ndarray) -> np.ndarray:
         """Observations (m, n_obs) float32 of m aircraft (measurements, task errors (m, k), applied controls (m, 4))."""
@@ -448,7 +451,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         # per component: deflection, its rate, twist, its rate (the first four outputs of the SensorBank)
         obs[:, 10 + k:s] = meas.sensors[:, 0:4, :].transpose(0, 2, 1).reshape(m, -1)
         obs[:, s:] = self.controls_to_action(u)
-        np.nan_to_num(obs, copy=False, nan=0.0)
+        obs[np.isnan(obs)] = 0.0
         np.clip(obs, self._obs_low, self._obs_high, out=obs)
         return obs.astype(np.float32)
 
