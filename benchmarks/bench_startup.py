@@ -1,0 +1,90 @@
+"""Where the start-up of a process goes: import, GTM model, first right-hand side (issue 14 target <= 0.3 s beyond a
+numpy + scipy process).
+
+Each repeat runs fresh processes (so every import and every numba cache load is paid): one that only imports numpy
+and scipy (the baseline), and one that also imports numba and flexsim, builds the unsteady GTM model and evaluates
+one right-hand side. The second reports its CPU time per phase and every numba dispatcher loaded from the on-disk
+cache on first call (the first one also pays numba's one-off initialisation of its compilation target). Medians
+over the repeats; the load average is printed (CPU time is inflated less than wall time by other jobs).
+
+Run: python benchmarks/bench_startup.py [--repeats 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+CHILD = r"""
+import json, sys, time
+c0 = time.process_time()
+import numpy, scipy.linalg, scipy.integrate, scipy.optimize
+out = {"numpy_scipy": time.process_time() - c0}
+if sys.argv[1] == "full":
+    c = time.process_time()
+    import numba
+    from numba.core.dispatcher import Dispatcher
+    out["import_numba"] = time.process_time() - c
+    loads = []
+    original = Dispatcher._compile_for_args
+
+    def timed(self, *args, **kwargs):
+        t = time.process_time()
+        result = original(self, *args, **kwargs)
+        loads.append([self.py_func.__name__, time.process_time() - t])
+        return result
+
+    Dispatcher._compile_for_args = timed
+    c = time.process_time()
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.model.aircraft_model import AircraftModel
+    out["import_flexsim"] = time.process_time() - c
+    c = time.process_time()
+    model = AircraftModel(load_aircraft("gtm"), aero="unsteady")
+    out["model"] = time.process_time() - c
+    x = model.pack(position_m=[0.0, 0.0, -9144.0], velocity=numpy.r_[[230.0, 0.0, 10.0], numpy.zeros(model.structure.dofs.n_v - 3)])
+    c = time.process_time()
+    model.rhs(0.0, x, numpy.array([40e3, 0.0, 0.0, 0.0]))
+    out["first_rhs"] = time.process_time() - c
+    out["loads"] = loads
+out["total"] = time.process_time() - c0
+print(json.dumps(out))
+"""
+
+
+def run(kind: str) -> dict:
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    env["PYTHONPATH"] = root + os.pathsep + env.get("PYTHONPATH", "")
+    done = subprocess.run([sys.executable, "-c", CHILD, kind], capture_output=True, text=True, env=env, check=True, cwd=root)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    print(f"load average {os.getloadavg()[0]:.2f} at start; CPU seconds, median of {args.repeats} fresh processes")
+    base = [run("base") for _ in range(args.repeats)]
+    full = [run("full") for _ in range(args.repeats)]
+    med = lambda rows, key: statistics.median(r[key] for r in rows)  # noqa: E731
+    print(f"numpy + scipy only process: {med(base, 'total'):.3f} s")
+    for key, label in (("numpy_scipy", "import numpy + scipy"), ("import_numba", "import numba"),
+                       ("import_flexsim", "import flexsim (loader, model)"), ("model", "GTM unsteady model (load + build)"),
+                       ("first_rhs", "first right-hand side"), ("total", "total")):
+        print(f"  {label:<36} {med(full, key):.3f} s")
+    extra = med(full, "total") - med(base, "total")
+    print(f"start-up beyond numpy + scipy: {extra:.3f} s (target <= 0.3 s)")
+    names = [n for n, _ in full[0]["loads"]]
+    print("numba dispatchers loaded from the cache on first call (the first includes numba's target initialisation):")
+    for i, name in enumerate(names):
+        print(f"  {name:<24} {statistics.median(r['loads'][i][1] for r in full):.3f} s")
+    print(f"load average {os.getloadavg()[0]:.2f} at the end")
+
+
+if __name__ == "__main__":
+    main()
