@@ -287,3 +287,10 @@ def test_compiled_rows_report_as_the_single_aircraft_advance():
     assert batch[0].crashed and batch[1].failure.startswith("model error: ") and "ISA range" in batch[1].failure
     assert batch[2].failure == "" and not batch[2].crashed and batch[2].time_s == dyns[0].dt
     venv.close()
+
+
+def test_products_over_rows_follow_the_compiled_single_env(monkeypatch):
+    """Many rows step as GEMMs over the rows, one row through the compiled kernel: with the threshold at 2 the 3-row
+    batch takes the products and each single env the kernel; states equal to 1e-9 relative (rounding only)."""
+    monkeypatch.setattr(dynamics, "COMPILED_ROWS_BELOW", 2)
+    assert _compare_with_single("FlexSim/GTM-LevelHold-v0", steps=8) <= 1e-9
