@@ -34,6 +34,8 @@ climb search, and about 4 minutes for the baselines table):
 * ``validation-table`` (fast): docs/validation.md, every check of ``flexsim validate --json``;
 * ``options-coordinated-turn``, ``options-which-bank``, ``options-paper-turn`` (fast): docs/options.md, the
   coordinated and the paper's turn at 9144 m, M 0.78, R = 5 km (``studies/coordinated_turn.py``'s trim);
+* ``options-bending-incidence`` (fast): docs/options.md, static aeroelastic figures with the bending incidence
+  off and on (``studies/options_effects.py --skip-flutter``);
 * ``goland-compressible``, ``goland-incompressible-102`` (fast): docs/validation.md, docs/options.md,
   docs/design.md, the Goland wing with the Prandtl-Glauert factor on (1.225 kg/m^3) and off (1.02 kg/m^3);
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
@@ -559,6 +561,47 @@ def options_paper_turn() -> str:
             f"{_num(math.degrees(p.u[1]), '.1f')}° of aileron")
 
 
+def options_bending_incidence() -> str:
+    """Static aeroelastic figures at 9144 m, M 0.78 with the swept-wing bending incidence off and on
+    (``python studies/options_effects.py --skip-flutter``, whose functions compute them)."""
+    import importlib.util
+
+    import numpy as np
+
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.stability import spectrum
+    from flexsim.model.aircraft_model import AircraftModel
+    from flexsim.model.coupling import AeroOptions
+    from flexsim.trim import SteadyManoeuvre, trim
+
+    spec_ = importlib.util.spec_from_file_location("options_effects", ROOT / "studies" / "options_effects.py")
+    study = importlib.util.module_from_spec(spec_)
+    spec_.loader.exec_module(study)
+    gtm = load_aircraft("gtm")
+    cols = []
+    for bending in (False, True):
+        model = AircraftModel(gtm, aero=AeroOptions("quasi-steady", bending_incidence=bending))
+        cruise = trim(model, SteadyManoeuvre.level(9144.0, mach=0.78))
+        _, _, q, xi, vel = model.unpack(cruise.x)
+        kin = model.aero.kinematics(q, xi, vel, np.zeros(0), cruise.u)
+        tip = [i for i, c in enumerate(model.aero.strips.component) if c == "right_wing"][-1]
+        spec = spectrum(model, cruise.x, cruise.u, aero_model="quasi-steady")
+        roll = min((m for m in spec.of_kind("rigid") if m.eigenvalue.imag == 0.0), key=lambda m: m.eigenvalue.real)
+        pitch = math.degrees(kin.alpha_el[tip])
+        cols.append([f"{math.degrees(cruise.theta):.3f}° / {_num(math.degrees(cruise.u[2]), '.3f')}°",
+                     f"{_num(cruise.tip_deflection_m, '.3f')} m / {_num(math.degrees(cruise.tip_twist_rad), '+.3f')}°",
+                     f"{_num(pitch, '+.3f')}° ({'wash-in' if pitch > 0 else 'wash-out'})",
+                     f"{_num(roll.eigenvalue.real, '.3f')} 1/s",
+                     f"{study.aileron_effectiveness(gtm, bending, cruise):.3f}"])
+    labels = ["trim pitch θ / elevator", "tip deflection / tip torsion",
+              "pitch of the tip strip (torsion + bending slope + rigging)", "roll-subsidence root (free aircraft)",
+              "aileron effectiveness: rolling moment flexible / rigid (restrained at the cruise trim's α, static "
+              "elastic equilibrium)"]
+    lines = ["", "| | off (paper) | on |", "|---|---|---|"]
+    lines += [f"| {label} | {off} | {on} |" for label, off, on in zip(labels, *cols)]
+    return "\n".join(lines) + "\n"
+
+
 #: Goland's flutter speed at 1.225 kg/m^3 [m/s] (Goland 1945; the validation case's reference).
 GOLAND_U_F_M_S = 137.2
 
@@ -650,6 +693,7 @@ FIGURES: dict[str, Figure] = {
     "options-coordinated-turn": Figure(options_coordinated_turn, fast=True),
     "options-which-bank": Figure(options_which_bank, fast=True),
     "options-paper-turn": Figure(options_paper_turn, fast=True),
+    "options-bending-incidence": Figure(options_bending_incidence, fast=True),
     "goland-compressible": Figure(goland_compressible, fast=True),
     "goland-incompressible-102": Figure(goland_incompressible_102, fast=True),
     "env-baselines": Figure(env_baselines),
