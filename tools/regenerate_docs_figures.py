@@ -36,6 +36,8 @@ climb search, and about 4 minutes for the baselines table):
   coordinated and the paper's turn at 9144 m, M 0.78, R = 5 km (``studies/coordinated_turn.py``'s trim);
 * ``options-bending-incidence`` (fast): docs/options.md, static aeroelastic figures with the bending incidence
   off and on (``studies/options_effects.py --skip-flutter``);
+* ``options-effects-flutter`` (fast): docs/flutter.md, sea-level finite-state flutter with each issue-11 option switched
+  (``studies/options_effects.py``'s cases; about 15 s);
 * ``goland-compressible``, ``goland-incompressible-102`` (fast): docs/validation.md, docs/options.md,
   docs/design.md, the Goland wing with the Prandtl-Glauert factor on (1.225 kg/m^3) and off (1.02 kg/m^3);
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
@@ -602,6 +604,57 @@ def options_bending_incidence() -> str:
     return "\n".join(lines) + "\n"
 
 
+def _options_study():
+    """``studies/options_effects.py`` as a module (its ``_with`` builds the option variants of the aircraft)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("options_effects", ROOT / "studies" / "options_effects.py")
+    study = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(study)
+    return study
+
+
+def options_effects_flutter() -> str:
+    """Sea-level finite-state flutter of the bundled gtm with each issue-11 option switched (docs/flutter.md),
+    the cases and search of ``python studies/options_effects.py``."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.flutter import FlutterAnalysis
+    from flexsim.trim import SteadyManoeuvre
+
+    study, gtm = _options_study(), load_aircraft("gtm")
+    level = SteadyManoeuvre.level(0.0, mach=0.65)
+    cases = [("level flight, bundled `gtm`", gtm, level),
+             ("level flight, parasite drag off (the paper's induced drag only)", study._with(gtm, drag=()), level),
+             ("level flight, body moments and downwash off (the paper's strips)",
+              study._with(gtm, bodies=(), downwash_gradient=0.0), level),
+             ("level flight, bending incidence on", study._with(gtm, bending_incidence=True), level),
+             ("turn R = 5 km, the paper's (heading on track)", gtm, SteadyManoeuvre.turn(0.0, 5000.0, mach=0.65)),
+             ("turn R = 5 km, coordinated", gtm, SteadyManoeuvre.turn(0.0, 5000.0, mach=0.65, coordinated=True))]
+
+    def small(x: float, unit: str = "°") -> str:
+        return "0" if abs(x) < 0.005 else f"{_num(x, '+.2f')}{unit}"
+
+    def change(x: float, ref: float, floor: float) -> str:
+        return f" (< {floor:.0e})".replace("e-0", "e-") if abs(x - ref) < floor else f" ({_num(100 * (x / ref - 1), '+.2g')} %)"
+
+    lines = ["", "| case | M_F | ω_F [rad/s] | trim thrust | tip deflection | sideslip at the CG / rudder |",
+             "|---|---|---|---|---|---|"]
+    ref = None
+    for label, aircraft, manoeuvre in cases:
+        fp = FlutterAnalysis(aircraft, "unsteady").search(manoeuvre, mach_range=(0.6, 0.8), mach_step=0.05)
+        t = fp.trim
+        mach_text, omega_text = f"{fp.mach:.4f}", f"{fp.frequency_rad_s:.3f}"
+        if ref is None:
+            ref = fp
+        else:
+            mach_text += change(fp.mach, ref.mach, 1e-4)
+            if abs(fp.frequency_rad_s / ref.frequency_rad_s - 1) >= 0.01:
+                omega_text += change(fp.frequency_rad_s, ref.frequency_rad_s, 1e-3)
+        lines.append(f"| {label} | {mach_text} | {omega_text} | {t.thrust_n / 1e3:.1f} kN | {_num(t.tip_deflection_m, '.3f')} m | "
+                     f"{small(math.degrees(t.sideslip_cg))} / {small(math.degrees(t.u[3]))} |")
+    return "\n".join(lines) + "\n"
+
+
 #: Goland's flutter speed at 1.225 kg/m^3 [m/s] (Goland 1945; the validation case's reference).
 GOLAND_U_F_M_S = 137.2
 
@@ -694,6 +747,7 @@ FIGURES: dict[str, Figure] = {
     "options-which-bank": Figure(options_which_bank, fast=True),
     "options-paper-turn": Figure(options_paper_turn, fast=True),
     "options-bending-incidence": Figure(options_bending_incidence, fast=True),
+    "options-effects-flutter": Figure(options_effects_flutter, fast=True),
     "goland-compressible": Figure(goland_compressible, fast=True),
     "goland-incompressible-102": Figure(goland_incompressible_102, fast=True),
     "env-baselines": Figure(env_baselines),
