@@ -2,7 +2,7 @@
 random actions (SB3 and torch are optional, not flexsim dependencies).
 
     python -m pip install --find-links /opt/wheels "torch==2.13.0+cpu" "stable-baselines3>=2.4"   # CPU torch
-    OMP_NUM_THREADS=1 python examples/agents/train_sb3.py --minutes 15 --out logs/agent           # PPO on LevelHold-v1
+    OMP_NUM_THREADS=1 python examples/agents/train_sb3.py --minutes 9 --shaping 10 --out logs/agent   # PPO on LevelHold-v1
 
 Training stops at ``--steps`` environment steps or after ``--minutes`` of wall time, whichever comes first.
 Then the deterministic policy flies ``--eval-episodes`` seeded episodes (seeds 0, 1, ...; training uses seeds
@@ -24,6 +24,10 @@ are unchanged):
   commands zero thrust and random full-scale surfaces, which leaves the flight envelope within seconds; the
   task is local to the trim. An all-zero residual is the trim hold, which the evaluation reports beside
   the learned policy, so what learning adds is visible.
+* **Optional reward shaping** (``--shaping`` w, default 0, training only): potential-based shaping
+  ``gamma Phi(s') - Phi(s)`` (Ng, Harada & Russell 1999: it leaves the optimal policy unchanged) with
+  ``Phi = -w (|altitude error| / 30 m + |heading error| / 3 deg)``, unsaturated over LevelHold-v1's start
+  offsets, where the env's tracking costs saturate at 10 m and 2 deg. Training curves then show shaped returns.
 * **Normalised observations** (SB3 ``VecNormalize``): the observations mix metres (altitude 9144), m/s and
   radians. PPO's rewards are also scaled by a running estimate of the return's spread (training only;
   evaluation returns are the env's own).
@@ -110,7 +114,8 @@ class ResidualBatch:
     one call steps them all) with the actions of :class:`TrimResidualAction`; episodes restart in the step that ends
     them (gymnasium's SameStep autoreset). Aircraft i is seeded ``seed + i``."""
 
-    def __init__(self, env_id: str, num_envs: int, aero: str, scale: float, seed: int) -> None:
+    def __init__(self, env_id: str, num_envs: int, aero: str, scale: float, seed: int, shaping: float = 0.0,
+                 gamma: float = 0.99) -> None:
         import flexsim.envs  # noqa: F401  (registers the ids in a spawned worker)
 
         self.venv = gym.make_vec(env_id, num_envs=num_envs, vectorization_mode="vector_entry_point", aero=aero,
@@ -120,6 +125,18 @@ class ResidualBatch:
         self.observation_space = self.venv.single_observation_space
         self.num_envs, self.scale, self.seed = num_envs, scale, seed
         self.trim = np.zeros((num_envs, 4))
+        self.shaping = shaping
+        self.gamma = gamma
+        names = self.venv.envs[0].observation_names
+        self._i_errors = [names.index(n) for n in ("altitude_error_m", "heading_error_rad") if n in names]
+        if shaping > 0.0 and len(self._i_errors) != 2:
+            raise ValueError(f"shaping = {shaping}: {env_id} observes no altitude_error_m and heading_error_rad to shape on")
+        self._obs = None
+
+    def potential(self, obs: np.ndarray) -> np.ndarray:
+        """Phi = -shaping (|altitude error| / 30 m + |heading error| / 3 deg): unsaturated over the v1 start offsets."""
+        e = np.abs(np.asarray(obs, dtype=np.float64)[..., self._i_errors])
+        return -self.shaping * (e[..., 0] / 30.0 + e[..., 1] / math.radians(3.0))
 
     def _take_trim(self, info: dict) -> None:
         mask = info.get("_trim_action")
@@ -130,6 +147,7 @@ class ResidualBatch:
         obs, info = self.venv.reset(seed=self.seed)
         self.seed = None  # later resets continue each aircraft's random stream
         self._take_trim(info)
+        self._obs = obs
         return obs
 
     def step(self, actions: np.ndarray) -> tuple:
@@ -142,6 +160,13 @@ class ResidualBatch:
             infos[i]["terminal_observation"] = info["final_obs"][i]
             infos[i]["TimeLimit.truncated"] = bool(truncated[i] and not terminated[i])
         self._take_trim(info)
+        if self.shaping > 0.0:  # potential-based shaping gamma Phi(s') - Phi(s) (Ng et al. 1999), training only
+            nxt = obs.copy()
+            for i in np.flatnonzero(dones):
+                nxt[i] = infos[i]["terminal_observation"]
+            phi_next = np.where(terminated, 0.0, self.potential(nxt))
+            rewards = rewards + self.gamma * phi_next - self.potential(self._obs)
+        self._obs = obs
         return obs, rewards.astype(np.float32), dones, infos
 
     def close(self) -> None:
@@ -163,7 +188,8 @@ def _batch_worker(conn, args: tuple) -> None:
             return
 
 
-def make_batched_vec_env(env_id: str, num_envs: int, aero: str, scale: float, seed: int, processes: int = 1):
+def make_batched_vec_env(env_id: str, num_envs: int, aero: str, scale: float, seed: int, processes: int = 1, shaping: float = 0.0,
+                         gamma: float = 0.99):
     """An SB3 ``VecEnv`` of ``num_envs`` aircraft in ``processes`` batched envs (:class:`ResidualBatch`): in this
     process (1) or in worker processes, each stepping its share of the aircraft in one call. Aircraft i is
     seeded ``seed + i``."""
@@ -177,14 +203,14 @@ def make_batched_vec_env(env_id: str, num_envs: int, aero: str, scale: float, se
             self.local = None
             self.pipes = []
             if len(sizes) == 1:
-                self.local = ResidualBatch(env_id, num_envs, aero, scale, seed)
+                self.local = ResidualBatch(env_id, num_envs, aero, scale, seed, shaping, gamma)
                 space = self.local.observation_space
             else:
                 ctx = multiprocessing.get_context("spawn")
                 self.procs = []
                 for n, start in zip(sizes, starts):
                     parent, child = ctx.Pipe()
-                    proc = ctx.Process(target=_batch_worker, args=(child, (env_id, n, aero, scale, seed + int(start))), daemon=True)
+                    proc = ctx.Process(target=_batch_worker, args=(child, (env_id, n, aero, scale, seed + int(start), shaping, gamma)), daemon=True)
                     proc.start()
                     child.close()
                     self.pipes.append(parent)
@@ -296,7 +322,7 @@ def _evaluate(job: tuple) -> tuple[str, list[tuple[int, float, int, str]]]:
     return kind, [(seed, float(totals[i]), int(steps[i]), reasons[i]) for i, seed in enumerate(seeds)]
 
 
-def _plot(curve: list[tuple[int, float]], result: dict, path: Path, title: str, num_envs: int = 1) -> None:
+def _plot(curve: list[tuple[int, float]], result: dict, path: Path, title: str, num_envs: int = 1, shaped: bool = False) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -305,7 +331,7 @@ def _plot(curve: list[tuple[int, float]], result: dict, path: Path, title: str, 
     fig, ax = plt.subplots(figsize=(7, 4))
     if curve:
         steps, returns = np.array(curve).T
-        ax.plot(steps, returns, ".", ms=3, color="0.6", label="training episodes (stochastic policy)")
+        ax.plot(steps, returns, ".", ms=3, color="0.6", label="training episodes (stochastic policy" + (", shaped reward)" if shaped else ")"))
         k = max(len(returns) // 20, num_envs)  # at least one batch: the aircraft of a batch end their episodes together
         if len(returns) >= 2 * k >= 4:
             smooth = np.convolve(returns, np.ones(k) / k, mode="valid")
@@ -344,6 +370,8 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--learning-starts", type=int, default=1000, help="SAC/TD3: steps of random actions before learning [%(default)s]")
     parser.add_argument("--net", default="64,64", help="hidden layer sizes of policy and value nets [%(default)s]")
     parser.add_argument("--log-std-init", type=float, default=-1.0, help="PPO: initial log standard deviation of the actions [%(default)s]")
+    parser.add_argument("--shaping", type=float, default=0.0,
+                        help="batched: weight of the potential-based shaping on altitude and heading errors (training only) [%(default)s]")
     parser.add_argument("--sde", action="store_true", help="PPO: generalised state-dependent exploration (gSDE, resampled every 8 steps)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--eval-episodes", type=int, default=10, help="seeded evaluation episodes per policy [%(default)s]")
@@ -355,6 +383,8 @@ def main(argv: list[str] | None = None) -> None:
             parser.error(f"--{name.replace('_', '-')} = {getattr(args, name)}: must be >= 1")
     if not args.minutes > 0:
         parser.error(f"--minutes = {args.minutes}: must be > 0")
+    if not (math.isfinite(args.shaping) and args.shaping >= 0.0) or (args.shaping > 0.0 and args.vector != "batched"):
+        parser.error(f"--shaping = {args.shaping}: must be a finite number >= 0, and > 0 only with --vector batched")
     if not 0.0 < args.gamma < 1.0:
         parser.error(f"--gamma = {args.gamma}: must be in (0, 1)")
     try:
@@ -369,7 +399,8 @@ def main(argv: list[str] | None = None) -> None:
     args.out.mkdir(parents=True, exist_ok=True)
     first_seed = TRAIN_SEED + 100 * args.seed
     if args.vector == "batched":
-        venv = make_batched_vec_env(args.env, args.envs, args.aero, args.residual_scale, first_seed, args.processes)
+        venv = make_batched_vec_env(args.env, args.envs, args.aero, args.residual_scale, first_seed, args.processes, args.shaping,
+                                    args.gamma)
     else:
         fns = [_make_env(args.env, args.aero, args.residual_scale, first_seed + i) for i in range(args.envs)]
         venv = SubprocVecEnv(fns) if args.envs > 1 else DummyVecEnv(fns)
@@ -435,7 +466,8 @@ def main(argv: list[str] | None = None) -> None:
     result["trim_over_baseline"] = result["trim"]["mean_return"] / result["baseline"]["mean_return"]
     (args.out / "result.json").write_text(json.dumps(result, indent=1))
     _plot(curve, result, args.out / "learning_curve.png",
-          f"{args.algo} on {args.env}, {steps_done} steps in {train_s / 60:.1f} min; eval seeds 0-{args.eval_episodes - 1}", args.envs)
+          f"{args.algo} on {args.env}, {steps_done} steps in {train_s / 60:.1f} min; eval seeds 0-{args.eval_episodes - 1}", args.envs,
+          args.shaping > 0)
     print(f"trained {steps_done} steps in {train_s:.0f} s ({steps_done / train_s:.0f} steps/s, load average "
           f"{min(loads):.1f}-{max(loads):.1f}); evaluation over seeds 0-{args.eval_episodes - 1} ({result['eval_wall_s']:.0f} s):")
     for kind, label in (("agent", "agent (deterministic)"), ("baseline", "LQR baseline"), ("trim", "trim action held"),
