@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import root
@@ -70,6 +71,32 @@ def aileron_effectiveness(aircraft, bending: bool, cruise) -> float:
     return flex / rigid
 
 
+@dataclass(frozen=True)
+class StaticFigures:
+    """Static aeroelastic figures of the GTM cruise trim (9144 m, M 0.78, quasi-steady), one bending-incidence setting."""
+
+    theta_rad: float  #: trim pitch [rad]
+    elevator_rad: float  #: trim elevator [rad]
+    tip_deflection_m: float  #: right-wing tip deflection [m]
+    tip_twist_rad: float  #: right-wing tip torsion [rad]
+    tip_strip_pitch_rad: float  #: elastic pitch of the right-wing tip strip (torsion + bending slope + rigging) [rad]
+    roll_subsidence_1_s: float  #: real part of the roll-subsidence root of the free aircraft [1/s]
+    aileron_effectiveness: float  #: rolling moment flexible / rigid [-]
+
+
+def static_figures(aircraft, bending: bool) -> StaticFigures:
+    """Trim the cruise with bending incidence ``bending`` and return its :class:`StaticFigures`."""
+    model = AircraftModel(aircraft, aero=AeroOptions("quasi-steady", bending_incidence=bending))
+    cruise = trim(model, SteadyManoeuvre.level(9144.0, mach=0.78))
+    _, _, q, xi, vel = model.unpack(cruise.x)
+    kin = model.aero.kinematics(q, xi, vel, np.zeros(0), cruise.u)
+    tip = [i for i, c in enumerate(model.aero.strips.component) if c == "right_wing"][-1]
+    spec = spectrum(model, cruise.x, cruise.u, aero_model="quasi-steady")
+    roll = min((m for m in spec.of_kind("rigid") if m.eigenvalue.imag == 0.0), key=lambda m: m.eigenvalue.real)
+    return StaticFigures(cruise.theta, cruise.u[2], cruise.tip_deflection_m, cruise.tip_twist_rad,
+                         float(kin.alpha_el[tip]), roll.eigenvalue.real, aileron_effectiveness(aircraft, bending, cruise))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--skip-flutter", action="store_true")
@@ -77,18 +104,12 @@ def main() -> None:
     gtm = load_aircraft("gtm")
     print("static aeroelastic figures at 9144 m, M 0.78 (quasi-steady):")
     for bending in (False, True):
-        model = AircraftModel(gtm, aero=AeroOptions("quasi-steady", bending_incidence=bending))
-        cruise = trim(model, SteadyManoeuvre.level(9144.0, mach=0.78))
-        _, _, q, xi, vel = model.unpack(cruise.x)
-        kin = model.aero.kinematics(q, xi, vel, np.zeros(0), cruise.u)
-        tip = [i for i, c in enumerate(model.aero.strips.component) if c == "right_wing"][-1]
-        spec = spectrum(model, cruise.x, cruise.u, aero_model="quasi-steady")
-        roll = min((m for m in spec.of_kind("rigid") if m.eigenvalue.imag == 0.0), key=lambda m: m.eigenvalue.real)
-        eff = aileron_effectiveness(gtm, bending, cruise)
-        print(f"  bending incidence {'on ' if bending else 'off'}: theta {math.degrees(cruise.theta):.3f} deg, elevator "
-              f"{math.degrees(cruise.u[2]):.3f} deg, tip w {cruise.tip_deflection_m:+.3f} m, tip twist "
-              f"{math.degrees(cruise.tip_twist_rad):+.3f} deg, tip strip pitch {math.degrees(kin.alpha_el[tip]):+.3f} deg, "
-              f"roll subsidence {roll.eigenvalue.real:.3f} 1/s, aileron effectiveness (flexible/rigid) {eff:.3f}")
+        f = static_figures(gtm, bending)
+        print(f"  bending incidence {'on ' if bending else 'off'}: theta {math.degrees(f.theta_rad):.3f} deg, elevator "
+              f"{math.degrees(f.elevator_rad):.3f} deg, tip w {f.tip_deflection_m:+.3f} m, tip twist "
+              f"{math.degrees(f.tip_twist_rad):+.3f} deg, tip strip pitch {math.degrees(f.tip_strip_pitch_rad):+.3f} deg, "
+              f"roll subsidence {f.roll_subsidence_1_s:.3f} 1/s, aileron effectiveness (flexible/rigid) "
+              f"{f.aileron_effectiveness:.3f}")
     if args.skip_flutter:
         return
     print("flutter, sea level, finite-state unsteady model:")

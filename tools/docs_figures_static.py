@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import functools
 import math
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -159,36 +160,20 @@ def options_paper_turn() -> str:
 
 def options_bending_incidence() -> str:
     """Static aeroelastic figures at 9144 m, M 0.78 with the swept-wing bending incidence off and on
-    (``python studies/options_effects.py --skip-flutter``, whose functions compute them)."""
-    import importlib.util
-
-    import numpy as np
-
+    (``python studies/options_effects.py --skip-flutter``; its ``static_figures`` computes them)."""
     from flexsim.aircraft.toml_loader import load_aircraft
-    from flexsim.linear.stability import spectrum
-    from flexsim.model.aircraft_model import AircraftModel
-    from flexsim.model.coupling import AeroOptions
-    from flexsim.trim import SteadyManoeuvre, trim
 
-    spec_ = importlib.util.spec_from_file_location("options_effects", ROOT / "studies" / "options_effects.py")
-    study = importlib.util.module_from_spec(spec_)
-    spec_.loader.exec_module(study)
+    study = _options_study()
     gtm = load_aircraft("gtm")
     cols = []
     for bending in (False, True):
-        model = AircraftModel(gtm, aero=AeroOptions("quasi-steady", bending_incidence=bending))
-        cruise = trim(model, SteadyManoeuvre.level(9144.0, mach=0.78))
-        _, _, q, xi, vel = model.unpack(cruise.x)
-        kin = model.aero.kinematics(q, xi, vel, np.zeros(0), cruise.u)
-        tip = [i for i, c in enumerate(model.aero.strips.component) if c == "right_wing"][-1]
-        spec = spectrum(model, cruise.x, cruise.u, aero_model="quasi-steady")
-        roll = min((m for m in spec.of_kind("rigid") if m.eigenvalue.imag == 0.0), key=lambda m: m.eigenvalue.real)
-        pitch = math.degrees(kin.alpha_el[tip])
-        cols.append([f"{math.degrees(cruise.theta):.3f}° / {_num(math.degrees(cruise.u[2]), '.3f')}°",
-                     f"{_num(cruise.tip_deflection_m, '.3f')} m / {_num(math.degrees(cruise.tip_twist_rad), '+.3f')}°",
+        f = study.static_figures(gtm, bending)
+        pitch = math.degrees(f.tip_strip_pitch_rad)
+        cols.append([f"{math.degrees(f.theta_rad):.3f}° / {_num(math.degrees(f.elevator_rad), '.3f')}°",
+                     f"{_num(f.tip_deflection_m, '.3f')} m / {_num(math.degrees(f.tip_twist_rad), '+.3f')}°",
                      f"{_num(pitch, '+.3f')}° ({'wash-in' if pitch > 0 else 'wash-out'})",
-                     f"{_num(roll.eigenvalue.real, '.3f')} 1/s",
-                     f"{study.aileron_effectiveness(gtm, bending, cruise):.3f}"])
+                     f"{_num(f.roll_subsidence_1_s, '.3f')} 1/s",
+                     f"{f.aileron_effectiveness:.3f}"])
     labels = ["trim pitch θ / elevator", "tip deflection / tip torsion",
               "pitch of the tip strip (torsion + bending slope + rigging)", "roll-subsidence root (free aircraft)",
               "aileron effectiveness: rolling moment flexible / rigid (restrained at the cruise trim's α, static "
@@ -204,6 +189,7 @@ def _options_study():
 
     spec = importlib.util.spec_from_file_location("options_effects", ROOT / "studies" / "options_effects.py")
     study = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = study  # its dataclasses resolve their module by name while the module executes
     spec.loader.exec_module(study)
     return study
 

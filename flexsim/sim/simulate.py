@@ -228,6 +228,12 @@ class _Sinks:
     callback: Callable[[float], None] | None
     bar: object | None
 
+    def final(self, t: float, y: np.ndarray, u: np.ndarray) -> None:
+        """The last state of a run (t [s], y (n,), u (4,)) into the result, and into the log if finite."""
+        self.results.add(t, y, u)
+        if self.log is not None and np.all(np.isfinite(y)):
+            self.log.write(np.array([t]), y[None, :], u[None, :])
+
 
 @dataclass(frozen=True)
 class _Outcome:
@@ -625,10 +631,7 @@ def _integrate(problem: _Problem, settings: IntegrationSettings, sinks: _Sinks) 
         return dy
 
     def finish(t: float, y: np.ndarray) -> None:
-        u = u_of(t)
-        sinks.results.add(t, y, u)
-        if sink is not None and np.all(np.isfinite(y)):
-            sink.write(np.array([t]), y[None, :], u[None, :])
+        sinks.final(t, y, u_of(t))
 
     def run() -> tuple[str, str]:
         nonlocal u_of, h_next
@@ -796,10 +799,7 @@ def _integrate_compiled(problem: _Problem, settings: IntegrationSettings, sinks:
         return steppers[key]
 
     def finish(t: float, y: np.ndarray, u_of) -> None:
-        u = u_of(t)
-        sinks.results.add(t, y, u)
-        if sink is not None and np.all(np.isfinite(y)):
-            sink.write(np.array([t]), y[None, :], u[None, :])
+        sinks.final(t, y, u_of(t))
 
     def run() -> tuple[str, str]:
         nonlocal nfev, g_old
