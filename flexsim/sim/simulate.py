@@ -234,6 +234,22 @@ class _Sinks:
         if self.log is not None and np.all(np.isfinite(y)):
             self.log.write(np.array([t]), y[None, :], u[None, :])
 
+    def progress(self, t: float) -> None:
+        """Report that the run reached t [s] (the callback and the progress bar)."""
+        if self.callback is not None:
+            self.callback(t)
+        if self.bar is not None:
+            self.bar.update(t - self.bar.n)
+
+    def terminal_event(self, t: float, y: np.ndarray, u: np.ndarray, event, crossings: list) -> tuple[str, str]:
+        """A terminal event at t [s], state y: the final sample, the crossing, the log's error; returns (status, reason)."""
+        self.final(t, y, u)
+        crossings.append((t, event.name))
+        reason = event.describe(t, y)
+        if self.log is not None:
+            self.log.event(t, reason, "error")
+        return event.status, reason
+
 
 @dataclass(frozen=True)
 class _Outcome:
@@ -685,18 +701,10 @@ def _integrate(problem: _Problem, settings: IntegrationSettings, sinks: _Sinks) 
                 inclusive = hit is not None or solver.status != "finished" or b >= t_end
                 _emit(sinks, t_reached, sol, sol(t_reached), u_of, inclusive)
                 x = y_new
-                if sinks.callback is not None:
-                    sinks.callback(t_reached)
-                if sinks.bar is not None:
-                    sinks.bar.update(t_reached - sinks.bar.n)
+                sinks.progress(t_reached)
                 if hit is not None:
                     t_ev, ev = hit
-                    x_ev = sol(t_ev)
-                    finish(t_ev, x_ev)
-                    crossings.append((t_ev, ev.name))
-                    if sink is not None:
-                        sink.event(t_ev, ev.describe(t_ev, x_ev), "error")
-                    return ev.status, ev.describe(t_ev, x_ev)
+                    return sinks.terminal_event(t_ev, sol(t_ev), u_of(t_ev), ev, crossings)
             x = solver.y.copy()
             if steps:
                 h_next = max(steps[-2:]) if len(steps) > 1 else steps[-1]
@@ -837,18 +845,10 @@ def _integrate_compiled(problem: _Problem, settings: IntegrationSettings, sinks:
                     finished = hit is None and not bad and j_stop == k and t_reached >= b  # the solver's "finished"
                     inclusive = not finished or b >= t_end
                     _emit_steps(sinks, steps, j_stop, t_reached, sol, u_of, inclusive)
-                    if sinks.callback is not None:
-                        sinks.callback(t_reached)
-                    if sinks.bar is not None:
-                        sinks.bar.update(t_reached - sinks.bar.n)
+                    sinks.progress(t_reached)
                 if hit is not None:
                     t_ev, ev = hit
-                    x_ev = sol(t_ev)
-                    finish(t_ev, x_ev, u_of)
-                    crossings.append((t_ev, ev.name))
-                    if sink is not None:
-                        sink.event(t_ev, ev.describe(t_ev, x_ev), "error")
-                    return ev.status, ev.describe(t_ev, x_ev)
+                    return sinks.terminal_event(t_ev, sol(t_ev), u_of(t_ev), ev, crossings)
                 if bad:
                     finish(float(steps.t[-1]), steps.x[-1], u_of)
                     return "non_finite", (f"non-finite state: the state or the right-hand side stopped being finite at "
