@@ -9,8 +9,9 @@ Then the deterministic policy flies ``--eval-episodes`` seeded episodes (seeds 0
 from 1000), beside the classical baseline of ``examples/agents/baselines.py`` (LQR), the trim action held and
 uniformly random actions, on the same seeds, in ``--workers`` processes. The script prints the four mean
 returns and the ratios to the baseline, writes them to ``<out>/result.json`` (with the settings, wall times
-and the 1-minute load average sampled every 30 s) and draws the learning curve (training episode returns
-against environment steps, with the evaluation means as horizontal lines) to ``<out>/learning_curve.png``.
+the 1-minute load average sampled every 30 s and the training episodes' returns) and draws the learning curve
+(training episode returns against environment steps, with the evaluation means as horizontal lines) to
+``<out>/learning_curve.png``. ``--plot RESULT_JSON [--png PNG]`` redraws that figure from a result.json alone.
 
 The default task is ``FlexSim/GTM-LevelHold-v1``: on v0 the trim controls held already return 93 % of the LQR
 baseline's return, so no learning can show there (docs/environments.md, "A learning agent").
@@ -322,30 +323,50 @@ def _evaluate(job: tuple) -> tuple[str, list[tuple[int, float, int, str]]]:
     return kind, [(seed, float(totals[i]), int(steps[i]), reasons[i]) for i, seed in enumerate(seeds)]
 
 
-def _plot(curve: list[tuple[int, float]], result: dict, path: Path, title: str, num_envs: int = 1, shaped: bool = False) -> None:
+def plot_result(result: dict, path: Path) -> Path:
+    """Draw the learning curve of a run from its ``result.json`` contents to ``path`` (PNG), without training.
+
+    The training episodes' returns (``result["training_episodes"]``: grey dots and a running mean over at least one
+    batch of aircraft) or, for runs that saved none, SB3's mean of the last 100 training episodes
+    (``result["training_curve"]``); with shaping (``settings["shaping"] > 0``) these are shaped returns, and the
+    labels say so. Horizontal lines: the evaluation means of the agent, the LQR baseline, the trim hold and random
+    actions on the env's own reward."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    settings = result["settings"]
+    shaping = float(settings.get("shaping", 0.0))
+    reward = f"reward shaped with --shaping {shaping:g}" if shaping > 0 else "env reward"
     fig, ax = plt.subplots(figsize=(7, 4))
-    if curve:
-        steps, returns = np.array(curve).T
-        ax.plot(steps, returns, ".", ms=3, color="0.6", label="training episodes (stochastic policy" + (", shaped reward)" if shaped else ")"))
-        k = max(len(returns) // 20, num_envs)  # at least one batch: the aircraft of a batch end their episodes together
+    episodes, curve = result.get("training_episodes"), result.get("training_curve")
+    if episodes and episodes["steps"]:
+        steps, returns = np.asarray(episodes["steps"], float), np.asarray(episodes["return"], float)
+        ax.plot(steps, returns, ".", ms=3, color="0.6", label=f"training episodes (stochastic policy, {reward})")
+        k = max(len(returns) // 20, int(settings.get("envs", 1)))  # at least one batch: its aircraft end their episodes together
         if len(returns) >= 2 * k >= 4:
             smooth = np.convolve(returns, np.ones(k) / k, mode="valid")
-            ax.plot(steps[k - 1:], smooth, color="C0", label=f"running mean of {k}")
-    for key, color, label in (("agent", "C0", "agent, deterministic"), ("baseline", "C3", "LQR baseline"), ("trim", "C2", "trim action held"),
-                                ("random", "C7", "random actions")):
-        ax.axhline(result[key]["mean_return"], color=color, ls="--", lw=1, label=f"{label}: {result[key]['mean_return']:.0f} (eval mean)")
+            ax.plot(steps[k - 1:], smooth, color="C0", label=f"training: running mean of {k} episodes")
+    elif curve and curve["steps"]:
+        ax.plot(curve["steps"], curve["mean_return_100"], color="C0", drawstyle="steps-post",
+                label=f"training: mean of the last 100 episodes (stochastic policy, {reward})")
+    agent = "agent with shaping" if shaping > 0 else "agent"
+    for key, color, label in (("agent", "C0", f"{agent}, deterministic"), ("baseline", "C3", "LQR baseline"),
+                              ("trim", "C2", "trim action held"), ("random", "C7", "random actions")):
+        ax.axhline(result[key]["mean_return"], color=color, ls="--", lw=1,
+                   label=f"{label}: {result[key]['mean_return']:.0f} (eval mean, env reward)")
+    seeds = result["seeds"]
+    ax.set_title(f"{result['algo']} on {result['env']}{' with reward shaping (training only)' if shaping > 0 else ''}\n"
+                 f"{result['train_steps']} steps in {result['train_wall_s'] / 60:.1f} min; eval seeds {seeds[0]}-{seeds[-1]}",
+                 fontsize=9)
     ax.set_xlabel("environment steps")
     ax.set_ylabel("episode return")
-    ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7, loc="lower right")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+    return Path(path)
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -377,7 +398,18 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--eval-episodes", type=int, default=10, help="seeded evaluation episodes per policy [%(default)s]")
     parser.add_argument("--out", type=Path, default=Path("logs/agent"))
     parser.add_argument("--torch-threads", type=int, default=1, help="torch intra-op threads of the learner [1]")
+    parser.add_argument("--plot", type=Path, metavar="RESULT_JSON",
+                        help="only redraw the learning curve of a finished run from its result.json (no training; "
+                             "to --png, default: learning_curve.png beside the json)")
+    parser.add_argument("--png", type=Path, help="with --plot: the PNG to write")
     args = parser.parse_args(argv)
+    if args.plot is not None:
+        try:
+            result = json.loads(args.plot.read_text(encoding="utf-8"))
+        except (OSError, ValueError) as exc:
+            parser.error(f"--plot {args.plot}: cannot read a result.json ({exc})")
+        print(f"drew {plot_result(result, args.png or args.plot.with_name('learning_curve.png'))}")
+        return
     for name in ("steps", "envs", "processes", "workers", "torch_threads", "eval_episodes", "n_steps", "batch_size", "epochs", "gradient_steps"):
         if getattr(args, name) < 1:
             parser.error(f"--{name.replace('_', '-')} = {getattr(args, name)}: must be >= 1")
@@ -464,10 +496,9 @@ def main(argv: list[str] | None = None) -> None:
                         "terminations": [e[3] for e in episodes[kind] if e[3]]}
     result["agent_over_baseline"] = result["agent"]["mean_return"] / result["baseline"]["mean_return"]
     result["trim_over_baseline"] = result["trim"]["mean_return"] / result["baseline"]["mean_return"]
+    result["training_episodes"] = {"steps": [c[0] for c in curve], "return": [c[1] for c in curve]}
     (args.out / "result.json").write_text(json.dumps(result, indent=1))
-    _plot(curve, result, args.out / "learning_curve.png",
-          f"{args.algo} on {args.env}, {steps_done} steps in {train_s / 60:.1f} min; eval seeds 0-{args.eval_episodes - 1}", args.envs,
-          args.shaping > 0)
+    plot_result(result, args.out / "learning_curve.png")
     print(f"trained {steps_done} steps in {train_s:.0f} s ({steps_done / train_s:.0f} steps/s, load average "
           f"{min(loads):.1f}-{max(loads):.1f}); evaluation over seeds 0-{args.eval_episodes - 1} ({result['eval_wall_s']:.0f} s):")
     for kind, label in (("agent", "agent (deterministic)"), ("baseline", "LQR baseline"), ("trim", "trim action held"),
