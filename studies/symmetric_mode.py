@@ -50,7 +50,7 @@ import math
 import os
 import sys
 import time
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -195,20 +195,49 @@ def bounds_table(rows: list[dict]) -> str:
     return "\n".join(out)
 
 
-def census(ac, model: str, formulation: str, fixed: float | None, altitude: float, mach: float, fmax: float) -> str:
+@dataclass(frozen=True)
+class CensusMode:
+    """One mode of the census at a flight point (rigid-body or elastic, positive frequency)."""
+
+    frequency_rad_s: float  #: damped frequency [rad/s]
+    real_1_s: float  #: real part of the eigenvalue [1/s]
+    damping_ratio: float  #: [-]
+    kind: str  #: "rigid" or "elastic"
+    sym_share: float  #: symmetric share of the kinetic energy [-] (> 0.5: the symmetric class)
+    qf1_ratio: float  #: |q_f1| / largest linear elastic coordinate [-]
+    largest: str  #: the largest linear elastic coordinate
+    dominant: str  #: the dominant degree of freedom (energy)
+
+    @property
+    def symmetric(self) -> bool:
+        return self.sym_share > 0.5
+
+
+def census_modes(ac, model: str, formulation: str, fixed: float | None, altitude: float, mach: float,
+                 fmax: float) -> tuple[CensusMode, ...]:
+    """Every rigid-body and elastic mode up to ``fmax`` [rad/s] in level flight at (``altitude`` [m], ``mach``),
+    by frequency (aerodynamic lag modes and the elastic modes' zero-frequency roots left out)."""
     cb = ClassBoundary(ac, altitude, model, formulation, fixed)
     cb.dec.g("level", mach)
     _, spec, lin_model = cb.dec.last
-    out = [f"elastic and rigid-body modes at h {altitude:.0f} m, M {mach:.4f} ({model}):",
-           "| ω [rad/s] | Re [1/s] | ζ | class (sym share) | q_f1 ratio | largest linear coordinate | dominant (energy) |",
-           "|---|---|---|---|---|---|---|"]
+    out = []
     for m in sorted(spec.modes, key=lambda m: m.frequency_rad_s):
         if m.kind == "aerodynamic" or m.frequency_rad_s > fmax or m.eigenvalue.imag < 0 or (m.kind == "elastic" and m.frequency_rad_s < 0.5):
             continue
         info = mode_info(lin_model, m)
-        cls = "sym" if info["sym_share"] > 0.5 else "anti"
-        out.append(f"| {m.frequency_rad_s:.2f}{' (rigid)' if m.kind == 'rigid' else ''} | {m.eigenvalue.real:+.3f} | {m.damping_ratio:+.3f} | {cls} ({info['sym_share']:.2f}) | "
-                   f"{info['qf1_ratio']:.2f} | {info['largest']} | {m.dominant_dof} |")
+        out.append(CensusMode(float(m.frequency_rad_s), float(m.eigenvalue.real), float(m.damping_ratio), m.kind,
+                              info["sym_share"], info["qf1_ratio"], info["largest"], m.dominant_dof))
+    return tuple(out)
+
+
+def census(ac, model: str, formulation: str, fixed: float | None, altitude: float, mach: float, fmax: float) -> str:
+    out = [f"elastic and rigid-body modes at h {altitude:.0f} m, M {mach:.4f} ({model}):",
+           "| ω [rad/s] | Re [1/s] | ζ | class (sym share) | q_f1 ratio | largest linear coordinate | dominant (energy) |",
+           "|---|---|---|---|---|---|---|"]
+    for m in census_modes(ac, model, formulation, fixed, altitude, mach, fmax):
+        cls = "sym" if m.symmetric else "anti"
+        out.append(f"| {m.frequency_rad_s:.2f}{' (rigid)' if m.kind == 'rigid' else ''} | {m.real_1_s:+.3f} | {m.damping_ratio:+.3f} | {cls} ({m.sym_share:.2f}) | "
+                   f"{m.qf1_ratio:.2f} | {m.largest} | {m.dominant} |")
     return "\n".join(out)
 
 

@@ -38,7 +38,8 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["Check", "CaseResult", "ValidationCase", "builtin_cases", "load_case", "run_case", "case_names"]
+__all__ = ["Check", "CaseResult", "PhugoidPoint", "ValidationCase", "builtin_cases", "load_case", "phugoid_point", "run_case",
+           "case_names"]
 
 
 @dataclass(frozen=True)
@@ -201,27 +202,54 @@ def _conservation() -> list[Check]:
             Check("angular momentum drift |dH_O|/|H_O0|", "-", 0.0, float(np.linalg.norm(h1 - h0) / np.linalg.norm(h0)), 1e-9, src, absolute=True)]
 
 
-def _phugoid() -> list[Check]:
+@dataclass(frozen=True)
+class PhugoidPoint:
+    """The phugoid of the quasi-rigid GTM at one level-flight point (quasi-steady, incompressible) with
+    Lanchester's closed forms beside it (Lanchester 1908; Etkin & Reid 1996, sec. 6.4)."""
+
+    omega_rad_s: float  #: natural frequency |lambda| of the phugoid root [rad/s] (NaN if none in 0.02-0.3 rad/s)
+    damping_ratio: float  #: its damping ratio [-]
+    lanchester_omega_rad_s: float  #: sqrt(2) g / V [rad/s]
+    lanchester_damping_ratio: float  #: D / (sqrt(2) L) of the trim [-]
+    lift_to_drag: float  #: L / D of the trim [-]
+    static_margin: float  #: neutral point behind the CG as a fraction of the mean aerodynamic chord [-]
+
+
+def phugoid_point(altitude_m: float = 6000.0, mach: float = 0.6, *, body_moments: bool = False,
+                  downwash: bool = False, parasite_drag: bool = True) -> PhugoidPoint:
+    """Trim the quasi-rigid bundled GTM in level flight (quasi-steady, incompressible, with the given
+    :class:`~flexsim.model.coupling.AeroOptions` switches) and return its phugoid against Lanchester's.
+
+    The defaults are the ``phugoid-lanchester`` case: Lanchester's model is the limit of a stiff pitch (constant
+    angle of attack), which the strips-only aircraft (no fuselage/nacelle moments, no tail downwash: the largest
+    static margin) is closest to.
+    """
     from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.linear.stability import spectrum
     from flexsim.model.aircraft_model import AircraftModel
     from flexsim.model.coupling import AeroOptions
     from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trim.margin import static_margin
 
-    # Lanchester's model is the limit of a stiff pitch (constant angle of attack): the strips-only aircraft (no
-    # fuselage/nacelle moments, no tail downwash; neutral point 59 % of the chord behind the CG) is closest to it
-    options = AeroOptions("quasi-steady", compressibility="none", body_moments=False, downwash=False)
+    options = AeroOptions("quasi-steady", compressibility="none", body_moments=body_moments, downwash=downwash,
+                          parasite_drag=parasite_drag)
     model = AircraftModel(load_aircraft("gtm"), aero=options, variant="quasi-rigid")
-    man = SteadyManoeuvre.level(6000.0, mach=0.6)
+    man = SteadyManoeuvre.level(altitude_m, mach=mach)
     point = trim(model, man)
     spec = spectrum(model, point.x, point.u, aero_model="quasi-steady")
     phugoid = [m for m in spec.of_kind("rigid") if 0.02 < m.frequency_rad_s < 0.3]
-    omega = abs(phugoid[0].eigenvalue) if phugoid else np.nan
-    zeta = phugoid[0].damping_ratio if phugoid else np.nan
-    lanchester = math.sqrt(2.0) * model.gravity_m_s2 / man.speed_m_s
+    omega = float(abs(phugoid[0].eigenvalue)) if phugoid else math.nan
+    zeta = float(phugoid[0].damping_ratio) if phugoid else math.nan
+    return PhugoidPoint(omega, zeta, math.sqrt(2.0) * model.gravity_m_s2 / man.speed_m_s,
+                        point.drag_n / (math.sqrt(2.0) * point.lift_n), point.lift_n / point.drag_n,
+                        static_margin(model, point).fraction_of_mac)
+
+
+def _phugoid() -> list[Check]:
+    p = phugoid_point()
     src = "Lanchester (1908): omega = sqrt(2) g / V, zeta = D / (sqrt(2) L); Etkin & Reid (1996), Dynamics of Flight, sec. 6.4"
-    return [Check("phugoid natural frequency", "rad/s", lanchester, omega, 0.05, src),
-            Check("phugoid damping ratio", "-", point.drag_n / (math.sqrt(2.0) * point.lift_n), zeta, 0.2, src)]
+    return [Check("phugoid natural frequency", "rad/s", p.lanchester_omega_rad_s, p.omega_rad_s, 0.05, src),
+            Check("phugoid damping ratio", "-", p.lanchester_damping_ratio, p.damping_ratio, 0.2, src)]
 
 
 def _coordinated_turn() -> list[Check]:
