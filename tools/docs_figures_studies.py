@@ -124,10 +124,10 @@ def symmetric_census() -> str:
     sp = [m for m in us0 if m.kind == "rigid" and m.symmetric and m.frequency_rad_s > 1.0]
     if not sp:
         raise RuntimeError("symmetric-census: no short-period mode in the census")
-    ratios = [m.qf1_ratio for m in (a, b, c)]
     return (f"{a.frequency_rad_s:.2f} rad/s, ζ = {a.damping_ratio:.3f} at sea level, M 0.6742 (p-k; QS: "
             f"{b.frequency_rad_s:.2f} rad/s, ζ = {b.damping_ratio:.3f}) and {c.frequency_rad_s:.2f} rad/s, "
-            f"ζ = {c.damping_ratio:.3f} at 9144 m, M 0.78, q_f1 {min(ratios):.2f}-{max(ratios):.2f} of the wing bending; "
+            f"ζ = {c.damping_ratio:.3f} at 9144 m, M 0.78 (q_f1 {a.qf1_ratio:.2f} / {b.qf1_ratio:.2f} / {c.qf1_ratio:.2f} of the wing "
+            f"bending in these three); "
             f"the short period is at {sp[0].frequency_rad_s:.2f} rad/s (ζ {sp[0].damping_ratio:.2f})")
 
 
@@ -151,7 +151,7 @@ def typical_section_kf() -> str:
 
     section = TypicalSection(a=-0.2, e=-0.1, mu=20.0, r2=0.24, sigma=0.4)  # docs/validation.md, the case's section
     t, p = flutter_analysis(section, "theodorsen"), flutter_analysis(section, "peters", 6)
-    return (f"k_F = {t.flutter_frequency / t.flutter_speed:.4f}); ... Peters' N = 6 approximation changes it by "
+    return (f"k_F = {t.flutter_frequency / t.flutter_speed:.4f}; Peters' N = 6 approximation changes U_F by "
             f"{_num(100 * (p.flutter_speed / t.flutter_speed - 1), '+.2f')} %")
 
 
@@ -219,3 +219,16 @@ def validation_phugoid_case() -> str:
     """L/D and static margin of the ``phugoid-lanchester`` case's trim (6000 m, M 0.6, strips only)."""
     p = _phugoid()
     return f"L/D = {p.lift_to_drag:.1f}; neutral point {100 * p.static_margin:.0f} % of the mean chord behind the CG"
+
+
+#: The figures of this module: name -> (function, fast). ``regenerate_docs_figures.py`` registers them.
+STUDY_FIGURES = {
+    "density-paper": (density_paper, True),
+    "symmetric-census": (symmetric_census, True),
+    "calibration-static-paper": (calibration_static_paper, True),
+    "typical-section-kf": (typical_section_kf, True),
+    "validation-phugoid-case": (validation_phugoid_case, True),
+    "validation-phugoid": (validation_phugoid, True),
+    "validation-phugoid-range": (validation_phugoid_range, True),
+    "goland-lift-slope-085": (goland_lift_slope_085, True),
+}

@@ -79,6 +79,7 @@ from docs_figures_static import (_num, goland_compressible, goland_incompressibl
                                  options_bending_incidence, options_coordinated_turn, options_effects_flutter,
                                  options_glide, options_lift_drag, options_paper_turn, options_static_margin,
                                  options_which_bank, validation_table)
+from docs_figures_studies import STUDY_FIGURES  # noqa: E402
 from docs_figures_usage import USAGE_FIGURES  # noqa: E402
 
 REGION = re.compile(r"<!-- figures:(?P<name>[\w-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.DOTALL)
@@ -496,6 +497,7 @@ FIGURES: dict[str, Figure] = {
     "goland-incompressible-102": Figure(goland_incompressible_102, fast=True),
     "env-baselines": Figure(env_baselines),
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in USAGE_FIGURES.items()},
+    **{name: Figure(compute, fast=fast) for name, (compute, fast) in STUDY_FIGURES.items()},
 }
 
 
