@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -45,18 +46,36 @@ def main() -> None:
     print(f"  load factor |F|/W = {point.load_factor_total:.5f} (closed form {math.hypot(1, ratio):.5f}), n_z = {point.load_factor:.5f}")
     print(f"  controls: thrust {point.u[0] / 1e3:.2f} kN, aileron {math.degrees(point.u[1]):.3f}, elevator "
           f"{math.degrees(point.u[2]):.3f}, rudder {math.degrees(point.u[3]):.3f} deg")
-    model = AircraftModel(gtm, aero=args.aero)
+    hold = hold_trim(gtm, point, man, args.duration, args.aero)
+    print(f"hold {args.duration:.0f} s ({args.aero}, {hold.method}, {hold.status}): max |altitude drift| "
+          f"{hold.altitude_drift_m:.3e} m, max |bank drift| {hold.bank_drift_deg:.3e} deg, heading rate "
+          f"{hold.heading_rate_rad_s:.6f} rad/s (V/R = {hold.v_over_r_rad_s:.6f})")
+
+
+class Hold(NamedTuple):
+    """Drifts of a trimmed turn flown with the trim's controls held (``hold_trim``)."""
+
+    altitude_drift_m: float  # max |altitude - altitude at t = 0| [m]
+    bank_drift_deg: float  # max |phi - trim phi| [deg]
+    heading_rate_rad_s: float  # mean heading rate over the run [rad/s]
+    v_over_r_rad_s: float  # the turn rate V/R of the manoeuvre [rad/s]
+    method: str  # integration method of ``simulate`` (its default for the aero model)
+    status: str
+
+
+def hold_trim(gtm, point, man: SteadyManoeuvre, duration_s: float, aero: str = "unsteady") -> Hold:
+    """Fly the trim point ``point`` of ``man`` for ``duration_s`` with its controls held (nonlinear model, inflow
+    states starting at zero, ``simulate``'s default integrator) and measure the drifts."""
+    model = AircraftModel(gtm, aero=aero)
     x0 = np.concatenate([point.x, np.zeros(model.layout.n_inflow)])
-    result = simulate(model, x0, args.duration, controls=point.u)
+    result = simulate(model, x0, duration_s, controls=point.u)
     lay = model.layout
     alt = -result.x[:, lay.position][:, 2]
     phi = result.x[:, lay.euler][:, 0]
     psi = result.x[:, lay.euler][:, 2]
     rate = (psi[-1] - psi[0]) / (result.t[-1] - result.t[0])
-    print(f"hold {args.duration:.0f} s ({args.aero}, {result.status}): max |altitude drift| {np.abs(alt - alt[0]).max():.3e} m, "
-          f"max |bank drift| {np.degrees(np.abs(phi - point.phi).max()):.3e} deg, heading rate {rate:.6f} rad/s "
-          f"(V/R = {v / radius:.6f})")
-
+    return Hold(float(np.abs(alt - alt[0]).max()), float(np.degrees(np.abs(phi - point.phi).max())), float(rate),
+                man.speed_m_s / man.turn_radius_m, result.method, result.status)
 
 if __name__ == "__main__":
     main()

@@ -194,9 +194,11 @@ def _options_study():
     return study
 
 
-def options_effects_flutter() -> str:
-    """Sea-level finite-state flutter of the bundled gtm with each issue-11 option switched (docs/flutter.md),
-    the cases and search of ``python studies/options_effects.py``."""
+@functools.cache
+def options_effects_points() -> tuple:
+    """Sea-level finite-state flutter points of the bundled gtm with each issue-11 option switched, the cases and
+    search of ``python studies/options_effects.py``: ``((label, FlutterPoint), ...)``, the bundled gtm first and the
+    parasite drag off second."""
     from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.linear.flutter import FlutterAnalysis
     from flexsim.trim import SteadyManoeuvre
@@ -210,7 +212,13 @@ def options_effects_flutter() -> str:
              ("level flight, bending incidence on", study._with(gtm, bending_incidence=True), level),
              ("turn R = 5 km, the paper's (heading on track)", gtm, SteadyManoeuvre.turn(0.0, 5000.0, mach=0.65)),
              ("turn R = 5 km, coordinated", gtm, SteadyManoeuvre.turn(0.0, 5000.0, mach=0.65, coordinated=True))]
+    return tuple((label, FlutterAnalysis(aircraft, "unsteady").search(manoeuvre, mach_range=(0.6, 0.8), mach_step=0.05))
+                 for label, aircraft, manoeuvre in cases)
 
+
+def options_effects_flutter() -> str:
+    """Sea-level finite-state flutter of the bundled gtm with each issue-11 option switched (docs/flutter.md),
+    the cases and search of ``python studies/options_effects.py``."""
     def small(x: float, unit: str = "°") -> str:
         return "0" if abs(x) < 0.005 else f"{_num(x, '+.2f')}{unit}"
 
@@ -220,8 +228,7 @@ def options_effects_flutter() -> str:
     lines = ["", "| case | M_F | ω_F [rad/s] | trim thrust | tip deflection | sideslip at the CG / rudder |",
              "|---|---|---|---|---|---|"]
     ref = None
-    for label, aircraft, manoeuvre in cases:
-        fp = FlutterAnalysis(aircraft, "unsteady").search(manoeuvre, mach_range=(0.6, 0.8), mach_step=0.05)
+    for label, fp in options_effects_points():
         t = fp.trim
         mach_text, omega_text = f"{fp.mach:.4f}", f"{fp.frequency_rad_s:.3f}"
         if ref is None:

@@ -133,6 +133,195 @@ def agent_v0_run() -> str:
             f"{'without beating' if r['agent']['mean_return'] < r['trim']['mean_return'] else 'and beats'} the trim hold")
 
 
+
+# --- docs/options.md ---------------------------------------------------------------------------------------------
+
+def _study(name: str):
+    """``studies/<name>.py`` as a module."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(name, ROOT / "studies" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # its dataclasses / NamedTuples resolve their module by name
+    spec.loader.exec_module(module)
+    return module
+
+
+def _small(x: float, unit: str) -> str:
+    sep = "" if unit == "°" else " "
+    return f"0{sep}{unit}" if x == 0.0 else f"{_num(x, '.1e')}{sep}{unit}"
+
+
+def options_turn_hold() -> str:
+    """``python studies/coordinated_turn.py``'s 30 s hold of the coordinated turn's trim controls (unsteady)."""
+    from docs_figures_static import _turn_trim
+
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.trim import SteadyManoeuvre
+
+    point, _ = _turn_trim(True)
+    man = SteadyManoeuvre.turn(9144.0, 5000.0, mach=0.78, coordinated=True)
+    duration = 30.0
+    h = _study("coordinated_turn").hold_trim(load_aircraft("gtm"), point, man, duration, "unsteady")
+    if h.status != "completed":
+        raise RuntimeError(f"options-turn-hold: the hold ended {h.status}")
+    return (f"holds the trim's controls for {duration:g} s with the nonlinear model and unsteady aerodynamics "
+            f"({h.method}, `simulate`'s default): altitude drift {_small(h.altitude_drift_m, 'm')}, bank drift "
+            f"{_small(h.bank_drift_deg, '°')}, heading rate {h.heading_rate_rad_s:.6f} rad/s against V/R = "
+            f"{h.v_over_r_rad_s:.6f} rad/s")
+
+
+
+@functools.cache
+def _margin_against_t2() -> dict:
+    """The default GTM's CG and neutral point (cruise trim at 9144 m, M 0.78) and the T2's, in T2 c-bar fractions."""
+    from docs_figures_static import _cruise_trim
+
+    from flexsim.aircraft.t2_data import CBAR_M, T2_CG_CBAR, cbar_fraction, t2_pitch
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.model.aircraft_model import AircraftModel
+
+    gtm = load_aircraft("gtm")
+    _, margin = _cruise_trim(9144.0, 0.78)
+    (fuselage,) = [c for c in gtm.components if c.name == "fuselage"]
+    x_cg = fuselage.length_m - AircraftModel(gtm, aero="quasi-steady").structure.mass_properties.cg_m[0]  # aft of the nose
+    return {"t2": t2_pitch(), "cbar_m": CBAR_M, "t2_cg": T2_CG_CBAR, "cg": cbar_fraction(x_cg),
+            "np": cbar_fraction(x_cg + margin.neutral_point_aft_of_cg_m), "margin": margin}
+
+
+def options_t2() -> str:
+    """The T2's pitch derivatives, neutral point and margin against the model's CG and neutral point."""
+    f = _margin_against_t2()
+    t2 = f["t2"]
+    return (f"has Cm_α = {_num(t2.cm_alpha_per_rad, '.3f')} and CN_α = {t2.cn_alpha_per_rad:.3f} per radian (α = 0-6°) "
+            f"about 25 % of its reference chord c̄ ({f['cbar_m']:.3f} m at full scale), a neutral point at "
+            f"{100 * t2.neutral_point_cbar:.1f} % c̄ and a margin of {100 * (t2.neutral_point_cbar - f['t2_cg']):.0f} % at its "
+            f"own CG ({100 * f['t2_cg']:.2f} % c̄). The model's CG is at {100 * f['cg']:.1f} % c̄ and its neutral point at "
+            f"{100 * f['np']:.1f} % c̄: {100 * (t2.neutral_point_cbar - f['np']):.1f} % c̄ ahead of the T2's")
+
+
+def options_cg_shift() -> str:
+    """How far aft the CG would move for a 25 % margin (same neutral point; margin on the exposed wing's chord)."""
+    m = _margin_against_t2()["margin"]
+    return f"{m.neutral_point_aft_of_cg_m - 0.25 * m.mean_chord_m:.2f} m"
+
+
+def options_mean_chord() -> str:
+    """Mean aerodynamic chord of the exposed right wing's strips (``flexsim/trim/margin.py``)."""
+    return f"{_margin_against_t2()['margin'].mean_chord_m:.2f} m"
+
+
+
+#: Wing reference area of the GTM [m^2] (the paper's; ``tools/make_gtm_toml.py``), for C_D0 and C_L.
+GTM_WING_AREA_M2 = 181.25
+#: OpenAP's drag polar of the 757-200, C_D = C_D0 + k C_L^2 (Sun, Hoekstra & Ellerbroek 2020;
+#: openap/data/dragpolar/b752.yml), quoted in docs/options.md for comparison.
+OPENAP_B752_CD0, OPENAP_B752_K = 0.021, 0.049
+
+
+def options_gtm_polar() -> str:
+    """The bundled gtm's total drag area and C_D0 (the sum of its ``[[aero.drag]]`` items)."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+
+    f = sum(item.drag_area_m2 for item in load_aircraft("gtm").aero_settings.drag)
+    return f"f = {f:.3f} m², C_D0 = {f / GTM_WING_AREA_M2:.4f} on {GTM_WING_AREA_M2:g} m²"
+
+
+def options_openap() -> str:
+    """OpenAP's 757-200 polar at the cruise trim's lift coefficient (9144 m, M 0.78)."""
+    from docs_figures_static import _cruise_trim
+
+    from flexsim.atmosphere import isa_density, mach_to_true_airspeed
+
+    s, _ = _cruise_trim(9144.0, 0.78)
+    v = float(mach_to_true_airspeed(0.78, 9144.0))
+    cl = 1e3 * s["lift_kN"] / (0.5 * float(isa_density(9144.0)) * v * v * GTM_WING_AREA_M2)
+    return (f"C_D0 = {OPENAP_B752_CD0}, k = {OPENAP_B752_K}) gives L/D = "
+            f"{cl / (OPENAP_B752_CD0 + OPENAP_B752_K * cl * cl):.1f} at the GTM's cruise C_L = {cl:.2f} (9144 m, M 0.78)")
+
+
+def options_strips_only() -> str:
+    """The cruise trim and glide at 9144 m, M 0.78 without the parasite drag items (the strips' induced drag only)."""
+    from docs_figures_static import _cruise_trim
+
+    bare, _ = _cruise_trim(9144.0, 0.78, parasite_drag=False)
+    glide, _ = _cruise_trim(9144.0, 0.78, glide=True, parasite_drag=False)
+    return (f"L/D {bare['lift_to_drag']:.1f} with {bare['thrust_kN']:.1f} kN of thrust at 9144 m, M 0.78 and a glide of "
+            f"{_num(glide['gamma_deg'], '.2f')}°")
+
+
+@functools.cache
+def _static_figures(bending: bool):
+    from docs_figures_static import _options_study
+
+    from flexsim.aircraft.toml_loader import load_aircraft
+
+    return _options_study().static_figures(load_aircraft("gtm"), bending)
+
+
+def options_aileron_washin() -> str:
+    """The change of the aileron's rolling moment with flexibility, bending incidence off (the paper)."""
+    e = _static_figures(False).aileron_effectiveness
+    return f"{'raises' if e > 1 else 'lowers'} the aileron's rolling moment by {100 * abs(e - 1):.0f} %"
+
+
+def options_drag_flutter() -> str:
+    """Sea-level finite-state level flutter with and without the parasite drag items (``studies/options_effects.py``)."""
+    from docs_figures_static import options_effects_points
+
+    (_, with_drag), (_, without) = options_effects_points()[:2]
+    diff = f"{abs(with_drag.mach - without.mach):.1e}".replace("e-0", "e-")
+    return (f"M_F {with_drag.mach:.4f} against {without.mach:.4f} without the items, a difference of {diff}, "
+            f"although the trim thrust is "
+            f"{with_drag.trim.thrust_n / without.trim.thrust_n:.0f} times larger")
+
+
+def options_goland_divergence() -> str:
+    """Divergence speed of the Goland wing (quasi-steady strips, its file's settings) at 1.225 and 1.02 kg/m^3."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.flutter import wind_tunnel
+
+    goland = load_aircraft("goland_wing")
+    speeds = [wind_tunnel(goland, aero_model="quasi-steady", speed_range=(200.0, 320.0), speed_step=20.0,
+                          density_kg_m3=rho, tol_m_s=1e-6, flutter=False).divergence_speed_m_s for rho in (1.225, 1.02)]
+    return f"U_D = {speeds[0]:.2f} m/s at 1.225 kg/m³ and {speeds[1]:.2f} m/s at 1.02 kg/m³"
+
+
+def options_munk_items() -> str:
+    """Volumes and k2 - k1 of the bundled gtm's Munk bodies (``flexsim.model.bodies.spheroid_apparent_mass``)."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.model.bodies import spheroid_apparent_mass
+
+    bodies = {b.name: b for b in load_aircraft("gtm").aero_settings.bodies}
+    fus, nac = bodies["fuselage"], bodies["right_nacelle"]
+
+    def dk(b) -> float:
+        k1, k2 = spheroid_apparent_mass(b.length_m / b.diameter_m)
+        return float(k2 - k1)
+
+    return (f"fuselage {fus.length_m:g} m × Ø {fus.diameter_m:g} m, Vol = 0.8 × π D² L / 4 = {fus.volume_m3:.1f} m³ "
+            f"(prismatic coefficient 0.8, an estimate), k₂ − k₁ = {dk(fus):.3f}; nacelles {nac.length_m:g} m × "
+            f"Ø {nac.diameter_m:g} m, {nac.volume_m3:.1f} m³ each (k₂ − k₁ = {dk(nac):.3f})")
+
+
+def options_downwash() -> str:
+    """The bundled gtm's downwash gradient and its Prandtl-Glauert value at M 0.78."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+
+    g = load_aircraft("gtm").aero_settings.downwash_gradient
+    return f"{g:.3f}", f"{g:.3f}/β = {g / math.sqrt(1 - 0.78 ** 2):.2f}"
+
+
+def options_downwash_gradient() -> str:
+    """The bundled gtm's downwash gradient (``[aero] downwash_gradient``)."""
+    return options_downwash()[0]
+
+
+def options_downwash_mach() -> str:
+    """Its value with the Prandtl-Glauert factor at M 0.78."""
+    return options_downwash()[1]
+
+
 #: The figures of this module: region name -> (function, fast: checked in the default test suite).
 USAGE_FIGURES = {
     "agent-v0": (agent_v0, True),
@@ -144,4 +333,17 @@ USAGE_FIGURES = {
     "agent-shaped-run": (agent_shaped_run, True),
     "agent-shaped-table": (agent_shaped_table, True),
     "agent-shaped-verdict": (agent_shaped_verdict, True),
+    "options-turn-hold": (options_turn_hold, False),
+    "options-t2": (options_t2, True),
+    "options-cg-shift": (options_cg_shift, True),
+    "options-mean-chord": (options_mean_chord, True),
+    "options-gtm-polar": (options_gtm_polar, True),
+    "options-openap": (options_openap, True),
+    "options-strips-only": (options_strips_only, True),
+    "options-aileron-washin": (options_aileron_washin, True),
+    "options-drag-flutter": (options_drag_flutter, True),
+    "options-goland-divergence": (options_goland_divergence, True),
+    "options-munk-items": (options_munk_items, True),
+    "options-downwash-gradient": (options_downwash_gradient, True),
+    "options-downwash-mach": (options_downwash_mach, True),
 }

@@ -10,42 +10,29 @@ a stable margin no larger than the T2's (0.05 <= h_n - h <= T2) and the neutral 
 of the T2's; the paper's aircraft (strips only) had 59 % and fails both.
 """
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 
+from flexsim.aircraft.t2_data import CBAR_M, cbar_fraction, t2_pitch
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.trim import SteadyManoeuvre, trim
 from flexsim.trim.margin import static_margin
 
-import flexsim.aircraft
-
-T2_CSV = Path(flexsim.aircraft.__file__).parent / "data" / "sources" / "t2_aero_basic_beta0.csv"
-#: T2 reference chord and leading edge of the mean aerodynamic chord at full scale (T2 x 1/0.055;
-#: flexsim/aircraft/data/sources/gtm-notional.md sec. 2a: c = 5.072 m, LEMAC 21.16 m aft of the nose).
-CBAR_M, LEMAC_M, LENGTH_M = 0.9153 * 0.3048 / 0.055, (4.5462 - 8.745 / 12) * 0.3048 / 0.055, 44.35
-
 
 def t2_neutral_point() -> float:
     """Neutral point of the T2 database [fraction of its reference chord]: 0.25 - dCm/dCN over alpha 0..6 deg."""
-    lines = [ln for ln in T2_CSV.read_text(encoding="utf-8").splitlines() if ln and not ln.startswith("#")]
-    assert lines[0] == "alpha_deg,CX,CZ,Cm"
-    alpha_deg, _, cz, cm = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]]).T
-    sel = (alpha_deg >= 0) & (alpha_deg <= 6)
-    cm_a = np.polyfit(np.radians(alpha_deg[sel]), cm[sel], 1)[0]
-    cn_a = np.polyfit(np.radians(alpha_deg[sel]), -cz[sel], 1)[0]
-    return 0.25 - cm_a / cn_a
+    return t2_pitch().neutral_point_cbar
 
 
 def _neutral_point_and_cg(options: AeroOptions) -> tuple[float, float, float]:
-    model = AircraftModel(load_aircraft("gtm"), aero=options)
+    gtm = load_aircraft("gtm")
+    model = AircraftModel(gtm, aero=options)
     margin = static_margin(model, trim(model, SteadyManoeuvre.level(9144.0, mach=0.78)))
-    x_cg = LENGTH_M - model.structure.mass_properties.cg_m[0]  # aft of the nose [m]; o is the tail end
-    np_ref = (x_cg + margin.neutral_point_aft_of_cg_m - LEMAC_M) / CBAR_M
-    return margin.fraction_of_mac, np_ref, (x_cg - LEMAC_M) / CBAR_M
+    (fuselage,) = [c for c in gtm.components if c.name == "fuselage"]
+    x_cg = fuselage.length_m - model.structure.mass_properties.cg_m[0]  # aft of the nose [m]; o is the tail end
+    return margin.fraction_of_mac, cbar_fraction(x_cg + margin.neutral_point_aft_of_cg_m), cbar_fraction(x_cg)
 
 
 def test_gtm_static_margin_between_a_transport_and_its_wind_tunnel_data():
