@@ -10,7 +10,7 @@ logging cost, and an accuracy check on a growing oscillation (Goland flutter ons
 the default integrator >= 100x faster than real time on one core (OPENBLAS_NUM_THREADS=1).
 
 ETD2RK (``method="ETD2RK"``, the default with aerodynamics since issue 14): fixed steps of 10 (default), 20 and
-50 ms with the trim Jacobian as linear part, by the compiled steps (flexsim._kernels.etd2rk_run). The ratios of
+50 ms with the trim Jacobian as linear part, by the compiled steps (flexsim.sim._step_kernels.etd2rk_run). The ratios of
 each candidate's wall time to the default's are measured in the same run; the CPU time of the process is printed
 beside the wall time (on a shared machine the wall time includes waiting for a core).
 

@@ -41,6 +41,7 @@ from flexsim.model.jacobian import jacobian
 from flexsim import _kernels as _k
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.sensors import SensorBank
+from flexsim.sim import _step_kernels as _sk
 from flexsim.sim.fixed_step import ETD2RK
 from flexsim.sim.outputs import OutputMaps, air_angles, heading_rate
 from flexsim.kinematics import euler_rate_matrix_inverse
@@ -595,13 +596,13 @@ def _advance_etd2rk(dyns, x, u, t0, t1, winds, rhs, packed=None) -> BatchOutcome
         return _advance_etd2rk_products(dyns, x, u, t0, t1, winds, rhs, packed)
     res = stepper.advance_rows(model, x, u, t0, t1, k, packed)
     m = len(dyns)
-    crashed = res.status == _k.ROW_GROUND
+    crashed = res.status == _sk.ROW_GROUND
     failure = np.full(m, "", dtype=object)
-    for r in np.flatnonzero(res.status == _k.ROW_NON_FINITE):
+    for r in np.flatnonzero(res.status == _sk.ROW_NON_FINITE):
         t_start = t0[r] + (res.steps[r] - 1) * stepper.h
         failure[r] = f"non-finite state: ETD2RK step {int(res.steps[r])} of {k} from t = {float(t_start):.6g} s"
     out = BatchOutcome(res.x, res.t, crashed, failure, 2 * res.steps.astype(np.int64), np.zeros(m, dtype=np.int64))
-    errors = np.flatnonzero(res.status == _k.ROW_MODEL_ERROR)
+    errors = np.flatnonzero(res.status == _sk.ROW_MODEL_ERROR)
     if errors.size:  # the model's message: these rows again through the right-hand side that raises it
         again = _advance_etd2rk_products([dyns[r] for r in errors], x[errors], u[errors], t0[errors], t1[errors],
                                          [winds[r] for r in errors], rhs, _subset(packed, errors))

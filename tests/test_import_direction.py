@@ -23,7 +23,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: Layer of every package (top-level modules of flexsim count as packages); lower may not import higher.
 LAYERS: dict[str, int] = {
-    "errors": 0, "_arrays": 0, "_threads": 0, "_immutable": 0,
+    "errors": 0, "_arrays": 0, "_threads": 0, "_immutable": 0, "_numba_cache": 0,
     "_kernels": 1,
     "atmosphere": 2, "kinematics": 2, "io": 2,
     "aircraft": 3,

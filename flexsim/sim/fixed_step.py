@@ -41,7 +41,7 @@ arithmetic). On the GTM trim Jacobian (252 states) at h = 5-20 ms the two agree 
 
 Compiled steps: :meth:`ETD2RK.run` (a run of one aircraft, for :func:`flexsim.sim.simulate`) and
 :meth:`ETD2RK.advance_rows` (control periods of N aircraft, for the environments) call the numba kernels
-:func:`flexsim._kernels.etd2rk_run` and :func:`flexsim._kernels.etd2rk_rows` with the model's compiled
+:func:`flexsim.sim._step_kernels.etd2rk_run` and :func:`flexsim.sim._step_kernels.etd2rk_rows` with the model's compiled
 right-hand side: the same arithmetic as :meth:`ETD2RK.step` without a Python call per step.
 
 References
@@ -68,6 +68,7 @@ from scipy.linalg import expm, matrix_balance
 
 from flexsim import _kernels as _k
 from flexsim._arrays import readonly
+from flexsim.sim import _step_kernels as _sk
 
 __all__ = ["phi_functions", "PHI_METHODS", "ETD2RK", "ETD2RKSolver", "RowsAdvance", "RunSteps"]
 
@@ -272,7 +273,7 @@ class ETD2RK:
 
     def run(self, model, t0: float, x0: np.ndarray, f0: np.ndarray, t_bound: float, max_steps: int,
             controls: tuple[float, np.ndarray, np.ndarray], wind=None, land: bool = False) -> RunSteps:
-        """Compiled steps of one aircraft (:func:`flexsim._kernels.etd2rk_run`): the steps of
+        """Compiled steps of one aircraft (:func:`flexsim.sim._step_kernels.etd2rk_run`): the steps of
         :class:`ETD2RKSolver` from (t0, x0) towards ``t_bound`` without a Python call per step.
 
         Parameters
@@ -311,7 +312,7 @@ class ETD2RK:
         lo, hi = model.altitude_range_m
         w = _k.NO_WIND if wind is None else wind
         with np.errstate(all="ignore"):
-            done = _k.etd2rk_run(*model.kernel_data, *w, x0, np.ascontiguousarray(f0, dtype=float), float(t0),
+            done = _sk.etd2rk_run(*model.kernel_data, *w, x0, np.ascontiguousarray(f0, dtype=float), float(t0),
                                  float(t_bound), self.h, k, bool(land), float(t_u), np.ascontiguousarray(u_u, dtype=float),
                                  np.ascontiguousarray(du_dt, dtype=float), self._h_phi1, self._h_phi2, self._jac,
                                  float(lo), float(hi), ts, xs, fs)
@@ -320,7 +321,7 @@ class ETD2RK:
     def advance_rows(self, model, x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.ndarray, n_steps: int,
                      wind=None) -> RowsAdvance:
         """``n_steps`` compiled steps of N aircraft over their control periods [t0, t1] with held controls
-        (:func:`flexsim._kernels.etd2rk_rows`; the environments' ``_advance_fixed``, row by row).
+        (:func:`flexsim.sim._step_kernels.etd2rk_rows`; the environments' ``_advance_fixed``, row by row).
 
         Parameters
         ----------
@@ -340,8 +341,8 @@ class ETD2RK:
         Returns
         -------
         RowsAdvance
-            Per row: the state and time reached, the status (:data:`flexsim._kernels.ROW_RUNNING` ...) and the
-            number of steps taken (each two right-hand sides; docstring of :func:`flexsim._kernels.etd2rk_rows`).
+            Per row: the state and time reached, the status (:data:`flexsim.sim._step_kernels.ROW_RUNNING` ...) and the
+            number of steps taken (each two right-hand sides; docstring of :func:`flexsim.sim._step_kernels.etd2rk_rows`).
         """
         xs = np.array(x, dtype=float, ndmin=2, order="C")
         m = xs.shape[0]
@@ -360,7 +361,7 @@ class ETD2RK:
         x_out, t_out = np.empty_like(xs), np.empty(m)
         status, steps = np.empty(m, np.int64), np.empty(m, np.int64)
         with np.errstate(all="ignore"):
-            _k.etd2rk_rows(*model.kernel_data, *wind, xs, us, t0s, t1s, self.h, int(n_steps), self._h_phi1, self._h_phi2,
+            _sk.etd2rk_rows(*model.kernel_data, *wind, xs, us, t0s, t1s, self.h, int(n_steps), self._h_phi1, self._h_phi2,
                            self._jac, model.layout.position.start + 2, float(lo), float(hi), x_out, t_out, status, steps)
         return RowsAdvance(x_out, t_out, status, steps)
 

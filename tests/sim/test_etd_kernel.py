@@ -1,4 +1,4 @@
-"""The compiled ETD2RK steps (flexsim._kernels.etd2rk_run / etd2rk_rows via ETD2RK.run / advance_rows) against the
+"""The compiled ETD2RK steps (flexsim.sim._step_kernels.etd2rk_run / etd2rk_rows via ETD2RK.run / advance_rows) against the
 numpy ETD2RK.step with the model's right-hand side.
 
 Invariant: the same arithmetic (two right-hand sides and the matrix-vector products of ETD2RK.step per step), so the
@@ -21,7 +21,7 @@ import math
 import numpy as np
 import pytest
 
-from flexsim import _kernels as _k
+from flexsim.sim import _step_kernels as _sk
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.kinematics import dcm_321
 from flexsim.model.aircraft_model import AircraftModel
@@ -100,7 +100,7 @@ def test_compiled_rows_equal_the_numpy_steps_and_report_like_the_environments(gt
     x[3, model.layout.inflow.start] = math.nan  # row 3: NaN inflow: the stage state's altitude is NaN, rhs refuses it
     x[4, z] = -1e6  # row 4: above the ISA range (rhs refuses it)
     out = stepper.advance_rows(model, x, u, np.full(5, 1.0), np.full(5, 1.0 + k * h), k, model.pack_winds(winds))
-    assert out.status.tolist() == [_k.ROW_RUNNING, _k.ROW_RUNNING, _k.ROW_GROUND, _k.ROW_MODEL_ERROR, _k.ROW_MODEL_ERROR]
+    assert out.status.tolist() == [_sk.ROW_RUNNING, _sk.ROW_RUNNING, _sk.ROW_GROUND, _sk.ROW_MODEL_ERROR, _sk.ROW_MODEL_ERROR]
     for r in (0, 1):
         xr = x[r]
         for i in range(k):
@@ -133,7 +133,7 @@ def test_compiled_rows_report_a_non_finite_state():
     bad = x.copy()
     bad[model.layout.v.start] = math.nan
     out = stepper.advance_rows(model, np.array([x, bad]), u, 0.0, 0.03, 3)
-    assert out.status.tolist() == [_k.ROW_RUNNING, _k.ROW_NON_FINITE]
+    assert out.status.tolist() == [_sk.ROW_RUNNING, _sk.ROW_NON_FINITE]
     assert out.steps.tolist() == [3, 1]
     np.testing.assert_array_equal(out.x[1], bad)
 

@@ -1,0 +1,175 @@
+"""Compiled ETD2RK steps (numba) over the one compiled right-hand side: a run of one aircraft and control periods
+of N aircraft.
+
+:func:`etd2rk_run` serves :meth:`flexsim.sim.fixed_step.ETD2RK.run` (``simulate(..., method="ETD2RK")``) and
+:func:`etd2rk_rows` serves :meth:`~flexsim.sim.fixed_step.ETD2RK.advance_rows` (the environments' control
+periods): one implementation of the step for both. The right-hand side is :func:`flexsim._kernels._rhs_wind`
+(the kernel of :func:`flexsim._kernels.rhs`, paper eqs. 4, 33); the method, its matrix functions and its
+properties are documented in :mod:`flexsim.sim.fixed_step`.
+
+Imports go one way: this module imports :mod:`flexsim._kernels`, never the reverse. numba's cache of these
+functions embeds the compiled right-hand side, so it is keyed on the source of ``flexsim/_kernels.py`` too
+(:func:`flexsim._numba_cache.depends_on`): a change of the right-hand side recompiles them on first use.
+
+Units SI, angles in radians; states and their layout as in :class:`flexsim.model.AircraftModel`.
+
+References
+----------
+S. M. Cox and P. C. Matthews, "Exponential time differencing for stiff systems", J. Comput. Phys. 176 (2002)
+430-455 (method ETD2RK).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from flexsim import _kernels as _k
+from flexsim._kernels import _rhs_wind
+from flexsim._numba_cache import depends_on
+
+__all__ = ["etd2rk_run", "etd2rk_rows", "ROW_RUNNING", "ROW_GROUND", "ROW_NON_FINITE", "ROW_MODEL_ERROR"]
+
+_jit = njit(cache=True, nogil=True)
+_depends = depends_on(_k)
+
+# x_{n+1} = a + h phi_2(hJ) [k_2 - k_1 - J (a - x_n)], a = x_n + h phi_1(hJ) k_1, k_1 = f(t_n, x_n), k_2 = f(t_n + h, a)
+# (Cox & Matthews 2002, ETD2RK; the form of flexsim.sim.fixed_step.ETD2RK.step). The wind fields are frozen in
+# the air (independent of t), so t enters only through the controls.
+
+@_depends
+@_jit
+def _etd2rk_step(F, I, gusts, turb, turb_grid, x, k1, u2, h_phi1, h_phi2, jac):
+    a = x + h_phi1 @ k1
+    k2 = _rhs_wind(F, I, gusts, turb, turb_grid, a, u2)
+    return a + h_phi2 @ (k2 - k1 - jac @ (a - x))
+
+
+@_depends
+@_jit
+def _altitude_ok(x, alt_lo, alt_hi):
+    """-x[2] in [alt_lo, alt_hi], or no range given (both infinite: any value, NaN included, as AircraftModel.rhs)."""
+    if alt_lo == -np.inf and alt_hi == np.inf:
+        return True
+    return alt_lo <= -x[2] <= alt_hi
+
+
+@_depends
+@_jit
+def _state_ok(x, alt_lo, alt_hi):
+    for i in range(x.shape[0]):
+        if not math.isfinite(x[i]):
+            return False
+    return _altitude_ok(x, alt_lo, alt_hi)
+
+
+@_depends
+@_jit
+def etd2rk_run(F, I, gusts, turb, turb_grid, x0, f0, t0, t_bound, h, max_steps, land, t_u, u_u, du_dt, h_phi1, h_phi2,
+               jac, alt_lo, alt_hi, ts, xs, fs):
+    """ETD2RK steps of one aircraft from (t0, x0), f0 = x_dot there, with the step end derivatives reused (FSAL).
+
+    Steps of h while ``t_bound - t > h (1 + 1e-9)``, at most ``max_steps`` (``land``: exactly one step, ending at
+    t_bound: the short last step of an interval, with its own matrix functions). Controls linear in time:
+    u(t) = u_u + (t - t_u) du_dt (a piecewise-linear schedule between two breakpoints, or held). Writes the step
+    ends into ts[k], xs[k], fs[k] (row 0: the start) and returns the number k of steps taken; it stops after the
+    first step whose state or derivative is not finite or whose altitude -x[2] leaves [alt_lo, alt_hi] (that
+    step is included: the caller reports it). ts (max_steps + 1,), xs and fs (max_steps + 1, n).
+    """
+    ts[0] = t0
+    xs[0] = x0
+    fs[0] = f0
+    t = t0
+    x = x0
+    k1 = f0
+    k = 0
+    while k < max_steps:
+        if land:
+            if k == 1:
+                break
+        elif not t_bound - t > h * (1.0 + 1e-9):
+            break
+        u2 = u_u + (t + h - t_u) * du_dt
+        x_new = _etd2rk_step(F, I, gusts, turb, turb_grid, x, k1, u2, h_phi1, h_phi2, jac)
+        t = t_bound if land else t + h
+        k += 1
+        ts[k] = t
+        xs[k] = x_new
+        if not _state_ok(x_new, alt_lo, alt_hi):
+            fs[k] = np.nan
+            break
+        k1 = _rhs_wind(F, I, gusts, turb, turb_grid, x_new, u_u + (t - t_u) * du_dt)
+        fs[k] = k1
+        x = x_new
+        if not _state_ok(k1, -np.inf, np.inf):
+            break
+    return k
+
+
+#: Status codes of :func:`etd2rk_rows`.
+ROW_RUNNING, ROW_GROUND, ROW_NON_FINITE, ROW_MODEL_ERROR = 0, 1, 2, 3
+
+
+@_depends
+@_jit
+def etd2rk_rows(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo,
+                alt_hi, x_out, t_out, status, steps):
+    """``n_steps`` ETD2RK steps of h over [t0, t1] for N aircraft of one model with held controls (a control period of
+    the environments; ``FlightDynamics._advance_fixed`` row by row), two right-hand sides per step.
+
+    Row i starts at xs[i] (N, n) with controls us[i] (N, 4) and the winds rows[i] (:func:`rhs_batch`). Step j ends at
+    t0 + j h (the last at t1). Per row, into x_out (N, n), t_out (N,), status (N,) and steps (N,) (steps taken):
+    ROW_RUNNING (0): the period completed, x_out = state at t1; ROW_GROUND (1): the altitude -x[z_index] reached 0
+    within step ``steps``, x_out and t_out interpolated linearly within it; ROW_NON_FINITE (2): step ``steps``
+    gave a non-finite state, x_out = the state before it; ROW_MODEL_ERROR (3): the right-hand side could not be
+    evaluated at the state before step ``steps`` (singular system matrix, or an altitude outside [alt_lo, alt_hi]),
+    x_out = that state. Rows are independent and the products are the matrix-vector products of
+    :func:`etd2rk_run`, so a row's result does not depend on the others.
+    """
+    for i in range(xs.shape[0]):
+        g = gusts[rows[i, 0]:rows[i, 1]]
+        tb = turb[rows[i, 2]:rows[i, 3]]
+        u = us[i]
+        x = xs[i].copy()
+        t = t0s[i]
+        st = ROW_RUNNING
+        j = 0
+        while j < n_steps:
+            t_next = t1s[i] if j == n_steps - 1 else t0s[i] + (j + 1) * h
+            j += 1
+            if not _altitude_ok(x, alt_lo, alt_hi):
+                st = ROW_MODEL_ERROR
+                break
+            try:
+                k1 = _rhs_wind(F, I, g, tb, turb_grid, x, u)
+                a = x + h_phi1 @ k1
+                if not _altitude_ok(a, alt_lo, alt_hi):
+                    st = ROW_MODEL_ERROR
+                    break
+                k2 = _rhs_wind(F, I, g, tb, turb_grid, a, u)
+            except Exception:  # singular system matrix (ZeroDivisionError in solve)
+                st = ROW_MODEL_ERROR
+                break
+            x_new = a + h_phi2 @ (k2 - k1 - jac @ (a - x))
+            finite = True
+            for m in range(x_new.shape[0]):
+                if not math.isfinite(x_new[m]):
+                    finite = False
+                    break
+            if not finite:
+                st = ROW_NON_FINITE
+                break
+            if x_new[z_index] >= 0.0 > x[z_index]:
+                s = x[z_index] / (x[z_index] - x_new[z_index])
+                x = x + s * (x_new - x)
+                t = t + s * (t_next - t)
+                st = ROW_GROUND
+                break
+            x = x_new
+            t = t_next
+        x_out[i] = x
+        t_out[i] = t
+        status[i] = st
+        steps[i] = j

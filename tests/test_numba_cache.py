@@ -1,0 +1,62 @@
+"""flexsim._numba_cache.depends_on: a cached caller recompiles when the file of a compiled callee changes.
+
+Two throw-away modules under tmp_path: ``callee.py`` (``f() -> 1``) and ``caller.py`` (``g() -> callee.f()``, numba
+``cache=True``). Each run is a fresh interpreter (so numba reads its on-disk cache); after ``f`` is changed to return 2,
+``g`` must return 2. Without ``depends_on`` numba returns the stale 1 (checked too, so the test can fail: it shows
+the hazard the decorator exists for).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+CALLER = """
+from numba import njit
+import callee
+from flexsim._numba_cache import depends_on
+
+{decorator}
+@njit(cache=True)
+def g():
+    return callee.f()
+
+print(g())
+"""
+
+
+def _run(tmp_path: Path) -> int:
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(tmp_path), str(ROOT)]))
+    env.pop("NUMBA_DISABLE_JIT", None)
+    out = subprocess.run([sys.executable, str(tmp_path / "caller.py")], env=env, capture_output=True, text=True,
+                         check=True, cwd=tmp_path)
+    return int(out.stdout.split()[-1])
+
+
+@pytest.mark.parametrize("decorated", [True, False])
+def test_cached_caller_sees_changed_callee(tmp_path, decorated):
+    (tmp_path / "caller.py").write_text(CALLER.format(decorator="@depends_on(callee)" if decorated else ""))
+    (tmp_path / "callee.py").write_text("from numba import njit\n\n@njit(cache=True)\ndef f():\n    return 1\n")
+    assert _run(tmp_path) == 1
+    assert _run(tmp_path) == 1  # from the cache
+    (tmp_path / "callee.py").write_text("from numba import njit\n\n@njit(cache=True)\ndef f():\n    return 2  # changed\n")
+    assert _run(tmp_path) == (2 if decorated else 1)  # numba alone keeps the stale machine code of f inside g
+
+
+def test_step_kernels_are_keyed_on_the_rhs_source():
+    """The ETD2RK kernels' cache stamp includes the SHA-256 of flexsim/_kernels.py."""
+    from flexsim import _kernels
+    from flexsim._numba_cache import source_digest
+    from flexsim.sim import _step_kernels
+
+    cache = getattr(_step_kernels.etd2rk_run, "_cache", None)
+    if cache is None:
+        pytest.skip("NUMBA_DISABLE_JIT=1: no cache")
+    for kernel in (_step_kernels.etd2rk_run, _step_kernels.etd2rk_rows):
+        assert kernel._cache._cache_file._source_stamp[1] == source_digest(_kernels)
