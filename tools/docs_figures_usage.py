@@ -322,6 +322,226 @@ def options_downwash_mach() -> str:
     return options_downwash()[1]
 
 
+
+# --- docs/environments.md: the flutter tasks ------------------------------------------------------------------------
+
+FLUTTER_IDS = {0: "FlexSim/GTM-FlutterMargin-v0", 1: "FlexSim/GTM-FlutterMargin-v1"}
+
+
+def _agents_module(name: str):
+    """``examples/agents/<name>.py`` (baselines, lqr_design) as a module."""
+    sys.path.insert(0, str(ROOT / "examples" / "agents"))
+    import importlib
+
+    return importlib.import_module(name)
+
+
+@functools.cache
+def _flutter_env(version: int):
+    """The FlutterMargin env (unwrapped, default settings) with its baseline policy reset on seed 0."""
+    import warnings
+
+    import gymnasium as gym
+
+    import flexsim.envs  # noqa: F401  (registers the ids)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)  # gymnasium's "v0 is out of date" notice
+        env = gym.make(FLUTTER_IDS[version])
+    policy = _agents_module("baselines").make_baseline(FLUTTER_IDS[version], env.unwrapped)
+    _, info = env.reset(seed=0)
+    policy.reset(info)  # designs / checks the feedback on the env's linearisation at the trim
+    return env, policy
+
+
+def _flutter_point(version: int):
+    """The env's flutter search repeated for its ``FlutterPoint`` (mode shape, symmetry): the same call as
+    ``flexsim.envs.flutter_margin`` makes, checked against the env's condition."""
+    from flexsim.linear.flutter import FlutterAnalysis
+    from flexsim.trim import SteadyManoeuvre
+
+    u = _flutter_env(version)[0].unwrapped
+    fp = FlutterAnalysis(u.aircraft, u.dynamics.aero).search(SteadyManoeuvre.level(u.task.altitude_m, mach=0.6),
+                                                              mach_range=u.task.flutter_mach_range, mach_step=0.02)
+    if abs(fp.mach - u.flutter.mach) > 1e-9:
+        raise RuntimeError(f"flutter point M {fp.mach} differs from the env's M {u.flutter.mach}")
+    return fp
+
+
+def _condition_text(version: int) -> str:
+    f = _flutter_env(version)[0].unwrapped.flutter
+    return (f"M {f.mach:.4f} ({f.speed_m_s:.1f} m/s, {f.frequency_rad_s:.{1 if version == 0 else 2}f} rad/s = "
+            f"{f.frequency_rad_s / (2 * math.pi):.{1 if version == 0 else 2}f} Hz)")
+
+
+def env_flutter_v0_point() -> str:
+    """FlutterMargin-v0's open-loop flutter point (gtm_uncalibrated, finite state, 300 m) and its dominant DOF."""
+    return f"{_condition_text(0)}, dominant DOF {_flutter_env(0)[0].unwrapped.flutter.mode}"
+
+
+def env_flutter_v0_hz() -> str:
+    return f"{_flutter_env(0)[0].unwrapped.flutter.frequency_rad_s / (2 * math.pi):.1f} Hz"
+
+
+def env_flutter_v1_hz() -> str:
+    return f"{_flutter_env(1)[0].unwrapped.flutter.frequency_rad_s / (2 * math.pi):.1f} Hz"
+
+
+def env_flutter_v0_target() -> str:
+    return f"M {_flutter_env(0)[0].unwrapped.target.mach:.4f}"
+
+
+def env_flutter_v1_target() -> str:
+    return f"M {_flutter_env(1)[0].unwrapped.target.mach:.4f}"
+
+
+def _trim_hold(version: int, seed: int) -> dict:
+    """One episode with the trim action held: return, end time, reason and the final wing/fin tip figures."""
+    env = _flutter_env(version)[0]
+    _, info = env.reset(seed=seed)
+    action, total = info["trim_action"], 0.0
+    while True:
+        obs, reward, terminated, truncated, info = env.step(action)
+        total += reward
+        if terminated or truncated:
+            break
+    names = env.unwrapped.observation_names
+    tip = {n: abs(float(obs[names.index(n)])) for n in names if n.startswith(("tip_twist_", "tip_deflection_"))
+           and "rate" not in n}
+    return {"return": total, "time_s": info["time_s"], "reason": info["termination_reason"], "tip": tip}
+
+
+def env_flutter_v0_growth() -> str:
+    """FlutterMargin-v0 at M_f + 0.01: open-loop growth of the fast modes and the trim hold of seed 0."""
+    env, policy = _flutter_env(0)
+    hold = _trim_hold(0, 0)
+    limit = env.unwrapped.limits
+    return (f"its fastest-growing mode faster than 25 rad/s grows at {_num(policy.open_loop_growth, '+.2f')} 1/s (full "
+            f"linearisation sampled at 50 Hz, open loop); holding the trim controls (seed 0), the episode ends by "
+            f"{hold['reason'].replace('_', ' ')} after {hold['time_s']:.1f} s (fin tip twist {hold['tip']['tip_twist_vtail_rad']:.3f} "
+            f"rad against the {limit.fin_tip_twist_rad:g} rad limit)")
+
+
+def env_flutter_v0_damper() -> str:
+    """The best four-sensor fin damper of FlutterMargin-v0's baseline (``lqr_design.design_fin_damper``)."""
+    policy = _flutter_env(0)[1]
+    return f"reaches a growth rate of {_num(policy.closed_loop_growth, '+.2f')} 1/s"
+
+
+def env_flutter_gtm_sea_level() -> str:
+    """The calibrated gtm's first flutter point at sea level (finite state, the v1 task's Mach range)."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.flutter import FlutterAnalysis
+    from flexsim.trim import SteadyManoeuvre
+
+    fp = FlutterAnalysis(load_aircraft("gtm"), "unsteady").search(SteadyManoeuvre.level(0.0, mach=0.6), mach_range=(0.5, 0.95),
+                                                                  mach_step=0.02)
+    return f"a {fp.frequency_rad_s:.0f} rad/s {fp.mode_symmetry} {fp.mode.dominant_dof} mode at M {fp.mach:.2f}"
+
+
+def env_flutter_v1_point() -> str:
+    """FlutterMargin-v1's flutter point and the wing coordinates of its mode shape."""
+    fp = _flutter_point(1)
+    labels, shape = list(fp.labels), fp.mode_shape
+
+    def coord(c: str, kind: str) -> complex:
+        return complex(shape[labels.index(f"{c}_wing {kind} 1")])
+
+    bend = {c: coord(c, "bending") for c in ("right", "left")}
+    tors = {c: coord(c, "torsion") for c in ("right", "left")}
+    bend_phase = math.degrees(abs(np.angle(bend["left"] / bend["right"])))
+    tors_ratio = abs(tors["left"] / tors["right"])
+    ratio = abs(tors["right"] / bend["right"])
+    phase = math.degrees(np.angle(tors["left"] / bend["left"]))
+    return (f"{_condition_text(1)}, dominant DOF {fp.mode.dominant_dof}, {fp.mode_symmetry}: in the mode shape the two "
+            f"wings' first bending coordinates are {bend_phase:.0f} deg apart in phase and their first torsion "
+            f"coordinates are equal (relative difference {f'{abs(tors_ratio - 1):.0e}'.replace('e-0', 'e-')}; torsion {ratio:.2f} rad per m of bending, "
+            f"{abs(phase):.0f} deg phase)")
+
+
+def _wing_damper_growths() -> dict:
+    """Largest growth rate of the fast modes of FlutterMargin-v1's sampled closed loop against the damper gain."""
+    env, policy = _flutter_env(1)
+    u = env.unwrapped
+    dyn = u.dynamics
+    row = np.zeros(dyn.layout.n_states)
+    for c in ("right_wing", "left_wing"):
+        row[dyn.sensors[c].eta_idx] += 0.5 * dyn.sensors[c].psi_tip
+    elastic_growth = _agents_module("baselines").elastic_growth
+
+    def growth(k: float) -> float:
+        damper = np.zeros((4, dyn.layout.n_states))
+        damper[1] = k * row
+        return elastic_growth(u, policy.gains, damper)
+
+    return {"k": policy.damper_gain, "growth": growth, "full": policy.lqr.full_model_growth}
+
+
+@functools.cache
+def _wing_damper_window() -> tuple[float, float, float, float]:
+    """Open-loop and design-gain growth, and the damper gains where the fast modes' growth crosses zero."""
+    from scipy.optimize import brentq
+
+    d = _wing_damper_growths()
+    g, k = d["growth"], d["k"]
+    lo = brentq(g, 0.0, k, xtol=1e-5) if g(0.0) > 0 > g(k) else math.nan
+    hi = brentq(g, k, 4 * k, xtol=1e-5) if g(4 * k) > 0 > g(k) else math.nan
+    return g(0.0), g(k), lo, hi
+
+
+def env_flutter_v1_damper() -> str:
+    """FlutterMargin-v1's aileron damper: growth without and with it, the stable gain window, the whole loop."""
+    d = _wing_damper_growths()
+    open_loop, closed, lo, hi = _wing_damper_window()
+    return (f"{_num(open_loop, '+.2f')} 1/s without the damper and {_num(closed, '+.2f')} 1/s with it (k = {d['k']:g}); "
+            f"the fast modes are stable for k between {lo:.4f} and {hi:.4f}; the largest growth rate of the whole closed "
+            f"loop is {_num(d['full'], '+.3f')} 1/s")
+
+
+def env_flutter_v1_open_loop() -> str:
+    return f"{_num(_wing_damper_window()[0], '+.2f')} 1/s"
+
+
+def env_flutter_v1_trim_hold() -> str:
+    """FlutterMargin-v1 with the trim controls held over seeds 0-9: how and when the episodes end."""
+    env = _flutter_env(1)[0]
+    holds = [_trim_hold(1, seed) for seed in range(10)]
+    reasons = {h["reason"] for h in holds}
+    task, limits = env.unwrapped.task, env.unwrapped.limits
+    twist = [max(h["tip"]["tip_twist_right_wing_rad"], h["tip"]["tip_twist_left_wing_rad"]) for h in holds]
+    by_twist = all(t > task.wing_tip_twist_limit_rad for t in twist)
+    deflection = max(max(h["tip"]["tip_deflection_right_wing_m"], h["tip"]["tip_deflection_left_wing_m"]) for h in holds)
+    fin = max(h["tip"]["tip_twist_vtail_rad"] for h in holds)
+    returns = np.array([h["return"] for h in holds])
+    times = [h["time_s"] for h in holds]
+    trim_twist = _flutter_env(1)[0].unwrapped.dynamics.trim(env.unwrapped.target).tip_twist_rad
+    ends = ("by the wing tip twist limit" if reasons == {"structural_limit"} and by_twist else f"by {', '.join(sorted(reasons))}")
+    return (f"every one of seeds 0-9 ends {ends} (|twist| > {task.wing_tip_twist_limit_rad:g} rad on either half, "
+            f"`task.wing_tip_twist_limit_rad`; trim twist {trim_twist:.3f} rad) after {min(times):.1f}-{max(times):.1f} s "
+            f"(return {returns.mean():.0f} +- {returns.std():.0f}); the largest final wing deflection is {deflection:.2f} m "
+            f"(limit {limits.wing_tip_deflection_m:g} m) and fin twist {fin:.3f} rad (limit {limits.fin_tip_twist_rad:g} rad)")
+
+
+def env_flutter_v1_closed_loop() -> str:
+    """FlutterMargin-v1 with its baseline, seed 0: the antisymmetric twist-rate amplitude at the start and the end."""
+    env, policy = _flutter_env(1)
+    obs, info = env.reset(seed=0)
+    policy.reset(info)
+    i = env.unwrapped.observation_names.index("wing_twist_rate_rad_s")
+    rates, times = [abs(float(obs[i]))], [0.0]
+    while True:
+        obs, _, terminated, truncated, info = env.step(policy(obs))
+        rates.append(abs(float(obs[i])))
+        times.append(info["time_s"])
+        if terminated or truncated:
+            break
+    rates, times = np.array(rates), np.array(times)
+    first, last = rates[times <= 1.0].max(), rates[times >= times[-1] - 1.0].max()
+    end = "" if truncated else f" (it ended by {info['termination_reason']})"
+    return (f"the twist-rate amplitude falls from {first:.2f} rad/s in the first second to {last:.1g} rad/s in the last "
+            f"one of the {times[-1]:.0f} s{end}")
+
+
 #: The figures of this module: region name -> (function, fast: checked in the default test suite).
 USAGE_FIGURES = {
     "agent-v0": (agent_v0, True),
@@ -346,4 +566,17 @@ USAGE_FIGURES = {
     "options-munk-items": (options_munk_items, True),
     "options-downwash-gradient": (options_downwash_gradient, True),
     "options-downwash-mach": (options_downwash_mach, True),
+    "env-flutter-v0-point": (env_flutter_v0_point, False),
+    "env-flutter-v0-hz": (env_flutter_v0_hz, False),
+    "env-flutter-v1-hz": (env_flutter_v1_hz, False),
+    "env-flutter-v0-target": (env_flutter_v0_target, False),
+    "env-flutter-v1-target": (env_flutter_v1_target, False),
+    "env-flutter-v0-growth": (env_flutter_v0_growth, False),
+    "env-flutter-v0-damper": (env_flutter_v0_damper, False),
+    "env-flutter-gtm-sea-level": (env_flutter_gtm_sea_level, False),
+    "env-flutter-v1-point": (env_flutter_v1_point, False),
+    "env-flutter-v1-open-loop": (env_flutter_v1_open_loop, False),
+    "env-flutter-v1-trim-hold": (env_flutter_v1_trim_hold, False),
+    "env-flutter-v1-damper": (env_flutter_v1_damper, False),
+    "env-flutter-v1-closed-loop": (env_flutter_v1_closed_loop, False),
 }
