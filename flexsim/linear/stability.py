@@ -40,10 +40,11 @@ from flexsim.aero.pk import pk_roots
 from flexsim.aero.theodorsen import theodorsen_function
 from flexsim.aircraft.definition import ContentKey
 from flexsim.linear.linearize import LinearModel, linearize
+from flexsim.linear.symmetry import decoupled, mirror_bases
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.structure.mirror import TIE_RTOL
 
-__all__ = ["Mode", "Spectrum", "spectrum", "pk_state_matrix", "PK_METHODS"]
+__all__ = ["Mode", "Spectrum", "spectrum", "PkStateMatrix", "pk_state_matrix", "PK_METHODS"]
 
 #: Ways of continuing a p-k root from one iteration to the next (see :mod:`flexsim.aero.pk`).
 PK_METHODS = ("inverse-iteration", "eig")
@@ -226,7 +227,8 @@ def _first_elastic_of(key: ContentKey) -> float:
 
 @single_blas_thread
 def spectrum(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, *, aero_model: str = "unsteady",
-             pk_model: AircraftModel | None = None, pk_method: str = "inverse-iteration") -> Spectrum:
+             pk_model: AircraftModel | None = None, pk_method: str = "inverse-iteration",
+             mirror_split: bool = True) -> Spectrum:
     """Eigen-analysis of ``model`` linearised about (x0, u0).
 
     Parameters
@@ -243,6 +245,10 @@ def spectrum(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, *, aero_model
     pk_method : {"inverse-iteration", "eig"}
         How each p-k step continues a root (:mod:`flexsim.aero.pk`): shifted inverse iteration with a full
         ``eig`` fallback (default), or a full ``eig`` every step (the reference; same roots, slower).
+    mirror_split : bool
+        p-k only: solve the symmetric and antisymmetric halves apart when the flight keeps the mirror symmetry
+        (default; :mod:`flexsim.linear.symmetry`, measured on A); False always uses the full matrix (the
+        reference; same roots to round-off, slower).
     """
     if pk_method not in PK_METHODS:
         raise ValueError(f"pk_method = {pk_method!r}: must be one of {', '.join(PK_METHODS)}")
@@ -252,10 +258,45 @@ def spectrum(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, *, aero_model
         return _classify(model, lin, vals, vecs, aero_model)
     if pk_model is None:
         raise ValueError('aero_model = "theodorsen" needs pk_model: the finite-state model of the same aircraft')
-    return _pk(model, pk_model, lin, pk_method)
+    return _pk(model, pk_model, lin, pk_method, mirror_split)
 
 
-def pk_state_matrix(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel) -> Callable[[float], np.ndarray]:
+@dataclass(frozen=True, eq=False)
+class PkStateMatrix:
+    """The p-k state matrix of the "US" model (paper eq. 27), ``A(omega) = A_qs + B_lambda diag(1 - C(k_j)) C_w``.
+
+    ``k_j = omega b_j / u0_j`` at every unsteady strip j; C is Theodorsen's function
+    (:func:`flexsim.aero.theodorsen.theodorsen_function`). Calling it with ``omega`` [rad/s] returns
+    ``A(omega)``, ndarray (complex), shape (m, m).
+
+    Attributes
+    ----------
+    a_qs : ndarray, shape (m, m)
+        Quasi-steady state matrix [1/s and the layout's mixed units].
+    b_lambda : ndarray, shape (m, n_s)
+        d x_dot / d lambda0_j per unsteady strip [per m/s].
+    c_w : ndarray, shape (n_s, m)
+        d (w0 + w1/2)_j / dx [m/s per state unit].
+    semichord_over_speed_s : ndarray, shape (n_s,)
+        b_j / u0_j [s], so that k_j = omega b_j / u0_j.
+    """
+
+    a_qs: np.ndarray
+    b_lambda: np.ndarray
+    c_w: np.ndarray
+    semichord_over_speed_s: np.ndarray
+
+    def __call__(self, omega: float) -> np.ndarray:
+        one_minus_c = 1.0 - theodorsen_function(abs(omega) * self.semichord_over_speed_s)
+        return self.a_qs + (self.b_lambda * one_minus_c[None, :]) @ self.c_w
+
+    def projected(self, basis: np.ndarray) -> "PkStateMatrix":
+        """``Q^T A(omega) Q`` for an orthonormal real ``basis`` Q (m, r) of an invariant subspace of every A(omega)."""
+        return PkStateMatrix(basis.T @ self.a_qs @ basis, basis.T @ self.b_lambda, self.c_w @ basis,
+                             self.semichord_over_speed_s)
+
+
+def pk_state_matrix(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel) -> PkStateMatrix:
     """The p-k state matrix A(omega) of the "US" model (paper eq. 27) over the kept states of ``lin``.
 
     A(omega) = A_qs + B_lambda diag(1 - C(k_j)) C_w with k_j = omega b_j / u0_j at every unsteady strip:
@@ -270,8 +311,8 @@ def pk_state_matrix(qs_model: AircraftModel, fs_model: AircraftModel, lin: Linea
 
     Returns
     -------
-    callable
-        ``a_of(omega [rad/s]) -> ndarray (complex), shape (m, m)``.
+    PkStateMatrix
+        Callable: ``a_of(omega [rad/s]) -> ndarray (complex), shape (m, m)``.
     """
     x0, u0 = lin.x0, lin.u0
     coupling = fs_model.aero
@@ -307,24 +348,38 @@ def pk_state_matrix(qs_model: AircraftModel, fs_model: AircraftModel, lin: Linea
     _, _, q, xi, vel = fs_model.unpack(x_fs)
     kin = coupling.kinematics(q, xi, vel, x_fs[lay_fs.inflow], u0)
     b_over_u = strips.semichord_m[idx] / np.maximum(kin.u0[idx], 1e-6)
-
-    def a_of(omega: float) -> np.ndarray:
-        one_minus_c = 1.0 - theodorsen_function(np.abs(omega) * b_over_u)
-        return lin.a + (b_k * one_minus_c[None, :]) @ c_k
-
-    return a_of
+    return PkStateMatrix(lin.a, b_k, c_k, b_over_u)
 
 
-def _pk(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel, method: str) -> Spectrum:
-    """p-k iteration with Theodorsen's C(k) at every strip (paper eq. 27, the "US" model)."""
+def _pk(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel, method: str, mirror_split: bool = True) -> Spectrum:
+    """p-k iteration with Theodorsen's C(k) at every strip (paper eq. 27, the "US" model).
+
+    In flight that keeps the mirror symmetry (:mod:`flexsim.linear.symmetry`: the coupling blocks of A_qs and of
+    A(omega) at k = 0.1 and 1 on the mean strip vanish to round-off) the symmetric and antisymmetric halves are
+    solved apart, each from the eigenpairs of its own quasi-steady block (same roots as the full matrix to
+    round-off, a quarter of the work per LU and an eighth per full eig); otherwise (turns) the full matrix.
+    """
     a_of = pk_state_matrix(qs_model, fs_model, lin)
-    vals0, vecs0 = np.linalg.eig(lin.a)
-    out_vals, out_vecs = vals0.astype(complex).copy(), vecs0.astype(complex).copy()
-    track = np.flatnonzero((vals0.imag > 0.5) & (vals0.real >= -20.0))
-    roots = pk_roots(a_of, vals0[track], vecs0[:, track], inverse_iteration=method == "inverse-iteration")
-    for k, root in zip(track, roots):
-        out_vals[k], out_vecs[:, k] = root.eigenvalue, root.vector
-        conj = np.argmin(np.abs(vals0 - np.conj(vals0[k])))
-        if conj != k:
-            out_vals[conj], out_vecs[:, conj] = np.conj(root.eigenvalue), np.conj(root.vector)
-    return _classify(qs_model, lin, out_vals, out_vecs, "theodorsen")
+    parts: list[tuple[np.ndarray | None, PkStateMatrix]] = [(None, a_of)]
+    bases = mirror_bases(qs_model, lin.keep) if mirror_split else None
+    if bases is not None:
+        omega_1 = 1.0 / float(np.mean(a_of.semichord_over_speed_s))  # k = 1 on the mean strip
+        if all(decoupled(a, bases) for a in (a_of.a_qs, a_of(0.1 * omega_1), a_of(omega_1))):
+            parts = [(basis, a_of.projected(basis)) for basis in bases]
+    inverse = method == "inverse-iteration"
+    all_vals, all_vecs = [], []
+    for basis, part in parts:
+        vals0, vecs0 = np.linalg.eig(part.a_qs)
+        out_vals, out_vecs = vals0.astype(complex).copy(), vecs0.astype(complex).copy()
+        track = np.flatnonzero((vals0.imag > 0.5) & (vals0.real >= -20.0))
+        roots = pk_roots(part, vals0[track], vecs0[:, track], inverse_iteration=inverse)
+        for k, root in zip(track, roots):
+            out_vals[k], out_vecs[:, k] = root.eigenvalue, root.vector
+            conj = np.argmin(np.abs(vals0 - np.conj(vals0[k])))
+            if conj != k:
+                out_vals[conj], out_vecs[:, conj] = np.conj(root.eigenvalue), np.conj(root.vector)
+        all_vals.append(out_vals)
+        all_vecs.append(out_vecs if basis is None else basis @ out_vecs)
+    vals = np.concatenate(all_vals)
+    vecs = all_vecs[0] if len(all_vecs) == 1 else np.concatenate(all_vecs, axis=1)
+    return _classify(qs_model, lin, vals, vecs, "theodorsen")
