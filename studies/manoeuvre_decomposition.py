@@ -381,7 +381,8 @@ def run(ac, aircraft_name: str, altitude_m: float, switches, rho_altitude_m: flo
 
 
 def table(rows: list[dict]) -> str:
-    out = ["| switched off | M_F level / ω_F | M_F(5 km) − M_F(12 km) | Δω_F turn | M_F(+15°) − M_F(−15°) | Δω_F climb |",
+    out = ["| switched off | M_F level / ω_F [rad/s] | M_F(5 km) − M_F(12 km) | Δω_F turn [rad/s] | M_F(+15°) − M_F(−15°) | "
+           "Δω_F climb [rad/s] |",
            "|---|---|---|---|---|---|"]
     for r in rows:
         out.append(f"| {r['switch']} | {r['M_level']:.4f} / {r['w_level']:.2f} | {r.get('turn_dM', float('nan')):+.4f} | "

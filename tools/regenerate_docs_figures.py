@@ -79,7 +79,8 @@ from docs_figures_static import (_num, goland_compressible, goland_incompressibl
                                  options_bending_incidence, options_coordinated_turn, options_effects_flutter,
                                  options_glide, options_lift_drag, options_paper_turn, options_static_margin,
                                  options_which_bank, validation_table)
-from docs_figures_studies import STUDY_FIGURES  # noqa: E402
+from docs_figures_studies import (STUDY_FIGURES, calibration_damping, calibration_speeds,  # noqa: E402
+                                  calibration_summary)
 from docs_figures_usage import USAGE_FIGURES  # noqa: E402
 
 REGION = re.compile(r"<!-- figures:(?P<name>[\w-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.DOTALL)
@@ -498,6 +499,9 @@ FIGURES: dict[str, Figure] = {
     "env-baselines": Figure(env_baselines),
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in USAGE_FIGURES.items()},
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in STUDY_FIGURES.items()},
+    "calibration-summary": Figure(lambda: calibration_summary(_level)),
+    "calibration-damping": Figure(lambda: calibration_damping(_level)),
+    "calibration-speeds": Figure(lambda: calibration_speeds(_level), fast=True),
 }
 
 
