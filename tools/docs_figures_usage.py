@@ -542,6 +542,109 @@ def env_flutter_v1_closed_loop() -> str:
             f"one of the {times[-1]:.0f} s{end}")
 
 
+
+# --- docs/environments.md: integration, baselines, limitations ------------------------------------------------------
+
+def _make(env_id: str):
+    import warnings
+
+    import gymnasium as gym
+
+    import flexsim.envs  # noqa: F401  (registers the ids)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)  # gymnasium's "v0 is out of date" notice
+        return gym.make(env_id)
+
+
+def env_stiffness() -> str:
+    """Eigenvalues of the Jacobian ETD2RK uses at LevelHold-v0's trim (9144 m, M 0.75, finite state)."""
+    from flexsim.model.jacobian import jacobian
+
+    u = _make("FlexSim/GTM-LevelHold-v0").unwrapped
+    manoeuvre = u.task.manoeuvre
+    point = u.dynamics.trim(manoeuvre)
+    lay = u.dynamics.model.layout
+    x = point.x if point.x.size == lay.n_states else np.concatenate([point.x, np.zeros(lay.n_inflow)])
+    ev = np.linalg.eigvals(jacobian(u.dynamics.model, x, point.u, controls=False)[0])
+    return (f"eigenvalues down to {_num(ev.real.min(), '.0f')} 1/s, |λ| up to {np.abs(ev).max():.0f} 1/s at "
+            f"{manoeuvre.altitude_m:g} m, M {u.task.mach:g}")
+
+
+def env_v0_rms() -> str:
+    """LevelHold-v0 (light turbulence): rms altitude and airspeed errors with the trim held and with the LQR."""
+    env = _make("FlexSim/GTM-LevelHold-v0")
+    policy = _agents_module("baselines").make_baseline("FlexSim/GTM-LevelHold-v0", env.unwrapped)
+    rms: dict[str, dict[int, tuple[float, float]]] = {"trim": {}, "lqr": {}}
+    for kind in rms:
+        for seed in (0, 1, 2):
+            obs, info = env.reset(seed=seed)
+            trim_action = info["trim_action"]
+            if kind == "lqr":
+                policy.reset(info)
+            alt, speed = [], []
+            while True:
+                obs, _, terminated, truncated, info = env.step(trim_action if kind == "trim" else policy(obs))
+                alt.append(info["task_errors"]["altitude_error_m"])
+                speed.append(info["task_errors"]["airspeed_error_m_s"])
+                if terminated or truncated:
+                    break
+            rms[kind][seed] = (float(np.sqrt(np.mean(np.square(alt)))), float(np.sqrt(np.mean(np.square(speed)))))
+    return rms
+
+
+@functools.cache
+def _v0_rms() -> dict:
+    return env_v0_rms()
+
+
+def env_v0_rms_altitude() -> str:
+    r = _v0_rms()
+    return f"rms altitude error {r['trim'][0][0]:.1f} m with the trim held, {r['lqr'][0][0]:.2f} m with the LQR"
+
+
+def env_v0_rms_airspeed() -> str:
+    r = _v0_rms()
+
+    def span(kind: str) -> str:
+        v = [r[kind][s][1] for s in r[kind]]
+        return f"{min(v):.2f}-{max(v):.2f} m/s"
+
+    return f"{span('trim')} rms with the trim held, {span('lqr')} with the LQR"
+
+
+def env_qs_flutter() -> str:
+    """Growth of the quasi-steady GTM's critical elastic mode at the cruise trims of LevelHold and GustAlleviation
+    (the whole known-limitation bullet: whether it flutters there)."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.flutter import FlutterAnalysis
+    from flexsim.trim import SteadyManoeuvre
+
+    gtm = load_aircraft("gtm")
+    analysis = FlutterAnalysis(gtm, "quasi-steady")
+    parts = []
+    for h, mach in ((9144.0, 0.75), (6000.0, 0.7)):
+        _, spectrum = analysis.evaluate(SteadyManoeuvre.level(h, mach=mach))
+        crit = spectrum.critical("elastic")
+        parts.append((crit.eigenvalue.real, f"{_num(crit.eigenvalue.real, '+.2f')} 1/s at {h:g} m, M {mach:g}"))
+    figures = f"least-damped elastic mode {crit.dominant_dof}: " + ", ".join(text for _, text in parts)
+    if any(rate > 0 for rate, _ in parts):
+        return (f"The quasi-steady GTM flutters at the cruise condition of the tasks ({figures}): use "
+                f"`aero=\"quasi-steady\"` only for short runs.")
+    return (f"The quasi-steady GTM (with its {100 * gtm.structural_damping_ratio:g} % structural damping) is stable at the cruise conditions of the tasks "
+            f"({figures}).")
+
+
+def env_turn_sideslip() -> str:
+    """The paper's steady turn at the Turn task's condition and R = +8000 m: sideslip and rudder."""
+    u = _make("FlexSim/GTM-Turn-v0").unwrapped
+    from flexsim.trim import SteadyManoeuvre
+
+    point = u.dynamics.trim(SteadyManoeuvre.turn(u.task.altitude_m, 8000.0, mach=u.task.mach))
+    return (f"{_num(math.degrees(point.beta), '+.1f')} deg at R = +8000 m, with the sign of R) and the trim needs about "
+            f"{abs(math.degrees(point.u[3])):.1f} deg of rudder")
+
+
 #: The figures of this module: region name -> (function, fast: checked in the default test suite).
 USAGE_FIGURES = {
     "agent-v0": (agent_v0, True),
@@ -579,4 +682,9 @@ USAGE_FIGURES = {
     "env-flutter-v1-trim-hold": (env_flutter_v1_trim_hold, False),
     "env-flutter-v1-damper": (env_flutter_v1_damper, False),
     "env-flutter-v1-closed-loop": (env_flutter_v1_closed_loop, False),
+    "env-stiffness": (env_stiffness, False),
+    "env-v0-rms-altitude": (env_v0_rms_altitude, False),
+    "env-v0-rms-airspeed": (env_v0_rms_airspeed, False),
+    "env-qs-flutter": (env_qs_flutter, False),
+    "env-turn-sideslip": (env_turn_sideslip, False),
 }
