@@ -645,6 +645,65 @@ def env_turn_sideslip() -> str:
             f"{abs(math.degrees(point.u[3])):.1f} deg of rudder")
 
 
+
+# --- docs/logs.md ------------------------------------------------------------------------------------------------------
+
+def logs_damaged_chunk() -> str:
+    """The recovery warning of a damaged log: a 3 s log of 301 seeded samples (chunks every 0.25 s of simulated
+    time) with one bit flipped at 30 % of the file, read back by ``read_flight_log``."""
+    import tempfile
+    import warnings
+
+    from flexsim.io.flight_log import FlightLogRecoveryWarning, FlightLogWriter, read_flight_log
+
+    topology = {"right_wing": 4, "fuselage": 3}
+    rng = np.random.default_rng(0)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "run.mcap"
+        with FlightLogWriter(path, state_names=["v_x_m_s", "q_right_wing_1_m", "xi_right_wing_1_rad"],
+                             control_names=["thrust_N", "aileron_rad", "elevator_rad", "rudder_rad"],
+                             signal_names=["airspeed_m_s"], structure_topology=topology, flush_interval_s=0.25) as w:
+            for k in range(301):
+                w.write(k * 0.01, position_m=rng.normal(size=3), euler_rad=rng.normal(size=3), state=rng.normal(size=3),
+                        controls=rng.normal(size=4), signals=rng.normal(size=1),
+                        structure={n: rng.normal(size=(m, 3)) for n, m in topology.items()})
+        data = bytearray(path.read_bytes())
+        data[int(0.3 * len(data))] ^= 1
+        path.write_bytes(bytes(data))
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            log = read_flight_log(path)
+    (message,) = [str(c.message) for c in caught if issubclass(c.category, FlightLogRecoveryWarning)]
+    if log.complete:
+        raise RuntimeError("logs-damaged-chunk: the damaged log was read as complete")
+    return message.removeprefix(f"{path}: ")
+
+
+
+# --- docs/design.md ------------------------------------------------------------------------------------------------
+
+def design_roots() -> str:
+    """``flexsim trim gtm --altitude-m 9144 --mach 0.75 --roots --json``: the roots by kind and the roll subsidence."""
+    import contextlib
+    import io
+
+    from flexsim.cli.main import main as flexsim_main
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        code = flexsim_main(["trim", "gtm", "--altitude-m", "9144", "--mach", "0.75", "--roots", "--json"])
+    if code:
+        raise RuntimeError(f"design-roots: flexsim trim exited with status {code}")
+    modes = json.loads(out.getvalue())["roots"]["modes"]
+    count = {k: sum(m["kind"] == k for m in modes) for k in ("rigid", "elastic", "aerodynamic")}
+    roll = [m for m in modes if m["kind"] == "rigid" and m["dominant_dof"] == "p"]
+    pair = ""
+    if len(roll) == 2 and roll[0]["imag"] != 0.0:
+        pair = (f" (the roll subsidence pairs with a wake root, {_num(roll[0]['real'], '.2f')} ± "
+                f"{abs(roll[0]['imag']):.2f}j)")
+    return f"{count['rigid']} rigid{pair}, {count['elastic']} elastic, {count['aerodynamic']} aerodynamic-lag"
+
+
 #: The figures of this module: region name -> (function, fast: checked in the default test suite).
 USAGE_FIGURES = {
     "agent-v0": (agent_v0, True),
@@ -687,4 +746,6 @@ USAGE_FIGURES = {
     "env-v0-rms-airspeed": (env_v0_rms_airspeed, False),
     "env-qs-flutter": (env_qs_flutter, False),
     "env-turn-sideslip": (env_turn_sideslip, False),
+    "logs-damaged-chunk": (logs_damaged_chunk, True),
+    "design-roots": (design_roots, False),
 }
