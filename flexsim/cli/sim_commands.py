@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import runpy
+import shutil
 import sys
 import warnings
 from pathlib import Path
@@ -98,6 +99,14 @@ def _port(text: str) -> int:
     return port
 
 
+def _executable(text: str) -> str:
+    """argparse type: the path of an executable file (``--viewer``), or a command name found on PATH."""
+    found = shutil.which(text)
+    if found is None:
+        raise argparse.ArgumentTypeError(f"--viewer = {text!r}: not an executable file nor a command on PATH")
+    return found
+
+
 def _view(args: argparse.Namespace) -> int:
     from flexsim.io.flight_log import FlightLogRecoveryWarning, read_flight_log
     from flexsim.io.viewer import HEADLESS_HINT, ViewerUnavailableError, viewer_unavailable_reason
@@ -124,7 +133,8 @@ def _view(args: argparse.Namespace) -> int:
         return 0
     where = args.connect or f"a new Rerun viewer on port {args.port}"
     print(f"sending the log to {where} ...", flush=True)
-    log_to_recording(log, rrd_path=args.save, spawn=args.connect is None, connect=args.connect, viewer_port=args.port)
+    log_to_recording(log, rrd_path=args.save, spawn=args.connect is None, connect=args.connect, viewer_port=args.port,
+                     viewer_executable=args.viewer)
     if args.save:
         print(f"Rerun recording saved to {args.save} (open it with: rerun {args.save})")
     return 0
@@ -159,4 +169,6 @@ def add_sim_commands(subparsers: argparse._SubParsersAction) -> None:
                              "instead of starting one (with --save: both)")
     p_view.add_argument("--port", type=_port, default=9876, metavar="N",
                         help="port of the viewer to start (a viewer already listening there is reused) [9876]")
+    p_view.add_argument("--viewer", type=_executable, metavar="PATH",
+                        help="the rerun executable to start [the one installed with rerun-sdk]")
     p_view.set_defaults(func=_view)

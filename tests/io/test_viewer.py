@@ -122,7 +122,8 @@ def test_spawn_without_display_fails_fast_and_says_what_to_do(log_and_reference,
 
 @posix_only
 def test_spawned_viewer_receives_every_entity(log_and_reference, tmp_path, monkeypatch):
-    """flexsim's spawn path (rerun.spawn through the recording) starts the viewer stand-in and streams the log."""
+    """`flexsim view LOG --viewer EXE`: the spawn path (rerun.spawn through the recording) starts the viewer stand-in
+    and streams every entity of the log to it."""
     log, reference = log_and_reference
     monkeypatch.setenv("DISPLAY", ":flexsim-test")  # the stand-in needs none; the check must let it start
     received, pid_file = tmp_path / "received.rrd", tmp_path / "viewer.pid"
@@ -131,9 +132,17 @@ def test_spawned_viewer_receives_every_entity(log_and_reference, tmp_path, monke
                        f'exec "{RERUN_EXE}" --bind 127.0.0.1 --save "{received}" "$@"\n')
     wrapper.chmod(0o755)
     monkeypatch.setenv("RERUN_ANALYTICS", "0")
-    log_to_recording(log, spawn=True, viewer_port=_free_port(), viewer_executable=str(wrapper))
+    assert cli_main(["view", str(log), "--port", str(_free_port()), "--viewer", str(wrapper)]) == 0
     rows = _stop_and_read(int(pid_file.read_text()), received, reference)
     assert rows == reference
+
+
+def test_view_with_a_viewer_that_is_not_executable_is_refused(log_and_reference, tmp_path, capsys):
+    log, _ = log_and_reference
+    with pytest.raises(SystemExit) as exit_info:
+        cli_main(["view", str(log), "--viewer", str(tmp_path / "no-such-rerun")])
+    assert exit_info.value.code == 2
+    assert "--viewer = " in capsys.readouterr().err
 
 
 @posix_only
