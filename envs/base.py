@@ -26,10 +26,10 @@ from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.config import (AERO_MODELS, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
                          IntegratorSettings, TrackingReward)
+from flexsim.envs import row_kernels as _rk
 from flexsim.envs.batch import EpisodeBatch
 from flexsim.envs.dynamics import (SENSOR_COMPONENTS, BatchOutcome, FlightDynamics, MeasurementBatch, Measurements, StepOutcome,
                                    advance_rows)
-from flexsim.envs.episodes import wrap_angle
 from flexsim.envs.parallel import limit_blas_threads
 
 __all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
@@ -258,6 +258,9 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._row = 0
         self._error_names = tuple(name for name, _ in self.task_errors_spec)
         self._renderer = None
+        self._constants: tuple | None = None  # the arguments of the compiled outputs from limits and reward (_kernel_constants)
+        self._act_low, self._act_high = self.action_space.low.astype(np.float64), self.action_space.high.astype(np.float64)
+        self._observe_data = (self._u_scale, self._act_low, self._act_high, len(SENSOR_COMPONENTS), self._obs_low, self._obs_high)
 
     # ------------------------------------------------------------------ task hooks
     def _new_episode(self, rng: np.random.Generator) -> Episode:
@@ -330,13 +333,11 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ValueError(f"action = {action!r}: {what}") from None
         if a.shape != (4,):
             raise ValueError(f"action: expected shape (4,) [thrust, aileron, elevator, rudder], got shape {a.shape}")
-        bad = np.flatnonzero(~np.isfinite(a))
-        if bad.size:
-            names = ", ".join(f"action[{i}] ({CONTROL_NAMES[i]}) = {a[i]}" for i in bad)
+        if not np.isfinite(a).all():
+            names = ", ".join(f"action[{i}] ({CONTROL_NAMES[i]}) = {a[i]}" for i in np.flatnonzero(~np.isfinite(a)))
             raise ValueError(f"action: values must be finite, got {names}")
-        low, high = self.action_space.low.astype(np.float64), self.action_space.high.astype(np.float64)
-        clipped = np.clip(a, low, high)
-        return clipped, bool(np.any(clipped != a))
+        clipped = np.minimum(np.maximum(a, self._act_low), self._act_high)
+        return clipped, bool((clipped != a).any())
 
     # ------------------------------------------------------------------ gymnasium API
     def _attach(self, batch: EpisodeBatch, row: int) -> None:
@@ -365,7 +366,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict]:
         self._check_steppable(self._batch, self._row)
         a, clipped = self._check_action(action)
-        out = self._step_rows(self._batch, np.array([self._row]), a[None, :], np.array([clipped]))
+        out = self._step_rows(self._batch, slice(self._row, self._row + 1), a[None, :], np.array([clipped]))
         info = self._step_info(out, 0)
         if self.render_mode == "human":
             self.render()
@@ -386,17 +387,20 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         if batch.ended[rows].any():
             raise RuntimeError("step() called after the episode terminated; call reset()")
 
-    def _step_rows(self, b: EpisodeBatch, rows: np.ndarray, a: np.ndarray, clipped: np.ndarray) -> RowsStep:
-        """One control period of the aircraft ``rows`` of ``b`` with the checked, clipped actions ``a`` (m, 4): actuator
-        rate limits, one :func:`advance_rows` call, measurements, termination, task errors, reward and observation,
-        all as array code over the rows (the single env is this with one row)."""
+    def _step_rows(self, b: EpisodeBatch, rows: np.ndarray | slice, a: np.ndarray, clipped: np.ndarray) -> RowsStep:
+        """One control period of the aircraft ``rows`` (sorted indices, or a slice) of ``b`` with the checked, clipped actions ``a`` (m, 4): actuator
+        rate limits, one :func:`advance_rows` call, the compiled outputs (:mod:`flexsim.envs.row_kernels`:
+        measurements, termination, reward parts and observation) and the task errors, all over the rows (the single
+        env is this with one row)."""
         dyn = self.dynamics
+        if not isinstance(rows, slice) and len(rows) == b.n:  # all rows, in order (rows are sorted and unique)
+            rows = slice(0, b.n)
         u = dyn.rate_limit(b.u[rows], a * self._u_scale)
         steps = b.steps[rows]
-        winds = [b.winds[i] for i in rows]
+        winds, dynamics = (b.winds[rows], b.dynamics[rows]) if isinstance(rows, slice) else ([b.winds[i] for i in rows],
+                                                                                             [b.dynamics[i] for i in rows])
         packed = b.packed_rows(rows)
-        outcome = advance_rows([b.dynamics[i] for i in rows], b.x[rows], u, steps * self.dt, (steps + 1) * self.dt, winds,
-                               packed=packed)
+        outcome = advance_rows(dynamics, b.x[rows], u, steps * self.dt, (steps + 1) * self.dt, winds, packed=packed)
         b.x[rows], b.u[rows], b.time_s[rows] = outcome.x, u, outcome.time_s
         b.steps[rows] = steps + 1
         meas = dyn.measure_batch(outcome.x, outcome.time_s, winds, packed)
@@ -406,54 +410,59 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         errors = self._task_errors(meas, b.references(rows))
         error_matrix = self._error_matrix(errors)
         b.errors[rows] = error_matrix
-        parts = self.reward_definition.parts_batch(errors, a - b.last_action[rows], terminated)
-        reward = TrackingReward.total(parts)
+        _, _, _, reward_data, terms, part_names = self._kernel_constants()
+        m = len(terminated)
+        parts, reward = np.empty((m, len(part_names))), np.empty(m)
+        obs = np.empty((m, self._obs_low.shape[0]), np.float32)
+        _rk.finish_rows(meas.matrix, error_matrix, terms, terminated, a - b.last_action[rows], reward_data, u, *self._observe_data,
+                        parts, reward, obs)
         b.last_action[rows] = a
         b.last_reward[rows] = reward
         b.record_path(rows, meas.position_ned_m)
-        obs = self._observe_rows(meas, error_matrix, u)
-        return RowsStep(obs, reward, terminated, codes, parts, errors, outcome, clipped)
+        return RowsStep(obs, reward, terminated, codes, dict(zip(part_names, parts.T)), errors, outcome, clipped)
+
+    def _kernel_constants(self) -> tuple:
+        """(limits, reward, limit data, reward data, reward-term error columns, part names): the arguments of
+        :mod:`flexsim.envs.row_kernels` that come from ``self.limits`` and ``self.reward_definition``, built again
+        when either attribute is replaced."""
+        lim, reward, c = self.limits, self.reward_definition, self._constants
+        if c is None or c[0] is not lim or c[1] is not reward:
+            missing = [t.error for t in reward.terms if t.error not in self._error_names]
+            if missing:
+                raise ValueError(f"task.reward: terms {missing} name no task error of {type(self).__name__} (one of "
+                                 f"{', '.join(self._error_names)})")
+            limit_data = np.array([lim.wing_tip_deflection_m, lim.fin_tip_twist_rad, lim.max_abs_pitch_rad, lim.max_mach,
+                                   lim.max_abs_alpha_rad, lim.min_airspeed_m_s])
+            terms = np.array([self._error_names.index(t.error) for t in reward.terms], dtype=np.int64)
+            c = self._constants = (lim, reward, limit_data, reward.kernel_data, terms, reward.part_names)
+        return c
 
     def _error_matrix(self, errors: dict[str, np.ndarray]) -> np.ndarray:
         """The task errors as a matrix (m, n_errors) in ``task_errors_spec`` order."""
         names = tuple(errors)
         if names != self._error_names:
             raise RuntimeError(f"{type(self).__name__}._task_errors returned {names}, expected {self._error_names} (task_errors_spec)")
-        return np.column_stack([np.asarray(v, dtype=float) for v in errors.values()])
+        values = list(errors.values())
+        out = np.empty((len(values[0]) if values else 0, len(values)))
+        for j, v in enumerate(values):
+            out[:, j] = v
+        return out
 
     def _termination_codes(self, outcome: BatchOutcome, meas: MeasurementBatch) -> np.ndarray:
         """Index into :data:`TERMINATION_CODES` of each row's termination (0: flying), the first that applies of
-        non-finite state or solver failure, crash, structural limit, gimbal lock, envelope."""
-        lim = self.limits
-        tip, twist = meas.tip_deflection_m, meas.tip_twist_rad
-        with np.errstate(invalid="ignore"):
-            wing = np.maximum(np.abs(tip["right_wing"]), np.abs(tip["left_wing"]))
-            conditions = [outcome.failure != "", outcome.crashed | (meas.altitude_m <= 0.0),
-                          ~(wing <= lim.wing_tip_deflection_m) | ~(np.abs(twist["vtail"]) <= lim.fin_tip_twist_rad),
-                          ~(np.abs(meas.euler_rad[:, 1]) < lim.max_abs_pitch_rad),
-                          ~((meas.mach < lim.max_mach) & (np.abs(meas.alpha_rad) < lim.max_abs_alpha_rad)
-                            & (meas.airspeed_m_s > lim.min_airspeed_m_s))]
-        codes = np.zeros(len(wing), dtype=np.int64)
-        for code in range(len(conditions), 0, -1):  # the first condition that holds wins
-            codes[conditions[code - 1]] = code
+        non-finite state or solver failure, crash, structural limit, gimbal lock, envelope
+        (:func:`flexsim.envs.row_kernels.termination_rows`)."""
+        codes = np.empty(len(outcome.time_s), dtype=np.int64)
+        _rk.termination_rows(meas.matrix, outcome.failure != "", outcome.crashed, self._kernel_constants()[2], len(SENSOR_COMPONENTS),
+                             codes)
         return codes
 
     def _observe_rows(self, meas: MeasurementBatch, errors: np.ndarray, u: np.ndarray) -> np.ndarray:
         """Observations (m, n_obs) float32 of m aircraft (measurements, task errors (m, k), applied controls (m, 4))."""
-        m, k = errors.shape
-        obs = np.empty((m, self._obs_low.shape[0]))
-        obs[:, 0:3] = meas.euler_rad
-        obs[:, 2] = wrap_angle(meas.euler_rad[:, 2])
-        obs[:, 3:6] = meas.body_rates_rad_s
-        obs[:, 6], obs[:, 7], obs[:, 8], obs[:, 9] = meas.airspeed_m_s, meas.alpha_rad, meas.beta_rad, meas.altitude_m
-        obs[:, 10:10 + k] = errors
-        s = 10 + k + 4 * len(SENSOR_COMPONENTS)
-        # per component: deflection, its rate, twist, its rate (the first four outputs of the SensorBank)
-        obs[:, 10 + k:s] = meas.sensors[:, 0:4, :].transpose(0, 2, 1).reshape(m, -1)
-        obs[:, s:] = self.controls_to_action(u)
-        obs[np.isnan(obs)] = 0.0
-        np.clip(obs, self._obs_low, self._obs_high, out=obs)
-        return obs.astype(np.float32)
+        obs = np.empty((len(errors), self._obs_low.shape[0]), np.float32)
+        _rk.observe_rows(meas.matrix, np.ascontiguousarray(errors, dtype=float), np.ascontiguousarray(u, dtype=float),
+                         *self._observe_data, obs)
+        return obs
 
     # ------------------------------------------------------------------ introspection
     # The episode state, read from this env's row of its EpisodeBatch.

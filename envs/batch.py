@@ -119,16 +119,19 @@ class EpisodeBatch:
         """Pack the winds again before the next use (a row's wind field was replaced)."""
         self._packed = None
 
-    def packed_rows(self, rows: np.ndarray) -> Any:
+    def packed_rows(self, rows: np.ndarray | slice) -> Any:
         """:meth:`packed_winds` of ``rows`` only (None stays None)."""
         packed = self.packed_winds()
-        if packed is None or (len(rows) == self.n and np.array_equal(rows, np.arange(self.n))):
+        if packed is None or (rows == slice(0, self.n) if isinstance(rows, slice) else
+                              (len(rows) == self.n and np.array_equal(rows, np.arange(self.n)))):
             return packed
-        return packed._replace(rows=packed.rows[np.asarray(rows, dtype=np.int64)])
+        return packed._replace(rows=packed.rows[rows if isinstance(rows, slice) else np.asarray(rows, dtype=np.int64)])
 
     # ------------------------------------------------------------------ flight path
-    def record_path(self, rows: np.ndarray, positions: np.ndarray) -> None:
-        """Append one position (m, 3) [m] NED to the path of each of ``rows``."""
+    def record_path(self, rows: np.ndarray | slice, positions: np.ndarray) -> None:
+        """Append one position (m, 3) [m] NED to the path of each of ``rows`` (indices or a slice)."""
+        if isinstance(rows, slice):
+            rows = np.arange(self.n)[rows]
         self._path[rows, self._path_count[rows] % PATH_HISTORY] = positions
         self._path_count[rows] += 1
 

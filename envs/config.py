@@ -12,6 +12,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from flexsim.envs.row_kernels import reward_rows
+
 __all__ = [
     "ActuatorRates",
     "IntegratorSettings",
@@ -270,8 +272,6 @@ class TrackingReward:
     control_rate_scale: float = 0.1
     termination_penalty: float = 100.0
     _names: tuple[str, ...] = field(init=False, repr=False, compare=False)
-    _scales: np.ndarray = field(init=False, repr=False, compare=False)
-    _weights: np.ndarray = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "terms", tuple(self.terms))
@@ -283,8 +283,6 @@ class TrackingReward:
             object.__setattr__(self, name, _positive(name, getattr(self, name), allow_zero=True))
         object.__setattr__(self, "control_rate_scale", _positive("control_rate_scale", self.control_rate_scale))
         object.__setattr__(self, "_names", ("alive", *names, "control_rate", "termination"))
-        object.__setattr__(self, "_scales", np.array([t.scale for t in self.terms], dtype=float))
-        object.__setattr__(self, "_weights", -np.array([*(t.weight for t in self.terms), self.control_rate_weight], dtype=float))
 
     @property
     def part_names(self) -> tuple[str, ...]:
@@ -301,23 +299,22 @@ class TrackingReward:
     def parts_batch(self, errors: Mapping[str, np.ndarray], action_change: np.ndarray, terminated: np.ndarray) -> dict[str, np.ndarray]:
         """The reward parts of m aircraft: task ``errors`` name -> (m,), action changes (m, 4), end flags (m,);
         name -> (m,) in :attr:`part_names` order. Non-finite errors count as saturated (cost -weight)."""
-        m = len(terminated)
-        k = len(self.terms)
-        ratios = np.empty((m, k + 1))  # columns: the terms' errors over their scales, then the control-rate mean
+        terminated = np.ascontiguousarray(terminated, dtype=np.bool_)
+        m, k = len(terminated), len(self.terms)
+        table = np.empty((m, k))
         for j, term in enumerate(self.terms):
-            ratios[:, j] = errors[term.error]
-        with np.errstate(all="ignore"):
-            ratios[:, :k] /= self._scales
-            np.multiply(ratios[:, :k], ratios[:, :k], out=ratios[:, :k])
-            ratios[:, k] = np.mean((np.asarray(action_change, dtype=float) / self.control_rate_scale) ** 2, axis=1)
-        costs = np.where(np.isfinite(ratios), np.minimum(ratios, 1.0), 1.0)
-        costs *= self._weights
-        out = {"alive": np.full(m, float(self.alive))}
-        for j, term in enumerate(self.terms):
-            out[term.error] = costs[:, j]
-        out["control_rate"] = costs[:, k]
-        out["termination"] = np.where(terminated, -float(self.termination_penalty), 0.0)
-        return out
+            table[:, j] = errors[term.error]
+        parts, reward = np.empty((m, k + 3)), np.empty(m)
+        reward_rows(table, np.arange(k, dtype=np.int64), terminated, np.ascontiguousarray(action_change, dtype=float).reshape(m, -1),
+                    self.kernel_data, parts, reward)
+        return dict(zip(self._names, parts.T))
+
+    @property
+    def kernel_data(self) -> np.ndarray:
+        """The reward's constants as :func:`flexsim.envs.row_kernels.reward_rows` takes them: [alive, -w_u, s_u,
+        penalty, s_1..s_T, -w_1..-w_T]."""
+        return np.array([self.alive, -self.control_rate_weight, self.control_rate_scale, self.termination_penalty,
+                         *(t.scale for t in self.terms), *(-t.weight for t in self.terms)])
 
     @staticmethod
     def total(parts: Mapping[str, float]) -> float:

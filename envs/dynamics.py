@@ -36,17 +36,18 @@ from scipy.integrate import solve_ivp
 
 from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
-from flexsim.atmosphere import speed_of_sound
+from flexsim.atmosphere import H_MAX, H_MIN
 from flexsim.model.jacobian import jacobian
 from flexsim import _kernels as _k
 from flexsim.model.aircraft_model import AircraftModel, Wind
-from flexsim.model.sensors import SensorBank
+from flexsim.model.sensors import SENSOR_QUANTITIES, SensorBank
 from flexsim.sim import _step_kernels as _sk
 from flexsim.sim.fixed_step import ETD2RK
-from flexsim.sim.outputs import OutputMaps, air_angles, heading_rate
+from flexsim.sim.outputs import OutputMaps
 from flexsim.kinematics import euler_rate_matrix_inverse
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
+from flexsim.envs import row_kernels as _rk
 from flexsim.envs.config import FIXED_STEP_METHODS, ActuatorRates, IntegratorSettings
 
 __all__ = ["FlightDynamics", "Measurements", "MeasurementBatch", "StepOutcome", "BatchOutcome", "SENSOR_COMPONENTS", "advance_rows",
@@ -54,6 +55,8 @@ __all__ = ["FlightDynamics", "Measurements", "MeasurementBatch", "StepOutcome", 
 
 #: Components carrying the structural sensors (tip deflection, twist and their rates), in order.
 SENSOR_COMPONENTS = ("right_wing", "left_wing", "vtail")
+#: The components with a root bending moment output (:attr:`Measurements.root_bending_moment_n_m`).
+_WING_HALVES = tuple(c for c in SENSOR_COMPONENTS if c != "vtail")
 #: Number of trims kept per environment (tasks with random targets trim every episode).
 TRIM_CACHE = 16
 #: Remaining fraction of a period below which a solver stop counts as having reached its end.
@@ -103,29 +106,50 @@ class Measurements:
     root_bending_moment_n_m: dict
 
 
-@dataclass(frozen=True)
 class MeasurementBatch:
     """:class:`Measurements` of N states at once (:meth:`FlightDynamics.measure_batch`): the same fields with a
     leading axis N (scalars become arrays (N,), vectors (N, 3); the structural dicts map a component to an
-    array (N,)), so the same array code computes the task errors and observations of one or many aircraft."""
+    array (N,)), so the same array code computes the task errors of one or many aircraft. The fields are views
+    of one matrix, the rows of :func:`flexsim.envs.row_kernels.measure_rows`.
 
-    time_s: np.ndarray
-    position_ned_m: np.ndarray
-    euler_rad: np.ndarray
-    body_rates_rad_s: np.ndarray
-    airspeed_m_s: np.ndarray
-    alpha_rad: np.ndarray
-    beta_rad: np.ndarray
-    mach: np.ndarray
-    altitude_m: np.ndarray
-    heading_rate_rad_s: np.ndarray
-    tip_deflection_m: dict
-    tip_deflection_rate_m_s: dict
-    tip_twist_rad: dict
-    tip_twist_rate_rad_s: dict
-    root_bending_moment_n_m: dict
-    #: All structural outputs, (N, 5, len(SENSOR_COMPONENTS)) (:meth:`flexsim.model.sensors.SensorBank.evaluate`).
-    sensors: np.ndarray
+    Attributes
+    ----------
+    time_s : ndarray, shape (N,)
+    matrix : ndarray, shape (N, SENSORS_AT + 5 C)
+        The measurement rows (columns :data:`flexsim.envs.row_kernels.MEAS_COLUMNS`, then the structural
+        outputs of the C :data:`SENSOR_COMPONENTS`).
+    """
+
+    __slots__ = ("time_s", "matrix")
+
+    def __init__(self, time_s: np.ndarray, matrix: np.ndarray) -> None:
+        self.time_s, self.matrix = time_s, matrix
+
+    position_ned_m = property(lambda self: self.matrix[:, 0:3])
+    euler_rad = property(lambda self: self.matrix[:, 3:6])
+    body_rates_rad_s = property(lambda self: self.matrix[:, 6:9])
+    airspeed_m_s = property(lambda self: self.matrix[:, 9])
+    alpha_rad = property(lambda self: self.matrix[:, 10])
+    beta_rad = property(lambda self: self.matrix[:, 11])
+    mach = property(lambda self: self.matrix[:, 12])
+    altitude_m = property(lambda self: self.matrix[:, 13])
+    heading_rate_rad_s = property(lambda self: self.matrix[:, 14])
+
+    @property
+    def sensors(self) -> np.ndarray:
+        """All structural outputs, (N, 5, C) (:meth:`flexsim.model.sensors.SensorBank.evaluate`)."""
+        c = len(SENSOR_COMPONENTS)
+        return self.matrix[:, _rk.SENSORS_AT:].reshape(-1, 5, c)
+
+    def _structural(self, k: int, names=SENSOR_COMPONENTS) -> dict:
+        s = _rk.SENSORS_AT + k * len(SENSOR_COMPONENTS)
+        return {name: self.matrix[:, s + j] for j, name in enumerate(SENSOR_COMPONENTS) if name in names}
+
+    tip_deflection_m = property(lambda self: self._structural(0))
+    tip_deflection_rate_m_s = property(lambda self: self._structural(1))
+    tip_twist_rad = property(lambda self: self._structural(2))
+    tip_twist_rate_rad_s = property(lambda self: self._structural(3))
+    root_bending_moment_n_m = property(lambda self: self._structural(4, _WING_HALVES))  # per wing half
 
     def row(self, i: int) -> Measurements:
         """The :class:`Measurements` of state i (floats and copies)."""
@@ -233,6 +257,9 @@ class FlightDynamics:
         self.sensors = {name: self.outputs.sensors[name] for name in SENSOR_COMPONENTS}
         #: The structural outputs of :data:`SENSOR_COMPONENTS` in batched form (one product for N states).
         self.sensor_bank = SensorBank.of(self.sensors, SENSOR_COMPONENTS, self.layout.n_states)
+        self._measure_data = self._kernel_measure_data()
+        self._n_meas = _rk.SENSORS_AT + self.sensor_bank.matrix.shape[1]
+        self._no_rows, self._no_given = np.zeros((0, 4), np.int64), np.zeros((0, 3))
         self.method = integrator.resolve(aero)
         self.rtol = integrator.rtol
         self.atol = integrator.atol(self.layout)
@@ -256,6 +283,23 @@ class FlightDynamics:
         ground.terminal = True
         ground.direction = -1.0
         self._ground = ground
+
+    def _kernel_measure_data(self) -> tuple:
+        """The arguments of :func:`flexsim.envs.row_kernels.measure_rows` that describe the model: first state
+        index of R, Theta, v, omega; the structural outputs in the kernel's column order (output k of component
+        c at C k + c) as the nonzero entries of the :class:`SensorBank` matrix, in state order; the ISA range."""
+        lay, bank = self.layout, self.sensor_bank.matrix
+        index = np.array([lay.position.start, lay.euler.start, lay.v.start, lay.omega.start], dtype=np.int64)
+        c = len(SENSOR_COMPONENTS)
+        ptr, idx, w = [0], [], []
+        for o in range(bank.shape[1]):
+            k, comp = divmod(o, c)
+            column = bank[:, len(SENSOR_QUANTITIES) * comp + k]
+            nz = np.flatnonzero(column)
+            idx.extend(nz.tolist())
+            w.extend(column[nz].tolist())
+            ptr.append(len(idx))
+        return (index, np.array(ptr, np.int64), np.array(idx, np.int64), np.array(w, float), np.array([H_MIN, H_MAX]))
 
     def fork(self) -> FlightDynamics:
         """Another :class:`FlightDynamics` of the same model for a second episode running at the same time.
@@ -400,36 +444,28 @@ class FlightDynamics:
         """:class:`MeasurementBatch` of states x (N, n) at times t (N,) [s], aircraft i in the wind ``winds[i]``.
 
         ``winds``: a sequence of N wind fields (None entries: still air) or None (all in still air);
-        ``packed``: the same winds packed by the model's ``pack_winds`` (then the air data are computed in one
-        compiled call, :func:`flexsim._kernels.air_velocity_rows`), or None. The air data are relative to the air
-        at the body origin; a wind field that cannot answer at a position gives still-air data for that row.
+        ``packed``: the same winds packed by the model's ``pack_winds`` (then the air data are computed in the
+        compiled :func:`flexsim.envs.row_kernels.measure_rows` too), or None (then each wind is asked in Python,
+        :meth:`OutputMaps.air_velocity_body`). The air data are relative to the air at the body origin; a wind
+        field that cannot answer at a position gives still-air data for that row.
         """
-        lay = self.layout
-        x = np.asarray(x, dtype=float)
+        x = np.ascontiguousarray(x, dtype=float)
         n = x.shape[0]
         t = np.array(t, dtype=float) if np.shape(t) == (n,) else np.full(n, float(t))
-        pos, eul = x[:, lay.position].copy(), x[:, lay.euler].copy()
-        altitude = -pos[:, 2]
-        v_air = self._air_velocity(t, x, pos, eul, winds, packed)
-        speed, alpha, beta = air_angles(v_air)
-        with np.errstate(all="ignore"):
-            mach = speed / self._sound_speed(altitude)
-        rates = heading_rate(eul, x[:, lay.velocity])
-        st = self.sensor_bank.evaluate(x)
-        parts = [{c: st[:, k, j] for j, c in enumerate(SENSOR_COMPONENTS)} for k in range(4)]
-        roots = {c: st[:, 4, j] for j, c in enumerate(SENSOR_COMPONENTS) if c != "vtail"}
-        return MeasurementBatch(t, pos, eul, x[:, lay.omega].copy(), speed, alpha, beta, mach, altitude, rates, *parts, roots, st)
+        out = np.empty((n, self._n_meas))
+        w = _k.NO_WIND
+        rows, given, mode = self._no_rows, self._no_given, _rk.WIND_STILL
+        if winds is not None and not all(wind is None for wind in winds):
+            if isinstance(packed, _k.BatchWind):
+                rows, w, mode = packed.rows, packed[1:], _rk.WIND_PACKED
+            else:
+                given, mode = self._air_velocity(t, x, winds), _rk.WIND_GIVEN
+        _rk.measure_rows(x, mode, given, rows, *w, *self._measure_data, out)
+        return MeasurementBatch(t, out)
 
-    def _air_velocity(self, t, x, pos, eul, winds, packed) -> np.ndarray:
-        """Body-axes velocity relative to the air at the body origin (N, 3) [m/s] (:meth:`measure_batch`)."""
-        v = x[:, self.layout.v]
-        if winds is None or all(w is None for w in winds):
-            return v.copy()
-        if isinstance(packed, _k.BatchWind):
-            ok = np.isfinite(pos).all(axis=1) & np.isfinite(eul).all(axis=1)
-            if ok.all():
-                return _k.air_velocity_rows(packed.rows, packed.gusts, packed.turb, packed.turb_grid, pos, eul, np.ascontiguousarray(v))
-        out = v.copy()
+    def _air_velocity(self, t, x, winds) -> np.ndarray:
+        """Body-axes velocity relative to the air at the body origin (N, 3) [m/s] of winds given as callables."""
+        out = np.array(x[:, self.layout.v])
         with np.errstate(all="ignore"):
             for i, wind in enumerate(winds):
                 if wind is not None:
@@ -438,20 +474,6 @@ class FlightDynamics:
                     except ValueError:  # a wind field that cannot answer at this position: still-air data
                         pass
         return out
-
-    @staticmethod
-    def _sound_speed(altitude: np.ndarray) -> np.ndarray:
-        """ISA speed of sound at the altitudes (N,) [m/s]; NaN outside the ISA range."""
-        try:
-            return np.asarray(speed_of_sound(altitude), dtype=float)
-        except ValueError:
-            out = np.full(altitude.shape, np.nan)
-            for i, h in enumerate(altitude):
-                try:
-                    out[i] = speed_of_sound(float(h))
-                except ValueError:
-                    pass
-            return out
 
     def euler_rates(self, x: np.ndarray) -> np.ndarray:
         """Theta_dot = E^-1 omega [rad/s] of state ``x``."""

@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from flexsim.model.layout import StateLayout
 from flexsim.sim.disturbances import DrydenTurbulence
 
+from flexsim.envs import row_kernels as _rk
 from flexsim.envs.config import InitialPerturbation
 
 __all__ = ["perturbed_state", "turbulence_field", "wrap_angle", "TURBULENCE_GRID_POINTS"]
@@ -20,17 +19,16 @@ TURBULENCE_GRID_POINTS = 2**14
 
 def wrap_angle(angle_rad):
     """``angle_rad`` wrapped to [-pi, pi] [rad] (NaN stays NaN; an infinity gives NaN): a float, or an array of
-    the same shape for an array. The IEEE remainder by 2 pi (``math.remainder``), formed for arrays as the exact
-    ``fmod`` plus one exact (Sterbenz) correction by 2 pi; the two agree except at odd multiples of pi exactly."""
+    the same shape for an array. The exact ``fmod`` by 2 pi plus one exact (Sterbenz) correction by 2 pi, the
+    compiled :func:`flexsim.envs.row_kernels.wrap` (the observations' wrap too)."""
     if np.ndim(angle_rad) == 0:
-        a = float(angle_rad)
-        return math.remainder(a, _TWO_PI) if math.isfinite(a) else math.nan
-    with np.errstate(invalid="ignore"):
-        r = np.fmod(np.asarray(angle_rad, dtype=float), _TWO_PI)
-        return np.where(r > math.pi, r - _TWO_PI, np.where(r < -math.pi, r + _TWO_PI, r))
+        return float(_rk.wrap(float(angle_rad)))
+    a = np.asarray(angle_rad, dtype=float)
+    out = np.empty(a.shape)
+    _rk.wrap_rows(a.reshape(-1), out.reshape(-1))
+    return out
 
 
-_TWO_PI = 2.0 * math.pi
 
 
 def perturbed_state(x_trim: np.ndarray, layout: StateLayout, rng: np.random.Generator, pert: InitialPerturbation) -> np.ndarray:

@@ -49,6 +49,10 @@ from flexsim.envs.turn import TurnEnv
 __all__ = ["FlexSimVectorEnv", "LevelHoldVectorEnv", "LevelHoldCaptureVectorEnv", "TurnVectorEnv", "GustAlleviationVectorEnv", "FlutterMarginVectorEnv",
            "WingFlutterMarginVectorEnv", "advance_batch", "rhs_rows"]
 
+#: Attributes of the sub-environments that the batched step reads from the first one only (all equal).
+_SHARED = ("limits", "task", "reward_definition")
+
+
 def advance_batch(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.ndarray,
                   winds: Sequence, rhs: Callable = rhs_rows, packed: Any = None) -> list[StepOutcome]:
     """:func:`~flexsim.envs.dynamics.advance_rows` as one :class:`StepOutcome` per row."""
@@ -277,6 +281,9 @@ class FlexSimVectorEnv(VectorEnv):
             values = [values] * self.num_envs
         if len(values) != self.num_envs:
             raise ValueError(f"values: need num_envs = {self.num_envs} values for {name!r}, got {len(values)}")
+        if name in _SHARED and any(v != values[0] for v in values[1:]):
+            raise ValueError(f"set_attr({name!r}): a {type(self).__name__} steps all aircraft with one {name} (its first "
+                             "sub-environment's); pass one value for all")
         for env, value in zip(self.envs, values):
             setattr(env, name, value)
 
