@@ -26,7 +26,17 @@
    each (at least 3 steps), reset and one warm-up step excluded. Target (issue #14): >= 10,000
    env-steps/s per core at 256 aircraft.
 
+5. Issue #14 rows 4 and 5 side by side with a reference revision (``--compare [REV]``, or ``--compare-only``
+   for this section alone; default reference a7f7980, main when those rows were measured at 428 steps/s and
+   1,591 env-steps per CPU-second): one env (``gym.make``, all wrappers) steps per CPU-second and N = 256 batched
+   env-steps per CPU-second (``vector_entry_point``), each tree's default integrator and this tree's at the
+   reference's 5 ms ETD2RK step too, in fresh processes (``benchmarks/_envs_worker.py``) alternating reference and
+   this tree ``--repeats`` times; medians, ratios, targets 2,000 and 10,000. The reference is extracted with
+   ``git archive`` into a directory kept between runs (its numba cache with it), ``--reference-tree PATH`` uses
+   a checkout instead.
+
 Run: python benchmarks/bench_envs.py [--repeats 5] [--steps 200] [--batched | --batched-only] [--sync-256]
+     [--compare [REV] | --compare-only [REV]] [--reference-tree PATH]
 """
 
 from __future__ import annotations
@@ -35,7 +45,11 @@ import argparse
 import datetime
 import math
 import os
+import json
 import statistics
+import subprocess
+import sys
+import tempfile
 import time
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -257,6 +271,52 @@ def batched_rates(repeats: int, sync_256: bool) -> None:
           "single env of the same run")
 
 
+#: The reference of section 5: main when issue 14's env rows were measured (README, docs/performance.md).
+COMPARE_REFERENCE = "a7f7980"
+HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+WORKER = os.path.join(HERE, "benchmarks", "_envs_worker.py")
+
+
+def _reference_tree(rev: str) -> str:
+    """A checkout of ``rev`` extracted with ``git archive`` into a directory kept between runs (with its numba cache)."""
+    sha = subprocess.run(["git", "-C", HERE, "rev-parse", "--short=12", rev], check=True, capture_output=True, text=True).stdout.strip()
+    tree = os.path.join(tempfile.gettempdir(), f"flexsim-bench-envs-{sha}")
+    if not os.path.isfile(os.path.join(tree, "flexsim", "__init__.py")):
+        os.makedirs(tree, exist_ok=True)
+        archive = subprocess.run(["git", "-C", HERE, "archive", sha], check=True, capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", tree], input=archive, check=True)
+    return tree
+
+
+def _worker(tree: str, mode: str, steps: int, max_step_s: float | None) -> float:
+    """Env-steps per CPU-second of one worker process on ``tree`` (``benchmarks/_envs_worker.py``)."""
+    cmd = [sys.executable, WORKER, mode, "--steps", str(steps)] + ([] if max_step_s is None else ["--max-step-s", str(max_step_s)])
+    env = dict(os.environ, PYTHONPATH=tree, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    out = subprocess.run(cmd, cwd=tree, env=env, check=True, capture_output=True, text=True).stdout
+    return float(json.loads(out.strip().splitlines()[-1])["env_steps_per_cpu_s"])
+
+
+def compare(reference: str, reference_tree: str | None, repeats: int) -> None:
+    """Section 5 of the module docstring."""
+    ref = reference_tree or _reference_tree(reference)
+    label = reference_tree or reference
+    print(f"issue #14 rows 4-5: this tree against {label}, fresh processes alternating, median of {repeats}; env-steps per "
+          f"CPU-second; {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f}", flush=True)
+    rows = (("one env, LevelHold-v0, default integrator", "single", 300, None, TARGET_STEPS_S),
+            ("one env, ETD2RK 5 ms (the reference's default)", "single", 300, 0.005, TARGET_STEPS_S),
+            ("256 batched (vector_entry_point), default", "batched", 4, None, TARGET_BATCHED),
+            ("256 batched, ETD2RK 5 ms", "batched", 4, 0.005, TARGET_BATCHED))
+    for text, mode, steps, h, target in rows:
+        runs: dict[str, list[float]] = {"ref": [], "new": []}
+        for _ in range(repeats):
+            for side, tree in (("ref", ref), ("new", HERE)):
+                runs[side].append(_worker(tree, mode, steps, h))
+        r, n = statistics.median(runs["ref"]), statistics.median(runs["new"])
+        print(f"  {text:48s} reference {r:8.0f}   this tree {n:8.0f} ({min(runs['new']):.0f}-{max(runs['new']):.0f})   x{n / r:5.2f}   "
+              f"target {target:,.0f}: {'met' if n >= target else 'not met'}", flush=True)
+    print(f"  load after: {os.getloadavg()[0]:.1f}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
@@ -264,7 +324,15 @@ def main() -> None:
     parser.add_argument("--batched", action="store_true", help="also section 4: batched envs at N = 1, 16, 256")
     parser.add_argument("--batched-only", action="store_true", help="section 4 alone")
     parser.add_argument("--sync-256", action="store_true", help="section 4: gymnasium's sync/async vector envs at N = 256 too")
+    parser.add_argument("--compare", nargs="?", const=COMPARE_REFERENCE, default=None, metavar="REV",
+                        help=f"also section 5: against REV (default {COMPARE_REFERENCE})")
+    parser.add_argument("--compare-only", nargs="?", const=COMPARE_REFERENCE, default=None, metavar="REV", help="section 5 alone")
+    parser.add_argument("--reference-tree", default=None, help="section 5: a checkout to compare against instead of REV")
     args = parser.parse_args()
+    if args.compare_only:
+        print(f"{datetime.date.today()}")
+        compare(args.compare_only, args.reference_tree, args.repeats)
+        return
     if args.batched_only:
         print(f"{datetime.date.today()}")
         batched_rates(args.repeats, args.sync_256)
@@ -298,6 +366,8 @@ def main() -> None:
           f"{os.cpu_count()} cores; other processes kept {others:.1f} cores busy meanwhile)")
     if args.batched:
         batched_rates(args.repeats, args.sync_256)
+    if args.compare:
+        compare(args.compare, args.reference_tree, args.repeats)
 
 
 if __name__ == "__main__":
