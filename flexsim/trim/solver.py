@@ -255,13 +255,13 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         z0[2] = -0.03 if manoeuvre.is_glide else 0.03
     z = r = None
     if guess is not None:  # Newton from a neighbouring trim; hybr only if that does not converge
-        z = _newton_polish(prob.residual, z0, jac_of=prob.jacobian)
+        z, jac = _newton_polish(prob.residual, z0, jac_of=prob.jacobian)
         r = prob.residual(z)
         if not float(np.linalg.norm(r)) <= _WARM_TOLERANCE:
             z = None
     if z is None:
         sol = root(prob.residual, z0, method="hybr", options={"xtol": 1e-13, "maxfev": 200 * (z0.size + 1)})
-        z = _newton_polish(prob.residual, sol.x, jac_of=prob.jacobian)
+        z, jac = _newton_polish(prob.residual, sol.x, jac_of=prob.jacobian)
         r = prob.residual(z)
     norm = float(np.linalg.norm(r))
     if not np.isfinite(norm) or norm > _TOLERANCE:
@@ -273,12 +273,12 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
     x, u, gamma = prob.state(z)
     point = _trim_point(model, manoeuvre, x, u, gamma, norm, float(z[-1]) if manoeuvre.coordinated else 0.0)
     if not check_limits:
-        _check_singular(prob, z)  # without limits a singular direction would be returned as a trim
+        _check_singular(prob, z, jac)  # without limits a singular direction would be returned as a trim
     else:
         try:
             _check_limits(model, manoeuvre, point)
         except TrimError:
-            _check_singular(prob, z)  # an absurd control from a singular system: say so instead
+            _check_singular(prob, z, jac)  # an absurd control from a singular system: say so instead
             raise
     return point
 
@@ -291,15 +291,19 @@ def _unknown_labels(prob: "_Problem") -> list[str]:
     return ["pitch theta", "bank phi", third, "aileron delta_a", "elevator delta_e", "rudder delta_r", *el][: 6 + prob.n_el]
 
 
-def _check_singular(prob: "_Problem", z: np.ndarray) -> None:
+def _check_singular(prob: "_Problem", z: np.ndarray, jac: np.ndarray | None = None) -> None:
     """Raise TrimError when the trim equations do not determine an unknown at the solution.
 
     The Jacobian d(residual)/dz (central differences) is column-scaled; an unknown whose column
     vanishes has no effect on the equations (e.g. an aileron inboard of every aerodynamic strip), and a
     condition number above 1e12 means a combination of unknowns is undetermined: the "solution" along
-    that direction is arbitrary, so it is not reported as a trim.
+    that direction is arbitrary, so it is not reported as a trim. ``jac``: the Jacobian the Newton polish
+    last built (at z, or at an earlier iterate from which its steps converged to z), reused instead of a new one
+    at z: a dead column or a condition number of 1e12 is a property of the equations, not of the last Newton step
+    (default None, or not finite: built at z).
     """
-    jac = prob.jacobian(z)
+    if jac is None or not np.all(np.isfinite(jac)):
+        jac = prob.jacobian(z)
     labels = _unknown_labels(prob)
     col = np.linalg.norm(jac, axis=0)
     if not np.all(np.isfinite(col)):
@@ -334,7 +338,7 @@ def _demand(model: AircraftModel, man: SteadyManoeuvre) -> str:
             f"; a larger radius or a lower speed asks less)")
 
 
-def _newton_polish(fun, z: np.ndarray, iterations: int = 12, jac_of=None) -> np.ndarray:
+def _newton_polish(fun, z: np.ndarray, iterations: int = 12, jac_of=None) -> tuple[np.ndarray, np.ndarray | None]:
     """Newton steps polishing hybr's root (it stops at ~1e-8 at high dynamic pressure, or earlier when it
     makes no progress from a distant guess).
 
@@ -345,15 +349,17 @@ def _newton_polish(fun, z: np.ndarray, iterations: int = 12, jac_of=None) -> np.
     so that a start far from the root still converges quadratically. Stops below 1e-13, when a step with a
     fresh Jacobian no longer reduces the residual, or after a slow step that ends below ``_ROUND_OFF`` (the
     residual's round-off floor, where a fresh Jacobian cannot do better).
+
+    Returns the polished z and the last Jacobian built (None when z needed no step).
     """
     r = fun(z)
-    lu = None
+    lu = jac = None
     fresh = False
     for _ in range(iterations):
         if not np.all(np.isfinite(r)) or np.linalg.norm(r) < 1e-13:
             break
         if lu is None:
-            lu, fresh = _jacobian_lu(fun, z, r.size, jac_of), True
+            jac, lu, fresh = *_jacobian_lu(fun, z, r.size, jac_of), True
             if lu is None:
                 break
         z_new = z - lu_solve(lu, r, check_finite=False)
@@ -369,7 +375,7 @@ def _newton_polish(fun, z: np.ndarray, iterations: int = 12, jac_of=None) -> np.
             break
         if slow:
             lu = None
-    return z
+    return z, jac
 
 
 def _fd_jacobian(fun, z: np.ndarray, m: int) -> np.ndarray:
@@ -385,17 +391,17 @@ def _fd_jacobian(fun, z: np.ndarray, m: int) -> np.ndarray:
 
 
 def _jacobian_lu(fun, z: np.ndarray, m: int, jac_of=None):
-    """LU factors of the central-difference Jacobian of ``fun`` at z (steps 1e-7 max(1, |z_j|), or ``jac_of(z)``);
-    None if singular."""
+    """The central-difference Jacobian of ``fun`` at z (steps 1e-7 max(1, |z_j|), or ``jac_of(z)``) and its LU
+    factors (None if singular or not finite)."""
     jac = _fd_jacobian(fun, z, m) if jac_of is None else jac_of(z)
     if not np.all(np.isfinite(jac)):
-        return None
+        return jac, None
     with warnings.catch_warnings():
         warnings.simplefilter("error", LinAlgWarning)
         try:
-            return lu_factor(jac, check_finite=False)
+            return jac, lu_factor(jac, check_finite=False)
         except (LinAlgWarning, np.linalg.LinAlgError, ValueError):
-            return None
+            return jac, None
 
 
 def _residual_labels(model: AircraftModel) -> list[str]:
