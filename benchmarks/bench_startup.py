@@ -1,11 +1,16 @@
 """Where the start-up of a process goes: import, GTM model, first right-hand side (issue 14 target <= 0.3 s beyond a
-numpy + scipy process).
+numpy + scipy process), beside the floor of numba itself.
 
-Each repeat runs fresh processes (so every import and every numba cache load is paid): one that only imports numpy
-and scipy (the baseline), and one that also imports numba and flexsim, builds the unsteady GTM model and evaluates
-one right-hand side. The second reports its CPU time per phase and every numba dispatcher loaded from the on-disk
-cache on first call (the first one also pays numba's one-off initialisation of its compilation target). Medians
-over the repeats; the load average is printed (CPU time is inflated less than wall time by other jobs).
+Each repeat runs fresh processes, alternating (so every import and every numba cache load is paid, and a load
+change hits all three alike): one that only imports numpy and scipy (the baseline); the numba floor, which also
+imports numba and calls one trivial ``@njit(cache=True)`` function (``benchmarks/_numba_floor.py``) for the first
+time — numba's one-off initialisation of its compilation target plus one cache load, paid by any library that
+calls a cached numba function, before any of its own work; and flexsim's, which imports numba and flexsim, builds
+the unsteady GTM model and evaluates one right-hand side. The last reports its CPU time per phase and every numba
+dispatcher loaded from the on-disk cache on first call (the first one also pays numba's target initialisation).
+Medians over the repeats; the load average is printed (CPU time is inflated less than wall time by other jobs).
+Python's bytecode cache: the figures assume ``__pycache__`` is written (PYTHONDONTWRITEBYTECODE is removed from
+the children's environment; the warm-up process writes it), as after ``pip install``.
 
 Run: python benchmarks/bench_startup.py [--repeats 3]
 """
@@ -24,6 +29,14 @@ import json, sys, time
 c0 = time.process_time()
 import numpy, scipy.linalg, scipy.integrate, scipy.optimize
 out = {"numpy_scipy": time.process_time() - c0}
+if sys.argv[1] == "floor":
+    c = time.process_time()
+    import numba
+    out["import_numba"] = time.process_time() - c
+    c = time.process_time()
+    from _numba_floor import add_one
+    add_one(1.0)
+    out["first_call"] = time.process_time() - c
 if sys.argv[1] == "full":
     c = time.process_time()
     import numba
@@ -58,8 +71,9 @@ print(json.dumps(out))
 
 def run(kind: str) -> dict:
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    env["PYTHONPATH"] = root + os.pathsep + env.get("PYTHONPATH", "")
+    env["PYTHONPATH"] = os.pathsep.join([root, os.path.join(root, "benchmarks"), env.get("PYTHONPATH", "")])
     done = subprocess.run([sys.executable, "-c", CHILD, kind], capture_output=True, text=True, env=env, check=True, cwd=root)
     return json.loads(done.stdout.strip().splitlines()[-1])
 
@@ -69,16 +83,25 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.2f} at start; CPU seconds, median of {args.repeats} fresh processes")
-    base = [run("base") for _ in range(args.repeats)]
-    full = [run("full") for _ in range(args.repeats)]
+    run("floor"), run("full")  # warm-up: numba's on-disk caches and Python's bytecode cache written
+    base, floor, full = [], [], []
+    for _ in range(args.repeats):
+        base.append(run("base"))
+        floor.append(run("floor"))
+        full.append(run("full"))
     med = lambda rows, key: statistics.median(r[key] for r in rows)  # noqa: E731
     print(f"numpy + scipy only process: {med(base, 'total'):.3f} s")
+    print(f"numba floor (import numba + first call of a trivial cached function): {med(floor, 'total') - med(base, 'total'):.3f} s "
+          f"beyond numpy + scipy (import {med(floor, 'import_numba'):.3f} s, first call {med(floor, 'first_call'):.3f} s)")
+    print("flexsim:")
     for key, label in (("numpy_scipy", "import numpy + scipy"), ("import_numba", "import numba"),
                        ("import_flexsim", "import flexsim (loader, model)"), ("model", "GTM unsteady model (load + build)"),
                        ("first_rhs", "first right-hand side"), ("total", "total")):
         print(f"  {label:<36} {med(full, key):.3f} s")
     extra = med(full, "total") - med(base, "total")
-    print(f"start-up beyond numpy + scipy: {extra:.3f} s (target <= 0.3 s)")
+    own = med(full, "total") - med(floor, "total")
+    print(f"start-up beyond numpy + scipy: {extra:.3f} s (target <= 0.3 s), of which the numba floor "
+          f"{extra - own:.3f} s and flexsim's own {own:.3f} s")
     names = [n for n, _ in full[0]["loads"]]
     print("numba dispatchers loaded from the cache on first call (the first includes numba's target initialisation):")
     for i, name in enumerate(names):
