@@ -39,7 +39,7 @@ from flexsim.model.bodies import SlenderBodies
 from flexsim.model.drag import ParasiteDrag
 from flexsim.model.layout import StateLayout
 from flexsim.kinematics import dcm_321
-from flexsim.structure.model import StructuralModel
+from flexsim.structure.model import StructuralModel, structural_model
 
 __all__ = ["Variant", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES", "Wind"]
 
@@ -138,7 +138,7 @@ class AircraftModel(Immutable):
         if not np.isfinite(gravity_m_s2) or gravity_m_s2 < 0:
             raise ValueError(f"gravity_m_s2 = {gravity_m_s2!r}: must be a finite number >= 0")
         self.aircraft = aircraft
-        self.structure = StructuralModel(aircraft)
+        self.structure = structural_model(aircraft)  # one per aircraft content: immutable, shared
         if structural_damping is None:
             structural_damping = aircraft.structural_damping_ratio
         if not (np.isfinite(structural_damping) and 0.0 <= structural_damping < 1.0):
