@@ -200,18 +200,17 @@ def _bounds_label(aircraft: str, factors, fixed) -> str:
     return ", ".join(parts) + ("" if fixed is None else f", ρ({fixed:g} m)")
 
 
-#: The recorded configurations of docs/flutter.md's class-boundary table beyond the bundled aircraft's US rows:
+#: The stiffness variants of gtm_paper in docs/flutter.md's class-boundary table (US; its finite-state rows, about
+#: 1.5 min per altitude on a loaded machine, are recorded output):
 #: (aircraft, factors, fixed density altitude, model, altitudes).
-MORE_BOUNDS = (("gtm", (), None, "FS", PAPER_ALTITUDES_M[1:]),
-               ("gtm_paper", (), None, "FS", PAPER_ALTITUDES_M[1:]),
-               ("gtm_paper", (("fuselage.ei", 2.0), ("wing.ei", 0.7)), None, "US", PAPER_ALTITUDES_M[1:]),
+MORE_BOUNDS = (("gtm_paper", (("fuselage.ei", 2.0), ("wing.ei", 0.7)), None, "US", PAPER_ALTITUDES_M[1:]),
                ("gtm_paper", (("fuselage.ei", 2.0), ("wing.ei", 0.8)), None, "US", PAPER_ALTITUDES_M[1:]),
                ("gtm_paper", (("fuselage.ei", 2.0), ("wing.ei", 0.8)), 3048.0, "US", PAPER_ALTITUDES_M[2:]),
                ("gtm_paper", (("fuselage.ei", 2.0), ("wing.ei", 0.85), ("wing.gj", 1.04)), None, "US", PAPER_ALTITUDES_M[2:]))
 
 
 def symmetric_bounds_more() -> str:
-    """The class boundaries of the finite-state model and of the stiffness variants of ``gtm_paper``."""
+    """The class boundaries of the stiffness variants of ``gtm_paper`` (US p-k)."""
     import symmetric_mode
 
     rows = []
@@ -222,6 +221,62 @@ def symmetric_bounds_more() -> str:
                 raise RuntimeError(f"symmetric-bounds-more: {aircraft} {factors} at {h:g} m: a class without a crossing")
             rows.append({**r, "config": _bounds_label(aircraft, factors, fixed)})
     return "\n" + _minus(symmetric_mode.bounds_table(rows).split("\n\n")[0]) + "\n"
+
+
+def _bounds_rows(configs) -> list[dict]:
+    """Rows of ``_bounds`` for (aircraft, factors, fixed density altitude, model, altitudes) configurations, each
+    labelled as its config; a fixed rho(h*) at h* is the true-density row there (as ``symmetric_mode.py table``)."""
+    rows = []
+    for aircraft, factors, fixed, model, altitudes in configs:
+        for h in altitudes:
+            r = _bounds(aircraft, factors, None if fixed == h else fixed, model, h)
+            if not (r["symmetric"] and r["antisymmetric"]):
+                raise RuntimeError(f"{aircraft} {factors} rho({fixed}) at {h:g} m: a class without a crossing in the grid")
+            rows.append({**r, "config": _bounds_label(aircraft, factors, fixed)})
+    return rows
+
+
+#: The structure whose critical mode is the symmetric one (docs/flutter.md, density section): three densities.
+SYM_STRUCTURE = ("gtm_paper", (("fuselage.ei", 2.0), ("wing.ei", 0.7)))
+#: C5 of docs/calibration.md §6: every factor within its bound (C3's wing, fuselage EI x 1.75), four densities.
+C5_STRUCTURE = ("gtm_paper", (("wing.ei", 0.85), ("wing.gj", 1.04), ("fuselage.ei", 1.75)))
+
+
+def density_symmetric_structure() -> str:
+    """Both class boundaries on the symmetric-mode structure with the true density, rho(3048 m) and rho(0)."""
+    import symmetric_mode
+
+    a, f = SYM_STRUCTURE
+    rows = _bounds_rows(((a, f, None, "US", PAPER_ALTITUDES_M[1:]), (a, f, 3048.0, "US", PAPER_ALTITUDES_M),
+                         (a, f, 0.0, "US", PAPER_ALTITUDES_M[1:])))
+    return "\n" + _minus(symmetric_mode.bounds_table(rows)) + "\n"
+
+
+def calibration_c5() -> str:
+    """C5's class boundaries (US p-k) with the true density and the linearised aerodynamics at rho(3048 m),
+    rho(1524 m) and rho(0)."""
+    import symmetric_mode
+
+    a, f = C5_STRUCTURE
+    rows = _bounds_rows(((a, f, None, "US", PAPER_ALTITUDES_M[1:]), (a, f, 3048.0, "US", PAPER_ALTITUDES_M[2:]),
+                         (a, f, 1524.0, "US", (3048.0, 9144.0)), (a, f, 0.0, "US", PAPER_ALTITUDES_M[1:])))
+    return "\n" + _minus(symmetric_mode.bounds_table(rows)) + "\n"
+
+
+def strip_drag(level) -> str:
+    """Drag and L/D of the strips alone (parasite drag off) in the quasi-steady trim at the US level flutter points
+    (``level("US")``, the docs tool's rows) at sea level and 9144 m."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.model.aircraft_model import AircraftModel
+    from flexsim.model.coupling import AeroOptions
+    from flexsim.trim import SteadyManoeuvre, trim
+
+    model = AircraftModel(load_aircraft("gtm"), aero=AeroOptions("quasi-steady", parasite_drag=False))
+    parts = []
+    for h in (0.0, 9144.0):
+        p = trim(model, SteadyManoeuvre.level(h, mach=level("US")[h]["mach"]))
+        parts.append(f"{p.drag_n / 1e3:.1f} kN (L/D {p.lift_n / p.drag_n:.0f}) at {h:g} m")
+    return " and ".join(parts)
 
 
 # --- docs/calibration.md ----------------------------------------------------------------------------------------
@@ -457,7 +512,7 @@ def decomposition_gtm() -> str:
 
     rows = {r["switch"]: r for r in _decomposition_gtm()}
     ref = rows["none"]
-    small = [f"`{s}`" for s in ("rotation", "static_deformation", "thrust", "gravity")
+    small = [s for s in ("rotation", "static_deformation", "thrust", "gravity")
              if abs(rows[s]["turn_dM"] - ref["turn_dM"]) <= 1.5e-4]
     damp, dens = rows["damping"], rows["density"]
     climbs = [r["climb_dM"] for s, r in rows.items() if s != "damping"]
@@ -488,4 +543,6 @@ STUDY_FIGURES = {
     "decomposition-gtm": (decomposition_gtm, False),
     "symmetric-bounds-us": (symmetric_bounds_us, False),
     "symmetric-bounds-more": (symmetric_bounds_more, False),
+    "density-symmetric-structure": (density_symmetric_structure, False),
+    "calibration-c5": (calibration_c5, False),
 }

@@ -43,9 +43,11 @@ climb search, and about 4 minutes for the baselines table):
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
   (``examples/agents/evaluate_baselines.py --episodes 10``).
 
-The trim, validation and Goland figures are computed in ``tools/docs_figures_static.py``. Other quoted figures come from their own scripts, named beside them: ``studies/*.py`` (docs/calibration.md,
-the decomposition and density studies of docs/flutter.md), ``benchmarks/`` (docs/performance.md and the speed
-tables, dated).
+The trim, validation and Goland figures are computed in ``tools/docs_figures_static.py``; the figures of the
+``studies/`` scripts quoted in docs/flutter.md, docs/calibration.md and docs/validation.md (density, class
+boundaries, census, decomposition, calibration, phugoid) in ``tools/docs_figures_studies.py`` (its
+``STUDY_FIGURES``; the slow ones take 2-8 min each). Study tables the tool does not rerun are marked in the docs as
+recorded study output (date, command); ``benchmarks/`` figures (docs/performance.md, speed tables) are dated.
 
 Run from the repository root::
 
@@ -80,7 +82,7 @@ from docs_figures_static import (_num, goland_compressible, goland_incompressibl
                                  options_glide, options_lift_drag, options_paper_turn, options_static_margin,
                                  options_which_bank, validation_table)
 from docs_figures_studies import (STUDY_FIGURES, calibration_damping, calibration_speeds,  # noqa: E402
-                                  calibration_summary)
+                                  calibration_summary, strip_drag)
 from docs_figures_usage import USAGE_FIGURES  # noqa: E402
 
 REGION = re.compile(r"<!-- figures:(?P<name>[\w-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.DOTALL)
@@ -502,6 +504,7 @@ FIGURES: dict[str, Figure] = {
     "calibration-summary": Figure(lambda: calibration_summary(_level)),
     "calibration-damping": Figure(lambda: calibration_damping(_level)),
     "calibration-speeds": Figure(lambda: calibration_speeds(_level), fast=True),
+    "flutter-strip-drag": Figure(lambda: strip_drag(_level), fast=True),
 }
 
 
