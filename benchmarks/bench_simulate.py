@@ -2,30 +2,32 @@
 
 GTM (notional), m = n = 2, unsteady aerodynamics with N = 6 inflow states per strip (252 states), level
 trim at 9144 m and M 0.75, a 1-cos up-gust of 2 m/s and gradient length 30 m reached by the body origin
-at t = 1 s. For every candidate solver: median wall time of ``--repeats`` runs (integration and the
-one-off constant Jacobian; no log), the real-time factor 60 s / wall time, the cost counters, and the
-largest deviation from a reference run (DOP853, rtol 1e-9) of altitude, airspeed and right-wing tip
-deflection sampled at 10 Hz. Then the default solver once more with a 50 Hz flight log, to show the
-logging cost, and an accuracy check on a growing oscillation (Goland flutter onset). Target (issue 14):
-the default integrator >= 100x faster than real time on one core (OPENBLAS_NUM_THREADS=1).
+at t = 1 s. For the default integrator, the previous default and Radau (the default before issue 14) — ``--all``
+adds ETD2RK 50 ms, Radau 1e-4/1e-5, LSODA, BDF and DOP853 1e-6 —: median wall time of ``--repeats`` runs
+(integration, the one-off Jacobian and matrix functions, the 100 Hz samples; no log), the real-time factor 60 s /
+wall time and 60 s / CPU time of the process (on a shared machine the wall time includes waiting for a core), the
+ratio to the default's wall time measured in the same run, the cost counters, and the largest deviation from a
+reference run (DOP853, rtol 1e-9) of altitude, airspeed and right-wing tip deflection sampled at 10 Hz. Then the
+default and Radau once more with a 50 Hz flight log, to show the logging cost, and the accuracy on a growing
+oscillation (Goland flutter onset). Target (issue 14): the default integrator >= 100x faster than real time on one
+core (OPENBLAS_NUM_THREADS=1).
 
-ETD2RK (``method="ETD2RK"``, the default with aerodynamics since issue 14): fixed steps of 10 (default), 20 and
-50 ms with the trim Jacobian as linear part, by the compiled steps (flexsim.sim._step_kernels.etd2rk_run). The ratios of
-each candidate's wall time to the default's are measured in the same run; the CPU time of the process is printed
-beside the wall time (on a shared machine the wall time includes waiting for a core).
+The default with aerodynamics: ETD2RK (Cox & Matthews 2002) with fixed steps of DEFAULT_MAX_STEP["ETD2RK"] (20 ms
+since the quintic dense output; 10 ms before, the "previous default"), the trim Jacobian as linear part, by the
+compiled steps (flexsim.sim._step_kernels.etd2rk_run).
 
-``--manoeuvres``: instead, the accuracy of the default (ETD2RK 10 ms), ETD2RK 20 ms and Radau rtol 1e-3 on every
-named manoeuvre of ``flexsim simulate`` against DOP853 at rtol 1e-9 (largest errors of altitude, airspeed, bank
-angle and right-wing tip deflection at the 100 Hz samples; the tip error also relative to the tip excursion).
+``--manoeuvres``: instead, the accuracy of the default, the previous default and Radau rtol 1e-3 on every named
+manoeuvre of ``flexsim simulate`` against DOP853 at rtol 1e-9 (:func:`flexsim.sim.accuracy.manoeuvre_errors`, the
+table of docs/simulation.md: largest errors of altitude, airspeed, bank angle and right-wing tip deflection at the
+100 Hz samples; the tip error also relative to the tip excursion).
 
-Run: python benchmarks/bench_simulate.py [--duration 60] [--repeats 3] [--quick] [--candidates Radau:1e-3,ETD2RK:0.02]
+Run: python benchmarks/bench_simulate.py [--duration 60] [--repeats 3] [--all] [--candidates Radau:1e-3,ETD2RK:0.02]
      python benchmarks/bench_simulate.py --manoeuvres
 """
 
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import statistics
 import tempfile
@@ -39,15 +41,20 @@ import numpy as np  # noqa: E402
 from flexsim.aircraft.toml_loader import load_aircraft  # noqa: E402
 from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
 from flexsim.sim.disturbances import OneMinusCosineGust  # noqa: E402
+from flexsim.sim.accuracy import manoeuvre_errors  # noqa: E402
 from flexsim.sim.manoeuvres import build_manoeuvre, manoeuvre_names  # noqa: E402
-from flexsim.sim.simulate import simulate  # noqa: E402
+from flexsim.sim.simulate import DEFAULT_MAX_STEP, simulate  # noqa: E402
 from flexsim.kinematics import dcm_321  # noqa: E402
 from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
 
 TARGET_RTF = 100.0
-CANDIDATES = [("ETD2RK", 0.01), ("ETD2RK", 0.02), ("ETD2RK", 0.05), ("Radau", 1e-3), ("Radau", 1e-4), ("Radau", 1e-5),
-              ("LSODA", 1e-4), ("BDF", 1e-4), ("DOP853", 1e-6)]  # ETD2RK: (method, fixed step [s]); the first is the default
-
+#: (label, method, fixed step [s] for ETD2RK or rtol): the default first, then the previous default and Radau
+#: (the default before issue 14); ``--all`` adds the rest.
+DEFAULT = ("default", "ETD2RK", DEFAULT_MAX_STEP["ETD2RK"])
+PREVIOUS = ("previous default", "ETD2RK", 0.01)
+RADAU = ("Radau (earlier default)", "Radau", 1e-3)
+OTHERS = [("", "ETD2RK", 0.05), ("", "Radau", 1e-4), ("", "Radau", 1e-5), ("", "LSODA", 1e-4), ("", "BDF", 1e-4),
+          ("", "DOP853", 1e-6)]
 
 def scenario():
     """The GTM model, its level trim and the gust."""
@@ -69,27 +76,18 @@ def errors(result, reference) -> tuple[float, float, float]:
 
 
 def manoeuvre_accuracy() -> None:
-    """Errors of the default and of Radau on every named manoeuvre against DOP853 at rtol 1e-9."""
+    """Errors of the default, the previous default and Radau on every named manoeuvre against DOP853 at rtol 1e-9
+    (:func:`flexsim.sim.accuracy.manoeuvre_errors`, the table of docs/simulation.md) with the wall times."""
     print(f"accuracy on the named manoeuvres against DOP853 rtol 1e-9 (load average {os.getloadavg()[0]:.2f})")
     for name in manoeuvre_names():
-        setup = build_manoeuvre(name)
-        kw = {"structural_limit_m": 100.0, "t_end_s": 3.1} if name == "flutter-onset" else {}
-        ref = setup.simulate(method="DOP853", rtol=1e-9, **kw)
-        tip_ref = ref.tip_deflection_m()
-        excursion = float(np.abs(tip_ref - tip_ref[0]).max())
-        print(f"{name}: {ref.t[-1]:g} s, {ref.status}; tip excursion {excursion:.3g} m", flush=True)
-        for method, step in (("ETD2RK", 0.01), ("ETD2RK", 0.02), ("Radau", None)):
-            r = setup.simulate(method=method, **({"max_step": step} if step else {}), **kw)
-            n = min(r.t.size, ref.t.size)
+        rows = manoeuvre_errors(name)
+        print(f"{name}: {rows[0].duration_s:g} s; tip excursion {rows[0].tip_excursion_m:.3g} m", flush=True)
+        for e in rows:
             parts = []
-            if r.model.layout.rigid:
-                parts += [f"alt {np.abs(r.altitude_m[:n] - ref.altitude_m[:n]).max():.1e} m",
-                          f"V {np.abs(r.airspeed_m_s[:n] - ref.airspeed_m_s[:n]).max():.1e} m/s",
-                          f"phi {math.degrees(np.abs(r.euler_rad[:n, 0] - ref.euler_rad[:n, 0]).max()):.1e} deg"]
-            tip = float(np.abs(r.tip_deflection_m()[:n] - tip_ref[:n]).max())
-            parts.append(f"tip {tip:.1e} m ({tip / excursion:.1e} of the excursion)")
-            label = f"ETD2RK {step * 1e3:g} ms" if step else "Radau rtol 1e-3"
-            print(f"  {label:<16} {r.status:<10} {r.wall_time_s:6.2f} s wall, {r.nfev:6d} rhs, {r.njev} Jacobians: "
+            if e.altitude_m is not None:
+                parts += [f"alt {e.altitude_m:.1e} m", f"V {e.airspeed_m_s:.1e} m/s", f"phi {e.bank_deg:.1e} deg"]
+            parts.append(f"tip {e.tip_m:.1e} m ({e.tip_relative:.1e} of the excursion)")
+            print(f"  {e.choice.label + ', ' + e.choice.name:<34} {e.status:<10} {e.wall_time_s:6.2f} s wall, {e.nfev:6d} rhs: "
                   + ", ".join(parts), flush=True)
 
 
@@ -97,7 +95,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--duration", type=float, default=60.0, help="simulated time [s] (default 60)")
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--quick", action="store_true", help="only the default solver (ETD2RK, 10 ms) and Radau rtol 1e-3")
+    parser.add_argument("--all", action="store_true", help="also ETD2RK 50 ms, Radau 1e-4/1e-5, LSODA, BDF, DOP853 1e-6")
     parser.add_argument("--manoeuvres", action="store_true", help="accuracy on the named manoeuvres instead")
     parser.add_argument("--candidates", default=None,
                         help="comma-separated method:rtol (ETD2RK: method:step [s]) pairs, e.g. Radau:1e-3,ETD2RK:0.02")
@@ -113,13 +111,13 @@ def main() -> None:
     t0 = time.perf_counter()
     reference = simulate(model, point, args.duration, method="DOP853", rtol=1e-9, wind=gust)
     print(f"reference DOP853 rtol 1e-9: {time.perf_counter() - t0:.1f} s wall, {reference.nfev} rhs evaluations")
-    print(f"{'method':<8} {'rtol/h':>6} {'wall [s]':>9} {'cpu [s]':>8} {'RTF':>7} {'x default':>9} {'nfev':>7} {'nlu':>5} {'njev':>4}   "
-          f"{'err alt [m]':>11} {'err V [m/s]':>11} {'err tip [m]':>11}")
-    candidates = [CANDIDATES[0], CANDIDATES[3]] if args.quick else CANDIDATES
+    print(f"{'':<24} {'method':<8} {'h/rtol':>6} {'wall [s]':>9} {'cpu [s]':>8} {'RTF':>7} {'RTF cpu':>7} {'x default':>9} "
+          f"{'nfev':>7} {'nlu':>5} {'njev':>4}   {'err alt [m]':>11} {'err V [m/s]':>11} {'err tip [m]':>11}")
+    candidates = [DEFAULT, PREVIOUS, RADAU] + (OTHERS if args.all else [])
     if args.candidates:
-        candidates = [(c.split(":")[0], float(c.split(":")[1])) for c in args.candidates.split(",")]
+        candidates = [("", c.split(":")[0], float(c.split(":")[1])) for c in args.candidates.split(",")]
     default_wall = None
-    for method, rtol in candidates:
+    for label, method, rtol in candidates:
         walls, cpus = [], []
         for _ in range(args.repeats):
             c0 = time.process_time()
@@ -133,13 +131,14 @@ def main() -> None:
         if default_wall is None:
             default_wall = wall
         if not result.completed:
-            print(f"{method:<8} {rtol:6.0e}   FAILED after {wall:.2f} s wall, {result.nfev} rhs evaluations: {result.reason}",
-                  flush=True)
+            print(f"{label:<24} {method:<8} {rtol:6.0e}   FAILED after {wall:.2f} s wall, {result.nfev} rhs evaluations: "
+                  f"{result.reason}", flush=True)
             continue
         e = errors(result, reference)
-        flag = "" if args.duration / wall >= TARGET_RTF else "  below target"
-        print(f"{method:<8} {rtol:6.0e} {wall:9.2f} {cpu:8.2f} {args.duration / wall:7.1f} {wall / default_wall:9.2f} "
-              f"{result.nfev:7d} {result.nlu:5d} {result.njev:4d}   {e[0]:11.2e} {e[1]:11.2e} {e[2]:11.2e}{flag}", flush=True)
+        flag = "  below target" if label == "default" and args.duration / wall < TARGET_RTF else ""
+        print(f"{label:<24} {method:<8} {rtol:6.0e} {wall:9.2f} {cpu:8.2f} {args.duration / wall:7.1f} {args.duration / cpu:7.1f} "
+              f"{wall / default_wall:9.2f} {result.nfev:7d} {result.nlu:5d} {result.njev:4d}   {e[0]:11.2e} {e[1]:11.2e} "
+              f"{e[2]:11.2e}{flag}", flush=True)
     for method in ("ETD2RK", "Radau"):
         with tempfile.TemporaryDirectory() as tmp:
             result = simulate(model, point, args.duration, log_path=os.path.join(tmp, "bench.mcap"), wind=gust, method=method)
@@ -150,7 +149,7 @@ def main() -> None:
     print("accuracy on a growing oscillation: Goland flutter onset (1.05 x flutter speed) for 3.1 s (the tip "
           "amplitude grows ~300x to 1.38 m), largest tip-deflection error relative to the final amplitude")
     ref = flutter.simulate(method="DOP853", rtol=1e-9, structural_limit_m=100.0, t_end_s=3.1).tip_deflection_m()
-    for method, rtol in (("ETD2RK", 0.01), ("ETD2RK", 0.02), ("Radau", 1e-3), ("Radau", 1e-4), ("DOP853", 1e-6)):
+    for method, rtol in (("ETD2RK", DEFAULT[2]), ("ETD2RK", 0.01), ("Radau", 1e-3), ("Radau", 1e-4), ("DOP853", 1e-6)):
         step = {"max_step": rtol} if method == "ETD2RK" else {"rtol": rtol}
         r = flutter.simulate(method=method, structural_limit_m=100.0, t_end_s=3.1, **step)
         rel = np.abs(r.tip_deflection_m() - ref).max() / np.abs(ref).max()

@@ -40,6 +40,9 @@ climb search, and about 4 minutes for the baselines table):
   (``studies/options_effects.py``'s cases; about 15 s);
 * ``goland-compressible``, ``goland-incompressible-102`` (fast): docs/validation.md, docs/options.md,
   docs/design.md, the Goland wing with the Prandtl-Glauert factor on (1.225 kg/m^3) and off (1.02 kg/m^3);
+* ``simulation-accuracy``: docs/simulation.md, the default integrator, the previous default and Radau against
+  DOP853 (rtol 1e-9) on every named manoeuvre (``tools/docs_figures_simulation.py``, ``flexsim.sim.accuracy``;
+  about 3-6 minutes);
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
   (``examples/agents/evaluate_baselines.py --episodes 10``).
 
@@ -84,6 +87,7 @@ from docs_figures_static import (_num, goland_compressible, goland_incompressibl
 from docs_figures_studies import (STUDY_FIGURES, calibration_damping, calibration_speeds,  # noqa: E402
                                   calibration_summary, strip_drag)
 from docs_figures_usage import USAGE_FIGURES  # noqa: E402
+from docs_figures_simulation import SIMULATION_FIGURES  # noqa: E402
 
 REGION = re.compile(r"<!-- figures:(?P<name>[\w-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.DOTALL)
 DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
@@ -500,6 +504,7 @@ FIGURES: dict[str, Figure] = {
     "goland-incompressible-102": Figure(goland_incompressible_102, fast=True),
     "env-baselines": Figure(env_baselines),
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in USAGE_FIGURES.items()},
+    **{name: Figure(compute, fast=fast) for name, (compute, fast) in SIMULATION_FIGURES.items()},
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in STUDY_FIGURES.items()},
     "calibration-summary": Figure(lambda: calibration_summary(_level)),
     "calibration-damping": Figure(lambda: calibration_damping(_level)),

@@ -157,7 +157,7 @@ def add_sim_commands(subparsers: argparse._SubParsersAction) -> None:
     p_sim.add_argument("--aero", choices=_AERO, default="unsteady", help="aerodynamic model [unsteady]")
     p_sim.add_argument("--formulation", choices=FORMULATIONS, default=None,
                        help="force resolution of the strip airloads (physical or paper, docs/design.md) [the aircraft file's]")
-    p_sim.add_argument("--method", choices=["auto", *METHODS], default="auto", help="integration method [auto: ETD2RK (10 ms steps) with aerodynamics, DOP853 without]")
+    p_sim.add_argument("--method", choices=["auto", *METHODS], default="auto", help="integration method [auto: ETD2RK (20 ms steps) with aerodynamics, DOP853 without]")
     p_sim.add_argument("--rtol", type=float, help="relative tolerance [method's default]")
     p_sim.set_defaults(func=_simulate)
 

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -307,6 +307,5 @@ def build_manoeuvre(name: str, *, aero: str = "unsteady", duration_s: float | No
     if duration_s is not None:
         if not (isinstance(duration_s, (int, float)) and math.isfinite(duration_s) and duration_s > 0):
             raise ValueError(f"duration_s = {duration_s!r}: must be a finite number > 0 [s]")
-        setup = ManoeuvreSetup(setup.name, setup.description, setup.model, setup.initial, setup.controls, float(duration_s),
-                               setup.control_period_s, setup.structural_limit_m, setup.notes, setup.metadata)
+        setup = replace(setup, duration_s=float(duration_s))  # every other field kept (the gust of gust-encounter)
     return setup

@@ -11,11 +11,16 @@ controller (zero-order hold). Restarting at every log chunk instead cost 2.2x th
 response with Radau (LU refactorisations), see ``docs/simulation.md``.
 
 Default method (measured, ``benchmarks/bench_simulate.py`` and ``docs/simulation.md``): with aerodynamics,
-**Radau** with a constant Jacobian computed by :func:`flexsim.model.jacobian.jacobian` at the initial
-state. The finite-state inflow and apparent-mass states give well-damped eigenvalues down to about
--650 s^-1 (|lambda| up to 1500 s^-1 on the GTM), which hold an explicit method at its stability limit:
-DOP853 needs ~4300 right-hand sides per simulated second whatever the tolerance. Without aerodynamics the
-model is a lightly damped structure, and the default is DOP853.
+**ETD2RK** (:mod:`flexsim.sim.fixed_step`, Cox & Matthews 2002) with the Jacobian of
+:func:`flexsim.model.jacobian.jacobian` at the initial state as its linear part, by compiled steps
+(:mod:`flexsim.sim.compiled_run`). The finite-state inflow and apparent-mass states give well-damped eigenvalues
+down to about -650 s^-1 (|lambda| up to 1500 s^-1 on the GTM), which the exponential integrator takes exactly and
+which hold an explicit method at its stability limit (DOP853 needs ~4300 right-hand sides per simulated second
+whatever the tolerance). Radau (constant Jacobian) for a wind callable the compiled steps cannot evaluate. Without
+aerodynamics the model is a lightly damped structure, and the default is DOP853.
+
+Module layout: this module holds the settings, the events, the scipy stepping loop and :func:`simulate`;
+:mod:`flexsim.sim.compiled_run` the compiled ETD2RK loop; :mod:`flexsim.sim.run_parts` what the two loops share.
 """
 
 from __future__ import annotations
@@ -35,10 +40,11 @@ from flexsim._threads import single_blas_thread
 from flexsim.model.jacobian import jacobian
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.sim.controls import ControlSchedule, Controls
-from flexsim import _kernels as _k
-from flexsim.sim.fixed_step import ETD2RK, ETD2RKSolver
+from flexsim.sim.fixed_step import ETD2RKSolver
+from flexsim.sim.compiled_run import COMPILED_CHUNK_S, RELINEARISE_DRIFT, compiled_wind, integrate_compiled
 from flexsim.sim.outputs import OutputMaps
 from flexsim.sim.recording import LogSink, resolve_log_path
+from flexsim.sim.run_parts import RunEvent, RunOutcome, RunProblem, Sampler, Sinks, emit_step, segment_controls
 from flexsim.sim.result import SimulationResult
 from flexsim.trim.solver import TrimPoint
 
@@ -55,7 +61,7 @@ DEFAULT_EVENTS = ("ground", "structural_limit", "gimbal_lock")
 DEFAULT_RTOL = {"implicit": 1e-3, "explicit": 1e-6}
 #: Default largest step [s]: ETD2RK's fixed step, and the bound of the adaptive methods (so that no gust or event
 #: falls between two steps); errors of both in docs/simulation.md.
-DEFAULT_MAX_STEP = {"ETD2RK": 0.01, "other": 0.05}
+DEFAULT_MAX_STEP = {"ETD2RK": 0.02, "other": 0.05}
 GIMBAL_LIMIT_DEG = 89.0
 #: Default structural limit: |tip deflection| of a wing beyond this fraction of its length.
 STRUCTURAL_LIMIT_FRACTION = 0.25
@@ -88,26 +94,6 @@ class SimEvent:
             raise ValueError(f"SimEvent {self.name!r}: function = {self.function!r} must be callable function(t, x) -> float")
         if self.direction not in (-1, 0, 1):
             raise ValueError(f"SimEvent {self.name!r}: direction = {self.direction!r}: must be -1, 0 or +1")
-
-
-@dataclass(frozen=True)
-class _Event:
-    """An event with a margin function (terminal events: positive while the run may go on)."""
-
-    name: str
-    function: Callable[[float, np.ndarray], float]
-    direction: int
-    terminal: bool
-    status: str
-    describe: Callable[[float, np.ndarray], str]
-    #: ``margins(ts (k,), xs (k, n)) -> (k,)``: the function at many states at once (None: called per state).
-    margins: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
-
-    def many(self, ts: np.ndarray, xs: np.ndarray) -> np.ndarray:
-        """The margin function at the states xs (k, n) at times ts (k,), shape (k,)."""
-        if self.margins is not None:
-            return np.asarray(self.margins(ts, xs), dtype=float)
-        return np.array([self.function(float(t), x) for t, x in zip(ts, xs)], dtype=float)
 
 
 @dataclass(frozen=True)
@@ -205,65 +191,6 @@ class IntegrationSettings:
         return self.implicit or self.method == "ETD2RK"
 
 
-@dataclass(frozen=True)
-class _Problem:
-    """What is integrated: the model, its disturbance, the control law, the initial state and the events."""
-
-    model: AircraftModel
-    wind: Wind | None
-    ctrl: Controls
-    x0: np.ndarray
-    u0: np.ndarray
-    jacobian: np.ndarray | None
-    events: tuple[_Event, ...]
-
-
-@dataclass(frozen=True)
-class _Sinks:
-    """Where the samples go: the result's and the log's samplers, the log, a progress callback and bar."""
-
-    results: _Sampler
-    logged: _Sampler
-    log: LogSink | None
-    callback: Callable[[float], None] | None
-    bar: object | None
-
-    def final(self, t: float, y: np.ndarray, u: np.ndarray) -> None:
-        """The last state of a run (t [s], y (n,), u (4,)) into the result, and into the log if finite."""
-        self.results.add(t, y, u)
-        if self.log is not None and np.all(np.isfinite(y)):
-            self.log.write(np.array([t]), y[None, :], u[None, :])
-
-    def progress(self, t: float) -> None:
-        """Report that the run reached t [s] (the callback and the progress bar)."""
-        if self.callback is not None:
-            self.callback(t)
-        if self.bar is not None:
-            self.bar.update(t - self.bar.n)
-
-    def terminal_event(self, t: float, y: np.ndarray, u: np.ndarray, event, crossings: list) -> tuple[str, str]:
-        """A terminal event at t [s], state y: the final sample, the crossing, the log's error; returns (status, reason)."""
-        self.final(t, y, u)
-        crossings.append((t, event.name))
-        reason = event.describe(t, y)
-        if self.log is not None:
-            self.log.event(t, reason, "error")
-        return event.status, reason
-
-
-@dataclass(frozen=True)
-class _Outcome:
-    """How a run ended: ``status`` (:data:`flexsim.sim.result.STATUSES`), ``reason``, solver counts, and the
-    event crossings ``(t [s], name)`` in time order."""
-
-    status: str
-    reason: str
-    nfev: int
-    njev: int
-    nlu: int
-    crossings: tuple[tuple[float, str], ...]
-
-
 class HoldingRadau(Radau):
     """scipy's Radau IIA (order 5) that keeps its LU factors while the step is held at ``max_step``.
 
@@ -342,7 +269,7 @@ def default_method(model: AircraftModel, wind: Wind | None = None) -> str:
     for any other wind callable; DOP853 without aerodynamics (a lightly damped structure, not stiff)."""
     if model.aero is None:
         return "DOP853"
-    return "ETD2RK" if _compiled_wind(model, wind) is not None else "Radau"
+    return "ETD2RK" if compiled_wind(model, wind) is not None else "Radau"
 
 
 def _initial(model: AircraftModel, initial: TrimPoint | np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
@@ -362,21 +289,21 @@ def _initial(model: AircraftModel, initial: TrimPoint | np.ndarray) -> tuple[np.
     return x0, u0
 
 
-def _builtin_events(model: AircraftModel, outputs: OutputMaps, names: Sequence[str], limit_m) -> list[_Event]:
+def _builtin_events(model: AircraftModel, outputs: OutputMaps, names: Sequence[str], limit_m) -> list[RunEvent]:
     lay = model.layout
     unknown = [n for n in names if n not in DEFAULT_EVENTS]
     if unknown:
         raise ValueError(f"events: unknown event(s) {unknown}; built-in events are {', '.join(DEFAULT_EVENTS)} (or SimEvent objects)")
-    events: list[_Event] = []
+    events: list[RunEvent] = []
     if "ground" in names and lay.rigid:
         iz = lay.position.start + 2
-        events.append(_Event("ground", lambda t, x: -x[iz], -1, True, "ground_contact",
+        events.append(RunEvent("ground", lambda t, x: -x[iz], -1, True, "ground_contact",
                              lambda t, x: f"ground contact: the body origin reached altitude 0 m at t = {t:.4f} s",
                              lambda ts, xs: -xs[:, iz]))
     if "gimbal_lock" in names and lay.rigid:
         ith = lay.euler.start + 1
         lim = math.radians(GIMBAL_LIMIT_DEG)
-        events.append(_Event("gimbal_lock", lambda t, x: lim - abs(x[ith]), -1, True, "gimbal_lock",
+        events.append(RunEvent("gimbal_lock", lambda t, x: lim - abs(x[ith]), -1, True, "gimbal_lock",
                              lambda t, x: f"gimbal lock: |theta| = {math.degrees(abs(x[ith])):.2f} deg reached "
                                           f"{GIMBAL_LIMIT_DEG:g} deg at t = {t:.4f} s (3-2-1 Euler angles singular at 90 deg)",
                              lambda ts, xs: lim - np.abs(xs[:, ith])))
@@ -401,12 +328,12 @@ def _builtin_events(model: AircraftModel, outputs: OutputMaps, names: Sequence[s
             def margins(ts, xs, wing=wing, bound=bound):
                 return bound - np.abs(outputs.tip_deflection_m(wing, xs))
 
-            events.append(_Event(f"structural_limit:{wing}", margin, -1, True, "structural_limit", describe, margins))
+            events.append(RunEvent(f"structural_limit:{wing}", margin, -1, True, "structural_limit", describe, margins))
     return events
 
 
-def _user_event(ev: SimEvent) -> _Event:
-    return _Event(ev.name, lambda t, x: float(ev.function(t, x)), ev.direction, ev.terminal, "event",
+def _user_event(ev: SimEvent) -> RunEvent:
+    return RunEvent(ev.name, lambda t, x: float(ev.function(t, x)), ev.direction, ev.terminal, "event",
                   lambda t, x: f"event {ev.name!r} at t = {t:.4f} s")
 
 
@@ -417,47 +344,6 @@ def _grid(rate_hz: float | None, t_end: float, what: str) -> np.ndarray | None:
         raise ValueError(f"{what} = {rate_hz!r}: must be a finite number > 0 [Hz]")
     n = int(math.floor(t_end * rate_hz * (1 + 1e-12)))
     return np.arange(n + 1) / float(rate_hz)
-
-
-class _Sampler:
-    """Collects samples on a time grid (or every step) from each step's dense output."""
-
-    def __init__(self, grid: np.ndarray | None) -> None:
-        self.grid = grid
-        self.next = 1  # index 0 (t = 0) is written at the start
-        self.t: list[np.ndarray] = []
-        self.x: list[np.ndarray] = []
-        self.u: list[np.ndarray] = []
-
-    def take(self, t_new: float, sol, y_new: np.ndarray, u_of, inclusive: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Samples up to t_new (a grid time at t_new itself only if ``inclusive``: at the end of a control
-        segment it belongs to the next segment, whose control then applies); without a grid, t_new."""
-        if self.grid is None:  # every accepted step, step ends included
-            times = np.array([t_new])
-            xs = y_new[None, :]
-        else:
-            edge = t_new * (1 + 4 * _EPS) + 1e-12 if inclusive else t_new - 1e-9 * max(1.0, abs(t_new))
-            stop = int(np.searchsorted(self.grid, edge, side="right"))
-            times = self.grid[self.next:stop]
-            self.next = max(self.next, stop)
-            if times.size == 0:
-                return times, np.zeros((0, y_new.size)), np.zeros((0, 4))
-            xs = sol(times).T
-        us = u_of(times)
-        self.t.append(times)
-        self.x.append(xs)
-        self.u.append(us)
-        return times, xs, us
-
-    def add(self, t: float, x: np.ndarray, u: np.ndarray) -> None:
-        last = self.t[-1][-1] if self.t and self.t[-1].size else -math.inf
-        if t > last:
-            self.t.append(np.array([t]))
-            self.x.append(x[None, :])
-            self.u.append(u[None, :])
-
-    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        return np.concatenate(self.t), np.concatenate(self.x), np.concatenate(self.u)
 
 
 @single_blas_thread
@@ -517,7 +403,7 @@ def simulate(
         Absolute tolerance; default ``rtol * state_scales(model)``.
     max_step : float, optional
         Largest step [s] (default 0.05), so that no gust or event falls between two steps; the fixed step
-        of ETD2RK (default 0.01) (:data:`DEFAULT_MAX_STEP`).
+        of ETD2RK (default 0.02) (:data:`DEFAULT_MAX_STEP`).
     control_period_s : float
         Period of a feedback controller [s] (default 0.02).
     events : sequence of str or SimEvent
@@ -578,7 +464,7 @@ def simulate(
     u0 = ctrl.held(0.0, x0) if ctrl.controller is not None else ctrl.schedule(0.0)
     wall0 = time.perf_counter()
     jac_matrix = jacobian(model, x0, u0, controls=False, wind=wind)[0] if settings.needs_jacobian else None
-    problem = _Problem(model=model, wind=wind, ctrl=ctrl, x0=x0, u0=u0, jacobian=jac_matrix, events=tuple(evs))
+    problem = RunProblem(model=model, wind=wind, ctrl=ctrl, x0=x0, u0=u0, jacobian=jac_matrix, events=tuple(evs))
     sink = None
     if path is not None:
         meta = {"aircraft": model.aircraft.name, "aircraft_source": str(model.aircraft.source),
@@ -591,9 +477,9 @@ def simulate(
         from tqdm.auto import tqdm
 
         bar = tqdm(total=t_end, unit="sim s", disable=None)
-    results = _Sampler(out_grid)
-    logged = _Sampler(log_grid)
-    sinks = _Sinks(results=results, logged=logged, log=sink, callback=progress if callable(progress) else None, bar=bar)
+    results = Sampler(out_grid)
+    logged = Sampler(log_grid)
+    sinks = Sinks(results=results, logged=logged, log=sink, callback=progress if callable(progress) else None, bar=bar)
     results.add(0.0, x0, u0)
     try:
         if sink is not None:
@@ -603,9 +489,9 @@ def simulate(
                 sink.schedule(float(t_note), str(text))
             sink.write(np.zeros(1), x0[None, :], u0[None, :])
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            wind_data = _compiled_wind(model, wind) if method == "ETD2RK" else None
+            wind_data = compiled_wind(model, wind) if method == "ETD2RK" else None
             if wind_data is not None:
-                outcome = _integrate_compiled(problem, settings, sinks, wind_data)
+                outcome = integrate_compiled(problem, settings, sinks, wind_data)
             else:
                 outcome = _integrate(problem, settings, sinks)
     except BaseException as exc:
@@ -624,7 +510,7 @@ def simulate(
                             wall_time_s=time.perf_counter() - wall0, log_path=path, events=outcome.crossings, wind=wind)
 
 
-def _integrate(problem: _Problem, settings: IntegrationSettings, sinks: _Sinks) -> _Outcome:
+def _integrate(problem: RunProblem, settings: IntegrationSettings, sinks: Sinks) -> RunOutcome:
     """The stepping loop: a solver per control segment; sample, log and check events after every step."""
     model, wind, ctrl, evs = problem.model, problem.wind, problem.ctrl, problem.events
     method, t_end, max_step = settings.method, settings.t_end_s, settings.max_step
@@ -653,7 +539,7 @@ def _integrate(problem: _Problem, settings: IntegrationSettings, sinks: _Sinks) 
         nonlocal u_of, h_next
         x = problem.x0.copy()
         for a, b in zip(bounds[:-1], bounds[1:]):
-            u_of = _segment_controls(ctrl, float(a), float(b), x, problem.u0)
+            u_of = segment_controls(ctrl, float(a), float(b), x, problem.u0)
             if method == "ETD2RK":
                 options = {"jac": problem.jacobian, "step": max_step, "cache": etd_cache}
             else:
@@ -699,7 +585,7 @@ def _integrate(problem: _Problem, settings: IntegrationSettings, sinks: _Sinks) 
                     g_old[k] = g_new
                 t_reached = t_new if hit is None else hit[0]
                 inclusive = hit is not None or solver.status != "finished" or b >= t_end
-                _emit(sinks, t_reached, sol, sol(t_reached), u_of, inclusive)
+                emit_step(sinks, t_reached, sol, sol(t_reached), u_of, inclusive)
                 x = y_new
                 sinks.progress(t_reached)
                 if hit is not None:
@@ -714,221 +600,7 @@ def _integrate(problem: _Problem, settings: IntegrationSettings, sinks: _Sinks) 
         return "completed", f"reached t_end = {t_end:g} s"
 
     status, reason = run()
-    return _Outcome(status=status, reason=reason, nfev=nfev, njev=sum(getattr(s_, "njev", 0) for s_ in solvers),
+    return RunOutcome(status=status, reason=reason, nfev=nfev, njev=sum(getattr(s_, "njev", 0) for s_ in solvers),
                     nlu=sum(getattr(s_, "nlu", 0) for s_ in solvers), crossings=tuple(crossings))
 
 
-def _segment_controls(ctrl: Controls, a: float, b: float, x_a: np.ndarray, u0: np.ndarray) -> Callable:
-    """The control law ``u_of(t)`` on the segment [a, b] (scalar t -> (4,), array t -> (len(t), 4)): the held
-    output of a feedback controller, a constant, or the schedule's interpolation."""
-    if ctrl.controller is not None:
-        u_held = u0 if a == 0.0 else ctrl.held(a, x_a)
-
-        def u_of(t, u_held=u_held):
-            return np.broadcast_to(u_held, (np.size(t), 4)) if np.ndim(t) else u_held
-        return u_of
-    sched = ctrl.schedule
-    u_a = sched(a)
-    if np.array_equal(u_a, sched(b)):
-        # constant on the segment (its ends are consecutive breakpoints): no interpolation per rhs
-        u_a.setflags(write=False)
-
-        def u_const(t, u_c=u_a):
-            return np.broadcast_to(u_c, (np.size(t), 4)) if np.ndim(t) else u_c
-        return u_const
-
-    def u_sched(t, sched=sched):
-        return sched.at(t) if np.ndim(t) else sched(t)
-    return u_sched
-
-
-def _emit(sinks: _Sinks, t_reached: float, sol, y_reached, u_of, inclusive: bool) -> None:
-    sinks.results.take(t_reached, sol, y_reached, u_of, inclusive)
-    times, xs, us = sinks.logged.take(t_reached, sol, y_reached, u_of, inclusive)
-    if sinks.log is not None and times.size:
-        sinks.log.write(times, xs, us)
-
-
-#: Simulated time per call of the compiled ETD2RK steps [s]: samples, events and the log are processed per chunk
-#: (the log is flushed every 0.5 s of simulated time, so a killed run loses at most ~1 s of it).
-COMPILED_CHUNK_S = 0.5
-#: Relative change of the flight speed or air density since the linearisation beyond which the compiled ETD2RK
-#: re-linearises (new Jacobian and matrix functions) at the end of a chunk.
-RELINEARISE_DRIFT = 0.2
-
-
-def _compiled_wind(model: AircraftModel, wind: Wind | None) -> _k.WindData | None:
-    """The wind's arrays for the compiled steps (still air: NO_WIND); None if the wind is a plain callable (the
-    steps then call ``model.rhs`` from Python: :class:`~flexsim.sim.fixed_step.ETD2RKSolver`)."""
-    if wind is None or model.aero is None:
-        return _k.NO_WIND
-    data = getattr(wind, "wind_data", None)
-    return data if isinstance(data, _k.WindData) else None
-
-
-class _Steps:
-    """Cubic Hermite interpolant over consecutive step ends (t (k+1,), x and f (k+1, n)): the dense output of
-    :class:`~flexsim.sim.fixed_step.ETD2RKSolver` for a chunk of compiled steps. ``sol(t)``: scalar t -> (n,),
-    array t (m,) -> (n, m) (as scipy's ``DenseOutput``)."""
-
-    def __init__(self, t: np.ndarray, x: np.ndarray, f: np.ndarray) -> None:
-        self.t, self.x, self.f = t, x, f
-
-    def __call__(self, t):
-        tt = np.atleast_1d(np.asarray(t, dtype=float))
-        j = np.clip(np.searchsorted(self.t, tt, side="left") - 1, 0, self.t.size - 2)
-        t0, h = self.t[j], self.t[j + 1] - self.t[j]
-        s = ((tt - t0) / h)[:, None]
-        h01, h10, h11 = s * s * (3 - 2 * s), s * (1 - s) ** 2, s * s * (s - 1)
-        y0 = self.x[j]
-        y = y0 + (self.x[j + 1] - y0) * h01 + h[:, None] * (self.f[j] * h10 + self.f[j + 1] * h11)
-        return y[0] if np.ndim(t) == 0 else y.T
-
-
-def _integrate_compiled(problem: _Problem, settings: IntegrationSettings, sinks: _Sinks, wind_data) -> _Outcome:
-    """ETD2RK by the compiled steps (:meth:`ETD2RK.run`): the steps, samples, events and log of :func:`_integrate`
-    with :class:`ETD2RKSolver`, processed per chunk of :data:`COMPILED_CHUNK_S` instead of per step."""
-    model, wind, ctrl, evs = problem.model, problem.wind, problem.ctrl, problem.events
-    t_end, h = settings.t_end_s, settings.max_step
-    sink = sinks.log
-    steppers: dict[float, ETD2RK] = {}
-    g_old = np.array([ev.function(0.0, problem.x0) for ev in evs], dtype=float)
-    crossings: list[tuple[float, str]] = []
-    nfev = 0
-    chunk = max(1, int(round(COMPILED_CHUNK_S / h)))
-    lin = {"jac": problem.jacobian, "at": _flight_condition(model, problem.x0), "count": 1}
-
-    def stepper(step: float) -> ETD2RK:  # as ETD2RKSolver._method
-        if abs(step - h) <= 1e-9 * h:
-            step = h
-        key = round(step, 12)
-        if key not in steppers:
-            steppers[key] = ETD2RK(lin["jac"], step)
-        return steppers[key]
-
-    def finish(t: float, y: np.ndarray, u_of) -> None:
-        sinks.final(t, y, u_of(t))
-
-    def run() -> tuple[str, str]:
-        nonlocal nfev, g_old
-        x = problem.x0.copy()
-        bounds = ctrl.boundaries(t_end)
-        u_of = None
-        for a, b in zip(bounds[:-1], bounds[1:]):
-            a, b = float(a), float(b)
-            u_of = _segment_controls(ctrl, a, b, x, problem.u0)
-            u_a = np.array(u_of(a), dtype=float)
-            controls = (a, u_a, (np.asarray(u_of(b), dtype=float) - u_a) / (b - a))
-            f = model.rhs(a, x, u_a, wind)
-            nfev += 1
-            t = a
-            while b - t > 1e-12 * max(1.0, abs(b)):
-                if b - t > h * (1.0 + 1e-9):
-                    steps = stepper(h).run(model, t, x, f, b, chunk, controls, wind_data)
-                else:
-                    steps = stepper(b - t).run(model, t, x, f, b, 1, controls, wind_data, land=True)
-                k = steps.t.size - 1
-                nfev += 2 * k
-                bad = not (np.all(np.isfinite(steps.x[-1])) and np.all(np.isfinite(steps.f[-1])))
-                if bad:
-                    if np.all(np.isfinite(steps.x[-1])):
-                        model.rhs(steps.t[-1], steps.x[-1], u_of(steps.t[-1]), wind)  # raises what rhs raises there
-                    t_bad = float(steps.t[-1])
-                    steps = steps._replace(t=steps.t[:-1], x=steps.x[:-1], f=steps.f[:-1])
-                    k -= 1
-                hit = None
-                if k:
-                    sol = _Steps(steps.t, steps.x, steps.f)
-                    j_stop, hit = _chunk_events(evs, g_old, steps, sol, crossings, sink)
-                    g_old = np.array([ev.function(float(steps.t[j_stop]), steps.x[j_stop]) for ev in evs], dtype=float)
-                    t_reached = float(steps.t[j_stop]) if hit is None else hit[0]
-                    finished = hit is None and not bad and j_stop == k and t_reached >= b  # the solver's "finished"
-                    inclusive = not finished or b >= t_end
-                    _emit_steps(sinks, steps, j_stop, t_reached, sol, u_of, inclusive)
-                    sinks.progress(t_reached)
-                if hit is not None:
-                    t_ev, ev = hit
-                    return sinks.terminal_event(t_ev, sol(t_ev), u_of(t_ev), ev, crossings)
-                if bad:
-                    finish(float(steps.t[-1]), steps.x[-1], u_of)
-                    return "non_finite", (f"non-finite state: the state or the right-hand side stopped being finite at "
-                                          f"t = {t_bad:.4f} s")
-                t_step = float(steps.t[-1])
-                t, x, f = t_step, steps.x[-1].copy(), steps.f[-1]
-                now = _flight_condition(model, x)
-                if now is not None and np.max(np.abs(now / lin["at"] - 1.0)) > RELINEARISE_DRIFT:
-                    lin["jac"] = jacobian(model, x, u_of(t), t, controls=False, wind=wind)[0]
-                    lin["at"], lin["count"] = now, lin["count"] + 1
-                    steppers.clear()
-            x = x.copy()
-        finish(t_end, x, u_of)
-        if sink is not None:
-            sink.event(t_end, f"simulation completed at t = {t_end:g} s")
-        return "completed", f"reached t_end = {t_end:g} s"
-
-    status, reason = run()
-    return _Outcome(status=status, reason=reason, nfev=nfev, njev=lin["count"], nlu=0, crossings=tuple(crossings))
-
-
-def _flight_condition(model: AircraftModel, x: np.ndarray) -> np.ndarray | None:
-    """(|v_body| [m/s], air density [kg/m^3]) at state x, on which the stiff aerodynamic eigenvalues depend (inflow
-    ~ V / b); None for a model without rigid-body states or aerodynamics (nothing drifts)."""
-    lay = model.layout
-    if not lay.rigid or model.aero is None:
-        return None
-    return np.array([float(np.linalg.norm(x[lay.v][:3])), model.air_density(x)])
-
-
-def _crossing_steps(ev: _Event, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """Whether the margin crosses zero between lo and hi in the event's direction (as in :func:`_integrate`)."""
-    down = (lo >= 0) & (hi <= 0) & (lo != hi)
-    up = (lo <= 0) & (hi >= 0) & (lo != hi)
-    return down if ev.direction < 0 else up if ev.direction > 0 else down | up
-
-
-def _chunk_events(evs, g_old: np.ndarray, steps, sol, crossings: list, sink) -> tuple[int, tuple | None]:
-    """Events over a chunk of steps: (index of the step where the run stops — the first with a terminal crossing,
-    else the last —, (t, event) of the terminal hit or None). Non-terminal crossings up to that step are appended
-    to ``crossings`` and logged; times located by Brent's method on the dense output."""
-    k = steps.t.size - 1
-    if not evs:
-        return k, None
-    g = np.vstack([g_old[None, :], np.column_stack([ev.many(steps.t[1:], steps.x[1:]) for ev in evs])])
-    j_stop = k
-    for e, ev in enumerate(evs):
-        cross = _crossing_steps(ev, g[:-1, e], g[1:, e])
-        if ev.terminal and cross.any():
-            j_stop = min(j_stop, int(np.argmax(cross)) + 1)
-    hit = None
-    found = []
-    for e, ev in enumerate(evs):
-        for j in np.flatnonzero(_crossing_steps(ev, g[:j_stop, e], g[1:j_stop + 1, e])) + 1:
-            t_ev = brentq(lambda tt, ev=ev: ev.function(tt, sol(tt)), float(steps.t[j - 1]), float(steps.t[j]),
-                          xtol=4 * _EPS, rtol=4 * _EPS)
-            if ev.terminal:
-                if hit is None or t_ev < hit[0]:
-                    hit = (t_ev, ev)
-            else:
-                found.append((t_ev, ev.name))
-    for t_ev, name in sorted(found):
-        crossings.append((t_ev, name))
-        if sink is not None:
-            sink.event(t_ev, f"event {name!r} at t = {t_ev:.4f} s")
-    return j_stop, hit
-
-
-def _emit_steps(sinks: _Sinks, steps, j_stop: int, t_reached: float, sol, u_of, inclusive: bool) -> None:
-    """Samples of a chunk of compiled steps up to t_reached (within step j_stop): on the samplers' grids from the
-    dense output, or, without a grid, every step end and t_reached (as :func:`_emit` per step)."""
-    for sampler, log in ((sinks.results, None), (sinks.logged, sinks.log)):
-        if sampler.grid is None:
-            times = np.append(steps.t[1:j_stop], t_reached)
-            xs = np.vstack([steps.x[1:j_stop], sol(t_reached)[None, :]])
-            us = u_of(times)
-            sampler.t.append(times)
-            sampler.x.append(xs)
-            sampler.u.append(us)
-        else:
-            times, xs, us = sampler.take(t_reached, sol, steps.x[j_stop], u_of, inclusive)
-        if log is not None and times.size:
-            log.write(times, xs, us)

@@ -45,8 +45,9 @@ def gtm():
     return model, point, jac, gust
 
 
-def _close(a, b):
-    scale = np.maximum(np.abs(b).max(axis=0), 1e-300)
+def _close(a, b, floor=1e-300):
+    """Largest |a - b| relative to each entry's largest |b|, floored at ``floor`` (SI units)."""
+    scale = np.maximum(np.abs(b).max(axis=0), floor)
     return float((np.abs(a - b) / scale).max())
 
 
@@ -158,7 +159,10 @@ def _same_run(a, b, rel=1e-9):
     assert (a.status, a.reason, a.events) == (b.status, b.reason, b.events)
     np.testing.assert_array_equal(a.t, b.t)
     np.testing.assert_array_equal(a.u, b.u)
-    assert _close(a.x, b.x) <= rel
+    # scale floored at 1e-6: entries that stay within ~1e-10 of zero (antisymmetric states in symmetric flight) carry
+    # rounding only, e.g. 9e-19 at a scale of 3e-10 from the dense output's products with J (per step from Python,
+    # per chunk in the compiled run)
+    assert _close(a.x, b.x, floor=1e-6) <= rel
     assert a.nfev == b.nfev if a.completed else a.nfev >= b.nfev  # a stop: the compiled chunk went on past it
 
 

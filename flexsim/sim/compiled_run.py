@@ -1,0 +1,244 @@
+"""The compiled ETD2RK run of :func:`flexsim.sim.simulate.simulate` (its default with aerodynamics): steps by
+:meth:`flexsim.sim.fixed_step.ETD2RK.run` (the kernel :func:`flexsim.sim._step_kernels.etd2rk_run`) in chunks of
+:data:`COMPILED_CHUNK_S`, with the samples, events and flight log of the scipy loop processed per chunk, and
+re-linearisation when the flight condition drifts (:data:`RELINEARISE_DRIFT`). The method and its accuracy:
+``docs/simulation.md``, "Integration and solver choice".
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+from scipy.optimize import brentq
+
+from flexsim import _kernels as _k
+from flexsim.model.aircraft_model import AircraftModel, Wind
+from flexsim.model.jacobian import jacobian
+from flexsim.sim.fixed_step import ETD2RK, interior, off_midpoint, quintic_weights, step_accelerations
+from flexsim.sim.run_parts import RunEvent, RunOutcome, RunProblem, Sinks, segment_controls
+
+if TYPE_CHECKING:
+    from flexsim.sim.simulate import IntegrationSettings
+
+__all__ = ["COMPILED_CHUNK_S", "HALVINGS", "RELINEARISE_DRIFT", "compiled_wind", "integrate_compiled", "flight_condition"]
+
+_EPS = np.finfo(float).eps
+
+
+#: Simulated time per call of the compiled ETD2RK steps [s]: samples, events and the log are processed per chunk
+#: (the log is flushed every 0.5 s of simulated time, so a killed run loses at most ~1 s of it).
+COMPILED_CHUNK_S = 0.5
+#: Times the step is halved at most when a chunk of steps fails (a state or derivative not finite, or outside the model's
+#: range): the chunk is repeated with half the step, which is kept for the rest of the run (1/8 of max_step at least).
+HALVINGS = 3
+#: Relative change of the flight speed or air density since the linearisation beyond which the compiled ETD2RK
+#: re-linearises (new Jacobian and matrix functions) at the end of a chunk.
+RELINEARISE_DRIFT = 0.2
+
+
+def compiled_wind(model: AircraftModel, wind: Wind | None) -> _k.WindData | None:
+    """The wind's arrays for the compiled steps (still air: NO_WIND); None if the wind is a plain callable (the
+    steps then call ``model.rhs`` from Python: :class:`~flexsim.sim.fixed_step.ETD2RKSolver`)."""
+    if wind is None or model.aero is None:
+        return _k.NO_WIND
+    data = getattr(wind, "wind_data", None)
+    return data if isinstance(data, _k.WindData) else None
+
+
+class _Steps:
+    """Dense output over consecutive step ends (t (k+1,), x and f (k+1, n)) of a chunk of compiled steps: the quintic
+    Hermite interpolant of :class:`~flexsim.sim.fixed_step.ETD2RKSolver`'s dense output
+    (:func:`~flexsim.sim.fixed_step.quintic_hermite`, second derivatives with the linear part ``jac`` by
+    :func:`~flexsim.sim.fixed_step.step_accelerations`, for all steps of the chunk at the first sample that needs
+    them). ``sol(t)``: scalar t -> (n,), array t (m,) -> (n, m) (as scipy's ``DenseOutput``)."""
+
+    def __init__(self, t: np.ndarray, x: np.ndarray, f: np.ndarray, jac: np.ndarray) -> None:
+        self.t, self.x, self.f, self.jac = t, x, f, jac
+        self._mean = self._half_diff = None
+
+    def __call__(self, t):
+        tt = np.atleast_1d(np.asarray(t, dtype=float))
+        j = np.clip(np.searchsorted(self.t, tt, side="left") - 1, 0, self.t.size - 2)
+        h = self.t[j + 1] - self.t[j]
+        s = (tt - self.t[j]) / h
+        w = quintic_weights(s, h)  # quintic_hermite's sum, as products of (m, k + 1) weight matrices with the chunk
+        rows = np.arange(tt.size)
+        wx = np.zeros((tt.size, self.t.size))
+        wf = np.zeros_like(wx)
+        wx[rows, j], wx[rows, j + 1], wf[rows, j], wf[rows, j + 1] = w[0], w[1], w[2], w[3]
+        y = wx @ self.x + wf @ self.f
+        inside = interior(s)
+        if inside.any():
+            off = off_midpoint(s)
+            if self._mean is None or (off.any() and self._half_diff is None):
+                steps_h = np.diff(self.t)[:, None]
+                self._mean, self._half_diff = step_accelerations(steps_h, np.diff(self.x, axis=0), self.f[:-1], self.f[1:],
+                                                                 self.jac, difference=bool(off.any()))
+            wa = np.zeros((tt.size, self.t.size - 1))
+            wa[rows, j] = w[4] * inside
+            y += wa @ self._mean
+            if off.any():
+                wa[rows, j] = w[5] * off
+                y += wa @ self._half_diff
+        return y[0] if np.ndim(t) == 0 else y.T
+
+
+def integrate_compiled(problem: RunProblem, settings: IntegrationSettings, sinks: Sinks, wind_data) -> RunOutcome:
+    """ETD2RK by the compiled steps (:meth:`ETD2RK.run`): the steps, samples, events and log of :func:`_integrate`
+    with :class:`ETD2RKSolver`, processed per chunk of :data:`COMPILED_CHUNK_S` instead of per step."""
+    model, wind, ctrl, evs = problem.model, problem.wind, problem.ctrl, problem.events
+    t_end = settings.t_end_s
+    h = settings.max_step  # the current step: halved when a chunk fails (HALVINGS)
+    halvings = 0
+    sink = sinks.log
+    steppers: dict[float, ETD2RK] = {}
+    g_old = np.array([ev.function(0.0, problem.x0) for ev in evs], dtype=float)
+    crossings: list[tuple[float, str]] = []
+    nfev = 0
+    chunk = max(1, int(round(COMPILED_CHUNK_S / h)))
+    lin = {"jac": problem.jacobian, "at": flight_condition(model, problem.x0), "count": 1}
+
+    def stepper(step: float) -> ETD2RK:  # as ETD2RKSolver._method (h: the current step)
+        if abs(step - h) <= 1e-9 * h:
+            step = h
+        key = round(step, 12)
+        if key not in steppers:
+            steppers[key] = ETD2RK(lin["jac"], step)
+        return steppers[key]
+
+    def finish(t: float, y: np.ndarray, u_of) -> None:
+        sinks.final(t, y, u_of(t))
+
+    def run() -> tuple[str, str]:
+        nonlocal nfev, g_old, h, halvings, chunk
+        x = problem.x0.copy()
+        bounds = ctrl.boundaries(t_end)
+        u_of = None
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            a, b = float(a), float(b)
+            u_of = segment_controls(ctrl, a, b, x, problem.u0)
+            u_a = np.array(u_of(a), dtype=float)
+            controls = (a, u_a, (np.asarray(u_of(b), dtype=float) - u_a) / (b - a))
+            f = model.rhs(a, x, u_a, wind)
+            nfev += 1
+            t = a
+            while b - t > 1e-12 * max(1.0, abs(b)):
+                if b - t > h * (1.0 + 1e-9):
+                    steps = stepper(h).run(model, t, x, f, b, chunk, controls, wind_data)
+                else:
+                    steps = stepper(b - t).run(model, t, x, f, b, 1, controls, wind_data, land=True)
+                k = steps.t.size - 1
+                nfev += 2 * k
+                bad = not (np.all(np.isfinite(steps.x[-1])) and np.all(np.isfinite(steps.f[-1])))
+                if bad and halvings < HALVINGS:
+                    # the explicit remainder outgrew the step (far from the linearisation): the chunk again, h / 2
+                    halvings += 1
+                    h *= 0.5
+                    chunk *= 2
+                    if sink is not None:
+                        sink.event(t, f"ETD2RK: the steps from t = {t:.4f} s left the finite numbers or the model's "
+                                      f"range at t = {float(steps.t[-1]):.4f} s; repeated with steps of {h * 1e3:g} ms")
+                    continue
+                if bad:
+                    if np.all(np.isfinite(steps.x[-1])):
+                        model.rhs(steps.t[-1], steps.x[-1], u_of(steps.t[-1]), wind)  # raises what rhs raises there
+                    t_bad = float(steps.t[-1])
+                    steps = steps._replace(t=steps.t[:-1], x=steps.x[:-1], f=steps.f[:-1])
+                    k -= 1
+                hit = None
+                if k:
+                    sol = _Steps(steps.t, steps.x, steps.f, lin["jac"])
+                    j_stop, hit = _chunk_events(evs, g_old, steps, sol, crossings, sink)
+                    g_old = np.array([ev.function(float(steps.t[j_stop]), steps.x[j_stop]) for ev in evs], dtype=float)
+                    t_reached = float(steps.t[j_stop]) if hit is None else hit[0]
+                    finished = hit is None and not bad and j_stop == k and t_reached >= b  # the solver's "finished"
+                    inclusive = not finished or b >= t_end
+                    _emit_steps(sinks, steps, j_stop, t_reached, sol, u_of, inclusive)
+                    sinks.progress(t_reached)
+                if hit is not None:
+                    t_ev, ev = hit
+                    return sinks.terminal_event(t_ev, sol(t_ev), u_of(t_ev), ev, crossings)
+                if bad:
+                    finish(float(steps.t[-1]), steps.x[-1], u_of)
+                    return "non_finite", (f"non-finite state: the state or the right-hand side stopped being finite at "
+                                          f"t = {t_bad:.4f} s")
+                t_step = float(steps.t[-1])
+                t, x, f = t_step, steps.x[-1].copy(), steps.f[-1]
+                now = flight_condition(model, x)
+                if now is not None and np.max(np.abs(now / lin["at"] - 1.0)) > RELINEARISE_DRIFT:
+                    lin["jac"] = jacobian(model, x, u_of(t), t, controls=False, wind=wind)[0]
+                    lin["at"], lin["count"] = now, lin["count"] + 1
+                    steppers.clear()
+            x = x.copy()
+        finish(t_end, x, u_of)
+        if sink is not None:
+            sink.event(t_end, f"simulation completed at t = {t_end:g} s")
+        return "completed", f"reached t_end = {t_end:g} s"
+
+    status, reason = run()
+    return RunOutcome(status=status, reason=reason, nfev=nfev, njev=lin["count"], nlu=0, crossings=tuple(crossings))
+
+
+def flight_condition(model: AircraftModel, x: np.ndarray) -> np.ndarray | None:
+    """(|v_body| [m/s], air density [kg/m^3]) at state x, on which the stiff aerodynamic eigenvalues depend (inflow
+    ~ V / b); None for a model without rigid-body states or aerodynamics (nothing drifts)."""
+    lay = model.layout
+    if not lay.rigid or model.aero is None:
+        return None
+    return np.array([float(np.linalg.norm(x[lay.v][:3])), model.air_density(x)])
+
+
+def _crossing_steps(ev: RunEvent, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Whether the margin crosses zero between lo and hi in the event's direction (as in :func:`_integrate`)."""
+    down = (lo >= 0) & (hi <= 0) & (lo != hi)
+    up = (lo <= 0) & (hi >= 0) & (lo != hi)
+    return down if ev.direction < 0 else up if ev.direction > 0 else down | up
+
+
+def _chunk_events(evs, g_old: np.ndarray, steps, sol, crossings: list, sink) -> tuple[int, tuple | None]:
+    """Events over a chunk of steps: (index of the step where the run stops — the first with a terminal crossing,
+    else the last —, (t, event) of the terminal hit or None). Non-terminal crossings up to that step are appended
+    to ``crossings`` and logged; times located by Brent's method on the dense output."""
+    k = steps.t.size - 1
+    if not evs:
+        return k, None
+    g = np.vstack([g_old[None, :], np.column_stack([ev.many(steps.t[1:], steps.x[1:]) for ev in evs])])
+    j_stop = k
+    for e, ev in enumerate(evs):
+        cross = _crossing_steps(ev, g[:-1, e], g[1:, e])
+        if ev.terminal and cross.any():
+            j_stop = min(j_stop, int(np.argmax(cross)) + 1)
+    hit = None
+    found = []
+    for e, ev in enumerate(evs):
+        for j in np.flatnonzero(_crossing_steps(ev, g[:j_stop, e], g[1:j_stop + 1, e])) + 1:
+            t_ev = brentq(lambda tt, ev=ev: ev.function(tt, sol(tt)), float(steps.t[j - 1]), float(steps.t[j]),
+                          xtol=4 * _EPS, rtol=4 * _EPS)
+            if ev.terminal:
+                if hit is None or t_ev < hit[0]:
+                    hit = (t_ev, ev)
+            else:
+                found.append((t_ev, ev.name))
+    for t_ev, name in sorted(found):
+        crossings.append((t_ev, name))
+        if sink is not None:
+            sink.event(t_ev, f"event {name!r} at t = {t_ev:.4f} s")
+    return j_stop, hit
+
+
+def _emit_steps(sinks: Sinks, steps, j_stop: int, t_reached: float, sol, u_of, inclusive: bool) -> None:
+    """Samples of a chunk of compiled steps up to t_reached (within step j_stop): on the samplers' grids from the
+    dense output, or, without a grid, every step end and t_reached (as :func:`emit_step` per step)."""
+    for sampler, log in ((sinks.results, None), (sinks.logged, sinks.log)):
+        if sampler.grid is None:
+            times = np.append(steps.t[1:j_stop], t_reached)
+            xs = np.vstack([steps.x[1:j_stop], sol(t_reached)[None, :]])
+            us = u_of(times)
+            sampler.t.append(times)
+            sampler.x.append(xs)
+            sampler.u.append(us)
+        else:
+            times, xs, us = sampler.take(t_reached, sol, steps.x[j_stop], u_of, inclusive)
+        if log is not None and times.size:
+            log.write(times, xs, us)
