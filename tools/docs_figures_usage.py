@@ -428,6 +428,68 @@ def env_flutter_v0_damper() -> str:
     return f"reaches a growth rate of {_num(policy.closed_loop_growth, '+.2f')} 1/s"
 
 
+
+def _fin_rate_window(control_rate_hz: float) -> dict:
+    """Gains k [rad per rad/s] of the fin tip twist rate alone on the rudder (delta_r = -k x rate, sampled at
+    ``control_rate_hz`` with a zero-order hold) for which every mode faster than 25 rad/s of FlutterMargin-v0's
+    full linear model decays: a scan of +-1e-4..1 (``lqr_design.design_fin_damper``'s range, 4x denser), then
+    Brent on the edges of the stable run; without one, the best gain of the scan."""
+    from scipy.optimize import brentq
+
+    if control_rate_hz == 50.0:
+        u = _flutter_env(0)[0].unwrapped
+    else:
+        u = _make_flutter(0, control_rate_hz=control_rate_hz).unwrapped
+    dyn = u.dynamics
+    point = dyn.trim(u.target)
+    rows = _agents_module("baselines").fin_sensor_rows(dyn)[:1]
+    growths = _agents_module("lqr_design").rudder_feedback_growths(dyn.model, point.x, point.u, u.dt, rows)
+
+    def fast(k: float) -> float:
+        return growths(np.array([k]))[0]
+
+    out = {}
+    for sign in (1.0, -1.0):
+        grid = sign * np.logspace(-4, 0, 161)
+        rates = np.array([fast(k) for k in grid])
+        out.setdefault("best", []).append((float(rates.min()), float(grid[rates.argmin()])))
+        stable = np.flatnonzero(rates < 0.0)
+        if stable.size:
+            i0, i1 = stable[0], stable[-1]
+            lo = brentq(fast, grid[i0 - 1], grid[i0], xtol=1e-7) if i0 > 0 else grid[0]
+            hi = brentq(fast, grid[i1], grid[i1 + 1], xtol=1e-7) if i1 + 1 < grid.size else grid[-1]
+            out["window"] = tuple(sorted((lo, hi), key=abs))
+    out["best"] = min(out["best"])
+    return out
+
+
+def _window_text(w: dict) -> str:
+    if "window" not in w:
+        rate, k = w["best"]
+        return (f"does not stabilise it at any gain of +-1e-4 to 1 rad/(rad/s) (the best, k = {_num(k, '.3f')}, leaves "
+                f"{_num(rate, '+.3f')} 1/s)")
+    lo, hi = w["window"]
+    return f"is stabilising for gains {_num(lo, '.4f')} to {_num(hi, '.4f')} rad/(rad/s), a {hi / lo:.2g}-fold range"
+
+
+def _make_flutter(version: int, **kwargs):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        return _make(FLUTTER_IDS[version], **kwargs)
+
+
+def env_flutter_v0_window() -> str:
+    """Fin-twist-rate feedback alone on FlutterMargin-v0 at 50 Hz: the stabilising gains, if any."""
+    return f"fin-twist-rate feedback alone (every mode faster than 25 rad/s to decay) {_window_text(_fin_rate_window(50.0))}"
+
+
+def env_flutter_v0_window_100() -> str:
+    """The same at a 100 Hz control rate."""
+    return f"fin-twist-rate feedback alone {_window_text(_fin_rate_window(100.0))}"
+
+
 def env_flutter_gtm_sea_level() -> str:
     """The calibrated gtm's first flutter point at sea level (finite state, the v1 task's Mach range)."""
     from flexsim.aircraft.toml_loader import load_aircraft
@@ -545,7 +607,7 @@ def env_flutter_v1_closed_loop() -> str:
 
 # --- docs/environments.md: integration, baselines, limitations ------------------------------------------------------
 
-def _make(env_id: str):
+def _make(env_id: str, **kwargs):
     import warnings
 
     import gymnasium as gym
@@ -554,7 +616,7 @@ def _make(env_id: str):
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DeprecationWarning)  # gymnasium's "v0 is out of date" notice
-        return gym.make(env_id)
+        return gym.make(env_id, **kwargs)
 
 
 def env_stiffness() -> str:
@@ -735,6 +797,8 @@ USAGE_FIGURES = {
     "env-flutter-v1-target": (env_flutter_v1_target, False),
     "env-flutter-v0-growth": (env_flutter_v0_growth, False),
     "env-flutter-v0-damper": (env_flutter_v0_damper, False),
+    "env-flutter-v0-window": (env_flutter_v0_window, False),
+    "env-flutter-v0-window-100": (env_flutter_v0_window_100, False),
     "env-flutter-gtm-sea-level": (env_flutter_gtm_sea_level, False),
     "env-flutter-v1-point": (env_flutter_v1_point, False),
     "env-flutter-v1-open-loop": (env_flutter_v1_open_loop, False),

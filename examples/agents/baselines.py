@@ -115,11 +115,7 @@ class FlutterPidDamper(_LqrPolicy):
             return
         dyn = self.env.dynamics
         point = dyn.trim(self.env.target)
-        fin = dyn.sensors["vtail"]
-        rows = np.zeros((4, dyn.layout.n_states))
-        for row, (idx, shape) in zip(rows, ((fin.eta_idx, fin.psi_tip), (fin.xi_idx, fin.psi_tip), (fin.s_idx, fin.w_tip),
-                                            (fin.q_idx, fin.w_tip))):
-            row[idx] = shape
+        rows = fin_sensor_rows(dyn)
         self.damper_gains, self.open_loop_growth, self.closed_loop_growth = design_fin_damper(dyn.model, point.x, point.u, self.env.dt, rows)
         damper = np.zeros((4, dyn.layout.n_states))
         damper[3] = self.damper_gains @ rows
@@ -175,6 +171,17 @@ class WingFlutterAileronDamper(_LqrPolicy):
         u = super().controls(obs)
         u[1] -= self.damper_gain * float(np.asarray(obs, float)[self._i_rate])
         return u
+
+
+def fin_sensor_rows(dyn) -> np.ndarray:
+    """Rows (4, n_states) of the fin damper's sensors as linear functions of the state (``dyn``: the env's
+    dynamics): fin tip twist rate, twist, deflection rate, deflection."""
+    fin = dyn.sensors["vtail"]
+    rows = np.zeros((4, dyn.layout.n_states))
+    for row, (idx, shape) in zip(rows, ((fin.eta_idx, fin.psi_tip), (fin.xi_idx, fin.psi_tip), (fin.s_idx, fin.w_tip),
+                                        (fin.q_idx, fin.w_tip))):
+        row[idx] = shape
+    return rows
 
 
 def elastic_growth(env, gains: dict, extra_feedback: np.ndarray) -> float:

@@ -206,6 +206,26 @@ def checked_feedback(model, x0: np.ndarray, u0: np.ndarray, gains: dict[tuple[in
     return StateFeedback(states, gain, np.asarray(x0, float)[idx], np.asarray(u0, float).copy(), np.nan, full)
 
 
+def rudder_feedback_growths(model, x0: np.ndarray, u0: np.ndarray, dt_s: float, sensor_rows: np.ndarray,
+                            min_frequency_rad_s: float = 25.0):
+    """``growths(k) -> (fast, every)``: the largest growth rate [1/s] of the modes faster than
+    ``min_frequency_rad_s`` and of all modes, for the rudder feedback delta_r = -k . y (y = ``sensor_rows`` @ x,
+    sampled at ``dt_s`` with a zero-order hold) on the full linear model at the trim (X, Y, psi dropped)."""
+    lay = model.layout
+    ad, bd, keep = _discrete_full_model(model, x0, u0, dt_s, [lay.position.start, lay.position.start + 1, lay.euler.start + 2])
+    bd_r = bd[:, 3]
+    rows = np.atleast_2d(np.asarray(sensor_rows, float))[:, keep]
+
+    def growths(k: np.ndarray) -> tuple[float, float]:
+        z = np.linalg.eigvals(ad - np.outer(bd_r, np.atleast_1d(np.asarray(k, float)) @ rows))
+        z = z[np.abs(z - 1.0) > 1e-6]
+        rate = np.log(np.abs(z)) / dt_s
+        fast = rate[np.abs(np.angle(z)) / dt_s > min_frequency_rad_s]
+        return float(fast.max()), float(rate.max())
+
+    return growths
+
+
 def design_fin_damper(model, x0: np.ndarray, u0: np.ndarray, dt_s: float, sensor_rows: np.ndarray,
                       min_frequency_rad_s: float = 25.0) -> tuple[np.ndarray, float, float]:
     """Rudder gains k of delta_r = -k . y (y = ``sensor_rows`` @ x, sampled, zero-order hold) that damp
@@ -228,23 +248,13 @@ def design_fin_damper(model, x0: np.ndarray, u0: np.ndarray, dt_s: float, sensor
     open_loop_growth, closed_loop_growth : float
         Growth rate of the fastest-growing fast mode without and with the feedback [1/s].
     """
-    lay = model.layout
-    ad, bd, keep = _discrete_full_model(model, x0, u0, dt_s, [lay.position.start, lay.position.start + 1, lay.euler.start + 2])
-    bd_r = bd[:, 3]
-    rows = np.atleast_2d(np.asarray(sensor_rows, float))[:, keep]
-
-    def growths(k: np.ndarray) -> tuple[float, float]:
-        z = np.linalg.eigvals(ad - np.outer(bd_r, k @ rows))
-        z = z[np.abs(z - 1.0) > 1e-6]
-        rate = np.log(np.abs(z)) / dt_s
-        fast = rate[np.abs(np.angle(z)) / dt_s > min_frequency_rad_s]
-        return float(fast.max()), float(rate.max())
+    growths = rudder_feedback_growths(model, x0, u0, dt_s, sensor_rows, min_frequency_rad_s)
 
     def objective(k: np.ndarray) -> float:
         fast, every = growths(k)
         return fast + 100.0 * max(every, 0.0)
 
-    m = rows.shape[0]
+    m = np.atleast_2d(sensor_rows).shape[0]
     scan = np.concatenate([-np.logspace(-4, 0, 41), np.logspace(-4, 0, 41)])
     start = min((np.r_[k, np.zeros(m - 1)] for k in scan), key=objective)
     result = minimize(objective, start, method="Nelder-Mead", options={"xatol": 1e-7, "fatol": 1e-4, "maxfev": 100 * m})
