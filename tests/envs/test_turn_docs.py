@@ -42,7 +42,8 @@ def turns():
 
 
 def _number(pattern: str, text: str) -> tuple[float, ...]:
-    match = re.search(pattern, " ".join(text.split()))
+    """The numbers of ``pattern`` in ``text``, whitespace collapsed and generated-region markers (HTML comments) removed."""
+    match = re.search(pattern, " ".join(re.sub(r"<!--.*?-->", "", text).split()))
     assert match, f"quoted figure not found: {pattern!r}"
     return tuple(float(g) for g in match.groups())
 
