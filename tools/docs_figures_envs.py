@@ -490,6 +490,19 @@ def env_v0_rms_airspeed() -> str:
     return f"{span('trim')} rms with the trim held, {span('lqr')} with the LQR"
 
 
+def env_bryson() -> str:
+    """LevelHold-v0's LQR without the softening: the largest growth rate of the sampled full closed loop."""
+    u = _make("FlexSim/GTM-LevelHold-v0").unwrapped
+    baselines, lqr_design = _agents_module("baselines"), _agents_module("lqr_design")
+    dyn = u.dynamics
+    point = dyn.trim(u.task.manoeuvre)
+    max_control = baselines.LevelHoldLqr.max_control_fraction * dyn.u_high
+    design = lqr_design.design_rigid_lqr(dyn.model, point.x, point.u, baselines.LevelHoldLqr.max_state, max_control,
+                                         dt_s=u.dt, max_softening=0)
+    return f"on LevelHold-v0 the Bryson design alone leaves the sampled full loop growing at {_num(design.full_model_growth, '+.1f')} 1/s"
+
+
+
 def env_qs_flutter() -> str:
     """Growth of the quasi-steady GTM's critical elastic mode at the cruise trims of LevelHold and GustAlleviation
     (the whole known-limitation bullet: whether it flutters there)."""
@@ -549,6 +562,7 @@ ENV_FIGURES = {
     "env-flutter-v1-damper": (env_flutter_v1_damper, False),
     "env-flutter-v1-closed-loop": (env_flutter_v1_closed_loop, False),
     "env-stiffness": (env_stiffness, False),
+    "env-bryson": (env_bryson, False),
     "env-v0-rms-altitude": (env_v0_rms_altitude, False),
     "env-v0-rms-airspeed": (env_v0_rms_airspeed, False),
     "env-qs-flutter": (env_qs_flutter, False),

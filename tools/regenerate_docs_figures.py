@@ -49,7 +49,10 @@ climb search, and about 4 minutes for the baselines table):
 The trim, validation and Goland figures are computed in ``tools/docs_figures_static.py``; the figures of the
 ``studies/`` scripts quoted in docs/flutter.md, docs/calibration.md and docs/validation.md (density, class
 boundaries, census, decomposition, calibration, phugoid) in ``tools/docs_figures_studies.py`` (its
-``STUDY_FIGURES``; the slow ones take 2-8 min each). Study tables the tool does not rerun are marked in the docs as
+``STUDY_FIGURES``; the slow ones take 2-8 min each); those of docs/options.md, docs/logs.md and docs/design.md in
+``tools/docs_figures_usage.py`` and of docs/environments.md (agent runs from their ``docs/figures/agent_*_result.json``,
+flutter tasks, baselines) in ``tools/docs_figures_envs.py`` (``USAGE_FIGURES``; the slow ones, which fly the envs,
+take up to about a minute each). Study tables the tool does not rerun are marked in the docs as
 recorded study output (date, command); ``benchmarks/`` figures (docs/performance.md, speed tables) are dated.
 
 Run from the repository root::
