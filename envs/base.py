@@ -71,7 +71,9 @@ OBSERVATION_BASE_ROWS_DOC = """    | Num   | Observation                        
 V0_HISTORY_DOC = """\
     * v0: initial version (flexsim issue 6); default integrator ETD2RK (5 ms steps) instead of Radau for
       the finite-state model, same trajectories to within the integration error, about 7 times faster
-      (LevelHold: 574 against 82 steps/s, docs/environments.md).
+      (LevelHold: 574 against 82 steps/s, docs/environments.md); ETD2RK steps of 10 ms by default since
+      issue 14 (2 per control period; 25 periods in still air within 2.1e-7 m altitude and 1.7e-7 m wing tip
+      of DOP853 at rtol 1e-10, ``IntegratorSettings.max_step_s``).
 """
 
 

@@ -268,6 +268,7 @@ class FlightDynamics:
         lo, hi = aircraft.control_limits()
         self.u_low, self.u_high = lo, hi
         self.rate_limits = rates.limits(float(hi[0]))
+        self._rate_step = self.rate_limits * self.dt  # the largest control change per period
         self._trims: dict[SteadyManoeuvre, TrimPoint] = {}
         self._jacobians: dict[SteadyManoeuvre, np.ndarray] = {}
         self._steppers: dict[SteadyManoeuvre, ETD2RK] = {}
@@ -361,8 +362,8 @@ class FlightDynamics:
     # ------------------------------------------------------------------ actuators
     def rate_limit(self, applied: np.ndarray, command: np.ndarray) -> np.ndarray:
         """Controls after one period of rate-limited motion from ``applied`` towards ``command``."""
-        step = self.rate_limits * self.dt
-        return applied + np.clip(command - applied, -step, step)
+        step = self._rate_step
+        return applied + np.minimum(np.maximum(command - applied, -step), step)
 
     # ------------------------------------------------------------------ integration
     @single_blas_thread
@@ -618,8 +619,10 @@ def _advance_etd2rk(dyns, x, u, t0, t1, winds, rhs, packed=None) -> BatchOutcome
         return _advance_etd2rk_products(dyns, x, u, t0, t1, winds, rhs, packed)
     res = stepper.advance_rows(model, x, u, t0, t1, k, packed)
     m = len(dyns)
-    crashed = res.status == _sk.ROW_GROUND
     failure = np.full(m, "", dtype=object)
+    if not res.status.any():  # every row completed its period (ROW_RUNNING = 0)
+        return BatchOutcome(res.x, res.t, np.zeros(m, dtype=np.bool_), failure, 2 * res.steps, np.zeros(m, dtype=np.int64))
+    crashed = res.status == _sk.ROW_GROUND
     for r in np.flatnonzero(res.status == _sk.ROW_NON_FINITE):
         t_start = t0[r] + (res.steps[r] - 1) * stepper.h
         failure[r] = f"non-finite state: ETD2RK step {int(res.steps[r])} of {k} from t = {float(t_start):.6g} s"

@@ -29,8 +29,8 @@ def test_auto_resolution_substeps_and_range():
     assert auto.resolve("unsteady") == "ETD2RK"
     assert auto.resolve("quasi-steady") == "DOP853"
     assert envs.IntegratorSettings(method="Radau").resolve("unsteady") == "Radau"
-    assert [auto.substeps(dt) for dt in (0.02, 0.05, 0.001, 1.0 / 30.0, 0.005)] == [4, 10, 1, 7, 1]
-    assert envs.IntegratorSettings(max_step_s=0.01).substeps(0.02) == 2
+    assert [auto.substeps(dt) for dt in (0.02, 0.05, 0.001, 1.0 / 30.0, 0.005)] == [2, 5, 1, 4, 1]
+    assert envs.IntegratorSettings(max_step_s=0.005).substeps(0.02) == 4
     for bad in (0.0, 1e-5, 0.1, math.nan, "fast"):
         with pytest.raises(ValueError, match=r"max_step_s = .*: must be"):
             envs.IntegratorSettings(max_step_s=bad)
@@ -47,17 +47,17 @@ def _level_hold(**kwargs):
 def test_env_step_counts_and_defaults():
     env, info = _level_hold()
     dyn = env.unwrapped.dynamics
-    assert dyn.method == "ETD2RK" and dyn.substeps == 4
+    assert dyn.method == "ETD2RK" and dyn.substeps == 2
     _, _, terminated, _, info = env.step(info["trim_action"])
-    assert not terminated and info["nfev"] == 8 and info["nlu"] == 0 and info["solver_failure"] == ""
+    assert not terminated and info["nfev"] == 4 and info["nlu"] == 0 and info["solver_failure"] == ""
     env.close()
     flutter = gym.make("FlexSim/GTM-FlutterMargin-v0")
-    assert flutter.unwrapped.dynamics.method == "ETD2RK"
+    assert flutter.unwrapped.dynamics.method == "ETD2RK" and flutter.unwrapped.dynamics.substeps == 4  # 5 ms steps
     flutter.close()
 
 
 def test_crash_located_within_the_period(monkeypatch):
-    env, _ = _level_hold(aero="quasi-steady", integrator=envs.IntegratorSettings(method="ETD2RK"))
+    env, _ = _level_hold(aero="quasi-steady", integrator=envs.IntegratorSettings(method="ETD2RK", max_step_s=0.005))
     dyn = env.unwrapped.dynamics
     n = dyn.layout.n_states
     dyn._stepper = ETD2RK(np.zeros((n, n)), dyn.dt / dyn.substeps)
@@ -79,7 +79,7 @@ def test_crash_located_within_the_period(monkeypatch):
 
 
 def test_non_finite_state_and_model_error_are_reported(monkeypatch):
-    env, info = _level_hold(integrator=envs.IntegratorSettings(method="ETD2RK"))
+    env, info = _level_hold(integrator=envs.IntegratorSettings(method="ETD2RK", max_step_s=0.005))
     dyn = env.unwrapped.dynamics
     x0, u0 = env.unwrapped.state, env.unwrapped.applied_controls
     h = dyn.dt / dyn.substeps

@@ -123,7 +123,7 @@ def test_disabled_autoreset_needs_a_masked_reset():
 
 
 def test_batched_failures_equal_the_single_aircraft_outcomes():
-    venv = envs.vector.LevelHoldVectorEnv(3, aero="quasi-steady", integrator=envs.IntegratorSettings(method="ETD2RK"))
+    venv = envs.vector.LevelHoldVectorEnv(3, aero="quasi-steady", integrator=envs.IntegratorSettings(method="ETD2RK", max_step_s=0.005))
     venv.reset(seed=0)
     dyns = [e.dynamics for e in venv.envs]
     n = dyns[0].layout.n_states
@@ -258,7 +258,8 @@ def test_packed_winds_reach_a_batched_model_kernel(monkeypatch):
             venv.step(_actions(info["trim_action"], k, venv.single_action_space))
         out.append(np.array([e.state for e in venv.envs]))
     np.testing.assert_array_equal(out[0], out[1])
-    assert calls == ["pack"] + [3] * 24  # one pack after the reset; 3 steps x 4 substeps x 2 evaluations
+    substeps = batched.envs[0].dynamics.substeps
+    assert calls == ["pack"] + [3] * (3 * substeps * 2)  # one pack after the reset; 3 steps x substeps x 2 evaluations
     plain.close()
     batched.close()
 
