@@ -15,7 +15,8 @@ from scipy.optimize import brentq
 from flexsim import _kernels as _k
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.jacobian import jacobian
-from flexsim.sim.fixed_step import ETD2RK, interior, off_midpoint, quintic_weights, step_accelerations
+from flexsim.sim import _dense_kernels as _dk
+from flexsim.sim.fixed_step import ETD2RK, step_accelerations
 from flexsim.sim.run_parts import RunEvent, RunOutcome, RunProblem, Sinks, segment_controls
 
 if TYPE_CHECKING:
@@ -51,36 +52,23 @@ class _Steps:
     Hermite interpolant of :class:`~flexsim.sim.fixed_step.ETD2RKSolver`'s dense output
     (:func:`~flexsim.sim.fixed_step.quintic_hermite`, second derivatives with the linear part ``jac`` by
     :func:`~flexsim.sim.fixed_step.step_accelerations`, for all steps of the chunk at the first sample that needs
-    them). ``sol(t)``: scalar t -> (n,), array t (m,) -> (n, m) (as scipy's ``DenseOutput``)."""
+    them), evaluated by the compiled :func:`flexsim.sim._dense_kernels.hermite_samples`. ``sol(t)``: scalar t -> (n,), array t (m,) -> (n, m) (as scipy's ``DenseOutput``)."""
 
     def __init__(self, t: np.ndarray, x: np.ndarray, f: np.ndarray, jac: np.ndarray) -> None:
         self.t, self.x, self.f, self.jac = t, x, f, jac
         self._mean = self._half_diff = None
+        self._none = np.zeros((0, x.shape[1]))  # for the kernel where the second derivatives are not needed
 
     def __call__(self, t):
-        tt = np.atleast_1d(np.asarray(t, dtype=float))
-        j = np.clip(np.searchsorted(self.t, tt, side="left") - 1, 0, self.t.size - 2)
-        h = self.t[j + 1] - self.t[j]
-        s = (tt - self.t[j]) / h
-        w = quintic_weights(s, h)  # quintic_hermite's sum, as products of (m, k + 1) weight matrices with the chunk
-        rows = np.arange(tt.size)
-        wx = np.zeros((tt.size, self.t.size))
-        wf = np.zeros_like(wx)
-        wx[rows, j], wx[rows, j + 1], wf[rows, j], wf[rows, j + 1] = w[0], w[1], w[2], w[3]
-        y = wx @ self.x + wf @ self.f
-        inside = interior(s)
-        if inside.any():
-            off = off_midpoint(s)
-            if self._mean is None or (off.any() and self._half_diff is None):
-                steps_h = np.diff(self.t)[:, None]
-                self._mean, self._half_diff = step_accelerations(steps_h, np.diff(self.x, axis=0), self.f[:-1], self.f[1:],
-                                                                 self.jac, difference=bool(off.any()))
-            wa = np.zeros((tt.size, self.t.size - 1))
-            wa[rows, j] = w[4] * inside
-            y += wa @ self._mean
-            if off.any():
-                wa[rows, j] = w[5] * off
-                y += wa @ self._half_diff
+        tt = np.ascontiguousarray(np.atleast_1d(np.asarray(t, dtype=float)))
+        inside, off = _dk.sample_needs(self.t, tt)
+        if inside and (self._mean is None or (off and self._half_diff is None)):
+            self._mean, self._half_diff = step_accelerations(np.diff(self.t)[:, None], np.diff(self.x, axis=0),
+                                                             self.f[:-1], self.f[1:], self.jac, difference=off)
+        none = self._none
+        y = np.empty((tt.size, self.x.shape[1]))
+        _dk.hermite_samples(self.t, self.x, self.f, none if self._mean is None else self._mean,
+                            none if self._half_diff is None else self._half_diff, tt, y)
         return y[0] if np.ndim(t) == 0 else y.T
 
 

@@ -68,6 +68,7 @@ from scipy.linalg import expm, matrix_balance
 
 from flexsim import _kernels as _k
 from flexsim._arrays import readonly
+from flexsim.sim import _dense_kernels as _dk
 from flexsim.sim import _step_kernels as _sk
 
 __all__ = ["phi_functions", "PHI_METHODS", "ETD2RK", "ETD2RKSolver", "RowsAdvance", "RunSteps", "quintic_hermite",
@@ -458,9 +459,8 @@ class _Hermite(DenseOutput):
         return rows[0] if np.ndim(t) == 0 else rows.T
 
 
-#: Fraction of a step within which a sample counts as the step's end or its midpoint (the interpolant's terms in
-#: the second derivatives are then below rounding: s^2 h^2 |x''| / 2 near an end, |s - 1/2| h^2 |x''| at the middle).
-NODE_TOLERANCE = 1e-9
+#: Fraction of a step within which a sample counts as the step's end or its midpoint (see the kernel module).
+NODE_TOLERANCE = _dk.NODE_TOLERANCE
 
 
 def interior(s: np.ndarray) -> np.ndarray:
@@ -536,15 +536,10 @@ def quintic_hermite(s, h, y0, y1, f0, f1, mean=None, half_diff=None) -> np.ndarr
 
 def quintic_weights(s, h) -> np.ndarray:
     """Weights of :func:`quintic_hermite` at step fractions s (m,) of steps h [s] (scalar or (m,)): rows for y0, y1,
-    f0, f1, mean and half_diff, shape (6, m): ``1 - H5, H5, h H1, h H4, h^2 (H2 + H3), h^2 (H3 - H2)``."""
-    s = np.asarray(s, dtype=float)
-    hh = np.broadcast_to(np.asarray(h, dtype=float), s.shape)
-    s2 = s * s
-    s3 = s2 * s
-    s4 = s3 * s
-    s5 = s4 * s
-    h5 = 10.0 * s3 - 15.0 * s4 + 6.0 * s5
-    h2 = 0.5 * (s2 - 3.0 * s3 + 3.0 * s4 - s5)
-    h3 = 0.5 * (s3 - 2.0 * s4 + s5)
-    return np.array([1.0 - h5, h5, hh * (s - 6.0 * s3 + 8.0 * s4 - 3.0 * s5), hh * (-4.0 * s3 + 7.0 * s4 - 3.0 * s5),
-                     hh * hh * (h2 + h3), hh * hh * (h3 - h2)])
+    f0, f1, mean and half_diff, shape (6, m): ``1 - H5, H5, h H1, h H4, h^2 (H2 + H3), h^2 (H3 - H2)`` (the compiled
+    :func:`flexsim.sim._dense_kernels.quintic_weights`, which the chunks' dense output uses too)."""
+    s = np.ascontiguousarray(s, dtype=float).reshape(-1)
+    hh = np.ascontiguousarray(np.broadcast_to(np.asarray(h, dtype=float), s.shape))
+    out = np.empty((6, s.size))
+    _dk.quintic_weights(s, hh, out)
+    return out

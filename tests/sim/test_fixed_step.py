@@ -249,3 +249,24 @@ def test_step_accelerations_exact_for_linear_forcing():
     a0, a1 = mean - half_diff, mean + half_diff
     np.testing.assert_allclose(a0, jac @ f0 + g1, rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(a1, jac @ f1 + g1, rtol=1e-12, atol=1e-12)
+
+
+def test_chunk_dense_output_equals_the_numpy_interpolant():
+    """The compiled dense output of a chunk of steps (flexsim.sim.compiled_run._Steps, kernel hermite_samples) equals
+    quintic_hermite with step_accelerations evaluated step by step, to 1e-12 of the values' scale: at step ends,
+    midpoints (mean second derivative only) and other fractions, for scalar and array times."""
+    from flexsim.sim.compiled_run import _Steps
+
+    rng = np.random.default_rng(7)
+    n, k, h = 9, 6, 0.02
+    t = 1.0 + h * np.arange(k + 1)
+    t[-1] = t[-2] + 0.013  # a shortened last step
+    x, f, jac = rng.normal(size=(k + 1, n)), rng.normal(size=(k + 1, n)), rng.normal(size=(n, n))
+    for times in (t[1:], t[:-1] + 0.5 * np.diff(t), np.sort(rng.uniform(t[0], t[-1], 15))):
+        got = _Steps(t, x, f, jac)(times).T
+        j = np.clip(np.searchsorted(t, times, side="left") - 1, 0, k - 1)
+        hj = t[j + 1] - t[j]
+        mean, half = step_accelerations(hj[:, None], x[j + 1] - x[j], f[j], f[j + 1], jac)
+        want = quintic_hermite((times - t[j]) / hj, hj, x[j], x[j + 1], f[j], f[j + 1], mean, half)
+        np.testing.assert_allclose(got, want, rtol=0.0, atol=1e-12 * np.abs(want).max())
+        np.testing.assert_allclose(_Steps(t, x, f, jac)(float(times[2])), want[2], rtol=0.0, atol=1e-12 * np.abs(want).max())
