@@ -358,7 +358,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         rows = np.array([i])
         meas = self.dynamics.measure_batch(b.x[rows], b.time_s[rows], [episode.wind])
         b.errors[i] = self._error_matrix(self._task_errors(meas, b.references(rows)))[0]
-        b.record_path(rows, meas.position_ned_m)
+        if self.render_mode is not None:  # the flight path is drawn by render() only
+            b.record_path(rows, meas.position_ned_m)
         obs = self._observe_rows(meas, b.errors[rows], b.u[rows])[0]
         info = {"time_s": 0.0, "trim_action": trim_action, "reference": dict(episode.reference)}
         if self.render_mode == "human":
@@ -420,7 +421,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
                         parts, reward, obs)
         b.last_action[rows] = a
         b.last_reward[rows] = reward
-        b.record_path(rows, meas.position_ned_m)
+        if self.render_mode is not None:
+            b.record_path(rows, meas.position_ned_m)
         return RowsStep(obs, reward, terminated, codes, dict(zip(part_names, parts.T)), errors, outcome, clipped)
 
     def _kernel_constants(self) -> tuple:
