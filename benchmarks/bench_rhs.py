@@ -1,61 +1,79 @@
-"""Median cost of one right-hand-side evaluation of the GTM model.
+"""Median CPU cost of one compiled right-hand side of the GTM, this tree against a reference revision side by side.
 
-Free-flying GTM, m = n = 2, from a state with every coordinate non-zero, three configurations:
-structure + gravity + thrust (issue 2 budget <= 100 us); plus quasi-steady strip aerodynamics; plus
-unsteady aerodynamics with N = 6 finite-state inflow states per strip (issue 3 budget <= 300 us).
-Run: python benchmarks/bench_rhs.py [--repeats 7] [--calls 2000]
+Four tasks, GTM m = n = 2 (30 velocities, 37 strips), from a state with every coordinate non-zero: structure +
+gravity + thrust (``vacuum``, 60 states), quasi-steady strip aerodynamics (``qs``, 60 states), unsteady
+aerodynamics with N = 6 finite-state inflow states per strip (``us``, 252 states) -- one call of the kernel
+``flexsim._kernels.rhs`` each -- and 256 unsteady aircraft in one ``AircraftModel.rhs_batch`` call (per aircraft).
+Each side runs in its own process (``benchmarks/_rhs_worker.py``), alternately (reference, this, reference, ...)
+``--repeats`` times, so both see the same machine load; a process reports per-thread CPU medians after a warm-up.
+The table gives the medians over the processes, the ratio reference / this and the largest difference of the
+derivatives, max |dx_this - dx_ref| / max |dx_ref|.
+
+The reference (default ``6e6de3f``: main before the block-sparse right-hand side) is extracted with
+``git archive`` into ``~/.cache/flexsim-bench/<revision>`` (kept, so that numba's cache of its kernels survives
+between runs: the first run compiles them, 2-7 min of CPU), or taken from ``--reference-tree``.
+
+Run: python benchmarks/bench_rhs.py [--reference REV | --reference-tree DIR] [--repeats 3] [--runs 7] [--calls 2000]
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import statistics
-import time
+import subprocess
+import sys
+from pathlib import Path
 
-os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+import numpy as np
 
-import numpy as np  # noqa: E402
+HERE = Path(__file__).resolve().parents[1]
+WORKER = HERE / "benchmarks" / "_rhs_worker.py"
 
-from flexsim.aircraft.toml_loader import load_aircraft  # noqa: E402
-from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
+
+def _reference_tree(rev: str) -> Path:
+    sha = subprocess.run(["git", "-C", str(HERE), "rev-parse", "--short=12", rev], check=True, capture_output=True,
+                         text=True).stdout.strip()
+    tree = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "flexsim-bench" / sha
+    if not (tree / "flexsim" / "_kernels.py").is_file():
+        tree.mkdir(parents=True, exist_ok=True)
+        archive = subprocess.run(["git", "-C", str(HERE), "archive", sha], check=True, capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", str(tree)], input=archive, check=True)
+    return tree
+
+
+def _run(tree: Path, runs: int, calls: int) -> dict:
+    env = dict(os.environ, PYTHONPATH=str(tree), OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    out = subprocess.run([sys.executable, str(WORKER), str(runs), str(calls)], cwd=tree, env=env, check=True,
+                         capture_output=True, text=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--repeats", type=int, default=7)
-    parser.add_argument("--calls", type=int, default=2000)
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--reference", default="6e6de3f", help="git revision to compare against (default 6e6de3f)")
+    parser.add_argument("--reference-tree", type=Path, help="an existing checkout to compare against instead")
+    parser.add_argument("--repeats", type=int, default=3, help="alternating process pairs")
+    parser.add_argument("--runs", type=int, default=7, help="timed runs per process and task (median)")
+    parser.add_argument("--calls", type=int, default=2000, help="right-hand sides per timed run")
     args = parser.parse_args()
-    aircraft = load_aircraft("gtm").with_modes(2, 2)
-    for label, aero, budget in (
-        ("structure + gravity + thrust", None, 100),
-        ("+ quasi-steady strip aerodynamics", "quasi-steady", None),
-        ("+ unsteady aerodynamics, N = 6", "unsteady", 300),
-    ):
-        model = AircraftModel(aircraft, aero=aero)
-        rng = np.random.default_rng(0)
-        d = model.structure.dofs
-        x = model.pack(
-            position_m=[0, 0, -9144.0],
-            euler_rad=[0.02, 0.05, 0.1],
-            q=0.1 * rng.standard_normal(d.nq),
-            xi=0.01 * rng.standard_normal(d.nxi),
-            velocity=np.r_[[230.0, 1.0, 10.0], 0.01 * rng.standard_normal(d.n_v - 3)],
-        )
-        x[model.layout.inflow] = 0.1 * rng.standard_normal(model.layout.n_inflow)
-        u = np.array([50e3, 0.01, -0.02, 0.005])
-        for _ in range(200):
-            model.rhs(0.0, x, u)
-        times = []
-        for _ in range(args.repeats):
-            t0 = time.perf_counter()
-            for _ in range(args.calls):
-                model.rhs(0.0, x, u)
-            times.append((time.perf_counter() - t0) / args.calls * 1e6)
-        note = f"; budget {budget} us" if budget else ""
-        print(f"GTM rhs, {label}: {model.layout.n_states} states")
-        print(f"  median over {args.repeats} runs of {args.calls} calls: {statistics.median(times):.1f} us/call "
-              f"(min {min(times):.1f}, max {max(times):.1f}){note}")
+    ref = args.reference_tree.resolve() if args.reference_tree else _reference_tree(args.reference)
+    print(f"load average before: {open('/proc/loadavg').read().split()[:3]}; {os.cpu_count()} CPUs; reference {ref}, "
+          f"this tree {HERE}", flush=True)
+    results = {"ref": [], "this": []}
+    for _ in range(args.repeats):
+        for side, tree in (("ref", ref), ("this", HERE)):
+            results[side].append(_run(tree, args.runs, args.calls))
+    print(f"{'task':<14} {'reference':>11} {'this tree':>11} {'ratio':>7}   max |d dx| / max |dx|")
+    for task in results["ref"][0]:
+        med = {s: statistics.median(r[task]["cpu_s"] for r in results[s]) for s in results}
+        old, new = np.asarray(results["ref"][-1][task]["dx"]), np.asarray(results["this"][-1][task]["dx"])
+        diff = np.max(np.abs(new - old)) / np.max(np.abs(old))
+        print(f"{task:<14} {med['ref'] * 1e6:8.1f} us {med['this'] * 1e6:8.1f} us {med['ref'] / med['this']:6.2f}x   {diff:.1e}")
+    print(f"(CPU per right-hand side; us-batch-256: per aircraft of one batched call. Medians of {args.repeats} processes "
+          f"per side, each the median of {args.runs} runs of {args.calls} calls.)")
+    print(f"load average after: {open('/proc/loadavg').read().split()[:3]}")
 
 
 if __name__ == "__main__":

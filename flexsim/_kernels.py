@@ -48,7 +48,7 @@ __all__ = ["FLOAT_FIELDS", "INT_FIELDS", "INT_NAMES", "KernelData", "pack", "Win
            "strip_kinematics", "circulatory", "tail_downwash", "downwash_shift", "aero_evaluate", "inflow_rate",
            "point_velocity", "parasite_drag", "munk_moments", "body_moments", "body_force", "strip_positions", "strip_wind",
            "strip_wind_at", "wind_ned", "gust_profile", "gust_profiles", "dryden_along_track", "dryden_track", "isa_scalar",
-           "dcm_321", "solve", "compressibility_factor"]
+           "dcm_321", "solve", "block_solve", "blocks_decoupled", "strip_columns", "solve_structure", "compressibility_factor"]
 
 _jit = njit(cache=True, nogil=True)
 _entry = _jit
@@ -86,10 +86,13 @@ FLOAT_FIELDS = (
     ("drag_area", 1), ("drag_g0", 3), ("drag_g1", 4), ("drag_offset", 2),
     # slender bodies (Munk moments): rho-free coefficient Vol (k2 - k1) [m^3], maps, offsets, unit axes
     ("body_vol_dk", 1), ("body_g0", 3), ("body_g1", 4), ("body_offset", 2), ("body_axis", 2),
+    # the pitch part of the strips' apparent mass per unit density, sum_j pi b^4 w / 8 (p^T B)^T (p^T B) [m^4]
+    ("apparent_pitch", 2),
 )
 #: Int fields of I: flags and sizes (``ints``, entries below), active entries of V, flap control index per
-#: strip, unsteady strips.
-INT_FIELDS = ("ints", "active", "flap_index", "inflow_idx")
+#: strip, unsteady strips; derived by :func:`pack` (:func:`strip_columns`, :func:`solve_structure`): the columns
+#: of V each strip's rows touch (CSR: pointers, indices) and the elimination order of E V_dot = f (order, pointers).
+INT_FIELDS = ("ints", "active", "flap_index", "inflow_idx", "strip_col_ptr", "strip_cols", "solve_perm", "solve_ptr")
 #: Entries of the ``ints`` field.
 INT_NAMES = ("n_v", "nq", "nxi", "rigid", "use_frozen", "all_active", "n_states", "vel_start", "inflow_start", "n_inflow",
              "has_aero", "has_drag", "has_damping", "q_start", "xi_start", "finite_state", "n_inflow_per_strip",
@@ -99,8 +102,9 @@ _HEAD = 5 * _NF + 2 * len(INT_FIELDS)
 (FLOATS, EULER_FIXED, V_FIXED, Q_FROZEN, XI_FROZEN, M0, H, M2, K_BENDING, K_TORSION, C_EL, THRUST_T0, THRUST_T1,
  PROJ_N0, PROJ_D0, PROJ_N1, PROJ_D1, PROJ_P, REL, INCIDENCE, SEMICHORD, AB, K0, PR_W, WIDTH, CD0, FLAP_SIGN,
  PAPER_STRIPS, N_OVER_D_X, FLAP_W, D, N, STRIP_DCM, STRIP_POS, A_INV, A_INV_C, B_VEC, AERO_FLOATS, DW_WING_WEIGHT,
- DW_TAIL_NZ, DRAG_AREA, DRAG_G0, DRAG_G1, DRAG_OFFSET, BODY_VOL_DK, BODY_G0, BODY_G1, BODY_OFFSET, BODY_AXIS) = range(_NF)
-INTS, ACTIVE, FLAP_INDEX, INFLOW_IDX = range(len(INT_FIELDS))
+ DW_TAIL_NZ, DRAG_AREA, DRAG_G0, DRAG_G1, DRAG_OFFSET, BODY_VOL_DK, BODY_G0, BODY_G1, BODY_OFFSET, BODY_AXIS,
+ APPARENT_PITCH) = range(_NF)
+INTS, ACTIVE, FLAP_INDEX, INFLOW_IDX, STRIP_COL_PTR, STRIP_COLS, SOLVE_PERM, SOLVE_PTR = range(len(INT_FIELDS))
 (N_V, NQ, NXI, RIGID, USE_FROZEN, ALL_ACTIVE, N_STATES, VEL_START, INFLOW_START, N_INFLOW, HAS_AERO, HAS_DRAG,
  HAS_DAMPING, Q_START, XI_START, FINITE_STATE, N_PER_STRIP, PRANDTL_GLAUERT, PAPER, HAS_BODIES) = range(len(INT_NAMES))
 
@@ -124,8 +128,12 @@ def pack(floats: dict, ints: dict) -> KernelData:
     (k, 6, n_v); drag_g1 (k, 3, 3, nq); drag_offset (k, 3); body_vol_dk (k_b,); body_g0, body_g1, body_offset
     like the drag's; body_axis (k_b, 3).
     ``ints``: ``ints`` (len(INT_NAMES),) with the entries of :data:`INT_NAMES` (given as a dict by name),
-    active, flap_index, inflow_idx.
+    active, flap_index, inflow_idx. The sparsity fields are derived here from the float fields
+    (:func:`strip_columns`, :func:`solve_structure`).
     """
+    strip_ptr, strip_cols = strip_columns(floats)
+    perm, ptr = solve_structure(floats, ints.get("active"), strip_ptr, strip_cols)
+    ints = {**ints, "strip_col_ptr": strip_ptr, "strip_cols": strip_cols, "solve_perm": perm, "solve_ptr": ptr}
     head = np.zeros(_HEAD, np.int64)
     chunks, off = [], 0
     for k, (name, rank) in enumerate(FLOAT_FIELDS):
@@ -148,6 +156,86 @@ def pack(floats: dict, ints: dict) -> KernelData:
     f = frozen_array(np.concatenate(chunks) if off else np.zeros(0))
     i = frozen_array(np.concatenate([head] + int_chunks), np.int64)
     return KernelData(f, i)
+
+
+def _field(floats: dict, name: str, rank: int) -> np.ndarray:
+    return np.asarray(floats.get(name, np.zeros((0,) * rank)), dtype=float)
+
+
+def strip_columns(floats: dict) -> tuple[np.ndarray, np.ndarray]:
+    """The entries of V each strip's rows touch, as CSR (pointers (n_s + 1,), ascending column indices).
+
+    A strip's rows of A(q) (n^T A, d^T A) and of B (p^T B) are proj_n0 + proj_n1 q, proj_d0 + proj_d1 q (the q
+    part in the omega columns 3-5 only) and proj_p (:func:`strip_kinematics`): exact zeros of these constant
+    fields are zero at every state, so the strip loops skip them (the GTM: 14 of 30 columns per strip; a
+    strip moves with the rigid body, its own component's modes and the fuselage's).
+    """
+    pn0, pd0, pp = _field(floats, "proj_n0", 2), _field(floats, "proj_d0", 2), _field(floats, "proj_p", 2)
+    pn1, pd1 = _field(floats, "proj_n1", 3), _field(floats, "proj_d1", 3)
+    ptr, cols = [0], []
+    for j in range(pn0.shape[0]):
+        used = (pn0[j] != 0.0) | (pd0[j] != 0.0) | (pp[j] != 0.0)
+        if pn1.shape[2]:
+            used[3:6] |= np.any(pn1[j] != 0.0, axis=1) | np.any(pd1[j] != 0.0, axis=1)
+        cols.extend(np.flatnonzero(used).tolist())
+        ptr.append(len(cols))
+    return np.asarray(ptr, np.int64), np.asarray(cols, np.int64)
+
+
+def solve_structure(floats: dict, active, strip_ptr: np.ndarray, strip_cols: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Elimination order of E V_dot = f over the active entries of V: diagonal blocks first, the coupling core last.
+
+    The pattern of E = M(q) + M_a (eqs. 8-10, 33; :func:`assemble`) at any state: the non-zeros of M0; H q in the
+    omega rows and columns (3-5) of the rows where H is non-zero and M2 : q q in the omega block (eq. 10); each
+    strip's apparent mass sum_j left_j^T right_j on its columns x columns (:func:`strip_columns`). The core is the
+    active entries coupled with every other one (the GTM: the 6 rigid-body entries and the fuselage's 4 modes); the
+    rest splits into blocks coupled only through the core (the GTM: one 4 x 4 block per lifting surface, its two
+    bending and two torsion modes). :func:`block_solve` eliminates the blocks into a Schur complement of the core.
+
+    Returns perm (n_a,) (indices of V: block after block, then the core, each ascending) and ptr (n_blocks + 2,):
+    block b is perm[ptr[b]:ptr[b + 1]], the core perm[ptr[-2]:]. Without a split: perm = active, ptr = [0, n_a]
+    (one dense elimination, :func:`solve`).
+    """
+    m0 = _field(floats, "m0", 2)
+    act = np.arange(m0.shape[0]) if active is None else np.asarray(active, np.int64).ravel()
+    whole = (act.astype(np.int64), np.asarray([0, act.size], np.int64))
+    if m0.shape[0] < 6 or act.size == 0:
+        return whole
+    pattern = m0 != 0.0
+    h, m2 = _field(floats, "h", 3), _field(floats, "m2", 4)
+    if h.size:
+        for a in range(3):
+            rows = np.any(h[:, a, :] != 0.0, axis=1)
+            pattern[rows, 3 + a] = True
+            pattern[3 + a, rows] = True
+    if m2.size:
+        pattern[3:6, 3:6] |= np.any(m2 != 0.0, axis=(2, 3))
+    for j in range(strip_ptr.size - 1):
+        c = strip_cols[strip_ptr[j]:strip_ptr[j + 1]]
+        pattern[np.ix_(c, c)] = True
+    pattern = (pattern | pattern.T)[np.ix_(act, act)]
+    n_a = act.size
+    core = [i for i in range(n_a) if pattern[i].all()]
+    rest = [i for i in range(n_a) if not pattern[i].all()]
+    blocks, seen = [], set()
+    for start in rest:  # connected components of the pattern without the core
+        if start in seen:
+            continue
+        block, stack = [], [start]
+        seen.add(start)
+        while stack:
+            i = stack.pop()
+            block.append(i)
+            for k in rest:
+                if k not in seen and pattern[i, k]:
+                    seen.add(k)
+                    stack.append(k)
+        blocks.append(sorted(block))
+    if len(blocks) < 2 and not core:
+        return whole
+    order = [i for b in blocks for i in b] + core
+    ptr = np.cumsum([0] + [len(b) for b in blocks] + [len(core)])
+    return act[np.asarray(order, np.int64)].astype(np.int64), ptr.astype(np.int64)
 
 
 class WindData(NamedTuple):
@@ -314,18 +402,22 @@ def inertia(m0, h, m2, v, q, s):
             m[i, 3 + a] += hq[i, a]
             m[3 + a, i] += hq[i, a]
     m2q = np.zeros((3, 3, nq))
+    m2qs = np.zeros((3, 3))  # (M2 . q) . s
     for a in range(3):
         for b in range(3):
+            qq = 0.0
+            qs = 0.0
             for k in range(nq):
                 acc = 0.0
                 for l in range(nq):
                     acc += m2[a, b, k, l] * q[l]
                 m2q[a, b, k] = acc
+                qq += acc * q[k]
+                qs += acc * s[k]
+            m[3 + a, 3 + b] += qq
+            m2qs[a, b] = qs
     w = v[3:6]
     dtdq = np.zeros(nq)
-    for a in range(3):
-        for b in range(3):
-            m[3 + a, 3 + b] += m2q[a, b] @ q
     for k in range(nq):
         acc = 0.0
         for a in range(3):
@@ -337,15 +429,15 @@ def inertia(m0, h, m2, v, q, s):
                 wm += w[b] * m2q[b, a, k]
             acc += w[a] * (vh + wm)
         dtdq[k] = acc
-    mdot = hs @ w
+    mdot = np.empty(n_v)
+    for i in range(n_v):
+        mdot[i] = hs[i, 0] * w[0] + hs[i, 1] * w[1] + hs[i, 2] * w[2]
     for a in range(3):
         acc = 0.0
         for i in range(n_v):
             acc += hs[i, a] * v[i]
         for b in range(3):
-            m2qs_ab = m2q[a, b] @ s
-            m2qs_ba = m2q[b, a] @ s
-            acc += (m2qs_ab + m2qs_ba) * w[b]
+            acc += (m2qs[a, b] + m2qs[b, a]) * w[b]
         mdot[3 + a] += acc
     return m, dtdq, mdot
 
@@ -376,10 +468,11 @@ def strip_kinematics(F, I, q, xi, vel, lam, u, wind_c, has_wind):
     flap_sign = _f1(F, I, FLAP_SIGN)
     flap_index = _i1(I, FLAP_INDEX)
     flap_w = _f2(F, I, FLAP_W)
+    col_ptr = _i1(I, STRIP_COL_PTR)
+    cols = _i1(I, STRIP_COLS)
     n_s = semichord.shape[0]
     nq = q.shape[0]
     nxi = xi.shape[0]
-    n_v = vel.shape[0]
     p_mat = _f2(F, I, PROJ_N0).copy()
     d_mat = _f2(F, I, PROJ_D0).copy()
     lam0 = np.zeros(n_s)
@@ -417,7 +510,8 @@ def strip_kinematics(F, I, q, xi, vel, lam, u, wind_c, has_wind):
         uj = 0.0
         wn = 0.0
         ad = 0.0
-        for i in range(n_v):
+        for t in range(col_ptr[j], col_ptr[j + 1]):  # the strip's non-zero columns (strip_columns)
+            i = cols[t]
             uj -= d_mat[j, i] * vel[i]
             wn += p_mat[j, i] * vel[i]
             ad += proj_p[j, i] * vel[i]
@@ -521,7 +615,9 @@ def aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind):
     (eqs. 17-24); the tail strips in the wing's downwash (:func:`downwash_shift`). Apparent mass (pi rho b^2,
     reference section 1.4): w_EA_dot = row0 V_dot + w_ea_x, with
     row0 = n^T A - alpha_el d^T A - a b p^T B and the explicit part w_ea_x (omega x q-derivative terms and
-    u0 times the elastic pitch rate).
+    u0 times the elastic pitch rate). M_a = sum_j rho pr_w (n^T A - a b p^T B)^T row0 + rho sum_j pr_w b^2/8
+    (p^T B)^T (p^T B), the last sum constant per unit density (field ``apparent_pitch``, built by
+    :class:`flexsim.model.coupling.AeroCoupling`).
 
     Returns m_a, q_a, row0 (n_s, n_v), w_ea_x (n_s,), u0 (n_s,).
     """
@@ -548,8 +644,8 @@ def aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind):
     n_s = lift.shape[0]
     n_v = vel.shape[0]
     w_ea_x = np.empty(n_s)
-    left = np.empty((2 * n_s, n_v))  # [pr_w (n^T A - a b p^T B); pr_w b^2/8 p^T B]
-    right = np.empty((2 * n_s, n_v))  # [row0; p^T B]
+    left = np.empty((n_s, n_v))  # pr_w (n^T A - a b p^T B)
+    right = np.empty((n_s, n_v))  # row0
     g_n = np.empty(n_s)
     g_d = np.empty(n_s)
     g_r = np.empty(n_s)
@@ -578,19 +674,21 @@ def aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind):
             lv = p_mat[j, i] - ab[j] * r_mat[j, i]
             right[j, i] = lv - alpha_el[j] * d_mat[j, i]
             left[j, i] = prw * lv
-            left[n_s + j, i] = prw * b[j] * b[j] / 8.0 * r_mat[j, i]
-            right[n_s + j, i] = r_mat[j, i]
         w_ea_x[j] = wx
         g_n[j] = w[j] * c_n - prw * wx
         g_d[j] = w[j] * c_d
         g_r[j] = w[j] * moment[j] + ab[j] * prw * wx
+    # M_a = left^T right + rho sum_j pr_w b^2/8 (p^T B)^T (p^T B), the second term constant per unit density
     m_a = left.T @ right
+    pitch = _f2(F, I, APPARENT_PITCH)
+    for i in range(n_v):
+        for k in range(n_v):
+            m_a[i, k] += rho * pitch[i, k]
     q_a = np.zeros(n_v)
     for j in range(n_s):
         for i in range(n_v):
             q_a[i] += p_mat[j, i] * g_n[j] + d_mat[j, i] * g_d[j] + r_mat[j, i] * g_r[j]
-    row0 = right[0:n_s].copy()
-    return m_a, q_a, row0, w_ea_x, u0
+    return m_a, q_a, right, w_ea_x, u0
 
 
 @_jit
@@ -604,12 +702,14 @@ def inflow_rate(F, I, row0, w_ea_x, u0, lam, vdot):
     proj_p = _f2(F, I, PROJ_P)
     a_inv = _f2(F, I, A_INV)
     a_inv_c = _f1(F, I, A_INV_C)
+    col_ptr = _i1(I, STRIP_COL_PTR)
+    cols = _i1(I, STRIP_COLS)
     out = np.empty(idx.shape[0] * nin)
-    n_v = vdot.shape[0]
     for c in range(idx.shape[0]):
         j = idx[c]
         forcing = w_ea_x[j]
-        for i in range(n_v):
+        for t in range(col_ptr[j], col_ptr[j + 1]):  # the strip's non-zero columns (strip_columns)
+            i = cols[t]
             forcing += (row0[j, i] + 0.5 * semichord[j] * proj_p[j, i]) * vdot[i]
         decay = u0[j] / semichord[j]
         for r in range(nin):
@@ -622,29 +722,34 @@ def inflow_rate(F, I, row0, w_ea_x, u0, lam, vdot):
 
 @_jit
 def point_velocity(g0, g1, offset, j, q, vel):
-    """Velocity v_p (3,) [m/s] of attached point j and its map A_j(q) (3, n_v), component axes:
+    """Velocity v_p (3,) [m/s] of attached point j and the q part g1[j] q (3, 3) of its map A_j(q), component axes:
     v_p = A_j(q) V + omega_sec x rho_j with A_j(q) = g0[j, 0:3] + g1[j] q on the omega columns and omega_sec =
     g0[j, 3:6] V (paper eqs. 5-6, 18; drag items and slender bodies)."""
     n_v = vel.shape[0]
     nq = q.shape[0]
-    a = g0[j, 0:3, :].copy()
+    g1q = np.empty((3, 3))
     for r in range(3):
         for c in range(3):
             acc = 0.0
             for k in range(nq):
                 acc += g1[j, r, c, k] * q[k]
-            a[r, 3 + c] += acc
-    om = np.zeros(3)
-    vp = np.zeros(3)
+            g1q[r, c] = acc
+    vp = np.empty(3)
+    om0 = om1 = om2 = 0.0
+    for i in range(n_v):
+        om0 += g0[j, 3, i] * vel[i]
+        om1 += g0[j, 4, i] * vel[i]
+        om2 += g0[j, 5, i] * vel[i]
     for r in range(3):
+        acc = 0.0
         for i in range(n_v):
-            om[r] += g0[j, 3 + r, i] * vel[i]
-            vp[r] += a[r, i] * vel[i]
+            acc += g0[j, r, i] * vel[i]
+        vp[r] = acc + g1q[r, 0] * vel[3] + g1q[r, 1] * vel[4] + g1q[r, 2] * vel[5]
     rho_j = offset[j]
-    vp[0] += om[1] * rho_j[2] - om[2] * rho_j[1]
-    vp[1] += om[2] * rho_j[0] - om[0] * rho_j[2]
-    vp[2] += om[0] * rho_j[1] - om[1] * rho_j[0]
-    return vp, a
+    vp[0] += om1 * rho_j[2] - om2 * rho_j[1]
+    vp[1] += om2 * rho_j[0] - om0 * rho_j[2]
+    vp[2] += om0 * rho_j[1] - om1 * rho_j[0]
+    return vp, g1q
 
 
 @_jit
@@ -661,19 +766,19 @@ def parasite_drag(F, I, q, vel, rho):
     g1 = _f4(F, I, DRAG_G1)
     offset = _f2(F, I, DRAG_OFFSET)
     for j in range(area.shape[0]):
-        vp, a = point_velocity(g0, g1, offset, j, q, vel)
+        vp, g1q = point_velocity(g0, g1, offset, j, q, vel)
         rho_i = offset[j]
         speed = math.sqrt(vp[0] * vp[0] + vp[1] * vp[1] + vp[2] * vp[2])
-        f = np.empty(3)
-        for r in range(3):
-            f[r] = -0.5 * rho * area[j] * speed * vp[r]
-        mu = np.empty(3)
-        mu[0] = rho_i[1] * f[2] - rho_i[2] * f[1]
-        mu[1] = rho_i[2] * f[0] - rho_i[0] * f[2]
-        mu[2] = rho_i[0] * f[1] - rho_i[1] * f[0]
+        c = -0.5 * rho * area[j] * speed
+        f0, f1, f2 = c * vp[0], c * vp[1], c * vp[2]
+        mu0 = rho_i[1] * f2 - rho_i[2] * f1
+        mu1 = rho_i[2] * f0 - rho_i[0] * f2
+        mu2 = rho_i[0] * f1 - rho_i[1] * f0
         for i in range(n_v):
-            out[i] += a[0, i] * f[0] + a[1, i] * f[1] + a[2, i] * f[2]
-            out[i] += g0[j, 3, i] * mu[0] + g0[j, 4, i] * mu[1] + g0[j, 5, i] * mu[2]
+            out[i] += g0[j, 0, i] * f0 + g0[j, 1, i] * f1 + g0[j, 2, i] * f2
+            out[i] += g0[j, 3, i] * mu0 + g0[j, 4, i] * mu1 + g0[j, 5, i] * mu2
+        for a in range(3):  # the q part of A_i(q) on the omega columns
+            out[3 + a] += g1q[0, a] * f0 + g1q[1, a] * f1 + g1q[2, a] * f2
     return out
 
 
@@ -704,7 +809,7 @@ def body_moments(F, I, q, vel, rho):
     v_p = np.empty((vol_dk.shape[0], 3))
     for j in range(vol_dk.shape[0]):
         vp, _ = point_velocity(g0, g1, offset, j, q, vel)
-        v_p[j] = vp
+        v_p[j, 0], v_p[j, 1], v_p[j, 2] = vp[0], vp[1], vp[2]
     return munk_moments(v_p, _f2(F, I, BODY_AXIS), rho * vol_dk)
 
 
@@ -886,9 +991,13 @@ def assemble(F, I, x, u, wind_c, has_wind):
     m, dtdq, mdot_v = inertia(_f2(F, I, M0), _f3(F, I, H), _f4(F, I, M2), vel, q, vel[6:6 + nq])
     n_v = vel.shape[0]
     nxi = xi.shape[0]
-    p = m @ vel
+    p = np.empty(n_v)  # M V
     f = np.empty(n_v)
     for i in range(n_v):
+        acc = 0.0
+        for k in range(n_v):
+            acc += m[i, k] * vel[k]
+        p[i] = acc
         f[i] = -mdot_v[i]
     v = vel[0:3]
     w = vel[3:6]
@@ -994,74 +1103,163 @@ def strip_wind_at(F, I, gusts, turb, turb_grid, x):
 
 
 @_jit
-def solve(a, b):
-    """x with a x = b by Gaussian elimination with partial pivoting (a (n, n), b (n,); the LU of LAPACK's
-    gesv, unblocked). Raises ZeroDivisionError on an exactly singular matrix; a non-finite a or b gives a
-    non-finite x (no check, so that an integrator sees the non-finite derivative and reports it)."""
-    n = b.shape[0]
-    lu = a.copy()
-    x = b.copy()
+def _gauss(a, b):
+    """Overwrite b (n, r) with x of a x = b, a (n, n) overwritten with its LU factors: Gaussian elimination with
+    partial pivoting (the LU of LAPACK's gesv, unblocked). Raises ZeroDivisionError on an exactly singular matrix;
+    a non-finite a or b gives a non-finite x (no check, so that an integrator sees the non-finite derivative)."""
+    n = a.shape[0]
+    r = b.shape[1]
     for k in range(n):
         piv = k
-        big = abs(lu[k, k])
+        big = abs(a[k, k])
         for i in range(k + 1, n):
-            if abs(lu[i, k]) > big:
-                big = abs(lu[i, k])
+            if abs(a[i, k]) > big:
+                big = abs(a[i, k])
                 piv = i
         if piv != k:
             for j in range(n):
-                tmp = lu[k, j]
-                lu[k, j] = lu[piv, j]
-                lu[piv, j] = tmp
-            tmp = x[k]
-            x[k] = x[piv]
-            x[piv] = tmp
-        pivot = lu[k, k]
+                tmp = a[k, j]
+                a[k, j] = a[piv, j]
+                a[piv, j] = tmp
+            for j in range(r):
+                tmp = b[k, j]
+                b[k, j] = b[piv, j]
+                b[piv, j] = tmp
+        pivot = a[k, k]
         if pivot == 0.0:
             raise ZeroDivisionError("system matrix of the equations of motion is singular")
         inv = 1.0 / pivot
         for i in range(k + 1, n):
-            f = lu[i, k] * inv
+            f = a[i, k] * inv
             if f != 0.0:
                 for j in range(k + 1, n):
-                    lu[i, j] -= f * lu[k, j]
-                x[i] -= f * x[k]
+                    a[i, j] -= f * a[k, j]
+                for j in range(r):
+                    b[i, j] -= f * b[k, j]
     for k in range(n - 1, -1, -1):
-        acc = x[k]
-        for j in range(k + 1, n):
-            acc -= lu[k, j] * x[j]
-        x[k] = acc / lu[k, k]
-    return x
+        for c in range(r):
+            acc = b[k, c]
+            for j in range(k + 1, n):
+                acc -= a[k, j] * b[j, c]
+            b[k, c] = acc / a[k, k]
+
+
+@_jit
+def solve(a, b):
+    """x with a x = b by Gaussian elimination with partial pivoting (a (n, n), b (n,); :func:`_gauss`).
+    Raises ZeroDivisionError on an exactly singular matrix."""
+    n = b.shape[0]
+    lu = a.copy()
+    x = np.empty((n, 1))
+    for i in range(n):
+        x[i, 0] = b[i]
+    _gauss(lu, x)
+    return x[:, 0].copy()
+
+
+@_jit
+def blocks_decoupled(m, perm, ptr):
+    """Whether the entries of m between different diagonal blocks of :func:`solve_structure` are all zero."""
+    nb = ptr.shape[0] - 2
+    for b in range(nb):
+        for c in range(nb):
+            if c == b:
+                continue
+            for i in range(ptr[b], ptr[b + 1]):
+                for j in range(ptr[c], ptr[c + 1]):
+                    if m[perm[i], perm[j]] != 0.0:
+                        return False
+    return True
+
+
+@_jit
+def block_solve(m, f, perm, ptr):
+    """V_dot with E V_dot = f over the active entries, by block elimination (:func:`solve_structure`), (n_v,)
+    (zero in the inactive entries); m (n_v, n_v) = E, f (n_v,).
+
+    With E ordered [[D, E_dc], [E_cd, E_cc]], D block-diagonal (blocks coupled only through the core c):
+    X_b = D_b^-1 [E_bc, f_b] per block (:func:`_gauss`), the Schur complement S = E_cc - sum_b E_cb X_b[:, :-1]
+    and g = f_c - sum_b E_cb X_b[:, -1]; V_c = S^-1 g; V_b = X_b[:, -1] - X_b[:, :-1] V_c. The same algebra as one
+    elimination of the whole matrix (the GTM: a 10 x 10 core and five 4 x 4 blocks instead of 30 x 30); pivoting
+    is within each block and within S, which suffices for E = M(q) + M_a, M(q) symmetric positive definite
+    (eq. 33) and the apparent mass small beside it. If an entry between two blocks is not zero (a pattern that
+    :func:`solve_structure` did not foresee), one elimination of the whole active matrix (:func:`_gauss`).
+    Raises ZeroDivisionError on an exactly singular block or core.
+    """
+    n_v = m.shape[0]
+    nb = ptr.shape[0] - 2
+    c0 = ptr[nb]
+    n_a = ptr[nb + 1]
+    nc = n_a - c0
+    out = np.zeros(n_v)
+    if not blocks_decoupled(m, perm, ptr):
+        a = np.empty((n_a, n_a))
+        x = np.empty((n_a, 1))
+        for i in range(n_a):
+            x[i, 0] = f[perm[i]]
+            for j in range(n_a):
+                a[i, j] = m[perm[i], perm[j]]
+        _gauss(a, x)
+        for i in range(n_a):
+            out[perm[i]] = x[i, 0]
+        return out
+    s = np.empty((nc, nc))
+    g = np.empty((nc, 1))
+    for i in range(nc):
+        g[i, 0] = f[perm[c0 + i]]
+        for j in range(nc):
+            s[i, j] = m[perm[c0 + i], perm[c0 + j]]
+    x = np.empty((c0, nc + 1))
+    for b in range(nb):
+        lo = ptr[b]
+        k = ptr[b + 1] - lo
+        d = np.empty((k, k))
+        xb = np.empty((k, nc + 1))
+        for i in range(k):
+            ri = perm[lo + i]
+            for j in range(k):
+                d[i, j] = m[ri, perm[lo + j]]
+            for j in range(nc):
+                xb[i, j] = m[ri, perm[c0 + j]]
+            xb[i, nc] = f[ri]
+        _gauss(d, xb)
+        for i in range(nc):
+            ri = perm[c0 + i]
+            for t in range(k):
+                e = m[ri, perm[lo + t]]
+                if e != 0.0:
+                    for j in range(nc):
+                        s[i, j] -= e * xb[t, j]
+                    g[i, 0] -= e * xb[t, nc]
+        for t in range(k):
+            for j in range(nc + 1):
+                x[lo + t, j] = xb[t, j]
+    _gauss(s, g)
+    for i in range(nc):
+        out[perm[c0 + i]] = g[i, 0]
+    for t in range(c0):
+        acc = x[t, nc]
+        for j in range(nc):
+            acc -= x[t, j] * g[j, 0]
+        out[perm[t]] = acc
+    return out
 
 
 @_jit
 def _rhs(F, I, x, u, wind_c, has_wind):
     m, f, row0, w_ea_x, u0 = assemble(F, I, x, u, wind_c, has_wind)
     act = _i1(I, ACTIVE)
-    all_active = _flag(I, ALL_ACTIVE)
-    if not all_active:
-        na = act.shape[0]
-        ms = np.empty((na, na))
-        fs = np.empty(na)
-        for i in range(na):
-            fs[i] = f[act[i]]
-            for j in range(na):
-                ms[i, j] = m[act[i], act[j]]
-        m, f = ms, fs
-    vdot = solve(m, f)
+    full = block_solve(m, f, _i1(I, SOLVE_PERM), _i1(I, SOLVE_PTR))
     dx = np.empty_like(x)
     vs = _flag(I, VEL_START)
-    dx[vs:vs + vdot.shape[0]] = vdot
+    na = act.shape[0]
+    for i in range(na):
+        dx[vs + i] = full[act[i]]
     n_in = _flag(I, N_INFLOW)
     if n_in:
-        full = vdot
-        if not all_active:
-            full = np.zeros(_flag(I, N_V))
-            for i in range(act.shape[0]):
-                full[act[i]] = vdot[i]
         i0 = _flag(I, INFLOW_START)
         dx[i0:i0 + n_in] = inflow_rate(F, I, row0, w_ea_x, u0, x[i0:i0 + n_in], full)
-    vel = x[vs:vs + vdot.shape[0]]
+    vel = x[vs:vs + na]
     if _flag(I, RIGID):
         phi, theta, psi = x[3], x[4], x[5]
         c = dcm_321(phi, theta, psi)

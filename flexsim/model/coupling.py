@@ -285,7 +285,8 @@ class AeroCoupling(Immutable):
                  cd0=s.cd0, flap_sign=s.flap_sign, paper_strips=self._paper_strips.astype(float), n_over_d_x=self._n_over_d_x,
                  flap_w=s.flap_w, d=s.d, n=s.n, strip_dcm=comp_dcm, strip_pos=s.position_body_m, a_inv=coef.A_inv,
                  a_inv_c=coef.A_inv_c, b_vec=coef.b, aero_floats=[self.downwash_gradient],
-                 dw_wing_weight=self._dw_wing_weight, dw_tail_nz=self._dw_tail_nz),
+                 dw_wing_weight=self._dw_wing_weight, dw_tail_nz=self._dw_tail_nz,
+                 apparent_pitch=np.einsum("s,si,sk->ik", self._pr_w * self._b**2 / 8.0, self._proj_p, self._proj_p)),
             dict(ints=dict(finite_state=self._finite_state, n_inflow_per_strip=options.n_inflow,
                            prandtl_glauert=self.compressibility == "prandtl-glauert", paper=self.formulation == "paper"),
                  flap_index=s.flap_index, inflow_idx=self._inflow_idx))
