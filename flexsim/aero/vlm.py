@@ -412,50 +412,6 @@ def _normalwash_matrix(
     return out
 
 
-def _mirror_panels(control: np.ndarray, normal: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray | None:
-    """For every panel the index of its mirror image in y -> -y, or None when the lattice is not symmetric.
-
-    Panel j is the image of panel i when its control point and normal are the reflections of i's and its bound
-    vortex is i's reflected and reversed (a_j = S b_i, b_j = S a_i, S = diag(1, -1, 1): every surface's sections run
-    with increasing y), to 1e-9 of the lattice size; no panel may be its own image.
-    """
-    scale = 1e-9 * max(1.0, float(np.abs(control).max()))
-    flip = np.array([1.0, -1.0, 1.0])
-    order = np.lexsort((np.round(control[:, 2] / scale), np.round(control[:, 0] / scale), np.round(control[:, 1] / scale)))
-    image = control * flip
-    order_image = np.lexsort((np.round(image[:, 2] / scale), np.round(image[:, 0] / scale), np.round(image[:, 1] / scale)))
-    mirror = np.empty(control.shape[0], dtype=int)
-    mirror[order_image] = order  # panel order_image[k] has its image at order[k]
-    if (np.any(mirror == np.arange(mirror.size))
-            or np.abs(control[mirror] - image).max() > scale
-            or np.abs(normal[mirror] - normal * flip).max() > 1e-9
-            or np.abs(a[mirror] - b * flip).max() > scale or np.abs(b[mirror] - a * flip).max() > scale):
-        return None
-    return mirror
-
-
-def _solve_circulation(control: np.ndarray, normal: np.ndarray, a: np.ndarray, b: np.ndarray, core_fraction: float) -> np.ndarray:
-    """Bound circulations per unit free stream and d(alpha), shape (n,): the normalwash of the horseshoes cancels
-    the free stream's, ``A Gamma = -n_z``.
-
-    A lattice that is its own mirror image (y -> -y) in this symmetric flow (free stream in the x-z plane) has
-    mirror-equal circulations, Gamma_image(i) = Gamma_i (the image's bound vortex runs the other way in space but
-    the same way along its own section). Then only the rows of the panels with y > 0 are assembled and the columns
-    of each panel and its image added: half the influence pairs and an eighth of the solve of the full system
-    (Katz & Plotkin 2001, §12.3: symmetric wing loading). Otherwise the full system.
-    """
-    mirror = _mirror_panels(control, normal, a, b)
-    if mirror is None:
-        return np.linalg.solve(_normalwash_matrix(control, normal, a, b, core_fraction), -normal[:, 2])
-    right = np.flatnonzero(control[:, 1] > 0.0)
-    rows = _normalwash_matrix(control[right], normal[right], a, b, core_fraction)
-    half = np.linalg.solve(rows[:, right] + rows[:, mirror[right]], -normal[right, 2])
-    gamma = np.empty(control.shape[0])
-    gamma[right] = half
-    gamma[mirror[right]] = half
-    return gamma
-
-
 def _check_flow(mach: float, alpha_rad: float, compressibility: str) -> float:
     """Validate the flow condition and return the Prandtl–Glauert factor ``β = √(1 − M²)``."""
     if not (math.isfinite(mach) and 0.0 <= mach < 1.0):
@@ -540,7 +496,8 @@ def solve_vlm(
         for key in ("bound_a", "bound_b", "control", "normal")
     )
     stretch = np.array([1.0 / beta if compressibility == "gothert" else 1.0, 1.0, 1.0])
-    gamma_alpha = _solve_circulation(control * stretch, normal, a * stretch, b * stretch, core_radius_fraction)
+    matrix = _normalwash_matrix(control * stretch, normal, a * stretch, b * stretch, core_radius_fraction)
+    gamma_alpha = np.linalg.solve(matrix, -normal[:, 2])
     if compressibility == "prandtl_glauert":
         gamma_alpha = gamma_alpha / beta
 

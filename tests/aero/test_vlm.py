@@ -363,26 +363,3 @@ def test_plot_lift_slope_writes_png(tmp_path):
     image = matplotlib.image.imread(path)
     assert image.shape[0] > 200 and image.shape[1] > 400
     assert float(np.std(image[..., :3])) > 0.05
-
-
-def test_symmetric_lattice_solved_by_halves_equals_full_system(monkeypatch):
-    """A lattice that is its own mirror image is solved from the rows of its right half (Katz & Plotkin §12.3):
-    strip slopes equal to the full system's to 1e-13 relative (round-off) for a mirrored wing + tail (Göthert
-    M 0.7); a lattice with no mirror image (the tail moved sideways) is solved whole, detected as such."""
-    import flexsim.aero.vlm as vlm
-
-    wing = swept_surface("wing", 2.0, 0.4, 7.0, 30.0, (0.0, 0.0, 0.0), 4, 12)
-    tail = swept_surface("htail", 1.0, 0.5, 2.5, 35.0, (9.0, 0.0, 0.5), 3, 8)
-    found = []
-    real_mirror = vlm._mirror_panels
-    monkeypatch.setattr(vlm, "_mirror_panels", lambda *a: found.append(real_mirror(*a)) or found[-1])
-    halves = solve_vlm([wing, tail], mach=0.7)
-    assert found[-1] is not None
-    monkeypatch.setattr(vlm, "_mirror_panels", lambda *a: None)
-    whole = solve_vlm([wing, tail], mach=0.7)
-    for h, w in zip(halves.surfaces, whole.surfaces):
-        np.testing.assert_allclose(h.cl_alpha_per_rad, w.cl_alpha_per_rad, rtol=1e-13)
-    shifted = dataclasses.replace(tail, le_m=tail.le_m + [0.0, 3.0, 0.0], mirror=False)
-    lattices = [vlm._lattice(s) for s in (wing, shifted)]
-    assert real_mirror(*(np.concatenate([getattr(lat, k) for lat in lattices])
-                         for k in ("control", "normal", "bound_a", "bound_b"))) is None
