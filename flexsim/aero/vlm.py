@@ -349,48 +349,42 @@ def _lattice(surface: LiftingSurface) -> _Lattice:
     return _Lattice(pieces=tuple(pieces), **arrays)
 
 
-def _segment_normalwash(points: np.ndarray, normal: np.ndarray, a: np.ndarray, b: np.ndarray, cutoff: np.ndarray) -> np.ndarray:
-    """Velocity component along ``normal`` (n, 3) at ``points`` (n, 3) induced by unit-strength segments ``a → b``
-    (m, 3), shape (n, m).
+def _segment_velocity(points: np.ndarray, a: np.ndarray, b: np.ndarray, cutoff: np.ndarray) -> np.ndarray:
+    """Velocity (n, m, 3) at ``points`` (n, 3) induced by unit-strength segments ``a → b`` (m, 3).
 
     Biot–Savart law for a straight vortex segment (Katz & Plotkin 2001, §10.4.5):
     ``v = (r1 × r2)/(4π |r1 × r2|²) · r0·(r1/|r1| − r2/|r2|)``, set to zero for points closer to the
-    segment line than ``cutoff`` (m,) [m]. Written per Cartesian component on (n, m) arrays (no (n, m, 3)
-    temporaries: the influence assembly is the larger part of building a model).
+    segment line than ``cutoff`` (m,) [m].
     """
     r0 = b - a
-    r1 = [points[:, k, None] - a[None, :, k] for k in range(3)]
-    r2 = [points[:, k, None] - b[None, :, k] for k in range(3)]
-    cx = r1[1] * r2[2] - r1[2] * r2[1]
-    cy = r1[2] * r2[0] - r1[0] * r2[2]
-    cz = r1[0] * r2[1] - r1[1] * r2[0]
-    cross2 = cx * cx + cy * cy + cz * cz
-    len0_2 = r0[:, 0] * r0[:, 0] + r0[:, 1] * r0[:, 1] + r0[:, 2] * r0[:, 2]
+    r1 = points[:, None, :] - a[None]
+    r2 = points[:, None, :] - b[None]
+    cross = np.cross(r1, r2)
+    cross2 = np.einsum("nmk,nmk->nm", cross, cross)
+    len0_2 = np.einsum("mk,mk->m", r0, r0)
     valid = cross2 > (cutoff**2 * len0_2)[None]
-    n1 = np.sqrt(r1[0] * r1[0] + r1[1] * r1[1] + r1[2] * r1[2])
-    n2 = np.sqrt(r2[0] * r2[0] + r2[1] * r2[1] + r2[2] * r2[2])
+    n1 = np.sqrt(np.einsum("nmk,nmk->nm", r1, r1))
+    n2 = np.sqrt(np.einsum("nmk,nmk->nm", r2, r2))
     safe_n1, safe_n2 = np.where(valid, n1, 1.0), np.where(valid, n2, 1.0)
-    proj = ((r0[None, :, 0] * r1[0] + r0[None, :, 1] * r1[1] + r0[None, :, 2] * r1[2]) / safe_n1
-            - (r0[None, :, 0] * r2[0] + r0[None, :, 1] * r2[1] + r0[None, :, 2] * r2[2]) / safe_n2)
+    proj = np.einsum("mk,nmk->nm", r0, r1) / safe_n1 - np.einsum("mk,nmk->nm", r0, r2) / safe_n2
     factor = np.where(valid, proj / (4.0 * math.pi * np.where(valid, cross2, 1.0)), 0.0)
-    return factor * (cx * normal[:, 0, None] + cy * normal[:, 1, None] + cz * normal[:, 2, None])
+    return factor[..., None] * cross
 
 
-def _trailing_normalwash(points: np.ndarray, normal: np.ndarray, a: np.ndarray, cutoff: np.ndarray) -> np.ndarray:
-    """Velocity component along ``normal`` (n, 3) induced by unit semi-infinite segments from ``a`` (m, 3) to
-    ``x = +∞``, shape (n, m).
+def _trailing_velocity(points: np.ndarray, a: np.ndarray, cutoff: np.ndarray) -> np.ndarray:
+    """Velocity (n, m, 3) induced by unit semi-infinite segments from ``a`` (m, 3) to ``x = +∞``.
 
-    Limit of :func:`_segment_normalwash` for ``b = a + L x̂``, ``L → ∞``:
-    ``v = (x̂ × r1)/(4π |x̂ × r1|²) (1 + x̂·r1/|r1|)``, ``r1 = p − a``, with the same cut-off;
-    ``x̂ × r1 = (0, −r1_z, r1_y)``.
+    Limit of :func:`_segment_velocity` for ``b = a + L x̂``, ``L → ∞``:
+    ``v = (x̂ × r1)/(4π |x̂ × r1|²) (1 + x̂·r1/|r1|)``, ``r1 = p − a``, with the same cut-off.
     """
-    r1 = [points[:, k, None] - a[None, :, k] for k in range(3)]
-    cross2 = r1[1] * r1[1] + r1[2] * r1[2]
+    r1 = points[:, None, :] - a[None]
+    cross = np.stack([np.zeros(r1.shape[:2]), -r1[..., 2], r1[..., 1]], axis=-1)
+    cross2 = r1[..., 1] ** 2 + r1[..., 2] ** 2
     valid = cross2 > (cutoff**2)[None]
-    n1 = np.sqrt(r1[0] * r1[0] + r1[1] * r1[1] + r1[2] * r1[2])
-    ratio = 1.0 + r1[0] / np.where(valid, n1, 1.0)
+    n1 = np.sqrt(np.einsum("nmk,nmk->nm", r1, r1))
+    ratio = 1.0 + r1[..., 0] / np.where(valid, n1, 1.0)
     factor = np.where(valid, ratio / (4.0 * math.pi * np.where(valid, cross2, 1.0)), 0.0)
-    return factor * (r1[1] * normal[:, 2, None] - r1[2] * normal[:, 1, None])
+    return factor[..., None] * cross
 
 
 def _normalwash_matrix(
@@ -406,9 +400,10 @@ def _normalwash_matrix(
     rows = max(1, _ROWS_PER_CHUNK_BUDGET // max(m, 1))
     out = np.empty((n, m))
     for start in range(0, n, rows):
-        p, nrm = control[start : start + rows], normal[start : start + rows]
-        out[start : start + rows] = (_segment_normalwash(p, nrm, a, b, cutoff) + _trailing_normalwash(p, nrm, b, cutoff)
-                                     - _trailing_normalwash(p, nrm, a, cutoff))
+        p = control[start : start + rows]
+        v = _segment_velocity(p, a, b, cutoff)
+        v += _trailing_velocity(p, b, cutoff) - _trailing_velocity(p, a, cutoff)
+        out[start : start + rows] = np.einsum("nmk,nk->nm", v, normal[start : start + rows])
     return out
 
 
