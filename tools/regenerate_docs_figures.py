@@ -43,6 +43,8 @@ climb search, and about 4 minutes for the baselines table):
 * ``simulation-accuracy``: docs/simulation.md, the default integrator, the previous default and Radau against
   DOP853 (rtol 1e-9) on every named manoeuvre (``tools/docs_figures_simulation.py``, ``flexsim.sim.accuracy``;
   about 3-6 minutes);
+* ``design-lift-slope``, ``design-lift-slope-total`` (fast): docs/design.md, the strips' lift slope against the
+  vortex lattice's on the exposed surfaces, and the whole lattice's (``tools/docs_figures_design.py``);
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
   (``examples/agents/evaluate_baselines.py --episodes 10``).
 
@@ -91,6 +93,7 @@ from docs_figures_studies import (STUDY_FIGURES, calibration_damping, calibratio
                                   calibration_summary, strip_drag)
 from docs_figures_usage import USAGE_FIGURES  # noqa: E402
 from docs_figures_simulation import SIMULATION_FIGURES  # noqa: E402
+from docs_figures_design import DESIGN_FIGURES  # noqa: E402
 
 REGION = re.compile(r"<!-- figures:(?P<name>[\w-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.DOTALL)
 DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
@@ -508,6 +511,7 @@ FIGURES: dict[str, Figure] = {
     "env-baselines": Figure(env_baselines),
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in USAGE_FIGURES.items()},
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in SIMULATION_FIGURES.items()},
+    **{name: Figure(compute, fast=fast) for name, (compute, fast) in DESIGN_FIGURES.items()},
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in STUDY_FIGURES.items()},
     "calibration-summary": Figure(lambda: calibration_summary(_level)),
     "calibration-damping": Figure(lambda: calibration_damping(_level)),

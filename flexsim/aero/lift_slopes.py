@@ -14,7 +14,7 @@ import numpy as np
 from flexsim.aero.vlm import LiftingSurface, VlmResult, solve_vlm
 from flexsim.aircraft.definition import Aircraft, ContentKey
 
-__all__ = ["vlm_surfaces", "strip_lift_slopes"]
+__all__ = ["vlm_surfaces", "strip_lift_slopes", "exposed_lift_slope"]
 
 _BODY_TO_VLM = np.array([-1.0, 1.0, -1.0])
 
@@ -72,6 +72,28 @@ def strip_lift_slopes(aircraft: Aircraft, components: tuple[str, ...], position_
         idx = np.flatnonzero(comp == name)
         out[idx] = result.surface(name).lift_slope_at(position_body_m[idx, 1])
     return out
+
+
+def exposed_lift_slope(aircraft: Aircraft, result: VlmResult) -> float:
+    """Lift-curve slope dCL/dalpha [1/rad] of a lattice solution on its exposed surfaces, on ``result.s_ref_m2``.
+
+    The lattice of :func:`vlm_surfaces` runs to the centreline; the strips cover only the exposed surfaces,
+    outboard of each component's root (paper: no fuselage aerodynamics). This sums the sectional lift of the
+    lattice's strips there, sum(cl_alpha c dy cos(Gamma)) / S_ref, for a like-for-like comparison with the strips.
+
+    Parameters
+    ----------
+    aircraft : Aircraft
+        The aircraft whose ``vlm_surfaces`` ``result`` solved.
+    result : VlmResult
+        A :func:`flexsim.aero.vlm.solve_vlm` solution of ``vlm_surfaces(aircraft)``.
+    """
+    total_m2 = 0.0
+    for surf in result.surfaces:
+        root_y = abs(aircraft.component(surf.name).root_m[1])
+        outboard = np.abs(surf.y_m) >= root_y
+        total_m2 += float(np.sum((surf.cl_alpha_per_rad * surf.chord_m * surf.width_m * np.cos(surf.dihedral_rad))[outboard]))
+    return total_m2 / result.s_ref_m2
 
 
 @functools.lru_cache(maxsize=8)
