@@ -5,7 +5,8 @@
   Cl_alpha; Prandtl-Glauert applied to both) within 5 %. The strips cover the exposed wing and
   stabilizer, as in the paper (no fuselage aerodynamics), so the comparison is with the lattice's lift on
   those same surfaces; the lattice also carries lift across the fuselage (its surfaces run to the
-  centreline), which adds 16.5 % and is reported, not compared.
+  centreline), which adds about 16 % (docs/design.md, region design-lift-slope-total) and is reported, not
+  compared.
 * Static stability: dCm/dalpha < 0 about the centre of gravity.
 * Control signs (docs/conventions.md): elevator TE down pitches nose down, positive aileron (right TE
   down) rolls left, positive rudder (TE left) yaws nose left, thrust accelerates.
