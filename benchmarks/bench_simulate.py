@@ -21,8 +21,12 @@ manoeuvre of ``flexsim simulate`` against DOP853 at rtol 1e-9 (:func:`flexsim.si
 table of docs/simulation.md: largest errors of altitude, airspeed, bank angle and right-wing tip deflection at the
 100 Hz samples; the tip error also relative to the tip excursion).
 
+``--parts``: instead, the CPU time of the parts of one default run (compiled steps, dense output, events, matrix
+functions, Jacobian, the rest).
+
 Run: python benchmarks/bench_simulate.py [--duration 60] [--repeats 3] [--all] [--candidates Radau:1e-3,ETD2RK:0.02]
      python benchmarks/bench_simulate.py --manoeuvres
+     python benchmarks/bench_simulate.py --parts
 """
 
 from __future__ import annotations
@@ -94,12 +98,59 @@ def manoeuvre_accuracy() -> None:
                   + ", ".join(parts), flush=True)
 
 
+def cost_parts(model, point, gust, duration: float) -> None:
+    """CPU time of the parts of one default run (process time around each part; the rest is the Python loop, the
+    samples' bookkeeping, the set-up and the result)."""
+    import flexsim.sim.compiled_run as cr
+    import flexsim.sim.fixed_step as fs
+    import flexsim.sim.simulate as sm
+    from flexsim.sim import _step_kernels as sk
+
+    spent: dict[str, float] = {}
+    originals = []
+    labels: list[str] = []
+
+    def timed(owner, attr: str, label: str) -> None:
+        fn = getattr(owner, attr)
+        originals.append((owner, attr, fn))
+        labels.append(label)
+
+        def wrapper(*args, **kwargs):
+            c0 = time.process_time()
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                spent[label] = spent.get(label, 0.0) + time.process_time() - c0
+        setattr(owner, attr, wrapper)
+
+    timed(sk, "etd2rk_run", "compiled steps (2 rhs + 3 mat-vecs per step)")
+    timed(cr._Steps, "__call__", "dense output (samples, event times)")
+    timed(cr, "step_accelerations", "  of which products with J")
+    timed(cr, "_chunk_events", "events")
+    timed(fs, "phi_functions", "matrix functions")
+    timed(sm, "jacobian", "Jacobian")
+    try:
+        c0 = time.process_time()
+        simulate(model, point, duration, wind=gust)
+        total = time.process_time() - c0
+    finally:
+        for owner, attr, fn in originals:
+            setattr(owner, attr, fn)
+    print(f"CPU time of the parts of one default run ({total:.3f} s CPU, load average {os.getloadavg()[0]:.2f}):")
+    for label in labels:
+        t = spent.get(label, 0.0)
+        print(f"  {label:<48} {t:7.3f} s  {100 * t / total:5.1f} %")
+    rest = total - sum(t for label, t in spent.items() if not label.startswith("  "))
+    print(f"  {'rest (Python loop, samples, set-up, result)':<48} {rest:7.3f} s  {100 * rest / total:5.1f} %")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--duration", type=float, default=60.0, help="simulated time [s] (default 60)")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--all", action="store_true", help="also ETD2RK 50 ms, Radau 1e-4/1e-5, LSODA, BDF, DOP853 1e-6")
     parser.add_argument("--manoeuvres", action="store_true", help="accuracy on the named manoeuvres instead")
+    parser.add_argument("--parts", action="store_true", help="instead, the CPU time of the parts of one default run")
     parser.add_argument("--candidates", default=None,
                         help="comma-separated method:rtol (ETD2RK: method:step [s]) pairs, e.g. Radau:1e-3,ETD2RK:0.02")
     args = parser.parse_args()
@@ -107,6 +158,10 @@ def main() -> None:
         manoeuvre_accuracy()
         return
     model, point, gust = scenario()
+    if args.parts:
+        simulate(model, point, 0.1, wind=gust)  # load the compiled kernels (not timed)
+        cost_parts(model, point, gust, args.duration)
+        return
     print(f"GTM m = n = 2, unsteady N = 6: {model.layout.n_states} states; level trim M 0.75 at 9144 m; "
           f"1-cos gust 2 m/s, H = 30 m at t = 1 s; {args.duration:g} s simulated; median of {args.repeats} runs; "
           f"load average {os.getloadavg()[0]:.2f} at start")
