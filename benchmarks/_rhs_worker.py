@@ -2,7 +2,7 @@
 
 Runs against any revision with the compiled kernels (``flexsim._kernels.rhs``, ``AircraftModel.rhs_batch``; main
 since 2026-12-01 evening). Times are per-thread CPU (time.thread_time) per right-hand side: the median of
-``runs`` runs of ``calls`` calls after a warm-up.
+``runs`` runs of ``calls`` calls after a warm-up, and the fastest run.
 Usage: python _rhs_worker.py RUNS CALLS
 """
 
@@ -64,7 +64,7 @@ def main() -> None:
             for _ in range(reps):
                 one()
             times.append((time.thread_time() - t0) / (reps * n))
-        out[task] = {"cpu_s": statistics.median(times), "dx": np.asarray(result).tolist()}
+        out[task] = {"cpu_s": statistics.median(times), "min_s": min(times), "dx": np.asarray(result).tolist()}
     print(json.dumps(out))
 
 

@@ -193,7 +193,7 @@ def solve_structure(floats: dict, active, strip_ptr: np.ndarray, strip_cols: np.
     bending and two torsion modes). :func:`block_solve` eliminates the blocks into a Schur complement of the core.
 
     Returns perm (n_a,) (indices of V: block after block, then the core, each ascending) and ptr (n_blocks + 2,):
-    block b is perm[ptr[b]:ptr[b + 1]], the core perm[ptr[-2]:]. Without a split: perm = active, ptr = [0, n_a]
+    block b is perm[ptr[b]:ptr[b + 1]], the core perm[ptr[-2]:]. With fewer than two blocks: perm = active, ptr = [0, n_a]
     (one dense elimination, :func:`solve`).
     """
     m0 = _field(floats, "m0", 2)
@@ -231,7 +231,7 @@ def solve_structure(floats: dict, active, strip_ptr: np.ndarray, strip_cols: np.
                     seen.add(k)
                     stack.append(k)
         blocks.append(sorted(block))
-    if len(blocks) < 2 and not core:
+    if len(blocks) < 2:  # nothing to split (one block beside the core costs as much as one elimination)
         return whole
     order = [i for b in blocks for i in b] + core
     ptr = np.cumsum([0] + [len(b) for b in blocks] + [len(core)])
@@ -1191,6 +1191,8 @@ def block_solve(m, f, perm, ptr):
     c0 = ptr[nb]
     n_a = ptr[nb + 1]
     nc = n_a - c0
+    if nb == 0 and n_a == n_v:  # no split, every entry active: one elimination of m itself
+        return solve(m, f)
     out = np.zeros(n_v)
     if not blocks_decoupled(m, perm, ptr):
         a = np.empty((n_a, n_a))
