@@ -52,6 +52,9 @@ import sys
 import tempfile
 import time
 
+# measure the flexsim of this checkout (python puts benchmarks/ on sys.path, not the repository root)
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import gymnasium as gym  # noqa: E402

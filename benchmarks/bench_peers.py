@@ -33,6 +33,9 @@ import subprocess
 import sys
 import textwrap
 
+# measure the flexsim of this checkout (python puts benchmarks/ on sys.path, not the repository root)
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
 JSBSIM = """
 import time, jsbsim
 fdm = jsbsim.FGFDMExec(None)

@@ -25,7 +25,11 @@ import heapq
 import json
 import os
 import statistics
+import sys
 import time
+
+# measure the flexsim of this checkout (python puts benchmarks/ on sys.path, not the repository root)
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")

@@ -11,7 +11,11 @@ import argparse
 import math
 import os
 import statistics
+import sys
 import time
+
+# measure the flexsim of this checkout (python puts benchmarks/ on sys.path, not the repository root)
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
