@@ -54,14 +54,28 @@ boundaries, census, decomposition, calibration, phugoid) in ``tools/docs_figures
 ``STUDY_FIGURES``; the slow ones take 2-8 min each); those of docs/options.md, docs/logs.md and docs/design.md in
 ``tools/docs_figures_usage.py`` and of docs/environments.md (agent runs from their ``docs/figures/agent_*_result.json``,
 flutter tasks, baselines) in ``tools/docs_figures_envs.py`` (``USAGE_FIGURES``; the slow ones, which fly the envs,
-take up to about a minute each). Study tables the tool does not rerun are marked in the docs as
-recorded study output (date, command); ``benchmarks/`` figures (docs/performance.md, speed tables) are dated.
+take up to about a minute each). ``benchmarks/`` figures (docs/performance.md, speed tables) are dated, not
+regenerated.
+
+**Long studies** (``Figure(..., long=True)``, ``tools/docs_figures_core.py``): the study tables that take 10
+minutes to an hour each (the paper-replication configurations of docs/calibration.md §6-7 in
+``tools/docs_figures_calibration.py``; the recorded rows of docs/flutter.md). The plain command regenerates them
+with everything else (it is the one command); ``--skip-long`` leaves them out (and ``--fast`` never includes
+them). They compute their points through ``docs_figures_core.checkpoint``: every finished piece (one
+configuration at one altitude) is stored as JSON under ``~/.cache/flexsim/docs-figures`` (outside the
+repository; ``FLEXSIM_DOCS_FIGURES_CACHE`` moves it), keyed by the piece's arguments and the SHA-256 of the
+source of ``flexsim/`` and ``studies/``, so an interrupted run resumes where it stopped and a code change
+recomputes. To register one: ``NAME: Figure(compute, long=True)`` in a module's figure dict, added to
+``FIGURES`` below (``docs_figures_core``'s docstring has an example). Tests: the default suite checks that every
+region names a registered figure and that the checkpoints resume and key by content; ``pytest -m slow`` runs
+``--check --skip-long`` (about 15 minutes); the long figures are checked by the plain command only.
 
 Run from the repository root::
 
     python tools/regenerate_docs_figures.py                 # rewrite every region, redraw docs/figures
     python tools/regenerate_docs_figures.py --check         # exit 1 if a region is stale
     python tools/regenerate_docs_figures.py --check --fast  # the fast figures only
+    python tools/regenerate_docs_figures.py --skip-long     # everything but the long studies
     python tools/regenerate_docs_figures.py --only readme-calibration
 """
 
@@ -75,9 +89,7 @@ import re
 import sys
 import tempfile
 import time
-from collections.abc import Callable
 from pathlib import Path
-from typing import NamedTuple
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
@@ -94,6 +106,7 @@ from docs_figures_studies import (STUDY_FIGURES, calibration_damping, calibratio
 from docs_figures_usage import USAGE_FIGURES  # noqa: E402
 from docs_figures_simulation import SIMULATION_FIGURES  # noqa: E402
 from docs_figures_design import DESIGN_FIGURES  # noqa: E402
+from docs_figures_core import Figure  # noqa: E402
 
 REGION = re.compile(r"<!-- figures:(?P<name>[\w-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.DOTALL)
 DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
@@ -469,14 +482,6 @@ def env_baselines() -> str:
     return "\n".join(lines) + "\n"
 
 
-class Figure(NamedTuple):
-    """A figure of the docs: the function computing its text, and whether it is fast (default test suite)."""
-
-    compute: Callable[[], str]
-    fast: bool = False
-    study: str | None = None  # "turn" / "climb": the study it reads, whose docs/figures/flutter_<study>*.png are redrawn
-
-
 FIGURES: dict[str, Figure] = {
     "readme-calibration": Figure(readme_calibration, fast=True),
     "flutter-level": Figure(flutter_level, fast=True),
@@ -533,10 +538,14 @@ def main(argv: list[str] | None = None) -> int:
                         help=f"regenerate this figure only (repeatable; one of {', '.join(FIGURES)})")
     parser.add_argument("--fast", action="store_true",
                         help=f"only the fast figures ({', '.join(n for n, f in FIGURES.items() if f.fast)})")
+    parser.add_argument("--skip-long", action="store_true",
+                        help=f"leave out the long studies ({', '.join(n for n, f in FIGURES.items() if f.long) or 'none'})")
     args = parser.parse_args(argv)
     wanted = args.only or list(FIGURES)
     if args.fast:
         wanted = [name for name in wanted if FIGURES[name].fast]
+    if args.skip_long:
+        wanted = [name for name in wanted if not FIGURES[name].long]
     values: dict[str, str] = {}
     stale = []
     for doc in DOCUMENTS:
