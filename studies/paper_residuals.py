@@ -38,6 +38,8 @@ from density_finding import ALTITUDES, run  # noqa: E402
 from manoeuvre_decomposition import configure  # noqa: E402
 
 
+#: Starting Mach of the crossing searches when ``--starts-us`` / ``--starts-qs`` are not given.
+DEFAULT_START = 0.72
 COLS = ("M_F", "omega_F", "theta_deg", "thrust_kN", "elevator_deg", "tip_deflection_m", "tip_twist_deg")
 
 
@@ -69,6 +71,27 @@ def trims_at_paper(ac, formulation: str) -> str:
     return "\n".join(out)
 
 
+def flutter_rows(ac, label: str, model: str, altitudes, starts, fixed_density_alt_m: float | None = None,
+                 formulation: str = "physical", mode_class: str = "any") -> list[dict]:
+    """Every column of Tables 2-3 (flutter point and the trim at it) of the configured aircraft ``ac`` for one
+    model at ``altitudes``, the crossing tracked from ``starts`` (one Mach per altitude); the linearised
+    aerodynamics at the density of ``fixed_density_alt_m`` (None: the true density). Rows as
+    ``density_finding.run`` prints them (``M_F``, ``omega_F``, ``theta_deg``, ..., ``sym_share``, ``qf1_ratio``,
+    ``paper``); an altitude without a crossing has no row."""
+    dens = ["true"] if fixed_density_alt_m is None else [str(fixed_density_alt_m)]
+    return run(ac, label, model, dens, list(starts), list(altitudes), formulation, mode_class)
+
+
+def glide(ac, formulation: str, altitude_m: float, mach: float) -> dict:
+    """The glide (thrust zero, gamma unknown) of ``ac`` at ``altitude_m`` and ``mach``: the trim summary
+    (``gamma_deg``, ``alpha_deg``, ...)."""
+    from manoeuvre_decomposition import Decomposition, Setup
+    from flexsim.trim import SteadyManoeuvre, trim
+
+    dec = Decomposition(Setup(ac, altitude_m, "none", 0.0, formulation=formulation))
+    return trim(dec.trim_model, SteadyManoeuvre.glide(altitude_m, mach=mach), check_limits=False).summary()
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--aircraft", default="gtm")
@@ -97,19 +120,14 @@ def main() -> None:
     if a.trim_at_paper:
         print(trims_at_paper(ac, a.formulation))
         return
-    dens = ["true"] if a.fixed_density is None else [str(a.fixed_density)]
     rows = []
     for model in a.models:
-        starts = (a.starts_us if model == "US" else a.starts_qs) or [0.72] * len(a.altitudes)
-        rows += run(ac, label, model, dens, starts, a.altitudes, a.formulation, a.mode_class)
+        starts = (a.starts_us if model == "US" else a.starts_qs) or [DEFAULT_START] * len(a.altitudes)
+        rows += flutter_rows(ac, label, model, a.altitudes, starts, a.fixed_density, a.formulation, a.mode_class)
     print(residual_table(rows))
     for r in rows:  # the glide (thrust zero, gamma unknown) at the US flutter Mach of 9144 m (paper: -3.12 deg)
         if r["model"] == "US" and abs(r["altitude_m"] - 9144.0) < 1:
-            from manoeuvre_decomposition import Decomposition, Setup
-            from flexsim.trim import SteadyManoeuvre, trim
-
-            dec = Decomposition(Setup(ac, 9144.0, "none", 0.0, formulation=a.formulation))
-            g = trim(dec.trim_model, SteadyManoeuvre.glide(9144.0, mach=r["M_F"]), check_limits=False).summary()
+            g = glide(ac, a.formulation, 9144.0, r["M_F"])
             print(f"glide at 9144 m, M {r['M_F']:.4f}: gamma {g['gamma_deg']:.3f} deg, alpha {g['alpha_deg']:.3f} deg (paper -3.12 deg)")
     if a.json:
         a.json.write_text(json.dumps(rows, indent=1))

@@ -46,7 +46,11 @@ climb search, and about 4 minutes for the baselines table):
 * ``design-lift-slope``, ``design-lift-slope-total`` (fast): docs/design.md, the strips' lift slope against the
   vortex lattice's on the exposed surfaces, and the whole lattice's (``tools/docs_figures_design.py``);
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
-  (``examples/agents/evaluate_baselines.py --episodes 10``).
+  (``examples/agents/evaluate_baselines.py --episodes 10``);
+* ``calibration-c1-c2``, ``calibration-c3``, ``calibration-c4``, ``calibration-scorecard-c1``,
+  ``calibration-scorecard-c4``: docs/calibration.md §6-7, the paper-replication configurations (every column of
+  Tables 2-3, ``studies/paper_residuals.py``) and their trend scorecards (``studies/manoeuvre_decomposition.py``),
+  ``tools/docs_figures_calibration.py`` (about 2.5 minutes together; checkpointed).
 
 The trim, validation and Goland figures are computed in ``tools/docs_figures_static.py``; the figures of the
 ``studies/`` scripts quoted in docs/flutter.md, docs/calibration.md and docs/validation.md (density, class
@@ -57,16 +61,17 @@ flutter tasks, baselines) in ``tools/docs_figures_envs.py`` (``USAGE_FIGURES``; 
 take up to about a minute each). ``benchmarks/`` figures (docs/performance.md, speed tables) are dated, not
 regenerated.
 
-**Long studies** (``Figure(..., long=True)``, ``tools/docs_figures_core.py``): the study tables that take 10
-minutes to an hour each (the paper-replication configurations of docs/calibration.md §6-7 in
-``tools/docs_figures_calibration.py``; the recorded rows of docs/flutter.md). The plain command regenerates them
+**Long studies** (``Figure(..., long=True)``, ``tools/docs_figures_core.py``): the figures that take 10 minutes
+to an hour each (historical runs at a recorded commit, ``docs_figures_core.run_at_commit``; the recorded rows
+of docs/flutter.md). The plain command regenerates them
 with everything else (it is the one command); ``--skip-long`` leaves them out (and ``--fast`` never includes
 them). They compute their points through ``docs_figures_core.checkpoint``: every finished piece (one
 configuration at one altitude) is stored as JSON under ``~/.cache/flexsim/docs-figures`` (outside the
 repository; ``FLEXSIM_DOCS_FIGURES_CACHE`` moves it), keyed by the piece's arguments and the SHA-256 of the
 source of ``flexsim/`` and ``studies/``, so an interrupted run resumes where it stopped and a code change
 recomputes. To register one: ``NAME: Figure(compute, long=True)`` in a module's figure dict, added to
-``FIGURES`` below (``docs_figures_core``'s docstring has an example). Tests: the default suite checks that every
+``FIGURES`` below (``docs_figures_core``'s docstring has an example); slow figures may use the checkpoints
+too. Tests: the default suite checks that every
 region names a registered figure and that the checkpoints resume and key by content; ``pytest -m slow`` runs
 ``--check --skip-long`` (about 15 minutes); the long figures are checked by the plain command only.
 
@@ -107,6 +112,7 @@ from docs_figures_usage import USAGE_FIGURES  # noqa: E402
 from docs_figures_simulation import SIMULATION_FIGURES  # noqa: E402
 from docs_figures_design import DESIGN_FIGURES  # noqa: E402
 from docs_figures_core import Figure  # noqa: E402
+from docs_figures_calibration import CALIBRATION_FIGURES  # noqa: E402
 
 REGION = re.compile(r"<!-- figures:(?P<name>[\w-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.DOTALL)
 DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
@@ -518,6 +524,7 @@ FIGURES: dict[str, Figure] = {
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in SIMULATION_FIGURES.items()},
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in DESIGN_FIGURES.items()},
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in STUDY_FIGURES.items()},
+    **CALIBRATION_FIGURES,
     "calibration-summary": Figure(lambda: calibration_summary(_level)),
     "calibration-damping": Figure(lambda: calibration_damping(_level)),
     "calibration-speeds": Figure(lambda: calibration_speeds(_level), fast=True),

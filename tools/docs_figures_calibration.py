@@ -1,0 +1,277 @@
+"""Figures of docs/calibration.md §6-7 (issue 15 d: the paper-replication configurations C1-C4 and their trend
+scorecards), for ``regenerate_docs_figures.py`` (slow figures: about 2.5 minutes together, see
+:data:`CALIBRATION_FIGURES`).
+
+The computations are the studies' own functions, imported from ``studies/`` (never copied):
+``manoeuvre_decomposition.configure`` builds each configuration, ``paper_residuals.flutter_rows`` and
+``paper_residuals.glide`` give every column of Tables 2-3 at its flutter points (``python
+studies/paper_residuals.py ...``), ``manoeuvre_decomposition.run`` and ``scorecard`` the trend scorecards
+(``python studies/manoeuvre_decomposition.py --switches none --mode-class symmetric ...`` and ``--scorecard``).
+Every flutter point (one configuration, model and altitude) and every scorecard altitude is one checkpoint
+(``docs_figures_core.checkpoint``), so an interrupted regeneration resumes.
+
+Configurations (factors relative to the aircraft file; C1-C3 on ``gtm`` with every mass and inertia × 0.907, the
+paper's 889.4 kN, and the stiffness factors × 0.907 too; C4 on ``gtm_paper``, which has that weight from the
+centre tank): :data:`CONFIGS`.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import NamedTuple
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "studies"))
+sys.path.insert(0, str(ROOT / "tools"))
+from docs_figures_core import Figure, checkpoint  # noqa: E402
+from docs_figures_studies import _minus  # noqa: E402
+
+#: Altitudes of Tables 2-3 [m].
+ALTITUDES_M = (0.0, 3048.0, 6096.0, 9144.0)
+
+
+class Config(NamedTuple):
+    """One study configuration: the arguments of ``paper_residuals.py`` / ``manoeuvre_decomposition.py``."""
+
+    aircraft: str
+    scaling: dict | None
+    mass_factor: float
+    incidence_deg: tuple[float, float] | None
+    damping: float | None
+    formulation: str
+    fixed_density_alt_m: float | None
+
+    def aircraft_model(self):
+        from manoeuvre_decomposition import configure
+
+        return configure(self.aircraft, self.scaling, self.mass_factor, self.incidence_deg, self.damping)
+
+    def args(self) -> dict:
+        return self._asdict()
+
+    def command(self, script: str = "paper_residuals.py") -> str:
+        import json
+
+        parts = [f"python studies/{script}"]
+        if self.aircraft != "gtm":
+            parts.append(f"--aircraft {self.aircraft}")
+        if self.scaling:
+            parts.append(f"--scaling '{json.dumps(self.scaling, separators=(',', ':'))}'")
+        if self.mass_factor != 1.0:
+            parts.append(f"--mass-factor {self.mass_factor:g}")
+        if self.incidence_deg:
+            parts.append(f"--incidence {self.incidence_deg[0]:g} {self.incidence_deg[1]:g}")
+        parts.append(f"--formulation {self.formulation}")
+        if self.fixed_density_alt_m is not None:
+            parts.append(f"--fixed-density {self.fixed_density_alt_m:g}")
+        if self.damping is not None:
+            parts.append(f"--damping {self.damping:g}")
+        return " ".join(parts)
+
+
+#: C1: the probe's best structure (fuselage EI × 1.75, wing GJ × 0.9, wing EI × 0.7), made frequency-equivalent at
+#: the paper's weight (every factor × 0.907), the linearised aerodynamics at rho(3048 m).
+_C1_SCALING = {"fuselage_ei": 1.587, "wing_gj": 0.816, "wing_ei": 0.635, "fuselage_gj": 0.907, "htail_stiffness": 0.907,
+               "vtail_stiffness": 0.907}
+_PAPER = {"mass_factor": 0.907, "incidence_deg": (1.81, 2.7), "damping": 0.01, "formulation": "paper"}
+CONFIGS = {
+    "C1": Config("gtm", _C1_SCALING, fixed_density_alt_m=3048.0, **_PAPER),
+    # C2: C1's wing EI raised by 14 % towards the tip deflections.
+    "C2": Config("gtm", {**_C1_SCALING, "wing_ei": 0.726}, fixed_density_alt_m=3048.0, **_PAPER),
+    # C3: C1 with the wing EI and GJ of the static columns, the linearised aerodynamics at rho(0) and rho(3048 m).
+    "C3": Config("gtm", {**_C1_SCALING, "wing_gj": 1.04, "wing_ei": 0.85}, fixed_density_alt_m=0.0, **_PAPER),
+    "C3, ρ(3048 m)": Config("gtm", {**_C1_SCALING, "wing_gj": 1.04, "wing_ei": 0.85}, fixed_density_alt_m=3048.0,
+                            **_PAPER),
+    # C4: gtm_paper with fuselage EI x 2 (Fig. 4's peak) and wing EI x 0.7, zero-incidence chords, rho(3048 m).
+    "C4": Config("gtm_paper", {"fuselage_ei": 2.0, "wing_ei": 0.7}, 1.0, (1.81, 2.7), None, "paper", 3048.0),
+}
+#: Starting Mach of the crossing searches (paper_residuals.py's default, C4's ``--starts-us``).
+STARTS = {"C4": {"US": (0.76, 0.78, 0.80, 0.82)}}
+#: The level search's start of the scorecards (manoeuvre_decomposition.py's ``--start`` default).
+SCORECARD_START = 0.91
+
+
+def _label(config: str) -> str:
+    import json
+
+    return json.dumps({"config": config, **CONFIGS[config].args()})
+
+
+def flutter_row(config: str, model: str, altitude_m: float, mode_class: str = "any") -> dict | None:
+    """Every column of Tables 2-3 at one flutter point of a configuration (``paper_residuals.flutter_rows``), or
+    None where the search finds no crossing; one checkpoint."""
+    import paper_residuals
+
+    c = CONFIGS[config]
+    start = STARTS.get(config, {}).get(model, (paper_residuals.DEFAULT_START,) * 4)[ALTITUDES_M.index(altitude_m)]
+    args = {"config": c.args(), "model": model, "altitude_m": altitude_m, "start": start, "mode_class": mode_class}
+
+    def compute():
+        rows = paper_residuals.flutter_rows(c.aircraft_model(), _label(config), model, [altitude_m], [start],
+                                            c.fixed_density_alt_m, c.formulation, mode_class)
+        return rows[0] if rows else None
+
+    return checkpoint("paper-residuals", args, compute)
+
+
+def glide_gamma(config: str, mach: float) -> dict:
+    """The glide of a configuration at 9144 m and ``mach`` (``paper_residuals.glide``); one checkpoint."""
+    import paper_residuals
+
+    c = CONFIGS[config]
+    return checkpoint("paper-residuals-glide", {"config": c.args(), "altitude_m": 9144.0, "mach": mach},
+                      lambda: paper_residuals.glide(c.aircraft_model(), c.formulation, 9144.0, mach))
+
+
+def _cell(value: float, paper: float | None) -> str:
+    text = f"{value:.4g}"
+    return text if not paper else f"{text} ({100 * (value / paper - 1):+.1f} %)"
+
+
+def _mode(row: dict) -> str:
+    return f"{'sym' if row['sym_share'] > 0.5 else 'anti'}, q_f1 {row['qf1_ratio']:.2f}"
+
+
+def config_table(pieces) -> str:
+    """The markdown table of (config, model, mode class, altitudes) pieces: value (difference to the paper's
+    Table 3 / Table 2 row) of every column, the critical mode's class and |q_f1| / largest."""
+    cols = ("M_F", "omega_F", "theta_deg", "thrust_kN", "elevator_deg", "tip_deflection_m", "tip_twist_deg")
+    lines = ["", "| config | model | h [m] | M_F | ω_F [rad/s] | θ [°] | T_e [kN] | δ_e [°] | w_tip [m] | ψ_tip [°] | "
+             "mode, q_f1/largest |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for config, model, mode_class, altitudes in pieces:
+        for h in altitudes:
+            r = flutter_row(config, model, h, mode_class)
+            label = model + (" sym-class" if mode_class == "symmetric" else "")
+            if r is None:
+                lines.append(f"| {config} | {label} | {h:.0f} | no crossing" + " |" * 8)
+                continue
+            cells = " | ".join(_cell(r[c], r.get("paper", {}).get(c)) for c in cols)
+            lines.append(f"| {config} | {label} | {h:.0f} | {cells} | {_mode(r)} |")
+    return _minus("\n".join(lines)) + "\n"
+
+
+def commands(pieces) -> str:
+    """The ``paper_residuals.py`` command of each piece (config, model, mode class, altitudes), as markdown lines."""
+    import paper_residuals
+
+    out = []
+    for config, model, mode_class, altitudes in pieces:
+        cmd = CONFIGS[config].command() + f" --models {model}"
+        if altitudes != ALTITUDES_M:
+            cmd += " --altitudes " + " ".join(f"{h:.0f}" for h in altitudes)
+        starts = STARTS.get(config, {}).get(model)
+        if starts:
+            cmd += f" --starts-{model.lower()} " + " ".join(f"{m:g}" for m in starts)
+        if mode_class != "any":
+            cmd += f" --mode-class {mode_class}"
+        if model == "US" and not starts and paper_residuals.DEFAULT_START != 0.72:
+            raise RuntimeError("paper_residuals.DEFAULT_START changed: update the commands")
+        out.append(f"* {config} {model}{' ' + mode_class + ' class' if mode_class != 'any' else ''}: `{cmd}`")
+    return "\n".join(out)
+
+
+def _config_region(pieces, glides) -> str:
+    """Table, glides at the 9144 m flutter points of ``glides`` ((config, mode class) pairs) and commands."""
+    text = config_table(pieces) + "\n"
+    for config, mode_class in glides:
+        r = flutter_row(config, "US", 9144.0, mode_class)
+        g = glide_gamma(config, r["M_F"])
+        text += (f"Glide of {config} at 9144 m, M {r['M_F']:.4f} (its US{' ' + mode_class + '-class' if mode_class != 'any' else ''} "
+                 f"flutter point): γ {_minus(format(g['gamma_deg'], '.3f'))}° (α {g['alpha_deg']:.3f}°; paper −3.12°).\n")
+    return text + "\nCommands (each prints these rows; the US ones the glide too):\n\n" + commands(pieces) + "\n"
+
+
+def calibration_c1_c2() -> str:
+    """C1 (US and QS at 0-9144 m, US symmetric class at 3048 and 9144 m) and C2 (US)."""
+    return _config_region((("C1", "US", "any", ALTITUDES_M), ("C1", "QS", "any", ALTITUDES_M),
+                           ("C1", "US", "symmetric", (3048.0, 9144.0)), ("C2", "US", "any", ALTITUDES_M)),
+                          (("C1", "any"), ("C1", "symmetric")))
+
+
+def calibration_c3() -> str:
+    """C3 (US) at 3048 and 9144 m with the linearised aerodynamics at rho(0), and at 3048 m with rho(3048 m)."""
+    return _config_region((("C3", "US", "any", (3048.0, 9144.0)), ("C3, ρ(3048 m)", "US", "any", (3048.0,))),
+                          (("C3", "any"),))
+
+
+def calibration_c4() -> str:
+    """C4 (US) at 0-9144 m and its glide."""
+    return _config_region((("C4", "US", "any", ALTITUDES_M),), (("C4", "any"),))
+
+
+def scorecard_row(config: str, altitude_m: float) -> dict:
+    """The ``none`` row of ``manoeuvre_decomposition.py --switches none --mode-class symmetric`` with the
+    configuration's options at one altitude: level, R = 5 / 12 km and gamma = +-15 deg flutter points (symmetric
+    class, US); one checkpoint."""
+    import manoeuvre_decomposition
+
+    c = CONFIGS[config]
+    args = {"config": c.args(), "altitude_m": altitude_m, "start": SCORECARD_START, "mode_class": "symmetric",
+            "cases": list(manoeuvre_decomposition.CASES)}
+
+    def compute():
+        (row,) = manoeuvre_decomposition.run(c.aircraft_model(), _label(config), altitude_m, ["none"], 3048.0,
+                                             SCORECARD_START, tuple(manoeuvre_decomposition.CASES), None,
+                                             c.fixed_density_alt_m, c.formulation, "symmetric")
+        return row
+
+    return checkpoint("calibration-scorecard", args, compute)
+
+
+def _scorecard(config: str) -> str:
+    import manoeuvre_decomposition
+
+    rows = [scorecard_row(config, h) for h in ALTITUDES_M]
+    text = manoeuvre_decomposition.scorecard(rows)
+    effect = " / ".join(f"{r['turn_dM']:.4f}" for r in rows)
+    grows = all(b["turn_dM"] > a["turn_dM"] for a, b in zip(rows[:-1], rows[1:]))
+    return (_minus("\n" + text) + f".\n\nTurn effect M_F(5 km) − M_F(12 km) of {config}'s symmetric mode: "
+            f"{_minus(effect)} at 0 / 3048 / 6096 / 9144 m ({'growing' if grows else 'not growing'} monotonically with "
+            f"altitude).\n\nCommand: for h in 0 3048 6096 9144, `{CONFIGS[config].command('manoeuvre_decomposition.py')} "
+            f"--altitude h --switches none --mode-class symmetric --json h.json`, then `python "
+            f"studies/manoeuvre_decomposition.py --scorecard 0.json 3048.json 6096.json 9144.json`.\n")
+
+
+def calibration_scorecard_c1() -> str:
+    """C1's trend scorecard (symmetric mode)."""
+    return _scorecard("C1")
+
+
+def calibration_scorecard_c4() -> str:
+    """C4's trend scorecard (symmetric mode)."""
+    return _scorecard("C4")
+
+
+def _diff(row: dict, key: str) -> float:
+    """Relative difference [%] of a column to the paper's row (printed only, never used in the result)."""
+    return 100 * (row[key] / row["paper"][key] - 1)
+
+
+def _residuals(config: str, model: str, key: str = "M_F", altitudes=ALTITUDES_M) -> str:
+    """``+5.9 / −1.6 / −1.0 / −1.4 %``: a column's differences to the paper at ``altitudes`` (critical mode)."""
+    return _minus(" / ".join(f"{_diff(flutter_row(config, model, h), key):+.1f}" for h in altitudes)) + " %"
+
+
+def _span(config: str, key: str, altitudes=ALTITUDES_M[1:]) -> str:
+    """``+0.6 to +3.8 %``: the range of a column's US differences (critical mode) at ``altitudes``."""
+    values = sorted(_diff(flutter_row(config, "US", h), key) for h in altitudes)
+    return _minus(f"{values[0]:+.1f} to {values[-1]:+.1f} %")
+
+
+#: The configurations take well under a minute each on a quiet 2-core machine (measured 04:20 UTC 2026-12-02 at
+#: load 4-6: C1-C2 40 s wall / 18 s CPU, C3 18 / 6 s, C4 9 / 3 s, each scorecard 33-40 / 15 s), so they are slow
+#: figures (``pytest -m slow``), not long ones.
+CALIBRATION_FIGURES = {
+    "calibration-c1-c2": Figure(calibration_c1_c2),
+    "calibration-c3": Figure(calibration_c3),
+    "calibration-c4": Figure(calibration_c4),
+    "calibration-scorecard-c1": Figure(calibration_scorecard_c1),
+    "calibration-scorecard-c4": Figure(calibration_scorecard_c4),
+    # inline figures of §6's best-residual table and §7's targets (read from the same checkpoints)
+    "calibration-c1-us-mach": Figure(lambda: _residuals("C1", "US")),
+    "calibration-c1-qs-mach": Figure(lambda: _residuals("C1", "QS")),
+    "calibration-c4-us-mach": Figure(lambda: _residuals("C4", "US")),
+    "calibration-c1-elevator": Figure(lambda: _span("C1", "elevator_deg")),
+    "calibration-c1-theta": Figure(lambda: _span("C1", "theta_deg")),
+}
