@@ -53,11 +53,19 @@ FIT_FREQUENCY_ABOVE_M = 1.0
 def flutter_row(args: tuple[str, dict, float, float]) -> dict:
     """Finite-state flutter point of the scaled aircraft at one altitude (a worker process)."""
     from flexsim.aircraft.toml_loader import load_aircraft
-    from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
-    from flexsim.trim import SteadyManoeuvre, TrimError
 
     aircraft_name, factors, altitude, damping = args
     aircraft = replace(StructuralScaling(**factors).apply(load_aircraft(aircraft_name)), structural_damping_ratio=damping)
+    return flutter_point(aircraft, altitude)
+
+
+def flutter_point(aircraft, altitude: float) -> dict:
+    """Finite-state level flutter point of ``aircraft`` at ``altitude`` [m] (the fit's residual source): Mach,
+    frequency [rad/s], dominant coordinate, wing-tip deflection [m] and twist [deg] of the trim at it, or
+    ``error`` where there is none below M 0.95."""
+    from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
+    from flexsim.trim import SteadyManoeuvre, TrimError
+
     try:
         fp = FlutterAnalysis(aircraft, "unsteady").search(SteadyManoeuvre.level(altitude, mach=0.5), mach_range=(0.4, 0.95))
     except (FlutterNotFound, TrimError) as exc:

@@ -17,6 +17,7 @@ centre tank): :data:`CONFIGS`.
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 from typing import NamedTuple
@@ -262,6 +263,163 @@ def _span(config: str, key: str, altitudes=ALTITUDES_M[1:]) -> str:
 #: The configurations take well under a minute each on a quiet 2-core machine (measured 04:20 UTC 2026-12-02 at
 #: load 4-6: C1-C2 40 s wall / 18 s CPU, C3 18 / 6 s, C4 9 / 3 s, each scorecard 33-40 / 15 s), so they are slow
 #: figures (``pytest -m slow``), not long ones.
+#: §5's variants of the notional structure (``gtm_uncalibrated`` with StructuralScaling factors, finite state, no
+#: structural damping), rows of label and factor sets; the calibrated ``gtm`` (its damping) closes the table.
+VARIANTS = (("wing GJ × 0.2 / 0.3 / 0.35", ({"wing_gj": 0.2}, {"wing_gj": 0.3}, {"wing_gj": 0.35})),
+            ("GJ 0.3 with fuselage EI × 0.5 / × 2", ({"wing_gj": 0.3, "fuselage_ei": 0.5}, {"wing_gj": 0.3, "fuselage_ei": 2.0})),
+            ("GJ 0.3 with wing EI × 0.5 / × 2", ({"wing_gj": 0.3, "wing_ei": 0.5}, {"wing_gj": 0.3, "wing_ei": 2.0})),
+            ("GJ 0.3 with stabilizer stiffness × 0.5 / fuselage GJ × 0.5",
+             ({"wing_gj": 0.3, "htail_stiffness": 0.5}, {"wing_gj": 0.3, "fuselage_gj": 0.5})),
+            ("mass × 1.574 (option B, 157 t), GJ 0.40, EI 1.41, fuselage EI 1.15",
+             ({"mass": 1.574, "wing_gj": 0.40, "wing_ei": 1.41, "fuselage_ei": 1.15},)))
+
+
+def variant_point(factors: dict | None, altitude_m: float) -> dict:
+    """``calibrate_gtm.flutter_point`` of ``gtm_uncalibrated`` × ``factors`` without structural damping (None: the
+    calibrated ``gtm`` with its own); one checkpoint."""
+    import calibrate_gtm
+
+    def compute():
+        from dataclasses import replace
+
+        from flexsim.aircraft.calibration import StructuralScaling
+        from flexsim.aircraft.toml_loader import load_aircraft
+
+        if factors is None:
+            return calibrate_gtm.flutter_point(load_aircraft("gtm"), altitude_m)
+        ac = replace(StructuralScaling(**factors).apply(load_aircraft("gtm_uncalibrated")), structural_damping_ratio=0.0)
+        return calibrate_gtm.flutter_point(ac, altitude_m)
+
+    return checkpoint("calibration-variant", {"factors": factors, "altitude_m": altitude_m}, compute)
+
+
+def calibration_variants() -> str:
+    """§5: M_F at 0 / 9144 m, their ratio and the critical mode of each variant, against the paper's."""
+    from flexsim.linear.paper_data import TABLE_US
+
+    def cells(factor_sets):
+        pts = [(variant_point(f, 0.0), variant_point(f, 9144.0)) for f in factor_sets]
+        for f, (a, b) in zip(factor_sets, pts):
+            if "error" in a or "error" in b:
+                raise RuntimeError(f"calibration-variants: {f}: {a.get('error') or b.get('error')}")
+        modes = []
+        for a, b in pts:
+            m = a["mode"] if a["mode"] == b["mode"] else f"{a['mode']} → {b['mode']}"
+            if m not in modes:
+                modes.append(m)
+        return (", ".join(f"{a['mach']:.3f} / {b['mach']:.3f}" for a, b in pts),
+                ", ".join(f"{b['mach'] / a['mach']:.2f}" for a, b in pts), "; ".join(modes))
+
+    lines = ["", "| variant (finite state, no structural damping) | M_F at 0 / 9144 m | ratio | critical mode (0 → 9144 m) |",
+             "|---|---|---|---|"]
+    ratios = []
+    for label, factor_sets in VARIANTS:
+        mach, ratio, mode = cells(factor_sets)
+        ratios += [float(r) for r in ratio.split(", ")]
+        lines.append(f"| {label} | {mach} | {ratio} | {mode} |")
+    mach, ratio, mode = cells((None,))
+    lines.append(f"| calibrated `gtm` (ζ = 0.01) | {mach} | {ratio} | {mode} |")
+    paper = {h: m for h, m, *_ in TABLE_US}
+    lines.append(f"| **paper** | {paper[0.0]:.3f} / {paper[9144.0]:.3f} | **{paper[9144.0] / paper[0.0]:.3f}** | |")
+    return ("\n".join(lines) + f"\n\nThe ratio of the variants lies between {min(ratios):.2f} and {max(ratios):.2f} "
+            f"(paper {paper[9144.0] / paper[0.0]:.3f}).\n")
+
+
+# --- historical runs (long figures: the recorded command in a temporary git worktree of its commit) -------------
+
+#: The commit of the first calibration (plain least squares, no structural damping, before issue 11's fuselage
+#: moments and tail downwash) and its command.
+PLAIN_FIT_COMMIT = "df7ff6d"
+PLAIN_FIT_ARGV = ("python", "studies/calibrate_gtm.py", "--out", "fit.toml")
+#: The last commit with the research note's elastic-axis reading (0.25 b behind mid-chord, 0.625 c) in gtm.toml.
+AFT_AXIS_COMMIT = "67cf98a"
+#: The quasi-steady spectrum of that gtm (no structural damping, as then) in level flight: the most unstable
+#: oscillatory elastic mode at each altitude and Mach.
+AFT_AXIS_SNIPPET = """
+import json
+from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.linear.flutter import FlutterAnalysis
+from flexsim.trim import SteadyManoeuvre
+ac = load_aircraft("gtm")
+ea = sorted({float(f) for c in ac.components if "wing" in c.name for f in c.sections.ea_fraction})
+analysis = FlutterAnalysis(ac, "quasi-steady")
+for h, mach in ((0.0, 0.3), (0.0, 0.45), (3048.0, 0.45), (6096.0, 0.45), (9144.0, 0.45)):
+    _, spec = analysis.evaluate(SteadyManoeuvre.level(h, mach=mach))
+    m = spec.critical("elastic")
+    wing = max((w for w in spec.of_kind("elastic") if w.frequency_rad_s >= 0.5 and "wing" in w.dominant_dof),
+               key=lambda w: w.eigenvalue.real)
+    print(json.dumps({"altitude_m": h, "mach": mach, "real_1_s": m.eigenvalue.real, "omega_rad_s": m.frequency_rad_s,
+                      "dof": m.dominant_dof, "wing_real_1_s": wing.eigenvalue.real,
+                      "wing_omega_rad_s": wing.frequency_rad_s, "wing_dof": wing.dominant_dof, "wing_ea_fraction": ea}))
+"""
+
+
+def _fit_summary(text: str) -> tuple[dict[str, float], str]:
+    """Factors and ``wing GJ × 0.399, ... (M_F ... %, ω_F ... %; 27 evaluations)`` of a ``calibrate_gtm.py --out``
+    file."""
+    import json
+
+    from flexsim.linear.paper_data import TABLE_US
+
+    factors = {k: float(v) for k, v in re.findall(r"(?m)^(\w+) = ([\d.]+)$", text) if k != "structural_damping_ratio"}
+    evaluations = re.search(r"(\d+) evaluations", text).group(1)
+    rows = [json.loads(line[2:]) for line in text.splitlines() if line.startswith("# {")]
+    paper = {h: (m, w) for h, m, w, *_ in TABLE_US}
+    dm = " / ".join(f"{100 * (r['mach'] / paper[r['altitude_m']][0] - 1):+.1f}" for r in rows)
+    dw = [100 * (r["omega_rad_s"] / paper[r["altitude_m"]][1] - 1) for r in rows if r["altitude_m"] > 0]
+    return factors, _minus(f"wing GJ × {factors['wing_gj']:.3f}, EI × {factors['wing_ei']:.3f}, fuselage EI × "
+                           f"{factors['fuselage_ei']:.3f} (M_F {dm} % at 0-9144 m, ω_F {min(dw):+.1f} to {max(dw):+.1f} % "
+                           f"at 3048-9144 m; {evaluations} evaluations)")
+
+
+def calibration_plain_fit() -> str:
+    """§3: the first fit (``python studies/calibrate_gtm.py`` at df7ff6d: plain least squares, no damping)."""
+    from docs_figures_core import run_at_commit
+
+    out = run_at_commit("calibration-plain-fit", PLAIN_FIT_COMMIT, list(PLAIN_FIT_ARGV), ("fit.toml",))
+    return _fit_summary(out["outputs"]["fit.toml"])[1]
+
+
+def calibration_robust_fit() -> str:
+    """§3: the robust fit that made gtm.toml, from its output ``tools/gtm_calibration.toml`` (written by
+    ``python studies/calibrate_gtm.py --out tools/gtm_calibration.toml`` at 2f53416; gtm.toml = gtm_uncalibrated ×
+    its factors is tested in tests/aircraft/test_calibration.py). Not rerun: the file in the repository is that
+    run's output, and a rerun at 2f53416 costs about 18 CPU-minutes (108 finite-state points of the numpy
+    right-hand side, measured 2026-12-02)."""
+    return _fit_summary((ROOT / "tools" / "gtm_calibration.toml").read_text(encoding="utf-8"))[1]
+
+
+def calibration_aft_axis() -> str:
+    """§1: the quasi-steady model with the elastic axis at 0.625 c (gtm.toml at 67cf98a)."""
+    import json
+
+    from docs_figures_core import run_at_commit
+
+    out = run_at_commit("calibration-aft-axis", AFT_AXIS_COMMIT, ["python", "-c", AFT_AXIS_SNIPPET])
+    rows = [json.loads(line) for line in out["stdout"].splitlines() if line.startswith("{")]
+    ea = {f for r in rows for f in r["wing_ea_fraction"]}
+    if ea != {0.625}:
+        raise RuntimeError(f"calibration-aft-axis: gtm.toml at {AFT_AXIS_COMMIT} has the wing's elastic axis at {ea}")
+    unstable = all(r["real_1_s"] > 0 for r in rows)
+    low = min(r["mach"] for r in rows)
+    by_kind: dict[str, list[dict]] = {}
+    for r in rows:
+        by_kind.setdefault("wing" if "wing" in r["dof"] else "htail" if "htail" in r["dof"] else r["dof"], []).append(r)
+    names = {"wing": "the wing's", "htail": "the stabilizer's"}
+    where = "; ".join(f"{names.get(k, k)} first torsion ({min(r['omega_rad_s'] for r in v):.0f}"
+                      f"{'' if len({round(r['omega_rad_s']) for r in v}) == 1 else '-' + format(max(r['omega_rad_s'] for r in v), '.0f')}"
+                      f" rad/s) at " + ", ".join(f"{r['altitude_m']:g} m, M {r['mach']:g}" for r in v)
+                      for k, v in by_kind.items())
+    wing_unstable = [r for r in rows if r["wing_real_1_s"] > 0]
+    return (f"the quasi-steady model is {'unstable' if unstable else 'not unstable everywhere'} already at M {low:g} "
+            f"at sea level and at M 0.45 at all four altitudes, Re λ {_minus(format(min(r['real_1_s'] for r in rows), '+.2f'))} "
+            f"to {_minus(format(max(r['real_1_s'] for r in rows), '+.2f'))} s⁻¹ — the most unstable mode is {where}; the "
+            f"wing's torsion alone is unstable at M 0.45 at "
+            + (", ".join(f"{r['altitude_m']:g}" for r in wing_unstable if r["mach"] == 0.45) or "no altitude")
+            + f" m (`gtm.toml` at {AFT_AXIS_COMMIT}, the last commit with that reading: wing and stabilizer axes at "
+            "0.625 c, the uncalibrated stiffness, no structural damping)")
+
+
 CALIBRATION_FIGURES = {
     "calibration-c1-c2": Figure(calibration_c1_c2),
     "calibration-c3": Figure(calibration_c3),
@@ -274,4 +432,7 @@ CALIBRATION_FIGURES = {
     "calibration-c4-us-mach": Figure(lambda: _residuals("C4", "US")),
     "calibration-c1-elevator": Figure(lambda: _span("C1", "elevator_deg")),
     "calibration-c1-theta": Figure(lambda: _span("C1", "theta_deg")),
+    "calibration-variants": Figure(calibration_variants),
+    "calibration-robust-fit": Figure(calibration_robust_fit, fast=True),
+    "calibration-aft-axis": Figure(calibration_aft_axis, long=True),
 }

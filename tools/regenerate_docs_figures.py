@@ -50,7 +50,15 @@ climb search, and about 4 minutes for the baselines table):
 * ``calibration-c1-c2``, ``calibration-c3``, ``calibration-c4``, ``calibration-scorecard-c1``,
   ``calibration-scorecard-c4``: docs/calibration.md §6-7, the paper-replication configurations (every column of
   Tables 2-3, ``studies/paper_residuals.py``) and their trend scorecards (``studies/manoeuvre_decomposition.py``),
-  ``tools/docs_figures_calibration.py`` (about 2.5 minutes together; checkpointed).
+  ``tools/docs_figures_calibration.py`` (about 2.5 minutes together; checkpointed), with the inline figures
+  ``calibration-c1-us-mach``, ``calibration-c1-qs-mach``, ``calibration-c4-us-mach``, ``calibration-c1-elevator``,
+  ``calibration-c1-theta`` read from them, and ``calibration-variants`` (§5: M_F(9144)/M_F(0) of the notional
+  structure's variants, finite state);
+* ``calibration-robust-fit`` (fast): docs/calibration.md §3, the fit that made gtm.toml, read from its output
+  ``tools/gtm_calibration.toml``;
+* long: ``calibration-plain-fit`` (docs/calibration.md §3: ``studies/calibrate_gtm.py`` rerun in a worktree of
+  commit df7ff6d, about 18 CPU-minutes, 9 minutes on 2 idle cores), ``calibration-aft-axis`` (§1: the
+  quasi-steady spectrum of ``gtm.toml`` at 67cf98a, the elastic axis at 0.625 c).
 
 The trim, validation and Goland figures are computed in ``tools/docs_figures_static.py``; the figures of the
 ``studies/`` scripts quoted in docs/flutter.md, docs/calibration.md and docs/validation.md (density, class
