@@ -36,7 +36,7 @@ def _reference_tree(rev: str) -> Path:
     sha = subprocess.run(["git", "-C", str(HERE), "rev-parse", "--short=12", rev], check=True, capture_output=True,
                          text=True).stdout.strip()
     tree = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "flexsim-bench" / sha
-    if not (tree / "flexsim" / "_kernels.py").is_file():
+    if not (tree / "flexsim" / "_kernels").exists() and not (tree / "flexsim" / "_kernels.py").is_file():
         tree.mkdir(parents=True, exist_ok=True)
         archive = subprocess.run(["git", "-C", str(HERE), "archive", sha], check=True, capture_output=True).stdout
         subprocess.run(["tar", "-x", "-C", str(tree)], input=archive, check=True)

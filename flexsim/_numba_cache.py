@@ -5,7 +5,9 @@ numba 0.68; ``numba/core/caching.py``, ``_SourceFileBackedLocatorMixin.get_sourc
 calls a compiled function of another file embeds that callee's machine code, so a change of the callee's file
 alone leaves the caller's cached code stale: the caller would go on running the old callee (numba's
 documentation, "Cache invalidation"). :func:`depends_on` adds the SHA-256 of the named files to the stamp a
-dispatcher's index is saved and checked with, so such a change recompiles the caller on its next call.
+dispatcher's index is saved and checked with, so such a change recompiles the caller on its next call. A
+package counts as the source of all its ``.py`` files (``flexsim._kernels``: the kernels are split into modules
+that call each other; each of its kernels and every compiled caller outside it depend on the whole package).
 
 Under ``NUMBA_DISABLE_JIT=1`` the decorated object is the plain Python function and is returned unchanged.
 """
@@ -23,8 +25,22 @@ F = TypeVar("F", bound=Callable)
 
 
 def source_digest(*modules: ModuleType) -> tuple[str, ...]:
-    """SHA-256 (hex) of the source files of ``modules``, in order."""
-    return tuple(hashlib.sha256(Path(m.__file__).read_bytes()).hexdigest() for m in modules)
+    """SHA-256 (hex) of the source files of ``modules``, in order; of a package: of the names and contents of all
+    its ``.py`` files (recursively, sorted by relative path). A package may be passed while its ``__init__`` runs
+    (its ``__path__`` is set by then)."""
+    return tuple(_digest(m) for m in modules)
+
+
+def _digest(module: ModuleType) -> str:
+    paths = getattr(module, "__path__", None)
+    if paths is None:
+        return hashlib.sha256(Path(module.__file__).read_bytes()).hexdigest()
+    h = hashlib.sha256()
+    for root in map(Path, paths):
+        for f in sorted(root.rglob("*.py")):
+            h.update(f.relative_to(root).as_posix().encode() + b"\0")
+            h.update(hashlib.sha256(f.read_bytes()).digest())
+    return h.hexdigest()
 
 
 def depends_on(*modules: ModuleType) -> Callable[[F], F]:

@@ -50,7 +50,7 @@ def test_cached_caller_sees_changed_callee(tmp_path, decorated):
 
 
 def test_step_kernels_are_keyed_on_the_rhs_source():
-    """The ETD2RK kernels' cache stamp includes the SHA-256 of flexsim/_kernels.py."""
+    """The ETD2RK kernels' cache stamp includes the digest of the package flexsim._kernels."""
     from flexsim import _kernels
     from flexsim._numba_cache import source_digest
     from flexsim.sim import _step_kernels
@@ -60,3 +60,49 @@ def test_step_kernels_are_keyed_on_the_rhs_source():
         pytest.skip("NUMBA_DISABLE_JIT=1: no cache")
     for kernel in (_step_kernels.etd2rk_run, _step_kernels.etd2rk_rows):
         assert kernel._cache._cache_file._source_stamp[1] == source_digest(_kernels)
+
+
+PACKAGE_CALLER = """
+import sys
+from numba import njit
+from flexsim._numba_cache import depends_on
+from pkg import callee
+
+@depends_on(sys.modules[__package__])
+@njit(cache=True)
+def g():
+    return callee.f()
+"""
+
+
+def test_package_digest_covers_its_files(tmp_path):
+    """A kernel keyed on its package (as flexsim._kernels' kernels are) recompiles when a sibling file changes."""
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "caller.py").write_text(PACKAGE_CALLER)
+    (pkg / "callee.py").write_text("from numba import njit\n\n@njit(cache=True)\ndef f():\n    return 1\n")
+    (tmp_path / "main.py").write_text("from pkg.caller import g\nprint(g())\n")
+    run = tmp_path / "caller.py"  # _run runs tmp_path/caller.py
+    run.write_text("import runpy\nrunpy.run_path('main.py')\n")
+    assert _run(tmp_path) == 1
+    assert _run(tmp_path) == 1
+    (pkg / "callee.py").write_text("from numba import njit\n\n@njit(cache=True)\ndef f():\n    return 2  # changed\n")
+    assert _run(tmp_path) == 2
+
+
+def test_every_kernel_is_keyed_on_the_whole_kernel_package():
+    """Each compiled kernel of flexsim._kernels carries the package's digest in its cache stamp (its callees are in
+    sibling files of the package)."""
+    import flexsim._kernels as package
+    from flexsim._numba_cache import source_digest
+
+    if getattr(package.rhs, "_cache", None) is None:
+        pytest.skip("NUMBA_DISABLE_JIT=1: no cache")
+    digest = source_digest(package)
+    kernels = [obj for name in ("layout", "isa", "structure", "strips", "drag", "wind", "solve", "equations")
+               for obj in vars(getattr(package, name)).values() if hasattr(obj, "_cache") and hasattr(obj, "py_func")]
+    assert len(kernels) > 40
+    for kernel in kernels:
+        if kernel.py_func.__module__.startswith("flexsim._kernels"):
+            assert kernel._cache._cache_file._source_stamp[1] == digest, kernel

@@ -1,0 +1,122 @@
+"""Parasite drag items and slender-body Munk moments, compiled (generalized forces by virtual work, eqs. 17-24).
+
+Sources: Raymer (2018) sec. 12.5, parasite drag of the file's drag items (:mod:`flexsim.model.drag`); Munk (1924),
+NACA Report 184, slender-body moments (:mod:`flexsim.model.bodies`); the paper (Tuzcu & Nguyen 2014) eqs. 5-6, 18
+for the velocity of an attached point. Component axes, SI units.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from flexsim._kernels.layout import (BODY_AXIS, BODY_G0, BODY_G1, BODY_OFFSET, BODY_VOL_DK, DRAG_AREA, DRAG_G0,
+                                     DRAG_G1, DRAG_OFFSET, _f1, _f2, _f3, _f4, kernel)
+
+
+@kernel
+def point_velocity(g0, g1, offset, j, q, vel):
+    """Velocity v_p (3,) [m/s] of attached point j and the q part g1[j] q (3, 3) of its map A_j(q), component axes:
+    v_p = A_j(q) V + omega_sec x rho_j with A_j(q) = g0[j, 0:3] + g1[j] q on the omega columns and omega_sec =
+    g0[j, 3:6] V (paper eqs. 5-6, 18; drag items and slender bodies)."""
+    n_v = vel.shape[0]
+    nq = q.shape[0]
+    g1q = np.empty((3, 3))
+    for r in range(3):
+        for c in range(3):
+            acc = 0.0
+            for k in range(nq):
+                acc += g1[j, r, c, k] * q[k]
+            g1q[r, c] = acc
+    vp = np.empty(3)
+    om0 = om1 = om2 = 0.0
+    for i in range(n_v):
+        om0 += g0[j, 3, i] * vel[i]
+        om1 += g0[j, 4, i] * vel[i]
+        om2 += g0[j, 5, i] * vel[i]
+    for r in range(3):
+        acc = 0.0
+        for i in range(n_v):
+            acc += g0[j, r, i] * vel[i]
+        vp[r] = acc + g1q[r, 0] * vel[3] + g1q[r, 1] * vel[4] + g1q[r, 2] * vel[5]
+    rho_j = offset[j]
+    vp[0] += om1 * rho_j[2] - om2 * rho_j[1]
+    vp[1] += om2 * rho_j[0] - om0 * rho_j[2]
+    vp[2] += om0 * rho_j[1] - om1 * rho_j[0]
+    return vp, g1q
+
+
+@kernel
+def parasite_drag(F, I, q, vel, rho):
+    """Generalized force of the drag items (Raymer 2018 sec. 12.5; :mod:`flexsim.model.drag`), (n_v,).
+
+    f_i = -1/2 rho f |v_p| v_p at the item's point (component axes, :func:`point_velocity`);
+    Q = A_i(q)^T f_i + B_i^T (rho_i x f_i) (virtual work, eqs. 17-24) [N, N m].
+    """
+    n_v = vel.shape[0]
+    out = np.zeros(n_v)
+    area = _f1(F, I, DRAG_AREA)
+    g0 = _f3(F, I, DRAG_G0)
+    g1 = _f4(F, I, DRAG_G1)
+    offset = _f2(F, I, DRAG_OFFSET)
+    for j in range(area.shape[0]):
+        vp, g1q = point_velocity(g0, g1, offset, j, q, vel)
+        rho_i = offset[j]
+        speed = math.sqrt(vp[0] * vp[0] + vp[1] * vp[1] + vp[2] * vp[2])
+        c = -0.5 * rho * area[j] * speed
+        f0, f1, f2 = c * vp[0], c * vp[1], c * vp[2]
+        mu0 = rho_i[1] * f2 - rho_i[2] * f1
+        mu1 = rho_i[2] * f0 - rho_i[0] * f2
+        mu2 = rho_i[0] * f1 - rho_i[1] * f0
+        for i in range(n_v):
+            out[i] += g0[j, 0, i] * f0 + g0[j, 1, i] * f1 + g0[j, 2, i] * f2
+            out[i] += g0[j, 3, i] * mu0 + g0[j, 4, i] * mu1 + g0[j, 5, i] * mu2
+        for a in range(3):  # the q part of A_i(q) on the omega columns
+            out[3 + a] += g1q[0, a] * f0 + g1q[1, a] * f1 + g1q[2, a] * f2
+    return out
+
+
+@kernel
+def munk_moments(v_p, axis, coeff):
+    """Munk moment M = coeff (v . a)(v x a) of each body (k, 3) [N m] (Munk, NACA Report 184, 1924; Newman,
+    *Marine Hydrodynamics*, 1977, sec. 4.13): v_p (k, 3) velocity relative to the air [m/s], axis (k, 3) unit
+    axes, coeff (k,) = rho Vol (k2 - k1) [kg]; all in one set of axes."""
+    out = np.empty((v_p.shape[0], 3))
+    for j in range(v_p.shape[0]):
+        vp = v_p[j]
+        ax = axis[j]
+        c = coeff[j] * (vp[0] * ax[0] + vp[1] * ax[1] + vp[2] * ax[2])
+        out[j, 0] = c * (vp[1] * ax[2] - vp[2] * ax[1])
+        out[j, 1] = c * (vp[2] * ax[0] - vp[0] * ax[2])
+        out[j, 2] = c * (vp[0] * ax[1] - vp[1] * ax[0])
+    return out
+
+
+@kernel
+def body_moments(F, I, q, vel, rho):
+    """Munk moment of every slender body (k, 3) [N m], component axes (:mod:`flexsim.model.bodies`;
+    :func:`munk_moments` of the body velocities of :func:`point_velocity`)."""
+    vol_dk = _f1(F, I, BODY_VOL_DK)
+    g0 = _f3(F, I, BODY_G0)
+    g1 = _f4(F, I, BODY_G1)
+    offset = _f2(F, I, BODY_OFFSET)
+    v_p = np.empty((vol_dk.shape[0], 3))
+    for j in range(vol_dk.shape[0]):
+        vp, _ = point_velocity(g0, g1, offset, j, q, vel)
+        v_p[j, 0], v_p[j, 1], v_p[j, 2] = vp[0], vp[1], vp[2]
+    return munk_moments(v_p, _f2(F, I, BODY_AXIS), rho * vol_dk)
+
+
+@kernel
+def body_force(F, I, q, vel, rho):
+    """Q_body = sum_i B_i^T M_i (n_v,) [N, N m] of the Munk moments (virtual work, eqs. 17-24)."""
+    n_v = vel.shape[0]
+    out = np.zeros(n_v)
+    mom = body_moments(F, I, q, vel, rho)
+    g0 = _f3(F, I, BODY_G0)
+    for j in range(mom.shape[0]):
+        for i in range(n_v):
+            out[i] += g0[j, 3, i] * mom[j, 0] + g0[j, 4, i] * mom[j, 1] + g0[j, 5, i] * mom[j, 2]
+    return out
+

@@ -1,0 +1,300 @@
+"""Strip airloads and the finite-state inflow (paper eqs. 17-31; Peters et al. 1995), compiled.
+
+Sources: Tuzcu & Nguyen (2014), eqs. (17)-(24) generalized forces, (25)-(31) strip airloads; Peters,
+Karunamoorthy & Cao (1995), finite-state inflow, as written in ``docs/reference/aero-kinematics.md`` section 2.1
+and the Peters-Johnson strip loads, sections 1.3-1.6; USAF DATCOM sec. 4.4.1, wing downwash at the tail
+(:func:`flexsim.model.coupling.tail_downwash`); H. Glauert (1928), Prandtl-Glauert. The strips' data are built by
+:class:`flexsim.model.coupling.AeroCoupling`. Strip axes d (chord, to the trailing edge), n (plunge, down),
+p = d x n; SI units, radians.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from flexsim._kernels.layout import (AB, AERO_FLOATS, A_INV, A_INV_C, APPARENT_PITCH, B_VEC, CD0, D, DW_TAIL_NZ,
+                                     DW_WING_WEIGHT, FINITE_STATE, FLAP_INDEX, FLAP_SIGN, FLAP_W, INCIDENCE, INFLOW_IDX,
+                                     K0, N, N_OVER_D_X, N_PER_STRIP, PAPER, PAPER_STRIPS, PR_W, PRANDTL_GLAUERT, PROJ_D0,
+                                     PROJ_D1, PROJ_N0, PROJ_N1, PROJ_P, REL, SEMICHORD, STRIP_COL_PTR, STRIP_COLS,
+                                     WIDTH, _f1, _f2, _f3, _flag, _i1, kernel)
+
+_MACH_CAP = 0.95
+
+
+@kernel
+def strip_kinematics(F, I, q, xi, vel, lam, u, wind_c, has_wind):
+    """Strip velocities and Chebyshev downwash coefficients (:mod:`flexsim.model.coupling` docstring).
+
+    u0 = -d^T A(q) V [m/s];  w_EA = n^T A(q) V + u0 (alpha_el + alpha_r) [m/s] (down, relative to the air:
+    the strip air velocity ``wind_c`` (n_s, 3), component axes, enters when ``has_wind``);
+    alpha_dot = p^T B V;  w0 = w_EA - a b alpha_dot + u0 beta f0;  w1 = b alpha_dot + u0 beta f1;
+    w2 = u0 beta f2;  lambda0 = 1/2 b^T lambda (unsteady strips, Peters et al. 1995).
+
+    Returns p_mat (n_s, n_v), d_mat (n_s, n_v), alpha_el, u0, w_ea, w34 = w0 + w1/2, wc = w34 - lambda0,
+    w_moment = w0 - lambda0 - w2/2, alpha_chord (elastic pitch + rigging + flap camber angle), adot
+    (arrays (n_s,) unless noted).
+    """
+    semichord = _f1(F, I, SEMICHORD)
+    ab = _f1(F, I, AB)
+    incidence = _f1(F, I, INCIDENCE)
+    rel = _f2(F, I, REL)
+    proj_p = _f2(F, I, PROJ_P)
+    proj_n1 = _f3(F, I, PROJ_N1)
+    proj_d1 = _f3(F, I, PROJ_D1)
+    d = _f2(F, I, D)
+    n = _f2(F, I, N)
+    flap_sign = _f1(F, I, FLAP_SIGN)
+    flap_index = _i1(I, FLAP_INDEX)
+    flap_w = _f2(F, I, FLAP_W)
+    col_ptr = _i1(I, STRIP_COL_PTR)
+    cols = _i1(I, STRIP_COLS)
+    n_s = semichord.shape[0]
+    nq = q.shape[0]
+    nxi = xi.shape[0]
+    p_mat = _f2(F, I, PROJ_N0).copy()
+    d_mat = _f2(F, I, PROJ_D0).copy()
+    lam0 = np.zeros(n_s)
+    if _flag(I, FINITE_STATE):
+        nin = _flag(I, N_PER_STRIP)
+        b_vec = _f1(F, I, B_VEC)
+        idx = _i1(I, INFLOW_IDX)
+        for c in range(idx.shape[0]):
+            acc = 0.0
+            for k in range(nin):
+                acc += lam[c * nin + k] * b_vec[k]
+            lam0[idx[c]] = 0.5 * acc
+    alpha_el = np.empty(n_s)
+    u0 = np.empty(n_s)
+    w_ea = np.empty(n_s)
+    w34 = np.empty(n_s)
+    wc = np.empty(n_s)
+    w_moment = np.empty(n_s)
+    alpha_chord = np.empty(n_s)
+    adot = np.empty(n_s)
+    for j in range(n_s):
+        for a in range(3):
+            acc_n = 0.0
+            acc_d = 0.0
+            for k in range(nq):
+                acc_n += proj_n1[j, a, k] * q[k]
+                acc_d += proj_d1[j, a, k] * q[k]
+            p_mat[j, 3 + a] += acc_n
+            d_mat[j, 3 + a] += acc_d
+        alpha = incidence[j]
+        for k in range(nq):
+            alpha += rel[j, k] * q[k]
+        for k in range(nxi):
+            alpha += rel[j, nq + k] * xi[k]
+        uj = 0.0
+        wn = 0.0
+        ad = 0.0
+        for t in range(col_ptr[j], col_ptr[j + 1]):  # the strip's non-zero columns (strip_columns)
+            i = cols[t]
+            uj -= d_mat[j, i] * vel[i]
+            wn += p_mat[j, i] * vel[i]
+            ad += proj_p[j, i] * vel[i]
+        if has_wind:
+            for a in range(3):
+                uj += d[j, a] * wind_c[j, a]
+                wn -= n[j, a] * wind_c[j, a]
+        wea = wn + uj * alpha
+        flap = flap_sign[j] * u[flap_index[j]] if flap_index[j] > 0 else 0.0
+        ub = uj * flap
+        w0 = wea - ab[j] * ad + ub * flap_w[j, 0]
+        w1 = semichord[j] * ad + ub * flap_w[j, 1]
+        w2 = ub * flap_w[j, 2]
+        alpha_el[j] = alpha
+        u0[j] = uj
+        w_ea[j] = wea
+        w34[j] = w0 + 0.5 * w1
+        wc[j] = w34[j] - lam0[j]
+        w_moment[j] = w0 - lam0[j] - 0.5 * w2
+        alpha_chord[j] = alpha + flap * (flap_w[j, 0] + 0.5 * flap_w[j, 1])
+        adot[j] = ad
+    return p_mat, d_mat, alpha_el, u0, w_ea, w34, wc, w_moment, alpha_chord, adot
+
+
+@kernel
+def compressibility_factor(prandtl_glauert, mach):
+    """beta with Cl_alpha(M) = Cl_alpha0 / beta: sqrt(1 - M^2), M capped at 0.95 (Prandtl-Glauert; H. Glauert,
+    Proc. R. Soc. Lond. A 118, 113-119, 1928; the paper's "Numerical Model"), or 1 without the correction."""
+    return math.sqrt(1.0 - min(mach, _MACH_CAP) ** 2) if prandtl_glauert else 1.0
+
+
+@kernel
+def circulatory(F, I, u0, wc, w_moment, alpha_chord, rho, mach):
+    """Circulatory lift, moment about the EA, lift x flow angle, drag per unit span, flow angle.
+
+    L = Cl_a rho b u0 (w0 + w1/2 - lambda0) [N/m];  M_EA = (Cl_a/2) rho b^2 u0 (w0 - lambda0 - w2/2) + a b L
+    [N];  Cl_a = Cl_a0 / beta with beta = sqrt(1 - min(M, 0.95)^2) (Prandtl-Glauert, Glauert 1928) or 1
+    (compressibility "none"). Flow angle relative to the component axes a0 = (w0 + w1/2 - lambda0)/u0 -
+    alpha_chord (formed as products with the lift, without dividing by u0); drag = induced L alpha_e
+    (1 - Cl_a0/2 pi) + rho u0^2 b cd0 (module docstring of :mod:`flexsim.model.coupling`).
+    """
+    beta = compressibility_factor(_flag(I, PRANDTL_GLAUERT) != 0, mach)
+    beta_i = 1.0 if _flag(I, PAPER) else beta  # induced angle of the compressible lift (physical formulation)
+    b = _f1(F, I, SEMICHORD)
+    k0 = _f1(F, I, K0)
+    ab = _f1(F, I, AB)
+    cd0 = _f1(F, I, CD0)
+    n_s = b.shape[0]
+    lift = np.empty(n_s)
+    moment = np.empty(n_s)
+    lift_tilt = np.empty(n_s)
+    drag = np.empty(n_s)
+    flow_angle = np.empty(n_s)
+    for j in range(n_s):
+        two_pi_rho_b = 2.0 * np.pi * rho * b[j] * (k0[j] / beta)
+        lift[j] = two_pi_rho_b * u0[j] * wc[j]
+        moment[j] = 0.5 * two_pi_rho_b * b[j] * u0[j] * w_moment[j] + ab[j] * lift[j]
+        flow = wc[j] - u0[j] * alpha_chord[j]  # u0 x flow angle [m/s]
+        lift_tilt[j] = two_pi_rho_b * wc[j] * flow
+        drag[j] = two_pi_rho_b * wc[j] * wc[j] * (1.0 - k0[j]) / beta_i + rho * u0[j] * u0[j] * b[j] * cd0[j]
+        flow_angle[j] = flow / max(u0[j], 1.0)
+    return lift, moment, lift_tilt, drag, flow_angle
+
+
+@kernel
+def tail_downwash(wing_weight, u0, wc, speed, beta, gradient):
+    """Downwash angle epsilon [rad] of the wing at the horizontal tail (not in the paper;
+    :func:`flexsim.model.coupling.tail_downwash`): epsilon = (d epsilon/d alpha)_0 L_w / L_alpha0,w =
+    gradient sum_j weight_j u0_j wc_j / (beta max(V, 1)^2) (USAF DATCOM sec. 4.4.1 compressibility scaling)."""
+    acc = 0.0
+    for j in range(u0.shape[0]):
+        acc += wing_weight[j] * (u0[j] * wc[j])
+    return gradient * acc / (beta * max(speed, 1.0) ** 2)
+
+
+@kernel
+def downwash_shift(F, I, vel, u0, wc, mach):
+    """Change of the tail strips' normal velocity relative to the air in the wing's downwash, (n_s,) [m/s]:
+    -epsilon V (n . z_b) (an air velocity epsilon V along body z at the tail; it shifts w_EA, w0 + w1/2 and the
+    moment's downwash, not the inflow forcing or the apparent mass). Zero without a downwash gradient."""
+    n_s = u0.shape[0]
+    out = np.zeros(n_s)
+    gradient = _f1(F, I, AERO_FLOATS)[0]
+    if gradient == 0.0:
+        return out
+    speed = math.sqrt(vel[0] * vel[0] + vel[1] * vel[1] + vel[2] * vel[2])
+    beta = compressibility_factor(_flag(I, PRANDTL_GLAUERT) != 0, mach)
+    eps = tail_downwash(_f1(F, I, DW_WING_WEIGHT), u0, wc, speed, beta, gradient)
+    nz = _f1(F, I, DW_TAIL_NZ)
+    for j in range(n_s):
+        out[j] = -eps * speed * nz[j]
+    return out
+
+
+@kernel
+def aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind):
+    """Added mass M_a (n_v, n_v), explicit generalized aerodynamic force Q_a (n_v,) and the inflow terms.
+
+    Eq. (28), force resolution "physical": f = L (-n - a0 d) + D (d - a0 n); "paper" on wing/stabilizer
+    strips: f = -L n + L (n_x / d_x) d. Each strip's force and moment enter as width * G^T [f; M_EA p]
+    (eqs. 17-24); the tail strips in the wing's downwash (:func:`downwash_shift`). Apparent mass (pi rho b^2,
+    reference section 1.4): w_EA_dot = row0 V_dot + w_ea_x, with
+    row0 = n^T A - alpha_el d^T A - a b p^T B and the explicit part w_ea_x (omega x q-derivative terms and
+    u0 times the elastic pitch rate). M_a = sum_j rho pr_w (n^T A - a b p^T B)^T row0 + rho sum_j pr_w b^2/8
+    (p^T B)^T (p^T B), the last sum constant per unit density (field ``apparent_pitch``, built by
+    :class:`flexsim.model.coupling.AeroCoupling`).
+
+    Returns m_a, q_a, row0 (n_s, n_v), w_ea_x (n_s,), u0 (n_s,).
+    """
+    p_mat, d_mat, alpha_el, u0, w_ea, w34, wc, w_moment, alpha_chord, adot = strip_kinematics(
+        F, I, q, xi, vel, lam, u, wind_c, has_wind)
+    shift = downwash_shift(F, I, vel, u0, wc, mach)  # the tail in the wing's downwash
+    for j in range(shift.shape[0]):
+        wc[j] += shift[j]
+        w_moment[j] += shift[j]
+    r_mat = _f2(F, I, PROJ_P)
+    ab = _f1(F, I, AB)
+    b = _f1(F, I, SEMICHORD)
+    lift, moment, lift_tilt, drag, flow_angle = circulatory(F, I, u0, wc, w_moment, alpha_chord, rho, mach)
+    w = _f1(F, I, WIDTH)
+    rel = _f2(F, I, REL)
+    pr_w0 = _f1(F, I, PR_W)
+    paper = _f1(F, I, PAPER_STRIPS)
+    n_over_d_x = _f1(F, I, N_OVER_D_X)
+    proj_n1 = _f3(F, I, PROJ_N1)
+    proj_d1 = _f3(F, I, PROJ_D1)
+    is_paper = _flag(I, PAPER) != 0
+    nq = q.shape[0]
+    n_el = rel.shape[1]
+    n_s = lift.shape[0]
+    n_v = vel.shape[0]
+    w_ea_x = np.empty(n_s)
+    left = np.empty((n_s, n_v))  # pr_w (n^T A - a b p^T B)
+    right = np.empty((n_s, n_v))  # row0
+    g_n = np.empty(n_s)
+    g_d = np.empty(n_s)
+    g_r = np.empty(n_s)
+    for j in range(n_s):
+        c_n = -lift[j] - drag[j] * flow_angle[j]  # eq. (28): f = L (-n - a0 d) + D (d - a0 n)
+        c_d = drag[j] - lift_tilt[j]
+        if is_paper and paper[j] != 0.0:  # eq. (28) with d = l alpha_i0: no body-x component
+            c_n = -lift[j]
+            c_d = lift[j] * n_over_d_x[j]
+        pdot = 0.0
+        ddot = 0.0
+        for a in range(3):
+            pn = 0.0
+            pd = 0.0
+            for k in range(nq):
+                pn += proj_n1[j, a, k] * vel[6 + k]
+                pd += proj_d1[j, a, k] * vel[6 + k]
+            pdot += pn * vel[3 + a]
+            ddot += pd * vel[3 + a]
+        relv = 0.0
+        for e in range(n_el):
+            relv += rel[j, e] * vel[6 + e]
+        wx = pdot - alpha_el[j] * ddot + u0[j] * relv
+        prw = rho * pr_w0[j]
+        for i in range(n_v):
+            lv = p_mat[j, i] - ab[j] * r_mat[j, i]
+            right[j, i] = lv - alpha_el[j] * d_mat[j, i]
+            left[j, i] = prw * lv
+        w_ea_x[j] = wx
+        g_n[j] = w[j] * c_n - prw * wx
+        g_d[j] = w[j] * c_d
+        g_r[j] = w[j] * moment[j] + ab[j] * prw * wx
+    # M_a = left^T right + rho sum_j pr_w b^2/8 (p^T B)^T (p^T B), the second term constant per unit density
+    m_a = left.T @ right
+    pitch = _f2(F, I, APPARENT_PITCH)
+    for i in range(n_v):
+        for k in range(n_v):
+            m_a[i, k] += rho * pitch[i, k]
+    q_a = np.zeros(n_v)
+    for j in range(n_s):
+        for i in range(n_v):
+            q_a[i] += p_mat[j, i] * g_n[j] + d_mat[j, i] * g_d[j] + r_mat[j, i] * g_r[j]
+    return m_a, q_a, right, w_ea_x, u0
+
+
+@kernel
+def inflow_rate(F, I, row0, w_ea_x, u0, lam, vdot):
+    """Finite-state inflow derivative (reference section 2.1, Peters et al. 1995) with the solved V_dot:
+    lambda_dot = A^-1 [c (w0_dot + w1_dot/2) - (u0/b) lambda] for every unsteady strip, with
+    w0_dot + w1_dot/2 = (row0 + b/2 p^T B) V_dot + w_ea_x [m/s^2]. Returns (n_u N,) [m/s^2]."""
+    nin = _flag(I, N_PER_STRIP)
+    idx = _i1(I, INFLOW_IDX)
+    semichord = _f1(F, I, SEMICHORD)
+    proj_p = _f2(F, I, PROJ_P)
+    a_inv = _f2(F, I, A_INV)
+    a_inv_c = _f1(F, I, A_INV_C)
+    col_ptr = _i1(I, STRIP_COL_PTR)
+    cols = _i1(I, STRIP_COLS)
+    out = np.empty(idx.shape[0] * nin)
+    for c in range(idx.shape[0]):
+        j = idx[c]
+        forcing = w_ea_x[j]
+        for t in range(col_ptr[j], col_ptr[j + 1]):  # the strip's non-zero columns (strip_columns)
+            i = cols[t]
+            forcing += (row0[j, i] + 0.5 * semichord[j] * proj_p[j, i]) * vdot[i]
+        decay = u0[j] / semichord[j]
+        for r in range(nin):
+            acc = 0.0
+            for k in range(nin):
+                acc += a_inv[r, k] * lam[c * nin + k]
+            out[c * nin + r] = forcing * a_inv_c[r] - decay * acc
+    return out
