@@ -21,14 +21,14 @@ from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.errors import FlexsimError
-from flexsim.linear.linearize import jacobian
+from flexsim.linear.linearize import LinearModel, jacobian, linearize
 from flexsim.linear.participation import Participation, describe_mode
-from flexsim.linear.stability import Mode, Spectrum, spectrum
+from flexsim.linear.stability import Mode, Spectrum, linear_spectrum, spectrum
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
-__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter"]
+__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter"]
 
 
 class FlutterNotFound(FlexsimError, RuntimeError):
@@ -114,6 +114,53 @@ class _SearchState:
     done: dict = field(default_factory=dict)
 
 
+class SharedEvaluations:
+    """Trims and linearisations shared by the searches of one :class:`FlutterAnalysis` with several aerodynamic models.
+
+    The quasi-steady ("QS") and p-k ("US") searches of one manoeuvre trim the same model at the same Mach numbers of
+    their scan, each from the trim of the previous one, and linearise the same quasi-steady model there: passed to
+    both searches (``search(..., shared=shared)``), such a point is computed once, and the second search gets
+    exactly the trim and linearisation it would have computed. Entries are keyed by content: the manoeuvre (with
+    its speed) and the state and controls of the warm-start trim; a linearisation by the trim's state and controls.
+    Create one per batch of searches (e.g. one study job) and drop it afterwards: it grows with every point.
+
+    Parameters
+    ----------
+    analysis : FlutterAnalysis
+        The analysis whose models the entries belong to; the searches of other analyses refuse it.
+    """
+
+    def __init__(self, analysis: "FlutterAnalysis") -> None:
+        self.analysis = analysis
+        self._trims: dict[tuple, TrimPoint] = {}
+        self._linear: dict[tuple, LinearModel] = {}
+        self.hits = 0
+
+    @staticmethod
+    def _state_key(point: TrimPoint | None) -> tuple:
+        if point is None:
+            return ()
+        return (point.x.tobytes(), point.u.tobytes(), point.theta, point.phi, point.gamma)
+
+    def trim(self, manoeuvre: SteadyManoeuvre, guess: TrimPoint | None) -> TrimPoint:
+        """``trim(analysis.qs, manoeuvre, guess=guess, check_limits=False)``, computed once per content."""
+        key = (manoeuvre, self._state_key(guess))
+        if key in self._trims:
+            self.hits += 1
+            return self._trims[key]
+        point = self._trims[key] = trim(self.analysis.qs, manoeuvre, guess=guess, check_limits=False)
+        return point
+
+    def linearize(self, point: TrimPoint) -> LinearModel:
+        """``linearize(analysis.qs_linear, point.x, point.u)``, computed once per content."""
+        key = (point.x.tobytes(), point.u.tobytes())
+        if key in self._linear:
+            self.hits += 1
+            return self._linear[key]
+        lin = self._linear[key] = linearize(self.analysis.qs_linear, point.x, point.u)
+        return lin
+
+
 class FlutterAnalysis:
     """Flutter of an aircraft in a steady manoeuvre, with the paper's aerodynamic models.
 
@@ -154,24 +201,43 @@ class FlutterAnalysis:
         self.fs = (AircraftModel(aircraft, aero=AeroOptions("unsteady", n_inflow, formulation=formulation), **lin)
                    if aero_model != "quasi-steady" else None)
 
+    def _model_name(self, aero_model: str | None) -> str:
+        """The aerodynamic model of a search: ``aero_model`` when given (one this analysis has the models for)."""
+        if aero_model is None:
+            return self.aero_model
+        allowed = ("quasi-steady",) if self.fs is None else AERO_MODELS
+        if aero_model not in allowed:
+            raise ValueError(f"aero_model = {aero_model!r}: this analysis ({self.aero_model}) has the models of "
+                             f"{', '.join(allowed)} only")
+        return aero_model
+
     @single_blas_thread
-    def evaluate(self, manoeuvre: SteadyManoeuvre, guess: TrimPoint | None = None) -> tuple[TrimPoint, Spectrum]:
+    def evaluate(self, manoeuvre: SteadyManoeuvre, guess: TrimPoint | None = None, *, aero_model: str | None = None,
+                 shared: SharedEvaluations | None = None) -> tuple[TrimPoint, Spectrum]:
         """Trim (limits not enforced: the paper's climbs need negative thrust) and eigen-analysis.
 
         The trim uses the true density of the manoeuvre's altitude; the eigen-analysis the density of
-        ``linear_aero_density_kg_m3`` when the analysis fixes it.
+        ``linear_aero_density_kg_m3`` when the analysis fixes it. ``aero_model`` (default: the analysis's) may name
+        another model this analysis has the models for: "quasi-steady" always, all three when it was built for
+        "unsteady" or "theodorsen". ``shared``: trims and linearisations already computed by another search of
+        this analysis (:class:`SharedEvaluations`).
         """
-        point = trim(self.qs, manoeuvre, guess=guess, check_limits=False)
-        if self.aero_model == "quasi-steady":
-            return point, spectrum(self.qs_linear, point.x, point.u, aero_model="quasi-steady")
-        if self.aero_model == "unsteady":
+        name = self._model_name(aero_model)
+        if shared is not None and shared.analysis is not self:
+            raise ValueError("shared: a SharedEvaluations of another FlutterAnalysis (its trims belong to other models)")
+        point = trim(self.qs, manoeuvre, guess=guess, check_limits=False) if shared is None else shared.trim(manoeuvre, guess)
+        if name == "unsteady":
             x = np.concatenate([point.x, np.zeros(self.fs.layout.n_inflow)])
             return point, spectrum(self.fs, x, point.u, aero_model="unsteady")
-        return point, spectrum(self.qs_linear, point.x, point.u, aero_model="theodorsen", pk_model=self.fs)
+        pk = dict(pk_model=self.fs) if name == "theodorsen" else {}
+        if shared is None:
+            return point, spectrum(self.qs_linear, point.x, point.u, aero_model=name, **pk)
+        return point, linear_spectrum(self.qs_linear, shared.linearize(point), aero_model=name, **pk)
 
     @single_blas_thread
     def search(self, manoeuvre: SteadyManoeuvre, *, mach_range: tuple[float, float] = (0.3, 0.95),
-               mach_step: float = 0.05, tol: float = 1e-4, mach_guess: float | None = None) -> FlutterPoint:
+               mach_step: float = 0.05, tol: float = 1e-4, mach_guess: float | None = None,
+               aero_model: str | None = None, shared: SharedEvaluations | None = None) -> FlutterPoint:
         """Lowest flutter Mach number of ``manoeuvre`` (its speed is replaced by the searched one).
 
         With ``mach_guess`` (e.g. the flutter Mach of a neighbouring manoeuvre in a study) the crossing is
@@ -184,6 +250,10 @@ class FlutterAnalysis:
         Speeds whose trim needs a control surface beyond its limit (too slow to fly the manoeuvre) are
         skipped; thrust limits are not enforced (the paper's descents need negative thrust).
 
+        ``aero_model`` and ``shared`` as in :meth:`evaluate`: e.g. the "QS" and "US" searches of one manoeuvre on a
+        "theodorsen" analysis, passed the same :class:`SharedEvaluations`, compute the trims and linearisations of
+        their common scan points once (the results are those of separate searches, bit for bit).
+
         Raises
         ------
         FlutterNotFound
@@ -192,6 +262,7 @@ class FlutterAnalysis:
         lo, hi = mach_range
         if not 0.0 < lo < hi < 1.0:
             raise ValueError(f"mach_range = {mach_range!r}: must satisfy 0 < lo < hi < 1")
+        name = self._model_name(aero_model)
         a_sound = speed_of_sound(float(manoeuvre.altitude_m))
         state = _SearchState()
 
@@ -201,7 +272,7 @@ class FlutterAnalysis:
                 state.last = state.done[mach]
                 return _growth(state.last[1])
             man = manoeuvre.with_speed(mach * a_sound)
-            point, spec = self.evaluate(man, state.guess)
+            point, spec = self.evaluate(man, state.guess, aero_model=name, shared=shared)
             state.guess, state.n = point, state.n + 1
             state.last = state.done[mach] = (point, spec)
             rig = spec.max_real("rigid", min_frequency_rad_s=0.0)
@@ -217,7 +288,7 @@ class FlutterAnalysis:
                 # the crossing near the guess is the lowest one if the coarse grid below it is stable
                 below = [m for m in np.arange(lo, a, mach_step)]
                 if all(g(float(m)) <= 0 for m in below[-2:]):
-                    return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state)
+                    return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state, name, shared)
         grid = np.arange(lo, hi + 1e-12, mach_step)
         prev_m, prev_g = None, None
         skipped: list[float] = []
@@ -233,21 +304,21 @@ class FlutterAnalysis:
                 if prev_m is None:
                     if skipped:
                         raise FlutterNotFound(
-                            f"{self.aero_model}: unstable at M = {mach:.4f}, the first flyable Mach number of the search "
+                            f"{name}: unstable at M = {mach:.4f}, the first flyable Mach number of the search "
                             f"({manoeuvre.describe()}); the lower Mach numbers {skipped[0]:.3f} to {skipped[-1]:.3f} need a "
                             "control surface beyond its limit to trim, so the crossing cannot be bracketed there "
                             "(a lower mach_range[0] would not help)"
                         )
                     raise FlutterNotFound(
-                        f"{self.aero_model}: already unstable at the lower end of the search, M = {mach:.4f} "
+                        f"{name}: already unstable at the lower end of the search, M = {mach:.4f} "
                         f"({manoeuvre.describe()}); lower mach_range[0]"
                     )
-                return self._point(manoeuvre, brentq(g, prev_m, float(mach), xtol=tol), a_sound, state)
+                return self._point(manoeuvre, brentq(g, prev_m, float(mach), xtol=tol), a_sound, state, name, shared)
             prev_m, prev_g = float(mach), val
         if prev_m is None:
-            raise FlutterNotFound(f"{self.aero_model}: no flyable trim (surfaces within limits) for {lo:.3f} <= M <= {hi:.3f} ({manoeuvre.describe()})")
+            raise FlutterNotFound(f"{name}: no flyable trim (surfaces within limits) for {lo:.3f} <= M <= {hi:.3f} ({manoeuvre.describe()})")
         raise FlutterNotFound(
-            f"{self.aero_model}: no elastic mode crosses the imaginary axis for {lo:.3f} <= M <= {hi:.3f} "
+            f"{name}: no elastic mode crosses the imaginary axis for {lo:.3f} <= M <= {hi:.3f} "
             f"({manoeuvre.describe()}); largest elastic real part {prev_g:.4g} 1/s at M = {prev_m:.3f}"
         )
 
@@ -273,16 +344,18 @@ class FlutterAnalysis:
                 return None
         return None
 
-    def _point(self, manoeuvre: SteadyManoeuvre, mach_f: float, a_sound: float, state: _SearchState) -> FlutterPoint:
+    def _point(self, manoeuvre: SteadyManoeuvre, mach_f: float, a_sound: float, state: _SearchState, name: str,
+               shared: SharedEvaluations | None) -> FlutterPoint:
         mach_f = float(mach_f)
         if mach_f not in state.done:  # Brent returns a Mach number it evaluated; kept for other root finders
-            state.done[mach_f] = self.evaluate(manoeuvre.with_speed(mach_f * a_sound), state.guess)
+            state.done[mach_f] = self.evaluate(manoeuvre.with_speed(mach_f * a_sound), state.guess, aero_model=name,
+                                               shared=shared)
             state.n += 1
         point, spec = state.done[mach_f]
         mode = spec.critical("elastic")
         desc = describe_mode(self.qs.structure, mode.shape, mode.eigenvalue)
         return FlutterPoint(
-            aero_model=self.aero_model,
+            aero_model=name,
             mach=float(mach_f),
             speed_m_s=float(mach_f * a_sound),
             frequency_rad_s=mode.frequency_rad_s,

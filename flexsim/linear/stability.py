@@ -44,7 +44,7 @@ from flexsim.linear.symmetry import decoupled, mirror_bases
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.structure.mirror import TIE_RTOL
 
-__all__ = ["Mode", "Spectrum", "spectrum", "PkStateMatrix", "pk_state_matrix", "PK_METHODS"]
+__all__ = ["Mode", "Spectrum", "spectrum", "linear_spectrum", "PkStateMatrix", "pk_state_matrix", "PK_METHODS"]
 
 #: Ways of continuing a p-k root from one iteration to the next (see :mod:`flexsim.aero.pk`).
 PK_METHODS = ("inverse-iteration", "eig")
@@ -252,7 +252,18 @@ def spectrum(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, *, aero_model
     """
     if pk_method not in PK_METHODS:
         raise ValueError(f"pk_method = {pk_method!r}: must be one of {', '.join(PK_METHODS)}")
-    lin = linearize(model, x0, u0)
+    return linear_spectrum(model, linearize(model, x0, u0), aero_model=aero_model, pk_model=pk_model,
+                           pk_method=pk_method, mirror_split=mirror_split)
+
+
+@single_blas_thread
+def linear_spectrum(model: AircraftModel, lin: LinearModel, *, aero_model: str = "unsteady",
+                    pk_model: AircraftModel | None = None, pk_method: str = "inverse-iteration",
+                    mirror_split: bool = True) -> Spectrum:
+    """:func:`spectrum` from a linearisation already made: ``lin = linearize(model, x0, u0)`` (other arguments as
+    there), e.g. one linearisation shared by the quasi-steady and p-k analyses of the same trim."""
+    if pk_method not in PK_METHODS:
+        raise ValueError(f"pk_method = {pk_method!r}: must be one of {', '.join(PK_METHODS)}")
     if aero_model != "theodorsen":
         vals, vecs = np.linalg.eig(lin.a)
         return _classify(model, lin, vals, vecs, aero_model)

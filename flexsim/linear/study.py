@@ -31,7 +31,7 @@ import numpy as np
 
 from flexsim.atmosphere import isa_density
 
-__all__ = ["StudyCase", "StudyRecord", "case_key", "turn_cases", "climb_cases", "run_case", "run_chain", "run_point", "run_study", "write_results", "plot_study", "plot_trim", "glide_from_climb"]
+__all__ = ["StudyCase", "StudyRecord", "case_key", "turn_cases", "climb_cases", "run_case", "run_chain", "run_point", "run_points", "run_study", "write_results", "plot_study", "plot_trim", "glide_from_climb"]
 
 MODELS = {"QS": "quasi-steady", "US": "theodorsen", "FS": "unsteady"}
 PAPER_ALTITUDES_M = (0.0, 3048.0, 6096.0, 9144.0)
@@ -119,8 +119,13 @@ def climb_cases(aircraft: str, angles_deg: Sequence[float] = tuple(range(-15, 16
             for m in models for h in altitudes_m for g in angles_deg]
 
 
-def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None) -> dict:
-    """Flutter search of one case; a plain dict with the flutter point and its trim, or an ``error``."""
+def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, shared=None) -> dict:
+    """Flutter search of one case; a plain dict with the flutter point and its trim, or an ``error``.
+
+    ``analysis`` (default: built here) may be one built for another model that has this case's models too (a
+    "US" analysis has the quasi-steady one); ``shared``: a :class:`~flexsim.linear.flutter.SharedEvaluations` of
+    that analysis, holding the trims and linearisations of the other searches of the same manoeuvre.
+    """
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     from flexsim.linear.flutter import FlutterNotFound
     from flexsim.trim import SteadyManoeuvre, TrimError
@@ -131,7 +136,8 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None) ->
         analysis = analysis or case.analysis()
         start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_min)
         man = SteadyManoeuvre(start.speed_m_s, case.altitude_m, case.turn_radius_m, gamma, case.coordinated)
-        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_guess=mach_guess)
+        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_guess=mach_guess,
+                             aero_model=MODELS[case.model], shared=shared)
     except (FlutterNotFound, TrimError, ValueError) as exc:
         row["error"] = str(exc)
         return row
@@ -196,6 +202,40 @@ def run_point(case: StudyCase, mach_guess: float | None = None) -> tuple[dict, f
         row = asdict(case)
         row["error"] = f"{type(exc).__name__}: {exc}"
     return row, time.perf_counter() - t0
+
+
+def run_points(cases: Sequence[StudyCase]) -> list[tuple[dict, float]]:
+    """Unseeded points of one manoeuvre with different aerodynamic models, in a worker: ``[(row, wall seconds)]``.
+
+    The searches run on one analysis (that of the costliest model: "US" and "FS" analyses have the quasi-steady
+    models too) and share their trims and linearisations (:class:`~flexsim.linear.flutter.SharedEvaluations`):
+    the quasi-steady and p-k scans trim and linearise at the same Mach numbers, so the QS search costs little
+    more than its eigen-analyses there. Each row equals that of :func:`run_point` alone, bit for bit.
+    """
+    from flexsim.linear.flutter import SharedEvaluations
+
+    order = sorted(range(len(cases)), key=lambda k: _COST_RANK[cases[k].model])
+    out: list = [None] * len(cases)
+    t0 = time.perf_counter()
+    try:
+        analysis = _analysis(cases[order[0]])
+        shared = SharedEvaluations(analysis)
+    except Exception as exc:  # noqa: BLE001 - one point's failure must not abort the study
+        return [({**asdict(c), "error": f"{type(exc).__name__}: {exc}"}, time.perf_counter() - t0) for c in cases]
+    for k in order:
+        try:
+            row = run_case(cases[k], analysis=analysis, shared=shared)
+        except Exception as exc:  # noqa: BLE001
+            row = asdict(cases[k])
+            row["error"] = f"{type(exc).__name__}: {exc}"
+        t1 = time.perf_counter()
+        out[k] = (row, t1 - t0)
+        t0 = t1
+    return out
+
+
+#: Order of the models in :func:`run_points`: the first one's analysis is used for all (it has the models of the rest).
+_COST_RANK = {"US": 0, "FS": 1, "QS": 2}
 
 
 def case_key(case_or_row: StudyCase | dict) -> str:
@@ -371,79 +411,105 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
         if scheduler:
             _run_dask(scheduler, cases, todo, guess_for, finish, bar, max_attempts)
         else:
-            n = max(1, min(workers or os.cpu_count() or 1, len(todo)))
+            queues = _local_steps(cases, todo, [len(chains_all[chain_of[g[0]]]) for g in todo])
+            n = max(1, min(workers or os.cpu_count() or 1, len(queues)))
             if n == 1:
-                for chain in todo:
-                    for i in chain:
-                        finish(i, *run_point(cases[i], guess_for(i)))
+                for queue in queues:
+                    for step in queue:
+                        results = ([run_point(cases[step[0]], guess_for(step[0]))] if len(step) == 1
+                                   else run_points([cases[i] for i in step]))
+                        for i, (row, seconds) in zip(step, results):
+                            finish(i, row, seconds)
             else:
-                _run_pool(n, cases, todo, guess_for, finish, bar, attempts, max_attempts)
+                _run_pool(n, cases, queues, guess_for, finish, bar, attempts, max_attempts)
     finally:
         bar.close()
     return [r for r in rows if r is not None]
 
 
-def _run_pool(n, cases, todo, guess_for, finish, bar, attempts, max_attempts) -> None:
-    """Chains on a process pool, one point per chain in flight; a pool broken by a dead worker is
-    replaced and its in-flight points retried (up to ``max_attempts``)."""
+def _local_steps(cases: Sequence[StudyCase], todo: list[list[int]], chain_sizes: list[int]) -> list[list[tuple[int, ...]]]:
+    """What the local processes run: per chain, its points one step each, in order; except that chains of a single
+    point (unseeded) whose cases differ only in the model form one step of one queue, run by :func:`run_points`
+    on one analysis with shared trims (the QS and US points of ``flexsim flutter``: same rows, less work)."""
+    queues: list[list[tuple[int, ...]]] = []
+    groups: dict[tuple, list[int]] = {}
+    for g, size in zip(todo, chain_sizes):
+        if len(g) == 1 and size == 1:
+            key = tuple((k, v) for k, v in asdict(cases[g[0]]).items() if k != "model")
+            groups.setdefault(key, []).append(g[0])
+        else:
+            queues.append([(i,) for i in g])
+    return queues + [[tuple(group)] for group in groups.values()]
+
+
+def _run_pool(n, cases, queues, guess_for, finish, bar, attempts, max_attempts) -> None:
+    """Queues of steps (:func:`_local_steps`) on a process pool, one step per queue in flight; a pool broken by a
+    dead worker is replaced and its in-flight points retried (up to ``max_attempts``)."""
     from concurrent.futures import FIRST_COMPLETED, wait
     from concurrent.futures.process import BrokenProcessPool
 
-    queues = [list(g) for g in todo]
+    queues = [list(q) for q in queues]
     while any(queues):
         pool = ProcessPoolExecutor(max_workers=n, initializer=_ignore_sigint)
         running: dict = {}
         idle = sorted((k for k in range(len(queues)) if queues[k]), key=lambda k: _longest_first(cases, queues[k]))
-        lost: list[tuple[int, int]] = []
+        lost: list[tuple[int, tuple[int, ...]]] = []
         broken = False
         try:
             while (idle or running) and not (lost or broken):
                 while idle and len(running) < n:
                     k = idle[0]
-                    i = queues[k][0]
+                    step = queues[k][0]
                     try:
-                        fut = pool.submit(run_point, cases[i], guess_for(i))
+                        if len(step) == 1:
+                            fut = pool.submit(run_point, cases[step[0]], guess_for(step[0]))
+                        else:
+                            fut = pool.submit(run_points, [cases[i] for i in step])
                     except BrokenProcessPool:  # a worker died since the last wait
                         broken = True
                         break
                     idle.pop(0)
-                    attempts[i] = attempts.get(i, 0) + 1
-                    running[fut] = (k, i)
+                    attempts[step] = attempts.get(step, 0) + 1
+                    running[fut] = (k, step)
                 if not running:
                     break
                 finished, _ = wait(running, return_when=FIRST_COMPLETED)
                 for fut in finished:
-                    k, i = running.pop(fut)
+                    k, step = running.pop(fut)
                     try:
-                        row, seconds = fut.result()
+                        results = fut.result()
                     except BrokenProcessPool:
-                        lost.append((k, i))
+                        lost.append((k, step))
                         continue
                     queues[k].pop(0)
-                    finish(i, row, seconds)
+                    for i, (row, seconds) in zip(step, [results] if len(step) == 1 else results):
+                        finish(i, row, seconds)
                     if queues[k]:
                         idle.insert(0, k)  # continue this chain next (its models are warm in a worker)
         finally:
             _stop_pool(pool)
         if lost or broken:
             lost += list(running.values())
-            names = ", ".join(_describe(cases[i]) for _, i in lost)
-            bar.note(f"warning: a worker process died; {len(lost)} point(s) in flight lost: {names}; "
+            names = ", ".join(_describe(cases[i]) for _, step in lost for i in step)
+            n_lost = sum(len(step) for _, step in lost)
+            bar.note(f"warning: a worker process died; {n_lost} point(s) in flight lost: {names}; "
                      f"the points finished before are kept; retrying on a new process pool")
-            for k, i in lost:
-                if attempts.get(i, 0) >= max_attempts:
+            for k, step in lost:
+                if attempts.get(step, 0) >= max_attempts:
                     queues[k].pop(0)
-                    row = asdict(cases[i])
-                    row["error"] = f"the worker process computing this point died {attempts[i]} times (killed or out of memory)"
-                    finish(i, row, 0.0)
+                    for i in step:
+                        row = asdict(cases[i])
+                        row["error"] = (f"the worker process computing this point died {attempts[step]} times "
+                                        "(killed or out of memory)")
+                        finish(i, row, 0.0)
 
 
-def _longest_first(cases: Sequence[StudyCase], chain: list[int]) -> tuple:
-    """Order in which chains start on the pool: the costliest first (p-k and finite-state searches before
-    quasi-steady ones, higher altitudes, with more grid points below the flutter Mach, before lower, longer chains
-    before shorter), so that no worker is left with one long search at the end. Only the schedule depends on it."""
-    case = cases[chain[0]]
-    return (case.model == "QS", -case.altitude_m, -len(chain))
+def _longest_first(cases: Sequence[StudyCase], queue: list[tuple[int, ...]]) -> tuple:
+    """Order in which queues start on the pool: the costliest first (steps with p-k and finite-state searches
+    before quasi-steady ones, higher altitudes, with more grid points below the flutter Mach, before lower, more
+    points before fewer), so that no worker is left with one long search at the end. Only the schedule depends on it."""
+    step = queue[0]
+    return (all(cases[i].model == "QS" for i in step), -cases[step[0]].altitude_m, -sum(len(s) for s in queue))
 
 
 def _stop_pool(pool: ProcessPoolExecutor) -> None:

@@ -208,12 +208,39 @@ def test_search_evaluates_each_mach_once_and_returns_an_evaluated_point():
     calls = []
     evaluate = analysis.evaluate
 
-    def counted(man, guess=None):
+    def counted(man, guess=None, **options):
         calls.append(man.speed_m_s)
-        return evaluate(man, guess)
+        return evaluate(man, guess, **options)
 
     analysis.evaluate = counted
     point = analysis.search(SteadyManoeuvre.level(0.0, mach=0.6), mach_range=(0.5, 0.95))
     assert len(calls) == len(set(calls)) == point.evaluations
     assert point.speed_m_s in calls
     assert point.trim.manoeuvre.speed_m_s == point.speed_m_s
+
+
+def test_shared_trims_give_the_separate_searches_results_bit_for_bit():
+    """The QS and US searches of one manoeuvre on one "theodorsen" analysis with a SharedEvaluations (what
+    ``flexsim flutter`` runs as one job) return exactly the points of separate QS and US analyses (invariant: the
+    shared entries are the trims and linearisations the second search would compute, same inputs bit for bit),
+    and the US search reuses the QS scan's points (sea level: QS grid 0.5, 0.55; US grid 0.5-0.7)."""
+    from flexsim.linear.flutter import SharedEvaluations
+
+    gtm = load_aircraft("gtm")
+    man = SteadyManoeuvre.level(0.0, mach=0.5)
+    alone = {m: FlutterAnalysis(gtm, m).search(man, mach_range=(0.5, 0.95)) for m in ("quasi-steady", "theodorsen")}
+    analysis = FlutterAnalysis(gtm, "theodorsen")
+    shared = SharedEvaluations(analysis)
+    together = {m: analysis.search(man, mach_range=(0.5, 0.95), aero_model=m, shared=shared)
+                for m in ("quasi-steady", "theodorsen")}
+    assert shared.hits >= 4  # trim and linearisation at M 0.5 and 0.55
+    for m, point in alone.items():
+        other = together[m]
+        assert other.aero_model == m and other.evaluations == point.evaluations
+        assert (other.mach, other.frequency_rad_s) == (point.mach, point.frequency_rad_s)
+        np.testing.assert_array_equal(other.trim.x, point.trim.x)
+        np.testing.assert_array_equal(other.mode_shape, point.mode_shape)
+    with pytest.raises(ValueError, match="shared: a SharedEvaluations of another FlutterAnalysis"):
+        FlutterAnalysis(gtm, "theodorsen").evaluate(man, shared=shared)
+    with pytest.raises(ValueError, match="aero_model = 'theodorsen': this analysis \\(quasi-steady\\) has the models of quasi-steady only"):
+        FlutterAnalysis(gtm, "quasi-steady").search(man, aero_model="theodorsen")
