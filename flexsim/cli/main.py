@@ -154,7 +154,16 @@ def _aero(args: argparse.Namespace) -> int:
     return 0
 
 
-def _parser() -> argparse.ArgumentParser:
+#: Commands registered by the other CLI modules; ``simulate`` and ``view`` import flexsim.sim (manoeuvre names and
+#: integration methods for their help), which the other commands do not need.
+_MODULE_COMMANDS = {"trim": "flutter", "flutter": "flutter", "sweep": "flutter", "simulate": "sim", "view": "sim",
+                    "validate": "validate"}
+
+
+def _parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The CLI's parser; with ``command`` (the name given on the command line), the other modules' commands are
+    left out, so that running e.g. ``flexsim flutter`` does not import what only ``flexsim simulate`` needs."""
+    group = _MODULE_COMMANDS.get(command, "main" if command in ("info", "modes", "aero") else None)
     parser = argparse.ArgumentParser(prog="flexsim", description="Flexible aircraft in manoeuvring flight.")
     sub = parser.add_subparsers(dest="command", required=True)
     bundled = ", ".join(bundled_aircraft_names())
@@ -182,21 +191,25 @@ def _parser() -> argparse.ArgumentParser:
     p_aero.add_argument("--plot", metavar="FILE.png", help="draw the Cl_alpha distribution (cf. paper Fig. 6)")
     p_aero.set_defaults(func=_aero)
 
-    from flexsim.cli.flutter_commands import add_flutter_commands
+    if group in (None, "flutter"):
+        from flexsim.cli.flutter_commands import add_flutter_commands
 
-    add_flutter_commands(sub, add_aircraft)
-    from flexsim.cli.sim_commands import add_sim_commands
+        add_flutter_commands(sub, add_aircraft)
+    if group in (None, "sim"):
+        from flexsim.cli.sim_commands import add_sim_commands
 
-    add_sim_commands(sub)
-    from flexsim.cli.validate_command import add_validate_command
+        add_sim_commands(sub)
+    if group in (None, "validate"):
+        from flexsim.cli.validate_command import add_validate_command
 
-    add_validate_command(sub)
+        add_validate_command(sub)
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``flexsim`` command; returns the process exit code."""
-    parser = _parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    parser = _parser(argv[0] if argv else None)
     args = parser.parse_args(argv)
     np.set_printoptions(precision=5)
     stdout = sys.stdout
