@@ -9,8 +9,10 @@ state matrix, the start eig, the p-k roots (with their iteration and full-eig co
 times one dense eig with vectors of the 248-state finite-state system beside it (issue 14: one US point
 <= 0.4 s and <= 30x that eig). CPU times of this thread (time.thread_time), medians.
 The US flutter point is printed with its CPU time beside one dense eig (CPU) of the same aircraft's 248-state
-finite-state system at the flutter trim, and ``--table`` with the wall and CPU time of ``flexsim flutter``.
-Run: python benchmarks/bench_flutter.py [--repeats 3] [--table] [--study] [--breakdown]
+finite-state system at the flutter trim. ``--table`` times ``flexsim flutter`` (wall and CPU of all its processes)
+of this tree beside ``--against REV`` (default main; ``git archive`` kept in ``~/.cache/flexsim-bench``, or
+``--reference-tree DIR``), fresh processes alternating, medians, with the largest difference of their results.
+Run: python benchmarks/bench_flutter.py [--repeats 3] [--table [--against REV]] [--study] [--breakdown]
 """
 
 from __future__ import annotations
@@ -96,12 +98,91 @@ def breakdown(repeats: int) -> None:
           f"(30x = {30 * t_dense:.2f} s); one US evaluation = {t_eval / t_dense:.1f}x that eig")
 
 
+HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TABLE_COMMAND = ["-m", "flexsim.cli.main", "flutter", "gtm", "--json"]
+
+
+def _reference_tree(rev: str) -> str:
+    """A checkout of ``rev`` (``git archive``) kept in ``~/.cache/flexsim-bench/<sha>``; numba's cache files of kernel
+    modules whose source equals this tree's are copied from this tree (numba keys them on the source), so that the
+    reference does not recompile them."""
+    import shutil
+
+    sha = subprocess.run(["git", "-C", HERE, "rev-parse", "--short=12", rev], check=True, capture_output=True,
+                         text=True).stdout.strip()
+    tree = os.path.join(os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "flexsim-bench", sha)
+    if not os.path.isfile(os.path.join(tree, "flexsim", "__init__.py")):
+        os.makedirs(tree, exist_ok=True)
+        archive = subprocess.run(["git", "-C", HERE, "archive", sha], check=True, capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", tree], input=archive, check=True)
+    for folder, _, files in os.walk(os.path.join(HERE, "flexsim")):
+        if os.path.basename(folder) != "__pycache__":
+            continue
+        source_dir = os.path.dirname(folder)
+        for name in files:
+            if not name.endswith((".nbi", ".nbc")):
+                continue
+            module = name.split(".")[0] + ".py"
+            ours, theirs = os.path.join(source_dir, module), os.path.join(tree, os.path.relpath(source_dir, HERE), module)
+            target = os.path.join(os.path.dirname(theirs), "__pycache__", name)
+            if (os.path.isfile(theirs) and not os.path.exists(target)
+                    and open(ours, "rb").read() == open(theirs, "rb").read()):
+                os.makedirs(os.path.dirname(target), exist_ok=True)
+                shutil.copy2(os.path.join(folder, name), target)
+    return tree
+
+
+def _run_table(tree: str) -> tuple[float, float, dict]:
+    """Wall and CPU seconds (all its processes) of ``flexsim flutter gtm --json`` run from ``tree``, and its output."""
+    import json
+    import resource
+
+    env = dict(os.environ, PYTHONPATH=tree, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    out = subprocess.run([sys.executable, *TABLE_COMMAND], cwd=tree, env=env, check=True, capture_output=True, text=True).stdout
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime, json.loads(out)
+
+
+def table(against: str, reference_tree: str | None, repeats: int) -> None:
+    """``flexsim flutter`` (issue 14: <= 5 s wall on the idle 2-core machine) of this tree beside ``against``: fresh
+    processes alternating (after one untimed run of each), medians; and the largest relative difference of M_F and
+    omega_F between the two outputs."""
+    ref = reference_tree or _reference_tree(against)
+    label = reference_tree or against
+    trees = {"this tree": HERE, label: ref}
+    print(f"`flexsim flutter` (paper-replication + physical settings x 4 altitudes x QS, US = 16 searches; process start-up "
+          f"and worker pool included), this tree against {label}: median of {repeats} alternating runs, "
+          f"load {os.getloadavg()[0]:.1f} at the start", flush=True)
+    times: dict[str, list] = {name: [] for name in trees}
+    outputs = {name: _run_table(tree)[2] for name, tree in trees.items()}  # untimed: numba cache, page cache
+    for r in range(repeats):
+        for name in (list(trees) if r % 2 == 0 else list(trees)[::-1]):
+            wall, cpu, _ = _run_table(trees[name])
+            times[name].append((wall, cpu))
+    for name, values in times.items():
+        wall = statistics.median(w for w, _ in values)
+        cpu = statistics.median(c for _, c in values)
+        print(f"  {name:<16} {wall:6.2f} s wall (target <= 5 s)   {cpu:6.2f} s CPU of all its processes")
+    ratio = statistics.median(w for w, _ in times["this tree"]) / statistics.median(w for w, _ in times[label])
+    rows = [(a, b) for a, b in zip(outputs["this tree"]["rows"], outputs[label]["rows"])]
+    diff = max((abs(a[k] - b[k]) / abs(b[k]) for a, b in rows for k in ("mach", "omega_rad_s") if k in a and k in b),
+               default=float("nan"))
+    print(f"  wall ratio this tree / {label}: {ratio:.2f}; largest relative difference of M_F and omega_F: {diff:.1e} "
+          f"(load {os.getloadavg()[0]:.1f} at the end)")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--table", action="store_true", help="also time `flexsim flutter` (2 settings x 4 altitudes x QS, US)")
     parser.add_argument("--study", action="store_true", help="also time the whole turn + climb study (120 points)")
     parser.add_argument("--breakdown", action="store_true", help="also split one US evaluation into its parts")
+    parser.add_argument("--against", default="main", metavar="REV",
+                        help="--table: the revision timed beside this tree (git archive, kept in ~/.cache/flexsim-bench) [main]")
+    parser.add_argument("--reference-tree", metavar="DIR", help="--table: time this checkout instead of --against")
     args = parser.parse_args()
     print(f"load average: {open('/proc/loadavg').read().split()[:3]}; {os.cpu_count()} CPUs")
     if args.breakdown:
@@ -132,16 +213,7 @@ def main() -> None:
         print(f"one flutter point, sea level, M 0.5-0.95 grid 0.05 + Brent 1e-4 ({model:>12}): {t:6.2f} s "
               f"[M_F {point.mach:.4f}, {point.evaluations} evaluations]{budget}")
     if args.table:
-        import resource
-
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        t0 = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "flexsim.cli.main", "flutter", "gtm", "--json"], check=True, capture_output=True)
-        wall = time.perf_counter() - t0
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
-        print(f"`flexsim flutter` (paper-replication + physical settings x 4 altitudes x QS, US = 16 searches, process start-up "
-              f"and worker pool included): {wall:6.1f} s wall (target <= 5 s), {cpu:.1f} s CPU of all its processes")
+        table(args.against, args.reference_tree, max(args.repeats, 3))
     if args.study:
         from flexsim.linear.study import climb_cases, run_study, turn_cases
 
