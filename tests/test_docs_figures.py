@@ -14,6 +14,7 @@ checkpoints that let an interrupted run resume must key by content (arguments an
 """
 
 import importlib.util
+import json
 import os
 import re
 import subprocess
@@ -172,3 +173,24 @@ def test_a_historical_run_needs_its_commit_and_says_so(tmp_path, monkeypatch):
     monkeypatch.setattr(core, "ROOT", tmp_path)  # not a git repository
     with pytest.raises(RuntimeError, match=r"commit df7ff6d"):
         core.run_at_commit("calibration-x", "df7ff6d", ["python", "-c", "print(1)"], cache_dir=tmp_path)
+
+
+def test_a_calibration_fit_output_is_read_as_its_figure():
+    """The fit summary of docs/calibration.md §3 from a ``calibrate_gtm.py --out`` file in df7ff6d's format (the
+    rerun at that commit, a long figure) and in today's (``tools/gtm_calibration.toml``)."""
+    sys.path.insert(0, str(ROOT / "tools"))
+    import docs_figures_calibration as cal
+
+    rows = [{"altitude_m": h, "mach": m * f, "omega_rad_s": w * g, "mode": "w", "tip_deflection_m": -1.0, "tip_twist_deg": 1.0}
+            for (h, m, w), f, g in zip(((0.0, 0.6742, 17.773), (3048.0, 0.7433, 34.923), (6096.0, 0.7565, 34.930),
+                                        (9144.0, 0.7791, 34.936)), (0.981, 0.992, 1.079, 1.141), (2.0, 1.117, 1.12, 1.124))]
+    text = ("# Written by studies/calibrate_gtm.py; read by tools/make_gtm_toml.py. See docs/calibration.md.\n"
+            "# least_squares: cost 40.1234, 31 evaluations, 300 s\n[scaling]\nwing_gj = 0.3990\nwing_ei = 1.4070\n"
+            "fuselage_ei = 0.8860\n\n# Fitted aircraft, finite-state model, against the paper's Table 3 (US):\n"
+            + "".join(f"# {json.dumps(r)}\n" for r in rows))
+    factors, summary = cal._fit_summary(text)
+    assert factors == {"wing_gj": 0.399, "wing_ei": 1.407, "fuselage_ei": 0.886}
+    assert summary == ("wing GJ × 0.399, EI × 1.407, fuselage EI × 0.886 (M_F −1.9 / −0.8 / +7.9 / +14.1 % at 0-9144 m, "
+                       "ω_F +11.7 to +12.4 % at 3048-9144 m)")
+    stored, _ = cal._fit_summary((ROOT / "tools" / "gtm_calibration.toml").read_text(encoding="utf-8"))
+    assert set(stored) == {"wing_gj", "wing_ei", "fuselage_ei"}

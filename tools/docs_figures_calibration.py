@@ -263,6 +263,14 @@ def _span(config: str, key: str, altitudes=ALTITUDES_M[1:]) -> str:
 #: The configurations take well under a minute each on a quiet 2-core machine (measured 04:20 UTC 2026-12-02 at
 #: load 4-6: C1-C2 40 s wall / 18 s CPU, C3 18 / 6 s, C4 9 / 3 s, each scorecard 33-40 / 15 s), so they are slow
 #: figures (``pytest -m slow``), not long ones.
+def calibration_c1_v2pg() -> str:
+    """§6: V^2/sqrt(1-M^2) at C1's QS and US flutter points (the quantity one density keeps constant)."""
+    qs = [flutter_row("C1", "QS", h)["V2PG_k"] for h in ALTITUDES_M]
+    us = [flutter_row("C1", "US", h)["V2PG_k"] for h in ALTITUDES_M]
+    return (f"≈ {sum(qs) / len(qs):.0f}k m²/s² on C1 against {sum(us) / len(us):.0f}k for the US model "
+            f"({min(qs):.1f}-{max(qs):.1f}k and {min(us):.1f}-{max(us):.1f}k at 0-9144 m)")
+
+
 #: §5's variants of the notional structure (``gtm_uncalibrated`` with StructuralScaling factors, finite state, no
 #: structural damping), rows of label and factor sets; the calibrated ``gtm`` (its damping) closes the table.
 VARIANTS = (("wing GJ × 0.2 / 0.3 / 0.35", ({"wing_gj": 0.2}, {"wing_gj": 0.3}, {"wing_gj": 0.35})),
@@ -355,21 +363,20 @@ for h, mach in ((0.0, 0.3), (0.0, 0.45), (3048.0, 0.45), (6096.0, 0.45), (9144.0
 
 
 def _fit_summary(text: str) -> tuple[dict[str, float], str]:
-    """Factors and ``wing GJ × 0.399, ... (M_F ... %, ω_F ... %; 27 evaluations)`` of a ``calibrate_gtm.py --out``
-    file."""
+    """Factors and ``wing GJ × 0.399, ... (M_F ... %, ω_F ... %)`` of a ``calibrate_gtm.py --out`` file (the format
+    of df7ff6d and of today's script)."""
     import json
 
     from flexsim.linear.paper_data import TABLE_US
 
     factors = {k: float(v) for k, v in re.findall(r"(?m)^(\w+) = ([\d.]+)$", text) if k != "structural_damping_ratio"}
-    evaluations = re.search(r"(\d+) evaluations", text).group(1)
     rows = [json.loads(line[2:]) for line in text.splitlines() if line.startswith("# {")]
     paper = {h: (m, w) for h, m, w, *_ in TABLE_US}
     dm = " / ".join(f"{100 * (r['mach'] / paper[r['altitude_m']][0] - 1):+.1f}" for r in rows)
     dw = [100 * (r["omega_rad_s"] / paper[r["altitude_m"]][1] - 1) for r in rows if r["altitude_m"] > 0]
     return factors, _minus(f"wing GJ × {factors['wing_gj']:.3f}, EI × {factors['wing_ei']:.3f}, fuselage EI × "
                            f"{factors['fuselage_ei']:.3f} (M_F {dm} % at 0-9144 m, ω_F {min(dw):+.1f} to {max(dw):+.1f} % "
-                           f"at 3048-9144 m; {evaluations} evaluations)")
+                           f"at 3048-9144 m)")
 
 
 def calibration_plain_fit() -> str:
@@ -432,7 +439,9 @@ CALIBRATION_FIGURES = {
     "calibration-c4-us-mach": Figure(lambda: _residuals("C4", "US")),
     "calibration-c1-elevator": Figure(lambda: _span("C1", "elevator_deg")),
     "calibration-c1-theta": Figure(lambda: _span("C1", "theta_deg")),
+    "calibration-c1-v2pg": Figure(calibration_c1_v2pg),
     "calibration-variants": Figure(calibration_variants),
+    "calibration-plain-fit": Figure(calibration_plain_fit, long=True),
     "calibration-robust-fit": Figure(calibration_robust_fit, fast=True),
     "calibration-aft-axis": Figure(calibration_aft_axis, long=True),
 }
