@@ -262,7 +262,8 @@ def _span(config: str, key: str, altitudes=ALTITUDES_M[1:]) -> str:
 
 #: The configurations take well under a minute each on a quiet 2-core machine (measured 04:20 UTC 2026-12-02 at
 #: load 4-6: C1-C2 40 s wall / 18 s CPU, C3 18 / 6 s, C4 9 / 3 s, each scorecard 33-40 / 15 s), so they are slow
-#: figures (``pytest -m slow``), not long ones.
+#: figures (``pytest -m slow``), not long ones. All of this module's slow figures together (with §5's variants):
+#: 7 min 54 s wall, 2 min 50 s CPU at nice 19 and load 7, numba's recompilation after a kernel change included.
 def calibration_c1_v2pg() -> str:
     """§6: V^2/sqrt(1-M^2) at C1's QS and US flutter points (the quantity one density keeps constant)."""
     qs = [flutter_row("C1", "QS", h)["V2PG_k"] for h in ALTITUDES_M]

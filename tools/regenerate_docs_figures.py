@@ -50,9 +50,10 @@ climb search, and about 4 minutes for the baselines table):
 * ``calibration-c1-c2``, ``calibration-c3``, ``calibration-c4``, ``calibration-scorecard-c1``,
   ``calibration-scorecard-c4``: docs/calibration.md §6-7, the paper-replication configurations (every column of
   Tables 2-3, ``studies/paper_residuals.py``) and their trend scorecards (``studies/manoeuvre_decomposition.py``),
-  ``tools/docs_figures_calibration.py`` (about 2.5 minutes together; checkpointed), with the inline figures
+  ``tools/docs_figures_calibration.py`` (about a CPU-minute together, 2-8 minutes wall on a loaded machine;
+  checkpointed), with the inline figures
   ``calibration-c1-us-mach``, ``calibration-c1-qs-mach``, ``calibration-c4-us-mach``, ``calibration-c1-elevator``,
-  ``calibration-c1-theta`` read from them, and ``calibration-variants`` (§5: M_F(9144)/M_F(0) of the notional
+  ``calibration-c1-theta``, ``calibration-c1-v2pg`` read from them, and ``calibration-variants`` (§5: M_F(9144)/M_F(0) of the notional
   structure's variants, finite state);
 * ``calibration-robust-fit`` (fast): docs/calibration.md §3, the fit that made gtm.toml, read from its output
   ``tools/gtm_calibration.toml``;
