@@ -229,5 +229,29 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stdout = stdout
 
 
+#: Commands that leave nothing to finish at exit (they print; they open no file, log or pool that outlives them).
+_QUICK_EXIT = ("info", "modes", "trim", "flutter")
+
+
+def run(argv: Sequence[str] | None = None) -> None:
+    """Run :func:`main` as a program and end the process with its exit code.
+
+    After a command of :data:`_QUICK_EXIT` the process ends with ``os._exit`` once stdout and stderr are flushed,
+    without the interpreter's teardown: freeing numba's, scipy's and flexsim's module state takes longer than
+    ``flexsim info`` itself (measured 0.6 s of wall time at load 7 after importing scipy, 1.1-1.7 s after
+    importing flexsim's CLI and calling one compiled function, against 0.15 s after numpy alone).
+    """
+    argv = sys.argv[1:] if argv is None else list(argv)
+    code = main(argv)
+    if not argv or argv[0] not in _QUICK_EXIT:
+        sys.exit(code)
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):  # output piped into e.g. `head` (closed), or stderr closed by main
+            pass
+    os._exit(code)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    run()
