@@ -71,6 +71,16 @@ def test_console_script_entry_point():
     assert "right_wing bending 1" in result.stdout
 
 
+def test_quick_exit_keeps_output_and_exit_code():
+    """``python -m flexsim.cli.main`` ends ``info`` (and ``flutter``) with os._exit after flushing: the whole output is
+    written (a JSON document that parses) and the exit code is main's (2 for a bad argument, with its message)."""
+    ok = subprocess.run([sys.executable, "-m", "flexsim.cli.main", "info", "--json"], capture_output=True, text=True)
+    assert ok.returncode == 0 and json.loads(ok.stdout)["aircraft"]
+    bad = subprocess.run([sys.executable, "-m", "flexsim.cli.main", "flutter", "--altitudes", "-6000"], capture_output=True,
+                         text=True)
+    assert bad.returncode == 2 and "flexsim flutter: error: --altitudes = -6000.0" in bad.stderr and not bad.stdout
+
+
 def test_aero_plot_and_gtm_lift_slopes(capsys, tmp_path):
     # Issue 3: the GTM sectional Cl_alpha from the vortex lattice is below 2 pi everywhere and falls
     # towards the tips (over the outboard strips, past its maximum near 85 % semispan on this notional
