@@ -272,6 +272,19 @@ def calibration_c1_v2pg() -> str:
             f"({min(qs):.1f}-{max(qs):.1f}k and {min(us):.1f}-{max(us):.1f}k at 0-9144 m)")
 
 
+def calibration_c5_trim() -> str:
+    """§6: the trim at C5's symmetric US flutter point at 3048 m (true density), from the class-boundary row of
+    ``calibration-c5`` (``docs_figures_studies._bounds``: ``symmetric_mode.py bounds``)."""
+    from docs_figures_studies import C5_STRUCTURE, _bounds
+    from flexsim.linear.paper_data import TABLE_US
+
+    aircraft, factors = C5_STRUCTURE
+    sym = _bounds(aircraft, factors, None, "US", 3048.0)["symmetric"]
+    (paper,) = [row for row in TABLE_US if row[0] == 3048.0]
+    return _minus(f"w_tip {sym['tip_deflection_m']:.4f} m, ψ_tip {sym['tip_twist_deg']:.3f}° (paper {paper[6]:.3f} m, "
+                  f"{paper[7]:.3f}°)")
+
+
 #: §5's variants of the notional structure (``gtm_uncalibrated`` with StructuralScaling factors, finite state, no
 #: structural damping), rows of label and factor sets; the calibrated ``gtm`` (its damping) closes the table.
 VARIANTS = (("wing GJ × 0.2 / 0.3 / 0.35", ({"wing_gj": 0.2}, {"wing_gj": 0.3}, {"wing_gj": 0.35})),
@@ -441,6 +454,7 @@ CALIBRATION_FIGURES = {
     "calibration-c1-elevator": Figure(lambda: _span("C1", "elevator_deg")),
     "calibration-c1-theta": Figure(lambda: _span("C1", "theta_deg")),
     "calibration-c1-v2pg": Figure(calibration_c1_v2pg),
+    "calibration-c5-trim": Figure(calibration_c5_trim),
     "calibration-variants": Figure(calibration_variants),
     "calibration-plain-fit": Figure(calibration_plain_fit, long=True),
     "calibration-robust-fit": Figure(calibration_robust_fit, fast=True),

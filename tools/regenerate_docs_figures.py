@@ -53,7 +53,8 @@ climb search, and about 4 minutes for the baselines table):
   ``tools/docs_figures_calibration.py`` (about a CPU-minute together, 2-8 minutes wall on a loaded machine;
   checkpointed), with the inline figures
   ``calibration-c1-us-mach``, ``calibration-c1-qs-mach``, ``calibration-c4-us-mach``, ``calibration-c1-elevator``,
-  ``calibration-c1-theta``, ``calibration-c1-v2pg`` read from them, and ``calibration-variants`` (§5: M_F(9144)/M_F(0) of the notional
+  ``calibration-c1-theta``, ``calibration-c1-v2pg`` read from them, ``calibration-c5-trim`` (C5's symmetric trim at
+  3048 m, from ``calibration-c5``'s study), and ``calibration-variants`` (§5: M_F(9144)/M_F(0) of the notional
   structure's variants, finite state);
 * ``calibration-robust-fit`` (fast): docs/calibration.md §3, the fit that made gtm.toml, read from its output
   ``tools/gtm_calibration.toml``;
