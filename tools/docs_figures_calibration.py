@@ -17,6 +17,7 @@ centre tank): :data:`CONFIGS`.
 
 from __future__ import annotations
 
+import functools
 import re
 import sys
 from pathlib import Path
@@ -285,6 +286,36 @@ def calibration_c5_trim() -> str:
                   f"{paper[7]:.3f}°)")
 
 
+#: The paper's mode within the bounds (§6-7): gtm_paper with fuselage EI × 2 (Fig. 4's peak) and wing EI × 0.8 (the
+#: static columns' value), the class-boundary rows of docs/flutter.md's ``symmetric-bounds-more``.
+PAPER_MODE_STRUCTURE = ("gtm_paper", (("fuselage.ei", 2.0), ("wing.ei", 0.8)))
+
+
+def _paper_mode(part: str) -> str:
+    """One figure of the paper's-mode structure: ``lead`` (symmetric ahead by ... at 6096 and 9144 m, true density),
+    ``omega``, ``anti3048`` (the antisymmetric lead at 3048 m), ``fixed`` (its lead with rho(3048 m) at 6096-9144 m),
+    ``mach`` (the symmetric M_F against the paper's at 6096 / 9144 m)."""
+    from docs_figures_studies import _bounds
+    from flexsim.linear.paper_data import TABLE_US
+
+    aircraft, factors = PAPER_MODE_STRUCTURE
+    true = {h: _bounds(aircraft, factors, None, "US", h) for h in ALTITUDES_M[1:]}
+    for h, r in true.items():
+        if not (r["symmetric"] and r["antisymmetric"]):
+            raise RuntimeError(f"paper's mode structure at {h:g} m: a class without a crossing")
+    if part == "lead":
+        return " and ".join(f"{-true[h]['gap_sym_minus_anti']:.4f}" for h in (6096.0, 9144.0))
+    if part == "omega":
+        return f"{sum(true[h]['symmetric']['omega_F'] for h in (6096.0, 9144.0)) / 2:.1f} rad/s"
+    if part == "anti3048":
+        return f"{true[3048.0]['gap_sym_minus_anti']:.4f}"
+    if part == "mach":
+        paper = {h: m for h, m, *_ in TABLE_US}
+        return _minus(" / ".join(f"{100 * (true[h]['symmetric']['M_F'] / paper[h] - 1):+.1f}" for h in (6096.0, 9144.0))) + " %"
+    fixed = [_bounds(aircraft, factors, 3048.0, "US", h)["gap_sym_minus_anti"] for h in (6096.0, 9144.0)]
+    return f"{min(fixed):.4f}-{max(fixed):.4f}"
+
+
 #: §5's variants of the notional structure (``gtm_uncalibrated`` with StructuralScaling factors, finite state, no
 #: structural damping), rows of label and factor sets; the calibrated ``gtm`` (its damping) closes the table.
 VARIANTS = (("wing GJ × 0.2 / 0.3 / 0.35", ({"wing_gj": 0.2}, {"wing_gj": 0.3}, {"wing_gj": 0.35})),
@@ -455,6 +486,8 @@ CALIBRATION_FIGURES = {
     "calibration-c1-theta": Figure(lambda: _span("C1", "theta_deg")),
     "calibration-c1-v2pg": Figure(calibration_c1_v2pg),
     "calibration-c5-trim": Figure(calibration_c5_trim),
+    **{f"calibration-paper-mode-{part}": Figure(functools.partial(_paper_mode, part))
+       for part in ("lead", "omega", "anti3048", "fixed", "mach")},
     "calibration-variants": Figure(calibration_variants),
     "calibration-plain-fit": Figure(calibration_plain_fit, long=True),
     "calibration-robust-fit": Figure(calibration_robust_fit, fast=True),

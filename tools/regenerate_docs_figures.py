@@ -54,7 +54,9 @@ climb search, and about 4 minutes for the baselines table):
   checkpointed), with the inline figures
   ``calibration-c1-us-mach``, ``calibration-c1-qs-mach``, ``calibration-c4-us-mach``, ``calibration-c1-elevator``,
   ``calibration-c1-theta``, ``calibration-c1-v2pg`` read from them, ``calibration-c5-trim`` (C5's symmetric trim at
-  3048 m, from ``calibration-c5``'s study), and ``calibration-variants`` (§5: M_F(9144)/M_F(0) of the notional
+  3048 m, from ``calibration-c5``'s study), ``calibration-paper-mode-lead``, ``-omega``, ``-anti3048``, ``-fixed``,
+  ``-mach`` (the paper's mode within the bounds, from docs/flutter.md's ``symmetric-bounds-more`` rows), and
+  ``calibration-variants`` (§5: M_F(9144)/M_F(0) of the notional
   structure's variants, finite state);
 * ``calibration-robust-fit`` (fast): docs/calibration.md §3, the fit that made gtm.toml, read from its output
   ``tools/gtm_calibration.toml``;
