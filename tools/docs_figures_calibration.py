@@ -286,6 +286,26 @@ def calibration_c5_trim() -> str:
                   f"{paper[7]:.3f}°)")
 
 
+def calibration_c1_fuselage() -> str:
+    """§6: C1's fuselage EI against the notional fuselage (factor 1) and its peak (C1's aircraft itself)."""
+    import tomllib
+
+    c1 = {c.name: c.sections for c in CONFIGS["C1"].aircraft_model().components}["fuselage"]
+    gtm = tomllib.loads((ROOT / "tools" / "gtm_calibration.toml").read_text(encoding="utf-8"))["scaling"]["fuselage_ei"]
+    return f"C1: {gtm * CONFIGS['C1'].scaling['fuselage_ei']:.2f}, peak {max(c1.ei_nm2) / 1e9:.1f} GN m²"
+
+
+def calibration_c5_ratio_3048() -> str:
+    """§6: C5's critical M_F(9144 m) / M_F(3048 m) with the linearised aerodynamics at rho(3048 m) (at 3048 m the
+    true density), from ``calibration-c5``'s class-boundary rows."""
+    from docs_figures_studies import C5_STRUCTURE, _bounds
+
+    aircraft, factors = C5_STRUCTURE
+    low, high = _bounds(aircraft, factors, None, "US", 3048.0), _bounds(aircraft, factors, 3048.0, "US", 9144.0)
+    crit = [min(r["symmetric"]["M_F"], r["antisymmetric"]["M_F"]) for r in (low, high)]
+    return f"{crit[1] / crit[0]:.3f}"
+
+
 #: The paper's mode within the bounds (§6-7): gtm_paper with fuselage EI × 2 (Fig. 4's peak) and wing EI × 0.8 (the
 #: static columns' value), the class-boundary rows of docs/flutter.md's ``symmetric-bounds-more``.
 PAPER_MODE_STRUCTURE = ("gtm_paper", (("fuselage.ei", 2.0), ("wing.ei", 0.8)))
@@ -488,6 +508,8 @@ CALIBRATION_FIGURES = {
     "calibration-c5-trim": Figure(calibration_c5_trim),
     **{f"calibration-paper-mode-{part}": Figure(functools.partial(_paper_mode, part))
        for part in ("lead", "omega", "anti3048", "fixed", "mach")},
+    "calibration-c1-fuselage": Figure(calibration_c1_fuselage, fast=True),
+    "calibration-c5-ratio-3048": Figure(calibration_c5_ratio_3048),
     "calibration-variants": Figure(calibration_variants),
     "calibration-plain-fit": Figure(calibration_plain_fit, long=True),
     "calibration-robust-fit": Figure(calibration_robust_fit, fast=True),

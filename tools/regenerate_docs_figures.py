@@ -56,7 +56,7 @@ climb search, and about 4 minutes for the baselines table):
   ``calibration-c1-theta``, ``calibration-c1-v2pg`` read from them, ``calibration-c5-trim`` (C5's symmetric trim at
   3048 m, from ``calibration-c5``'s study), ``calibration-paper-mode-lead``, ``-omega``, ``-anti3048``, ``-fixed``,
   ``-mach`` (the paper's mode within the bounds, from docs/flutter.md's ``symmetric-bounds-more`` rows), and
-  ``calibration-variants`` (§5: M_F(9144)/M_F(0) of the notional
+  ``calibration-c1-fuselage`` (fast), ``calibration-c5-ratio-3048``, and ``calibration-variants`` (§5: M_F(9144)/M_F(0) of the notional
   structure's variants, finite state);
 * ``calibration-robust-fit`` (fast): docs/calibration.md §3, the fit that made gtm.toml, read from its output
   ``tools/gtm_calibration.toml``;
