@@ -347,6 +347,10 @@ VARIANTS = (("wing GJ × 0.2 / 0.3 / 0.35", ({"wing_gj": 0.2}, {"wing_gj": 0.3},
              ({"mass": 1.574, "wing_gj": 0.40, "wing_ei": 1.41, "fuselage_ei": 1.15},)))
 
 
+#: The dominant coordinate "w" (body-axis vertical velocity) read as the mode's name.
+HEAVE = "heave (w)"
+
+
 def variant_point(factors: dict | None, altitude_m: float) -> dict:
     """``calibrate_gtm.flutter_point`` of ``gtm_uncalibrated`` × ``factors`` without structural damping (None: the
     calibrated ``gtm`` with its own); one checkpoint."""
@@ -377,7 +381,8 @@ def calibration_variants() -> str:
                 raise RuntimeError(f"calibration-variants: {f}: {a.get('error') or b.get('error')}")
         modes = []
         for a, b in pts:
-            m = a["mode"] if a["mode"] == b["mode"] else f"{a['mode']} → {b['mode']}"
+            ma, mb = (HEAVE if m == "w" else m for m in (a["mode"], b["mode"]))
+            m = ma if ma == mb else f"{ma} → {mb}"
             if m not in modes:
                 modes.append(m)
         return (", ".join(f"{a['mach']:.3f} / {b['mach']:.3f}" for a, b in pts),
@@ -474,22 +479,25 @@ def calibration_aft_axis() -> str:
         raise RuntimeError(f"calibration-aft-axis: gtm.toml at {AFT_AXIS_COMMIT} has the wing's elastic axis at {ea}")
     unstable = all(r["real_1_s"] > 0 for r in rows)
     low = min(r["mach"] for r in rows)
-    by_kind: dict[str, list[dict]] = {}
-    for r in rows:
-        by_kind.setdefault("wing" if "wing" in r["dof"] else "htail" if "htail" in r["dof"] else r["dof"], []).append(r)
     names = {"wing": "the wing's", "htail": "the stabilizer's"}
-    where = "; ".join(f"{names.get(k, k)} first torsion ({min(r['omega_rad_s'] for r in v):.0f}"
-                      f"{'' if len({round(r['omega_rad_s']) for r in v}) == 1 else '-' + format(max(r['omega_rad_s'] for r in v), '.0f')}"
-                      f" rad/s) at " + ", ".join(f"{r['altitude_m']:g} m, M {r['mach']:g}" for r in v)
-                      for k, v in by_kind.items())
-    wing_unstable = [r for r in rows if r["wing_real_1_s"] > 0]
-    return (f"the quasi-steady model is {'unstable' if unstable else 'not unstable everywhere'} already at M {low:g} "
-            f"at sea level and at M 0.45 at all four altitudes, Re λ {_minus(format(min(r['real_1_s'] for r in rows), '+.2f'))} "
-            f"to {_minus(format(max(r['real_1_s'] for r in rows), '+.2f'))} s⁻¹ — the most unstable mode is {where}; the "
-            f"wing's torsion alone is unstable at M 0.45 at "
-            + (", ".join(f"{r['altitude_m']:g}" for r in wing_unstable if r["mach"] == 0.45) or "no altitude")
-            + f" m (`gtm.toml` at {AFT_AXIS_COMMIT}, the last commit with that reading: wing and stabilizer axes at "
-            "0.625 c, the uncalibrated stiffness, no structural damping)")
+    parts = []
+    for key, name in names.items():  # "wing" is not in "left_htail ..."
+        hits = [r for r in rows if key in r["dof"]]
+        if hits:
+            omegas = sorted({round(r["omega_rad_s"]) for r in hits})
+            band = f"{omegas[0]}" + (f"-{omegas[-1]}" if len(omegas) > 1 else "")
+            coords = sorted({r["dof"].split(" ", 1)[1] for r in hits})
+            parts.append(f"{name} {' / '.join(coords)} ({band} rad/s) at "
+                         + ", ".join(f"{r['altitude_m']:g} m M {r['mach']:g}" for r in hits))
+    others = sorted({r["dof"] for r in rows if "wing" not in r["dof"] and "htail" not in r["dof"]})
+    wing_unstable = [f"{r['altitude_m']:g}" for r in rows if r["wing_real_1_s"] > 0 and r["mach"] == 0.45]
+    return (f"{'unstable' if unstable else 'not unstable everywhere'} already at M {low:g} at sea level and at M 0.45 at "
+            f"all four altitudes (Re λ {_minus(format(min(r['real_1_s'] for r in rows), '+.2f'))} to "
+            f"{_minus(format(max(r['real_1_s'] for r in rows), '+.2f'))} s⁻¹), most in " + "; ".join(parts)
+            + (f"; {', '.join(others)}" if others else "")
+            + f"; the wing's torsion alone is unstable at M 0.45 at {', '.join(wing_unstable) or 'no altitude'} m "
+            f"(`gtm.toml` at {AFT_AXIS_COMMIT}, the last commit with that reading: wing and stabilizer axes at 0.625 c, "
+            "the uncalibrated stiffness, no structural damping)")
 
 
 CALIBRATION_FIGURES = {
