@@ -17,6 +17,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
+from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
@@ -24,13 +25,16 @@ from flexsim.io.vocabulary import CONTROL_NAMES as VOCABULARY_CONTROL_NAMES
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.trim import SteadyManoeuvre
 
-from flexsim.envs.config import (AERO_MODELS, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
+from flexsim.envs.config import (AERO_MODELS, DEFAULT_MAX_STEP_S, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
                          IntegratorSettings, TrackingReward)
 from flexsim.envs import row_kernels as _rk
 from flexsim.envs.batch import EpisodeBatch
 from flexsim.envs.dynamics import (SENSOR_COMPONENTS, BatchOutcome, FlightDynamics, MeasurementBatch, Measurements, StepOutcome,
                                    advance_rows)
 from flexsim.envs.parallel import limit_blas_threads
+from flexsim.envs import dynamics as _dynamics
+from flexsim import _kernels as _k
+from flexsim.sim import _step_kernels as _sk
 
 __all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
 
@@ -72,8 +76,11 @@ V0_HISTORY_DOC = """\
     * v0: initial version (flexsim issue 6); default integrator ETD2RK (5 ms steps) instead of Radau for
       the finite-state model, same trajectories to within the integration error, about 7 times faster
       (LevelHold: 574 against 82 steps/s, docs/environments.md); ETD2RK steps of 10 ms by default since
-      issue 14 (2 per control period; 25 periods in still air within 2.1e-7 m altitude and 1.7e-7 m wing tip
-      of DOP853 at rtol 1e-10, ``IntegratorSettings.max_step_s``).
+      issue 14, and of 20 ms (one per 50 Hz control period) for LevelHold and Turn since its session 7
+      (GustAlleviation keeps 10 ms, ``default_max_step_s``): 25 periods in still air within 2.0e-6 m
+      altitude and 2.0e-6 m wing tip of DOP853 at rtol 1e-10 (10 ms: 2.1e-7 m, 1.7e-7 m); 2 s of small
+      random actions in light turbulence: rewards within 2.6e-5, structural rates within 1.6e-2 m/s or rad/s
+      of DOP853 at rtol 1e-9 (10 ms: 7.8e-7, 4.4e-3; ``IntegratorSettings.max_step_s``, docs/environments.md).
 """
 
 
@@ -186,6 +193,9 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     metadata: ClassVar[dict] = {"render_modes": ["human", "rgb_array"], "render_fps": 50}
     task_type: ClassVar[type]
     default_turbulence: ClassVar[str] = "none"
+    #: ETD2RK step [s] of the task's default integrator (``IntegratorSettings(max_step_s=...)`` when ``integrator``
+    #: is None): :data:`~flexsim.envs.config.DEFAULT_MAX_STEP_S`, finer for the tasks whose subject is the structure.
+    default_max_step_s: ClassVar[float] = DEFAULT_MAX_STEP_S
     #: (name, bound) of the task errors in the observation, in order; set by each task class.
     task_errors_spec: ClassVar[tuple[tuple[str, float], ...]] = ()
 
@@ -234,7 +244,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         # makes every listed mode) checks "rgb_array" only there; the class metadata lists both.
         modes = [m for m in type(self).metadata["render_modes"] if m != "human" or no_viewer is None]
         self.metadata = {**type(self).metadata, "render_modes": modes, "render_fps": rate}
-        integrator, actuator_rates = integrator or IntegratorSettings(), actuator_rates or ActuatorRates()
+        integrator = integrator or IntegratorSettings(max_step_s=self.default_max_step_s)
+        actuator_rates = actuator_rates or ActuatorRates()
         if dynamics is None:
             dynamics = FlightDynamics(self.aircraft, aero, integrator, actuator_rates, self.dt)
         elif not isinstance(dynamics, FlightDynamics):
@@ -398,16 +409,20 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         dyn = self.dynamics
         if not isinstance(rows, slice) and len(rows) == b.n:  # all rows, in order (rows are sorted and unique)
             rows = slice(0, b.n)
-        u = dyn.rate_limit(b.u[rows], a * self._u_scale)
         steps = b.steps[rows]
         winds, dynamics = (b.winds[rows], b.dynamics[rows]) if isinstance(rows, slice) else ([b.winds[i] for i in rows],
                                                                                              [b.dynamics[i] for i in rows])
         packed = b.packed_rows(rows)
-        outcome = advance_rows(dynamics, b.x[rows], u, steps * self.dt, (steps + 1) * self.dt, winds, packed=packed)
+        period = self._period_compiled(b, rows, a, steps, dynamics, winds, packed)
+        if period is not None:
+            outcome, u, meas, codes = period
+        else:
+            u = dyn.rate_limit(b.u[rows], a * self._u_scale)
+            outcome = advance_rows(dynamics, b.x[rows], u, steps * self.dt, (steps + 1) * self.dt, winds, packed=packed)
+            meas = dyn.measure_batch(outcome.x, outcome.time_s, winds, packed)
+            codes = self._termination_codes(outcome, meas)
         b.x[rows], b.u[rows], b.time_s[rows] = outcome.x, u, outcome.time_s
         b.steps[rows] = steps + 1
-        meas = dyn.measure_batch(outcome.x, outcome.time_s, winds, packed)
-        codes = self._termination_codes(outcome, meas)
         terminated = codes > 0
         b.ended[rows] = terminated
         errors = self._task_errors(meas, b.references(rows))
@@ -424,6 +439,50 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         if self.render_mode is not None:
             b.record_path(rows, meas.position_ned_m)
         return RowsStep(obs, reward, terminated, codes, dict(zip(part_names, parts.T)), errors, outcome, clipped)
+
+    @single_blas_thread
+    def _period_compiled(self, b: EpisodeBatch, rows, a: np.ndarray, steps: np.ndarray, dynamics, winds,
+                         packed) -> tuple | None:
+        """(outcome, applied controls, measurements, termination codes) of the period of ``rows`` from one compiled
+        call (:func:`flexsim.envs.row_kernels.period_rows`: rate limits, ETD2RK steps, measurements, termination),
+        or None where that call does not apply (and :meth:`_step_rows` takes the general path, with the same
+        arithmetic): another integrator, rows flown about different trims, :data:`~flexsim.envs.dynamics.COMPILED_ROWS_BELOW`
+        rows or more (matrix products over the rows are faster there), a model without compiled data, winds that
+        cannot be packed, or a model error in a row (the general path reports the model's message)."""
+        dyn = self.dynamics
+        stepper = dyn.stepper
+        m = len(dynamics)
+        if stepper is None or not dyn.substeps or m >= _dynamics.COMPILED_ROWS_BELOW:
+            return None
+        model = dyn.model
+        data = getattr(model, "kernel_data", None)
+        if not isinstance(data, _k.KernelData) or not isinstance(packed, _k.BatchWind):
+            return None
+        for d in dynamics:
+            if d.stepper is not stepper:
+                return None
+        still = winds[0] is None if m == 1 else all(w is None for w in winds)
+        n_comp = len(SENSOR_COMPONENTS)
+        x_out, u, t_out = np.empty((m, dyn.layout.n_states)), np.empty((m, 4)), np.empty(m)
+        status, taken, codes = np.empty(m, np.int64), np.empty(m, np.int64), np.empty(m, np.int64)
+        meas = np.empty((m, dyn._n_meas))
+        lo, hi = model.altitude_range_m
+        with np.errstate(all="ignore"):
+            _rk.period_rows(*data, *packed, b.x[rows], b.u[rows], a, self._u_scale, dyn._rate_step, steps, self.dt, stepper.h,
+                            dyn.substeps, stepper._h_phi1, stepper._h_phi2, stepper._jac, dyn._z, float(lo), float(hi),
+                            _rk.WIND_STILL if still else _rk.WIND_PACKED, *dyn._measure_data, self._kernel_constants()[2], n_comp,
+                            u, x_out, t_out, status, taken, meas, codes)
+        failure = np.full(m, "", dtype=object)
+        crashed = np.zeros(m, dtype=np.bool_)
+        if status.any():
+            if (status == _sk.ROW_MODEL_ERROR).any():
+                return None
+            crashed = status == _sk.ROW_GROUND
+            for r in np.flatnonzero(status == _sk.ROW_NON_FINITE):
+                t_start = steps[r] * self.dt + (taken[r] - 1) * stepper.h
+                failure[r] = f"non-finite state: ETD2RK step {int(taken[r])} of {dyn.substeps} from t = {float(t_start):.6g} s"
+        outcome = BatchOutcome(x_out, t_out, crashed, failure, 2 * taken, np.zeros(m, dtype=np.int64))
+        return outcome, u, MeasurementBatch(t_out, meas), codes
 
     def _kernel_constants(self) -> tuple:
         """(limits, reward, limit data, reward data, reward-term error columns, part names): the arguments of

@@ -26,6 +26,7 @@ __all__ = [
     "FIXED_STEP_METHODS",
     "AERO_MODELS",
     "DEFAULT_MAX_STEP_S",
+    "GUST_MAX_STEP_S",
     "FLUTTER_MAX_STEP_S",
 ]
 
@@ -35,8 +36,11 @@ TURBULENCE_LEVELS = ("none", "light", "moderate", "severe")
 INTEGRATOR_METHODS = ("auto", "ETD2RK", "DOP853", "Radau")
 #: The fixed-step methods among them (:mod:`flexsim.sim.fixed_step`); the others are ``solve_ivp`` methods.
 FIXED_STEP_METHODS = ("ETD2RK",)
-#: Default ETD2RK step [s] (:attr:`IntegratorSettings.max_step_s`): 2 steps per 50 Hz control period.
-DEFAULT_MAX_STEP_S = 0.01
+#: Default ETD2RK step [s] (:attr:`IntegratorSettings.max_step_s`): 1 step per 50 Hz control period.
+DEFAULT_MAX_STEP_S = 0.02
+#: Default ETD2RK step of the GustAlleviation task [s], whose subject is the structural response: its fin and wing
+#: tip deflection rates within 0.8 % of their range of DOP853's over 2 s of gusts (2 % at 20 ms; docs/environments.md).
+GUST_MAX_STEP_S = 0.01
 #: Default ETD2RK step of the FlutterMargin tasks [s]: the flutter amplitude within about 1 % after 5 s.
 FLUTTER_MAX_STEP_S = 0.005
 #: Allowed range of :attr:`IntegratorSettings.max_step_s` [s].
@@ -110,13 +114,17 @@ class IntegratorSettings:
     atol_scale : float
         Multiplies the per-state absolute tolerances of :meth:`atol` (default 10). Not used by ETD2RK.
     max_step_s : float
-        Largest step of ETD2RK [s], in [1e-4, 0.05] (default 0.01, :data:`DEFAULT_MAX_STEP_S`): each control
-        period is split into ``ceil(period / max_step_s)`` equal steps (2 per period at 50 Hz; the FlutterMargin
-        tasks default to 5 ms, :data:`FLUTTER_MAX_STEP_S`). Not used by DOP853 and Radau. Measured against
-        DOP853 at rtol 1e-10 over 25 periods in still air (LevelHold, small random actions): altitude 2.1e-7 m,
-        pitch 1.9e-8 rad, wing tip 1.7e-7 m at 10 ms (5 ms: 5.7e-8 m, 5.2e-9 rad, 4.5e-8 m; 20 ms: 2.0e-6 m,
-        2.5e-7 rad, 2.0e-6 m); open-loop fin flutter amplitude after 5 s -2.9 % at 10 ms, -1.1 % at 5 ms, -4.9 %
-        at 20 ms (``benchmarks/bench_envs.py``).
+        Largest step of ETD2RK [s], in [1e-4, 0.05] (default 0.02, :data:`DEFAULT_MAX_STEP_S`): each control
+        period is split into ``ceil(period / max_step_s)`` equal steps (1 per period at 50 Hz). An env made with
+        ``integrator=None`` uses its task's ``default_max_step_s``: 20 ms for LevelHold and Turn, 10 ms for
+        GustAlleviation (:data:`GUST_MAX_STEP_S`), 5 ms for FlutterMargin (:data:`FLUTTER_MAX_STEP_S`). Not used
+        by DOP853 and Radau. Measured against DOP853 at rtol 1e-10 over 25 periods in still air (LevelHold,
+        small random actions): altitude 2.0e-6 m, pitch 2.5e-7 rad, wing tip 2.0e-6 m at 20 ms (10 ms: 2.1e-7 m,
+        1.9e-8 rad, 1.7e-7 m; 5 ms: 5.7e-8 m, 5.2e-9 rad, 4.5e-8 m); over 2 s of actions trim + N(0, 0.05) in
+        light turbulence against DOP853 at rtol 1e-9: LevelHold rewards within 2.6e-5 at 20 ms (7.8e-7 at 10 ms),
+        tip deflection and twist rates within 1.6e-2 m/s or rad/s (4.4e-3), GustAlleviation's fin tip deflection
+        rate 4.2e-2 m/s at 20 ms, 1.7e-2 at 10 ms (its range 2 m/s); open-loop fin flutter amplitude after 5 s
+        -2.9 % at 10 ms, -1.1 % at 5 ms, -4.9 % at 20 ms (``benchmarks/bench_envs.py``).
     """
 
     method: str = "auto"

@@ -18,7 +18,7 @@ from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
 from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import TERMINATION_CODES, Episode, FlexSimEnv, shared_docs
-from flexsim.envs.config import FLUTTER_MAX_STEP_S, IntegratorSettings, RewardTerm, TrackingReward
+from flexsim.envs.config import FLUTTER_MAX_STEP_S, RewardTerm, TrackingReward
 from flexsim.envs.dynamics import MeasurementBatch
 from flexsim.envs.episodes import perturbed_state, turbulence_field
 
@@ -229,8 +229,8 @@ class FlutterMarginEnv(FlexSimEnv):
     As ``FlexSim/GTM-LevelHold-v0`` with ``task=FlutterMarginTask(...)``; ``turbulence`` default "none".
     The flutter search (about 2 s) runs once per process and aircraft file. With ``aero="quasi-steady"``
     the GTM is already unstable at M 0.8 at 300 m, and construction raises ``ValueError``. The default
-    integrator, ETD2RK with 5 ms steps (``IntegratorSettings(max_step_s=FLUTTER_MAX_STEP_S)``, where the other
-    tasks step 10 ms), keeps the flutter mode's growth: the fin tip twist amplitude after 5 s open loop is
+    integrator, ETD2RK with 5 ms steps (``IntegratorSettings(max_step_s=FLUTTER_MAX_STEP_S)``, where LevelHold and
+    Turn step 20 ms and GustAlleviation 10 ms), keeps the flutter mode's growth: the fin tip twist amplitude after 5 s open loop is
     within 1 % of a DOP853 rtol 1e-10 reference (10 ms: 2.9 % low); Radau at the default tolerances damps
     the mode numerically (amplitude 22 % low).
 
@@ -246,9 +246,9 @@ class FlutterMarginEnv(FlexSimEnv):
     task_errors_spec = (("fin_twist_rate_rad_s", 1000.0), ("flutter_speed_deficit_m_s", 600.0), ("airspeed_error_m_s", 300.0),
                         ("altitude_error_m", 5000.0), ("flutter_margin_m_s", 600.0))
 
+    default_max_step_s = FLUTTER_MAX_STEP_S  # the flutter mode's growth within about 1 % after 5 s
+
     def __init__(self, *, aircraft: str | Path | Aircraft = "gtm_uncalibrated", **kwargs) -> None:
-        if kwargs.get("integrator") is None:  # the task's default: 5 ms ETD2RK steps (the other tasks: 10 ms)
-            kwargs["integrator"] = IntegratorSettings(max_step_s=FLUTTER_MAX_STEP_S)
         super().__init__(aircraft=aircraft, **kwargs)
         task = self.task
         if task.rate_error != self.task_errors_spec[0][0]:

@@ -12,7 +12,7 @@ from flexsim.kinematics import dcm_321
 from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
-from flexsim.envs.config import RewardTerm, TrackingReward
+from flexsim.envs.config import GUST_MAX_STEP_S, RewardTerm, TrackingReward
 from flexsim.envs.dynamics import MeasurementBatch
 from flexsim.envs.episodes import perturbed_state, turbulence_field
 
@@ -126,6 +126,7 @@ class GustAlleviationEnv(FlexSimEnv):
     """
 
     task_type = GustAlleviationTask
+    default_max_step_s = GUST_MAX_STEP_S  # the structural response is the task's subject
     default_turbulence = "none"
     task_errors_spec = (("tip_deflection_increment_m", 50.0), ("root_moment_increment", 50.0), ("pitch_error_rad", math.pi),
                         ("roll_error_rad", math.pi), ("altitude_error_m", 5000.0))

@@ -42,8 +42,9 @@ from numba import njit
 
 from flexsim import _kernels as _k
 from flexsim._numba_cache import depends_on
+from flexsim.sim import _step_kernels as _sk
 
-__all__ = ["MEAS_COLUMNS", "SENSORS_AT", "WIND_STILL", "WIND_PACKED", "WIND_GIVEN", "measure_rows",
+__all__ = ["MEAS_COLUMNS", "SENSORS_AT", "WIND_STILL", "WIND_PACKED", "WIND_GIVEN", "measure_rows", "period_rows",
            "termination_rows", "finish_rows", "observe_rows", "reward_rows", "wrap", "wrap_rows"]
 
 _jit = njit(cache=True, nogil=True)
@@ -235,3 +236,39 @@ def finish_rows(meas, errors, terms, terminated, da, reward_data, u, u_scale, ac
     """:func:`reward_rows` and :func:`observe_rows` in one call (the end of a control period)."""
     reward_rows(errors, terms, terminated, da, reward_data, parts, reward)
     observe_rows(meas, errors, u, u_scale, act_low, act_high, n_comp, obs_low, obs_high, obs)
+
+
+@depends_on(_k, _sk)
+@_jit
+def period_rows(F, I, rows, gusts, turb, turb_grid, x, u_applied, action, u_scale, rate_step, steps, dt, h, n_steps, h_phi1,
+                h_phi2, jac, z_index, alt_lo, alt_hi, wind_mode, index, s_ptr, s_idx, s_w, h_range, limits, n_comp,
+                u_out, x_out, t_out, status, taken, meas, codes):
+    """One control period of N aircraft flown about one trim, in one call: actuator rate limits, the ETD2RK steps
+    (:func:`flexsim.sim._step_kernels.etd2rk_rows`), :func:`measure_rows` and :func:`termination_rows`.
+
+    Row i: commanded controls ``action[i] * u_scale`` (N, 4), reached from the applied ``u_applied[i]`` at most
+    ``rate_step`` per period (``FlightDynamics.rate_limit``: ``u + min(max(c - u, -rate_step), rate_step)``) into
+    ``u_out`` (N, 4) and held; the period [steps[i] dt, (steps[i] + 1) dt] [s] in ``n_steps`` steps of h, into
+    ``x_out``, ``t_out``, ``status``, ``taken`` (as etd2rk_rows); the measurements of the states reached into
+    ``meas`` (wind_mode :data:`WIND_STILL` or :data:`WIND_PACKED`, the packed winds ``rows``, ``gusts``, ``turb``,
+    ``turb_grid``) and the termination codes into ``codes`` (a non-finite state or a model error fails, the
+    ground reached within a step is a crash). The same arithmetic as the separate calls
+    (``FlexSimEnv._step_rows``' general path), so the results are equal bit for bit.
+    """
+    m = x.shape[0]
+    t0s, t1s = np.empty(m), np.empty(m)
+    for i in range(m):
+        for a in range(4):
+            d = action[i, a] * u_scale[a] - u_applied[i, a]
+            u_out[i, a] = u_applied[i, a] + min(max(d, -rate_step[a]), rate_step[a])
+        t0s[i] = steps[i] * dt
+        t1s[i] = (steps[i] + 1) * dt
+    _sk.etd2rk_rows(F, I, rows, gusts, turb, turb_grid, x, u_out, t0s, t1s, h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo,
+                    alt_hi, x_out, t_out, status, taken)
+    measure_rows(x_out, wind_mode, np.empty((0, 3)), rows, gusts, turb, turb_grid, index, s_ptr, s_idx, s_w, h_range, meas)
+    failed = np.empty(m, np.bool_)
+    crashed = np.empty(m, np.bool_)
+    for i in range(m):
+        failed[i] = status[i] == _sk.ROW_NON_FINITE or status[i] == _sk.ROW_MODEL_ERROR
+        crashed[i] = status[i] == _sk.ROW_GROUND
+    termination_rows(meas, failed, crashed, limits, n_comp, codes)

@@ -4,7 +4,9 @@ Checks:
 * ``IntegratorSettings``: "auto" resolves to ETD2RK for the finite-state model (also for the flutter
   task) and to DOP853 for the quasi-steady one; ``substeps(period) = ceil(period / max_step_s)`` (exact
   integers); a ``max_step_s`` outside [1e-4, 0.05] s raises ValueError naming field, value and range.
-* An env step with ETD2RK reports 2 right-hand sides per step (``nfev = 2 * substeps``) and no LU.
+* An env step with ETD2RK reports 2 right-hand sides per step (``nfev = 2 * substeps``) and no LU; the tasks'
+  default steps (``default_max_step_s``): LevelHold 20 ms (1 step per 50 Hz period), GustAlleviation 10 ms,
+  FlutterMargin 5 ms; an ``integrator`` passed in is used as given.
 * Ground crossing inside a period: with the linear part replaced by J = 0 (ETD2RK is then Heun's
   method, exact for a constant right-hand side) and a constant sink rate of 10 m/s from 0.27 m, the
   crash is reported at t = 0.027 s in the second period with altitude 0 (1e-12; linear interpolation
@@ -29,7 +31,8 @@ def test_auto_resolution_substeps_and_range():
     assert auto.resolve("unsteady") == "ETD2RK"
     assert auto.resolve("quasi-steady") == "DOP853"
     assert envs.IntegratorSettings(method="Radau").resolve("unsteady") == "Radau"
-    assert [auto.substeps(dt) for dt in (0.02, 0.05, 0.001, 1.0 / 30.0, 0.005)] == [2, 5, 1, 4, 1]
+    assert [auto.substeps(dt) for dt in (0.02, 0.05, 0.001, 1.0 / 30.0, 0.005)] == [1, 3, 1, 2, 1]  # max_step_s 0.02 s
+    assert envs.IntegratorSettings(max_step_s=0.01).substeps(0.02) == 2
     assert envs.IntegratorSettings(max_step_s=0.005).substeps(0.02) == 4
     for bad in (0.0, 1e-5, 0.1, math.nan, "fast"):
         with pytest.raises(ValueError, match=r"max_step_s = .*: must be"):
@@ -47,10 +50,16 @@ def _level_hold(**kwargs):
 def test_env_step_counts_and_defaults():
     env, info = _level_hold()
     dyn = env.unwrapped.dynamics
-    assert dyn.method == "ETD2RK" and dyn.substeps == 2
+    assert dyn.method == "ETD2RK" and dyn.substeps == 1  # 20 ms steps (default_max_step_s)
     _, _, terminated, _, info = env.step(info["trim_action"])
-    assert not terminated and info["nfev"] == 4 and info["nlu"] == 0 and info["solver_failure"] == ""
+    assert not terminated and info["nfev"] == 2 and info["nlu"] == 0 and info["solver_failure"] == ""
     env.close()
+    gust = gym.make("FlexSim/GTM-GustAlleviation-v0")
+    assert gust.unwrapped.dynamics.substeps == 2  # 10 ms steps: the structural response is the task's subject
+    gust.close()
+    explicit = gym.make("FlexSim/GTM-GustAlleviation-v0", integrator=envs.IntegratorSettings(max_step_s=0.02))
+    assert explicit.unwrapped.dynamics.substeps == 1  # an integrator passed in is used as given
+    explicit.close()
     flutter = gym.make("FlexSim/GTM-FlutterMargin-v0")
     assert flutter.unwrapped.dynamics.method == "ETD2RK" and flutter.unwrapped.dynamics.substeps == 4  # 5 ms steps
     flutter.close()
