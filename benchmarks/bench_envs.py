@@ -1,12 +1,13 @@
 """Speed of the gymnasium environments: steps per second at 50 Hz, integrator choice, async speed-up.
 
 1. Steps per second of one FlexSim/GTM-LevelHold-v0 (GTM m = n = 2, light turbulence) at the default
-   50 Hz control rate, for each aerodynamic model and integrator: ETD2RK (fixed 5 ms steps, and 10 and 20 ms,
-   linear part the trim Jacobian), DOP853, Radau (constant trim Jacobian). Median over ``--repeats``
+   50 Hz control rate, for each aerodynamic model and integrator: ETD2RK (fixed 20 ms steps, LevelHold's default,
+   and 10 and 5 ms, linear part the trim Jacobian), DOP853, Radau (constant trim Jacobian). Median over ``--repeats``
    runs of ``--steps`` steps; the repeats of all integrators are interleaved (repeat 1 of each, then
    repeat 2, ...) so that a drifting machine load affects them alike. Also the right-hand-side
-   evaluations and LU factorisations per step, the share of the step spent outside the integration (``advance_rows``)
-   (observation, reward, measurements), and the accuracy of each choice over 25 periods against DOP853
+   evaluations and LU factorisations per step, the share of the step spent outside the integration (``advance_rows``,
+   or the one compiled call of a period, ``row_kernels.period_rows``, which includes the measurements and the
+   termination) (task errors, observation, reward, info), and the accuracy of each choice over 25 periods against DOP853
    at rtol 1e-10 (altitude, pitch, tip deflection). Budget: >= 200 steps/s (unsteady aero); target (issue #14):
    >= 2,000 steps/s.
 2. The flutter fidelity: over 5 s of open-loop FlexSim/GTM-FlutterMargin-v0 (fin flutter growing at
@@ -27,11 +28,12 @@
    env-steps/s per core at 256 aircraft.
 
 5. Issue #14 rows 4 and 5 side by side with a reference revision (``--compare [REV]``, or ``--compare-only``
-   for this section alone; default reference a7f7980, main when those rows were measured at 428 steps/s and
-   1,591 env-steps per CPU-second): one env (``gym.make``, all wrappers) steps per CPU-second and N = 256 batched
-   env-steps per CPU-second (``vector_entry_point``), each tree's default integrator and this tree's at the
-   reference's 5 ms ETD2RK step too, in fresh processes (``benchmarks/_envs_worker.py``) alternating reference and
-   this tree ``--repeats`` times; medians, ratios, targets 2,000 and 10,000. The reference is extracted with
+   for this section alone; default reference 1276784, main when those rows were measured idle at 1,370 steps/s and
+   3,788 env-steps per CPU-second): one env (``gym.make``, all wrappers) steps per CPU-second, the same steps on
+   the unwrapped env and the time of a reset (cached trim), and N = 256 batched env-steps per CPU-second
+   (``vector_entry_point``), each tree's default integrator and both at the reference's 10 ms ETD2RK step, in
+   fresh processes (``benchmarks/_envs_worker.py`` of this tree) alternating reference and this tree ``--repeats``
+   times; medians, ratios, targets 2,000 and 10,000. The reference is extracted with
    ``git archive`` into a directory kept between runs (its numba cache with it), ``--reference-tree PATH`` uses
    a checkout instead.
 
@@ -69,9 +71,9 @@ BUDGET_STEPS_S = 200.0
 TARGET_STEPS_S = 2_000.0
 #: (label, settings) of the integrators compared.
 INTEGRATORS = (
-    ("ETD2RK", envs.IntegratorSettings(method="ETD2RK")),
-    ("ETD2RK 10ms", envs.IntegratorSettings(method="ETD2RK", max_step_s=0.01)),
     ("ETD2RK 20ms", envs.IntegratorSettings(method="ETD2RK", max_step_s=0.02)),
+    ("ETD2RK 10ms", envs.IntegratorSettings(method="ETD2RK", max_step_s=0.01)),
+    ("ETD2RK 5ms", envs.IntegratorSettings(method="ETD2RK", max_step_s=0.005)),
     ("DOP853", envs.IntegratorSettings(method="DOP853")),
     ("Radau", envs.IntegratorSettings(method="Radau")),
 )
@@ -83,7 +85,8 @@ def _actions(trim: np.ndarray, n: int, seed: int) -> np.ndarray:
 
 
 class _Timed:
-    """Wraps the integration of a step (``advance_rows``, called by ``FlexSimEnv._step_rows``) to add up its time."""
+    """Wraps the integration of a step (``advance_rows`` or ``row_kernels.period_rows``, called by ``FlexSimEnv._step_rows``)
+    to add up its time."""
 
     def __init__(self, advance) -> None:
         self.advance, self.seconds = advance, 0.0
@@ -100,6 +103,8 @@ def steps_per_second(aero: str, repeats: int, steps: int) -> dict[str, dict[str,
     made = {label: gym.make(ENV_ID, aero=aero, integrator=settings, max_episode_steps=10 * steps) for label, settings in INTEGRATORS}
     timer = _Timed(env_base.advance_rows)
     env_base.advance_rows = timer
+    kernel = _Timed(env_base._rk.period_rows)
+    env_base._rk.period_rows = kernel
     for env in made.values():
         env.reset(seed=0)  # trim, Jacobian and matrix functions outside the timed runs
     runs = {label: {"rate": [], "nfev": [], "nlu": [], "outside": []} for label in made}
@@ -108,7 +113,7 @@ def steps_per_second(aero: str, repeats: int, steps: int) -> dict[str, dict[str,
             _, info = env.reset(seed=r)
             actions = _actions(info["trim_action"], steps, r)
             calls = lus = 0
-            timer.seconds = 0.0
+            timer.seconds = kernel.seconds = 0.0
             t0 = time.perf_counter()
             for a in actions:
                 _, _, terminated, truncated, info = env.step(a)
@@ -120,8 +125,9 @@ def steps_per_second(aero: str, repeats: int, steps: int) -> dict[str, dict[str,
             runs[label]["rate"].append(steps / elapsed)
             runs[label]["nfev"].append(calls / steps)
             runs[label]["nlu"].append(lus / steps)
-            runs[label]["outside"].append(1.0 - timer.seconds / elapsed)
+            runs[label]["outside"].append(1.0 - (timer.seconds + kernel.seconds) / elapsed)
     env_base.advance_rows = timer.advance
+    env_base._rk.period_rows = kernel.advance
     for env in made.values():
         env.close()
     return {label: {"steps_s": statistics.median(v["rate"]), "min": min(v["rate"]), "max": max(v["rate"]),
@@ -274,8 +280,11 @@ def batched_rates(repeats: int, sync_256: bool) -> None:
           "single env of the same run")
 
 
-#: The reference of section 5: main when issue 14's env rows were measured (README, docs/performance.md).
-COMPARE_REFERENCE = "a7f7980"
+#: The reference of section 5: main when issue 14's env rows were last measured idle (docs/performance.md: 1,370 steps/s,
+#: 3,788 env-steps per CPU-second at 256; ETD2RK 10 ms steps).
+COMPARE_REFERENCE = "1276784"
+#: The ETD2RK step both trees are also measured at in section 5 (the reference's default).
+COMPARE_STEP_S = 0.01
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WORKER = os.path.join(HERE, "benchmarks", "_envs_worker.py")
 
@@ -291,12 +300,13 @@ def _reference_tree(rev: str) -> str:
     return tree
 
 
-def _worker(tree: str, mode: str, steps: int, max_step_s: float | None) -> float:
-    """Env-steps per CPU-second of one worker process on ``tree`` (``benchmarks/_envs_worker.py``)."""
+def _worker(tree: str, mode: str, steps: int, max_step_s: float | None) -> dict:
+    """The figures of one worker process on ``tree`` (``benchmarks/_envs_worker.py``; this tree's worker, which uses
+    public APIs only): env-steps per CPU-second, and for ``single`` the unwrapped env's and the reset time."""
     cmd = [sys.executable, WORKER, mode, "--steps", str(steps)] + ([] if max_step_s is None else ["--max-step-s", str(max_step_s)])
     env = dict(os.environ, PYTHONPATH=tree, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
     out = subprocess.run(cmd, cwd=tree, env=env, check=True, capture_output=True, text=True).stdout
-    return float(json.loads(out.strip().splitlines()[-1])["env_steps_per_cpu_s"])
+    return json.loads(out.strip().splitlines()[-1])
 
 
 def compare(reference: str, reference_tree: str | None, repeats: int) -> None:
@@ -306,17 +316,28 @@ def compare(reference: str, reference_tree: str | None, repeats: int) -> None:
     print(f"issue #14 rows 4-5: this tree against {label}, fresh processes alternating, median of {repeats}; env-steps per "
           f"CPU-second; {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f}", flush=True)
     rows = (("one env, LevelHold-v0, default integrator", "single", 300, None, TARGET_STEPS_S),
-            ("one env, ETD2RK 5 ms (the reference's default)", "single", 300, 0.005, TARGET_STEPS_S),
+            (f"one env, ETD2RK {COMPARE_STEP_S * 1e3:g} ms (both trees)", "single", 300, COMPARE_STEP_S, TARGET_STEPS_S),
             ("256 batched (vector_entry_point), default", "batched", 4, None, TARGET_BATCHED),
-            ("256 batched, ETD2RK 5 ms", "batched", 4, 0.005, TARGET_BATCHED))
+            (f"256 batched, ETD2RK {COMPARE_STEP_S * 1e3:g} ms (both trees)", "batched", 4, COMPARE_STEP_S, TARGET_BATCHED))
     for text, mode, steps, h, target in rows:
-        runs: dict[str, list[float]] = {"ref": [], "new": []}
+        runs: dict[str, list[dict]] = {"ref": [], "new": []}
         for _ in range(repeats):
             for side, tree in (("ref", ref), ("new", HERE)):
                 runs[side].append(_worker(tree, mode, steps, h))
-        r, n = statistics.median(runs["ref"]), statistics.median(runs["new"])
-        print(f"  {text:48s} reference {r:8.0f}   this tree {n:8.0f} ({min(runs['new']):.0f}-{max(runs['new']):.0f})   x{n / r:5.2f}   "
+
+        def med(side, key="env_steps_per_cpu_s"):
+            values = [run[key] for run in runs[side] if key in run]
+            return statistics.median(values) if values else math.nan
+
+        r, n = med("ref"), med("new")
+        rates = [run["env_steps_per_cpu_s"] for run in runs["new"]]
+        print(f"  {text:48s} reference {r:8.0f}   this tree {n:8.0f} ({min(rates):.0f}-{max(rates):.0f})   x{n / r:5.2f}   "
               f"target {target:,.0f}: {'met' if n >= target else 'not met'}", flush=True)
+        if mode == "single":
+            print(f"  {'  same steps unwrapped (no gym.make wrappers)':48s} reference {med('ref', 'unwrapped_steps_per_cpu_s'):8.0f}   "
+                  f"this tree {med('new', 'unwrapped_steps_per_cpu_s'):8.0f}", flush=True)
+            print(f"  {'  reset of a cached trim [ms CPU]':48s} reference {med('ref', 'reset_ms'):8.2f}   this tree "
+                  f"{med('new', 'reset_ms'):8.2f}", flush=True)
     print(f"  load after: {os.getloadavg()[0]:.1f}")
 
 
@@ -352,12 +373,12 @@ def main() -> None:
         for label, settings in INTEGRATORS:
             r = rates[label]
             err = accuracy(aero, settings)
-            auto = " (default)" if envs.IntegratorSettings().resolve(aero) == settings.method and settings.max_step_s == 0.005 else ""
+            auto = " (default)" if envs.IntegratorSettings().resolve(aero) == settings.method and settings.max_step_s == 0.02 else ""
             print(f"{aero:13s} {label:11s} {r['steps_s']:8.1f} {r['min']:6.1f}-{r['max']:6.1f} {r['nfev']:9.1f} {r['nlu']:7.1f} "
                   f"{100 * r['outside']:6.1f}%   {err[0]:.1e}, {err[1]:.1e}, {err[2]:.1e}{auto}", flush=True)
     print(f"budget: {BUDGET_STEPS_S:.0f} steps/s, target {TARGET_STEPS_S:,.0f} steps/s (issue #14; one env, unsteady aero); ETD2RK / Radau = "
-          f"{unsteady['ETD2RK']['steps_s'] / unsteady['Radau']['steps_s']:.2f}, ETD2RK / DOP853 = "
-          f"{unsteady['ETD2RK']['steps_s'] / unsteady['DOP853']['steps_s']:.2f} (medians of the same run)")
+          f"{unsteady['ETD2RK 20ms']['steps_s'] / unsteady['Radau']['steps_s']:.2f}, ETD2RK / DOP853 = "
+          f"{unsteady['ETD2RK 20ms']['steps_s'] / unsteady['DOP853']['steps_s']:.2f} (medians of the same run)")
     print("flutter fidelity, FlexSim/GTM-FlutterMargin-v0 open loop, 5 s: fin tip twist amplitude over the last 0.5 s")
     for label, settings in INTEGRATORS:
         amp, ref, rate = flutter_fidelity(settings)

@@ -482,7 +482,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
                 t_start = steps[r] * self.dt + (taken[r] - 1) * stepper.h
                 failure[r] = f"non-finite state: ETD2RK step {int(taken[r])} of {dyn.substeps} from t = {float(t_start):.6g} s"
         outcome = BatchOutcome(x_out, t_out, crashed, failure, 2 * taken, np.zeros(m, dtype=np.int64))
-        return outcome, u, MeasurementBatch(t_out, meas), codes
+        batch = MeasurementBatch(t_out, meas)
+        return outcome, u, batch, self._task_termination(codes, batch)
 
     def _kernel_constants(self) -> tuple:
         """(limits, reward, limit data, reward data, reward-term error columns, part names): the arguments of
@@ -518,6 +519,12 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         codes = np.empty(len(outcome.time_s), dtype=np.int64)
         _rk.termination_rows(meas.matrix, outcome.failure != "", outcome.crashed, self._kernel_constants()[2], len(SENSOR_COMPONENTS),
                              codes)
+        return self._task_termination(codes, meas)
+
+    def _task_termination(self, codes: np.ndarray, meas: MeasurementBatch) -> np.ndarray:
+        """The termination codes (m,) of m aircraft with the task's own conditions added to the common ones
+        (``codes``, from :func:`flexsim.envs.row_kernels.termination_rows`; 0: flying). Both paths of
+        :meth:`_step_rows` call it. Default: none."""
         return codes
 
     def _observe_rows(self, meas: MeasurementBatch, errors: np.ndarray, u: np.ndarray) -> np.ndarray:

@@ -287,8 +287,7 @@ class FlutterMarginEnv(FlexSimEnv):
                 "altitude_error_m": meas.altitude_m - ref["altitude_m"],
                 "flutter_margin_m_s": margin}
 
-    def _termination_codes(self, outcome, meas: MeasurementBatch) -> np.ndarray:
-        codes = super()._termination_codes(outcome, meas)
+    def _task_termination(self, codes: np.ndarray, meas: MeasurementBatch) -> np.ndarray:
         limit = self.task.wing_tip_twist_limit_rad
         if math.isfinite(limit):
             twist = meas.tip_twist_rad

@@ -4,7 +4,8 @@ Checks: an out-of-range action is clipped to the Box (same result as the clipped
 ``info["action_clipped"]``); NaN/inf or a wrong shape raise ValueError naming the problem; the actuator
 rate limits bound the change of the applied controls per step (to 1e-12); a forced crash (full
 nose-down elevator at 150 m) terminates with reason "crash" and finite, in-bounds observations; a
-structural limit below the trim deflection terminates at once; a failing model (non-finite wind)
+structural limit below the trim deflection terminates at once (DOP853, and ETD2RK's one compiled call per period,
+also FlutterMargin-v1's own wing twist limit, single and batched); a failing model (non-finite wind)
 terminates with "non_finite" and finite observations; stepping after termination raises.
 """
 
@@ -15,6 +16,7 @@ import numpy as np
 import pytest
 
 from flexsim import envs
+from flexsim.envs import vector
 
 
 @pytest.fixture(scope="module")
@@ -116,3 +118,25 @@ def test_structural_limit_and_non_finite_terminate():
     assert terminated and info["termination_reason"] == "non_finite"
     assert _finite_in_space(env.observation_space, obs) and math.isfinite(reward)
     env.close()
+
+
+def test_structural_limits_terminate_on_the_compiled_period():
+    """The finite-state envs step each period in one compiled call (row_kernels.period_rows): the common limits
+    and a task's own (FlutterMargin-v1's wing tip twist, FlutterMarginEnv._task_termination) still end the episode
+    at once when set below the trim's value, in the single and in the batched env."""
+    env = gym.make("FlexSim/GTM-LevelHold-v0", turbulence="none", limits=envs.FlightLimits(wing_tip_deflection_m=0.5))
+    _, info = env.reset(seed=0)
+    _, _, terminated, _, info = env.step(info["trim_action"])
+    assert terminated and info["termination_reason"] == "structural_limit"
+    env.close()
+    task = envs.WingFlutterMarginTask(wing_tip_twist_limit_rad=0.01)  # the trim twist is about 0.02 rad
+    env = gym.make("FlexSim/GTM-FlutterMargin-v1", task=task)
+    _, info = env.reset(seed=0)
+    _, _, terminated, _, info = env.step(info["trim_action"])
+    assert terminated and info["termination_reason"] == "structural_limit"
+    env.close()
+    venv = vector.WingFlutterMarginVectorEnv(2, task=task)
+    _, info = venv.reset(seed=0)
+    _, _, terminated, _, info = venv.step(np.asarray(info["trim_action"], np.float32))
+    assert terminated.all() and list(info["termination_reason"]) == ["structural_limit"] * 2
+    venv.close()
