@@ -52,10 +52,15 @@ def theodorsen_function(k: ArrayLike) -> NDArray[np.complex128] | complex:
         bad = k_arr[~(np.isfinite(k_arr) & (k_arr >= 0.0))].ravel()[0]
         raise ValueError(f"reduced frequency k must be finite and >= 0; got {bad!r}")
     positive = k_arr > 0.0
-    safe = np.where(positive, k_arr, 1.0)
-    bj0, bj1, by0, by1 = j0(safe), j1(safe), y0(safe), y1(safe)
-    value = np.where(positive, (bj1 - 1j * by1) / ((bj1 + by0) + 1j * (bj0 - by1)), 1.0 + 0.0j)
+    value = np.where(positive, theodorsen_positive(np.where(positive, k_arr, 1.0)), 1.0 + 0.0j)
     return complex(value) if value.ndim == 0 else value
+
+
+def theodorsen_positive(k: NDArray[np.float64]) -> NDArray[np.complex128]:
+    """:func:`theodorsen_function` for an array of finite ``k > 0``, unchecked: the same expression, for the p-k
+    iteration's hundred calls per eigen-analysis (the checks cost a third of the call)."""
+    bj0, bj1, by0, by1 = j0(k), j1(k), y0(k), y1(k)
+    return (bj1 - 1j * by1) / ((bj1 + by0) + 1j * (bj0 - by1))
 
 
 @dataclass(frozen=True)

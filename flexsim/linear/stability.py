@@ -30,6 +30,7 @@ Re(conj(phi_i) (M phi)_i); a tie between mirror coordinates (right and left halv
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 from typing import Callable
 
@@ -37,7 +38,7 @@ import numpy as np
 
 from flexsim._threads import single_blas_thread
 from flexsim.aero.pk import pk_roots
-from flexsim.aero.theodorsen import theodorsen_function
+from flexsim.aero.theodorsen import theodorsen_function, theodorsen_positive
 from flexsim.aircraft.definition import ContentKey
 from flexsim.linear.linearize import LinearModel, linearize
 from flexsim.linear.symmetry import decoupled, mirror_bases
@@ -298,8 +299,10 @@ class PkStateMatrix:
     semichord_over_speed_s: np.ndarray
 
     def __call__(self, omega: float) -> np.ndarray:
-        one_minus_c = 1.0 - theodorsen_function(abs(omega) * self.semichord_over_speed_s)
-        return self.a_qs + (self.b_lambda * one_minus_c[None, :]) @ self.c_w
+        k = abs(omega) * self.semichord_over_speed_s
+        # k > 0 finite (the usual case): C(k) without theodorsen_function's checks, the same values
+        c = theodorsen_positive(k) if math.isfinite(omega) and k.size and k.min() > 0.0 else theodorsen_function(k)
+        return self.a_qs + (self.b_lambda * (1.0 - c)[None, :]) @ self.c_w
 
     def projected(self, basis: np.ndarray) -> "PkStateMatrix":
         """``Q^T A(omega) Q`` for an orthonormal real ``basis`` Q (m, r) of an invariant subspace of every A(omega)."""
