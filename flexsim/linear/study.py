@@ -459,10 +459,9 @@ def _run_pool(n, cases, queues, guess_for, finish, bar, attempts, max_attempts) 
     """Queues of steps (:func:`_local_steps`) on a process pool, one step per queue in flight; a pool broken by a
     dead worker is replaced and its in-flight points retried (up to ``max_attempts``).
 
-    The costliest queues start first (:func:`_longest_first`), the first ``n`` on different analyses where they
-    can; a worker that finishes a step is sent the costliest waiting step of an analysis it has already built
-    (its models are warm there; building the GTM's p-k analysis takes ~0.3 s), else the costliest waiting step.
-    Only the schedule depends on this, never the rows."""
+    The costliest queues start first (:func:`_longest_first`); a worker that finishes a step is sent the costliest
+    waiting step of an analysis it has already built (its models are warm there; building the GTM's p-k analysis
+    takes ~0.3 s), else the costliest waiting step. Only the schedule depends on this, never the rows."""
     from concurrent.futures import FIRST_COMPLETED, wait
     from concurrent.futures.process import BrokenProcessPool
 
@@ -479,11 +478,8 @@ def _run_pool(n, cases, queues, guess_for, finish, bar, attempts, max_attempts) 
             while (idle or running) and not (lost or broken):
                 while idle and len(running) < n:
                     built = warm.get(freed[0], set()) if freed else set()
-                    busy = {_analysis_of(cases, step) for _, step in running.values()}
-                    pick = next((j for j, k in enumerate(idle) if _analysis_of(cases, queues[k][0]) in built), None)
-                    if pick is None and not freed:  # a fresh worker: an analysis no other worker is building
-                        pick = next((j for j, k in enumerate(idle) if _analysis_of(cases, queues[k][0]) not in busy), 0)
-                    k = idle[pick or 0]
+                    pick = next((j for j, k in enumerate(idle) if _analysis_of(cases, queues[k][0]) in built), 0)
+                    k = idle[pick]
                     step = queues[k][0]
                     try:
                         if len(step) == 1:
@@ -493,7 +489,7 @@ def _run_pool(n, cases, queues, guess_for, finish, bar, attempts, max_attempts) 
                     except BrokenProcessPool:  # a worker died since the last wait
                         broken = True
                         break
-                    idle.pop(pick or 0)
+                    idle.pop(pick)
                     if freed:
                         freed.pop(0)
                     attempts[step] = attempts.get(step, 0) + 1
