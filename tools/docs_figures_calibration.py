@@ -453,7 +453,8 @@ def calibration_plain_fit() -> str:
     """§3: the first fit (``python studies/calibrate_gtm.py`` at df7ff6d: plain least squares, no damping)."""
     from docs_figures_core import run_at_commit
 
-    out = run_at_commit("calibration-plain-fit", PLAIN_FIT_COMMIT, list(PLAIN_FIT_ARGV), ("fit.toml",))
+    out = run_at_commit("calibration-plain-fit", PLAIN_FIT_COMMIT, list(PLAIN_FIT_ARGV), ("fit.toml",),
+                        timeout_s=4 * 3600.0)  # 18 CPU-minutes; hours at low priority on a loaded machine
     return _fit_summary(out["outputs"]["fit.toml"])[1]
 
 
