@@ -43,6 +43,14 @@ climb search, and about 4 minutes for the baselines table):
 * ``simulation-accuracy``: docs/simulation.md, the default integrator, the previous default and Radau against
   DOP853 (rtol 1e-9) on every named manoeuvre (``tools/docs_figures_simulation.py``, ``flexsim.sim.accuracy``;
   about 3-6 minutes);
+* ``symmetric-bounds-fs``, ``symmetric-force-resolution``, ``symmetric-vary``, ``symmetric-vary-reading``,
+  ``symmetric-bounds-reading``, ``symmetric-soft-torsion``, ``decomposition-historical``, ``decomposition-fin``,
+  ``decomposition-c1``, ``decomposition-c4``, ``decomposition-c5``, ``decomposition-paper-mode``,
+  ``options-body-moments-pk`` (long): docs/flutter.md's formerly recorded study output, the class boundaries of
+  ``studies/symmetric_mode.py`` and the decompositions of ``studies/manoeuvre_decomposition.py``, whose switches
+  that patch the Python-level coupling run at b32192e (the last numpy right-hand side) in a temporary worktree of
+  that commit (``tools/docs_figures_records.py``, ``docs_figures_core.run_at_commit``; checkpointed per row and
+  switch; about 11 minutes of CPU together, 30 minutes of wall time on a loaded 2-core machine);
 * ``design-lift-slope``, ``design-lift-slope-total`` (fast): docs/design.md, the strips' lift slope against the
   vortex lattice's on the exposed surfaces, and the whole lattice's (``tools/docs_figures_design.py``);
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
@@ -125,6 +133,7 @@ from docs_figures_simulation import SIMULATION_FIGURES  # noqa: E402
 from docs_figures_design import DESIGN_FIGURES  # noqa: E402
 from docs_figures_core import Figure  # noqa: E402
 from docs_figures_calibration import CALIBRATION_FIGURES  # noqa: E402
+from docs_figures_records import RECORD_FIGURES  # noqa: E402
 
 REGION = re.compile(r"<!-- figures:(?P<name>[\w-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.DOTALL)
 DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
@@ -537,6 +546,7 @@ FIGURES: dict[str, Figure] = {
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in DESIGN_FIGURES.items()},
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in STUDY_FIGURES.items()},
     **CALIBRATION_FIGURES,
+    **RECORD_FIGURES,
     "calibration-summary": Figure(lambda: calibration_summary(_level)),
     "calibration-damping": Figure(lambda: calibration_damping(_level)),
     "calibration-speeds": Figure(lambda: calibration_speeds(_level), fast=True),

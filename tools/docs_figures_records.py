@@ -1,0 +1,611 @@
+"""Figures of docs/flutter.md that were recorded study output, for ``regenerate_docs_figures.py``.
+
+Each function returns the text of one ``<!-- figures:NAME -->`` region; the registry is ``RECORD_FIGURES`` at the
+end (all of them are long studies). Two kinds:
+
+* **current code**: the studies' own functions (``symmetric_mode.bounds``, ``manoeuvre_decomposition.run``,
+  ``options_effects``'s aircraft options, imported from ``studies/``, never copied) on today's library;
+* **historical**: the switches ``mass_matrix``, ``force_resolution``, ``aero_alpha``, ``prandtl_glauert`` and the
+  fin switches of ``studies/manoeuvre_decomposition.py`` patch the Python-level coupling or inertia of a built
+  model, which the compiled right-hand side does not read (``manoeuvre_decomposition.NUMPY_RHS_SWITCHES``). Their
+  rows are reproduced by running that script (one switch per run, ``--ref-level`` from the ``none`` row) in a
+  temporary worktree of the last numpy right-hand side, ``manoeuvre_decomposition.NUMPY_RHS_COMMIT`` (b32192e),
+  through ``docs_figures_core.run_at_commit`` (checkpointed by the commit's hash and the command; it needs the
+  repository's git history and names the commit when it is missing). About 30 s of CPU per switch.
+
+Where a paragraph reads the numbers, the function writes the paragraph and raises ``RuntimeError`` naming the
+claim when a qualitative statement of it no longer holds (the prose must then be rewritten by hand).
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "studies"))
+sys.path.insert(0, str(ROOT / "tools"))
+from docs_figures_core import Figure, checkpoint, run_at_commit  # noqa: E402
+from docs_figures_static import _num  # noqa: E402
+from docs_figures_studies import MORE_BOUNDS, PAPER_ALTITUDES_M, _bounds, _bounds_label, _class_bounds, _minus  # noqa: E402
+
+#: The class-boundary grid of ``symmetric_mode.py`` (its default) [Mach]: low, high, step.
+GRID = (0.55, 0.95, 0.025)
+
+
+def _grid(lo: float, hi: float, step: float):
+    import numpy as np
+
+    return np.arange(lo, hi + 1e-9, step)
+
+
+@functools.cache
+def _bounds_row(aircraft: str, factors: tuple[tuple[str, float], ...], model: str, altitude_m: float,
+                formulation: str | None = None, grid: tuple[float, float, float] = GRID) -> dict:
+    """One row of ``python studies/symmetric_mode.py bounds --aircraft NAME [--factor N=V ...] [--formulation F]
+    --model MODEL --altitudes H [--grid LO HI STEP]`` (true density), checkpointed (one piece per row)."""
+
+    def compute() -> dict:
+        import symmetric_mode
+        from manoeuvre_decomposition import configure
+
+        ac = configure(aircraft, None, 1.0, None, None)
+        for name, value in factors:
+            ac = symmetric_mode.apply_factor(ac, name, value)
+        (row,) = symmetric_mode.bounds(ac, "", model, formulation or ac.formulation, None, [altitude_m], _grid(*grid))
+        return row
+
+    return checkpoint("symmetric-bounds", {"aircraft": aircraft, "factors": [list(f) for f in factors], "model": model,
+                                           "altitude_m": altitude_m, "formulation": formulation, "grid": list(grid)},
+                      compute)
+
+
+def _both(row: dict, what: str) -> tuple[dict, dict]:
+    s, a = row["symmetric"], row["antisymmetric"]
+    if not (s and a and "omega_F" in s and "omega_F" in a):
+        raise RuntimeError(f"{what}: at {row['altitude_m']:g} m a mirror class has no crossing inside the grid")
+    return s, a
+
+
+# --- the finite-state class boundaries ---------------------------------------------------------------------------
+
+def symmetric_bounds_fs() -> str:
+    """``python studies/symmetric_mode.py bounds --aircraft gtm|gtm_paper --model FS`` at 3048-9144 m."""
+    import symmetric_mode
+
+    rows = []
+    for aircraft in ("gtm", "gtm_paper"):
+        for h in PAPER_ALTITUDES_M[1:]:
+            r = _bounds_row(aircraft, (), "FS", h)
+            _both(r, "symmetric-bounds-fs")
+            rows.append({**r, "config": _bounds_label(aircraft, (), None)})
+    table = symmetric_mode.bounds_table(rows).split("\n\n")[0]
+    gaps = {a: [r["gap_sym_minus_anti"] for r in rows if r["config"] == f"`{a}`"] for a in ("gtm", "gtm_paper")}
+    us = {a: [r["gap_sym_minus_anti"] for r in _class_bounds(a)] for a in ("gtm", "gtm_paper")}
+    if not all(g > 0 for g in gaps["gtm"] + gaps["gtm_paper"]):
+        raise RuntimeError("symmetric-bounds-fs: a finite-state gap is not positive (the prose says the symmetric "
+                           "boundary lies above the antisymmetric one)")
+    order = all(a > b for a, b in zip(gaps["gtm"], gaps["gtm_paper"]))
+    diff = max(abs(f - u) for a in gaps for f, u in zip(gaps[a], us[a]))
+    return ("\n" + _minus(table) + "\n\nThe finite-state model " + ("confirms" if order else "does not confirm") +
+            " the order of the gaps (`gtm` above `gtm_paper` at every altitude) and their size: its gaps differ from "
+            f"the p-k ones above by {diff:.4f} at most.\n")
+
+
+# --- the paper's force resolution's share of the gap --------------------------------------------------------------
+
+def symmetric_force_resolution() -> str:
+    """``gtm_paper`` with ``--formulation physical`` (US): both class boundaries against ``gtm_paper``'s own."""
+    hs = PAPER_ALTITUDES_M[1:]
+    phys = [_both(_bounds_row("gtm_paper", (), "US", h, "physical"), "symmetric-force-resolution") for h in hs]
+    phys_rows = [_bounds_row("gtm_paper", (), "US", h, "physical") for h in hs]
+    paper = {r["altitude_m"]: r for r in _class_bounds("gtm_paper")}
+    anti_change = max(abs(a["M_F"] - paper[h]["antisymmetric"]["M_F"]) for h, (_, a) in zip(hs, phys))
+    share = [r["gap_sym_minus_anti"] - paper[h]["gap_sym_minus_anti"] for h, r in zip(hs, phys_rows)]
+    worst = max(share, key=abs)
+    role = (f"the paper's force resolution (`gtm_paper`'s own) does not make the gap (it moves it by "
+            f"{max(map(abs, share)):.4f} or less)" if abs(worst) < 5e-4 else
+            f"the paper's force resolution changes the gap by {_num(-worst, '+.4f')} at {hs[share.index(worst)]:g} m "
+            "(its largest change)")
+    return (f"{role} — `gtm_paper` with `--formulation physical` has the symmetric boundary at "
+            f"{' / '.join(format(s['M_F'], '.4f') for s, _ in phys)} "
+            f"(gap {' / '.join(_num(r['gap_sym_minus_anti'], '+.4f') for r in phys_rows)}) and the antisymmetric one "
+            f"at {' / '.join(format(a['M_F'], '.4f') for _, a in phys)} (within {anti_change:.4f} of `gtm_paper`'s) at "
+            f"{' / '.join(f'{h:g}' for h in hs)} m")
+
+
+# --- the paper's 17.8 rad/s sea-level mode: a softer wing torsion -------------------------------------------------
+
+#: ``python studies/symmetric_mode.py vary --aircraft gtm_paper --altitude 0 --grid 0.30 0.80 0.025 --vary wing.gj
+#: 0.3 0.5``: the grid [Mach] and the factors.
+GJ_GRID = (0.30, 0.80, 0.025)
+GJ_FACTORS = (0.3, 0.5)
+
+
+def _qf1(crossing: dict) -> str:
+    """``q_f1 the largest linear coordinate`` or ``q_f1 0.72 of the largest linear coordinate (NAME)``."""
+    if crossing["largest"] == "fuselage bending 1":
+        return "q_f1 the largest linear coordinate"
+    return f"q_f1 {crossing['qf1_ratio']:.2f} of the largest linear coordinate ({crossing['largest']})"
+
+
+def symmetric_soft_torsion() -> str:
+    """Both class boundaries of ``gtm_paper`` at sea level with the wing GJ x 0.3 and x 0.5 (US)."""
+    (s3, a3), (s5, a5) = (_both(_bounds_row("gtm_paper", (("wing.gj", f),), "US", 0.0, None, GJ_GRID),
+                                "symmetric-soft-torsion") for f in GJ_FACTORS)
+    if not (s3["M_F"] < a3["M_F"] and s5["M_F"] > a5["M_F"]):
+        raise RuntimeError("symmetric-soft-torsion: the symmetric mode is no longer critical at wing GJ x 0.3 only "
+                           f"(x 0.3: {s3['M_F']} against {a3['M_F']}; x 0.5: {s5['M_F']} against {a5['M_F']})")
+    return (f"at sea level, a symmetric mode critical at M {s3['M_F']:.4f} and {s3['omega_F']:.2f} rad/s with wing GJ "
+            f"× {GJ_FACTORS[0]:g} ({_qf1(s3)}; antisymmetric {a3['M_F']:.4f} at "
+            f"{a3['omega_F']:.2f} rad/s), while at × {GJ_FACTORS[1]:g} the symmetric one is at {s5['omega_F']:.2f} rad/s "
+            f"and M {s5['M_F']:.4f}, above the antisymmetric {a5['M_F']:.4f}")
+
+
+# --- the body moments and downwash, p-k (docs/flutter.md, options) -------------------------------------------------
+
+@functools.cache
+def _level_pk(bodies: bool, altitude_m: float) -> float:
+    """US (Theodorsen p-k) level-flight flutter Mach of the bundled gtm, with its fuselage/nacelle moments and tail
+    downwash (``bodies``) or without them (``options_effects._with(gtm, bodies=(), downwash_gradient=0.0)``), the
+    search of ``flexsim flutter`` (M 0.5-0.95)."""
+    from options_effects import _with
+
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.flutter import FlutterAnalysis
+    from flexsim.trim import SteadyManoeuvre
+
+    gtm = load_aircraft("gtm")
+    ac = gtm if bodies else _with(gtm, bodies=(), downwash_gradient=0.0)
+    return FlutterAnalysis(ac, "theodorsen").search(SteadyManoeuvre.level(altitude_m, mach=0.5),
+                                                     mach_range=(0.5, 0.95)).mach
+
+
+def options_body_moments_pk() -> str:
+    """The change of the US level flutter Mach when the body moments and tail downwash are switched on, 0 and 3048 m."""
+    parts, pairs = [], []
+    for h in PAPER_ALTITUDES_M[:2]:
+        on, off = _level_pk(True, h), _level_pk(False, h)
+        parts.append(f"{_num(100 * (on / off - 1), '+.2f')} % at {h:g} m")
+        pairs.append(f"{on:.5f} against {off:.5f}")
+    return f"{', '.join(parts)}: {', '.join(pairs)}"
+
+
+# --- the decomposition of docs/flutter.md: current code and the historical rows at b32192e --------------------------
+
+class Decomposition(tuple):
+    """The options of one ``python studies/manoeuvre_decomposition.py`` command (all but the switches), as a hashable
+    tuple of (flag, value) pairs in the script's own spelling, e.g. ``(("--aircraft", "gtm_paper"),)``."""
+
+    def get(self, flag: str, default=None):
+        return dict(self).get(flag, default)
+
+    def args(self, switches) -> list[str]:
+        out = []
+        for flag, value in self:
+            out += [flag, *value.split()] if flag == "--incidence" else [flag, value]
+        return out + ["--switches", *switches]
+
+    def command(self, switches) -> str:
+        import shlex
+
+        return "python studies/manoeuvre_decomposition.py " + shlex.join(self.args(switches))
+
+
+def _config(**options) -> Decomposition:
+    return Decomposition(tuple((f"--{k.replace('_', '-')}", str(v)) for k, v in options.items()))
+
+
+#: The bundled gtm at 9144 m (the decomposition's default).
+GTM = _config(altitude=9144)
+#: The paper's fin (eqs. 29-31) on gtm_paper with the paper's force resolution.
+GTM_PAPER = _config(aircraft="gtm_paper", formulation="paper", altitude=9144)
+#: C1 of docs/calibration.md §6 (paper weight and formulation, zero-incidence chords, rho(3048 m), zeta = 0.01), the
+#: symmetric mode.
+C1 = _config(scaling='{"fuselage_ei":1.587,"wing_gj":0.816,"wing_ei":0.635,"fuselage_gj":0.907,'
+                     '"htail_stiffness":0.907,"vtail_stiffness":0.907}', mass_factor=0.907, incidence="1.81 2.7",
+             formulation="paper", fixed_density=3048, damping=0.01, mode_class="symmetric", altitude=9144, start=0.77)
+#: C4: gtm_paper, fuselage EI x 2, wing EI x 0.7, zero-incidence chords, rho(3048 m), the symmetric mode.
+C4 = _config(aircraft="gtm_paper", scaling='{"fuselage_ei":2.0,"wing_ei":0.7}', formulation="paper",
+             incidence="1.81 2.7", fixed_density=3048, mode_class="symmetric", altitude=9144, start=0.82)
+#: C5: gtm_paper with every factor within its bound (C3's wing, fuselage EI x 1.75), true density, the symmetric mode.
+C5 = _config(aircraft="gtm_paper", scaling='{"wing_ei":0.85,"wing_gj":1.04,"fuselage_ei":1.75}', formulation="paper",
+             mode_class="symmetric", altitude=9144, start=0.92)
+#: The paper's mode: gtm_paper, fuselage EI x 2 (Fig. 4's peak), wing EI x 0.8, true density, the symmetric mode.
+PAPER_MODE = _config(aircraft="gtm_paper", scaling='{"wing_ei":0.8,"fuselage_ei":2.0}', formulation="paper",
+                     mode_class="symmetric", altitude=9144, start=0.92)
+
+
+def _options(config: Decomposition) -> dict:
+    """``manoeuvre_decomposition.run``'s keyword arguments and aircraft for ``config``."""
+    import manoeuvre_decomposition as md
+
+    g = config.get
+    scaling = json.loads(g("--scaling")) if g("--scaling") else None
+    incidence = tuple(float(v) for v in g("--incidence").split()) if g("--incidence") else None
+    damping = float(g("--damping")) if g("--damping") else None
+    fixed = float(g("--fixed-density")) if g("--fixed-density") else None
+    ac = md.configure(g("--aircraft", "gtm"), scaling, float(g("--mass-factor", 1.0)), incidence, damping)
+    return dict(ac=ac, aircraft_name=g("--aircraft", "gtm"), altitude_m=float(g("--altitude", 9144.0)),
+                rho_altitude_m=3048.0, level_start=float(g("--start", 0.91)), base_rho_altitude_m=fixed,
+                formulation=g("--formulation", "physical"), mode_class=g("--mode-class", "any"))
+
+
+@functools.cache
+def _current(config: Decomposition, switches: tuple[str, ...]) -> dict[str, dict]:
+    """``config``'s decomposition on today's library (``manoeuvre_decomposition.run``), rows keyed by switch; one
+    checkpoint per switch (the others start from the ``none`` row's level flutter point, as in one run)."""
+    import manoeuvre_decomposition as md
+
+    bad = set(switches) & set(md.NUMPY_RHS_SWITCHES)
+    if bad or switches[0] != "none":
+        raise ValueError(f"switches {switches}: 'none' first, and none of {sorted(md.NUMPY_RHS_SWITCHES)} (those need "
+                         "the numpy right-hand side: _historical)")
+    print(f"  {config.command(switches)}", flush=True)
+    rows, ref = {}, None
+    for sw in switches:
+        def compute(sw=sw, ref=ref) -> dict:
+            (row,) = md.run(switches=[sw], ref_level=ref, **_options(config))
+            return row
+
+        rows[sw] = checkpoint("decomposition", {"config": [list(o) for o in config], "switch": sw, "ref_level": ref},
+                              compute)
+        if sw == "none":
+            ref = (rows[sw]["M_level"], rows[sw]["w_level"])
+    return rows
+
+
+@functools.cache
+def _historical(config: Decomposition, switches: tuple[str, ...], figure: str) -> dict[str, dict]:
+    """``config``'s decomposition run by the script of ``NUMPY_RHS_COMMIT`` in a temporary worktree of that commit
+    (``docs_figures_core.run_at_commit``, checkpointed by the commit's hash and the command), its ``--json`` rows
+    keyed by switch: one command per switch, the others with ``--ref-level`` from the ``none`` row (the script's
+    split runs)."""
+    import manoeuvre_decomposition as md
+
+    if switches[0] != "none":
+        raise ValueError(f"switches {switches}: 'none' first")
+    print(f"  at {md.NUMPY_RHS_COMMIT}: {config.command(switches)}", flush=True)
+    rows, ref = {}, []
+    for sw in switches:
+        argv = ["python", "studies/manoeuvre_decomposition.py", *config.args([sw]), *ref, "--json", "rows.json"]
+        run = run_at_commit(figure, md.NUMPY_RHS_COMMIT, argv, outputs=("rows.json",))
+        (rows[sw],) = json.loads(run["outputs"]["rows.json"])
+        if sw == "none":
+            ref = ["--ref-level", repr(rows[sw]["M_level"]), repr(rows[sw]["w_level"])]
+    return rows
+
+
+def _table(rows) -> str:
+    import manoeuvre_decomposition as md
+
+    return _minus(md.table(list(rows)))
+
+
+def _at(row: dict, commit: str) -> dict:
+    return {**row, "switch": f"{row['switch']} (at {commit})"}
+
+
+def _pg_slope(mach: float) -> float:
+    """d[1/sqrt(1 - M^2)]/dM = M / (1 - M^2)^1.5, the Prandtl-Glauert factor's slope [-]."""
+    return mach / (1.0 - mach * mach) ** 1.5
+
+
+def _commit() -> str:
+    import manoeuvre_decomposition as md
+
+    return md.NUMPY_RHS_COMMIT
+
+
+#: The historical switches of the bundled gtm's decomposition (b32192e), with their reference row.
+HISTORICAL_GTM = ("none", "mass_matrix", "force_resolution", "aero_alpha", "prandtl_glauert")
+
+
+def decomposition_historical() -> str:
+    """The rows of the switches today's model cannot evaluate (at b32192e) on the bundled gtm and their reading."""
+    from docs_figures_studies import _decomposition_gtm
+
+    rows = _historical(GTM, HISTORICAL_GTM, "decomposition-historical")
+    ref, aa, pg, mm, fr = (rows[s] for s in HISTORICAL_GTM[0:1] + ("aero_alpha", "prandtl_glauert", "mass_matrix",
+                                                                   "force_resolution"))
+    dens = {r["switch"]: r for r in _decomposition_gtm()}["density"]
+    t0 = ref["turn_dM"]
+    small = max(abs(mm["turn_dM"] - t0), abs(fr["turn_dM"] - t0))
+    if small > 1.5e-4 or not pg["turn_dM"] > t0 or not abs(aa["turn_dM"]) < 0.5 * abs(t0):
+        raise RuntimeError("decomposition-historical: the reading (aero_alpha carries the turn effect, P-G compresses "
+                           "it, M(q) and the force resolution change it by 0.0001 or less) no longer holds: "
+                           f"{ {s: r['turn_dM'] for s, r in rows.items()} }")
+    share = 100 * (1 - aa["turn_dM"] / t0)
+    carried = "**entirely**" if abs(aa["turn_dM"]) <= 1.5e-4 else f"**{share:.0f} %**"
+    c = _commit()
+    return ("\n" + _table(rows.values()) + "\n\n"
+            f"Reading: the turn effect is carried {carried} by the aerodynamics linearised about the turn's larger angle "
+            f"of attack and its sideslip (at {c}, `aero_alpha`: {_num(t0, '+.4f')} → {_num(aa['turn_dM'], '+.4f')}); "
+            "rotation rates, the whole static deformation, thrust and gravity (table above), and there the static "
+            f"deflection's effect on M(q) and the force resolution's trim-α terms, each change it by {small:.4f} or less. "
+            f"The **Prandtl–Glauert factor compresses it** (at {c}: frozen at the level flutter Mach the turn effect is "
+            f"{_num(pg['turn_dM'], '+.4f')}, {pg['turn_dM'] / t0:.1f}× larger) — at M {ref['M_level']:.2f} the P-G "
+            f"factor's slope (d[1/√(1−M²)]/dM = M/(1−M²)^1.5 = {_pg_slope(ref['M_level']):.1f}) makes the aerodynamic "
+            "stiffness rise so fast with Mach that any destabilising change is met within a few thousandths in Mach. "
+            f"The **density** of the linearised aerodynamics raises it (row `density`: flutter moves to M "
+            f"{dens['M_level']:.2f}, where that slope is {_pg_slope(ref['M_level']) / _pg_slope(dens['M_level']):.1f}× "
+            "smaller).")
+
+
+#: The fin switches (the paper's fin, eqs. 29-31) with their reference row, on gtm_paper (b32192e).
+HISTORICAL_FIN = ("none", "fin_normal", "fin_drag+0.3", "fin_drag-0.3")
+
+
+def decomposition_fin() -> str:
+    """The fin switches' rows (at b32192e) on gtm_paper and how much they move the turn and climb effects."""
+    rows = _historical(GTM_PAPER, HISTORICAL_FIN, "decomposition-fin")
+    ref = rows["none"]
+    label = {**rows, "none": {**ref, "switch": "none (`gtm_paper`)"}}
+    dm = max(abs(r[k] - ref[k]) for r in rows.values() for k in ("turn_dM", "climb_dM"))
+    dw = max(abs(r[k] - ref[k]) for r in rows.values() for k in ("turn_dw", "climb_dw"))
+    return ("\n" + _table(label.values()).replace("| switched off |", "| switched |") + "\n\n"
+            "The fin's resolution and drag law move neither the turn effect nor the climb effect (changes of at most "
+            f"{dm:.0e} in Mach and {dw:.3f} rad/s)").replace("e-0", "e-")
+
+
+#: C1's switches today's model evaluates, and those run at b32192e (with their reference row there).
+C1_CURRENT = ("none", "rotation", "static_deformation", "thrust", "gravity", "damping")
+C1_HISTORICAL = ("none", "mass_matrix", "aero_alpha", "prandtl_glauert")
+
+
+def decomposition_c1() -> str:
+    """C1's decomposition on the symmetric mode (today's switches, then b32192e's) and its reading."""
+    from flexsim.linear.paper_data import TABLE_US
+
+    cur, hist = _current(C1, C1_CURRENT), _historical(C1, C1_HISTORICAL, "decomposition-c1")
+    c = _commit()
+    ref, href = cur["none"], hist["none"]
+    paper = TABLE_US[3]
+    table = _table([*cur.values(), *(_at(r, c) for r in hist.values())])
+    table += f"\n| paper (Figs. 10, 15; glide point) | {paper[1]:.4f} / {paper[2]:.2f} | ≈ +0.03 … +0.1 | < 0 | ≈ +0.004 | < 0 |"
+    t0, th = ref["turn_dM"], href["turn_dM"]
+    aa, pg, rot, mm = hist["aero_alpha"], hist["prandtl_glauert"], cur["rotation"], hist["mass_matrix"]
+    nothing = {"M(q)": mm["turn_dM"] - th, "the static deformation": cur["static_deformation"]["turn_dM"] - t0,
+               "the thrust line": cur["thrust"]["turn_dM"] - t0, "gravity": cur["gravity"]["turn_dM"] - t0}
+    if not (t0 > 0 and aa["turn_dM"] < 0.5 * th and pg["turn_dM"] > th and max(map(abs, nothing.values())) < 2e-4):
+        raise RuntimeError("decomposition-c1: the reading (aero_alpha carries most of the turn effect, P-G compresses "
+                           "it, M(q), static deformation, thrust and gravity nothing) no longer holds")
+    dw0, dw_sd = ref["turn_dw"], cur["static_deformation"]["turn_dw"]
+    rises = "rises" if dw0 < 0 else "falls"
+    sign = "the paper's sign" if dw0 < 0 else "not the paper's sign"
+    left = t0 - (th - aa["turn_dM"]) - (t0 - rot["turn_dM"])
+    damp = cur["damping"]
+    climbs = [r["climb_dM"] for r in (*cur.values(), *hist.values())]
+    wrong = ", the wrong way" if ref["climb_dM"] - cur["thrust"]["climb_dM"] < 0 and href["climb_dM"] - mm["climb_dM"] < 0 else ""
+    reverse = "and no switch here reverses it" if max(climbs) <= 0 else "and a switch reverses it"
+    fragile = (f"the turn's static deformation alone sets its sign ({_num(dw_sd, '+.3f')} rad/s without it)"
+               if (dw_sd > 0) != (dw0 > 0) else f"without the static deformation it is {_num(dw_sd, '+.3f')} rad/s")
+    return ("\n" + table + "\n\n"
+            f"Reading: with the paper's settings and on the symmetric mode the turn effect is {_num(t0, '+.4f')} (M_F "
+            f"{'falling' if t0 > 0 else 'rising'} as R grows, as in the paper, but {0.03 / t0:.0f}-{0.1 / t0:.0f}× smaller) "
+            f"and ω_F {rises} with R ({_num(dw0, '+.3f')} rad/s from 5 to 12 km: {sign}). The aerodynamics linearised "
+            f"about the turn's α and sideslip again carry most of it (at {c}, `aero_alpha`: "
+            f"{100 * (1 - aa['turn_dM'] / th):.0f} %, {_num(th, '+.4f')} → {_num(aa['turn_dM'], '+.4f')}); Prandtl–Glauert "
+            f"still compresses it (frozen: {_num(pg['turn_dM'], '+.4f')}, at M {href['M_level']:.2f} its slope is "
+            f"{_pg_slope(0.91) / _pg_slope(href['M_level']):.1f}× smaller than at M 0.91). The rotation-rate terms carry "
+            f"{100 * (1 - rot['turn_dM'] / t0):.0f} % ({_num(rot['turn_dM'], '+.4f')} without them); "
+            f"{', '.join(nothing)} change it by {max(map(abs, nothing.values())):.4f} or less; about {left:.4f} is left to "
+            f"the interaction of the switched terms. The small ω_F trend is fragile: {fragile}. The paper's undamped "
+            f"structure (ζ = 0) flutters {ref['M_level'] - damp['M_level']:.3f} "
+            f"{'lower' if damp['M_level'] < ref['M_level'] else 'higher'} in Mach ({damp['M_level']:.4f}, "
+            f"{_num(100 * (damp['M_level'] / ref['M_level'] - 1), '+.1f')} %) with a turn effect of "
+            f"{_num(damp['turn_dM'], '+.4f')}. The climb effect stays at {_num(ref['climb_dM'], '+.4f')} (the paper's sign "
+            f"is +; {_num(damp['climb_dM'], '+.4f')} with ζ = 0); the thrust line contributes "
+            f"{_num(ref['climb_dM'] - cur['thrust']['climb_dM'], '+.5f')} and M(q) "
+            f"{_num(href['climb_dM'] - mm['climb_dM'], '+.5f')} of it{wrong}, {reverse}.")
+
+
+def _reference(row: dict) -> str:
+    """``level M / omega rad/s, turn effect ... (dw ...), climb effect ...`` of a decomposition's row."""
+    dw = row["turn_dw"]
+    return (f"level {row['M_level']:.4f} / {row['w_level']:.2f} rad/s, turn effect {_num(row['turn_dM'], '+.4f')} "
+            f"(Δω_F {_num(dw, '+.3f')} rad/s: ω_F {'rises' if dw < 0 else 'falls'} with R, "
+            f"{'the' if dw < 0 else 'not the'} paper's sign), climb effect {_num(row['climb_dM'], '+.5f')} "
+            f"(Δω_F {_num(row['climb_dw'], '+.4f')} rad/s)")
+
+
+def decomposition_c4() -> str:
+    """C4's reference row (symmetric mode, rho(3048 m))."""
+    return _reference(_current(C4, ("none",))["none"])
+
+
+def _with_aero_alpha(config: Decomposition, figure: str, extra: tuple[str, ...] = ()) -> str:
+    cur = _current(config, ("none", *extra))
+    hist = _historical(config, ("none", "aero_alpha"), figure)
+    aa, href = hist["aero_alpha"]["turn_dM"], hist["none"]["turn_dM"]
+    text = (_reference(cur["none"]) + f"; with `aero_alpha` (at {_commit()}, whose `none` row has "
+            f"{_num(href, '+.4f')}) the turn effect drops to {_num(aa, '+.4f')} — {100 * (1 - aa / href):.0f} % of it is "
+            "again the aerodynamics linearised about the turn's angle of attack and sideslip")
+    for sw in extra:
+        text += f"; `{sw}`: {_num(cur[sw]['turn_dM'], '+.4f')}"
+    return text
+
+
+def decomposition_c5() -> str:
+    """C5's reference row (symmetric mode, every factor within its bound, true density) and its aero_alpha row."""
+    return _with_aero_alpha(C5, "decomposition-c5")
+
+
+def decomposition_paper_mode() -> str:
+    """The paper's mode (fuselage EI x 2, wing EI x 0.8, true density): reference, aero_alpha and rotation rows."""
+    return _with_aero_alpha(PAPER_MODE, "decomposition-paper-mode", ("rotation",))
+
+
+# --- what moves the gap: one factor at a time on gtm_paper at 3048 m (US) ------------------------------------------
+
+FE, WE, WG = "fuselage.ei", "wing.ei", "wing.gj"
+#: C3's wing (the static columns' values, docs/calibration.md §6).
+C3_WING = ((WE, 0.85), (WG, 1.04))
+#: ``python studies/symmetric_mode.py vary --aircraft gtm_paper --altitude 3048 --vary NAME F1 F2 ...`` (and the same
+#: with ``--factor`` for the pairs): the rows of docs/flutter.md's table, (label, factor sets).
+VARY_ROWS = (
+    ("fuselage EI × 1.5", (((FE, 1.5),),)),
+    ("fuselage EI × 2", (((FE, 2.0),),)),
+    ("fuselage EI × 3", (((FE, 3.0),),)),
+    ("fuselage mass × 0.7 / × 1.3", ((("fuselage.mass", 0.7),), (("fuselage.mass", 1.3),))),
+    ("lumped masses (not engines) × 0.5 / × 2", ((("lumped.mass", 0.5),), (("lumped.mass", 2.0),))),
+    ("wing EI × 0.7 / × 1.3", (((WE, 0.7),), ((WE, 1.3),))),
+    ("wing GJ × 0.8 / × 1.2", (((WG, 0.8),), ((WG, 1.2),))),
+    ("engine mass × 0.5 / × 1.5", ((("engine.mass", 0.5),), (("engine.mass", 1.5),))),
+    ("stabilizer stiffness × 0.5 / × 2", ((("htail.stiffness", 0.5),), (("htail.stiffness", 2.0),))),
+    ("fuselage EI × 2, wing EI × 0.6 / 0.7 / 0.8", tuple(((FE, 2.0), (WE, w)) for w in (0.6, 0.7, 0.8))),
+    ("fuselage EI × 1.5 / 1.75 / 2.25 / 2.5, wing EI × 0.7", tuple(((FE, f), (WE, 0.7)) for f in (1.5, 1.75, 2.25, 2.5))),
+    ("fuselage EI × 1.25 / 1.5 / 1.75 / 2, wing EI × 0.85, GJ × 1.04 (static columns, §6 C3)",
+     tuple((*C3_WING, (FE, f)) for f in (1.25, 1.5, 1.75, 2.0))),
+)
+VARY_ALTITUDE_M = 3048.0
+
+
+def _vary(factors) -> dict:
+    return _bounds_row("gtm_paper", tuple(factors), "US", VARY_ALTITUDE_M)
+
+
+def _joined(cells: list[str]) -> str:
+    return cells[0] if len(set(cells)) == 1 else "; ".join(cells)
+
+
+def symmetric_vary() -> str:
+    """The table of docs/flutter.md's "What moves the gap" (US, gtm_paper, 3048 m)."""
+    base = {r["altitude_m"]: r for r in _class_bounds("gtm_paper")}[VARY_ALTITUDE_M]
+    lines = [f"`gtm_paper` itself: gap {_num(base['gap_sym_minus_anti'], '+.4f')}, q_f1 ratio "
+             f"{base['symmetric']['qf1_ratio']:.2f}.", "",
+             "| factor (× `gtm_paper`) | SYM M_F / ω_F / q_f1 ratio | ANTI M_F / ω_F | M_sym − M_anti |",
+             "|---|---|---|---|"]
+    for label, sets in VARY_ROWS:
+        rows = [_vary(f) for f in sets]
+        both = [_both(r, f"symmetric-vary ({label})") for r in rows]
+        sym = "; ".join(f"{s['M_F']:.4f} / {s['omega_F']:.2f} / {s['qf1_ratio']:.2f}" for s, _ in both)
+        anti = [f"{a['M_F']:.4f} / {a['omega_F']:.2f}" for _, a in both]
+        anti_cell = _joined(anti) if len(rows) == 1 or len(set(anti)) == 1 else "; ".join(f"{a['M_F']:.4f}" for _, a in both)
+        gaps = "; ".join(_num(r["gap_sym_minus_anti"], "+.4f") for r in rows)
+        lines.append(f"| {label} | {sym} | {anti_cell} | {gaps} |")
+    return "\n" + "\n".join(lines) + "\n"
+
+
+def _span(values, fmt: str, sep: str = "-") -> str:
+    lo, hi = _num(min(values), fmt), _num(max(values), fmt)
+    return lo if lo == hi else f"{lo}{sep}{hi}"
+
+
+def symmetric_vary_reading() -> str:
+    """The reading of the "What moves the gap" table and of the stiffness variants' class boundaries."""
+    from manoeuvre_decomposition import configure
+
+    from flexsim.linear.modes import in_vacuo_modes
+    from flexsim.linear.paper_data import TABLE_US
+    from flexsim.model.aircraft_model import AircraftModel
+
+    singles = [f for _, sets in VARY_ROWS for f in sets if len(f) == 1]
+    pairs = [f for _, sets in VARY_ROWS for f in sets if len(f) > 1]
+    gap = {f: _vary(f)["gap_sym_minus_anti"] for f in singles + pairs}
+    if min(gap[f] for f in singles) <= 0:
+        raise RuntimeError("symmetric-vary-reading: a single factor makes the symmetric mode critical; rewrite the reading")
+    fe = {v: gap[((FE, v),)] for v in (1.5, 2.0, 3.0)}
+    if not (fe[1.5] < fe[2.0] < fe[3.0] and fe[1.5] == min(gap[f] for f in singles)):
+        raise RuntimeError(f"symmetric-vary-reading: the fuselage EI is no longer the strongest lever with an optimum "
+                           f"near x 1.5 ({fe})")
+    ac = configure("gtm_paper", None, 1.0, None, None)
+    modes = in_vacuo_modes(AircraftModel(ac, gravity_m_s2=0.0)).modes
+    fus = [m.frequency_rad_s for m in modes if m.dominant_dof == "fuselage bending 1"]
+    if not fus:
+        raise RuntimeError("symmetric-vary-reading: no in-vacuo fuselage bending 1 mode")
+    crit = [f for f in pairs if gap[f] < 0]
+    value = lambda f, name: dict(f)[name]  # noqa: E731
+    q_largest = [f for f in pairs if _vary(f)["symmetric"]["qf1_ratio"] >= 0.995]
+    if any(gap[f] < 0 for f in q_largest):
+        raise RuntimeError("symmetric-vary-reading: the symmetric mode is critical with q_f1 the largest coordinate at "
+                           "3048 m; rewrite the reading")
+    peak = max(c.sections.ei_nm2.max() for c in ac.components if c.name == "fuselage")
+    nearest = [_bounds("gtm_paper", MORE_BOUNDS[0][1], None, "US", h) for h in MORE_BOUNDS[0][4]]
+    c3 = _vary((*C3_WING, (FE, 1.75)))
+    c3_crit = c3["symmetric"] if c3["gap_sym_minus_anti"] < 0 else c3["antisymmetric"]
+    paper_tip = {row[0]: row[6] for row in TABLE_US}[VARY_ALTITUDE_M]
+    paper_w = TABLE_US[1][2]
+    w_near = [r["symmetric"]["omega_F"] for r in nearest]
+    if not all(r["gap_sym_minus_anti"] < 0 for r in nearest):
+        raise RuntimeError("symmetric-vary-reading: fuselage EI x 2, wing EI x 0.7 no longer has the symmetric mode "
+                           "critical at 3048-9144 m")
+    return (f"Reading: no single parameter makes the symmetric mode critical — every factor from × 0.5 to × 3 leaves the "
+            f"gap positive; the fuselage EI is the strongest lever and has an optimum (× 1.5: {_num(fe[1.5], '+.4f')}) "
+            f"where the fuselage's first bending ({fus[0]:.2f} rad/s in vacuo on `gtm_paper`; it scales with √EI) comes "
+            f"up to the flutter frequency. Two factors together do it: the fuselage EI at × "
+            f"{_span([value(f, FE) for f in crit], 'g')} **and** a softer wing bending (× "
+            f"{_span([value(f, WE) for f in crit], 'g')}). But the two features of the paper's mode pull apart: q_f1 "
+            f"becomes the largest coordinate only when the fuselage bending frequency rises *above* the flutter "
+            f"frequency (rows with q_f1 ratio 1.00: fuselage EI × {_span([value(f, FE) for f in q_largest], 'g')} at wing "
+            f"EI × {_span([value(f, WE) for f in q_largest], 'g')}), and there the symmetric mode is no longer critical "
+            f"({_span([gap[f] for f in q_largest], '+.4f', ' to ')}); where it is critical q_f1 is "
+            f"{_span([_vary(f)['symmetric']['qf1_ratio'] for f in crit], '.2f')} of the wing's first bending. The two twins "
+            f"stay within ±{max(abs(gap[f]) for f in crit):.4f} in Mach where the symmetric one is critical, and their "
+            f"order is decided by details far below the notional structure's accuracy. The bounds: fuselage EI × 2 on "
+            f"`gtm_paper` is {2 * peak / 1e9:.0f} GN m² at its peak, the top of Fig. 4's fuselage panel (the only "
+            f"published stiffness; × 2.25 leaves it by 12 %); wing EI × 0.7 gives tip deflections 19-20 % above the "
+            f"paper's at 3048-9144 m (`docs/calibration.md` §6, C4), while C3's wing (EI × 0.85, GJ × 1.04) gives "
+            f"{_num(c3_crit['tip_deflection_m'], '.4f')} m at the {VARY_ALTITUDE_M:g} m flutter point with fuselage EI "
+            f"× 1.75 (paper {_num(paper_tip, '.3f')} m). The nearest joint point found — fuselage EI × 2 (Fig. 4's peak), "
+            f"wing EI × 0.7 (about 10 points outside a 10 % tip-deflection band) — makes the symmetric mode critical at "
+            f"3048-9144 m (by {_span([-r['gap_sym_minus_anti'] for r in nearest], '.4f')}, true density) with q_f1 "
+            f"{_span([r['symmetric']['qf1_ratio'] for r in nearest], '.2f')} of the largest coordinate, at "
+            f"{_span(w_near, '.1f')} rad/s (paper {paper_w:.1f}, {_num(100 * (sum(w_near) / len(w_near) / paper_w - 1), '+.0f')} %). "
+            f"Within every bound (C3's wing, fuselage EI × 1.75) the symmetric mode is "
+            + (f"critical at {VARY_ALTITUDE_M:g} m by {-c3['gap_sym_minus_anti']:.4f}" if c3["gap_sym_minus_anti"] < 0
+               else f"not critical at {VARY_ALTITUDE_M:g} m ({_num(c3['gap_sym_minus_anti'], '+.4f')})")
+            + f" with q_f1 {c3['symmetric']['qf1_ratio']:.2f} (other altitudes: C5 in `docs/calibration.md` §6).")
+
+
+def symmetric_bounds_reading() -> str:
+    """The reading of the stiffness variants' class boundaries at 6096-9144 m (``MORE_BOUNDS``' rows)."""
+    from flexsim.linear.paper_data import TABLE_US
+
+    fe2_08, fe2_08_rho, c3_fe2 = MORE_BOUNDS[1], MORE_BOUNDS[2], MORE_BOUNDS[3]
+    rows = {h: _bounds(fe2_08[0], fe2_08[1], None, "US", h) for h in fe2_08[4]}
+    rho = {h: _bounds(fe2_08_rho[0], fe2_08_rho[1], fe2_08_rho[2], "US", h) for h in fe2_08_rho[4]}
+    c3 = {h: _bounds(c3_fe2[0], c3_fe2[1], None, "US", h) for h in c3_fe2[4]}
+    high = (6096.0, 9144.0)
+    paper = {row[0]: row for row in TABLE_US}
+    sym_q = all(rows[h]["gap_sym_minus_anti"] < 0 and rows[h]["symmetric"]["qf1_ratio"] >= 0.995 for h in high)
+    if not (sym_q and rows[3048.0]["gap_sym_minus_anti"] > 0 and all(rho[h]["gap_sym_minus_anti"] > 0 for h in high)
+            and all(c3[h]["gap_sym_minus_anti"] < 0 for h in high)):
+        raise RuntimeError("symmetric-bounds-reading: the paper's mode (symmetric, q_f1 largest) is no longer critical "
+                           "at 6096-9144 m only with the true density; rewrite the reading")
+    crit = {h: min(rows[h]["symmetric"]["M_F"], rows[h]["antisymmetric"]["M_F"]) for h in rows}
+    crit_rho = {3048.0: crit[3048.0], **{h: min(rho[h]["symmetric"]["M_F"], rho[h]["antisymmetric"]["M_F"]) for h in high}}
+    w = [rows[h]["symmetric"]["omega_F"] for h in high]
+    return (f"with the fuselage EI at Fig. 4's peak (× 2) and the wing EI at the value the static columns want (× 0.8), "
+            f"the critical mode at 6096 and 9144 m is **symmetric with q_f1 the largest linear coordinate** (critical by "
+            f"{' and '.join(format(-rows[h]['gap_sym_minus_anti'], '.4f') for h in high)}, true density), at "
+            f"{_span(w, '.1f')} rad/s (paper {paper[9144.0][2]:.1f}, "
+            f"{_num(100 * (sum(w) / len(w) / paper[9144.0][2] - 1), '+.0f')} %); at 3048 m the antisymmetric twin still "
+            f"leads by {rows[3048.0]['gap_sym_minus_anti']:.4f} (q_f1 {rows[3048.0]['symmetric']['qf1_ratio']:.2f} in the "
+            f"symmetric one). With C3's wing (EI × 0.85 and GJ × 1.04) the symmetric mode leads at 6096-9144 m with q_f1 "
+            f"{_span([c3[h]['symmetric']['qf1_ratio'] for h in high], '.2f')}. But the boundary is then the true-density "
+            f"one (M_F {' and '.join(_num(100 * (crit[h] / paper[h][1] - 1), '+.1f') + ' %' for h in high)} against the "
+            f"paper; trend {crit[9144.0] / crit[3048.0]:.3f}): with one density for the linearised aerodynamics, which "
+            f"gives the paper's trend (ρ(3048 m): {crit_rho[9144.0] / crit_rho[3048.0]:.3f}), the antisymmetric twin leads "
+            f"again at 6096-9144 m, by {_span([rho[h]['gap_sym_minus_anti'] for h in high], '.4f')}")
+
+
+#: The figures of this module (all long studies; CPU on a quiet machine: the finite-state bounds about 2 min, the
+#: vary table about 15-20 min, each decomposition switch about 30 s). ``regenerate_docs_figures.py`` registers them.
+RECORD_FIGURES = {name: Figure(compute, long=True) for name, compute in {
+    "symmetric-bounds-fs": symmetric_bounds_fs,
+    "symmetric-force-resolution": symmetric_force_resolution,
+    "symmetric-vary": symmetric_vary,
+    "symmetric-vary-reading": symmetric_vary_reading,
+    "symmetric-bounds-reading": symmetric_bounds_reading,
+    "symmetric-soft-torsion": symmetric_soft_torsion,
+    "decomposition-historical": decomposition_historical,
+    "decomposition-fin": decomposition_fin,
+    "decomposition-c1": decomposition_c1,
+    "decomposition-c4": decomposition_c4,
+    "decomposition-c5": decomposition_c5,
+    "decomposition-paper-mode": decomposition_paper_mode,
+    "options-body-moments-pk": options_body_moments_pk,
+}.items()}
