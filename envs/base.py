@@ -38,6 +38,8 @@ from flexsim.sim import _step_kernels as _sk
 
 __all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
 
+#: dtypes of the actions checked on the fast path of :meth:`FlexSimEnv._check_action` (others: the general path).
+_FLOAT_ACTIONS = (np.dtype(np.float32), np.dtype(np.float64))
 #: Values of ``info["termination_reason"]`` ("" while flying).
 TERMINATION_REASONS = ("non_finite", "crash", "structural_limit", "gimbal_lock", "envelope")
 #: ``info["termination_reason"]`` of each termination code (:meth:`FlexSimEnv._termination_codes`; 0: flying).
@@ -273,6 +275,9 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._renderer = None
         self._constants: tuple | None = None  # the arguments of the compiled outputs from limits and reward (_kernel_constants)
         self._act_low, self._act_high = self.action_space.low.astype(np.float64), self.action_space.high.astype(np.float64)
+        self._act_low_list, self._act_high_list = self._act_low.tolist(), self._act_high.tolist()
+        #: Per number of rows m: the outcome arrays of a period in which no row failed (read only).
+        self._clear_rows: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
         self._observe_data = (self._u_scale, self._act_low, self._act_high, len(SENSOR_COMPONENTS), self._obs_low, self._obs_high)
 
     # ------------------------------------------------------------------ task hooks
@@ -321,6 +326,14 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         return np.clip(a, self.action_space.low, self.action_space.high).astype(np.float32)
 
     def _check_action(self, action: Any) -> tuple[np.ndarray, bool]:
+        if type(action) is np.ndarray and action.shape == (4,) and action.dtype in _FLOAT_ACTIONS:
+            # the usual action (a float array from the agent): checked and clipped on 4 Python floats, the values
+            # of np.minimum(np.maximum(a, low), high) (numpy returns the second argument on ties, so here too)
+            values = action.tolist()
+            if all(map(math.isfinite, values)):
+                clipped = [lo if v <= lo else (hi if v >= hi else v) for v, lo, hi in zip(values, self._act_low_list,
+                                                                                      self._act_high_list)]
+                return np.array(clipped), clipped != values
         what = "must be 4 real numbers [thrust, aileron, elevator, rudder]"
         try:
             raw = np.asarray(action)
@@ -378,7 +391,10 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         return obs, info
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict]:
-        self._check_steppable(self._batch, self._row)
+        if not self._batch.started[self._row]:
+            raise RuntimeError("step() called before reset()")
+        if self._batch.ended[self._row]:
+            raise RuntimeError("step() called after the episode terminated; call reset()")
         a, clipped = self._check_action(action)
         out = self._step_rows(self._batch, slice(self._row, self._row + 1), a[None, :], np.array([clipped]))
         info = self._step_info(out, 0)
@@ -467,21 +483,23 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         status, taken, codes = np.empty(m, np.int64), np.empty(m, np.int64), np.empty(m, np.int64)
         meas = np.empty((m, dyn._n_meas))
         lo, hi = model.altitude_range_m
-        with np.errstate(all="ignore"):
-            _rk.period_rows(*data, *packed, b.x[rows], b.u[rows], a, self._u_scale, dyn._rate_step, steps, self.dt, stepper.h,
-                            dyn.substeps, stepper._h_phi1, stepper._h_phi2, stepper._jac, dyn._z, float(lo), float(hi),
-                            _rk.WIND_STILL if still else _rk.WIND_PACKED, *dyn._measure_data, self._kernel_constants()[2], n_comp,
-                            u, x_out, t_out, status, taken, meas, codes)
-        failure = np.full(m, "", dtype=object)
-        crashed = np.zeros(m, dtype=np.bool_)
-        if status.any():
-            if (status == _sk.ROW_MODEL_ERROR).any():
+        _rk.period_rows(*data, *packed, b.x[rows], b.u[rows], a, self._u_scale, dyn._rate_step, steps, self.dt, stepper.h,
+                        dyn.substeps, stepper._h_phi1, stepper._h_phi2, stepper._jac, dyn._z, float(lo), float(hi),
+                        _rk.WIND_STILL if still else _rk.WIND_PACKED, *dyn._measure_data, self._kernel_constants()[2], n_comp,
+                        u, x_out, t_out, status, taken, meas, codes)
+        clear = self._clear_rows.get(m)
+        if clear is None:
+            clear = self._clear_rows[m] = (np.full(m, "", dtype=object), np.zeros(m, dtype=np.bool_), np.zeros(m, dtype=np.int64))
+        failure, crashed, nlu = clear
+        if np.count_nonzero(status):
+            if np.count_nonzero(status == _sk.ROW_MODEL_ERROR):
                 return None
             crashed = status == _sk.ROW_GROUND
+            failure = failure.copy()
             for r in np.flatnonzero(status == _sk.ROW_NON_FINITE):
                 t_start = steps[r] * self.dt + (taken[r] - 1) * stepper.h
                 failure[r] = f"non-finite state: ETD2RK step {int(taken[r])} of {dyn.substeps} from t = {float(t_start):.6g} s"
-        outcome = BatchOutcome(x_out, t_out, crashed, failure, 2 * taken, np.zeros(m, dtype=np.int64))
+        outcome = BatchOutcome(x_out, t_out, crashed, failure, 2 * taken, nlu)
         batch = MeasurementBatch(t_out, meas)
         return outcome, u, batch, self._task_termination(codes, batch)
 

@@ -21,6 +21,11 @@ def wrap_angle(angle_rad):
     """``angle_rad`` wrapped to [-pi, pi] [rad] (NaN stays NaN; an infinity gives NaN): a float, or an array of
     the same shape for an array. The exact ``fmod`` by 2 pi plus one exact (Sterbenz) correction by 2 pi, the
     compiled :func:`flexsim.envs.row_kernels.wrap` (the observations' wrap too)."""
+    if (type(angle_rad) is np.ndarray and angle_rad.ndim == 1 and angle_rad.dtype == np.float64
+            and angle_rad.flags.c_contiguous):  # the task errors' case
+        out = np.empty(angle_rad.shape[0])
+        _rk.wrap_rows(angle_rad, out)
+        return out
     if np.ndim(angle_rad) == 0:
         return float(_rk.wrap(float(angle_rad)))
     a = np.asarray(angle_rad, dtype=float)

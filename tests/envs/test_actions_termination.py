@@ -140,3 +140,21 @@ def test_structural_limits_terminate_on_the_compiled_period():
     _, _, terminated, _, info = venv.step(np.asarray(info["trim_action"], np.float32))
     assert terminated.all() and list(info["termination_reason"]) == ["structural_limit"] * 2
     venv.close()
+
+
+def test_array_actions_check_as_the_general_path(env):
+    """A float32/float64 action array takes FlexSimEnv._check_action's fast path (4 Python floats): the same clipped
+    values, bit for bit (signed zeros included: numpy's minimum/maximum return the second argument on ties), and the
+    same clipped flag as the general path of the same numbers given as a list."""
+    base = env.unwrapped
+    cases = [[0.5, 0.1, -0.2, 0.0], [-0.0, -0.0, 0.0, -0.0], [0.0, -1.0, 1.0, -1.0], [1.0, 1.0, -1.0, 1.0],
+             [2.0, -3.0, 0.5, 7.0], [-1e-30, 1.0000001, -1.0000001, 0.25]]
+    for values in cases:
+        for dtype in (np.float32, np.float64):
+            arr = np.array(values, dtype)
+            fast, fast_clipped = base._check_action(arr)
+            general, general_clipped = base._check_action([float(v) for v in arr])
+            assert fast.dtype == general.dtype == np.float64
+            assert fast.tobytes() == general.tobytes() and fast_clipped == general_clipped, (values, dtype)
+    with pytest.raises(ValueError, match=r"action: values must be finite"):
+        base._check_action(np.array([0.5, np.nan, 0.0, 0.0], np.float32))
