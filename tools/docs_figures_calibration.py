@@ -1,6 +1,8 @@
-"""Figures of docs/calibration.md §6-7 (issue 15 d: the paper-replication configurations C1-C4 and their trend
-scorecards), for ``regenerate_docs_figures.py`` (slow figures: about 2.5 minutes together, see
-:data:`CALIBRATION_FIGURES`).
+"""Figures of docs/calibration.md, for ``regenerate_docs_figures.py`` (:data:`CALIBRATION_FIGURES`): §6-7 (issue
+15 d: the paper-replication configurations C1-C4, their trend scorecards and the figures the text reads from them;
+slow, about a CPU-minute together), §5 (the structure variants' altitude ratio; slow), §3 (the fits: the robust
+one from its output file, fast; the first one rerun at its commit, long) and §1 (the quasi-steady spectrum with
+the elastic axes at 0.625 c, rerun at its commit, long: ``docs_figures_core.run_at_commit``).
 
 The computations are the studies' own functions, imported from ``studies/`` (never copied):
 ``manoeuvre_decomposition.configure`` builds each configuration, ``paper_residuals.flutter_rows`` and
