@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import functools
 import json
+import math
 import sys
 from pathlib import Path
 
@@ -666,6 +667,68 @@ def density_symmetric_findings() -> str:
             f"{_where(c5_true, True)} with the true-density trend ({ratio(c5_true):.3f})")
 
 
+# --- the density section: which density the level and the frequency point to -------------------------------------
+
+@functools.cache
+def _density_trade() -> dict:
+    """The density-fixed rows (``docs_figures_studies._density_rows``, ``density_finding.py --fixed 0 3048``) read as
+    power laws: V_F^2/sqrt(1-M^2) ~ rho^n on the bundled structure, the density the paper's level implies, and the
+    one the paper's frequency implies after scaling the whole stiffness to match it."""
+    import numpy as np
+    from docs_figures_studies import _density_rows
+
+    from flexsim.atmosphere import isa_density
+    from flexsim.linear.paper_data import TABLE_US
+
+    by = {}
+    for r in _density_rows():
+        by.setdefault(r["density"], {})[r["altitude_m"]] = r
+    rho0, rho3 = float(isa_density(0.0)), float(isa_density(3048.0))
+    hs = PAPER_ALTITUDES_M[1:]
+    n = float(np.mean([math.log(by["rho(3048 m)"][h]["V2PG_k"] / by["rho(0 m)"][h]["V2PG_k"]) / math.log(rho3 / rho0)
+                       for h in PAPER_ALTITUDES_M]))
+    v2 = {k: float(np.mean([by[k][h]["V2PG_k"] for h in hs])) for k in ("rho(0 m)", "rho(3048 m)")}
+    paper_v2 = float(np.mean([_paper_v2(h, m) for h, m, *_ in TABLE_US if h in hs]))
+    rho_level = rho0 * (paper_v2 / v2["rho(0 m)"]) ** (1.0 / n)
+    lo, hi = 0.0, 11000.0
+    for _ in range(60):  # the ISA altitude of rho_level (isa_density falls with altitude)
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if float(isa_density(mid)) > rho_level else (lo, mid)
+    omegas = [by[k][h]["omega_F"] for k in ("rho(0 m)", "rho(3048 m)") for h in PAPER_ALTITUDES_M]
+    paper_w = float(np.mean([w for h, m, w, *_ in TABLE_US if h in hs]))
+    ratio = paper_w / float(np.mean([by[k][h]["omega_F"] for k in ("rho(0 m)", "rho(3048 m)") for h in hs]))
+    return {"n": n, "paper_v2": paper_v2, "rho_level": rho_level, "isa_alt": 0.5 * (lo + hi),
+            "speed_rho0": math.sqrt(paper_v2 / v2["rho(0 m)"]) - 1, "speed_rho3048": math.sqrt(paper_v2 / v2["rho(3048 m)"]) - 1,
+            "omegas": omegas, "paper_w": paper_w, "v_drop": [1 - paper_w / w for w in omegas],
+            "rho_frequency": rho_level * ratio ** (-2.0 / n)}
+
+
+def _paper_v2(altitude_m: float, mach: float) -> float:
+    """V^2/sqrt(1-M^2) [10^3 m^2/s^2] of a row of the paper's Table 3."""
+    from flexsim.atmosphere import speed_of_sound
+
+    v = mach * float(speed_of_sound(altitude_m))
+    return v * v / math.sqrt(1 - mach * mach) / 1e3
+
+
+def density_which() -> str:
+    """What the density-fixed rows say about the density the paper's level and frequency imply."""
+    d = _density_trade()
+    drop = sorted(100 * x for x in d["v_drop"])
+    return (f"V_F²/√(1−M²) ∝ ρ^{_num(d['n'], '.1f')} between the two rows above, so the paper's "
+            f"{d['paper_v2']:.0f}k m²/s² (3048-9144 m) corresponds to ρ ≈ {d['rho_level']:.1f} kg/m³ (ISA ≈ "
+            f"{round(d['isa_alt'], -2):.0f} m), a value with no special meaning; ρ(0) needs a structure whose flutter "
+            f"speed is {100 * d['speed_rho0']:.0f} % higher, ρ(3048 m) one {-100 * d['speed_rho3048']:.0f} % lower. "
+            f"Matching ω_F as well ({d['paper_w']:.1f} against flexsim's {_span(d['omegas'], '.1f')} rad/s) by scaling "
+            f"the whole stiffness (ω_F and V_F ∝ √k at a fixed density) lowers V_F by {drop[0]:.0f}-{drop[-1]:.0f} %, "
+            f"which a lower density (V_F ∝ ρ^{_num(d['n'] / 2, '.2f')}) must restore: that points to")
+
+
+def density_frequency_match() -> str:
+    """The density the paper's frequency points to (``density_which``'s last step)."""
+    return f"ρ ≈ {_density_trade()['rho_frequency']:.1f} kg/m³"
+
+
 #: The figures of this module (all long studies; CPU on a quiet machine: the finite-state bounds about 2 min, the
 #: vary table about 15-20 min, each decomposition switch about 30 s). ``regenerate_docs_figures.py`` registers them.
 RECORD_FIGURES = {name: Figure(compute, long=True) for name, compute in {
@@ -685,3 +748,5 @@ RECORD_FIGURES = {name: Figure(compute, long=True) for name, compute in {
 }.items()}
 #: Slow, not long: it reads the class-boundary rows density-symmetric-structure and calibration-c5 compute.
 RECORD_FIGURES["density-symmetric-findings"] = Figure(density_symmetric_findings)
+RECORD_FIGURES["density-which"] = Figure(density_which)
+RECORD_FIGURES["density-frequency-match"] = Figure(density_frequency_match)
