@@ -729,6 +729,51 @@ def density_frequency_match() -> str:
     return f"ρ ≈ {_density_trade()['rho_frequency']:.1f} kg/m³"
 
 
+# --- the density section: what the static columns' structure (C3) says ---------------------------------------------
+
+def _c3(config: str) -> dict:
+    """C3's US flutter row at 3048 m (``docs_figures_calibration.flutter_row``, the rows of docs/calibration.md §6)."""
+    from docs_figures_calibration import flutter_row
+
+    row = flutter_row(config, "US", 3048.0)
+    if row is None:
+        raise RuntimeError(f"density-c3: {config} has no US crossing at 3048 m")
+    return row
+
+
+def _pct(row: dict, key: str) -> str:
+    return f"{_num(100 * (row[key] / row['paper'][key] - 1), '+.1f')} %"
+
+
+def density_c3() -> str:
+    """C3 (the wing of the static columns) at 3048 m with the linearised aerodynamics at rho(0) and rho(3048 m)."""
+    r0, r3 = _c3("C3"), _c3("C3, ρ(3048 m)")
+    return (f"w_tip {_pct(r0, 'tip_deflection_m')}, ψ_tip {_pct(r0, 'tip_twist_deg')} at 3048 m); with that structure "
+            f"the US flutter Mach at 3048 m is {r0['M_F']:.4f} ({_pct(r0, 'M_F')}) with the linearised aerodynamics at "
+            f"ρ(0) and {r3['M_F']:.4f} ({_pct(r3, 'M_F')}) with ρ(3048 m)")
+
+
+def density_c3_mode() -> str:
+    """C3's frequency and mode class at 3048 m with rho(0)."""
+    r0 = _c3("C3")
+    return (f"{r0['omega_F']:.1f} rad/s ({_pct(r0, 'omega_F')}) and in the "
+            f"{'symmetric' if r0['sym_share'] > 0.5 else 'antisymmetric'} mode")
+
+
+def density_static_columns() -> str:
+    """The density at which C3's US flutter Mach at 3048 m meets the paper's, interpolated in ln(rho)."""
+    from flexsim.atmosphere import isa_density
+
+    r0, r3 = _c3("C3"), _c3("C3, ρ(3048 m)")
+    target = r0["paper"]["M_F"]
+    if not min(r0["M_F"], r3["M_F"]) < target < max(r0["M_F"], r3["M_F"]):
+        raise RuntimeError("density-static-columns: the paper's 3048 m flutter Mach is not between C3's with rho(0) "
+                           "and rho(3048 m); rewrite the reading")
+    s = (target - r0["M_F"]) / (r3["M_F"] - r0["M_F"])
+    ln_rho = math.log(float(isa_density(0.0))) + s * (math.log(float(isa_density(3048.0))) - math.log(float(isa_density(0.0))))
+    return f"≈ {math.exp(ln_rho):.1f} kg/m³"
+
+
 #: The figures of this module (all long studies; CPU on a quiet machine: the finite-state bounds about 2 min, the
 #: vary table about 15-20 min, each decomposition switch about 30 s). ``regenerate_docs_figures.py`` registers them.
 RECORD_FIGURES = {name: Figure(compute, long=True) for name, compute in {
@@ -750,3 +795,6 @@ RECORD_FIGURES = {name: Figure(compute, long=True) for name, compute in {
 RECORD_FIGURES["density-symmetric-findings"] = Figure(density_symmetric_findings)
 RECORD_FIGURES["density-which"] = Figure(density_which)
 RECORD_FIGURES["density-frequency-match"] = Figure(density_frequency_match)
+RECORD_FIGURES["density-c3"] = Figure(density_c3)
+RECORD_FIGURES["density-c3-mode"] = Figure(density_c3_mode)
+RECORD_FIGURES["density-static-columns"] = Figure(density_static_columns)
