@@ -3,7 +3,7 @@
 1. Steps per second of one FlexSim/GTM-LevelHold-v0 (GTM m = n = 2, light turbulence) at the default
    50 Hz control rate, for each aerodynamic model and integrator: ETD2RK (fixed 20 ms steps, LevelHold's default,
    and 10 and 5 ms, linear part the trim Jacobian), DOP853, Radau (constant trim Jacobian). Median over ``--repeats``
-   runs of ``--steps`` steps; the repeats of all integrators are interleaved (repeat 1 of each, then
+   runs of ``--steps`` steps after a warm-up reset and step; the repeats of all integrators are interleaved (repeat 1 of each, then
    repeat 2, ...) so that a drifting machine load affects them alike. Also the right-hand-side
    evaluations and LU factorisations per step, the share of the step spent outside the integration (``advance_rows``,
    or the one compiled call of a period, ``row_kernels.period_rows``, which includes the measurements and the
@@ -106,7 +106,10 @@ def steps_per_second(aero: str, repeats: int, steps: int) -> dict[str, dict[str,
     kernel = _Timed(env_base._rk.period_rows)
     env_base._rk.period_rows = kernel
     for env in made.values():
-        env.reset(seed=0)  # trim, Jacobian and matrix functions outside the timed runs
+        # trim, Jacobian and matrix functions, and the first step, which loads the compiled period from numba's
+        # cache (about 0.1-0.5 s: it fell in the first timed run before, whose rate was then a third of the others')
+        _, info = env.reset(seed=0)
+        env.step(info["trim_action"])
     runs = {label: {"rate": [], "nfev": [], "nlu": [], "outside": []} for label in made}
     for r in range(repeats):
         for label, env in made.items():
