@@ -419,9 +419,10 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
 
     def _step_rows(self, b: EpisodeBatch, rows: np.ndarray | slice, a: np.ndarray, clipped: np.ndarray) -> RowsStep:
         """One control period of the aircraft ``rows`` (sorted indices, or a slice) of ``b`` with the checked, clipped actions ``a`` (m, 4): actuator
-        rate limits, one :func:`advance_rows` call, the compiled outputs (:mod:`flexsim.envs.row_kernels`:
-        measurements, termination, reward parts and observation) and the task errors, all over the rows (the single
-        env is this with one row)."""
+        rate limits, the integration, measurements and termination (one compiled call, :meth:`_period_compiled`, where
+        it applies; else :meth:`FlightDynamics.rate_limit`, one :func:`advance_rows` call and the compiled outputs),
+        the task errors, then reward parts and observation (:func:`flexsim.envs.row_kernels.finish_rows`), all over the
+        rows (the single env is this with one row)."""
         dyn = self.dynamics
         if not isinstance(rows, slice) and len(rows) == b.n:  # all rows, in order (rows are sorted and unique)
             rows = slice(0, b.n)
