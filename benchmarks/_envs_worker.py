@@ -1,7 +1,8 @@
 """Worker of ``bench_envs.py --compare``: env steps per CPU-second of the flexsim found on sys.path, as JSON.
 
 Runs against any revision with the batched envs (``vectorization_mode="vector_entry_point"``, since 2026-12-01);
-only public APIs are used. ``single``: one ``gym.make`` env (all wrappers), ``--steps`` steps; ``batched``:
+only public APIs are used. ``single``: one ``gym.make`` env (all wrappers), ``--steps`` steps, then the same steps on
+``env.unwrapped`` and the median CPU time of 5 resets with a cached trim; ``batched``:
 ``gym.make_vec(..., num_envs=N, vectorization_mode="vector_entry_point")``, ``--steps`` vector steps. Both after a
 reset and warm-up steps (model build, trim, Jacobian, matrix functions and numba loading excluded); the actions are
 the trim action plus a small sine per row. CPU time of the process (one thread: BLAS pinned to one thread).
