@@ -47,19 +47,30 @@ def paper_row(model: str, h: float):
     return None
 
 
+def paper_quantities(table) -> list[dict]:
+    """What one of the paper's Tables 2-3 implies per row (derived from the printed values only, ISA): altitude [m],
+    M_F, omega_F [rad/s], V_F [m/s], rho [kg/m^3], V_F^2/sqrt(1-M^2) [10^3 m^2/s^2], q_F and q_F/sqrt(1-M^2) [kPa],
+    q_F * theta [Pa rad] (trim lift ~ q alpha: follows the true density when constant) and T_e / sin(theta) [kN]
+    (the paper's weight, issue 15 fact 1)."""
+    rows = []
+    for h, m, omega, theta, te, *_ in table:
+        v = m * speed_of_sound(h)
+        pg = 1.0 / math.sqrt(1.0 - m * m)
+        q = 0.5 * isa_density(h) * v * v
+        rows.append({"altitude_m": h, "M_F": m, "omega_F": omega, "V_F": float(v), "rho": float(isa_density(h)),
+                     "V2PG_k": float(v * v * pg / 1e3), "q_kPa": float(q / 1e3), "qPG_kPa": float(q * pg / 1e3),
+                     "q_theta": float(q * math.radians(theta)), "weight_kN": te / math.sin(math.radians(theta))})
+    return rows
+
+
 def paper_table() -> str:
-    """What the paper's own Tables 2-3 imply (derived from the printed values only): flutter speed, the
-    Prandtl-Glauert-scaled V^2 and dynamic pressure, q_F * theta (trim lift ~ q alpha: follows the true density
-    when constant) and T_e / sin(theta) (the paper's weight, issue 15 fact 1)."""
+    """What the paper's own Tables 2-3 imply (:func:`paper_quantities`), as a markdown table."""
     out = ["| table | h [m] | V_F [m/s] | V_F²/√(1−M²) [10³ m²/s²] | q_F/√(1−M²) [kPa] | q_F·θ [Pa rad] | T_e/sin θ [kN] |",
            "|---|---|---|---|---|---|---|"]
     for name, table in (("2 (QS)", TABLE_QS), ("3 (US)", TABLE_US)):
-        for h, m, _, theta, te, *_ in table:
-            v = m * speed_of_sound(h)
-            pg = 1.0 / math.sqrt(1.0 - m * m)
-            q = 0.5 * isa_density(h) * v * v
-            out.append(f"| {name} | {h:.0f} | {v:.1f} | {v * v * pg / 1e3:.1f} | {q * pg / 1e3:.1f} | "
-                       f"{q * math.radians(theta):.0f} | {te / math.sin(math.radians(theta)):.2f} |")
+        for r in paper_quantities(table):
+            out.append(f"| {name} | {r['altitude_m']:.0f} | {r['V_F']:.1f} | {r['V2PG_k']:.1f} | {r['qPG_kPa']:.1f} | "
+                       f"{r['q_theta']:.0f} | {r['weight_kN']:.2f} |")
     return "\n".join(out)
 
 

@@ -774,6 +774,78 @@ def density_static_columns() -> str:
     return f"≈ {math.exp(ln_rho):.1f} kg/m³"
 
 
+# --- the density section: what the paper's own tables imply (fast: printed values only) ------------------------
+
+def _paper(table: str) -> dict[float, dict]:
+    """``density_finding.paper_quantities`` of Table 2 ("QS") or 3 ("US"), keyed by altitude [m]."""
+    import density_finding
+
+    from flexsim.linear.paper_data import TABLE_QS, TABLE_US
+
+    return {r["altitude_m"]: r for r in density_finding.paper_quantities(TABLE_QS if table == "QS" else TABLE_US)}
+
+
+def _spread(values) -> float:
+    """max / min - 1 of positive values [-]."""
+    return max(values) / min(values) - 1
+
+
+def density_paper_boundary() -> str:
+    """The paper's US boundary from 3048 to 9144 m: V^2/sqrt(1-M^2) and omega_F nearly constant while the density
+    and the scaled dynamic pressure halve."""
+    us = _paper("US")
+    hs = PAPER_ALTITUDES_M[1:]
+    a, b = us[hs[0]], us[hs[-1]]
+    return (f"keeps V²/√(1−M²) within {100 * _spread([us[h]['V2PG_k'] for h in hs]):.0f} % and ω_F within "
+            f"{100 * _spread([us[h]['omega_F'] for h in hs]):.2f} % ({' / '.join(format(us[h]['omega_F'], '.3f') for h in hs)} rad/s) "
+            f"while the air density falls from {a['rho']:.3f} to {b['rho']:.3f} kg/m³ (× {b['rho'] / a['rho']:.2f}) and "
+            f"the Prandtl–Glauert-scaled dynamic pressure from {a['qPG_kPa']:.1f} to {b['qPG_kPa']:.1f} kPa "
+            f"(× {b['qPG_kPa'] / a['qPG_kPa']:.2f})")
+
+
+def density_paper_trim() -> str:
+    """The paper's trims (both tables): q_F * theta nearly constant while q_F changes, and T_e / sin(theta)."""
+    rows = [*_paper("QS").values(), *_paper("US").values()]
+    qt = [r["q_theta"] for r in rows]
+    w = [r["weight_kN"] for r in rows]
+    return (f"q_F·θ (lift ≈ q·α) stays at {min(qt):.0f}-{max(qt):.0f} Pa·rad while q_F changes "
+            f"{max(r['q_kPa'] for r in rows) / min(r['q_kPa'] for r in rows):.1f}-fold, and T_e = "
+            f"{sum(w) / len(w):.1f} kN × sin θ in every row (within {max(w) - min(w):.2f} kN)")
+
+
+def density_paper_speed() -> str:
+    """The paper's US flutter speed and frequency change from 3048 to 9144 m."""
+    us = _paper("US")
+    a, b = us[3048.0], us[9144.0]
+    return (f"V_F {a['V_F']:.1f} → {b['V_F']:.1f} m/s, ω_F {_num(100 * (b['omega_F'] / a['omega_F'] - 1), '+.2f')} %")
+
+
+def density_paper_qs() -> str:
+    """The paper's QS table from 3048 to 6096 m: V^2/sqrt(1-M^2) and omega_F."""
+    qs = _paper("QS")
+    a, b = qs[3048.0], qs[6096.0]
+    return (f"V²/√(1−M²) {'drops' if b['V2PG_k'] < a['V2PG_k'] else 'rises'} by "
+            f"{abs(100 * (b['V2PG_k'] / a['V2PG_k'] - 1)):.0f} % from 3048 to 6096 m at "
+            f"{a['omega_F']:.2f} / {b['omega_F']:.2f} rad/s")
+
+
+def density_paper_altitude() -> str:
+    """The paper's US flutter speeds over 0-9144 m and its rise of M_F from 3048 to 9144 m."""
+    us = _paper("US")
+    v = [r["V_F"] for r in us.values()]
+    return (f"({min(v):.0f}-{max(v):.0f} m/s) and the slow rise of M_F with altitude "
+            f"({_num(100 * (us[9144.0]['M_F'] / us[3048.0]['M_F'] - 1), '+.1f')} % from 3048 to 9144 m)")
+
+
+def density_true_rise() -> str:
+    """The rise of the bundled gtm's US flutter Mach from 3048 to 9144 m with the true density (the density-fixed
+    rows)."""
+    from docs_figures_studies import _density_rows
+
+    true = {r["altitude_m"]: r for r in _density_rows() if r["density"] == "true"}
+    return f"{_num(100 * (true[9144.0]['M_F'] / true[3048.0]['M_F'] - 1), '+.0f')} %"
+
+
 #: The figures of this module (all long studies; CPU on a quiet machine: the finite-state bounds about 2 min, the
 #: vary table about 15-20 min, each decomposition switch about 30 s). ``regenerate_docs_figures.py`` registers them.
 RECORD_FIGURES = {name: Figure(compute, long=True) for name, compute in {
@@ -798,3 +870,8 @@ RECORD_FIGURES["density-frequency-match"] = Figure(density_frequency_match)
 RECORD_FIGURES["density-c3"] = Figure(density_c3)
 RECORD_FIGURES["density-c3-mode"] = Figure(density_c3_mode)
 RECORD_FIGURES["density-static-columns"] = Figure(density_static_columns)
+RECORD_FIGURES["density-true-rise"] = Figure(density_true_rise)
+RECORD_FIGURES.update({name: Figure(compute, fast=True) for name, compute in {
+    "density-paper-boundary": density_paper_boundary, "density-paper-trim": density_paper_trim,
+    "density-paper-speed": density_paper_speed, "density-paper-qs": density_paper_qs,
+    "density-paper-altitude": density_paper_altitude}.items()})
