@@ -846,6 +846,17 @@ def density_true_rise() -> str:
     return f"{_num(100 * (true[9144.0]['M_F'] / true[3048.0]['M_F'] - 1), '+.0f')} %"
 
 
+def density_turn_growth() -> str:
+    """C1's symmetric-mode turn effect M_F(5 km) - M_F(12 km) at 0-9144 m (the scorecard rows of docs/calibration.md
+    §7, ``docs_figures_calibration.scorecard_row``) and whether it grows monotonically with altitude."""
+    from docs_figures_calibration import scorecard_row
+
+    effect = [scorecard_row("C1", h)["turn_dM"] for h in PAPER_ALTITUDES_M]
+    grows = all(b > a for a, b in zip(effect[:-1], effect[1:]))
+    return (f"{'grows monotonically' if grows else 'does not grow monotonically'} with altitude, "
+            f"{' / '.join(_num(e, '.4f') for e in effect)} at {' / '.join(f'{h:g}' for h in PAPER_ALTITUDES_M)} m")
+
+
 #: The figures of this module (all long studies; CPU on a quiet machine: the finite-state bounds about 2 min, the
 #: vary table about 15-20 min, each decomposition switch about 30 s). ``regenerate_docs_figures.py`` registers them.
 RECORD_FIGURES = {name: Figure(compute, long=True) for name, compute in {
@@ -871,6 +882,7 @@ RECORD_FIGURES["density-c3"] = Figure(density_c3)
 RECORD_FIGURES["density-c3-mode"] = Figure(density_c3_mode)
 RECORD_FIGURES["density-static-columns"] = Figure(density_static_columns)
 RECORD_FIGURES["density-true-rise"] = Figure(density_true_rise)
+RECORD_FIGURES["density-turn-growth"] = Figure(density_turn_growth)
 RECORD_FIGURES.update({name: Figure(compute, fast=True) for name, compute in {
     "density-paper-boundary": density_paper_boundary, "density-paper-trim": density_paper_trim,
     "density-paper-speed": density_paper_speed, "density-paper-qs": density_paper_qs,
