@@ -857,6 +857,55 @@ def density_turn_growth() -> str:
             f"{' / '.join(_num(e, '.4f') for e in effect)} at {' / '.join(f'{h:g}' for h in PAPER_ALTITUDES_M)} m")
 
 
+# --- in-vacuo frequencies and the options table quoted in prose (fast) ---------------------------------------------
+
+@functools.cache
+def _in_vacuo(aircraft: str) -> dict[str, float]:
+    """In-vacuo natural frequencies [rad/s] of a bundled aircraft by dominant degree of freedom (``flexsim modes``)."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.modes import in_vacuo_modes
+    from flexsim.model.aircraft_model import AircraftModel
+
+    out: dict[str, float] = {}
+    for m in in_vacuo_modes(AircraftModel(load_aircraft(aircraft), gravity_m_s2=0.0)).modes:
+        out.setdefault(m.dominant_dof, m.frequency_rad_s)
+    return out
+
+
+def _vacuo(aircraft: str, label: str) -> float:
+    f = _in_vacuo(aircraft)
+    if label not in f:
+        raise RuntimeError(f"no in-vacuo mode {label!r} of {aircraft} (modes: {', '.join(f)})")
+    return f[label]
+
+
+def flutter_mode_frequencies(level) -> str:
+    """The US flutter frequencies of the bundled gtm (``level("US")``, the docs tool's rows) against its in-vacuo
+    fuselage bending 1 and wing torsion 1."""
+    w = [r["omega_rad_s"] for r in level("US").values()]
+    fus, t_s, t_a = (_vacuo("gtm", k) for k in ("fuselage bending 1", "wings torsion 1 (symmetric)",
+                                                "wings torsion 1 (antisymmetric)"))
+    if not fus < min(w) <= max(w) < min(t_s, t_a):
+        raise RuntimeError("flutter-mode-frequencies: the flutter frequency is no longer between the fuselage's first "
+                           "bending and the wings' first torsion")
+    return (f"{_span(w, '.1f')} rad/s (US), between the fuselage's first bending ({fus:.1f} rad/s in vacuo) and the "
+            f"wings' first torsion ({t_s:.1f}/{t_a:.1f} rad/s, symmetric/antisymmetric)")
+
+
+def symmetric_wing_bending_vacuo() -> str:
+    """The in-vacuo frequency of gtm_paper's symmetric wing first bending."""
+    return f"{_vacuo('gtm_paper', 'wings bending 1 (symmetric)'):.1f} rad/s in vacuo"
+
+
+def options_paper_turn_effect() -> str:
+    """The paper's turn (R = 5 km) against level flight at sea level (finite state; options-effects-flutter's points)."""
+    from docs_figures_static import options_effects_points
+
+    points = dict(options_effects_points())
+    level, turn = points["level flight, bundled `gtm`"], points["turn R = 5 km, the paper's (heading on track)"]
+    return f"{_num(100 * (turn.mach / level.mach - 1), '+.2f')} % at R = 5 km"
+
+
 #: The figures of this module (all long studies; CPU on a quiet machine: the finite-state bounds about 2 min, the
 #: vary table about 15-20 min, each decomposition switch about 30 s). ``regenerate_docs_figures.py`` registers them.
 RECORD_FIGURES = {name: Figure(compute, long=True) for name, compute in {
@@ -886,4 +935,5 @@ RECORD_FIGURES["density-turn-growth"] = Figure(density_turn_growth)
 RECORD_FIGURES.update({name: Figure(compute, fast=True) for name, compute in {
     "density-paper-boundary": density_paper_boundary, "density-paper-trim": density_paper_trim,
     "density-paper-speed": density_paper_speed, "density-paper-qs": density_paper_qs,
-    "density-paper-altitude": density_paper_altitude}.items()})
+    "density-paper-altitude": density_paper_altitude, "symmetric-wing-bending-vacuo": symmetric_wing_bending_vacuo,
+    "options-paper-turn-effect": options_paper_turn_effect}.items()})
