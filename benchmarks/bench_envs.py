@@ -318,10 +318,11 @@ def compare(reference: str, reference_tree: str | None, repeats: int) -> None:
     label = reference_tree or reference
     print(f"issue #14 rows 4-5: this tree against {label}, fresh processes alternating, median of {repeats}; env-steps per "
           f"CPU-second; {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f}", flush=True)
-    rows = (("one env, LevelHold-v0, default integrator", "single", 300, None, TARGET_STEPS_S),
-            (f"one env, ETD2RK {COMPARE_STEP_S * 1e3:g} ms (both trees)", "single", 300, COMPARE_STEP_S, TARGET_STEPS_S),
-            ("256 batched (vector_entry_point), default", "batched", 4, None, TARGET_BATCHED),
-            (f"256 batched, ETD2RK {COMPARE_STEP_S * 1e3:g} ms (both trees)", "batched", 4, COMPARE_STEP_S, TARGET_BATCHED))
+    # about 0.3-1 s of CPU per worker run: 300 single steps or 4 vector steps were 0.1 s and spread 1.7x under load
+    rows = (("one env, LevelHold-v0, default integrator", "single", 1000, None, TARGET_STEPS_S),
+            (f"one env, ETD2RK {COMPARE_STEP_S * 1e3:g} ms (both trees)", "single", 1000, COMPARE_STEP_S, TARGET_STEPS_S),
+            ("256 batched (vector_entry_point), default", "batched", 8, None, TARGET_BATCHED),
+            (f"256 batched, ETD2RK {COMPARE_STEP_S * 1e3:g} ms (both trees)", "batched", 8, COMPARE_STEP_S, TARGET_BATCHED))
     for text, mode, steps, h, target in rows:
         runs: dict[str, list[dict]] = {"ref": [], "new": []}
         for _ in range(repeats):
