@@ -16,35 +16,35 @@ from flexsim._kernels.layout import (BODY_AXIS, BODY_G0, BODY_G1, BODY_OFFSET, B
 
 
 @kernel
-def point_velocity(g0, g1, offset, j, q, vel):
-    """Velocity v_p (3,) [m/s] of attached point j and the q part g1[j] q (3, 3) of its map A_j(q), component axes:
-    v_p = A_j(q) V + omega_sec x rho_j with A_j(q) = g0[j, 0:3] + g1[j] q on the omega columns and omega_sec =
-    g0[j, 3:6] V (paper eqs. 5-6, 18; drag items and slender bodies)."""
+def point_velocity(g0, g1, offset, j, q, vel, g1q):
+    """Velocity v_p [m/s] of attached point j, component axes, as three floats, and the q part g1[j] q (3, 3) of its
+    map A_j(q) written into ``g1q``: v_p = A_j(q) V + omega_sec x rho_j with A_j(q) = g0[j, 0:3] + g1[j] q on the
+    omega columns and omega_sec = g0[j, 3:6] V (paper eqs. 5-6, 18; drag items and slender bodies)."""
     n_v = vel.shape[0]
     nq = q.shape[0]
-    g1q = np.empty((3, 3))
     for r in range(3):
         for c in range(3):
             acc = 0.0
             for k in range(nq):
                 acc += g1[j, r, c, k] * q[k]
             g1q[r, c] = acc
-    vp = np.empty(3)
-    om0 = om1 = om2 = 0.0
+    vp0 = vp1 = vp2 = om0 = om1 = om2 = 0.0
     for i in range(n_v):
-        om0 += g0[j, 3, i] * vel[i]
-        om1 += g0[j, 4, i] * vel[i]
-        om2 += g0[j, 5, i] * vel[i]
-    for r in range(3):
-        acc = 0.0
-        for i in range(n_v):
-            acc += g0[j, r, i] * vel[i]
-        vp[r] = acc + g1q[r, 0] * vel[3] + g1q[r, 1] * vel[4] + g1q[r, 2] * vel[5]
+        vi = vel[i]
+        vp0 += g0[j, 0, i] * vi
+        vp1 += g0[j, 1, i] * vi
+        vp2 += g0[j, 2, i] * vi
+        om0 += g0[j, 3, i] * vi
+        om1 += g0[j, 4, i] * vi
+        om2 += g0[j, 5, i] * vi
+    vp0 = vp0 + g1q[0, 0] * vel[3] + g1q[0, 1] * vel[4] + g1q[0, 2] * vel[5]
+    vp1 = vp1 + g1q[1, 0] * vel[3] + g1q[1, 1] * vel[4] + g1q[1, 2] * vel[5]
+    vp2 = vp2 + g1q[2, 0] * vel[3] + g1q[2, 1] * vel[4] + g1q[2, 2] * vel[5]
     rho_j = offset[j]
-    vp[0] += om1 * rho_j[2] - om2 * rho_j[1]
-    vp[1] += om2 * rho_j[0] - om0 * rho_j[2]
-    vp[2] += om0 * rho_j[1] - om1 * rho_j[0]
-    return vp, g1q
+    vp0 += om1 * rho_j[2] - om2 * rho_j[1]
+    vp1 += om2 * rho_j[0] - om0 * rho_j[2]
+    vp2 += om0 * rho_j[1] - om1 * rho_j[0]
+    return vp0, vp1, vp2
 
 
 @kernel
@@ -60,12 +60,13 @@ def parasite_drag(F, I, q, vel, rho):
     g0 = _f3(F, I, DRAG_G0)
     g1 = _f4(F, I, DRAG_G1)
     offset = _f2(F, I, DRAG_OFFSET)
+    g1q = np.empty((3, 3))
     for j in range(area.shape[0]):
-        vp, g1q = point_velocity(g0, g1, offset, j, q, vel)
+        vp0, vp1, vp2 = point_velocity(g0, g1, offset, j, q, vel, g1q)
         rho_i = offset[j]
-        speed = math.sqrt(vp[0] * vp[0] + vp[1] * vp[1] + vp[2] * vp[2])
+        speed = math.sqrt(vp0 * vp0 + vp1 * vp1 + vp2 * vp2)
         c = -0.5 * rho * area[j] * speed
-        f0, f1, f2 = c * vp[0], c * vp[1], c * vp[2]
+        f0, f1, f2 = c * vp0, c * vp1, c * vp2
         mu0 = rho_i[1] * f2 - rho_i[2] * f1
         mu1 = rho_i[2] * f0 - rho_i[0] * f2
         mu2 = rho_i[0] * f1 - rho_i[1] * f0
@@ -102,9 +103,9 @@ def body_moments(F, I, q, vel, rho):
     g1 = _f4(F, I, BODY_G1)
     offset = _f2(F, I, BODY_OFFSET)
     v_p = np.empty((vol_dk.shape[0], 3))
+    g1q = np.empty((3, 3))
     for j in range(vol_dk.shape[0]):
-        vp, _ = point_velocity(g0, g1, offset, j, q, vel)
-        v_p[j, 0], v_p[j, 1], v_p[j, 2] = vp[0], vp[1], vp[2]
+        v_p[j, 0], v_p[j, 1], v_p[j, 2] = point_velocity(g0, g1, offset, j, q, vel, g1q)
     return munk_moments(v_p, _f2(F, I, BODY_AXIS), rho * vol_dk)
 
 

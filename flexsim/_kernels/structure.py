@@ -27,13 +27,17 @@ def inertia(m0, h, m2, v, q, s):
     m = m0.copy()
     hq = np.zeros((n_v, 3))
     hs = np.zeros((n_v, 3))
+    vh = np.zeros((3, nq))  # V^T H[:, a, k]
     for i in range(n_v):
+        vi = v[i]
         for a in range(3):
             acc_q = 0.0
             acc_s = 0.0
             for k in range(nq):
-                acc_q += h[i, a, k] * q[k]
-                acc_s += h[i, a, k] * s[k]
+                hik = h[i, a, k]
+                acc_q += hik * q[k]
+                acc_s += hik * s[k]
+                vh[a, k] += vi * hik
             hq[i, a] = acc_q
             hs[i, a] = acc_s
     for i in range(n_v):
@@ -60,13 +64,10 @@ def inertia(m0, h, m2, v, q, s):
     for k in range(nq):
         acc = 0.0
         for a in range(3):
-            vh = 0.0
-            for i in range(n_v):
-                vh += v[i] * h[i, a, k]
             wm = 0.0
             for b in range(3):
                 wm += w[b] * m2q[b, a, k]
-            acc += w[a] * (vh + wm)
+            acc += w[a] * (vh[a, k] + wm)
         dtdq[k] = acc
     mdot = np.empty(n_v)
     for i in range(n_v):
