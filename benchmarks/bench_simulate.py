@@ -24,19 +24,32 @@ table of docs/simulation.md: largest errors of altitude, airspeed, bank angle an
 ``--parts``: instead, the CPU time of the parts of one default run (compiled steps, dense output, events, matrix
 functions, Jacobian, the rest).
 
+``--compare [REV]``: instead, this tree against a reference revision (default 1276784: main before the fused dense
+output, 2026-12-02) side by side in one run: each side in its own process (``benchmarks/_simulate_worker.py``),
+alternately (reference, this, reference, ...) ``--repeats`` times, so both see the same load; each process times
+``--inner`` default runs of the scenario after a warm-up. Prints the median CPU time and real-time factor of each
+side, their ratio, and the largest difference of the trajectories (100 Hz samples): per group of the state layout
+relative to the group's largest magnitude, and of altitude, airspeed and tip deflection in SI units. The reference
+is extracted with ``git archive`` into ``~/.cache/flexsim-bench/<revision>`` (kept with numba's cache of its kernels:
+the first run compiles them, 2-7 min of CPU), or taken from ``--reference-tree``.
+
 Run: python benchmarks/bench_simulate.py [--duration 60] [--repeats 3] [--all] [--candidates Radau:1e-3,ETD2RK:0.02]
      python benchmarks/bench_simulate.py --manoeuvres
      python benchmarks/bench_simulate.py --parts
+     python benchmarks/bench_simulate.py --compare [REV] [--reference-tree DIR] [--repeats 3] [--inner 3]
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
+from pathlib import Path
 
 # measure the flexsim of this checkout (python puts benchmarks/ on sys.path, not the repository root)
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -45,14 +58,9 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from flexsim.aircraft.toml_loader import load_aircraft  # noqa: E402
-from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
-from flexsim.sim.disturbances import OneMinusCosineGust  # noqa: E402
 from flexsim.sim.accuracy import manoeuvre_errors  # noqa: E402
 from flexsim.sim.manoeuvres import build_manoeuvre, manoeuvre_names  # noqa: E402
 from flexsim.sim.simulate import DEFAULT_MAX_STEP, simulate  # noqa: E402
-from flexsim.kinematics import dcm_321  # noqa: E402
-from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
 
 TARGET_RTF = 100.0
 #: (label, method, fixed step [s] for ETD2RK or rtol): the default first, then the previous default and Radau
@@ -63,15 +71,63 @@ RADAU = ("Radau (earlier default)", "Radau", 1e-3)
 OTHERS = [("", "ETD2RK", 0.05), ("", "Radau", 1e-4), ("", "Radau", 1e-5), ("", "LSODA", 1e-4), ("", "BDF", 1e-4),
           ("", "DOP853", 1e-6)]
 
-def scenario():
-    """The GTM model, its level trim and the gust."""
-    gtm = load_aircraft("gtm")
-    still = AircraftModel(gtm, aero="unsteady")
-    point = trim(still, SteadyManoeuvre.level(9144.0, mach=0.75))
-    velocity_ned = dcm_321(*point.x[still.layout.euler]).T @ point.x[still.layout.v]
-    gust = OneMinusCosineGust.encounter(2.0, 30.0, position_ned_m=point.x[still.layout.position],
-                                        velocity_ned_m_s=velocity_ned, start_time_s=1.0)
-    return still, point, gust
+from _simulate_worker import scenario  # noqa: E402  (the GTM model, its level trim and the gust)
+
+HERE = Path(__file__).resolve().parents[1]
+WORKER = HERE / "benchmarks" / "_simulate_worker.py"
+#: Default reference of --compare: main before the fused dense output (2026-12-02).
+COMPARE_REFERENCE = "1276784"
+
+
+def _reference_tree(rev: str) -> Path:
+    """A checkout of ``rev`` extracted with ``git archive`` into ``~/.cache/flexsim-bench/<sha>`` (kept between
+    runs, with numba's cache of its kernels)."""
+    sha = subprocess.run(["git", "-C", str(HERE), "rev-parse", "--short=12", rev], check=True, capture_output=True,
+                         text=True).stdout.strip()
+    tree = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "flexsim-bench" / sha
+    if not (tree / "flexsim" / "sim" / "simulate.py").is_file():
+        tree.mkdir(parents=True, exist_ok=True)
+        archive = subprocess.run(["git", "-C", str(HERE), "archive", sha], check=True, capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", str(tree)], input=archive, check=True)
+    return tree
+
+
+def compare(ref: Path, repeats: int, inner: int, duration: float) -> None:
+    """This tree against the reference tree, side by side (module docstring, ``--compare``)."""
+    print(f"default simulate, {duration:g} s of the gust scenario: reference {ref} against this tree {HERE}; "
+          f"{repeats} alternating process pairs x {inner} runs; load average {os.getloadavg()[0]:.2f} at start", flush=True)
+    runs: dict[str, list[dict]] = {"ref": [], "this": []}
+    with tempfile.TemporaryDirectory() as tmp:
+        for _ in range(repeats):
+            for side, tree in (("ref", ref), ("this", HERE)):
+                env = dict(os.environ, PYTHONPATH=str(tree), OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+                out = subprocess.run([sys.executable, str(WORKER), str(inner), str(duration), f"{tmp}/{side}.npz"],
+                                     cwd=tree, env=env, check=True, capture_output=True, text=True)
+                runs[side].append(json.loads(out.stdout.strip().splitlines()[-1]))
+        samples = {side: dict(np.load(f"{tmp}/{side}.npz")) for side in runs}
+    med = {side: {k: statistics.median(t for r in runs[side] for t in r[k]) for k in ("cpu_s", "wall_s")} for side in runs}
+    print(f"{'':<10} {'CPU [s]':>8} {'RTF (CPU)':>10} {'wall [s]':>9} {'RTF (wall)':>10}  status")
+    for side, label in (("ref", "reference"), ("this", "this tree")):
+        m = med[side]
+        print(f"{label:<10} {m['cpu_s']:8.3f} {duration / m['cpu_s']:10.1f} {m['wall_s']:9.3f} {duration / m['wall_s']:10.1f}  "
+              f"{runs[side][-1]['status']}")
+    print(f"ratio reference / this tree: CPU {med['ref']['cpu_s'] / med['this']['cpu_s']:.2f}x, wall "
+          f"{med['ref']['wall_s'] / med['this']['wall_s']:.2f}x (medians of {repeats * inner} runs per side)")
+    a, b = samples["this"], samples["ref"]
+    if a["t"].shape != b["t"].shape or not np.allclose(a["t"], b["t"], rtol=1e-12, atol=0.0):
+        print(f"trajectories: different sample times ({a['t'].size} against {b['t'].size} samples)")
+    else:
+        worst = []
+        for name, (lo, hi) in runs["ref"][-1]["layout"].items():
+            if hi > lo:
+                scale = np.abs(b["x"][:, lo:hi]).max()
+                worst.append((float(np.abs(a["x"][:, lo:hi] - b["x"][:, lo:hi]).max() / scale) if scale else 0.0, name))
+        rel, group = max(worst)
+        print(f"largest trajectory difference (100 Hz samples): {rel:.1e} of the largest |{group}| (per group of the "
+              f"state layout); altitude {np.abs(a['altitude'] - b['altitude']).max():.1e} m, airspeed "
+              f"{np.abs(a['airspeed'] - b['airspeed']).max():.1e} m/s, right-wing tip "
+              f"{np.abs(a['tip'] - b['tip']).max():.1e} m")
+    print(f"target: >= {TARGET_RTF:g}x real time (CPU); load average {os.getloadavg()[0]:.2f} at the end")
 
 
 def errors(result, reference) -> tuple[float, float, float]:
@@ -123,9 +179,8 @@ def cost_parts(model, point, gust, duration: float) -> None:
                 spent[label] = spent.get(label, 0.0) + time.process_time() - c0
         setattr(owner, attr, wrapper)
 
-    timed(sk, "etd2rk_run", "compiled steps (2 rhs + 3 mat-vecs per step)")
+    timed(sk, "etd2rk_run_dense", "compiled steps (2 rhs + 3 mat-vecs per step)")
     timed(cr._Steps, "__call__", "dense output (samples, event times)")
-    timed(cr, "step_accelerations", "  of which products with J")
     timed(cr, "_chunk_events", "events")
     timed(fs, "phi_functions", "matrix functions")
     timed(sm, "jacobian", "Jacobian")
@@ -151,11 +206,19 @@ def main() -> None:
     parser.add_argument("--all", action="store_true", help="also ETD2RK 50 ms, Radau 1e-4/1e-5, LSODA, BDF, DOP853 1e-6")
     parser.add_argument("--manoeuvres", action="store_true", help="accuracy on the named manoeuvres instead")
     parser.add_argument("--parts", action="store_true", help="instead, the CPU time of the parts of one default run")
+    parser.add_argument("--compare", nargs="?", const=COMPARE_REFERENCE, default=None, metavar="REV",
+                        help=f"instead, this tree against REV side by side (default {COMPARE_REFERENCE})")
+    parser.add_argument("--reference-tree", type=Path, default=None, help="with --compare: a checkout to compare against")
+    parser.add_argument("--inner", type=int, default=3, help="with --compare: timed runs per process")
     parser.add_argument("--candidates", default=None,
                         help="comma-separated method:rtol (ETD2RK: method:step [s]) pairs, e.g. Radau:1e-3,ETD2RK:0.02")
     args = parser.parse_args()
     if args.manoeuvres:
         manoeuvre_accuracy()
+        return
+    if args.compare or args.reference_tree:
+        ref = args.reference_tree.resolve() if args.reference_tree else _reference_tree(args.compare or COMPARE_REFERENCE)
+        compare(ref, args.repeats, args.inner, args.duration)
         return
     model, point, gust = scenario()
     if args.parts:

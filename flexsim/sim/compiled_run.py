@@ -51,20 +51,26 @@ class _Steps:
     """Dense output over consecutive step ends (t (k+1,), x and f (k+1, n)) of a chunk of compiled steps: the quintic
     Hermite interpolant of :class:`~flexsim.sim.fixed_step.ETD2RKSolver`'s dense output
     (:func:`~flexsim.sim.fixed_step.quintic_hermite`, second derivatives with the linear part ``jac`` by
-    :func:`~flexsim.sim.fixed_step.step_accelerations`, for all steps of the chunk at the first sample that needs
-    them), evaluated by the compiled :func:`flexsim.sim._dense_kernels.hermite_samples`. ``sol(t)``: scalar t -> (n,), array t (m,) -> (n, m) (as scipy's ``DenseOutput``)."""
+    :func:`~flexsim.sim.fixed_step.step_accelerations`: their means ``mean`` (k, n) from the compiled steps
+    (:func:`flexsim.sim._step_kernels.etd2rk_run_dense`) or, if None, for all steps of the chunk at the first sample
+    that needs them; their half differences, needed only off the steps' ends and midpoints, likewise), evaluated by
+    the compiled :func:`flexsim.sim._dense_kernels.hermite_samples`. ``sol(t)``: scalar t -> (n,), array t (m,) ->
+    (n, m) (as scipy's ``DenseOutput``)."""
 
-    def __init__(self, t: np.ndarray, x: np.ndarray, f: np.ndarray, jac: np.ndarray) -> None:
+    def __init__(self, t: np.ndarray, x: np.ndarray, f: np.ndarray, jac: np.ndarray,
+                 mean: np.ndarray | None = None) -> None:
         self.t, self.x, self.f, self.jac = t, x, f, jac
-        self._mean = self._half_diff = None
+        self._mean, self._half_diff = mean, None
         self._none = np.zeros((0, x.shape[1]))  # for the kernel where the second derivatives are not needed
 
     def __call__(self, t):
         tt = np.ascontiguousarray(np.atleast_1d(np.asarray(t, dtype=float)))
         inside, off = _dk.sample_needs(self.t, tt)
-        if inside and (self._mean is None or (off and self._half_diff is None)):
+        if inside and self._mean is None:
             self._mean, self._half_diff = step_accelerations(np.diff(self.t)[:, None], np.diff(self.x, axis=0),
                                                              self.f[:-1], self.f[1:], self.jac, difference=off)
+        if off and self._half_diff is None:
+            self._half_diff = (0.5 * (self.f[1:] - self.f[:-1])) @ self.jac.T  # as step_accelerations
         none = self._none
         y = np.empty((tt.size, self.x.shape[1]))
         _dk.hermite_samples(self.t, self.x, self.f, none if self._mean is None else self._mean,
@@ -113,9 +119,9 @@ def integrate_compiled(problem: RunProblem, settings: IntegrationSettings, sinks
             t = a
             while b - t > 1e-12 * max(1.0, abs(b)):
                 if b - t > h * (1.0 + 1e-9):
-                    steps = stepper(h).run(model, t, x, f, b, chunk, controls, wind_data)
+                    steps = stepper(h).run(model, t, x, f, b, chunk, controls, wind_data, dense=True)
                 else:
-                    steps = stepper(b - t).run(model, t, x, f, b, 1, controls, wind_data, land=True)
+                    steps = stepper(b - t).run(model, t, x, f, b, 1, controls, wind_data, land=True, dense=True)
                 k = steps.t.size - 1
                 nfev += 2 * k
                 bad = not (np.all(np.isfinite(steps.x[-1])) and np.all(np.isfinite(steps.f[-1])))
@@ -132,13 +138,12 @@ def integrate_compiled(problem: RunProblem, settings: IntegrationSettings, sinks
                     if np.all(np.isfinite(steps.x[-1])):
                         model.rhs(steps.t[-1], steps.x[-1], u_of(steps.t[-1]), wind)  # raises what rhs raises there
                     t_bad = float(steps.t[-1])
-                    steps = steps._replace(t=steps.t[:-1], x=steps.x[:-1], f=steps.f[:-1])
+                    steps = steps._replace(t=steps.t[:-1], x=steps.x[:-1], f=steps.f[:-1], mean=steps.mean[:-1])
                     k -= 1
                 hit = None
                 if k:
-                    sol = _Steps(steps.t, steps.x, steps.f, lin["jac"])
-                    j_stop, hit = _chunk_events(evs, g_old, steps, sol, crossings, sink)
-                    g_old = np.array([ev.function(float(steps.t[j_stop]), steps.x[j_stop]) for ev in evs], dtype=float)
+                    sol = _Steps(steps.t, steps.x, steps.f, lin["jac"], steps.mean)
+                    j_stop, hit, g_old = _chunk_events(evs, g_old, steps, sol, crossings, sink)
                     t_reached = float(steps.t[j_stop]) if hit is None else hit[0]
                     finished = hit is None and not bad and j_stop == k and t_reached >= b  # the solver's "finished"
                     inclusive = not finished or b >= t_end
@@ -177,30 +182,40 @@ def flight_condition(model: AircraftModel, x: np.ndarray) -> np.ndarray | None:
     return np.array([float(np.linalg.norm(x[lay.v][:3])), model.air_density(x)])
 
 
-def _crossing_steps(ev: RunEvent, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """Whether the margin crosses zero between lo and hi in the event's direction (as in :func:`_integrate`)."""
-    down = (lo >= 0) & (hi <= 0) & (lo != hi)
-    up = (lo <= 0) & (hi >= 0) & (lo != hi)
-    return down if ev.direction < 0 else up if ev.direction > 0 else down | up
+def _crossings(directions: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Whether the margins cross zero between lo and hi (rows: steps, columns: events) in each event's direction
+    (-1, +1 or 0 for both; as in :func:`_integrate`)."""
+    moved = lo != hi
+    down = (lo >= 0) & (hi <= 0) & moved
+    up = (lo <= 0) & (hi >= 0) & moved
+    return np.where(directions < 0, down, np.where(directions > 0, up, down | up))
 
 
-def _chunk_events(evs, g_old: np.ndarray, steps, sol, crossings: list, sink) -> tuple[int, tuple | None]:
+def _chunk_events(evs, g_old: np.ndarray, steps, sol, crossings: list, sink) -> tuple[int, tuple | None, np.ndarray]:
     """Events over a chunk of steps: (index of the step where the run stops — the first with a terminal crossing,
-    else the last —, (t, event) of the terminal hit or None). Non-terminal crossings up to that step are appended
-    to ``crossings`` and logged; times located by Brent's method on the dense output."""
+    else the last —, (t, event) of the terminal hit or None, the margins at that step). Non-terminal crossings up to
+    that step are appended to ``crossings`` and logged; times located by Brent's method on the dense output. The
+    margins of all steps are evaluated per event at once (:meth:`RunEvent.many`) and checked for crossings together."""
     k = steps.t.size - 1
     if not evs:
-        return k, None
-    g = np.vstack([g_old[None, :], np.column_stack([ev.many(steps.t[1:], steps.x[1:]) for ev in evs])])
+        return k, None, g_old
+    g = np.empty((k + 1, len(evs)))
+    g[0] = g_old
+    for e, ev in enumerate(evs):
+        g[1:, e] = ev.many(steps.t[1:], steps.x[1:])
+    if ((g > 0).all(axis=0) | (g < 0).all(axis=0)).all():  # no margin changes sign (the usual chunk)
+        return k, None, g[k]
+    cross = _crossings(np.array([ev.direction for ev in evs]), g[:-1], g[1:])
+    if not cross.any():
+        return k, None, g[k]
     j_stop = k
     for e, ev in enumerate(evs):
-        cross = _crossing_steps(ev, g[:-1, e], g[1:, e])
-        if ev.terminal and cross.any():
-            j_stop = min(j_stop, int(np.argmax(cross)) + 1)
+        if ev.terminal and cross[:, e].any():
+            j_stop = min(j_stop, int(np.argmax(cross[:, e])) + 1)
     hit = None
     found = []
     for e, ev in enumerate(evs):
-        for j in np.flatnonzero(_crossing_steps(ev, g[:j_stop, e], g[1:j_stop + 1, e])) + 1:
+        for j in np.flatnonzero(cross[:j_stop, e]) + 1:
             t_ev = brentq(lambda tt, ev=ev: ev.function(tt, sol(tt)), float(steps.t[j - 1]), float(steps.t[j]),
                           xtol=4 * _EPS, rtol=4 * _EPS)
             if ev.terminal:
@@ -212,13 +227,15 @@ def _chunk_events(evs, g_old: np.ndarray, steps, sol, crossings: list, sink) -> 
         crossings.append((t_ev, name))
         if sink is not None:
             sink.event(t_ev, f"event {name!r} at t = {t_ev:.4f} s")
-    return j_stop, hit
+    return j_stop, hit, g[j_stop]
 
 
 def _emit_steps(sinks: Sinks, steps, j_stop: int, t_reached: float, sol, u_of, inclusive: bool) -> None:
     """Samples of a chunk of compiled steps up to t_reached (within step j_stop): on the samplers' grids from the
     dense output, or, without a grid, every step end and t_reached (as :func:`emit_step` per step)."""
     for sampler, log in ((sinks.results, None), (sinks.logged, sinks.log)):
+        if sampler is sinks.logged and log is None:
+            continue  # no flight log: its samples would go nowhere
         if sampler.grid is None:
             times = np.append(steps.t[1:j_stop], t_reached)
             xs = np.vstack([steps.x[1:j_stop], sol(t_reached)[None, :]])

@@ -169,6 +169,8 @@ def segment_controls(ctrl: Controls, a: float, b: float, x_a: np.ndarray, u0: np
 
 def emit_step(sinks: Sinks, t_reached: float, sol, y_reached, u_of, inclusive: bool) -> None:
     sinks.results.take(t_reached, sol, y_reached, u_of, inclusive)
+    if sinks.log is None:
+        return  # no flight log: its samples would go nowhere
     times, xs, us = sinks.logged.take(t_reached, sol, y_reached, u_of, inclusive)
-    if sinks.log is not None and times.size:
+    if times.size:
         sinks.log.write(times, xs, us)

@@ -2,14 +2,18 @@
 numpy ETD2RK.step with the model's right-hand side.
 
 Invariant: the same arithmetic (two right-hand sides and the matrix-vector products of ETD2RK.step per step), so the
-compiled steps equal the Python steps to rounding: 1e-12 relative to each state entry's largest magnitude over
-100 steps of 10 ms of the GTM (252 states) through a 1-cos gust with a linear elevator ramp (measured: 0.0, the
-products are the same BLAS calls). Rows of advance_rows equal ETD2RK.step row by row (own controls and winds) and
+compiled steps equal the Python steps to rounding: 1e-11 relative to the largest magnitude of each group of the state
+layout (positions, Euler angles, bending, torsion, velocities, rates, inflow) over 100 steps of 10 ms of the GTM
+(252 states) through a 1-cos gust with a linear elevator ramp (measured: states 1.4e-12, derivatives 4.4e-12, in
+the torsion rates; the compiled products sum in another (vectorised) order than BLAS, and the stiff inflow and
+structural terms amplify that rounding; 0.0 while both called BLAS. Per entry, the lateral states of this symmetric
+case are rounding noise, ~1e-11 m, whose digits depend on that order). The dense variant (etd2rk_run_dense) takes the same steps bit for bit and its
+mean second derivatives equal step_accelerations' to 1e-12 of their largest magnitude (measured 3e-15). Rows of advance_rows equal ETD2RK.step row by row (own controls and winds) and
 FlightDynamics' semantics for the ground (linear interpolation within the step), a non-finite state (the state
 before the step) and a model error (altitude outside the ISA range: the state at which rhs fails).
 
 simulate(method="ETD2RK") by the compiled steps equals the same run by ETD2RKSolver from Python (forced by a wind
-callable that is not a disturbance field) to 1e-9 relative to each entry's largest magnitude — samples, events,
+callable that is not a disturbance field) to 1e-9 relative to each state group's largest magnitude — samples, events,
 status — with a gust, a control schedule, a feedback controller and a terminal event; the difference is the
 rounding of the control interpolation (u_a + (t - a) du/dt against np.interp), amplified over the run (measured
 <= 3e-10 over 3 s of aileron roll, 1e-17 with constant controls). A pull-up that loses more than
@@ -28,7 +32,7 @@ from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.jacobian import jacobian
 from flexsim.sim.disturbances import OneMinusCosineGust
 from flexsim.sim import ControlSchedule, SimEvent
-from flexsim.sim.fixed_step import ETD2RK
+from flexsim.sim.fixed_step import ETD2RK, step_accelerations
 from flexsim.sim.simulate import RELINEARISE_DRIFT, simulate
 from flexsim.trim import SteadyManoeuvre, trim
 
@@ -51,6 +55,16 @@ def _close(a, b, floor=1e-300):
     return float((np.abs(a - b) / scale).max())
 
 
+def _close_groups(a, b, layout):
+    """Largest |a - b| relative to the largest |b| of each group of the state layout (columns)."""
+    worst = 0.0
+    for sl in (layout.position, layout.euler, layout.q, layout.xi, layout.v, layout.omega, layout.s, layout.eta,
+               layout.inflow):
+        if sl.stop > sl.start:
+            worst = max(worst, float(np.abs(a[:, sl] - b[:, sl]).max() / max(np.abs(b[:, sl]).max(), 1e-300)))
+    return worst
+
+
 def test_compiled_run_equals_the_numpy_steps(gtm):
     model, point, jac, gust = gtm
     h, n = 0.01, 100
@@ -71,9 +85,15 @@ def test_compiled_run_equals_the_numpy_steps(gtm):
         k1 = model.rhs(t, x, u_of(t), gust)
         xs.append(x), fs.append(k1), ts.append(t)
     np.testing.assert_array_equal(run.t, ts)
-    assert _close(run.x, np.array(xs)) <= 1e-12
-    assert _close(run.f, np.array(fs)) <= 1e-12
+    assert _close_groups(run.x, np.array(xs), model.layout) <= 1e-11
+    assert _close_groups(run.f, np.array(fs), model.layout) <= 1e-11
     assert np.abs(run.x[:, model.layout.inflow]).max() > 0.1  # the gust was flown through
+    dense = stepper.run(model, 0.0, point.x, f0, 10.0, n, (0.0, point.u, du_dt), gust.wind_data, dense=True)
+    np.testing.assert_array_equal(dense.x, run.x)
+    np.testing.assert_array_equal(dense.f, run.f)
+    mean, _ = step_accelerations(h, np.diff(run.x, axis=0), run.f[:-1], run.f[1:], jac, difference=False)
+    assert dense.mean.shape == (n, point.x.size)
+    assert np.abs(dense.mean - mean).max() <= 1e-12 * np.abs(mean).max()
 
 
 def test_compiled_run_stops_at_t_bound_and_lands(gtm):
@@ -156,13 +176,13 @@ def _python_wind(wind):
 
 
 def _same_run(a, b, rel=1e-9):
-    assert (a.status, a.reason, a.events) == (b.status, b.reason, b.events)
-    np.testing.assert_array_equal(a.t, b.t)
+    assert (a.status, a.reason, [name for _, name in a.events]) == (b.status, b.reason, [name for _, name in b.events])
+    np.testing.assert_allclose([t for t, _ in a.events], [t for t, _ in b.events], rtol=1e-12, atol=0.0)  # located on rounding-different dense outputs
+    np.testing.assert_allclose(a.t, b.t, rtol=1e-12, atol=0.0)  # the last sample: at the event
     np.testing.assert_array_equal(a.u, b.u)
-    # scale floored at 1e-6: entries that stay within ~1e-10 of zero (antisymmetric states in symmetric flight) carry
-    # rounding only, e.g. 9e-19 at a scale of 3e-10 from the dense output's products with J (per step from Python,
-    # per chunk in the compiled run)
-    assert _close(a.x, b.x, floor=1e-6) <= rel
+    # relative to each group of the layout: entries that stay within ~1e-10 of zero (antisymmetric states in symmetric
+    # flight) carry rounding only, whose digits depend on the order of the sums (the compiled products against BLAS)
+    assert _close_groups(a.x, b.x, a.model.layout) <= rel
     assert a.nfev == b.nfev if a.completed else a.nfev >= b.nfev  # a stop: the compiled chunk went on past it
 
 
