@@ -40,7 +40,7 @@ exceeds 1e-8 (relative) it falls back to the exponential of the augmented matrix
 (Al-Mohy & Higham 2011, section 2; Saad 1992): for ``M = [[hJ, I, 0], [0, 0, I], [0, 0, 0]]`` of size 3n,
 ``expm(M)[:n] = [e^{hJ}, phi_1(hJ), phi_2(hJ)]`` (``phi_functions(..., method="augmented")``, 27x the
 arithmetic). On the GTM trim Jacobian (252 states) at h = 5-20 ms the two agree to 5e-13 relative
-(tests/sim/test_fixed_step.py) and the scaled form takes ~0.09 s instead of ~0.7 s.
+(tests/sim/test_fixed_step.py) and the scaled form takes ~0.04 s instead of ~0.7 s.
 
 Compiled steps: :meth:`ETD2RK.run` (a run of one aircraft, for :func:`flexsim.sim.simulate`) and
 :meth:`ETD2RK.advance_rows` (control periods of N aircraft, for the environments) call the numba kernels

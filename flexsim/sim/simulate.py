@@ -299,14 +299,14 @@ def _builtin_events(model: AircraftModel, outputs: OutputMaps, names: Sequence[s
         iz = lay.position.start + 2
         events.append(RunEvent("ground", lambda t, x: -x[iz], -1, True, "ground_contact",
                              lambda t, x: f"ground contact: the body origin reached altitude 0 m at t = {t:.4f} s",
-                             lambda ts, xs: -xs[:, iz]))
+                             lambda ts, xs: -xs[:, iz], (-_unit_row(lay.n_states, iz), 0.0, False)))
     if "gimbal_lock" in names and lay.rigid:
         ith = lay.euler.start + 1
         lim = math.radians(GIMBAL_LIMIT_DEG)
         events.append(RunEvent("gimbal_lock", lambda t, x: lim - abs(x[ith]), -1, True, "gimbal_lock",
                              lambda t, x: f"gimbal lock: |theta| = {math.degrees(abs(x[ith])):.2f} deg reached "
                                           f"{GIMBAL_LIMIT_DEG:g} deg at t = {t:.4f} s (3-2-1 Euler angles singular at 90 deg)",
-                             lambda ts, xs: lim - np.abs(xs[:, ith])))
+                             lambda ts, xs: lim - np.abs(xs[:, ith]), (_unit_row(lay.n_states, ith), lim, True)))
     if "structural_limit" in names:
         for wing in outputs.wings:
             length = model.aircraft.component(wing).length_m
@@ -328,8 +328,17 @@ def _builtin_events(model: AircraftModel, outputs: OutputMaps, names: Sequence[s
             def margins(ts, xs, wing=wing, bound=bound):
                 return bound - np.abs(outputs.tip_deflection_m(wing, xs))
 
-            events.append(RunEvent(f"structural_limit:{wing}", margin, -1, True, "structural_limit", describe, margins))
+            row = np.zeros(lay.n_states)
+            row[outputs.sensors[wing].q_idx] = outputs.sensors[wing].w_tip  # tip deflection = row . x
+            events.append(RunEvent(f"structural_limit:{wing}", margin, -1, True, "structural_limit", describe, margins,
+                                   (row, bound, True)))
     return events
+
+
+def _unit_row(n: int, i: int) -> np.ndarray:
+    row = np.zeros(n)
+    row[i] = 1.0
+    return row
 
 
 def _user_event(ev: SimEvent) -> RunEvent:

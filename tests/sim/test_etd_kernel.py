@@ -216,3 +216,31 @@ def test_simulate_compiled_relinearises_when_the_speed_drifts():
     assert fast.method == "ETD2RK" and fast.completed
     assert fast.airspeed_m_s[-1] < (1.0 - RELINEARISE_DRIFT) * fast.airspeed_m_s[0] and fast.njev >= 2
     np.testing.assert_allclose(fast.airspeed_m_s, ref.airspeed_m_s, rtol=1e-3)
+
+
+def test_long_chunks_equal_chunks_of_the_check_interval(monkeypatch):
+    """Calls of COMPILED_CHUNK_S (2 s) cut at the first CHECK_INTERVAL_S (0.5 s) boundary where the flight condition
+    drifted, and keep the sub-chunks before a failed one, so they take the same steps, re-linearise and halve at
+    the same times as calls of CHECK_INTERVAL_S (the chunks before 2026-12-02): bit for bit equal samples, on a
+    pull-up that re-linearises and on a descent far from the linearisation whose steps leave the model's range and
+    are halved (the cases of test_simulate_compiled_relinearises_when_the_speed_drifts and
+    tests/sim/test_simulate.py::test_ground_contact_stops_the_run)."""
+    from flexsim.sim import compiled_run
+
+    model = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
+    point = trim(model, SteadyManoeuvre.level(9144.0, mach=0.75))
+    sched = ControlSchedule([0.0, 0.5], [point.u, point.u + [0.0, 0.0, math.radians(-6.0), 0.0]])
+    x0 = point.x.copy()
+    x0[model.layout.position.start + 2] = -30.0
+    x0[model.layout.v.start + 2] += 40.0
+    runs = [dict(initial=point, t_end_s=20.0, controls=sched, output_rate_hz=2.0),
+            dict(initial=x0, t_end_s=5.0, controls=point.u, events=["ground"])]
+    assert compiled_run.COMPILED_CHUNK_S > compiled_run.CHECK_INTERVAL_S
+    long = [simulate(model, **kw) for kw in runs]
+    monkeypatch.setattr(compiled_run, "COMPILED_CHUNK_S", compiled_run.CHECK_INTERVAL_S)
+    short = [simulate(model, **kw) for kw in runs]
+    assert long[0].njev >= 2 and long[1].status == "ground_contact"
+    for a, b in zip(long, short):
+        assert (a.status, a.reason, a.events, a.njev) == (b.status, b.reason, b.events, b.njev)
+        np.testing.assert_array_equal(a.t, b.t)
+        np.testing.assert_array_equal(a.x, b.x)
