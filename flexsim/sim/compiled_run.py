@@ -137,7 +137,7 @@ def integrate_compiled(problem: RunProblem, settings: IntegrationSettings, sinks
                 nfev += 2 * k
                 bad = not (np.all(np.isfinite(steps.x[-1])) and np.all(np.isfinite(steps.f[-1])))
                 # the sub-chunks before a failed one are kept (the next call fails in that one and halves from its start)
-                cut = chunk * ((k - 1) // chunk) if bad else k
+                cut = chunk * ((k - 1) // chunk) if bad and k > chunk else k
                 for j in range(chunk, cut, chunk):  # sub-chunk ends inside the chunk: cut at the first drift
                     now = flight_condition(model, steps.x[j])
                     if now is not None and np.max(np.abs(now / lin["at"] - 1.0)) > RELINEARISE_DRIFT:
