@@ -66,6 +66,19 @@ def design_lift_slope_total() -> str:
     return f"{_lift_slopes()[3]:.2f} /rad"
 
 
+def design_cla_peak() -> str:
+    """Where the right wing's sectional lift slope (incompressible lattice, ``flexsim aero gtm``) peaks."""
+    vlm = solve_vlm(vlm_surfaces(load_aircraft("gtm")), mach=0.0, s_ref_m2=_S_REF)
+    wing = vlm.surface("right_wing")
+    outboard = wing.eta > 0.0
+    eta = wing.eta[outboard][np.argmax(wing.cl_alpha_per_rad[outboard])]
+    if not 0.5 < eta < 1.0:
+        raise RuntimeError(f"design-cla-peak: the sectional lift slope peaks at {eta:.2f} of the semispan, not "
+                           f"outboard; rewrite the sentence of docs/design.md")
+    return f"near {100 * eta:.0f} % of the semispan"
+
+
 #: name -> (function, fast)
 DESIGN_FIGURES = {"design-lift-slope": (design_lift_slope, True),
-                  "design-lift-slope-total": (design_lift_slope_total, True)}
+                  "design-lift-slope-total": (design_lift_slope_total, True),
+                  "design-cla-peak": (design_cla_peak, True)}

@@ -524,6 +524,13 @@ def symmetric_vary_reading() -> str:
         raise RuntimeError("symmetric-vary-reading: the symmetric mode is critical with q_f1 the largest coordinate at "
                            "3048 m; rewrite the reading")
     peak = max(c.sections.ei_nm2.max() for c in ac.components if c.name == "fuselage")
+    # Fuselage EI factors of the table beyond Fig. 4's peak (x 2), and C4's tip deflection against the paper's
+    # (docs/calibration.md §6; the paper's value printed beside, never used in the result).
+    beyond = min(v for f in pairs for name, v in f if name == FE and v > 2.0)
+    from docs_figures_calibration import flutter_row
+
+    c4_tip = [100 * (flutter_row("C4", "US", h)["tip_deflection_m"] / paper_h[6] - 1)
+              for h, paper_h in ((row[0], row) for row in TABLE_US) if h >= VARY_ALTITUDE_M]
     nearest = [_bounds("gtm_paper", MORE_BOUNDS[0][1], None, "US", h) for h in MORE_BOUNDS[0][4]]
     c3 = _vary((*C3_WING, (FE, 1.75)))
     c3_crit = c3["symmetric"] if c3["gap_sym_minus_anti"] < 0 else c3["antisymmetric"]
@@ -547,11 +554,13 @@ def symmetric_vary_reading() -> str:
             f"stay within ±{max(abs(gap[f]) for f in crit):.4f} in Mach where the symmetric one is critical, and their "
             f"order is decided by details far below the notional structure's accuracy. The bounds: fuselage EI × 2 on "
             f"`gtm_paper` is {2 * peak / 1e9:.0f} GN m² at its peak, the top of Fig. 4's fuselage panel (the only "
-            f"published stiffness; × 2.25 leaves it by 12 %); wing EI × 0.7 gives tip deflections 19-20 % above the "
-            f"paper's at 3048-9144 m (`docs/calibration.md` §6, C4), while C3's wing (EI × 0.85, GJ × 1.04) gives "
+            f"published stiffness; × {beyond:g} leaves it by {100 * (beyond / 2.0 - 1):.0f} %); wing EI × 0.7 gives tip "
+            f"deflections {_span(c4_tip, '.0f')} % {'above' if min(c4_tip) > 0 else 'off'} the paper's at "
+            f"{VARY_ALTITUDE_M:g}-9144 m (`docs/calibration.md` §6, C4), while C3's wing (EI × 0.85, GJ × 1.04) gives "
             f"{_num(c3_crit['tip_deflection_m'], '.4f')} m at the {VARY_ALTITUDE_M:g} m flutter point with fuselage EI "
             f"× 1.75 (paper {_num(paper_tip, '.3f')} m). The nearest joint point found — fuselage EI × 2 (Fig. 4's peak), "
-            f"wing EI × 0.7 (about 10 points outside a 10 % tip-deflection band) — makes the symmetric mode critical at "
+            f"wing EI × 0.7 (about {min(abs(t) for t in c4_tip) - 10:.0f} points outside a 10 % tip-deflection band) — "
+            f"makes the symmetric mode critical at "
             f"3048-9144 m (by {_span([-r['gap_sym_minus_anti'] for r in nearest], '.4f')}, true density) with q_f1 "
             f"{_span([r['symmetric']['qf1_ratio'] for r in nearest], '.2f')} of the largest coordinate, at "
             f"{_span(w_near, '.1f')} rad/s (paper {paper_w:.1f}, {_num(100 * (sum(w_near) / len(w_near) / paper_w - 1), '+.0f')} %). "
@@ -890,6 +899,17 @@ def flutter_mode_frequencies(level) -> str:
                            "bending and the wings' first torsion")
     return (f"{_span(w, '.1f')} rad/s (US), between the fuselage's first bending ({fus:.1f} rad/s in vacuo) and the "
             f"wings' first torsion ({t_s:.1f}/{t_a:.1f} rad/s, symmetric/antisymmetric)")
+
+
+def flutter_study_evaluations(study) -> str:
+    """Model evaluations (trim + linearisation + eigen-analysis) of the default turn and climb studies
+    (``study("turn")``, ``study("climb")``: the docs tool's rows of ``flexsim sweep --turn`` / ``--climb``)."""
+    rows = [r for kind in ("turn", "climb") for r in study(kind)]
+    evaluations = [int(r["evaluations"]) for r in rows]
+    chains = {(r["model"], r["altitude_m"]) for r in rows}
+    return (f"the {len(rows)} points of the two studies ({len(chains)} chains of model and altitude per study) take "
+            f"{sum(evaluations)} evaluations, {sum(evaluations) / len(rows):.1f} per point on average "
+            f"({min(evaluations)}-{max(evaluations)})")
 
 
 def symmetric_wing_bending_vacuo() -> str:

@@ -277,6 +277,16 @@ def design_roots() -> str:
 
 #: The figures of this module and of docs_figures_envs.py: region name -> (function, fast: checked in the default
 #: test suite).
+def options_margin_change() -> str:
+    """Static margin of the cruise trim (9144 m, M 0.78) of the paper's strips alone and of the default (body
+    moments and downwash), the first and last rows of options-static-margin."""
+    from docs_figures_static import MARGIN_ROWS, _cruise_trim
+
+    (_, first), (_, last) = MARGIN_ROWS[0], MARGIN_ROWS[-1]
+    a, b = (100 * _cruise_trim(9144.0, 0.78, **switches)[1].fraction_of_mac for switches in (first, last))
+    return f"{a:.1f} % → {b:.1f} %"
+
+
 USAGE_FIGURES = {
     **ENV_FIGURES,
     "options-turn-hold": (options_turn_hold, False),
@@ -294,4 +304,5 @@ USAGE_FIGURES = {
     "options-downwash-mach": (options_downwash_mach, True),
     "logs-damaged-chunk": (logs_damaged_chunk, True),
     "design-roots": (design_roots, False),
+    "options-margin-change": (options_margin_change, True),
 }

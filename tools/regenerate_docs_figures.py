@@ -133,7 +133,7 @@ from docs_figures_simulation import SIMULATION_FIGURES  # noqa: E402
 from docs_figures_design import DESIGN_FIGURES  # noqa: E402
 from docs_figures_core import Figure  # noqa: E402
 from docs_figures_calibration import CALIBRATION_FIGURES  # noqa: E402
-from docs_figures_records import RECORD_FIGURES, flutter_mode_frequencies  # noqa: E402
+from docs_figures_records import RECORD_FIGURES, flutter_mode_frequencies, flutter_study_evaluations  # noqa: E402
 
 REGION = re.compile(r"<!-- figures:(?P<name>[\w-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.DOTALL)
 DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
@@ -552,6 +552,7 @@ FIGURES: dict[str, Figure] = {
     "calibration-speeds": Figure(lambda: calibration_speeds(_level), fast=True),
     "flutter-strip-drag": Figure(lambda: strip_drag(_level), fast=True),
     "flutter-mode-frequencies": Figure(lambda: flutter_mode_frequencies(_level), fast=True),
+    "flutter-study-evaluations": Figure(lambda: flutter_study_evaluations(_study)),
 }
 
 
