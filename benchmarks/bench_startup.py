@@ -12,7 +12,15 @@ Medians over the repeats; the load average is printed (CPU time is inflated less
 Python's bytecode cache: the figures assume ``__pycache__`` is written (PYTHONDONTWRITEBYTECODE is removed from
 the children's environment; the warm-up process writes it), as after ``pip install``.
 
-Run: python benchmarks/bench_startup.py [--repeats 3]
+``--compare [REV]``: also runs flexsim's process from a reference revision (default d3d625b, main before the
+start-up work of 2026-12-02) in the same alternation (base, floor, this tree, reference), and prints both sides'
+phases, flexsim's own part of each and their ratio, and whether the two give bit-identical results (SHA-256 of
+the packed model data and of the first right-hand side). The reference is extracted with ``git archive`` into
+``~/.cache/flexsim-bench/<revision>``; numba's cache files of this tree are copied beside it when it has none
+(numba keys them on the SHA-256 of the source, so only the entries of unchanged files are used; the others are
+compiled by the warm-up process, 2-5 min of CPU), or it is taken from ``--reference-tree DIR``.
+
+Run: python benchmarks/bench_startup.py [--repeats 3] [--compare [REV]] [--reference-tree DIR]
 """
 
 from __future__ import annotations
@@ -20,9 +28,11 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shutil
 import statistics
 import subprocess
 import sys
+from pathlib import Path
 
 CHILD = r"""
 import json, sys, time
@@ -61,34 +71,71 @@ if sys.argv[1] == "full":
     out["model"] = time.process_time() - c
     x = model.pack(position_m=[0.0, 0.0, -9144.0], velocity=numpy.r_[[230.0, 0.0, 10.0], numpy.zeros(model.structure.dofs.n_v - 3)])
     c = time.process_time()
-    model.rhs(0.0, x, numpy.array([40e3, 0.0, 0.0, 0.0]))
+    dx = model.rhs(0.0, x, numpy.array([40e3, 0.0, 0.0, 0.0]))
     out["first_rhs"] = time.process_time() - c
     out["loads"] = loads
+    import hashlib
+    out["digest"] = hashlib.sha256(model.kernel_data.F.tobytes() + model.kernel_data.I.tobytes() + dx.tobytes()).hexdigest()
 out["total"] = time.process_time() - c0
 print(json.dumps(out))
 """
 
 
-def run(kind: str) -> dict:
+HERE = Path(__file__).resolve().parents[1]
+#: Default reference of --compare: main before the start-up work (2026-12-02).
+COMPARE_REFERENCE = "d3d625b"
+
+
+def run(kind: str, root: Path = HERE) -> dict:
+    """One fresh process of ``kind`` (base, floor, full) with the flexsim of the checkout ``root``."""
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
     env.pop("PYTHONDONTWRITEBYTECODE", None)
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    env["PYTHONPATH"] = os.pathsep.join([root, os.path.join(root, "benchmarks"), env.get("PYTHONPATH", "")])
-    done = subprocess.run([sys.executable, "-c", CHILD, kind], capture_output=True, text=True, env=env, check=True, cwd=root)
+    env["PYTHONPATH"] = os.pathsep.join([str(root), str(HERE / "benchmarks"), env.get("PYTHONPATH", "")])
+    done = subprocess.run([sys.executable, "-c", CHILD, kind], capture_output=True, text=True, env=env, check=True,
+                          cwd=root)
     return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def _reference_tree(rev: str) -> Path:
+    """A checkout of ``rev`` extracted with ``git archive`` into ``~/.cache/flexsim-bench/<sha>``, seeded with this
+    tree's numba cache files (module docstring)."""
+    sha = subprocess.run(["git", "-C", str(HERE), "rev-parse", "--short=12", rev], check=True, capture_output=True,
+                         text=True).stdout.strip()
+    tree = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "flexsim-bench" / sha
+    if not (tree / "flexsim" / "model" / "aircraft_model.py").is_file():
+        tree.mkdir(parents=True, exist_ok=True)
+        archive = subprocess.run(["git", "-C", str(HERE), "archive", sha], check=True, capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", str(tree)], input=archive, check=True)
+    if not any(tree.glob("flexsim/_kernels/__pycache__/*.nbi")):
+        for index in HERE.glob("**/__pycache__/*.nb[ic]"):
+            target = tree / index.relative_to(HERE)
+            if target.parent.parent.is_dir():
+                target.parent.mkdir(exist_ok=True)
+                shutil.copy2(index, target)
+    return tree
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--compare", nargs="?", const=COMPARE_REFERENCE, default=None, metavar="REV",
+                        help=f"also run a reference revision side by side (default {COMPARE_REFERENCE})")
+    parser.add_argument("--reference-tree", type=Path, default=None, help="with --compare: a checkout to compare against")
     args = parser.parse_args()
+    ref = None
+    if args.compare or args.reference_tree:
+        ref = args.reference_tree.resolve() if args.reference_tree else _reference_tree(args.compare)
     print(f"load average {os.getloadavg()[0]:.2f} at start; CPU seconds, median of {args.repeats} fresh processes")
     run("floor"), run("full")  # warm-up: numba's on-disk caches and Python's bytecode cache written
-    base, floor, full = [], [], []
+    if ref is not None:
+        run("full", ref)
+    base, floor, full, full_ref = [], [], [], []
     for _ in range(args.repeats):
         base.append(run("base"))
         floor.append(run("floor"))
         full.append(run("full"))
+        if ref is not None:
+            full_ref.append(run("full", ref))
     med = lambda rows, key: statistics.median(r[key] for r in rows)  # noqa: E731
     print(f"numpy + scipy only process: {med(base, 'total'):.3f} s")
     print(f"numba floor (import numba + first call of a trivial cached function): {med(floor, 'total') - med(base, 'total'):.3f} s "
@@ -102,6 +149,17 @@ def main() -> None:
     own = med(full, "total") - med(floor, "total")
     print(f"start-up beyond numpy + scipy: {extra:.3f} s (target <= 0.3 s), of which the numba floor "
           f"{extra - own:.3f} s and flexsim's own {own:.3f} s")
+    if ref is not None:
+        own_ref = med(full_ref, "total") - med(floor, "total")
+        print(f"reference {ref}:")
+        print(f"  {'':<36} {'this':>7} {'reference':>10}")
+        for key, label in (("import_flexsim", "import flexsim (loader, model)"), ("model", "GTM unsteady model (load + build)"),
+                           ("first_rhs", "first right-hand side"), ("total", "total")):
+            print(f"  {label:<36} {med(full, key):7.3f} {med(full_ref, key):10.3f} s")
+        print(f"  flexsim's own part: {own:.3f} s against {own_ref:.3f} s (x{own_ref / own:.2f} faster; start-up beyond "
+              f"numpy + scipy {extra:.3f} s against {med(full_ref, 'total') - med(base, 'total'):.3f} s)")
+        same = {r["digest"] for r in full} == {r["digest"] for r in full_ref} and len({r["digest"] for r in full}) == 1
+        print(f"  results (packed model data and first rhs) bit-identical to the reference: {'yes' if same else 'NO'}")
     names = [n for n, _ in full[0]["loads"]]
     print("numba dispatchers loaded from the cache on first call (the first includes numba's target initialisation):")
     for i, name in enumerate(names):

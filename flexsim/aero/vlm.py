@@ -54,8 +54,10 @@ MAX_DIHEDRAL_DEG: float = 45.0
 """Largest segment dihedral (or anhedral) accepted; vertical surfaces are outside this model."""
 CORE_RADIUS_FRACTION: float = 1.0e-6
 """Default cut-off radius of the vortex segments as a fraction of the bound-segment length."""
-_ROWS_PER_CHUNK_BUDGET: int = 1_500_000
-"""Number of (control point, horseshoe) pairs evaluated at once during assembly (memory bound)."""
+_ROWS_PER_CHUNK_BUDGET: int = 40_000
+"""Number of (control point, horseshoe) pairs evaluated at once during assembly: about 1 MB per temporary, which
+stays in the processor's cache (``benchmarks/bench_startup.py`` times the model build it is part of). The result does
+not depend on it: every entry is computed by the same operations."""
 
 
 def _is_count(value: object) -> bool:
@@ -349,39 +351,35 @@ def _lattice(surface: LiftingSurface) -> _Lattice:
     return _Lattice(pieces=tuple(pieces), **arrays)
 
 
-def _segment_velocity(points: np.ndarray, a: np.ndarray, b: np.ndarray, cutoff: np.ndarray) -> np.ndarray:
-    """Velocity (n, m, 3) at ``points`` (n, 3) induced by unit-strength segments ``a → b`` (m, 3).
+def _segment_velocity(
+    r1: np.ndarray, r2: np.ndarray, n1: np.ndarray, n2: np.ndarray, r0: np.ndarray, cut2_len0_2: np.ndarray
+) -> np.ndarray:
+    """Velocity (n, m, 3) at points induced by unit-strength segments ``a → b`` (m, 3).
 
     Biot–Savart law for a straight vortex segment (Katz & Plotkin 2001, §10.4.5):
     ``v = (r1 × r2)/(4π |r1 × r2|²) · r0·(r1/|r1| − r2/|r2|)``, set to zero for points closer to the
-    segment line than ``cutoff`` (m,) [m].
+    segment line than the cut-off radius. Arguments: ``r1 = p − a``, ``r2 = p − b`` (n, m, 3) [m], their lengths
+    ``n1``, ``n2`` (n, m) [m], ``r0 = b − a`` (m, 3) [m] and ``cutoff² |r0|²`` (m,) [m⁴].
     """
-    r0 = b - a
-    r1 = points[:, None, :] - a[None]
-    r2 = points[:, None, :] - b[None]
     cross = np.cross(r1, r2)
     cross2 = np.einsum("nmk,nmk->nm", cross, cross)
-    len0_2 = np.einsum("mk,mk->m", r0, r0)
-    valid = cross2 > (cutoff**2 * len0_2)[None]
-    n1 = np.sqrt(np.einsum("nmk,nmk->nm", r1, r1))
-    n2 = np.sqrt(np.einsum("nmk,nmk->nm", r2, r2))
+    valid = cross2 > cut2_len0_2[None]
     safe_n1, safe_n2 = np.where(valid, n1, 1.0), np.where(valid, n2, 1.0)
     proj = np.einsum("mk,nmk->nm", r0, r1) / safe_n1 - np.einsum("mk,nmk->nm", r0, r2) / safe_n2
     factor = np.where(valid, proj / (4.0 * math.pi * np.where(valid, cross2, 1.0)), 0.0)
     return factor[..., None] * cross
 
 
-def _trailing_velocity(points: np.ndarray, a: np.ndarray, cutoff: np.ndarray) -> np.ndarray:
+def _trailing_velocity(r1: np.ndarray, n1: np.ndarray, cutoff: np.ndarray) -> np.ndarray:
     """Velocity (n, m, 3) induced by unit semi-infinite segments from ``a`` (m, 3) to ``x = +∞``.
 
     Limit of :func:`_segment_velocity` for ``b = a + L x̂``, ``L → ∞``:
-    ``v = (x̂ × r1)/(4π |x̂ × r1|²) (1 + x̂·r1/|r1|)``, ``r1 = p − a``, with the same cut-off.
+    ``v = (x̂ × r1)/(4π |x̂ × r1|²) (1 + x̂·r1/|r1|)``, ``r1 = p − a`` (n, m, 3) [m] of length ``n1`` (n, m) [m],
+    with the cut-off radius ``cutoff`` (m,) [m].
     """
-    r1 = points[:, None, :] - a[None]
     cross = np.stack([np.zeros(r1.shape[:2]), -r1[..., 2], r1[..., 1]], axis=-1)
     cross2 = r1[..., 1] ** 2 + r1[..., 2] ** 2
     valid = cross2 > (cutoff**2)[None]
-    n1 = np.sqrt(np.einsum("nmk,nmk->nm", r1, r1))
     ratio = 1.0 + r1[..., 0] / np.where(valid, n1, 1.0)
     factor = np.where(valid, ratio / (4.0 * math.pi * np.where(valid, cross2, 1.0)), 0.0)
     return factor[..., None] * cross
@@ -393,16 +391,24 @@ def _normalwash_matrix(
     """Influence matrix (n, m): normal velocity at control point i from unit horseshoe j.
 
     The horseshoe ``∞ → a → b → ∞`` (trailing legs parallel to +x) is assembled from one finite and
-    two semi-infinite segments; control points are processed in row chunks to bound memory.
+    two semi-infinite segments, which share the vectors from their end points to the control points and
+    their lengths; control points are processed in row chunks small enough for the temporaries to stay in
+    the processor's cache (:data:`_ROWS_PER_CHUNK_BUDGET`).
     """
     cutoff = core_fraction * np.linalg.norm(b - a, axis=1)
+    r0 = b - a
+    cut2_len0_2 = cutoff**2 * np.einsum("mk,mk->m", r0, r0)
     n, m = control.shape[0], a.shape[0]
     rows = max(1, _ROWS_PER_CHUNK_BUDGET // max(m, 1))
     out = np.empty((n, m))
     for start in range(0, n, rows):
         p = control[start : start + rows]
-        v = _segment_velocity(p, a, b, cutoff)
-        v += _trailing_velocity(p, b, cutoff) - _trailing_velocity(p, a, cutoff)
+        r1 = p[:, None, :] - a[None]
+        r2 = p[:, None, :] - b[None]
+        n1 = np.sqrt(np.einsum("nmk,nmk->nm", r1, r1))
+        n2 = np.sqrt(np.einsum("nmk,nmk->nm", r2, r2))
+        v = _segment_velocity(r1, r2, n1, n2, r0, cut2_len0_2)
+        v += _trailing_velocity(r2, n2, cutoff) - _trailing_velocity(r1, n1, cutoff)
         out[start : start + rows] = np.einsum("nmk,nk->nm", v, normal[start : start + rows])
     return out
 
