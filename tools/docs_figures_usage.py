@@ -287,6 +287,52 @@ def options_margin_change() -> str:
     return f"{a:.1f} % → {b:.1f} %"
 
 
+#: The parts of ``studies/reliability_census.py`` whose verdicts are counts (the sweeps part kills processes and
+#: times Ctrl-C: a dated record in docs/design.md, not a figure).
+CENSUS_PARTS = ("aircraft", "cli", "logs")
+
+
+def design_reliability_census() -> str:
+    """``python studies/reliability_census.py aircraft|cli|logs --quick``, each in a child process (the parts
+    arm signal alarms and write temporary files), counted by verdict; the cases that are not a clear error,
+    a warning or a sane answer are named. About 30 s of CPU."""
+    import collections
+    import subprocess
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="flexsim-census-") as tmp:
+        for part in CENSUS_PARTS:
+            run = subprocess.run([sys.executable, str(ROOT / "studies" / "reliability_census.py"), part, "--quick",
+                                  "--out", tmp], cwd=tmp, capture_output=True, text=True, timeout=1800)
+            if run.returncode != 0:
+                raise RuntimeError(f"design-reliability-census: reliability_census.py {part} failed "
+                                   f"(exit {run.returncode}): {run.stderr.strip()[-2000:]}")
+        rows = {part: json.loads((Path(tmp) / f"{part}.json").read_text(encoding="utf-8")) for part in CENSUS_PARTS}
+
+    def counts(rs, legal: str, warned: str = "") -> str:
+        c = collections.Counter(r["verdict"] for r in rs)
+        text = f"{len(rs)} {{}} → {c['CLEAR']} clear" + (f", {c['WARNED']} {warned}" if warned else "") + \
+            f", {c['OK']} {legal}"
+        for verdict in ("OBSCURE", "TRACEBACK", "SILENT", "HANG"):
+            named = [f"`flexsim {' '.join(r['argv'])}`" if r.get("argv") else r["id"] for r in rs if r["verdict"] == verdict]
+            text += f", {len(named)} {verdict.lower()}" + (f" ({', '.join(named)})" if named else "")
+        other = len(rs) - sum(c[v] for v in ("CLEAR", "OK", "WARNED", "OBSCURE", "TRACEBACK", "SILENT", "HANG"))
+        return text + (f", {other} other" if other else "")
+
+    cli = [r for r in rows["cli"] if r.get("group", "cli") == "cli"]
+    trims = [r for r in rows["cli"] if r.get("group") == "trim"]
+    logs = [r for r in rows["logs"] if not r.get("identical")]
+    flagged = sum(r["verdict"] in ("FLAGGED", "ERROR (clear)") for r in logs)
+    altered = sum(r["verdict"].startswith("SILENT") or "altered" in r["verdict"] for r in logs)
+    return "; ".join([
+        counts(rows["aircraft"], "legal files answered sanely").format("aircraft files"),
+        counts(cli, "legal", "explicit warnings (Mach ≥ 0.95)").format("CLI cases"),
+        counts(trims, "feasible", "warned").format("infeasible trims"),
+        f"{len(logs)} damaged logs → {flagged} flagged ({sum(r['verdict'] == 'ERROR (clear)' for r in logs)} clear "
+        f"errors, {sum(r['verdict'] == 'FLAGGED' for r in logs)} recovered with the damage named), {altered} altered "
+        f"values"])
+
+
 USAGE_FIGURES = {
     **ENV_FIGURES,
     "options-turn-hold": (options_turn_hold, False),
@@ -305,4 +351,5 @@ USAGE_FIGURES = {
     "logs-damaged-chunk": (logs_damaged_chunk, True),
     "design-roots": (design_roots, False),
     "options-margin-change": (options_margin_change, True),
+    "design-reliability-census": (design_reliability_census, False),
 }
