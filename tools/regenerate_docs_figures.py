@@ -53,6 +53,9 @@ climb search, and about 4 minutes for the baselines table):
   switch; about 11 minutes of CPU together, 30 minutes of wall time on a loaded 2-core machine);
 * ``design-lift-slope``, ``design-lift-slope-total`` (fast): docs/design.md, the strips' lift slope against the
   vortex lattice's on the exposed surfaces, and the whole lattice's (``tools/docs_figures_design.py``);
+* ``flutter-study-evaluations`` (the turn and climb studies' evaluation counts, docs/flutter.md), ``options-margin-change``
+  (fast, docs/flutter.md), ``design-cla-peak`` (fast), ``design-reliability-census`` (docs/design.md: the counts of
+  ``studies/reliability_census.py aircraft|cli|logs --quick``, about 30 s of CPU);
 * ``env-baselines``: docs/environments.md, the baseline and random returns of every environment over seeds 0-9
   (``examples/agents/evaluate_baselines.py --episodes 10``);
 * ``calibration-c1-c2``, ``calibration-c3``, ``calibration-c4``, ``calibration-scorecard-c1``,
