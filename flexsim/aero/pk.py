@@ -29,13 +29,16 @@ already found, which leads it to the other member of the pair.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 from numba import njit
 
-__all__ = ["PkRoot", "pk_track", "pk_roots"]
+from flexsim.aero.theodorsen import theodorsen_function, theodorsen_positive, theodorsen_scalar
+
+__all__ = ["PkRoot", "PkStateMatrix", "pk_track", "pk_roots"]
 
 _MIN_CORRELATION = 0.9
 _RESIDUAL = 1e-13
@@ -189,6 +192,106 @@ def _inverse_step(a: np.ndarray, p: complex, vec: np.ndarray) -> tuple[complex, 
     return complex(shift), v
 
 
+@njit(cache=True, nogil=True)
+def _assemble(a_qs: np.ndarray, b_lambda: np.ndarray, c_w: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """``a_qs + (b_lambda diag(1 - c)) @ c_w`` (complex ``c_w``, C-contiguous; ``c`` = C(k_j)): the arithmetic numpy does for the same
+    expression with a real ``c_w`` (the real factors promoted to complex, one ``zgemm``)."""
+    m, n_s = b_lambda.shape
+    scaled = np.empty((m, n_s), np.complex128)
+    for j in range(n_s):
+        w = 1.0 - c[j]
+        for i in range(m):
+            scaled[i, j] = complex(b_lambda[i, j] * w.real, b_lambda[i, j] * w.imag)
+    return a_qs + scaled @ c_w
+
+
+@dataclass(frozen=True, eq=False)
+class PkStateMatrix:
+    """The p-k state matrix of Theodorsen's model (paper eq. 27), ``A(omega) = A_qs + B_lambda diag(1 - C(k_j)) C_w``.
+
+    ``k_j = omega b_j / u0_j`` at every unsteady strip j; C is Theodorsen's function
+    (:func:`flexsim.aero.theodorsen.theodorsen_function`). Calling it with ``omega`` [rad/s] returns
+    ``A(omega)``, ndarray (complex), shape (m, m). Built by :func:`flexsim.linear.stability.pk_state_matrix`;
+    :func:`pk_track` follows its roots in compiled code (:func:`_track_kernel`).
+
+    Attributes
+    ----------
+    a_qs : ndarray, shape (m, m)
+        Quasi-steady state matrix [1/s and the layout's mixed units].
+    b_lambda : ndarray, shape (m, n_s)
+        d x_dot / d lambda0_j per unsteady strip [per m/s].
+    c_w : ndarray, shape (n_s, m)
+        d (w0 + w1/2)_j / dx [m/s per state unit].
+    semichord_over_speed_s : ndarray, shape (n_s,)
+        b_j / u0_j [s], so that k_j = omega b_j / u0_j.
+    """
+
+    a_qs: np.ndarray
+    b_lambda: np.ndarray
+    c_w: np.ndarray
+    semichord_over_speed_s: np.ndarray
+
+    def __post_init__(self) -> None:
+        # the operands of the compiled assembly, made once: contiguous float64, and C_w promoted to complex
+        object.__setattr__(self, "_operands", (np.ascontiguousarray(self.a_qs, dtype=float),
+                                               np.ascontiguousarray(self.b_lambda, dtype=float),
+                                               np.ascontiguousarray(self.c_w, dtype=complex),
+                                               np.ascontiguousarray(self.semichord_over_speed_s, dtype=float)))
+
+    def __call__(self, omega: float) -> np.ndarray:
+        a_qs, b_lambda, c_w, s = self._operands
+        k = abs(omega) * s
+        # k > 0 finite (the usual case): C(k) without theodorsen_function's checks, the same values
+        c = theodorsen_positive(k) if math.isfinite(omega) and k.size and k.min() > 0.0 else theodorsen_function(k)
+        return _assemble(a_qs, b_lambda, c_w, np.asarray(c, dtype=complex).reshape(-1))
+
+    def projected(self, basis: np.ndarray) -> "PkStateMatrix":
+        """``Q^T A(omega) Q`` for an orthonormal real ``basis`` Q (m, r) of an invariant subspace of every A(omega)."""
+        return PkStateMatrix(basis.T @ self.a_qs @ basis, basis.T @ self.b_lambda, self.c_w @ basis,
+                             self.semichord_over_speed_s)
+
+
+@njit(cache=True, nogil=True)
+def _track_kernel(a_qs: np.ndarray, b_lambda: np.ndarray, c_w: np.ndarray, s: np.ndarray, p: complex, vec: np.ndarray,
+                  it: int, max_iter: int, rtol: float):
+    """The p-k iterations of :func:`pk_track` on a :class:`PkStateMatrix`, compiled, from iteration ``it`` on:
+    ``A(|Im p|)`` (:func:`~flexsim.aero.theodorsen.theodorsen_scalar`, :func:`_assemble`), one :func:`_inverse_step` (:func:`_inverse_rounds` and
+    the correlation test), the convergence test. Returns ``(status, it, p, vec)``: 1 converged at iteration ``it``,
+    0 not within ``max_iter``; 2 the inverse step of iteration ``it`` failed (the caller takes the full ``eig``
+    step), 3 ``k`` not finite and positive there (the caller takes the step with the checked ``C(k)``); with 2
+    and 3, ``p, vec`` are those before that iteration."""
+    m = a_qs.shape[0]
+    while it <= max_iter:
+        omega = abs(p.imag)
+        k = omega * s
+        if not (math.isfinite(omega) and k.shape[0] > 0 and k.min() > 0.0):
+            return 3, it, p, vec
+        c = np.empty(k.shape[0], np.complex128)
+        for j in range(k.shape[0]):
+            c[j] = theodorsen_scalar(k[j])
+        a = _assemble(a_qs, b_lambda, c_w, c)
+        big = 0.0
+        for j in range(m):  # |A|_1, summed over rows in order as numpy's sum(axis=0)
+            col = abs(a[0, j])
+            for i in range(1, m):
+                col += abs(a[i, j])
+            big = max(big, col)
+        status, shift, v = _inverse_rounds(a, p, vec, _RESIDUAL * big, _ROUNDS, _SOLVES)
+        if status != 1:
+            return 2, it, p, vec
+        corr = 0j
+        for i in range(m):
+            corr += np.conj(v[i]) * vec[i]
+        if abs(corr) < _MIN_CORRELATION * _norm(vec):
+            return 2, it, p, vec
+        done = abs(shift.imag - p.imag) < rtol * max(1.0, abs(p.imag))
+        p, vec = shift, v
+        if done:
+            return 1, it, p, vec
+        it += 1
+    return 0, max_iter, p, vec
+
+
 def pk_track(
     a_of: Callable[[float], np.ndarray],
     p0: complex,
@@ -226,10 +329,23 @@ def pk_track(
     p, vec = complex(p0), np.asarray(v0, dtype=complex)
     full = 0
     excl = np.asarray(exclude, dtype=complex)
-    for it in range(1, max_iter + 1):
+    inverse = inverse_iteration and excl.size == 0
+    compiled = inverse and isinstance(a_of, PkStateMatrix)
+    if compiled:
+        vec = np.ascontiguousarray(vec)
+    it = 1
+    while it <= max_iter:
+        eig_step = False
+        if compiled:  # the same steps as below, compiled, until one needs the full eig or the checked C(k)
+            status, it, p, vec = _track_kernel(*a_of._operands, p, vec, it, max_iter, rtol)
+            if status == 1:
+                return PkRoot(p, vec / np.linalg.norm(vec), it, full, True)
+            if status == 0:
+                return PkRoot(p, vec / np.linalg.norm(vec), max_iter, full, False)
+            eig_step = status == 2
         a = a_of(abs(p.imag))
         step = None
-        if inverse_iteration and excl.size == 0:
+        if inverse and not eig_step:
             step = _inverse_step(a, p, vec)
         if step is None:
             full += 1
@@ -245,6 +361,9 @@ def pk_track(
         p = p_new
         if done:
             return PkRoot(p, vec / np.linalg.norm(vec), it, full, True)
+        it += 1
+        if compiled:
+            vec = np.ascontiguousarray(vec, dtype=complex)
     return PkRoot(p, vec / np.linalg.norm(vec), max_iter, full, False)
 
 

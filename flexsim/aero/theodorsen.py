@@ -18,8 +18,27 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import config, njit, types
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import j0, j1, y0, y1
+
+
+def _bessel(name: str, ufunc):
+    """Cephes' ``name`` (one of j0, j1, y0, y1) callable from compiled code as ``f(x, 0)``: the C function scipy's
+    ufunc of that name evaluates (``scipy.special.cython_special``), registered with LLVM under a symbol name, so
+    that compiled callers are cached on disk by name rather than by address. Under ``NUMBA_DISABLE_JIT=1``: the
+    ufunc itself (the same values)."""
+    if config.DISABLE_JIT:
+        return lambda x, _skip: float(ufunc(x))
+    import llvmlite.binding as llvm
+    from numba.extending import get_cython_function_address
+
+    symbol = f"flexsim_cephes_{name}"
+    llvm.add_symbol(symbol, get_cython_function_address("scipy.special.cython_special", name))
+    return types.ExternalFunction(symbol, types.float64(types.float64, types.intc))
+
+
+_J0, _J1, _Y0, _Y1 = (_bessel(n, f) for n, f in (("j0", j0), ("j1", j1), ("y0", y0), ("y1", y1)))
 
 
 def theodorsen_function(k: ArrayLike) -> NDArray[np.complex128] | complex:
@@ -57,10 +76,40 @@ def theodorsen_function(k: ArrayLike) -> NDArray[np.complex128] | complex:
 
 
 def theodorsen_positive(k: NDArray[np.float64]) -> NDArray[np.complex128]:
-    """:func:`theodorsen_function` for an array of finite ``k > 0``, unchecked: the same expression, for the p-k
-    iteration's hundred calls per eigen-analysis (the checks cost a third of the call)."""
-    bj0, bj1, by0, by1 = j0(k), j1(k), y0(k), y1(k)
-    return (bj1 - 1j * by1) / ((bj1 + by0) + 1j * (bj0 - by1))
+    """:func:`theodorsen_function` for an array of finite ``k > 0``, unchecked (compiled, :func:`theodorsen_scalar`
+    per entry), for the p-k iteration's hundred calls per eigen-analysis (the checks cost a third of the call)."""
+    k = np.asarray(k, dtype=float)
+    return _theodorsen_array(np.ascontiguousarray(k).ravel()).reshape(k.shape)
+
+
+@njit(cache=True, nogil=True)
+def theodorsen_scalar(k: float) -> complex:
+    """``C(k)`` for one finite ``k > 0`` (compiled; the expression of :func:`theodorsen_function`).
+
+    ``C = (J1 - i Y1) / ((J1 + Y0) + i (J0 - Y1))`` with Cephes' Bessel functions (the C functions of scipy's
+    ``j0, j1, y0, y1`` ufuncs), the complex quotient by Smith's algorithm (Smith, "Algorithm 116: Complex
+    division", Commun. ACM 5(8), 435, 1962) in the form numpy's complex division evaluates it (ratio of the smaller
+    to the larger part of the divisor, then one reciprocal), so that the values equal numpy's evaluation of the
+    same expression bit for bit (``tests/aero/test_theodorsen.py``).
+    """
+    bj0, bj1, by0, by1 = _J0(k, 0), _J1(k, 0), _Y0(k, 0), _Y1(k, 0)
+    ar, ai = bj1, -by1  # numerator J1 - i Y1
+    br, bi = bj1 + by0, bj0 - by1  # denominator
+    if abs(br) >= abs(bi):
+        rat = bi / br
+        scl = 1.0 / (br + bi * rat)
+        return complex((ar + ai * rat) * scl, (ai - ar * rat) * scl)
+    rat = br / bi
+    scl = 1.0 / (bi + br * rat)
+    return complex((ar * rat + ai) * scl, (ai * rat - ar) * scl)
+
+
+@njit(cache=True, nogil=True)
+def _theodorsen_array(k: np.ndarray) -> np.ndarray:
+    out = np.empty(k.shape[0], np.complex128)
+    for i in range(k.shape[0]):
+        out[i] = theodorsen_scalar(k[i])
+    return out
 
 
 @dataclass(frozen=True)

@@ -30,15 +30,13 @@ Re(conj(phi_i) (M phi)_i); a tie between mirror coordinates (right and left halv
 from __future__ import annotations
 
 import functools
-import math
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 
 from flexsim._threads import single_blas_thread
-from flexsim.aero.pk import pk_roots
-from flexsim.aero.theodorsen import theodorsen_function, theodorsen_positive
+from flexsim.aero.pk import PkStateMatrix, pk_roots
 from flexsim.aircraft.definition import ContentKey
 from flexsim.linear.linearize import LinearModel, linearize
 from flexsim.linear.symmetry import decoupled, mirror_bases
@@ -271,43 +269,6 @@ def linear_spectrum(model: AircraftModel, lin: LinearModel, *, aero_model: str =
     if pk_model is None:
         raise ValueError('aero_model = "theodorsen" needs pk_model: the finite-state model of the same aircraft')
     return _pk(model, pk_model, lin, pk_method, mirror_split)
-
-
-@dataclass(frozen=True, eq=False)
-class PkStateMatrix:
-    """The p-k state matrix of the "US" model (paper eq. 27), ``A(omega) = A_qs + B_lambda diag(1 - C(k_j)) C_w``.
-
-    ``k_j = omega b_j / u0_j`` at every unsteady strip j; C is Theodorsen's function
-    (:func:`flexsim.aero.theodorsen.theodorsen_function`). Calling it with ``omega`` [rad/s] returns
-    ``A(omega)``, ndarray (complex), shape (m, m).
-
-    Attributes
-    ----------
-    a_qs : ndarray, shape (m, m)
-        Quasi-steady state matrix [1/s and the layout's mixed units].
-    b_lambda : ndarray, shape (m, n_s)
-        d x_dot / d lambda0_j per unsteady strip [per m/s].
-    c_w : ndarray, shape (n_s, m)
-        d (w0 + w1/2)_j / dx [m/s per state unit].
-    semichord_over_speed_s : ndarray, shape (n_s,)
-        b_j / u0_j [s], so that k_j = omega b_j / u0_j.
-    """
-
-    a_qs: np.ndarray
-    b_lambda: np.ndarray
-    c_w: np.ndarray
-    semichord_over_speed_s: np.ndarray
-
-    def __call__(self, omega: float) -> np.ndarray:
-        k = abs(omega) * self.semichord_over_speed_s
-        # k > 0 finite (the usual case): C(k) without theodorsen_function's checks, the same values
-        c = theodorsen_positive(k) if math.isfinite(omega) and k.size and k.min() > 0.0 else theodorsen_function(k)
-        return self.a_qs + (self.b_lambda * (1.0 - c)[None, :]) @ self.c_w
-
-    def projected(self, basis: np.ndarray) -> "PkStateMatrix":
-        """``Q^T A(omega) Q`` for an orthonormal real ``basis`` Q (m, r) of an invariant subspace of every A(omega)."""
-        return PkStateMatrix(basis.T @ self.a_qs @ basis, basis.T @ self.b_lambda, self.c_w @ basis,
-                             self.semichord_over_speed_s)
 
 
 def pk_state_matrix(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel) -> PkStateMatrix:

@@ -14,6 +14,8 @@ from flexsim.aero.theodorsen import (
     theodorsen_function,
     theodorsen_load_matrix,
     theodorsen_operator,
+    theodorsen_positive,
+    theodorsen_scalar,
 )
 
 C_TABLE = {
@@ -107,3 +109,16 @@ def test_quasi_steady_option():
     np.testing.assert_allclose(qs, manual, rtol=1e-12)
     assert qs[0, 0, 1].real == pytest.approx(2 * np.pi * 1.1 * 20.0**2 * 0.5, rel=1e-12)
     assert not np.allclose(qs[1], theodorsen_load_matrix(0.3, -0.2, 1.1, 0.5, 20.0, 0.6))
+
+
+def test_compiled_c_equals_numpy_expression_bit_for_bit():
+    """The compiled C(k) (Cephes' Bessel functions called from numba, Smith's complex division as numpy does it)
+    equals numpy's evaluation of C = (J1 - i Y1) / ((J1 + Y0) + i (J0 - Y1)) exactly, 1e-8 <= k <= 1e3."""
+    from scipy.special import j0, j1, y0, y1
+
+    k = np.geomspace(1e-8, 1e3, 20001)
+    bj0, bj1, by0, by1 = j0(k), j1(k), y0(k), y1(k)
+    reference = (bj1 - 1j * by1) / ((bj1 + by0) + 1j * (bj0 - by1))
+    assert np.array_equal(theodorsen_positive(k), reference)
+    assert np.array_equal(theodorsen_positive(k[:12].reshape(3, 4)), reference[:12].reshape(3, 4))
+    assert theodorsen_scalar(0.5) == theodorsen_function(0.5)

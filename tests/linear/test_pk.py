@@ -81,3 +81,19 @@ def test_sea_level_flutter_region_methods_agree_with_few_full_eigs():
     roots = pk_roots(pk_state_matrix(qs, fs, lin), vals0[track], vecs0[:, track])
     first_step = sum(r.full_eigs for r in roots if r.iterations < 8)  # not counting the retracked root
     assert first_step <= 2
+
+
+def test_compiled_tracking_equals_the_python_steps(pk_problem):
+    """pk_track on a PkStateMatrix runs its iterations compiled (flexsim.aero.pk._track_kernel); on any other callable
+    returning the same A(omega) it takes the Python steps. Same arithmetic, so the same roots, iteration counts and
+    full-eig counts (roots to 1e-13 relative: round-off of the residual tolerance summed in another order only)."""
+    _, _, _, _, a_of, starts, vecs = pk_problem
+    compiled = pk_roots(a_of, starts, vecs)
+    python = pk_roots(lambda omega: a_of(omega), starts, vecs)
+    np.testing.assert_allclose([r.eigenvalue for r in compiled], [r.eigenvalue for r in python], rtol=1e-13, atol=0)
+    assert [(r.iterations, r.full_eigs, r.converged) for r in compiled] == [(r.iterations, r.full_eigs, r.converged) for r in python]
+    k = 36.0 * a_of.semichord_over_speed_s  # A(omega) itself: numpy's evaluation of eq. 27 bit for bit
+    from flexsim.aero.theodorsen import theodorsen_function
+
+    reference = a_of.a_qs + (a_of.b_lambda * (1.0 - theodorsen_function(k))[None, :]) @ a_of.c_w
+    assert np.array_equal(a_of(36.0), reference)
