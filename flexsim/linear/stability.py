@@ -38,6 +38,7 @@ import numpy as np
 from flexsim._threads import single_blas_thread
 from flexsim.aero.pk import PkStateMatrix, pk_roots
 from flexsim.aircraft.definition import ContentKey
+from flexsim.linear._pk_kernels import w34_jacobian
 from flexsim.linear.linearize import LinearModel, linearize
 from flexsim.linear.symmetry import decoupled, mirror_bases
 from flexsim.model.aircraft_model import AircraftModel
@@ -306,18 +307,11 @@ def pk_state_matrix(qs_model: AircraftModel, fs_model: AircraftModel, lin: Linea
     # all 2 n_strips right-hand sides in one compiled call (each row equal to fs_model.rhs bit for bit)
     rhs = fs_model.rhs_batch(0.0, np.concatenate([x_fs + steps, x_fs - steps]), np.tile(u0, (2 * idx.size, 1)))
     b_lam = ((rhs[: idx.size] - rhs[idx.size :])[:, : lay_qs.n_states] / (2 * eps)).T
-    # output matrix: w0 + w1/2 at the strips per unit state
-    def w34(xx):
-        _, _, q, xi, v = fs_model.unpack(xx)
-        return coupling.kinematics(q, xi, v, xx[lay_fs.inflow], u0).w34[idx]
-
-    c_w = np.zeros((idx.size, lay_qs.n_states))
-    for j in range(lay_fs.q.start, lay_qs.n_states):  # w0 + w1/2 does not depend on position and attitude
-        h = max(1e-7, 1e-6 * abs(x_fs[j]))
-        xp, xm = x_fs.copy(), x_fs.copy()
-        xp[j] += h
-        xm[j] -= h
-        c_w[:, j] = (w34(xp) - w34(xm)) / (2 * h)
+    # output matrix: w0 + w1/2 at the strips per unit state, central differences over the configuration and velocity
+    # states (w0 + w1/2 does not depend on position and attitude), in one compiled call
+    c_w = w34_jacobian(*fs_model.kernel_data, *coupling.kernel_data, x_fs, np.asarray(u0, dtype=float),
+                       lay_fs.inflow.start, lay_fs.inflow.stop, strips.n_strips, idx.astype(np.int64), lay_fs.q.start,
+                       lay_qs.n_states)
     keep = lin.keep
     b_k, c_k = b_lam[keep], c_w[:, keep]
     _, _, q, xi, vel = fs_model.unpack(x_fs)

@@ -97,3 +97,27 @@ def test_compiled_tracking_equals_the_python_steps(pk_problem):
 
     reference = a_of.a_qs + (a_of.b_lambda * (1.0 - theodorsen_function(k))[None, :]) @ a_of.c_w
     assert np.array_equal(a_of(36.0), reference)
+
+
+def test_compiled_output_matrix_equals_the_model_calls(pk_problem):
+    """C_w of eq. 27 (flexsim.linear._pk_kernels.w34_jacobian, one compiled call) equals the central differences of
+    the model's unpack and the coupling's kinematics called per perturbed state, bit for bit."""
+    from flexsim.linear._pk_kernels import w34_jacobian
+
+    qs, fs, _, lin, _, _, _ = pk_problem
+    coupling, lay = fs.aero, fs.layout
+    idx = np.flatnonzero(coupling.strips.unsteady)
+    x = lay.zeros()
+    x[: lay.inflow.start] = lin.x0[: qs.layout.n_states]
+    c_w = w34_jacobian(*fs.kernel_data, *coupling.kernel_data, x, lin.u0, lay.inflow.start, lay.inflow.stop,
+                       coupling.strips.n_strips, idx, lay.q.start, qs.layout.n_states)
+    assert c_w.shape == (idx.size, qs.layout.n_states) and not c_w[:, : lay.q.start].any()
+    for j in (lay.q.start, lay.xi.start, lay.velocity.start + 2, qs.layout.n_states - 1):
+        h = max(1e-7, 1e-6 * abs(x[j]))
+        columns = []
+        for sign in (1.0, -1.0):
+            xx = x.copy()
+            xx[j] += sign * h
+            _, _, q, xi, v = fs.unpack(xx)
+            columns.append(coupling.kinematics(q, xi, v, xx[lay.inflow], lin.u0).w34[idx])
+        assert np.array_equal(c_w[:, j], (columns[0] - columns[1]) / (2 * h))
