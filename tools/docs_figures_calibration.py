@@ -407,10 +407,8 @@ def calibration_variants() -> str:
 
 # --- historical runs (long figures: the recorded command in a temporary git worktree of its commit) -------------
 
-#: The commit of the first calibration (plain least squares, no structural damping, before issue 11's fuselage
-#: moments and tail downwash) and its command.
-PLAIN_FIT_COMMIT = "df7ff6d"
-PLAIN_FIT_ARGV = ("python", "studies/calibrate_gtm.py", "--out", "fit.toml")
+#: The first calibration's procedure (df7ff6d: plain least squares, no structural damping) with today's code.
+PLAIN_FIT_ARGV = ("studies/calibrate_gtm.py", "--damping", "0", "--loss", "linear")
 #: The last commit with the research note's elastic-axis reading (0.25 b behind mid-chord, 0.625 c) in gtm.toml.
 AFT_AXIS_COMMIT = "67cf98a"
 #: The quasi-steady spectrum of that gtm (no structural damping, as then) in level flight: the most unstable
@@ -452,12 +450,26 @@ def _fit_summary(text: str) -> tuple[dict[str, float], str]:
 
 
 def calibration_plain_fit() -> str:
-    """§3: the first fit (``python studies/calibrate_gtm.py`` at df7ff6d: plain least squares, no damping)."""
-    from docs_figures_core import run_at_commit
+    """§3: the first fit's procedure (df7ff6d: plain least squares, no structural damping) run with today's code:
+    ``python studies/calibrate_gtm.py --damping 0 --loss linear --out fit.toml`` (about 40 evaluations of the four
+    finite-state flutter points; 5-15 minutes on 2 idle cores). One checkpoint keyed by the source digest."""
+    import os
+    import subprocess
+    import tempfile
 
-    out = run_at_commit("calibration-plain-fit", PLAIN_FIT_COMMIT, list(PLAIN_FIT_ARGV), ("fit.toml",),
-                        timeout_s=4 * 3600.0)  # 18 CPU-minutes; hours at low priority on a loaded machine
-    return _fit_summary(out["outputs"]["fit.toml"])[1]
+    def compute() -> dict:
+        with tempfile.TemporaryDirectory(prefix="flexsim-plain-fit-") as tmp:
+            out = Path(tmp) / "fit.toml"
+            env = {**os.environ, "PYTHONPATH": str(ROOT), "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+            run = subprocess.run([sys.executable, *PLAIN_FIT_ARGV, "--out", str(out)], cwd=ROOT, env=env,
+                                 capture_output=True, text=True, timeout=4 * 3600.0)
+            if run.returncode != 0:
+                raise RuntimeError(f"calibration-plain-fit: python {' '.join(PLAIN_FIT_ARGV)} failed "
+                                   f"(exit {run.returncode}): {run.stderr.strip()[-2000:]}")
+            return {"stdout": run.stdout, "fit": out.read_text(encoding="utf-8")}
+
+    out = checkpoint("calibration-plain-fit", {"argv": list(PLAIN_FIT_ARGV)}, compute)
+    return _fit_summary(out["fit"])[1]
 
 
 def calibration_robust_fit() -> str:
