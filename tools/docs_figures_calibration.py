@@ -608,6 +608,7 @@ def calibration_lift_slopes() -> str:
     return ", ".join(parts) + " per radian"
 
 
+@functools.cache
 def _static_paper_rows() -> list[dict]:
     """The rows of ``calibration-static-paper`` (``paper_residuals.trims_at_paper`` at the paper's own flight
     conditions, calibrated gtm structure): ``{"table", "h", col: (value, paper, diff %)}``."""
