@@ -7,6 +7,7 @@ Each function returns the text of one ``<!-- figures:NAME -->`` region; the regi
 
 from __future__ import annotations
 
+import functools
 import sys
 from pathlib import Path
 
@@ -42,5 +43,147 @@ def simulation_accuracy() -> str:
     return "\n".join(lines) + "\n"
 
 
+def simulation_goland_flutter() -> str:
+    """The clamped Goland wing's flutter speed and frequency with this model (``wind_tunnel_flutter``, Peters N = 6
+    inflow and quasi-steady) and the tunnel speed of ``flutter-onset`` (its setup's metadata)."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.flutter import wind_tunnel_flutter
+    from flexsim.sim.manoeuvres import build_manoeuvre
+
+    goland = load_aircraft("goland_wing")
+    v, w = wind_tunnel_flutter(goland, aero_model="unsteady")
+    v_qs, _ = wind_tunnel_flutter(goland, aero_model="quasi-steady")
+    meta = build_manoeuvre("flutter-onset").metadata
+    tunnel, flutter = float(meta["tunnel_speed_m_s"]), float(meta["flutter_speed_m_s"])
+    return (f"{v:.1f} m/s at {w:.1f} rad/s with Peters N = 6 inflow, {v_qs:.1f} m/s quasi-steady; `flutter-onset` "
+            f"flies at {tunnel / flutter:.2f} x {flutter:.1f} = {tunnel:.1f} m/s for either aerodynamic model")
+
+
+def simulation_structural_limits() -> str:
+    """The default structural limit (``STRUCTURAL_LIMIT_FRACTION`` x the wing's length) on the two bundled
+    aircraft with wings."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.sim.simulate import STRUCTURAL_LIMIT_FRACTION
+
+    def limit(name: str) -> float:
+        return STRUCTURAL_LIMIT_FRACTION * load_aircraft(name).component("right_wing").length_m
+
+    return (f"{STRUCTURAL_LIMIT_FRACTION:g} x the wing's length: {limit('gtm'):.2f} m on the GTM, "
+            f"{limit('goland_wing'):.2f} m on the Goland wing")
+
+
+@functools.cache
+def _gtm_trim_jacobian():
+    """The Jacobian of the unsteady GTM (m = n = 2, N = 6) at the named manoeuvres' level trim (9144 m, M 0.75)."""
+    from flexsim.model.jacobian import jacobian
+    from flexsim.sim.manoeuvres import build_manoeuvre
+
+    setup = build_manoeuvre("elevator-doublet")
+    return jacobian(setup.model, setup.initial.x, setup.initial.u)[0]
+
+
+def simulation_eigenvalues() -> str:
+    """The stiff end of the linearised unsteady GTM's spectrum at the level trim: the most negative real part and
+    the largest |lambda|."""
+    import numpy as np
+
+    lam = np.linalg.eigvals(_gtm_trim_jacobian())
+    big = lam[np.argmax(np.abs(lam))]
+    return (f"{lam.size} states) has well-damped aero-lag eigenvalues down to {lam.real.min():.0f} s^-1 and |lambda| "
+            f"up to {abs(big):.0f} s^-1 ({big.real:.0f} +- {abs(big.imag):.0f}j)")
+
+
+def simulation_phi_scaling() -> str:
+    """The scaling of ``flexsim.sim.fixed_step``'s matrix functions for the GTM at the default step: the balanced
+    1-norm ||Z|| against alpha_4 = max(||Z^4||^(1/4), ||Z^5||^(1/5)) (Al-Mohy & Higham 2009), the doublings each
+    needs, and the largest difference of the scaled result to the augmented ``expm`` (relative to its largest
+    entry)."""
+    import math
+
+    import numpy as np
+    from scipy.linalg import matrix_balance
+
+    from flexsim.sim.fixed_step import phi_functions
+    from flexsim.sim.simulate import DEFAULT_MAX_STEP
+
+    jac = _gtm_trim_jacobian()
+    h = DEFAULT_MAX_STEP["ETD2RK"]
+    zb, _ = matrix_balance(h * jac, permute=False, separate=True)
+    norm = lambda a: float(np.abs(a).sum(axis=0).max())  # noqa: E731
+    z4 = np.linalg.matrix_power(zb, 4)
+    alpha = max(norm(z4) ** 0.25, norm(z4 @ zb) ** 0.2)
+    scaled = phi_functions(jac, h)
+    reference = phi_functions(jac, h, method="augmented")
+    diff = max(float(np.abs(a - b).max() / np.abs(b).max()) for a, b in zip(scaled, reference))
+    return (f"{alpha:.0f} against ||Z|| = {norm(zb):.0f} for the GTM at {1e3 * h:g} ms: "
+            f"{math.ceil(math.log2(alpha))} doublings instead of {math.ceil(math.log2(norm(zb)))}) with the Taylor "
+            f"polynomial by Paterson-Stockmeyer (equal to the {3 * jac.shape[0]} x {3 * jac.shape[0]} augmented `expm` "
+            f"to {diff:.0e}")
+
+
+@functools.cache
+def _flutter_onset(limit_m: float | None, t_end_s: float | None):
+    from flexsim.sim.manoeuvres import build_manoeuvre
+
+    setup = build_manoeuvre("flutter-onset")
+    options = {} if t_end_s is None else {"t_end_s": t_end_s}
+    return setup.simulate(structural_limit_m=limit_m, **options)
+
+
+def simulation_flutter_onset_stop() -> str:
+    """When the default integrator's ``flutter-onset`` run stops (the structural-limit event)."""
+    r = _flutter_onset(None, None)
+    if r.status != "structural_limit":
+        raise RuntimeError(f"simulation-flutter-onset-stop: the run ended with {r.status}")
+    return f"{r.t[-1]:.1f} s with the default integrator"
+
+
+def simulation_flutter_onset_growth() -> str:
+    """The tip amplitude of the growing Goland oscillation over the accuracy comparison's window (no structural
+    limit, ``flexsim.sim.accuracy.RUN_OPTIONS``)."""
+    import numpy as np
+
+    from flexsim.sim.accuracy import RUN_OPTIONS
+
+    opts = RUN_OPTIONS["flutter-onset"]
+    r = _flutter_onset(opts["structural_limit_m"], opts["t_end_s"])
+    tip = np.abs(r.tip_deflection_m("right_wing"))
+    return f"grows to {tip.max():.2f} m in {opts['t_end_s']:g} s"
+
+
+def simulation_ground_contact() -> str:
+    """The ground-contact case of ``tests/sim/test_simulate.py`` (quasi-steady GTM trimmed level at 9144 m, M 0.75,
+    put 30 m above the ground sinking at 40 m/s, only the ground event): when the default, ETD2RK with 10 ms steps
+    and Radau at rtol 1e-6 reach the ground."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.model.aircraft_model import AircraftModel
+    from flexsim.sim.simulate import simulate
+    from flexsim.trim import SteadyManoeuvre, trim
+
+    model = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
+    point = trim(model, SteadyManoeuvre.level(9144.0, mach=0.75))
+    x0 = point.x.copy()
+    x0[model.layout.position.start + 2] = -30.0
+    x0[model.layout.v.start + 2] += 40.0
+
+    def t_ground(**options) -> float:
+        r = simulate(model, x0, 5.0, controls=point.u, events=["ground"], **options)
+        if r.status != "ground_contact":
+            raise RuntimeError(f"simulation-ground-contact: {options or 'default'} ended with {r.status}")
+        return r.t[-1]
+
+    default, fine = t_ground(), t_ground(method="ETD2RK", max_step=0.01)
+    radau = t_ground(method="Radau", rtol=1e-6)
+    return (f"ETD2RK reaches the ground at {fine:.3f} s with 10 ms steps and at {default:.3f} s with the default (20 ms, "
+            f"halved where the steps left the model's range), Radau at rtol 1e-6 at {radau:.3f} s")
+
+
 #: name -> (function, fast)
-SIMULATION_FIGURES = {"simulation-accuracy": (simulation_accuracy, False)}
+SIMULATION_FIGURES = {"simulation-accuracy": (simulation_accuracy, False),
+                      "simulation-goland-flutter": (simulation_goland_flutter, True),
+                      "simulation-structural-limits": (simulation_structural_limits, True),
+                      "simulation-eigenvalues": (simulation_eigenvalues, True),
+                      "simulation-phi-scaling": (simulation_phi_scaling, True),
+                      "simulation-flutter-onset-stop": (simulation_flutter_onset_stop, True),
+                      "simulation-flutter-onset-growth": (simulation_flutter_onset_growth, True),
+                      "simulation-ground-contact": (simulation_ground_contact, False)}
