@@ -1,8 +1,9 @@
 """Figures of docs/calibration.md, for ``regenerate_docs_figures.py`` (:data:`CALIBRATION_FIGURES`): §6-7 (issue
 15 d: the paper-replication configurations C1-C4, their trend scorecards and the figures the text reads from them;
 slow, about a CPU-minute together), §5 (the structure variants' altitude ratio; slow), §3 (the fits: the robust
-one from its output file, fast; the first one rerun at its commit, long) and §1 (the quasi-steady spectrum with
-the elastic axes at 0.625 c, rerun at its commit, long: ``docs_figures_core.run_at_commit``).
+one from its output file, fast; the first one's procedure rerun with today's code, long) and §1 (the quasi-steady
+spectrum with the elastic axes at 0.625 c, rerun at its commit, long: ``docs_figures_core.run_at_commit``). The
+numbers of the text (issue 13) come from the same checkpoints: :data:`TEXT_FIGURES`.
 
 The computations are the studies' own functions, imported from ``studies/`` (never copied):
 ``manoeuvre_decomposition.configure`` builds each configuration, ``paper_residuals.flutter_rows`` and
@@ -453,6 +454,7 @@ def calibration_plain_fit() -> str:
     """§3: the first fit's procedure (df7ff6d: plain least squares, no structural damping) run with today's code:
     ``python studies/calibrate_gtm.py --damping 0 --loss linear --out fit.toml`` (about 40 evaluations of the four
     finite-state flutter points; 5-15 minutes on 2 idle cores). One checkpoint keyed by the source digest."""
+    import json
     import os
     import subprocess
     import tempfile
@@ -468,8 +470,17 @@ def calibration_plain_fit() -> str:
                                    f"(exit {run.returncode}): {run.stderr.strip()[-2000:]}")
             return {"stdout": run.stdout, "fit": out.read_text(encoding="utf-8")}
 
+    import calibrate_gtm
+    from flexsim.linear.paper_data import TABLE_US
+
     out = checkpoint("calibration-plain-fit", {"argv": list(PLAIN_FIT_ARGV)}, compute)
-    return _fit_summary(out["fit"])[1]
+    paper = {r[0]: r[2] for r in TABLE_US}
+    rows = [json.loads(line[2:]) for line in out["fit"].splitlines() if line.startswith("# {")]
+    worst = max(abs(r["omega_rad_s"] / paper[r["altitude_m"]] - 1) for r in rows
+                if r["altitude_m"] > calibrate_gtm.FIT_FREQUENCY_ABOVE_M)
+    tol = calibrate_gtm.TOL_FREQUENCY
+    return (_fit_summary(out["fit"])[1] + f": the frequency target ({100 * tol:.0f} %) "
+            + ("met" if worst <= tol else "missed"))
 
 
 def calibration_robust_fit() -> str:

@@ -71,8 +71,8 @@ climb search, and about 4 minutes for the baselines table):
   structure's variants, finite state);
 * ``calibration-robust-fit`` (fast): docs/calibration.md §3, the fit that made gtm.toml, read from its output
   ``tools/gtm_calibration.toml``;
-* long: ``calibration-plain-fit`` (docs/calibration.md §3: ``studies/calibrate_gtm.py`` rerun in a worktree of
-  commit df7ff6d, about 18 CPU-minutes, 9 minutes on 2 idle cores), ``calibration-aft-axis`` (§1: the
+* long: ``calibration-plain-fit`` (docs/calibration.md §3: the first fit's procedure with today's code, ``python
+  studies/calibrate_gtm.py --damping 0 --loss linear``, 14 minutes on 2 loaded cores), ``calibration-aft-axis`` (§1: the
   quasi-steady spectrum of ``gtm.toml`` at 67cf98a, the elastic axis at 0.625 c).
 
 The trim, validation and Goland figures are computed in ``tools/docs_figures_static.py``; the figures of the
