@@ -943,5 +943,5 @@ TEXT_FIGURES = {
     "calibration-best-residuals": Figure(calibration_best_residuals),
 }
 CALIBRATION_FIGURES.update(TEXT_FIGURES)
-for _gone in ("calibration-c5-trim", "calibration-c5-ratio-3048"):  # now inside calibration-c5-summary
+for _gone in ("calibration-c5-trim", "calibration-c5-ratio-3048", "calibration-c1-elevator"):  # inside the summaries
     del CALIBRATION_FIGURES[_gone]
