@@ -136,6 +136,7 @@ from docs_figures_simulation import SIMULATION_FIGURES  # noqa: E402
 from docs_figures_design import DESIGN_FIGURES  # noqa: E402
 from docs_figures_core import Figure  # noqa: E402
 from docs_figures_calibration import CALIBRATION_FIGURES  # noqa: E402
+from docs_figures_calibration_text import TEXT_FIGURES as CALIBRATION_TEXT_FIGURES  # noqa: E402
 from docs_figures_records import RECORD_FIGURES, flutter_mode_frequencies, flutter_study_evaluations  # noqa: E402
 
 REGION = re.compile(r"<!-- figures:(?P<name>[\w-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.DOTALL)
@@ -549,6 +550,7 @@ FIGURES: dict[str, Figure] = {
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in DESIGN_FIGURES.items()},
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in STUDY_FIGURES.items()},
     **CALIBRATION_FIGURES,
+    **CALIBRATION_TEXT_FIGURES,
     **RECORD_FIGURES,
     "calibration-summary": Figure(lambda: calibration_summary(_level)),
     "calibration-damping": Figure(lambda: calibration_damping(_level)),
