@@ -20,7 +20,14 @@ the packed model data and of the first right-hand side). The reference is extrac
 (numba keys them on the SHA-256 of the source, so only the entries of unchanged files are used; the others are
 compiled by the warm-up process, 2-5 min of CPU), or it is taken from ``--reference-tree DIR``.
 
+``--parts``: instead, where flexsim's own part goes: fresh processes that first pay numba's floor (import numba,
+first call of the trivial cached function), then time import flexsim, loading the GTM file, the vortex-lattice
+solve of its lift slopes, the structural model (and, separately, its inertia polynomial once more), the rest of the
+unsteady model and the first right-hand side (the lattice solution and the structural model are cached by content within a
+process, so the model build reuses them); medians of --repeats processes.
+
 Run: python benchmarks/bench_startup.py [--repeats 3] [--compare [REV]] [--reference-tree DIR]
+     python benchmarks/bench_startup.py --parts [--repeats 5]
 """
 
 from __future__ import annotations
@@ -81,17 +88,42 @@ print(json.dumps(out))
 """
 
 
+PARTS = r"""
+import json, sys, time
+T = time.process_time
+import numpy, scipy.linalg, scipy.integrate, scipy.optimize
+import numba
+from _numba_floor import add_one
+add_one(1.0)
+out = {}
+c = T()
+from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.model.aircraft_model import AircraftModel
+from flexsim.aero.lift_slopes import _incompressible_vlm
+from flexsim.structure.inertia import InertiaPolynomial
+from flexsim.structure.model import DofIndex, structural_model
+out["import flexsim"] = T() - c
+c = T(); aircraft = load_aircraft("gtm"); out["load the GTM file"] = T() - c
+c = T(); _incompressible_vlm(aircraft.content_key()); out["vortex-lattice lift slopes (592 panels)"] = T() - c
+c = T(); structural_model(aircraft); out["structural model"] = T() - c
+c = T(); InertiaPolynomial.from_aircraft(aircraft, DofIndex.from_aircraft(aircraft)); out["  of which the inertia polynomial M0, H, M2 (again)"] = T() - c
+c = T(); model = AircraftModel(aircraft, aero="unsteady"); out["rest of the unsteady model (first dcm_321 load)"] = T() - c
+x = model.pack(position_m=[0.0, 0.0, -9144.0], velocity=numpy.r_[[230.0, 0.0, 10.0], numpy.zeros(model.structure.dofs.n_v - 3)])
+c = T(); model.rhs(0.0, x, numpy.array([40e3, 0.0, 0.0, 0.0])); out["first right-hand side (rhs cache load)"] = T() - c
+print(json.dumps(out))
+"""
+
 HERE = Path(__file__).resolve().parents[1]
 #: Default reference of --compare: main before the start-up work (2026-12-02).
 COMPARE_REFERENCE = "d3d625b"
 
 
-def run(kind: str, root: Path = HERE) -> dict:
+def run(kind: str, root: Path = HERE, code: str = CHILD) -> dict:
     """One fresh process of ``kind`` (base, floor, full) with the flexsim of the checkout ``root``."""
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
     env.pop("PYTHONDONTWRITEBYTECODE", None)
     env["PYTHONPATH"] = os.pathsep.join([str(root), str(HERE / "benchmarks"), env.get("PYTHONPATH", "")])
-    done = subprocess.run([sys.executable, "-c", CHILD, kind], capture_output=True, text=True, env=env, check=True,
+    done = subprocess.run([sys.executable, "-c", code, kind], capture_output=True, text=True, env=env, check=True,
                           cwd=root)
     return json.loads(done.stdout.strip().splitlines()[-1])
 
@@ -115,13 +147,30 @@ def _reference_tree(rev: str) -> Path:
     return tree
 
 
+def parts(repeats: int) -> None:
+    """--parts: flexsim's own start-up by part (module docstring)."""
+    print(f"load average {os.getloadavg()[0]:.2f} at start; CPU seconds after numba's floor, median of {repeats} "
+          "fresh processes")
+    run("parts", code=PARTS)  # warm-up
+    rows = [run("parts", code=PARTS) for _ in range(repeats)]
+    for key in rows[0]:
+        print(f"  {key:<52} {statistics.median(r[key] for r in rows):.3f} s")
+    total = sum(statistics.median(r[k] for r in rows) for k in rows[0] if not k.startswith(" "))
+    print(f"  {'sum of the medians (without the again)':<52} {total:.3f} s")
+    print(f"load average {os.getloadavg()[0]:.2f} at the end")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--compare", nargs="?", const=COMPARE_REFERENCE, default=None, metavar="REV",
                         help=f"also run a reference revision side by side (default {COMPARE_REFERENCE})")
     parser.add_argument("--reference-tree", type=Path, default=None, help="with --compare: a checkout to compare against")
+    parser.add_argument("--parts", action="store_true", help="where flexsim's own part goes (module docstring)")
     args = parser.parse_args()
+    if args.parts:
+        parts(args.repeats)
+        return
     ref = None
     if args.compare or args.reference_tree:
         ref = args.reference_tree.resolve() if args.reference_tree else _reference_tree(args.compare)

@@ -54,9 +54,9 @@ MAX_DIHEDRAL_DEG: float = 45.0
 """Largest segment dihedral (or anhedral) accepted; vertical surfaces are outside this model."""
 CORE_RADIUS_FRACTION: float = 1.0e-6
 """Default cut-off radius of the vortex segments as a fraction of the bound-segment length."""
-_ROWS_PER_CHUNK_BUDGET: int = 40_000
-"""Number of (control point, horseshoe) pairs evaluated at once during assembly: about 1 MB per temporary, which
-stays in the processor's cache (``benchmarks/bench_startup.py`` times the model build it is part of). The result does
+_ROWS_PER_CHUNK_BUDGET: int = 20_000
+"""Number of (control point, horseshoe) pairs evaluated at once during assembly: 160 kB per temporary array, which
+stays in the processor's cache (``benchmarks/bench_startup.py --parts`` times the lattice solve). The result does
 not depend on it: every entry is computed by the same operations."""
 
 
@@ -351,38 +351,41 @@ def _lattice(surface: LiftingSurface) -> _Lattice:
     return _Lattice(pieces=tuple(pieces), **arrays)
 
 
-def _segment_velocity(
-    r1: np.ndarray, r2: np.ndarray, n1: np.ndarray, n2: np.ndarray, r0: np.ndarray, cut2_len0_2: np.ndarray
-) -> np.ndarray:
-    """Velocity (n, m, 3) at points induced by unit-strength segments ``a → b`` (m, 3).
+def _segment_velocity(r1, r2, n1, n2, r0, cut2_len0_2):
+    """Velocity at points induced by unit-strength segments ``a → b``, as components (x, y, z), each (n, m).
 
     Biot–Savart law for a straight vortex segment (Katz & Plotkin 2001, §10.4.5):
     ``v = (r1 × r2)/(4π |r1 × r2|²) · r0·(r1/|r1| − r2/|r2|)``, set to zero for points closer to the
-    segment line than the cut-off radius. Arguments: ``r1 = p − a``, ``r2 = p − b`` (n, m, 3) [m], their lengths
-    ``n1``, ``n2`` (n, m) [m], ``r0 = b − a`` (m, 3) [m] and ``cutoff² |r0|²`` (m,) [m⁴].
+    segment line than the cut-off radius. Arguments: ``r1 = p − a``, ``r2 = p − b`` as components, each (n, m)
+    [m], their lengths ``n1``, ``n2`` (n, m) [m], ``r0 = b − a`` as components, each (m,) [m], and
+    ``cutoff² |r0|²`` (m,) [m⁴]. Sums of three products are formed as ``(x + z) + y`` throughout (the order of
+    numpy's ``einsum`` over a last axis of 3, which the assembly used before: the matrix is the same bit for bit).
     """
-    cross = np.cross(r1, r2)
-    cross2 = np.einsum("nmk,nmk->nm", cross, cross)
-    valid = cross2 > cut2_len0_2[None]
-    safe_n1, safe_n2 = np.where(valid, n1, 1.0), np.where(valid, n2, 1.0)
-    proj = np.einsum("mk,nmk->nm", r0, r1) / safe_n1 - np.einsum("mk,nmk->nm", r0, r2) / safe_n2
+    (x1, y1, z1), (x2, y2, z2), (x0, y0, z0) = r1, r2, r0
+    cx = y1 * z2 - z1 * y2
+    cy = z1 * x2 - x1 * z2
+    cz = x1 * y2 - y1 * x2
+    cross2 = (cx * cx + cz * cz) + cy * cy
+    valid = cross2 > cut2_len0_2
+    proj = ((x0 * x1 + z0 * z1) + y0 * y1) / np.where(valid, n1, 1.0) - ((x0 * x2 + z0 * z2) + y0 * y2) / np.where(
+        valid, n2, 1.0)
     factor = np.where(valid, proj / (4.0 * math.pi * np.where(valid, cross2, 1.0)), 0.0)
-    return factor[..., None] * cross
+    return factor * cx, factor * cy, factor * cz
 
 
-def _trailing_velocity(r1: np.ndarray, n1: np.ndarray, cutoff: np.ndarray) -> np.ndarray:
-    """Velocity (n, m, 3) induced by unit semi-infinite segments from ``a`` (m, 3) to ``x = +∞``.
+def _trailing_velocity(r1, n1, cutoff2):
+    """Velocity induced by unit semi-infinite segments from ``a`` to ``x = +∞``, as components (x, y, z), each (n, m).
 
     Limit of :func:`_segment_velocity` for ``b = a + L x̂``, ``L → ∞``:
-    ``v = (x̂ × r1)/(4π |x̂ × r1|²) (1 + x̂·r1/|r1|)``, ``r1 = p − a`` (n, m, 3) [m] of length ``n1`` (n, m) [m],
-    with the cut-off radius ``cutoff`` (m,) [m].
+    ``v = (x̂ × r1)/(4π |x̂ × r1|²) (1 + x̂·r1/|r1|)``, ``x̂ × r1 = (0, −r1_z, r1_y)``; ``r1 = p − a`` as components,
+    each (n, m) [m], of length ``n1`` (n, m) [m], with the squared cut-off radius ``cutoff2`` (m,) [m²].
     """
-    cross = np.stack([np.zeros(r1.shape[:2]), -r1[..., 2], r1[..., 1]], axis=-1)
-    cross2 = r1[..., 1] ** 2 + r1[..., 2] ** 2
-    valid = cross2 > (cutoff**2)[None]
-    ratio = 1.0 + r1[..., 0] / np.where(valid, n1, 1.0)
+    x1, y1, z1 = r1
+    cross2 = y1**2 + z1**2
+    valid = cross2 > cutoff2
+    ratio = 1.0 + x1 / np.where(valid, n1, 1.0)
     factor = np.where(valid, ratio / (4.0 * math.pi * np.where(valid, cross2, 1.0)), 0.0)
-    return factor[..., None] * cross
+    return factor * 0.0, factor * -z1, factor * y1
 
 
 def _normalwash_matrix(
@@ -392,24 +395,30 @@ def _normalwash_matrix(
 
     The horseshoe ``∞ → a → b → ∞`` (trailing legs parallel to +x) is assembled from one finite and
     two semi-infinite segments, which share the vectors from their end points to the control points and
-    their lengths; control points are processed in row chunks small enough for the temporaries to stay in
-    the processor's cache (:data:`_ROWS_PER_CHUNK_BUDGET`).
+    their lengths; the vectors are kept as components (arrays of control points x horseshoes), and control
+    points are processed in row chunks small enough for these to stay in the processor's cache
+    (:data:`_ROWS_PER_CHUNK_BUDGET`).
     """
     cutoff = core_fraction * np.linalg.norm(b - a, axis=1)
-    r0 = b - a
-    cut2_len0_2 = cutoff**2 * np.einsum("mk,mk->m", r0, r0)
+    r0 = np.ascontiguousarray((b - a).T)
+    cut2_len0_2 = cutoff**2 * ((r0[0] * r0[0] + r0[2] * r0[2]) + r0[1] * r0[1])
+    cutoff2 = cutoff**2
+    a_t, b_t = np.ascontiguousarray(a.T), np.ascontiguousarray(b.T)
     n, m = control.shape[0], a.shape[0]
     rows = max(1, _ROWS_PER_CHUNK_BUDGET // max(m, 1))
     out = np.empty((n, m))
     for start in range(0, n, rows):
         p = control[start : start + rows]
-        r1 = p[:, None, :] - a[None]
-        r2 = p[:, None, :] - b[None]
-        n1 = np.sqrt(np.einsum("nmk,nmk->nm", r1, r1))
-        n2 = np.sqrt(np.einsum("nmk,nmk->nm", r2, r2))
-        v = _segment_velocity(r1, r2, n1, n2, r0, cut2_len0_2)
-        v += _trailing_velocity(r2, n2, cutoff) - _trailing_velocity(r1, n1, cutoff)
-        out[start : start + rows] = np.einsum("nmk,nk->nm", v, normal[start : start + rows])
+        r1 = tuple(p[:, k, None] - a_t[k] for k in range(3))
+        r2 = tuple(p[:, k, None] - b_t[k] for k in range(3))
+        n1 = np.sqrt((r1[0] * r1[0] + r1[2] * r1[2]) + r1[1] * r1[1])
+        n2 = np.sqrt((r2[0] * r2[0] + r2[2] * r2[2]) + r2[1] * r2[1])
+        bound = _segment_velocity(r1, r2, n1, n2, r0, cut2_len0_2)
+        leg_b = _trailing_velocity(r2, n2, cutoff2)
+        leg_a = _trailing_velocity(r1, n1, cutoff2)
+        vx, vy, vz = (bound[k] + (leg_b[k] - leg_a[k]) for k in range(3))
+        nrm = normal[start : start + rows]
+        out[start : start + rows] = (vx * nrm[:, 0, None] + vz * nrm[:, 2, None]) + vy * nrm[:, 1, None]
     return out
 
 
