@@ -19,8 +19,26 @@ from flexsim.sim.accuracy import (DEFAULT_CHOICE, PREVIOUS_CHOICE, RADAU_CHOICE,
                                   manoeuvre_errors)
 from flexsim.sim.manoeuvres import manoeuvre_names  # noqa: E402
 
-_DURATION = {"level-turn-entry": "10 s, bank 28 deg", "climb": "10 s", "elevator-doublet": "6 s", "aileron-roll": "6 s",
-             "gust-encounter": "5 s, U_ds 10 m/s", "flutter-onset": "3.1 s, growing"}
+def _label(name: str, duration_s: float) -> str:
+    """The manoeuvre column: name, the compared duration and what sets the run apart (the turn's bank read from the
+    setup's description, the gust's U_ds an input of the manoeuvre, the compared window of the flutter onset)."""
+    import re
+
+    from flexsim.sim.accuracy import RUN_OPTIONS
+    from flexsim.sim.manoeuvres import build_manoeuvre
+
+    t = RUN_OPTIONS.get(name, {}).get("t_end_s", duration_s)
+    extra = ""
+    if name == "level-turn-entry":
+        bank = re.search(r"bank (-?[\d.]+) deg", build_manoeuvre(name).description)
+        if not bank:
+            raise RuntimeError("simulation-accuracy: no bank angle in level-turn-entry's description")
+        extra = f", bank {float(bank.group(1)):.0f} deg"
+    elif name == "gust-encounter":
+        extra = ", U_ds 10 m/s"
+    elif name == "flutter-onset":
+        extra = ", growing"
+    return f"`{name}` ({t:g} s{extra})"
 
 
 def _cell(e, rigid_parts: bool) -> str:
@@ -38,7 +56,7 @@ def simulation_accuracy() -> str:
              "|---|---|---|---|"]
     for name in manoeuvre_names():
         default, previous, radau = manoeuvre_errors(name, choices)
-        label = f"`{name}` ({_DURATION.get(name, f'{default.duration_s:g} s')})"
+        label = _label(name, default.duration_s)
         lines.append(f"| {label} | {_cell(default, True)} | {_cell(previous, False)} | {_cell(radau, True)} |")
     return "\n".join(lines) + "\n"
 
