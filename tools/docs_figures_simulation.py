@@ -140,12 +140,38 @@ def simulation_phi_scaling() -> str:
 
 
 @functools.cache
-def _flutter_onset(limit_m: float | None, t_end_s: float | None):
+def _flutter_onset(limit_m: float | None, t_end_s: float | None, method: str | None = None, rtol: float | None = None):
     from flexsim.sim.manoeuvres import build_manoeuvre
 
     setup = build_manoeuvre("flutter-onset")
     options = {} if t_end_s is None else {"t_end_s": t_end_s}
+    if method is not None:
+        options.update(method=method, rtol=rtol)
     return setup.simulate(structural_limit_m=limit_m, **options)
+
+
+def simulation_flutter_onset_events() -> str:
+    """The structural-limit event of ``flutter-onset`` with DOP853 at rtol 1e-9, the default and Radau at rtol 1e-3
+    (a grazing peak moves the event by half a period of the flutter frequency)."""
+    import math
+
+    from flexsim.sim.manoeuvres import build_manoeuvre
+
+    runs = {"DOP853": _flutter_onset(None, None, "DOP853", 1e-9), "default": _flutter_onset(None, None),
+            "Radau": _flutter_onset(None, None, "Radau", 1e-3)}
+    for name, r in runs.items():
+        if r.status != "structural_limit":
+            raise RuntimeError(f"simulation-flutter-onset-events: {name} ended with {r.status}")
+    t = {name: r.t[-1] for name, r in runs.items()}
+    from flexsim.linear.flutter import wind_tunnel_flutter
+
+    _, omega = wind_tunnel_flutter(build_manoeuvre("flutter-onset").model.aircraft, aero_model="unsteady")
+    half = math.pi / omega
+    shift = (t["Radau"] - t["DOP853"]) / half
+    note = (f" — {'one half period' if abs(shift - 1) < 0.15 else f'{shift:.2f} half periods'} later —"
+            if abs(shift) > 0.15 else "")
+    return (f"{t['DOP853']:.4f} s with DOP853 at rtol 1e-9 and {t['default']:.4f} s with the default ETD2RK, "
+            f"{t['Radau']:.4f} s{note} with Radau at rtol 1e-3")
 
 
 def simulation_flutter_onset_stop() -> str:
@@ -204,4 +230,5 @@ SIMULATION_FIGURES = {"simulation-accuracy": (simulation_accuracy, False),
                       "simulation-phi-scaling": (simulation_phi_scaling, True),
                       "simulation-flutter-onset-stop": (simulation_flutter_onset_stop, True),
                       "simulation-flutter-onset-growth": (simulation_flutter_onset_growth, True),
-                      "simulation-ground-contact": (simulation_ground_contact, False)}
+                      "simulation-ground-contact": (simulation_ground_contact, False),
+                      "simulation-flutter-onset-events": (simulation_flutter_onset_events, False)}
