@@ -159,3 +159,18 @@ def test_trim_from_a_neighbouring_trim_equals_the_cold_trim(models):
     np.testing.assert_allclose(warm.x, cold.x, rtol=0, atol=1e-9 * np.abs(cold.x[model.layout.q.start:]).max())
     np.testing.assert_allclose(warm.u[1:], cold.u[1:], rtol=0, atol=1e-9)
     assert warm.u[0] == pytest.approx(cold.u[0], rel=1e-9)
+
+
+@pytest.mark.parametrize("name", ["level", "turn", "glide"])
+def test_trim_residual_through_the_batched_kernel_equals_rhs(models, name):
+    """The trim residual is evaluated with one row of rhs_batch (so that trimming loads one compiled right-hand
+    side): equal bit for bit to the velocity rows of ``rhs`` scaled, for both aerodynamic models."""
+    from flexsim.trim import solver
+
+    for model in models.values():
+        prob = solver._Problem(model, MANOEUVRES[name])
+        z = 0.01 * np.random.default_rng(2).normal(size=6 + prob.n_el)
+        z[2] += 0.05
+        x, u, _ = prob.state(z)
+        expected = model.rhs(0.0, x, u)[model.layout.velocity] * prob.scale
+        np.testing.assert_array_equal(prob.residual(z), expected)
