@@ -275,6 +275,13 @@ for side, sign in (("right", 1.0), ("left", -1.0)):
 # ch. 7); horizontal tail 2 x 45.7 m^2 (exposed 45 of 50.4 m^2, t/c = 0.10); fin 69.6 m^2 (34.3 m^2); nacelle and
 # pylon 46 m^2 each (RB211-535 class, 2.5 m x 6.0 m). Points: fuselage mid-length, 40 % span of each surface
 # on its elastic axis, the engines. Total f = 2.677 m^2: C_D0 = 0.0148 on 181.25 m^2.
+# Validity limit of the linear (no-stall) strip aerodynamics, |alpha| of the CG (flexsim/trim/solver.py
+# _check_limits): the end of the NASA GTM's linear lift range in its wind-tunnel database (the T2's, NASA
+# GTM_DesignSim, sources/t2_aero_basic_beta0.csv): CN = -CZ stays within 10 % of its line over alpha = 0-6 deg
+# up to 11 deg (8.2 % below; 12.6 % at 12 deg). flexsim.aircraft.t2_data.t2_linear_alpha_limit_deg computes it
+# from the CSV and tests/aircraft/test_gtm_alpha_limit.py checks this value against it.
+w('[aero]')
+w('max_alpha_deg = 11.0   # linear range of the GTM\'s lift curve, NASA T2 wind-tunnel database (tools/make_gtm_toml.py)')
 if args.calibration and not args.paper:  # the paper-replication file keeps the paper's induced drag only
     # Downwash of the wing at the horizontal tail (not in the paper; flexsim/model/coupling.py tail_downwash):
     # USAF DATCOM sec. 4.4.1 (Hoak et al. 1978), d eps/d alpha at M -> 0 = 4.44 [K_A K_lambda K_H sqrt(cos L_c/4)]^1.19,
@@ -286,7 +293,6 @@ if args.calibration and not args.paper:  # the paper-replication file keeps the 
     k_a = 1.0 / A_W - 1.0 / (1.0 + A_W**1.7)
     k_lambda = (10.0 - 3.0 * TAPER_W) / 7.0
     k_h = (1.0 - abs(H_H / B_W)) / (2.0 * L_H / B_W) ** (1.0 / 3.0)
-    w('[aero]')
     w(f'downwash_gradient = {4.44 * (k_a * k_lambda * k_h * math.sqrt(math.cos(SWEEP_W))) ** 1.19:.4f}   # d eps/d alpha at M -> 0, DATCOM 4.4.1 (tools/make_gtm_toml.py)')
     w('')
     for name, comp, pos, area in (

@@ -35,6 +35,7 @@ __all__ = [
     "DragItem",
     "BodyItem",
     "COMPRESSIBILITY",
+    "DEFAULT_MAX_ALPHA_DEG",
     "ControlSurface",
     "Component",
     "LumpedMass",
@@ -102,6 +103,16 @@ class StripAero:
 
 #: Compressibility corrections of the sectional lift-curve slope (aircraft file ``[aero] compressibility``).
 COMPRESSIBILITY = ("prandtl-glauert", "none")
+
+#: Default validity limit of the linear aerodynamics, |alpha| of the CG [deg] (aircraft file ``[aero] max_alpha_deg``):
+#: the NASA GTM's. Its wind-tunnel database (``flexsim/aircraft/data/sources/t2_aero_basic_beta0.csv``, NASA
+#: GTM_DesignSim's T2 polynomial aerodynamic database at beta = 0) has a normal-force coefficient CN = -CZ within 10 %
+#: of its straight line over alpha = 0-6 deg up to alpha = 11 deg (-8.2 %) and 12.6 % below it at 12 deg, where the
+#: lift curve breaks (slope 38 % of the linear one between 11 and 12 deg): beyond 11 deg the strip theory's linear
+#: lift is more than 10 % too high (:func:`flexsim.aircraft.t2_data.t2_linear_alpha_limit_deg`).
+DEFAULT_MAX_ALPHA_DEG = 11.0
+#: Largest accepted ``max_alpha_deg`` [deg]: a plausibility bound on the input, as for the other fields.
+MAX_ALPHA_LIMIT_DEG = 30.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -191,6 +202,12 @@ class AeroSettings:
         d(epsilon)/d(alpha) of the wing's downwash at the horizontal tail in incompressible flow, in [0, 1)
         (not in the paper, whose tail sees the free stream: default 0). The tail strips see the downwash
         epsilon = gradient x (wing lift) / (its incompressible lift per radian) (:mod:`flexsim.model.coupling`).
+    max_alpha_rad : float
+        Validity limit of the linear (no-stall) aerodynamics: the largest |angle of attack| of the centre of
+        gravity at which a trim is accepted [rad], in (0, 30 deg] (file: ``max_alpha_deg``). Default
+        :data:`DEFAULT_MAX_ALPHA_DEG`, the NASA GTM's measured linear range (its wind-tunnel database, see the
+        constant); another aircraft should give its own. :func:`flexsim.trim.trim` raises beyond it unless
+        ``check_limits=False``.
     """
 
     compressibility: str = "prandtl-glauert"
@@ -198,6 +215,7 @@ class AeroSettings:
     bending_incidence: bool = False
     bodies: tuple = ()
     downwash_gradient: float = 0.0
+    max_alpha_rad: float = float(np.deg2rad(DEFAULT_MAX_ALPHA_DEG))
 
     def __post_init__(self) -> None:
         if self.compressibility not in COMPRESSIBILITY:
@@ -213,6 +231,7 @@ class AeroSettings:
         if gradient == 1.0:
             _fail("aero.downwash_gradient", self.downwash_gradient, "must be in [0, 1): at 1 the tail would not see the angle of attack")
         object.__setattr__(self, "downwash_gradient", gradient)
+        object.__setattr__(self, "max_alpha_rad", _check_scalar("aero.max_alpha_rad", self.max_alpha_rad, 0.0, np.deg2rad(MAX_ALPHA_LIMIT_DEG), lo_open=True))
         names = [b.name for b in self.bodies]
         if len(set(names)) != len(names):
             _fail("aero.body names", names, "must be unique")

@@ -20,6 +20,8 @@ import numpy as np
 
 from flexsim.aircraft.definition import (
     COMPONENT_NAMES,
+    DEFAULT_MAX_ALPHA_DEG,
+    MAX_ALPHA_LIMIT_DEG,
     AeroSettings,
     Aircraft,
     Component,
@@ -48,7 +50,7 @@ _TOP_KEYS = {"schema_version": True, "name": True, "description": False, "frame"
              "components": True, "lumped_masses": False, "engines": False, "structural_damping_ratio": False,
              "formulation": False, "aero": False}
 _AIRCRAFT_AERO_KEYS = {"compressibility": False, "drag": False, "bending_incidence": False, "body": False,
-                       "downwash_gradient": False}
+                       "downwash_gradient": False, "max_alpha_deg": False}
 _DRAG_KEYS = {"name": True, "component": True, "position_m": True, "drag_area_m2": True}
 _BODY_KEYS = {"name": True, "component": True, "position_m": True, "length_m": True, "diameter_m": True, "volume_m3": True}
 _COMPONENT_KEYS = {"root_m": True, "euler_deg": True, "length_m": True, "bending_modes": False,
@@ -286,8 +288,12 @@ def _aero_settings(table: Any, frame: "_Frame") -> AeroSettings:
         raise AircraftDefinitionError(f"aero.compressibility = {comp!r}: must be \"prandtl-glauert\" or \"none\"")
     drag = _attached_items(table, "drag", _DRAG_KEYS, frame, DragItem, ("drag_area_m2",))
     bodies = _attached_items(table, "body", _BODY_KEYS, frame, BodyItem, ("length_m", "diameter_m", "volume_m3"))
+    max_alpha_deg = _number("aero.max_alpha_deg", table.get("max_alpha_deg", DEFAULT_MAX_ALPHA_DEG))
+    if not 0.0 < max_alpha_deg <= MAX_ALPHA_LIMIT_DEG:  # named in degrees, as written (also catches nan)
+        raise AircraftDefinitionError(f"aero.max_alpha_deg = {max_alpha_deg!r}: must be in (0, {MAX_ALPHA_LIMIT_DEG:g}] deg")
     return AeroSettings(compressibility=comp, drag=tuple(drag), bending_incidence=table.get("bending_incidence", False),
-                        bodies=tuple(bodies), downwash_gradient=table.get("downwash_gradient", 0.0))
+                        bodies=tuple(bodies), downwash_gradient=table.get("downwash_gradient", 0.0),
+                        max_alpha_rad=float(np.deg2rad(max_alpha_deg)))
 
 
 def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:

@@ -236,7 +236,9 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
     guess : TrimPoint, optional
         Starting point (e.g. the trim at a neighbouring speed).
     check_limits : bool
-        Raise when the thrust or a surface is beyond its limit (default True).
+        Raise when the angle of attack of the CG is beyond the linear aerodynamics' range (the aircraft's
+        ``[aero] max_alpha_deg``) or the thrust or a surface is beyond its limit (default True; False returns
+        the solution of the equations as asked).
 
     Returns
     -------
@@ -418,17 +420,49 @@ def _residual_labels(model: AircraftModel) -> list[str]:
     return [f"d/dt {labels[i]}" for i in model.active_dofs]
 
 
+def _alpha_cg(model: AircraftModel, x: np.ndarray) -> float:
+    """Angle of attack of the centre of gravity atan(w_cg / u_cg) [rad], v_cg = v + omega x r_cg (undeformed CG,
+    body axes), as ``sideslip_cg``."""
+    lay = model.layout
+    v_cg = x[lay.v] + np.cross(x[lay.omega], model.structure.mass_properties.cg_m)
+    return math.atan2(v_cg[2], v_cg[0])
+
+
 def _check_limits(model: AircraftModel, manoeuvre: SteadyManoeuvre, point: TrimPoint) -> None:
+    """Raise TrimError naming every limit a solved trim exceeds: the angle of attack, then the controls.
+
+    Angle of attack: the strip aerodynamics are linear (no stall), so a trim is accepted only while the angle of
+    attack of the centre of gravity is within +-``aero_settings.max_alpha_rad`` (the file's ``[aero]
+    max_alpha_deg``), the aircraft's linear lift range. Why the CG's angle and not the strips': the limit stands for
+    the end of the aircraft's linear lift curve, and its public measurement (for the GTM, NASA's T2 wind-tunnel
+    database, :func:`flexsim.aircraft.t2_data.t2_linear_alpha_limit_deg`) is a whole-aircraft lift curve against
+    the angle of attack of the body axes, with the fuselage's upwash, the wing's twist, sweep and span loading and
+    the tail's downwash inside it. A limit per strip would need each section's stall angle (the GTM's sections
+    are not public) and a local flow that strip theory gets only roughly: it has no spanwise flow, which is what
+    makes a swept wing's tips stall first. The strips' angles differ from the CG's by the rigging, the elastic
+    twist and the rotation rates; they are not checked. The CG's angle is the flight-mechanics alpha of a
+    steady manoeuvre: equal to ``TrimPoint.alpha`` (taken at o) in straight flight; in a turn they differ by the
+    pitch rate times the arm.
+
+    Controls: thrust in [0, the engines' maximum], each surface within +-its ``max_deflection``; the thrust is
+    not checked in a glide (it is 0 there).
+    """
+    problems = []
+    alpha, limit = _alpha_cg(model, point.x), model.aircraft.aero_settings.max_alpha_rad
+    if not abs(alpha) <= limit + 1e-12:
+        problems.append(f"angle of attack alpha = {math.degrees(alpha):.4g} deg at the CG beyond the range of the linear "
+                        f"(no-stall) aerodynamics, +-{math.degrees(limit):.4g} deg = [aero] max_alpha_deg of "
+                        f"{model.aircraft.name}")
     lo, hi = model.aircraft.control_limits()
     names = ("thrust T_e [N]", "aileron delta_a [rad]", "elevator delta_e [rad]", "rudder delta_r [rad]")
     for k in range(4):
         if manoeuvre.is_glide and k == 0:
             continue
         if not lo[k] - 1e-9 <= point.u[k] <= hi[k] + 1e-9:
-            raise TrimError(
-                f"trim infeasible for {manoeuvre.describe()}: {names[k]} = {point.u[k]:.5g} outside its limits "
-                f"[{lo[k]:.5g}, {hi[k]:.5g}] (the equations were solved, scaled residual {point.residual:.2g})"
-            )
+            problems.append(f"{names[k]} = {point.u[k]:.5g} outside its limits [{lo[k]:.5g}, {hi[k]:.5g}]")
+    if problems:
+        raise TrimError(f"trim infeasible for {manoeuvre.describe()}: {'; '.join(problems)} (the equations were "
+                        f"solved, scaled residual {point.residual:.2g})")
 
 
 def _wind_axes(v_cg: np.ndarray) -> np.ndarray:

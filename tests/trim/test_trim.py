@@ -112,7 +112,8 @@ def test_infeasible_trims_name_manoeuvre_and_limit(models):
                                         r"[0-9.e+]+ outside its limits \[0, 3\.56e\+05\] \(the equations were solved"):
         trim(model, SteadyManoeuvre.climb(H, math.radians(25.0), mach=0.75))
     # a tight turn at low speed: the paper's slipping turn needs more rudder than the limit (measured 0.575 rad
-    # needed, limit 0.436 rad; the elevator needs -0.266 rad with the fuselage moments and tail downwash)
+    # needed, limit 0.436 rad; the elevator needs -0.266 rad with the fuselage moments and tail downwash); its
+    # angle of attack, 16.9 deg at the CG, is beyond the linear range too and named first (test_alpha_limit.py)
     with pytest.raises(TrimError, match=r"trim infeasible for steady flight \(turn R = 3000 m.*rudder delta_r \[rad\] = "
                                         r"[0-9.]+ outside its limits"):
         trim(model, SteadyManoeuvre.turn(H, 3000.0, mach=0.6))
