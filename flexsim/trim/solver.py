@@ -437,8 +437,8 @@ def _check_limits(model: AircraftModel, manoeuvre: SteadyManoeuvre, point: TrimP
     the end of the aircraft's linear lift curve, and its public measurement (for the GTM, NASA's T2 wind-tunnel
     database, :func:`flexsim.aircraft.t2_data.t2_linear_alpha_limit_deg`) is a whole-aircraft lift curve against
     the angle of attack of the body axes, with the fuselage's upwash, the wing's twist, sweep and span loading and
-    the tail's downwash inside it. A limit per strip would need each section's stall angle (the GTM's sections
-    are not public) and a local flow that strip theory gets only roughly: it has no spanwise flow, which is what
+    the tail's downwash inside it. A limit per strip would need each section's stall angle (not in the public GTM
+    data) and a local flow that strip theory gets only roughly: it has no spanwise flow, which is what
     makes a swept wing's tips stall first. The strips' angles differ from the CG's by the rigging, the elastic
     twist and the rotation rates; they are not checked. The CG's angle is the flight-mechanics alpha of a
     steady manoeuvre: equal to ``TrimPoint.alpha`` (taken at o) in straight flight; in a turn they differ by the
