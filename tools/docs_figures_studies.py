@@ -445,18 +445,20 @@ def validation_phugoid_range() -> str:
     """The case's phugoid against Lanchester over sea level to 6000 m and M 0.4-0.7, and without parasite drag."""
     from flexsim.trim.solver import TrimError
 
-    d_omega, d_zeta, skipped = [], [], []
+    d_omega, d_zeta, skipped = [], [], {}
     for h in PHUGOID_ALTITUDES_M:
         for mach in PHUGOID_MACHS:
             try:
                 p = _phugoid(h, mach)
-            except TrimError:
-                skipped.append(f"{h:g} m M {mach:g}")
+            except TrimError as exc:  # beyond a trim limit: the limits it names, in the error's order
+                named = [q for q in ("angle of attack", "thrust", "aileron", "elevator", "rudder") if q in str(exc)]
+                skipped.setdefault(" and ".join(named) or "a limit", []).append(f"{h:g} m M {mach:g}")
                 continue
             d_omega.append(100 * (p.omega_rad_s / p.lanchester_omega_rad_s - 1))
             d_zeta.append(100 * (p.damping_ratio / p.lanchester_damping_ratio - 1))
     bare = _phugoid(parasite_drag=False)
-    skip = f"; {', '.join(skipped)} does not trim within the elevator's limits" if skipped else ""
+    skip = ("; beyond the trim limits: " + ", ".join(f"{' and '.join(cases)} ({why})" for why, cases in skipped.items())
+            if skipped else "")
     return (f"the frequency is within {_num(max(d_omega), '+.1f')} % to {_num(min(d_omega), '+.1f')} % of it at "
             f"{', '.join(f'{h:g}' for h in PHUGOID_ALTITUDES_M)} m and M {PHUGOID_MACHS[0]:g}–{PHUGOID_MACHS[-1]:g} "
             f"({len(d_omega)} points{skip}), the damping within {_num(max(d_zeta), '+.0f')} % to "
