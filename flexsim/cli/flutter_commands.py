@@ -211,7 +211,9 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_trim.add_argument("--glide", action="store_true", help="thrust zero, flight-path angle unknown")
     p_trim.add_argument("--coordinated", action="store_true",
                         help="coordinated turn: zero sideslip at the CG, heading free (default: the paper's turn, heading on track)")
-    p_trim.add_argument("--no-limits", action="store_true", help="do not enforce thrust/surface limits")
+    p_trim.add_argument("--no-limits", action="store_true",
+                        help="do not enforce the thrust/surface limits nor the angle-of-attack limit of the linear aerodynamics "
+                             "([aero] max_alpha_deg): print the solution of the trim equations as asked")
     _add_formulation(p_trim)
     p_trim.add_argument("--roots", nargs="?", const="unsteady", choices=["unsteady", "quasi-steady"], default=None,
                         help="also list the roots of the linearised trim, told apart as rigid-body, elastic and "
