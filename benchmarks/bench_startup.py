@@ -24,10 +24,11 @@ compiled by the warm-up process, 2-5 min of CPU), or it is taken from ``--refere
 first call of the trivial cached function), then time import flexsim, loading the GTM file, the vortex-lattice
 solve of its lift slopes, the structural model (and, separately, its inertia polynomial once more), the rest of the
 unsteady model and the first right-hand side (the lattice solution and the structural model are cached by content within a
-process, so the model build reuses them); medians of --repeats processes.
+process, so the model build reuses them); medians of --repeats processes; with --compare / --reference-tree the
+reference's processes alternate with this tree's and both columns are printed.
 
 Run: python benchmarks/bench_startup.py [--repeats 3] [--compare [REV]] [--reference-tree DIR]
-     python benchmarks/bench_startup.py --parts [--repeats 5]
+     python benchmarks/bench_startup.py --parts [--repeats 5] [--compare [REV]]
 """
 
 from __future__ import annotations
@@ -147,16 +148,24 @@ def _reference_tree(rev: str) -> Path:
     return tree
 
 
-def parts(repeats: int) -> None:
-    """--parts: flexsim's own start-up by part (module docstring)."""
+def parts(repeats: int, ref: Path | None) -> None:
+    """--parts: flexsim's own start-up by part (module docstring); with a reference, its processes alternate with
+    this tree's."""
     print(f"load average {os.getloadavg()[0]:.2f} at start; CPU seconds after numba's floor, median of {repeats} "
-          "fresh processes")
-    run("parts", code=PARTS)  # warm-up
-    rows = [run("parts", code=PARTS) for _ in range(repeats)]
-    for key in rows[0]:
-        print(f"  {key:<52} {statistics.median(r[key] for r in rows):.3f} s")
-    total = sum(statistics.median(r[k] for r in rows) for k in rows[0] if not k.startswith(" "))
-    print(f"  {'sum of the medians (without the again)':<52} {total:.3f} s")
+          "fresh processes" + ("" if ref is None else f", alternating with the reference {ref}"))
+    trees = {"this": HERE} if ref is None else {"this": HERE, "reference": ref}
+    for root in trees.values():
+        run("parts", root, PARTS)  # warm-up
+    rows = {name: [] for name in trees}
+    for _ in range(repeats):
+        for name, root in trees.items():
+            rows[name].append(run("parts", root, PARTS))
+    med = {name: {k: statistics.median(r[k] for r in rs) for k in rs[0]} for name, rs in rows.items()}
+    print(f"  {'':<52} " + " ".join(f"{name:>10}" for name in trees))
+    for key in med["this"]:
+        print(f"  {key:<52} " + " ".join(f"{med[name][key]:10.3f}" for name in trees) + " s")
+    print(f"  {'sum of the medians (without the again)':<52} "
+          + " ".join(f"{sum(v for k, v in med[name].items() if not k.startswith(' ')):10.3f}" for name in trees) + " s")
     print(f"load average {os.getloadavg()[0]:.2f} at the end")
 
 
@@ -168,12 +177,12 @@ def main() -> None:
     parser.add_argument("--reference-tree", type=Path, default=None, help="with --compare: a checkout to compare against")
     parser.add_argument("--parts", action="store_true", help="where flexsim's own part goes (module docstring)")
     args = parser.parse_args()
-    if args.parts:
-        parts(args.repeats)
-        return
     ref = None
     if args.compare or args.reference_tree:
         ref = args.reference_tree.resolve() if args.reference_tree else _reference_tree(args.compare)
+    if args.parts:
+        parts(args.repeats, ref)
+        return
     print(f"load average {os.getloadavg()[0]:.2f} at start; CPU seconds, median of {args.repeats} fresh processes")
     run("floor"), run("full")  # warm-up: numba's on-disk caches and Python's bytecode cache written
     if ref is not None:
@@ -207,6 +216,10 @@ def main() -> None:
             print(f"  {label:<36} {med(full, key):7.3f} {med(full_ref, key):10.3f} s")
         print(f"  flexsim's own part: {own:.3f} s against {own_ref:.3f} s (x{own_ref / own:.2f} faster; start-up beyond "
               f"numpy + scipy {extra:.3f} s against {med(full_ref, 'total') - med(base, 'total'):.3f} s)")
+        phases = lambda r: r["import_flexsim"] + r["model"] + r["first_rhs"]  # noqa: E731
+        this_p, ref_p = statistics.median(map(phases, full)), statistics.median(map(phases, full_ref))
+        print(f"  import flexsim + model + first rhs, median per process (numba's first-call initialisation included "
+              f"in both): {this_p:.3f} s against {ref_p:.3f} s, {ref_p - this_p:.3f} s less")
         same = {r["digest"] for r in full} == {r["digest"] for r in full_ref} and len({r["digest"] for r in full}) == 1
         print(f"  results (packed model data and first rhs) bit-identical to the reference: {'yes' if same else 'NO'}")
     names = [n for n, _ in full[0]["loads"]]
