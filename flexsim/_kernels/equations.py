@@ -144,27 +144,25 @@ def assemble(F, I, x, u, wind_c, has_wind):
             for k in range(nq):
                 acc += t1[i, k] * q[k]
             f[i] += u[0] * acc
-    n_s = _f1(F, I, SEMICHORD).shape[0]
-    row0 = np.zeros((n_s, n_v))
-    w_ea_x = np.zeros(n_s)
-    u0 = np.zeros(n_s)
-    if _flag(I, HAS_AERO):
-        _, rho, a_sound = air(F, I, x)
-        mach = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) / a_sound
-        lam = x[_flag(I, INFLOW_START):_flag(I, INFLOW_START) + _flag(I, N_INFLOW)]
-        m_a, q_a, row0, w_ea_x, u0 = aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind)
+    if not _flag(I, HAS_AERO):
+        n_s = _f1(F, I, SEMICHORD).shape[0]
+        return m, f, np.zeros((n_s, n_v)), np.zeros(n_s), np.zeros(n_s)
+    _, rho, a_sound = air(F, I, x)
+    mach = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) / a_sound
+    lam = x[_flag(I, INFLOW_START):_flag(I, INFLOW_START) + _flag(I, N_INFLOW)]
+    m_a, q_a, row0, w_ea_x, u0 = aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind)
+    for i in range(n_v):
+        f[i] += q_a[i]
+        for k in range(n_v):
+            m[i, k] += m_a[i, k]
+    if _flag(I, HAS_DRAG):
+        q_d = parasite_drag(F, I, q, vel, rho)
         for i in range(n_v):
-            f[i] += q_a[i]
-            for k in range(n_v):
-                m[i, k] += m_a[i, k]
-        if _flag(I, HAS_DRAG):
-            q_d = parasite_drag(F, I, q, vel, rho)
-            for i in range(n_v):
-                f[i] += q_d[i]
-        if _flag(I, HAS_BODIES):
-            q_b = body_force(F, I, q, vel, rho)
-            for i in range(n_v):
-                f[i] += q_b[i]
+            f[i] += q_d[i]
+    if _flag(I, HAS_BODIES):
+        q_b = body_force(F, I, q, vel, rho)
+        for i in range(n_v):
+            f[i] += q_b[i]
     return m, f, row0, w_ea_x, u0
 
 

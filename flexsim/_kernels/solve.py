@@ -118,11 +118,16 @@ def block_solve(m, f, perm, ptr):
         for j in range(nc):
             s[i, j] = m[perm[c0 + i], perm[c0 + j]]
     x = np.empty((c0, nc + 1))
+    k_max = 0
+    for b in range(nb):
+        k_max = max(k_max, ptr[b + 1] - ptr[b])
+    d_buf = np.empty(k_max * k_max)  # each block's D_b and [E_bc, f_b], as views of two buffers
+    xb_buf = np.empty(k_max * (nc + 1))
     for b in range(nb):
         lo = ptr[b]
         k = ptr[b + 1] - lo
-        d = np.empty((k, k))
-        xb = np.empty((k, nc + 1))
+        d = d_buf[:k * k].reshape((k, k))
+        xb = xb_buf[:k * (nc + 1)].reshape((k, nc + 1))
         for i in range(k):
             ri = perm[lo + i]
             for j in range(k):

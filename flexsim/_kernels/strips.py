@@ -187,6 +187,15 @@ def downwash_shift(F, I, vel, u0, wc, mach):
 
 
 @kernel
+def _add_block(m, blk, cols, b0, nb):
+    """m[c_t, c_s] += blk[t, s] for t, s < nb, c = cols[b0:b0 + nb]."""
+    for t in range(nb):
+        row = m[cols[b0 + t]]
+        for s in range(nb):
+            row[cols[b0 + s]] += blk[t, s]
+
+
+@kernel
 def aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind):
     """Added mass M_a (n_v, n_v), explicit generalized aerodynamic force Q_a (n_v,) and the inflow terms.
 
@@ -223,12 +232,19 @@ def aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind):
     n_el = rel.shape[1]
     n_s = lift.shape[0]
     n_v = vel.shape[0]
+    col_ptr = _i1(I, STRIP_COL_PTR)
+    cols = _i1(I, STRIP_COLS)
     w_ea_x = np.empty(n_s)
-    left = np.empty((n_s, n_v))  # pr_w (n^T A - a b p^T B)
-    right = np.empty((n_s, n_v))  # row0
-    g_n = np.empty(n_s)
-    g_d = np.empty(n_s)
-    g_r = np.empty(n_s)
+    right = np.zeros((n_s, n_v))  # row0 (zero outside each strip's columns, as the fields it is made of)
+    m_a = np.zeros((n_v, n_v))
+    q_a = np.zeros(n_v)
+    # M_a accumulates per run of consecutive strips with the same columns (a component's strips) on those
+    # columns, in blk (nb x nb), added into m_a once per run (the columns of strip j: cols[lo:lo + nc])
+    blk = np.zeros((n_v, n_v))
+    nb = 0  # columns of the current run (0: none yet)
+    b0 = 0  # its first entry in cols
+    lc = np.empty(n_v)  # the strip's pr_w (n^T A - a b p^T B) and row0 on its columns
+    rc = np.empty(n_v)
     for j in range(n_s):
         c_n = -lift[j] - drag[j] * flow_angle[j]  # eq. (28): f = L (-n - a0 d) + D (d - a0 n)
         c_d = drag[j] - lift_tilt[j]
@@ -250,24 +266,45 @@ def aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind):
             relv += rel[j, e] * vel[6 + e]
         wx = pdot - alpha_el[j] * ddot + u0[j] * relv
         prw = rho * pr_w0[j]
-        for i in range(n_v):
-            lv = p_mat[j, i] - ab[j] * r_mat[j, i]
-            right[j, i] = lv - alpha_el[j] * d_mat[j, i]
-            left[j, i] = prw * lv
         w_ea_x[j] = wx
-        g_n[j] = w[j] * c_n - prw * wx
-        g_d[j] = w[j] * c_d
-        g_r[j] = w[j] * moment[j] + ab[j] * prw * wx
+        g_n = w[j] * c_n - prw * wx
+        g_d = w[j] * c_d
+        g_r = w[j] * moment[j] + ab[j] * prw * wx
+        # the strip's rows are zero outside its columns (strip_columns): M_a += left_j^T right_j and
+        # Q_a += [p; d; r]_j^T [g_n, g_d, g_r] over those columns only
+        lo = col_ptr[j]
+        nc = col_ptr[j + 1] - lo
+        for t in range(nc):
+            i = cols[lo + t]
+            lv = p_mat[j, i] - ab[j] * r_mat[j, i]
+            rv = lv - alpha_el[j] * d_mat[j, i]
+            right[j, i] = rv
+            lc[t] = prw * lv
+            rc[t] = rv
+            q_a[i] += p_mat[j, i] * g_n + d_mat[j, i] * g_d + r_mat[j, i] * g_r
+        same = nc == nb
+        if same:
+            for t in range(nc):
+                if cols[lo + t] != cols[b0 + t]:
+                    same = False
+                    break
+        if not same:
+            _add_block(m_a, blk, cols, b0, nb)
+            nb = nc
+            b0 = lo
+            for t in range(nc):
+                for s in range(nc):
+                    blk[t, s] = 0.0
+        for t in range(nc):
+            lt = lc[t]
+            for s in range(nc):
+                blk[t, s] += lt * rc[s]
+    _add_block(m_a, blk, cols, b0, nb)
     # M_a = left^T right + rho sum_j pr_w b^2/8 (p^T B)^T (p^T B), the second term constant per unit density
-    m_a = left.T @ right
     pitch = _f2(F, I, APPARENT_PITCH)
     for i in range(n_v):
         for k in range(n_v):
             m_a[i, k] += rho * pitch[i, k]
-    q_a = np.zeros(n_v)
-    for j in range(n_s):
-        for i in range(n_v):
-            q_a[i] += p_mat[j, i] * g_n[j] + d_mat[j, i] * g_d[j] + r_mat[j, i] * g_r[j]
     return m_a, q_a, right, w_ea_x, u0
 
 

@@ -91,16 +91,23 @@ def gust_profile(s, amplitude, gradient_length, persistent):
 def dryden_along_track(grid, spacing, xi):
     """Frozen Dryden field (u, v, w) [m/s] at distance xi [m] along the track: linear interpolation on the
     periodic grid (3, n) of points ``spacing`` apart (MIL-F-8785C 3.7.2, Taylor's hypothesis)."""
-    n = grid.shape[1]
+    i0, i1, frac = _grid_cell(grid.shape[1], spacing, xi)
+    out = np.empty(3)
+    for c in range(3):
+        out[c] = grid[c, i0] * (1.0 - frac) + grid[c, i1] * frac
+    return out
+
+
+@kernel
+def _grid_cell(n, spacing, xi):
+    """The points (i0, i1) of the periodic grid of n points ``spacing`` apart around distance xi [m] and the
+    fraction of the way from i0 to i1 (:func:`dryden_along_track`)."""
     pos = xi / spacing
     cell = math.floor(pos)
     frac = pos - cell
     i0 = int(cell - n * math.floor(cell / n))
     i1 = 0 if i0 + 1 == n else i0 + 1
-    out = np.empty(3)
-    for c in range(3):
-        out[c] = grid[c, i0] * (1.0 - frac) + grid[c, i1] * frac
-    return out
+    return i0, i1, frac
 
 
 @kernel
@@ -144,9 +151,12 @@ def wind_ned(gusts, turb, turb_grid, positions):
             xi = 0.0
             for a in range(3):
                 xi += (positions[j, a] - turb[t, 9 + a]) * ax[0, a]
-            comp = dryden_along_track(grid, turb[t, 12], xi)
+            i0, i1, frac = _grid_cell(grid.shape[1], turb[t, 12], xi)  # dryden_along_track, without an array
+            c0 = grid[0, i0] * (1.0 - frac) + grid[0, i1] * frac
+            c1 = grid[1, i0] * (1.0 - frac) + grid[1, i1] * frac
+            c2 = grid[2, i0] * (1.0 - frac) + grid[2, i1] * frac
             for a in range(3):
-                out[j, a] += comp[0] * ax[0, a] + comp[1] * ax[1, a] + comp[2] * ax[2, a]
+                out[j, a] += c0 * ax[0, a] + c1 * ax[1, a] + c2 * ax[2, a]
     return out
 
 
