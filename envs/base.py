@@ -463,13 +463,14 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         """(outcome, applied controls, measurements, termination codes) of the period of ``rows`` from one compiled
         call (:func:`flexsim.envs.row_kernels.period_rows`: rate limits, ETD2RK steps, measurements, termination),
         or None where that call does not apply (and :meth:`_step_rows` takes the general path, with the same
-        arithmetic): another integrator, rows flown about different trims, :data:`~flexsim.envs.dynamics.COMPILED_ROWS_BELOW`
-        rows or more (matrix products over the rows are faster there), a model without compiled data, winds that
-        cannot be packed, or a model error in a row (the general path reports the model's message)."""
+        arithmetic): another integrator, rows flown about different trims, a model without compiled data, winds that
+        cannot be packed, or a model error in a row (the general path reports the model's message). From
+        :data:`~flexsim.envs.dynamics.COMPILED_ROWS_BELOW` rows on, the call takes the products as matrix products over
+        the rows (:func:`flexsim.sim._step_kernels.etd2rk_rows_gemm`, faster there), below it row by row."""
         dyn = self.dynamics
         stepper = dyn.stepper
         m = len(dynamics)
-        if stepper is None or not dyn.substeps or m >= _dynamics.COMPILED_ROWS_BELOW:
+        if stepper is None or not dyn.substeps:
             return None
         model = dyn.model
         data = getattr(model, "kernel_data", None)
@@ -486,6 +487,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         lo, hi = model.altitude_range_m
         _rk.period_rows(*data, *packed, b.x[rows], b.u[rows], a, self._u_scale, dyn._rate_step, steps, self.dt, stepper.h,
                         dyn.substeps, stepper._h_phi1, stepper._h_phi2, stepper._jac, dyn._z, float(lo), float(hi),
+                        m >= _dynamics.COMPILED_ROWS_BELOW,
                         _rk.WIND_STILL if still else _rk.WIND_PACKED, *dyn._measure_data, self._kernel_constants()[2], n_comp,
                         u, x_out, t_out, status, taken, meas, codes)
         clear = self._clear_rows.get(m)

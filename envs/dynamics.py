@@ -600,6 +600,8 @@ def advance_rows(dynamics, x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.
 #: (:meth:`ETD2RK.advance_rows`, no Python per substep); from it on, the matrix products over the rows
 #: (:meth:`ETD2RK.step_rows`, GEMMs, with one compiled right-hand-side call per evaluation). Measured
 #: (benchmarks/bench_envs.py --batched): compiled 2x faster at N = 1, equal near N = 16, 25 % slower at N = 256.
+#: The environments' one compiled call per period (:func:`flexsim.envs.row_kernels.period_rows`) switches at the
+#: same number of rows from the products row by row to GEMMs over the rows inside the call.
 COMPILED_ROWS_BELOW = 32
 
 

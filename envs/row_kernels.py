@@ -241,10 +241,12 @@ def finish_rows(meas, errors, terms, terminated, da, reward_data, u, u_scale, ac
 @depends_on(_k, _sk)
 @_jit
 def period_rows(F, I, rows, gusts, turb, turb_grid, x, u_applied, action, u_scale, rate_step, steps, dt, h, n_steps, h_phi1,
-                h_phi2, jac, z_index, alt_lo, alt_hi, wind_mode, index, s_ptr, s_idx, s_w, h_range, limits, n_comp,
-                u_out, x_out, t_out, status, taken, meas, codes):
+                h_phi2, jac, z_index, alt_lo, alt_hi, over_rows, wind_mode, index, s_ptr, s_idx, s_w, h_range, limits,
+                n_comp, u_out, x_out, t_out, status, taken, meas, codes):
     """One control period of N aircraft flown about one trim, in one call: actuator rate limits, the ETD2RK steps
-    (:func:`flexsim.sim._step_kernels.etd2rk_rows`), :func:`measure_rows` and :func:`termination_rows`.
+    (:func:`flexsim.sim._step_kernels.etd2rk_rows`, or with ``over_rows``
+    :func:`~flexsim.sim._step_kernels.etd2rk_rows_gemm`: the products as matrix products over the rows),
+    :func:`measure_rows` and :func:`termination_rows`.
 
     Row i: commanded controls ``action[i] * u_scale`` (N, 4), reached from the applied ``u_applied[i]`` at most
     ``rate_step`` per period (``FlightDynamics.rate_limit``: ``u + min(max(c - u, -rate_step), rate_step)``) into
@@ -263,8 +265,12 @@ def period_rows(F, I, rows, gusts, turb, turb_grid, x, u_applied, action, u_scal
             u_out[i, a] = u_applied[i, a] + min(max(d, -rate_step[a]), rate_step[a])
         t0s[i] = steps[i] * dt
         t1s[i] = (steps[i] + 1) * dt
-    _sk.etd2rk_rows(F, I, rows, gusts, turb, turb_grid, x, u_out, t0s, t1s, h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo,
-                    alt_hi, x_out, t_out, status, taken)
+    if over_rows:
+        _sk.etd2rk_rows_gemm(F, I, rows, gusts, turb, turb_grid, x, u_out, t0s, t1s, h, n_steps, h_phi1, h_phi2, jac, z_index,
+                             alt_lo, alt_hi, x_out, t_out, status, taken)
+    else:
+        _sk.etd2rk_rows(F, I, rows, gusts, turb, turb_grid, x, u_out, t0s, t1s, h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo,
+                        alt_hi, x_out, t_out, status, taken)
     measure_rows(x_out, wind_mode, np.empty((0, 3)), rows, gusts, turb, turb_grid, index, s_ptr, s_idx, s_w, h_range, meas)
     failed = np.empty(m, np.bool_)
     crashed = np.empty(m, np.bool_)

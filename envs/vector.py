@@ -10,9 +10,9 @@ step is one pass of array code over the stepping rows, with no per-aircraft Pyth
 as one array, the actuator rate limits, one :func:`~flexsim.envs.dynamics.advance_rows` call (all ETD2RK
 substeps of all aircraft flown about one trim as matrix products over the rows of an (N, n) state array,
 the right-hand sides of all rows in one compiled call, ``AircraftModel.rhs_batch``), the measurements
-(:meth:`FlightDynamics.measure_batch`), termination (below :data:`~flexsim.envs.dynamics.COMPILED_ROWS_BELOW`
-rows flown about one trim: rate limits to termination in one compiled call,
-:func:`flexsim.envs.row_kernels.period_rows`), task errors, reward parts and observations; the info
+(:meth:`FlightDynamics.measure_batch`), termination (rows flown about one trim: rate limits to termination in one
+compiled call, :func:`flexsim.envs.row_kernels.period_rows`, the products over the rows as GEMMs from
+:data:`~flexsim.envs.dynamics.COMPILED_ROWS_BELOW` rows on), task errors, reward parts and observations; the info
 is built as gymnasium's vector info arrays directly. Other integrators fall back to each aircraft's
 ``FlightDynamics.advance``.
 

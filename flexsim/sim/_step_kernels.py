@@ -30,7 +30,7 @@ from flexsim import _kernels as _k
 from flexsim._kernels import _rhs_wind
 from flexsim._numba_cache import depends_on
 
-__all__ = ["etd2rk_run", "etd2rk_run_dense", "etd2rk_rows", "ROW_RUNNING", "ROW_GROUND", "ROW_NON_FINITE", "ROW_MODEL_ERROR"]
+__all__ = ["etd2rk_run", "etd2rk_run_dense", "etd2rk_rows", "etd2rk_rows_gemm", "ROW_RUNNING", "ROW_GROUND", "ROW_NON_FINITE", "ROW_MODEL_ERROR"]
 
 _jit = njit(cache=True, nogil=True)
 _depends = depends_on(_k)
@@ -252,3 +252,77 @@ def etd2rk_rows(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_steps
         t_out[i] = t
         status[i] = st
         steps[i] = j
+
+
+@_depends
+@_jit
+def etd2rk_rows_gemm(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo,
+                     alt_hi, x_out, t_out, status, steps):
+    """:func:`etd2rk_rows` (same arguments, results and status codes) with each stage of all rows at once: the
+    right-hand sides row by row, then the products with the (n, n) matrices as matrix products over the rows
+    (BLAS dgemm), ``a = x + k_1 h phi_1^T``, ``x_new = a + (k_2 - k_1 - (a - x) J^T) h phi_2^T`` (the arithmetic
+    of :meth:`flexsim.sim.fixed_step.ETD2RK.step_rows`). Many rows: each matrix is read once per stage instead of
+    once per row. A row that stopped (status not ROW_RUNNING) takes zero derivatives in the products that follow
+    and keeps its state; rows are independent (a row's result does not depend on the others, to rounding of the
+    products)."""
+    m, n = xs.shape
+    x = xs.copy()
+    t = t0s.copy()
+    st = np.zeros(m, np.int64)
+    taken = np.zeros(m, np.int64)
+    k1 = np.empty((m, n))
+    k2 = np.empty((m, n))
+    for j in range(n_steps):
+        for i in range(m):
+            if st[i] != ROW_RUNNING:
+                k1[i] = 0.0
+                continue
+            taken[i] = j + 1
+            ok = _altitude_ok(x[i], alt_lo, alt_hi)
+            if ok:
+                try:
+                    k1[i] = _rhs_wind(F, I, gusts[rows[i, 0]:rows[i, 1]], turb[rows[i, 2]:rows[i, 3]], turb_grid, x[i], us[i])
+                except Exception:  # singular system matrix (ZeroDivisionError in solve)
+                    ok = False
+            if not ok:
+                st[i] = ROW_MODEL_ERROR
+                k1[i] = 0.0
+        a = x + np.dot(k1, h_phi1.T)
+        for i in range(m):
+            if st[i] != ROW_RUNNING:
+                k2[i] = 0.0
+                continue
+            ok = _altitude_ok(a[i], alt_lo, alt_hi)
+            if ok:
+                try:
+                    k2[i] = _rhs_wind(F, I, gusts[rows[i, 0]:rows[i, 1]], turb[rows[i, 2]:rows[i, 3]], turb_grid, a[i], us[i])
+                except Exception:
+                    ok = False
+            if not ok:
+                st[i] = ROW_MODEL_ERROR
+                k2[i] = 0.0
+        x_new = a + np.dot(k2 - k1 - np.dot(a - x, jac.T), h_phi2.T)
+        for i in range(m):
+            if st[i] != ROW_RUNNING:
+                continue
+            t_next = t1s[i] if j == n_steps - 1 else t0s[i] + (j + 1) * h
+            finite = True
+            for c in range(n):
+                if not math.isfinite(x_new[i, c]):
+                    finite = False
+                    break
+            if not finite:
+                st[i] = ROW_NON_FINITE
+            elif x_new[i, z_index] >= 0.0 > x[i, z_index]:
+                s = x[i, z_index] / (x[i, z_index] - x_new[i, z_index])
+                for c in range(n):
+                    x[i, c] = x[i, c] + s * (x_new[i, c] - x[i, c])
+                t[i] = t[i] + s * (t_next - t[i])
+                st[i] = ROW_GROUND
+            else:
+                x[i] = x_new[i]
+                t[i] = t_next
+    x_out[:] = x
+    t_out[:] = t
+    status[:] = st
+    steps[:] = taken

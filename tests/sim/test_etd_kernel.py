@@ -145,6 +145,41 @@ def test_compiled_rows_equal_the_numpy_steps_and_report_like_the_environments(gt
         model.rhs(1.0, out.x[4], u[4])
 
 
+def test_rows_as_matrix_products_equal_the_rows_one_by_one(gtm):
+    """etd2rk_rows_gemm (the stages of all rows at once, products as GEMMs over the rows: the batched environments)
+    gives etd2rk_rows' status, steps and times exactly and its states to rounding of the products (1e-12 of each
+    column's largest entry), for normal rows, a gust, a ground crossing and two model errors."""
+    model, point, jac, gust = gtm
+    h, k = 0.005, 4
+    stepper = ETD2RK(jac, h)
+    z = model.layout.position.start + 2
+    x = np.array([point.x] * 6)
+    u = np.array([point.u] * 6)
+    u[1, 1] = math.radians(-2.0)
+    x[2, z] = -0.5  # crosses the ground within the period
+    x[2, model.layout.euler.start + 1] = math.radians(-20.0)
+    x[3, model.layout.inflow.start] = math.nan  # model error in the second step's stage
+    x[4, z] = -1e6  # model error at the start
+    x[5, model.layout.omega.start] = 0.05
+    winds = model.pack_winds([None, gust, None, None, gust, None])
+    lo, hi = model.altitude_range_m
+    outs = []
+    for kernel in (_sk.etd2rk_rows, _sk.etd2rk_rows_gemm):
+        x_out, t_out = np.empty_like(x), np.empty(6)
+        status, steps = np.empty(6, np.int64), np.empty(6, np.int64)
+        kernel(*model.kernel_data, *winds, x, u, np.full(6, 1.0), np.full(6, 1.0 + k * h), h, k, stepper._h_phi1,
+               stepper._h_phi2, stepper._jac, z, float(lo), float(hi), x_out, t_out, status, steps)
+        outs.append((x_out, t_out, status, steps))
+    (xa, ta, sa, na), (xb, tb, sb, nb) = outs
+    assert sa.tolist() == sb.tolist() == [_sk.ROW_RUNNING] * 2 + [_sk.ROW_GROUND] + [_sk.ROW_MODEL_ERROR] * 2 + [_sk.ROW_RUNNING]
+    assert na.tolist() == nb.tolist()
+    np.testing.assert_array_equal(ta[sa != _sk.ROW_GROUND], tb[sb != _sk.ROW_GROUND])
+    assert tb[2] == pytest.approx(ta[2], rel=1e-12)
+    np.testing.assert_array_equal(xb[3:5], x[3:5])
+    keep = [0, 1, 2, 4, 5]  # row 3 holds its NaN
+    assert _close(xb[keep], xa[keep]) <= 1e-12
+
+
 def test_compiled_rows_report_a_non_finite_state():
     model = AircraftModel(load_aircraft("gtm"), aero=None)  # no altitude range: NaN reaches the state
     assert model.altitude_range_m == (-math.inf, math.inf)
