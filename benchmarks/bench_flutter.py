@@ -12,7 +12,10 @@ The US flutter point is printed with its CPU time beside one dense eig (CPU) of 
 finite-state system at the flutter trim. ``--table`` times ``flexsim flutter`` (wall and CPU of all its processes)
 of this tree beside ``--against REV`` (default main; ``git archive`` kept in ``~/.cache/flexsim-bench``, or
 ``--reference-tree DIR``), fresh processes alternating, medians, with the largest difference of their results.
-Run: python benchmarks/bench_flutter.py [--repeats 3] [--table [--against REV]] [--study] [--breakdown]
+``--loads`` prints the CPU time numba spends loading each compiled function from its cache in one worker job of
+``flexsim flutter`` (paid once per process), this tree beside ``--against``; ``--study --study-against`` also runs
+the reference's study in a fresh process and compares the 120 rows.
+Run: python benchmarks/bench_flutter.py [--repeats 3] [--table [--against REV]] [--study [--study-against]] [--breakdown] [--loads]
 """
 
 from __future__ import annotations
@@ -99,6 +102,43 @@ def breakdown(repeats: int) -> None:
 
 
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+#: Run in a fresh process by ``--loads``: numba's start-up (first compiled call), then one job of ``flexsim flutter``
+#: (QS and US searches at sea level sharing their trims, :func:`flexsim.linear.study.run_points`) as a worker runs
+#: it, with the CPU time numba spends loading each compiled function from its on-disk cache.
+LOADS_SCRIPT = """
+import time, numba.core.caching as caching
+loads = {}
+load = caching.Cache.load_overload
+def timed(self, sig, target_context):
+    t = time.thread_time()
+    try:
+        return load(self, sig, target_context)
+    finally:
+        loads[self._name] = loads.get(self._name, 0.0) + time.thread_time() - t
+caching.Cache.load_overload = timed
+from flexsim.atmosphere import isa
+isa(0.0)
+loads.clear()
+from flexsim.linear.study import StudyCase, run_points
+t = time.thread_time()
+rows = run_points([StudyCase("gtm", "QS", 0.0), StudyCase("gtm", "US", 0.0)])
+total = time.thread_time() - t
+for name, sec in sorted(loads.items(), key=lambda kv: -kv[1]):
+    print(f"    {sec * 1e3:6.1f} ms  {name.split(' at ')[0].replace('<function ', '')}")
+print(f"  {sum(loads.values()) * 1e3:.0f} ms of cache loads in the job's {total * 1e3:.0f} ms CPU "
+      f"({sum(r[0].get('evaluations', 0) for r in rows)} evaluations)")
+"""
+
+
+def loads(trees: dict[str, str]) -> None:
+    """CPU time of numba's cache loads in one worker job of ``flexsim flutter`` (every worker pays them once), per tree."""
+    for name, tree in trees.items():
+        env = dict(os.environ, PYTHONPATH=tree, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+        print(f"numba cache loads of one worker job (QS + US at sea level), {name}:", flush=True)
+        subprocess.run([sys.executable, "-c", LOADS_SCRIPT], cwd=tree, env=env, check=True)
+
+
 TABLE_COMMAND = ["-m", "flexsim.cli.main", "flutter", "gtm", "--json"]
 
 
@@ -174,6 +214,34 @@ def table(against: str, reference_tree: str | None, repeats: int) -> None:
           f"(load {os.getloadavg()[0]:.1f} at the end)")
 
 
+STUDY_SCRIPT = """
+import json, sys, time
+from flexsim.linear.study import climb_cases, run_study, turn_cases
+t0 = time.perf_counter()
+rows = run_study(turn_cases("gtm") + climb_cases("gtm"), progress=False)
+print(json.dumps({"wall": time.perf_counter() - t0, "rows": rows}, default=str))
+"""
+
+
+def study_against(against: str, reference_tree: str | None) -> None:
+    """The whole study (120 points) in a fresh process of this tree and of the reference, one after the other:
+    wall times and the largest relative difference of M_F and omega_F over the rows (rows in the same order)."""
+    import json
+
+    ref = reference_tree or _reference_tree(against)
+    out = {}
+    for name, tree in (("this tree", HERE), (reference_tree or against, ref)):
+        env = dict(os.environ, PYTHONPATH=tree, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+        done = subprocess.run([sys.executable, "-c", STUDY_SCRIPT], cwd=tree, env=env, check=True, capture_output=True, text=True)
+        out[name] = json.loads(done.stdout)
+        print(f"whole study, {name}: {out[name]['wall']:.1f} s wall (load {os.getloadavg()[0]:.1f})", flush=True)
+    a, b = out.values()
+    diff = max((abs(x[k] - y[k]) / abs(y[k]) for x, y in zip(a["rows"], b["rows"]) for k in ("mach", "omega_rad_s")
+                if k in x and k in y), default=float("nan"))
+    same = sum(x == y for x, y in zip(a["rows"], b["rows"]))
+    print(f"  {same}/{len(a['rows'])} rows identical; largest relative difference of M_F and omega_F: {diff:.1e}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--repeats", type=int, default=3)
@@ -183,10 +251,17 @@ def main() -> None:
     parser.add_argument("--against", default="main", metavar="REV",
                         help="--table: the revision timed beside this tree (git archive, kept in ~/.cache/flexsim-bench) [main]")
     parser.add_argument("--reference-tree", metavar="DIR", help="--table: time this checkout instead of --against")
+    parser.add_argument("--loads", action="store_true", help="numba's cache loads in one worker job, this tree and "
+                        "--against (fresh processes)")
+    parser.add_argument("--study-against", action="store_true", help="with --study: also run the study of --against "
+                        "in a fresh process and compare the 120 rows")
     args = parser.parse_args()
     print(f"load average: {open('/proc/loadavg').read().split()[:3]}; {os.cpu_count()} CPUs")
     if args.breakdown:
         breakdown(args.repeats)
+    if args.loads:
+        label = args.reference_tree or args.against
+        loads({"this tree": HERE, label: args.reference_tree or _reference_tree(args.against)})
     gtm = load_aircraft("gtm")
     man = SteadyManoeuvre.level(0.0, mach=0.85)
     for model in ("quasi-steady", "unsteady", "theodorsen"):
@@ -224,6 +299,8 @@ def main() -> None:
         ok = sum("mach" in r for r in rows)
         print(f"whole study (turn + climb, 4 altitudes, QS + US): {ok}/{len(rows)} flutter points in {elapsed:6.1f} s "
               f"= {elapsed / 60:.2f} min on {os.cpu_count()} cores (budget 5 min)")
+        if args.study_against:
+            study_against(args.against, args.reference_tree)
 
 
 if __name__ == "__main__":
