@@ -100,6 +100,23 @@ def breakdown(repeats: int) -> None:
     print(f"one dense eig with vectors of the {a_fs.shape[0]}-state finite-state system: {t_dense * 1e3:.1f} ms "
           f"(30x = {30 * t_dense:.2f} s); one US evaluation = {t_eval / t_dense:.1f}x that eig")
 
+    class Timed(FlutterAnalysis):  # the CPU time of every evaluation of one search
+        def evaluate(self, *args, **kwargs):
+            t0 = time.thread_time()
+            out = super().evaluate(*args, **kwargs)
+            self.cpu.append(time.thread_time() - t0)
+            return out
+
+    timed = Timed(gtm, "theodorsen")
+    timed.cpu = []
+    timed.search(SteadyManoeuvre.level(0.0, mach=0.6), mach_range=(0.5, 0.95))  # warm-up
+    timed.cpu = []
+    t0 = time.thread_time()
+    timed.search(SteadyManoeuvre.level(0.0, mach=0.6), mach_range=(0.5, 0.95))
+    total = time.thread_time() - t0
+    print(f"one US flutter point, sea level (after one warm-up): {total:.3f} s CPU, its {len(timed.cpu)} evaluations "
+          + ", ".join(f"{c * 1e3:.1f}" for c in timed.cpu) + " ms")
+
 
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
