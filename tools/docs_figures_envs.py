@@ -120,6 +120,19 @@ def agent_shaped_verdict() -> str:
             f"between {min(curve):.0f} and {max(curve):.0f}, ending at {curve[-1]:.0f}")
 
 
+def agent_shaped_rerun() -> str:
+    """The shaped run's command rerun on the current code (9 minutes, and stopped at the first run's step count)."""
+    first, r, short = (_agent("levelhold_v1_ppo_shaped"), _agent("levelhold_v1_ppo_shaped_rerun"),
+                       _agent("levelhold_v1_ppo_shaped_rerun_373k"))
+    verdict = "below" if max(r["agent_over_baseline"], short["agent_over_baseline"]) < 0.8 else "at or above"
+    return (f"the same command trained {r['train_steps']:,} steps in {r['train_wall_s']:.0f} s "
+            f"({r['train_steps_per_s']:,.0f} steps/s, {r['train_steps_per_s'] / first['train_steps_per_s']:.1f}x the first "
+            f"run's) and returned {_pm(r['agent'])}: **{r['agent_over_baseline']:.3f}** of the LQR; stopped at the first "
+            f"run's {short['train_steps']:,} steps ({short['train_wall_s']:.0f} s) **{short['agent_over_baseline']:.3f}**, "
+            f"{verdict} issue 13's 0.8 (trim hold / LQR {r['trim_over_baseline']:.3f}, random "
+            f"{_pm(r['random'])})")
+
+
 def agent_v0() -> str:
     """The 15-minute PPO run on LevelHold-v0: trim hold against the LQR, and the agent."""
     r = _agent("levelhold_v0_ppo")
@@ -546,6 +559,7 @@ ENV_FIGURES = {
     "agent-shaped-run": (agent_shaped_run, True),
     "agent-shaped-table": (agent_shaped_table, True),
     "agent-shaped-verdict": (agent_shaped_verdict, True),
+    "agent-shaped-rerun": (agent_shaped_rerun, True),
     "env-flutter-v0-point": (env_flutter_v0_point, False),
     "env-flutter-v0-hz": (env_flutter_v0_hz, False),
     "env-flutter-v1-hz": (env_flutter_v1_hz, False),
