@@ -125,12 +125,16 @@ def agent_shaped_rerun() -> str:
     first, r, short = (_agent("levelhold_v1_ppo_shaped"), _agent("levelhold_v1_ppo_shaped_rerun"),
                        _agent("levelhold_v1_ppo_shaped_rerun_373k"))
     verdict = "below" if max(r["agent_over_baseline"], short["agent_over_baseline"]) < 0.8 else "at or above"
+    seeds = [short["agent_over_baseline"]] + [_agent(f"levelhold_v1_ppo_shaped_rerun_373k_seed{k}")["agent_over_baseline"]
+                                               for k in (1, 2)]
     return (f"the same command trained {r['train_steps']:,} steps in {r['train_wall_s']:.0f} s "
             f"({r['train_steps_per_s']:,.0f} steps/s, {r['train_steps_per_s'] / first['train_steps_per_s']:.1f}x the first "
             f"run's) and returned {_pm(r['agent'])}: **{r['agent_over_baseline']:.3f}** of the LQR; stopped at the first "
             f"run's {short['train_steps']:,} steps ({short['train_wall_s']:.0f} s) **{short['agent_over_baseline']:.3f}**, "
             f"{verdict} issue 13's 0.8 (trim hold / LQR {r['trim_over_baseline']:.3f}, random "
-            f"{_pm(r['random'])})")
+            f"{_pm(r['random'])}). The same {short['train_steps']:,} steps with training seeds 0, 1, 2 "
+            f"(`--seed`): {', '.join(f'{x:.3f}' for x in seeds)} of the LQR (mean {np.mean(seeds):.3f}; "
+            f"{sum(x >= 0.8 for x in seeds)} of {len(seeds)} at or above 0.8)")
 
 
 def agent_v0() -> str:
