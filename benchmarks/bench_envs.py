@@ -51,7 +51,6 @@ import json
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 
 # measure the flexsim of this checkout (python puts benchmarks/ on sys.path, not the repository root)
@@ -289,18 +288,8 @@ COMPARE_REFERENCE = "1276784"
 #: The ETD2RK step both trees are also measured at in section 5 (the reference's default).
 COMPARE_STEP_S = 0.01
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from _reference import reference_tree as checkout_of  # noqa: E402  (benchmarks/_reference.py)
 WORKER = os.path.join(HERE, "benchmarks", "_envs_worker.py")
-
-
-def _reference_tree(rev: str) -> str:
-    """A checkout of ``rev`` extracted with ``git archive`` into a directory kept between runs (with its numba cache)."""
-    sha = subprocess.run(["git", "-C", HERE, "rev-parse", "--short=12", rev], check=True, capture_output=True, text=True).stdout.strip()
-    tree = os.path.join(tempfile.gettempdir(), f"flexsim-bench-envs-{sha}")
-    if not os.path.isfile(os.path.join(tree, "flexsim", "__init__.py")):
-        os.makedirs(tree, exist_ok=True)
-        archive = subprocess.run(["git", "-C", HERE, "archive", sha], check=True, capture_output=True).stdout
-        subprocess.run(["tar", "-x", "-C", tree], input=archive, check=True)
-    return tree
 
 
 def _worker(tree: str, mode: str, steps: int, max_step_s: float | None) -> dict:
@@ -314,7 +303,7 @@ def _worker(tree: str, mode: str, steps: int, max_step_s: float | None) -> dict:
 
 def compare(reference: str, reference_tree: str | None, repeats: int) -> None:
     """Section 5 of the module docstring."""
-    ref = reference_tree or _reference_tree(reference)
+    ref = reference_tree or str(checkout_of(reference))
     label = reference_tree or reference
     print(f"issue #14 rows 4-5: this tree against {label}, fresh processes alternating, median of {repeats}; env-steps per "
           f"CPU-second; {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f}", flush=True)

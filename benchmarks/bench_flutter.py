@@ -119,6 +119,7 @@ def breakdown(repeats: int) -> None:
 
 
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from _reference import reference_tree as checkout_of  # noqa: E402  (benchmarks/_reference.py)
 
 #: Run in a fresh process by ``--loads``: numba's start-up (first compiled call), then one job of ``flexsim flutter``
 #: (QS and US searches at sea level sharing their trims, :func:`flexsim.linear.study.run_points`) as a worker runs
@@ -159,36 +160,6 @@ def loads(trees: dict[str, str]) -> None:
 TABLE_COMMAND = ["-m", "flexsim.cli.main", "flutter", "gtm", "--json"]
 
 
-def _reference_tree(rev: str) -> str:
-    """A checkout of ``rev`` (``git archive``) kept in ``~/.cache/flexsim-bench/<sha>``; numba's cache files of kernel
-    modules whose source equals this tree's are copied from this tree (numba keys them on the source), so that the
-    reference does not recompile them."""
-    import shutil
-
-    sha = subprocess.run(["git", "-C", HERE, "rev-parse", "--short=12", rev], check=True, capture_output=True,
-                         text=True).stdout.strip()
-    tree = os.path.join(os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "flexsim-bench", sha)
-    if not os.path.isfile(os.path.join(tree, "flexsim", "__init__.py")):
-        os.makedirs(tree, exist_ok=True)
-        archive = subprocess.run(["git", "-C", HERE, "archive", sha], check=True, capture_output=True).stdout
-        subprocess.run(["tar", "-x", "-C", tree], input=archive, check=True)
-    for folder, _, files in os.walk(os.path.join(HERE, "flexsim")):
-        if os.path.basename(folder) != "__pycache__":
-            continue
-        source_dir = os.path.dirname(folder)
-        for name in files:
-            if not name.endswith((".nbi", ".nbc")):
-                continue
-            module = name.split(".")[0] + ".py"
-            ours, theirs = os.path.join(source_dir, module), os.path.join(tree, os.path.relpath(source_dir, HERE), module)
-            target = os.path.join(os.path.dirname(theirs), "__pycache__", name)
-            if (os.path.isfile(theirs) and not os.path.exists(target)
-                    and open(ours, "rb").read() == open(theirs, "rb").read()):
-                os.makedirs(os.path.dirname(target), exist_ok=True)
-                shutil.copy2(os.path.join(folder, name), target)
-    return tree
-
-
 def _run_table(tree: str) -> tuple[float, float, dict]:
     """Wall and CPU seconds (all its processes) of ``flexsim flutter gtm --json`` run from ``tree``, and its output."""
     import json
@@ -207,7 +178,7 @@ def table(against: str, reference_tree: str | None, repeats: int) -> None:
     """``flexsim flutter`` (issue 14: <= 5 s wall on the idle 2-core machine) of this tree beside ``against``: fresh
     processes alternating (after one untimed run of each), medians; and the largest relative difference of M_F and
     omega_F between the two outputs."""
-    ref = reference_tree or _reference_tree(against)
+    ref = reference_tree or str(checkout_of(against))
     label = reference_tree or against
     trees = {"this tree": HERE, label: ref}
     print(f"`flexsim flutter` (paper-replication + physical settings x 4 altitudes x QS, US = 16 searches; process start-up "
@@ -245,7 +216,7 @@ def study_against(against: str, reference_tree: str | None) -> None:
     wall times and the largest relative difference of M_F and omega_F over the rows (rows in the same order)."""
     import json
 
-    ref = reference_tree or _reference_tree(against)
+    ref = reference_tree or str(checkout_of(against))
     out = {}
     for name, tree in (("this tree", HERE), (reference_tree or against, ref)):
         env = dict(os.environ, PYTHONPATH=tree, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
@@ -278,7 +249,7 @@ def main() -> None:
         breakdown(args.repeats)
     if args.loads:
         label = args.reference_tree or args.against
-        loads({"this tree": HERE, label: args.reference_tree or _reference_tree(args.against)})
+        loads({"this tree": HERE, label: args.reference_tree or str(checkout_of(args.against))})
     gtm = load_aircraft("gtm")
     man = SteadyManoeuvre.level(0.0, mach=0.85)
     for model in ("quasi-steady", "unsteady", "theodorsen"):

@@ -29,18 +29,8 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parents[1]
+from _reference import reference_tree as checkout_of  # noqa: E402  (benchmarks/_reference.py)
 WORKER = HERE / "benchmarks" / "_rhs_worker.py"
-
-
-def _reference_tree(rev: str) -> Path:
-    sha = subprocess.run(["git", "-C", str(HERE), "rev-parse", "--short=12", rev], check=True, capture_output=True,
-                         text=True).stdout.strip()
-    tree = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "flexsim-bench" / sha
-    if not (tree / "flexsim" / "_kernels").exists() and not (tree / "flexsim" / "_kernels.py").is_file():
-        tree.mkdir(parents=True, exist_ok=True)
-        archive = subprocess.run(["git", "-C", str(HERE), "archive", sha], check=True, capture_output=True).stdout
-        subprocess.run(["tar", "-x", "-C", str(tree)], input=archive, check=True)
-    return tree
 
 
 def _run(tree: Path, runs: int, calls: int) -> dict:
@@ -58,7 +48,7 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=7, help="timed runs per process and task (median)")
     parser.add_argument("--calls", type=int, default=2000, help="right-hand sides per timed run")
     args = parser.parse_args()
-    ref = args.reference_tree.resolve() if args.reference_tree else _reference_tree(args.reference)
+    ref = args.reference_tree.resolve() if args.reference_tree else checkout_of(args.reference)
     print(f"load average before: {open('/proc/loadavg').read().split()[:3]}; {os.cpu_count()} CPUs; reference {ref}, "
           f"this tree {HERE}", flush=True)
     results = {"ref": [], "this": []}

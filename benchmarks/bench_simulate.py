@@ -74,22 +74,10 @@ OTHERS = [("", "ETD2RK", 0.05), ("", "Radau", 1e-4), ("", "Radau", 1e-5), ("", "
 from _simulate_worker import scenario  # noqa: E402  (the GTM model, its level trim and the gust)
 
 HERE = Path(__file__).resolve().parents[1]
+from _reference import reference_tree as checkout_of  # noqa: E402  (benchmarks/_reference.py)
 WORKER = HERE / "benchmarks" / "_simulate_worker.py"
 #: Default reference of --compare: main before the fused dense output (2026-12-02).
 COMPARE_REFERENCE = "1276784"
-
-
-def _reference_tree(rev: str) -> Path:
-    """A checkout of ``rev`` extracted with ``git archive`` into ``~/.cache/flexsim-bench/<sha>`` (kept between
-    runs, with numba's cache of its kernels)."""
-    sha = subprocess.run(["git", "-C", str(HERE), "rev-parse", "--short=12", rev], check=True, capture_output=True,
-                         text=True).stdout.strip()
-    tree = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "flexsim-bench" / sha
-    if not (tree / "flexsim" / "sim" / "simulate.py").is_file():
-        tree.mkdir(parents=True, exist_ok=True)
-        archive = subprocess.run(["git", "-C", str(HERE), "archive", sha], check=True, capture_output=True).stdout
-        subprocess.run(["tar", "-x", "-C", str(tree)], input=archive, check=True)
-    return tree
 
 
 def compare(ref: Path, repeats: int, inner: int, duration: float) -> None:
@@ -217,7 +205,7 @@ def main() -> None:
         manoeuvre_accuracy()
         return
     if args.compare or args.reference_tree:
-        ref = args.reference_tree.resolve() if args.reference_tree else _reference_tree(args.compare or COMPARE_REFERENCE)
+        ref = args.reference_tree.resolve() if args.reference_tree else checkout_of(args.compare or COMPARE_REFERENCE)
         compare(ref, args.repeats, args.inner, args.duration)
         return
     model, point, gust = scenario()

@@ -36,7 +36,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import shutil
 import statistics
 import subprocess
 import sys
@@ -116,6 +115,7 @@ print(json.dumps(out))
 """
 
 HERE = Path(__file__).resolve().parents[1]
+from _reference import reference_tree as checkout_of  # noqa: E402  (benchmarks/_reference.py)
 #: Default reference of --compare: main before the start-up work (2026-12-02).
 COMPARE_REFERENCE = "d3d625b"
 
@@ -128,25 +128,6 @@ def run(kind: str, root: Path = HERE, code: str = CHILD) -> dict:
     done = subprocess.run([sys.executable, "-c", code, kind], capture_output=True, text=True, env=env, check=True,
                           cwd=root)
     return json.loads(done.stdout.strip().splitlines()[-1])
-
-
-def _reference_tree(rev: str) -> Path:
-    """A checkout of ``rev`` extracted with ``git archive`` into ``~/.cache/flexsim-bench/<sha>``, seeded with this
-    tree's numba cache files (module docstring)."""
-    sha = subprocess.run(["git", "-C", str(HERE), "rev-parse", "--short=12", rev], check=True, capture_output=True,
-                         text=True).stdout.strip()
-    tree = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "flexsim-bench" / sha
-    if not (tree / "flexsim" / "model" / "aircraft_model.py").is_file():
-        tree.mkdir(parents=True, exist_ok=True)
-        archive = subprocess.run(["git", "-C", str(HERE), "archive", sha], check=True, capture_output=True).stdout
-        subprocess.run(["tar", "-x", "-C", str(tree)], input=archive, check=True)
-    if not any(tree.glob("flexsim/_kernels/__pycache__/*.nbi")):
-        for index in HERE.glob("**/__pycache__/*.nb[ic]"):
-            target = tree / index.relative_to(HERE)
-            if target.parent.parent.is_dir():
-                target.parent.mkdir(exist_ok=True)
-                shutil.copy2(index, target)
-    return tree
 
 
 def parts(repeats: int, ref: Path | None) -> None:
@@ -180,7 +161,7 @@ def main() -> None:
     args = parser.parse_args()
     ref = None
     if args.compare or args.reference_tree:
-        ref = args.reference_tree.resolve() if args.reference_tree else _reference_tree(args.compare)
+        ref = args.reference_tree.resolve() if args.reference_tree else checkout_of(args.compare)
     if args.parts:
         parts(args.repeats, ref)
         return
