@@ -2,16 +2,19 @@
 random actions (SB3 and torch are optional, not flexsim dependencies).
 
     python -m pip install --find-links /opt/wheels "torch==2.13.0+cpu" "stable-baselines3>=2.4"   # CPU torch
-    OMP_NUM_THREADS=1 python examples/agents/train_sb3.py --minutes 9 --shaping 10 --out logs/agent   # PPO on LevelHold-v1
+    OMP_NUM_THREADS=1 python examples/agents/train_sb3.py --minutes 8 --shaping 10 --penalty 0.5 --out logs/agent   # PPO on LevelHold-v1
 
 Training stops at ``--steps`` environment steps or after ``--minutes`` of wall time, whichever comes first.
-Then the deterministic policy flies ``--eval-episodes`` seeded episodes (seeds 0, 1, ...; training uses seeds
-from 1000), beside the classical baseline of ``examples/agents/baselines.py`` (LQR), the trim action held and
-uniformly random actions, on the same seeds, in ``--workers`` processes. The script prints the four mean
-returns and the ratios to the baseline, writes them to ``<out>/result.json`` (with the settings, wall times
-the 1-minute load average sampled every 30 s and the training episodes' returns) and draws the learning curve
-(training episode returns against environment steps, with the evaluation means as horizontal lines) to
-``<out>/learning_curve.png``. ``--plot RESULT_JSON [--png PNG]`` redraws that figure from a result.json alone.
+Every ``--val-every`` steps the deterministic policy flies ``--val-episodes`` validation episodes (seeds 500, 501,
+...) and the best policy so far is kept (:class:`Validation`). Then that policy and the last one fly
+``--eval-episodes`` seeded episodes (seeds 0, 1, ...; training uses seeds from 1000), beside the classical
+baseline of ``examples/agents/baselines.py`` (LQR), the trim action held and uniformly random actions, on the
+same seeds, in ``--workers`` processes. The script prints the mean returns and the ratio to the baseline, writes
+them to ``<out>/result.json`` (with the settings, wall times, the 1-minute load average sampled every 30 s, the
+validation means, the training episodes' returns and each policy's mean reward parts) and draws the learning
+curve (training episode returns and validation means against environment steps, with the evaluation means as
+horizontal lines) to ``<out>/learning_curve.png``. ``--plot RESULT_JSON [--png PNG]`` redraws that figure from a
+result.json alone.
 
 The default task is ``FlexSim/GTM-LevelHold-v1``: on v0 the trim controls held already return 93 % of the LQR
 baseline's return, so no learning can show there (docs/environments.md, "A learning agent").
@@ -29,6 +32,16 @@ are unchanged):
   ``gamma Phi(s') - Phi(s)`` (Ng, Harada & Russell 1999: it leaves the optimal policy unchanged) with
   ``Phi = -w (|altitude error| / 30 m + |heading error| / 3 deg)``, unsaturated over LevelHold-v1's start
   offsets, where the env's tracking costs saturate at 10 m and 2 deg. Training curves then show shaped returns.
+* **Optional unsaturated tracking cost** (``--penalty`` p, default 0, training only): the learner's reward also
+  has ``-p (|altitude error| / 30 m + |heading error| / 3 deg)`` per step. Unlike the shaping, this changes the
+  training objective (not the env's reward, which the evaluation uses): the env's tracking costs are flat beyond
+  10 m and 2 deg, and with gamma 0.99 (a horizon of about 100 steps, 2 s) a 20-30 m altitude capture gives the
+  discounted env return no gradient toward the reference; potential-based shaping cannot add one (it leaves the
+  advantages under the true value function unchanged). Both costs fall with the same errors.
+* **Checkpoint choice on validation seeds** (``--val-every``, default every 100,000 steps; 0: the last policy):
+  PPO's deterministic return rises and falls during training; the policy evaluated is the one with the best
+  validation mean, chosen on seeds that neither training nor evaluation uses (SB3 ``EvalCallback``'s model
+  selection).
 * **Normalised observations** (SB3 ``VecNormalize``): the observations mix metres (altitude 9144), m/s and
   radians. PPO's rewards are also scaled by a running estimate of the return's spread (training only;
   evaluation returns are the env's own).
@@ -64,6 +77,8 @@ from flexsim import envs  # noqa: E402  (registers the FlexSim/* ids)
 ALGORITHMS = ("PPO", "SAC", "TD3")
 #: Seeds of the training environments start here (evaluation uses 0 .. episodes - 1).
 TRAIN_SEED = 1000
+#: Seeds of the validation episodes that choose the checkpoint (``--val-every``), apart from training and evaluation.
+VALIDATION_SEED = 500
 
 
 class TrimResidualAction(gym.ActionWrapper):
@@ -116,7 +131,7 @@ class ResidualBatch:
     them (gymnasium's SameStep autoreset). Aircraft i is seeded ``seed + i``."""
 
     def __init__(self, env_id: str, num_envs: int, aero: str, scale: float, seed: int, shaping: float = 0.0,
-                 gamma: float = 0.99) -> None:
+                 gamma: float = 0.99, penalty: float = 0.0) -> None:
         import flexsim.envs  # noqa: F401  (registers the ids in a spawned worker)
 
         self.venv = gym.make_vec(env_id, num_envs=num_envs, vectorization_mode="vector_entry_point", aero=aero,
@@ -126,18 +141,22 @@ class ResidualBatch:
         self.observation_space = self.venv.single_observation_space
         self.num_envs, self.scale, self.seed = num_envs, scale, seed
         self.trim = np.zeros((num_envs, 4))
-        self.shaping = shaping
+        self.shaping, self.penalty = shaping, penalty
         self.gamma = gamma
         names = self.venv.envs[0].observation_names
         self._i_errors = [names.index(n) for n in ("altitude_error_m", "heading_error_rad") if n in names]
-        if shaping > 0.0 and len(self._i_errors) != 2:
+        if max(shaping, penalty) > 0.0 and len(self._i_errors) != 2:
             raise ValueError(f"shaping = {shaping}: {env_id} observes no altitude_error_m and heading_error_rad to shape on")
         self._obs = None
 
     def potential(self, obs: np.ndarray) -> np.ndarray:
         """Phi = -shaping (|altitude error| / 30 m + |heading error| / 3 deg): unsaturated over the v1 start offsets."""
+        return -self.shaping * self.tracking_error(obs)
+
+    def tracking_error(self, obs: np.ndarray) -> np.ndarray:
+        """|altitude error| / 30 m + |heading error| / 3 deg [-] (the v1 start offsets' bounds)."""
         e = np.abs(np.asarray(obs, dtype=np.float64)[..., self._i_errors])
-        return -self.shaping * (e[..., 0] / 30.0 + e[..., 1] / math.radians(3.0))
+        return e[..., 0] / 30.0 + e[..., 1] / math.radians(3.0)
 
     def _take_trim(self, info: dict) -> None:
         mask = info.get("_trim_action")
@@ -161,10 +180,13 @@ class ResidualBatch:
             infos[i]["terminal_observation"] = info["final_obs"][i]
             infos[i]["TimeLimit.truncated"] = bool(truncated[i] and not terminated[i])
         self._take_trim(info)
-        if self.shaping > 0.0:  # potential-based shaping gamma Phi(s') - Phi(s) (Ng et al. 1999), training only
+        if self.shaping > 0.0 or self.penalty > 0.0:
             nxt = obs.copy()
             for i in np.flatnonzero(dones):
                 nxt[i] = infos[i]["terminal_observation"]
+        if self.penalty > 0.0:  # unsaturated tracking cost, training only
+            rewards = rewards - self.penalty * self.tracking_error(nxt)
+        if self.shaping > 0.0:  # potential-based shaping gamma Phi(s') - Phi(s) (Ng et al. 1999), training only
             phi_next = np.where(terminated, 0.0, self.potential(nxt))
             rewards = rewards + self.gamma * phi_next - self.potential(self._obs)
         self._obs = obs
@@ -190,7 +212,7 @@ def _batch_worker(conn, args: tuple) -> None:
 
 
 def make_batched_vec_env(env_id: str, num_envs: int, aero: str, scale: float, seed: int, processes: int = 1, shaping: float = 0.0,
-                         gamma: float = 0.99):
+                         gamma: float = 0.99, penalty: float = 0.0):
     """An SB3 ``VecEnv`` of ``num_envs`` aircraft in ``processes`` batched envs (:class:`ResidualBatch`): in this
     process (1) or in worker processes, each stepping its share of the aircraft in one call. Aircraft i is
     seeded ``seed + i``."""
@@ -204,14 +226,14 @@ def make_batched_vec_env(env_id: str, num_envs: int, aero: str, scale: float, se
             self.local = None
             self.pipes = []
             if len(sizes) == 1:
-                self.local = ResidualBatch(env_id, num_envs, aero, scale, seed, shaping, gamma)
+                self.local = ResidualBatch(env_id, num_envs, aero, scale, seed, shaping, gamma, penalty)
                 space = self.local.observation_space
             else:
                 ctx = multiprocessing.get_context("spawn")
                 self.procs = []
                 for n, start in zip(sizes, starts):
                     parent, child = ctx.Pipe()
-                    proc = ctx.Process(target=_batch_worker, args=(child, (env_id, n, aero, scale, seed + int(start), shaping, gamma)), daemon=True)
+                    proc = ctx.Process(target=_batch_worker, args=(child, (env_id, n, aero, scale, seed + int(start), shaping, gamma, penalty)), daemon=True)
                     proc.start()
                     child.close()
                     self.pipes.append(parent)
@@ -296,31 +318,94 @@ def _evaluate(job: tuple) -> tuple[str, list[tuple[int, float, int, str]]]:
 
         def act(o):
             return np.array([policy(row) for policy, row in zip(policies, o)])
-    elif kind == "agent":
+    elif kind.startswith("agent"):
         import stable_baselines3 as sb3
         import torch
 
         torch.set_num_threads(1)
-        model = getattr(sb3, algo).load(model_path, device="cpu")
-        mean, var = np.asarray(stats["mean"]), np.asarray(stats["var"])
-
-        def act(o):
-            z = np.clip((o - mean) / np.sqrt(var + stats["eps"]), -stats["clip"], stats["clip"]).astype(np.float32)
-            return np.clip(trim + scale * np.clip(model.predict(z, deterministic=True)[0], -1.0, 1.0), low, high)
+        act = agent_actor(getattr(sb3, algo).load(model_path, device="cpu"), stats, trim, scale, low, high)
     else:
         def act(o):
             return trim
+    flown = fly(venv, obs, act)
+    venv.close()
+    return kind, [(seed, *episode) for seed, episode in zip(seeds, flown)]
+
+
+def agent_actor(model, stats: dict, trim: np.ndarray, scale: float, low: np.ndarray, high: np.ndarray):
+    """Actions of the deterministic policy ``model`` on raw observations: normalised with the frozen ``VecNormalize``
+    statistics ``stats`` (mean, var, eps, clip), then ``clip(trim + scale * a)`` (:class:`TrimResidualAction`)."""
+    mean, sd = np.asarray(stats["mean"]), np.sqrt(np.asarray(stats["var"]) + stats["eps"])
+
+    def act(obs: np.ndarray) -> np.ndarray:
+        z = np.clip((obs - mean) / sd, -stats["clip"], stats["clip"]).astype(np.float32)
+        return np.clip(trim + scale * np.clip(model.predict(z, deterministic=True)[0], -1.0, 1.0), low, high)
+    return act
+
+
+def fly(venv, obs: np.ndarray, act) -> list[tuple[float, int, str, dict[str, float]]]:
+    """Fly every aircraft of a batched env (``SameStep`` autoreset) from ``obs`` to the end of its first episode with
+    actions ``act(obs)``; returns (return, steps, termination reason or "", sums of ``info["reward_parts"]``) per
+    aircraft."""
+    n = len(obs)
     totals, steps, reasons = np.zeros(n), np.zeros(n, dtype=int), [""] * n
+    parts: dict[str, np.ndarray] = {}
     flying = np.ones(n, dtype=bool)
     while flying.any():
-        obs, reward, terminated, truncated, info = venv.step(act(obs).astype(np.float32))
+        obs, reward, terminated, truncated, info = venv.step(np.asarray(act(obs), dtype=np.float32))
+        done = terminated | truncated
+        for source, rows in ((info.get("reward_parts", {}), flying & ~done), (info.get("final_info", {}).get("reward_parts", {}), flying & done)):
+            for name, values in source.items():
+                if not name.startswith("_"):
+                    parts.setdefault(name, np.zeros(n))[rows] += np.asarray(values, dtype=np.float64)[rows]
         totals[flying] += reward[flying]
         steps[flying] += 1
-        for i in np.flatnonzero(flying & (terminated | truncated)):
+        for i in np.flatnonzero(flying & done):
             flying[i] = False
             reasons[i] = str(info["final_info"]["termination_reason"][i]) if terminated[i] else ""
-    venv.close()
-    return kind, [(seed, float(totals[i]), int(steps[i]), reasons[i]) for i, seed in enumerate(seeds)]
+    return [(float(totals[i]), int(steps[i]), reasons[i], {k: float(v[i]) for k, v in parts.items()}) for i in range(n)]
+
+
+def _stats(venv) -> dict:
+    """The observation normalisation of an SB3 ``VecNormalize`` as plain numbers (frozen for evaluation)."""
+    rms = venv.obs_rms
+    return {"mean": rms.mean.tolist(), "var": rms.var.tolist(), "clip": float(venv.clip_obs), "eps": float(venv.epsilon)}
+
+
+class Validation:
+    """Checkpoint choice on validation episodes (the model selection of SB3's ``EvalCallback``): every
+    ``args.val_every`` steps the deterministic policy flies ``args.val_episodes`` seeded episodes (seeds
+    ``VALIDATION_SEED``, ... : neither the training seeds nor the evaluation seeds 0, 1, ...) in one batched env
+    in the learner's process, on the env's own reward; the policy with the highest mean return so far is saved to
+    ``path`` with its observation statistics. The evaluation then flies that policy and the last one."""
+
+    def __init__(self, args: argparse.Namespace, path: Path) -> None:
+        self.args, self.path = args, path
+        self.seeds = list(range(VALIDATION_SEED, VALIDATION_SEED + args.val_episodes))
+        self.venv = gym.make_vec(args.env, num_envs=args.val_episodes, vectorization_mode="vector_entry_point", aero=args.aero,
+                                 autoreset_mode="SameStep")
+        self.next_steps = args.val_every
+        self.history: list[tuple[int, float]] = []
+        self.best: dict | None = None
+        self.wall_s = 0.0
+
+    def __call__(self, model, steps: int, stats: dict) -> float:
+        """Fly the validation episodes with ``model`` after ``steps`` training steps; returns their mean return."""
+        t0 = time.perf_counter()
+        obs, info = self.venv.reset(seed=self.seeds)
+        space = self.venv.single_action_space
+        act = agent_actor(model, stats, np.asarray(info["trim_action"], dtype=np.float64), self.args.residual_scale, space.low,
+                          space.high)
+        mean = float(np.mean([episode[0] for episode in fly(self.venv, obs, act)]))
+        self.history.append((steps, mean))
+        if self.best is None or mean > self.best["mean_return"]:
+            self.best = {"steps": steps, "mean_return": mean, "stats": stats}
+            model.save(self.path)
+        self.next_steps = steps + self.args.val_every
+        self.wall_s += time.perf_counter() - t0
+        print(f"validation after {steps} steps: mean return {mean:.1f} over seeds {self.seeds[0]}-{self.seeds[-1]} "
+              f"(best {self.best['mean_return']:.1f} after {self.best['steps']} steps)", flush=True)
+        return mean
 
 
 def plot_result(result: dict, path: Path) -> Path:
@@ -335,11 +420,13 @@ def plot_result(result: dict, path: Path) -> Path:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     settings = result["settings"]
-    shaping = float(settings.get("shaping", 0.0))
-    reward = f"reward shaped with --shaping {shaping:g}" if shaping > 0 else "env reward"
-    fig, ax = plt.subplots(figsize=(7, 4))
+    shaping, penalty = float(settings.get("shaping", 0.0)), float(settings.get("penalty", 0.0))
+    changes = [f"--shaping {shaping:g}"] * (shaping > 0) + [f"--penalty {penalty:g}"] * (penalty > 0)
+    reward = f"training reward: env + {' + '.join(changes)}" if changes else "env reward"
+    fig, ax = plt.subplots(figsize=(7.5, 6.5))
     episodes, curve = result.get("training_episodes"), result.get("training_curve")
     if episodes and episodes["steps"]:
         steps, returns = np.asarray(episodes["steps"], float), np.asarray(episodes["return"], float)
@@ -351,18 +438,30 @@ def plot_result(result: dict, path: Path) -> Path:
     elif curve and curve["steps"]:
         ax.plot(curve["steps"], curve["mean_return_100"], color="C0", drawstyle="steps-post",
                 label=f"training: mean of the last 100 episodes (stochastic policy, {reward})")
-    agent = "agent with shaping" if shaping > 0 else "agent"
-    for key, color, label in (("agent", "C0", f"{agent}, deterministic"), ("baseline", "C3", "LQR baseline"),
+    val = result.get("validation")
+    if val and val["steps"]:
+        seeds_v = val["seeds"]
+        ax.plot(val["steps"], val["mean_return"], "o-", ms=3, lw=1, color="C1",
+                label=f"validation: deterministic policy, env reward, seeds {seeds_v[0]}-{seeds_v[-1]}")
+        if val.get("chosen_steps") is not None:
+            ax.plot([val["chosen_steps"]], [max(val["mean_return"])], "*", ms=10, color="C1", label="checkpoint chosen")
+    agent = f"agent ({' '.join(changes)})" if changes else "agent"
+    chosen = (val or {}).get("chosen_steps")
+    for key, color, label in (("agent", "C0", f"{agent}, deterministic" + ("" if chosen is None else f", {chosen} steps")),
+                              ("agent_last", "C9", f"{agent}, last policy"), ("baseline", "C3", "LQR baseline"),
                               ("trim", "C2", "trim action held"), ("random", "C7", "random actions")):
+        if key not in result:
+            continue
         ax.axhline(result[key]["mean_return"], color=color, ls="--", lw=1,
                    label=f"{label}: {result[key]['mean_return']:.0f} (eval mean, env reward)")
     seeds = result["seeds"]
-    ax.set_title(f"{result['algo']} on {result['env']}{' with reward shaping (training only)' if shaping > 0 else ''}\n"
+    ax.set_title(f"{result['algo']} on {result['env']}{' with ' + ', '.join(changes) + ' (training only)' if changes else ''}\n"
                  f"{result['train_steps']} steps in {result['train_wall_s'] / 60:.1f} min; eval seeds {seeds[0]}-{seeds[-1]}",
                  fontsize=9)
     ax.set_xlabel("environment steps")
     ax.set_ylabel("episode return")
-    ax.legend(fontsize=7, loc="lower right")
+    ax.xaxis.set_major_formatter(matplotlib.ticker.EngFormatter())
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12))
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -391,11 +490,18 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--learning-starts", type=int, default=1000, help="SAC/TD3: steps of random actions before learning [%(default)s]")
     parser.add_argument("--net", default="64,64", help="hidden layer sizes of policy and value nets [%(default)s]")
     parser.add_argument("--log-std-init", type=float, default=-1.0, help="PPO: initial log standard deviation of the actions [%(default)s]")
+    parser.add_argument("--penalty", type=float, default=0.0,
+                        help="batched: weight of an unsaturated per-step cost on altitude and heading errors (training only) [%(default)s]")
     parser.add_argument("--shaping", type=float, default=0.0,
                         help="batched: weight of the potential-based shaping on altitude and heading errors (training only) [%(default)s]")
     parser.add_argument("--sde", action="store_true", help="PPO: generalised state-dependent exploration (gSDE, resampled every 8 steps)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--eval-episodes", type=int, default=10, help="seeded evaluation episodes per policy [%(default)s]")
+    parser.add_argument("--val-every", type=int, default=100_000,
+                        help="fly the deterministic policy on the validation seeds every this many steps and keep the best "
+                             "checkpoint (0: keep the last policy) [%(default)s]")
+    parser.add_argument("--val-episodes", type=int, default=10,
+                        help=f"validation episodes (seeds {VALIDATION_SEED}, {VALIDATION_SEED + 1}, ...) [%(default)s]")
     parser.add_argument("--out", type=Path, default=Path("logs/agent"))
     parser.add_argument("--torch-threads", type=int, default=1, help="torch intra-op threads of the learner [1]")
     parser.add_argument("--plot", type=Path, metavar="RESULT_JSON",
@@ -410,9 +516,12 @@ def main(argv: list[str] | None = None) -> None:
             parser.error(f"--plot {args.plot}: cannot read a result.json ({exc})")
         print(f"drew {plot_result(result, args.png or args.plot.with_name('learning_curve.png'))}")
         return
-    for name in ("steps", "envs", "processes", "workers", "torch_threads", "eval_episodes", "n_steps", "batch_size", "epochs", "gradient_steps"):
+    for name in ("steps", "envs", "processes", "workers", "torch_threads", "eval_episodes", "n_steps", "batch_size", "epochs", "gradient_steps",
+                 "val_episodes"):
         if getattr(args, name) < 1:
             parser.error(f"--{name.replace('_', '-')} = {getattr(args, name)}: must be >= 1")
+    if args.val_every < 0:
+        parser.error(f"--val-every = {args.val_every}: must be >= 0 (0: no validation, the last policy is evaluated)")
     if not args.minutes > 0:
         parser.error(f"--minutes = {args.minutes}: must be > 0")
     if not (math.isfinite(args.shaping) and args.shaping >= 0.0) or (args.shaping > 0.0 and args.vector != "batched"):
@@ -432,7 +541,7 @@ def main(argv: list[str] | None = None) -> None:
     first_seed = TRAIN_SEED + 100 * args.seed
     if args.vector == "batched":
         venv = make_batched_vec_env(args.env, args.envs, args.aero, args.residual_scale, first_seed, args.processes, args.shaping,
-                                    args.gamma)
+                                    args.gamma, args.penalty)
     else:
         fns = [_make_env(args.env, args.aero, args.residual_scale, first_seed + i) for i in range(args.envs)]
         venv = SubprocVecEnv(fns) if args.envs > 1 else DummyVecEnv(fns)
@@ -442,6 +551,8 @@ def main(argv: list[str] | None = None) -> None:
     loads: list[float] = []
     deadline = [math.inf]
     started = [math.nan]
+    stem = f"{args.algo.lower()}_{args.env.split('/')[-1]}"
+    validation = Validation(args, args.out / f"{stem}_best") if args.val_every > 0 else None
 
     class Budget(BaseCallback):
         def _on_training_start(self) -> None:
@@ -453,6 +564,8 @@ def main(argv: list[str] | None = None) -> None:
             for info in self.locals.get("infos", []):
                 if "episode" in info:
                     curve.append((self.num_timesteps, float(info["episode"]["r"])))
+            if validation is not None and self.num_timesteps >= validation.next_steps:
+                validation(self.model, self.num_timesteps, _stats(venv))
             now = time.monotonic()
             if now >= self.next_load:  # the 1-minute load average, every 30 s
                 loads.append(os.getloadavg()[0])
@@ -472,18 +585,22 @@ def main(argv: list[str] | None = None) -> None:
     model.learn(total_timesteps=args.steps, callback=Budget())
     train_s = time.monotonic() - started[0]  # training only; start-up (env builds, first reset) is setup_s
     setup_s = time.perf_counter() - t0 - train_s
-    stem = f"{args.algo.lower()}_{args.env.split('/')[-1]}"
     model.save(args.out / stem)
     venv.save(str(args.out / "vecnormalize.pkl"))
-    rms = venv.obs_rms
-    stats = {"mean": rms.mean.tolist(), "var": rms.var.tolist(), "clip": float(venv.clip_obs), "eps": float(venv.epsilon)}
+    stats = _stats(venv)
     steps_done = model.num_timesteps
     venv.close()
 
     t1 = time.perf_counter()
-    kinds = ("agent", "baseline", "trim", "random")
     seeds = list(range(args.eval_episodes))
-    jobs = [(kind, seeds, args.env, args.aero, args.residual_scale, str(args.out / stem), args.algo, stats) for kind in kinds]
+    if validation is not None and validation.best is not None:  # the checkpoint chosen on the validation seeds, and the last policy
+        kinds = ("agent", "agent_last", "baseline", "trim", "random")
+        jobs = [("agent", seeds, args.env, args.aero, args.residual_scale, str(validation.path), args.algo, validation.best["stats"]),
+                ("agent_last", seeds, args.env, args.aero, args.residual_scale, str(args.out / stem), args.algo, stats)]
+    else:
+        kinds = ("agent", "baseline", "trim", "random")
+        jobs = [("agent", seeds, args.env, args.aero, args.residual_scale, str(args.out / stem), args.algo, stats)]
+    jobs += [(kind, seeds, args.env, args.aero, args.residual_scale, "", args.algo, None) for kind in kinds if not kind.startswith("agent")]
     with ProcessPoolExecutor(max_workers=args.workers, mp_context=multiprocessing.get_context("spawn")) as pool:
         episodes = dict(pool.map(_evaluate, jobs))
     result: dict = {"env": args.env, "algo": args.algo, "train_steps": steps_done, "train_wall_s": train_s,
@@ -492,17 +609,27 @@ def main(argv: list[str] | None = None) -> None:
                     "settings": {k: (str(v) if isinstance(v, Path) else v) for k, v in vars(args).items()}, "seeds": seeds}
     for kind in kinds:
         returns = np.array([e[1] for e in episodes[kind]])
+        names = episodes[kind][0][4]
         result[kind] = {"mean_return": float(returns.mean()), "std_return": float(returns.std()), "returns": returns.tolist(),
-                        "terminations": [e[3] for e in episodes[kind] if e[3]]}
+                        "terminations": [e[3] for e in episodes[kind] if e[3]],
+                        "mean_reward_parts": {k: float(np.mean([e[4][k] for e in episodes[kind]])) for k in names}}
     result["agent_over_baseline"] = result["agent"]["mean_return"] / result["baseline"]["mean_return"]
     result["trim_over_baseline"] = result["trim"]["mean_return"] / result["baseline"]["mean_return"]
     result["training_episodes"] = {"steps": [c[0] for c in curve], "return": [c[1] for c in curve]}
+    if validation is not None:
+        result["validation"] = {"seeds": validation.seeds, "steps": [v[0] for v in validation.history],
+                                "mean_return": [v[1] for v in validation.history], "wall_s": validation.wall_s,
+                                "chosen_steps": None if validation.best is None else validation.best["steps"]}
     (args.out / "result.json").write_text(json.dumps(result, indent=1))
     plot_result(result, args.out / "learning_curve.png")
     print(f"trained {steps_done} steps in {train_s:.0f} s ({steps_done / train_s:.0f} steps/s, load average "
           f"{min(loads):.1f}-{max(loads):.1f}); evaluation over seeds 0-{args.eval_episodes - 1} ({result['eval_wall_s']:.0f} s):")
-    for kind, label in (("agent", "agent (deterministic)"), ("baseline", "LQR baseline"), ("trim", "trim action held"),
+    chosen = result.get("validation", {}).get("chosen_steps")
+    for kind, label in (("agent", "agent (deterministic)" if chosen is None else f"agent at {chosen} steps"),
+                        ("agent_last", f"agent at {steps_done} steps"), ("baseline", "LQR baseline"), ("trim", "trim action held"),
                         ("random", "random actions")):
+        if kind not in result:
+            continue
         r = result[kind]
         print(f"  {label:24s} return {r['mean_return']:8.1f} +- {r['std_return']:6.1f}  terminations {len(r['terminations'])}")
     ok = result["agent_over_baseline"] >= 0.8
