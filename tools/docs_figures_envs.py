@@ -137,6 +137,92 @@ def agent_shaped_rerun() -> str:
             f"{sum(x >= 0.8 for x in seeds)} of {len(seeds)} at or above 0.8)")
 
 
+#: The recipe's runs (``--shaping 10 --penalty 0.5``, checkpoint chosen on validation seeds), training seeds 0, 1, 2.
+RECIPE_SEEDS = (0, 1, 2)
+
+
+def _parts(r: dict, kind: str) -> dict:
+    return r[kind]["mean_reward_parts"]
+
+
+def agent_diagnosis() -> str:
+    """Why the shaped recipe stalls: reward parts of the shaped-only agent (seed 0, 373,760 steps) against the LQR."""
+    r = _agent("levelhold_v1_ppo_shaped_parts")
+    agent, lqr, trim = (_parts(r, k) for k in ("agent", "baseline", "trim"))
+    steps = int(round(agent["alive"]))
+    return (f"the 373,760-step run of training seed 0 repeated with the reward parts recorded (again {r['train_steps']:,} steps "
+            f"and {r['agent_over_baseline']:.3f} of the LQR: training is deterministic for a seed): over seeds 0-9 its mean altitude "
+            f"cost is **{agent['altitude_error_m']:.1f}** per episode "
+            f"(the LQR {lqr['altitude_error_m']:.1f}, the trim hold {trim['altitude_error_m']:.1f}; the cost saturates at "
+            f"{-0.4 * steps:.0f} for {steps} steps), its heading cost {agent['heading_error_rad']:.1f} (the LQR "
+            f"{lqr['heading_error_rad']:.1f}, the trim hold {trim['heading_error_rad']:.1f})")
+
+
+def agent_penalty_trials() -> str:
+    """The trial runs that chose the penalty weight (step-limited, two at a time)."""
+    def run(name: str) -> str:
+        r = _agent(f"levelhold_v1_ppo_penalty_trial_{name}")
+        chosen = r["validation"]["chosen_steps"]
+        return (f"**{r['agent_over_baseline']:.3f}** of the LQR from training seed {r['settings']['seed']} "
+                f"(checkpoint of {chosen:,} of {r['train_steps']:,} steps)")
+
+    p02 = _agent("levelhold_v1_ppo_penalty_trial_p02_seed0")["settings"]["penalty"]
+    p05 = _agent("levelhold_v1_ppo_penalty_trial_p05_seed1")["settings"]["penalty"]
+    return (f"p = {p02:g} reached {run('p02_seed0')} but only {run('p02_seed1')}; p = {p05:g} reached {run('p05_seed1')}")
+
+
+def agent_recipe_runs() -> str:
+    """The recipe's three runs: steps, wall time, chosen checkpoint and result per training seed."""
+    lines = []
+    for seed in RECIPE_SEEDS:
+        r = _agent(f"levelhold_v1_ppo_penalty_seed{seed}")
+        load = r["load_average_1min"]
+        lines.append(f"| {seed} | {r['train_steps']:,} in {r['train_wall_s']:.0f} s ({r['train_steps_per_s']:,.0f}/s; load "
+                     f"{load['min']:.1f}-{load['max']:.1f}) | {r['validation']['chosen_steps']:,} | **{_pm(r['agent'])}** | "
+                     f"**{r['agent_over_baseline']:.3f}** | {_pm(r['agent_last'])} "
+                     f"({r['agent_last']['mean_return'] / r['baseline']['mean_return']:.3f}) | "
+                     f"{len(r['agent']['terminations'])} |")
+    head = ("| training seed | steps in the budget | checkpoint chosen at | agent return, seeds 0-9 | agent / LQR | "
+            "last policy (/ LQR) | terminations |\n|---|---|---|---|---|---|---|")
+    return "\n" + head + "\n" + "\n".join(lines) + "\n"
+
+
+def agent_recipe_verdict() -> str:
+    """The recipe against the 0.8 target and the reference policies of the same evaluation."""
+    runs = [_agent(f"levelhold_v1_ppo_penalty_seed{seed}") for seed in RECIPE_SEEDS]
+    ratios = [r["agent_over_baseline"] for r in runs]
+    r0 = runs[0]
+    parts, lqr = _parts(r0, "agent"), _parts(r0, "baseline")
+    wall = max(r["train_wall_s"] + r["setup_wall_s"] + r["eval_wall_s"] for r in runs)
+    return (f"agent / LQR {min(ratios):.3f}-{max(ratios):.3f} (mean {np.mean(ratios):.3f}; {sum(x >= 0.8 for x in ratios)} of "
+            f"{len(ratios)} at or above issue 13's 0.8), each run at most {wall / 60:.1f} min from start to result on the 2 cores; "
+            f"the same evaluation's LQR returns {_pm(r0['baseline'])}, the trim hold {_pm(r0['trim'])}, random actions "
+            f"{_pm(r0['random'])}. Seed 0's agent costs {parts['altitude_error_m']:.1f} in altitude and "
+            f"{parts['heading_error_rad']:.1f} in heading per episode (the LQR {lqr['altitude_error_m']:.1f} and "
+            f"{lqr['heading_error_rad']:.1f}) and {parts['control_rate']:.1f} in control rate (the LQR {lqr['control_rate']:.1f})")
+
+
+#: Learning-curve figures of docs/environments.md -> the run whose result.json draws them.
+AGENT_CURVES = {"agent_learning_curve_levelhold_v1_ppo.png": "levelhold_v1_ppo",
+                "agent_learning_curve_levelhold_v1_ppo_shaped.png": "levelhold_v1_ppo_shaped",
+                "agent_learning_curve_levelhold_v1_ppo_penalty.png": "levelhold_v1_ppo_penalty_seed0"}
+
+
+def draw_agent_curves() -> list[Path]:
+    """Redraw the learning curves of docs/environments.md from their runs' result.json (``train_sb3.py --plot``)."""
+    plot_result = _agents_module("train_sb3").plot_result
+    return [plot_result(_agent(run), FIGURE_DIR / png) for png, run in AGENT_CURVES.items()]
+
+
+def readme_agent() -> str:
+    """README's one line on the learning agent: the recipe's result over its training seeds."""
+    runs = [_agent(f"levelhold_v1_ppo_penalty_seed{seed}") for seed in RECIPE_SEEDS]
+    ratios = [r["agent_over_baseline"] for r in runs]
+    minutes = max(r["settings"]["minutes"] for r in runs)
+    return (f"PPO (`examples/agents/train_sb3.py`) reaches {min(ratios):.2f}-{max(ratios):.2f} of the LQR baseline's return "
+            f"in {minutes:g}-minute runs from {len(runs)} training seeds")
+
+
 def agent_v0() -> str:
     """The 15-minute PPO run on LevelHold-v0: trim hold against the LQR, and the agent."""
     r = _agent("levelhold_v0_ppo")
@@ -564,6 +650,11 @@ ENV_FIGURES = {
     "agent-shaped-table": (agent_shaped_table, True),
     "agent-shaped-verdict": (agent_shaped_verdict, True),
     "agent-shaped-rerun": (agent_shaped_rerun, True),
+    "agent-diagnosis": (agent_diagnosis, True),
+    "agent-penalty-trials": (agent_penalty_trials, True),
+    "agent-recipe-runs": (agent_recipe_runs, True),
+    "agent-recipe-verdict": (agent_recipe_verdict, True),
+    "readme-agent": (readme_agent, True),
     "env-flutter-v0-point": (env_flutter_v0_point, False),
     "env-flutter-v0-hz": (env_flutter_v0_hz, False),
     "env-flutter-v1-hz": (env_flutter_v1_hz, False),

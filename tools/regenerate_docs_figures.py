@@ -6,7 +6,8 @@ Each quoted figure lives in a marked region of a document::
 
 (HTML comments: invisible on rendered pages; regions may be inline, e.g. inside a table cell, or span lines; one
 name may mark several regions, which then hold the same text). This script recomputes the text of every region
-from the code and rewrites it, and redraws the study figures of ``docs/figures/`` (``flutter_turn*.png``,
+from the code and rewrites it, redraws the agents' learning curves from their runs' ``result.json``
+(``docs_figures_envs.AGENT_CURVES``) and the study figures of ``docs/figures/`` (``flutter_turn*.png``,
 ``flutter_climb*.png``) from the same run; ``--check`` only compares the text and exits 1 naming every region that
 differs (it draws nothing). ``tests/test_docs_figures.py`` checks that every region names a known figure, runs
 ``--check --fast`` in the default suite and the full ``--check`` under ``pytest -m slow``.
@@ -605,6 +606,11 @@ def main(argv: list[str] | None = None) -> int:
     studies = sorted({FIGURES[name].study for name in values} - {None})
     if not args.check and studies:
         for path in draw_study_figures(studies):
+            print(f"drew {path.relative_to(ROOT)}")
+    if not args.check and any(name.startswith("agent-") for name in values):
+        from docs_figures_envs import draw_agent_curves
+
+        for path in draw_agent_curves():
             print(f"drew {path.relative_to(ROOT)}")
     if stale:
         print(("stale: " if args.check else "rewritten: ") + "; ".join(stale))

@@ -377,7 +377,12 @@ class Validation:
     ``args.val_every`` steps the deterministic policy flies ``args.val_episodes`` seeded episodes (seeds
     ``VALIDATION_SEED``, ... : neither the training seeds nor the evaluation seeds 0, 1, ...) in one batched env
     in the learner's process, on the env's own reward; the policy with the highest mean return so far is saved to
-    ``path`` with its observation statistics. The evaluation then flies that policy and the last one."""
+    ``path`` with its observation statistics. The evaluation then flies that policy and the last one.
+
+    Not SB3's ``EvalCallback`` itself: that one flies whichever episodes its env's random stream gives next (here
+    every validation flies the same seeded episodes, so checkpoints are compared on equal terms), saves the model
+    without the ``VecNormalize`` statistics it was trained with, and steps single envs (here one batched call flies
+    all validation aircraft)."""
 
     def __init__(self, args: argparse.Namespace, path: Path) -> None:
         self.args, self.path = args, path
