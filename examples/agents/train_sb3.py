@@ -146,7 +146,8 @@ class ResidualBatch:
         names = self.venv.envs[0].observation_names
         self._i_errors = [names.index(n) for n in ("altitude_error_m", "heading_error_rad") if n in names]
         if max(shaping, penalty) > 0.0 and len(self._i_errors) != 2:
-            raise ValueError(f"shaping = {shaping}: {env_id} observes no altitude_error_m and heading_error_rad to shape on")
+            raise ValueError(f"shaping = {shaping}, penalty = {penalty}: both must be 0 for {env_id}, which observes no "
+                             "altitude_error_m and heading_error_rad")
         self._obs = None
 
     def potential(self, obs: np.ndarray) -> np.ndarray:
@@ -289,10 +290,11 @@ def _row(info: dict, i: int) -> dict:
     return {k: (_row(v, i) if isinstance(v, dict) else v[i]) for k, v in info.items() if not k.startswith("_")}
 
 
-def _evaluate(job: tuple) -> tuple[str, list[tuple[int, float, int, str]]]:
+def _evaluate(job: tuple) -> tuple[str, list[tuple[int, float, int, str, dict[str, float]]]]:
     """Seeded episodes of one policy ("agent", "baseline", "trim", "random") in a worker process: aircraft i of one
     batched env (``gym.make_vec(..., vectorization_mode="vector_entry_point")``, which follows the single env of the
-    same seed and actions to rounding) flies seed ``seeds[i]``; returns (seed, return, steps, termination reason)."""
+    same seed and actions to rounding) flies seed ``seeds[i]``; returns (seed, return, steps, termination reason,
+    reward parts) per episode (:func:`fly`)."""
     kind, seeds, env_id, aero, scale, model_path, algo, stats = job
     import flexsim.envs  # noqa: F401
     from baselines import RandomPolicy, make_baseline
@@ -529,8 +531,10 @@ def main(argv: list[str] | None = None) -> None:
         parser.error(f"--val-every = {args.val_every}: must be >= 0 (0: no validation, the last policy is evaluated)")
     if not args.minutes > 0:
         parser.error(f"--minutes = {args.minutes}: must be > 0")
-    if not (math.isfinite(args.shaping) and args.shaping >= 0.0) or (args.shaping > 0.0 and args.vector != "batched"):
-        parser.error(f"--shaping = {args.shaping}: must be a finite number >= 0, and > 0 only with --vector batched")
+    for name in ("shaping", "penalty"):
+        value = getattr(args, name)
+        if not (math.isfinite(value) and value >= 0.0) or (value > 0.0 and args.vector != "batched"):
+            parser.error(f"--{name} = {value}: must be a finite number >= 0, and > 0 only with --vector batched")
     if not 0.0 < args.gamma < 1.0:
         parser.error(f"--gamma = {args.gamma}: must be in (0, 1)")
     try:

@@ -11,6 +11,7 @@ Tolerances: the rewards are float32 (relative 6e-8 each), summed over 40 steps o
 import math
 
 import numpy as np
+import pytest
 
 ENV = "FlexSim/GTM-LevelHold-v1"
 
@@ -118,3 +119,10 @@ def test_flown_reward_parts_sum_to_the_returns(agents_path):
     for total, steps, reason, parts in flown:
         assert steps == 30 and reason == "" and parts["alive"] == 30.0
         assert math.isclose(sum(parts.values()), total, rel_tol=0, abs_tol=1e-9)
+
+
+def test_penalty_on_a_task_without_tracking_errors_is_refused(agents_path):
+    from train_sb3 import ResidualBatch
+
+    with pytest.raises(ValueError, match=r"penalty = 0.2: both must be 0 for FlexSim/GTM-GustAlleviation-v0"):
+        ResidualBatch("FlexSim/GTM-GustAlleviation-v0", 1, "unsteady", 0.1, seed=0, penalty=0.2)
