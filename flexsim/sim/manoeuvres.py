@@ -242,8 +242,8 @@ def goland_flutter_speed(aero: str = "unsteady") -> float:
     (:func:`flexsim.linear.flutter.wind_tunnel_flutter`, cached).
 
     Literature: 137.2 m/s at 70.7 rad/s (Goland 1945; Patil, Hodges & Cesnik 2001), incompressible;
-    flexsim's m = 3, n = 2 model (incompressible, as the bundled file sets) gives 136.2 m/s at 70.0 rad/s
-    with Peters N = 6 inflow and 64.6 m/s quasi-steady.
+    flexsim's m = 3, n = 2 model (incompressible, as the bundled file sets) against it: the Goland rows of
+    docs/validation.md's generated table (``flexsim validate``).
     """
     if aero not in _AERO_CHOICES:
         raise ValueError(f"aero = {aero!r}: must be one of {', '.join(_AERO_CHOICES)}")
