@@ -1,6 +1,6 @@
 """Worker of bench_compare.py: runs one task with the flexsim found on sys.path and prints JSON.
 
-Runs against any revision of the project since 2026-12-01 (only APIs present before issue 14 are used).
+Runs against any revision of the project since 2026-12-01 (it uses only APIs present then).
 Times are per-thread CPU seconds (time.thread_time) of the task after one warm-up, median of --inner runs.
 """
 
@@ -31,7 +31,7 @@ def _timed(fn, inner: int) -> tuple[float, object]:
 def _jacobian():
     try:
         from flexsim.model.jacobian import jacobian
-    except ImportError:  # before issue 14
+    except ImportError:  # revisions before flexsim.model.jacobian
         from flexsim.linear.linearize import jacobian
     return jacobian
 

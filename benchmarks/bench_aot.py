@@ -1,6 +1,6 @@
 """Ahead-of-time compilation (``numba.pycc``) of the right-hand side: can a process start below numba's floor?
 
-Issue 14 asks for <= 0.3 s of start-up per process beyond numpy + scipy; ``bench_startup.py`` shows numba's own
+The target is <= 0.3 s of start-up per process beyond numpy + scipy; ``bench_startup.py`` shows numba's own
 floor (``import numba`` plus the first call of any cached function: numba's target initialisation) is already
 about 0.8 s. This benchmark measures the alternative that avoids importing numba at run time: the GTM's entry
 kernel :func:`flexsim._kernels.rhs` compiled ahead of time by ``numba.pycc`` from the same source (the dispatcher's

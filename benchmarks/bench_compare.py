@@ -7,12 +7,12 @@ The table gives the medians over the repeats, the ratio reference / this, and th
 difference of the results (trim states, eigenvalues, flutter Mach and frequency, Jacobian entries,
 simulated altitude and tip deflection). ``flexsim flutter`` and the whole turn + climb study (``study``) are timed as whole
 commands (wall and CPU of the process tree), with their flutter points compared. The load average is printed before and after. The reference tree is extracted with
-``git archive`` (default: 00ee0f2, the numpy implementation measured in issue 14).
+``git archive`` (default: main, the branch a change is compared against; any revision since 2026-12-01 works).
 
-Also (issue 14 item 1): one right-hand side per call (unsteady, quasi-steady, with Dryden turbulence, vacuum) and
+Also: one right-hand side per call (unsteady, quasi-steady, with Dryden turbulence, vacuum) and
 the start-up of a process to its first right-hand side (with numba: the machine code loaded from the cache).
 
-Targets (issue 14): start-up <= 0.3 s per process; one US flutter point <= 0.4 s and <= 30x one dense eig of the same system (248 states);
+Targets: start-up <= 0.3 s per process; one US flutter point <= 0.4 s and <= 30x one dense eig of the same system (248 states);
 ``flexsim flutter`` <= 5 s; the whole study <= 30 s on 2 cores; 60 s of simulated flight >= 100x real time.
 
 Run: python benchmarks/bench_compare.py [--reference REV] [--repeats 3] [--inner 1] [--tasks a,b,...]
@@ -134,7 +134,7 @@ def _difference(task: str, old: dict, new: dict) -> str:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--reference", default="00ee0f2", help="git revision to compare against (default 00ee0f2)")
+    parser.add_argument("--reference", default="main", help="git revision to compare against (default main)")
     parser.add_argument("--repeats", type=int, default=3, help="alternating process pairs per task")
     parser.add_argument("--inner", type=int, default=1, help="timed runs per process (after one warm-up)")
     parser.add_argument("--tasks", default=",".join(TASKS), help=f"comma-separated subset of {', '.join(TASKS)}")

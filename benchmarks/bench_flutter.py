@@ -1,12 +1,12 @@
 """Cost of the flutter analysis on the GTM (m = n = 2): one evaluation, one flutter point, the level table.
 
-Issue 4 budgets: one flutter point (QS) <= 2 s; the whole study <= 5 min on this 2-core machine.
+Budgets: one flutter point (QS) <= 2 s; the whole study <= 5 min on this 2-core machine.
 Prints medians over --repeats runs. ``--study`` also times the whole study of the paper's Figs. 7-16:
 level turns R = 5-12 km (8 radii) and climbs gamma = -15..15 deg (7 angles) at 0, 3048, 6096, 9144 m,
 QS and US (Theodorsen p-k): 120 flutter points, local processes (all cores), as ``flexsim sweep``.
 ``--breakdown`` splits one US evaluation (sea level, M 0.68) into its parts — trim, linearisation, the p-k
 state matrix, the start eig, the p-k roots (with their iteration and full-eig counts), classification — and
-times one dense eig with vectors of the 248-state finite-state system beside it (issue 14: one US point
+times one dense eig with vectors of the 248-state finite-state system beside it (one US point
 <= 0.4 s and <= 30x that eig). CPU times of this thread (time.thread_time), medians.
 The US flutter point is printed with its CPU time beside one dense eig (CPU) of the same aircraft's 248-state
 finite-state system at the flutter trim. ``--table`` times ``flexsim flutter`` (wall and CPU of all its processes)
@@ -175,7 +175,7 @@ def _run_table(tree: str) -> tuple[float, float, dict]:
 
 
 def table(against: str, reference_tree: str | None, repeats: int) -> None:
-    """``flexsim flutter`` (issue 14: <= 5 s wall on the idle 2-core machine) of this tree beside ``against``: fresh
+    """``flexsim flutter`` (<= 5 s wall on the idle 2-core machine) of this tree beside ``against``: fresh
     processes alternating (after one untimed run of each), medians; and the largest relative difference of M_F and
     omega_F between the two outputs."""
     ref = reference_tree or str(checkout_of(against))
@@ -262,7 +262,7 @@ def main() -> None:
         t = _median(lambda: analysis.search(SteadyManoeuvre.level(0.0, mach=0.6), mach_range=(0.5, 0.95)), args.repeats)
         t_cpu, _ = _cpu_median(lambda: analysis.search(SteadyManoeuvre.level(0.0, mach=0.6), mach_range=(0.5, 0.95)), args.repeats)
         budget = "  (budget 2 s)" if model == "quasi-steady" else ""
-        if model == "theodorsen":  # issue 14: <= 0.4 s and <= 30x one dense eig of the 248-state finite-state system
+        if model == "theodorsen":  # target: <= 0.4 s and <= 30x one dense eig of the 248-state finite-state system
             import numpy as np
 
             from flexsim.linear.linearize import linearize

@@ -9,7 +9,7 @@ Each side runs in its own process (``benchmarks/_rhs_worker.py``), alternately (
 The table gives the medians over the processes, the ratio reference / this and the largest difference of the
 derivatives, max |dx_this - dx_ref| / max |dx_ref|.
 
-The reference (default ``6e6de3f``: main before the block-sparse right-hand side) is extracted with
+The reference (default ``main``) is extracted with
 ``git archive`` into ``~/.cache/flexsim-bench/<revision>`` (kept, so that numba's cache of its kernels survives
 between runs: the first run compiles them, 2-7 min of CPU), or taken from ``--reference-tree``.
 
@@ -42,7 +42,7 @@ def _run(tree: Path, runs: int, calls: int) -> dict:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--reference", default="6e6de3f", help="git revision to compare against (default 6e6de3f)")
+    parser.add_argument("--reference", default="main", help="git revision to compare against (default main)")
     parser.add_argument("--reference-tree", type=Path, help="an existing checkout to compare against instead")
     parser.add_argument("--repeats", type=int, default=3, help="alternating process pairs")
     parser.add_argument("--runs", type=int, default=7, help="timed runs per process and task (median)")

@@ -2,14 +2,14 @@
 
 GTM (notional), m = n = 2, unsteady aerodynamics with N = 6 inflow states per strip (252 states), level
 trim at 9144 m and M 0.75, a 1-cos up-gust of 2 m/s and gradient length 30 m reached by the body origin
-at t = 1 s. For the default integrator, the previous default and Radau (the default before issue 14) — ``--all``
+at t = 1 s. For the default integrator, the previous default and Radau (the earlier default) — ``--all``
 adds ETD2RK 50 ms, Radau 1e-4/1e-5, LSODA, BDF and DOP853 1e-6 —: median wall time of ``--repeats`` runs
 (integration, the one-off Jacobian and matrix functions, the 100 Hz samples; no log), the real-time factor 60 s /
 wall time and 60 s / CPU time of the process (on a shared machine the wall time includes waiting for a core), the
 ratio to the default's wall time measured in the same run, the cost counters, and the largest deviation from a
 reference run (DOP853, rtol 1e-9) of altitude, airspeed and right-wing tip deflection sampled at 10 Hz. Then the
 default and Radau once more with a 50 Hz flight log, to show the logging cost, and the accuracy on a growing
-oscillation (Goland flutter onset). Target (issue 14): the default integrator >= 100x faster than real time on one
+oscillation (Goland flutter onset). Target: the default integrator >= 100x faster than real time on one
 core (OPENBLAS_NUM_THREADS=1).
 
 The default with aerodynamics: ETD2RK (Cox & Matthews 2002) with fixed steps of DEFAULT_MAX_STEP["ETD2RK"] (20 ms
@@ -24,8 +24,7 @@ table of docs/simulation.md: largest errors of altitude, airspeed, bank angle an
 ``--parts``: instead, the CPU time of the parts of one default run (compiled steps, dense output, events, matrix
 functions, Jacobian, the rest).
 
-``--compare [REV]``: instead, this tree against a reference revision (default 1276784: main before the fused dense
-output, 2026-12-02) side by side in one run: each side in its own process (``benchmarks/_simulate_worker.py``),
+``--compare [REV]``: instead, this tree against a reference revision (default main) side by side in one run: each side in its own process (``benchmarks/_simulate_worker.py``),
 alternately (reference, this, reference, ...) ``--repeats`` times, so both see the same load; each process times
 ``--inner`` default runs of the scenario after a warm-up. Prints the median CPU time and real-time factor of each
 side, their ratio, and the largest difference of the trajectories (100 Hz samples): per group of the state layout
@@ -64,7 +63,7 @@ from flexsim.sim.simulate import DEFAULT_MAX_STEP, simulate  # noqa: E402
 
 TARGET_RTF = 100.0
 #: (label, method, fixed step [s] for ETD2RK or rtol): the default first, then the previous default and Radau
-#: (the default before issue 14); ``--all`` adds the rest.
+#: (the earlier default); ``--all`` adds the rest.
 DEFAULT = ("default", "ETD2RK", DEFAULT_MAX_STEP["ETD2RK"])
 PREVIOUS = ("previous default", "ETD2RK", 0.01)
 RADAU = ("Radau (earlier default)", "Radau", 1e-3)
@@ -76,8 +75,8 @@ from _simulate_worker import scenario  # noqa: E402  (the GTM model, its level t
 HERE = Path(__file__).resolve().parents[1]
 from _reference import reference_tree as checkout_of  # noqa: E402  (benchmarks/_reference.py)
 WORKER = HERE / "benchmarks" / "_simulate_worker.py"
-#: Default reference of --compare: main before the fused dense output (2026-12-02).
-COMPARE_REFERENCE = "1276784"
+#: Default reference of --compare: the branch a change is compared against.
+COMPARE_REFERENCE = "main"
 
 
 def compare(ref: Path, repeats: int, inner: int, duration: float) -> None:

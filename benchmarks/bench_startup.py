@@ -1,4 +1,4 @@
-"""Where the start-up of a process goes: import, GTM model, first right-hand side (issue 14 target <= 0.3 s beyond a
+"""Where the start-up of a process goes: import, GTM model, first right-hand side (target <= 0.3 s beyond a
 numpy + scipy process), beside the floor of numba itself.
 
 Each repeat runs fresh processes, alternating (so every import and every numba cache load is paid, and a load
@@ -12,8 +12,7 @@ Medians over the repeats; the load average is printed (CPU time is inflated less
 Python's bytecode cache: the figures assume ``__pycache__`` is written (PYTHONDONTWRITEBYTECODE is removed from
 the children's environment; the warm-up process writes it), as after ``pip install``.
 
-``--compare [REV]``: also runs flexsim's process from a reference revision (default d3d625b, main before the
-start-up work of 2026-12-02) in the same alternation (base, floor, this tree, reference), and prints both sides'
+``--compare [REV]``: also runs flexsim's process from a reference revision (default main) in the same alternation (base, floor, this tree, reference), and prints both sides'
 phases, flexsim's own part of each and their ratio, and whether the two give bit-identical results (SHA-256 of
 the packed model data and of the first right-hand side). The reference is extracted with ``git archive`` into
 ``~/.cache/flexsim-bench/<revision>``; numba's cache files of this tree are copied beside it when it has none
@@ -116,8 +115,8 @@ print(json.dumps(out))
 
 HERE = Path(__file__).resolve().parents[1]
 from _reference import reference_tree as checkout_of  # noqa: E402  (benchmarks/_reference.py)
-#: Default reference of --compare: main before the start-up work (2026-12-02).
-COMPARE_REFERENCE = "d3d625b"
+#: Default reference of --compare: the branch a change is compared against.
+COMPARE_REFERENCE = "main"
 
 
 def run(kind: str, root: Path = HERE, code: str = CHILD) -> dict:

@@ -1,7 +1,7 @@
 """One BLAS thread for the library's own small-matrix work, set in-process with threadpoolctl.
 
 The model's matrices are small (30 x 30 solves, 56 x 56 complex p-k matrices, 252 x 252 Jacobians): a
-second BLAS thread only spins. Measured on 2026-12-01 (docs/reference/findings/performance.md §6.10): a US flutter
+second BLAS thread only spins. Measured on 2026-12-01 (``benchmarks/results/blas-threads.json``): a US flutter
 point took 4.7 s CPU with OpenBLAS's default of one thread per core against 2.35 s with one thread, for the
 same wall time, and much more under contention. Environment variables (``OPENBLAS_NUM_THREADS``) act only
 before numpy is imported, which a library cannot rely on, so the public entry points that do numerical

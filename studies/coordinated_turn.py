@@ -1,4 +1,4 @@
-"""Coordinated turn of the GTM: the issue-11 acceptance figures (docs/options.md).
+"""Coordinated turn of the GTM: the figures of docs/options.md.
 
 Trims the coordinated level turn at 9144 m, M 0.78, R = 5 km (zero sideslip at the CG, heading free),
 prints sideslip, bank angles and load factors against the closed forms tan(mu) = V^2/(gR),

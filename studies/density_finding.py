@@ -1,4 +1,4 @@
-"""Does the paper's altitude trend follow from one density in its linearised aerodynamics? (issue 15 f)
+"""Does the paper's altitude trend follow from one density in its linearised aerodynamics?
 
 For every altitude of Tables 2 and 3 (0, 3048, 6096, 9144 m) the level-flight flutter point is computed with the
 aircraft trimmed at the true (ISA) density, and the linear model of the flutter analysis built with the
@@ -51,7 +51,7 @@ def paper_quantities(table) -> list[dict]:
     """What one of the paper's Tables 2-3 implies per row (derived from the printed values only, ISA): altitude [m],
     M_F, omega_F [rad/s], V_F [m/s], rho [kg/m^3], V_F^2/sqrt(1-M^2) [10^3 m^2/s^2], q_F and q_F/sqrt(1-M^2) [kPa],
     q_F * theta [Pa rad] (trim lift ~ q alpha: follows the true density when constant) and T_e / sin(theta) [kN]
-    (the paper's weight, issue 15 fact 1)."""
+    (the paper's weight)."""
     rows = []
     for h, m, omega, theta, te, *_ in table:
         v = m * speed_of_sound(h)

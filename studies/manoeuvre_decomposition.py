@@ -1,4 +1,4 @@
-"""What makes flutter depend on the manoeuvre: the decomposition of the turn and climb effects (issue 15 e).
+"""What makes flutter depend on the manoeuvre: the decomposition of the turn and climb effects.
 
 At one altitude (default 9144 m) the US (Theodorsen p-k) flutter Mach number of
 
@@ -26,7 +26,7 @@ modify the linearisation point or the linear model only, never the trim, and are
 ``prandtl_glauert``     the Prandtl-Glauert factor of the linear model frozen at the level flight's flutter Mach
 ``damping``             structural damping ratio 0 instead of the aircraft's
 ``density``             the linearised aerodynamics at one density, rho(``--rho-altitude``, default 3048 m), trim at
-                        the true density (the paper-replication hypothesis of issue 15 f); with ``--fixed-density``
+                        the true density (the paper-replication hypothesis); with ``--fixed-density``
                         the reference is at the fixed density and this switch restores the true one
 ``fin_normal``          (not in the default set) the fin's lift without tilt or drag in the linear model: c_n = -L,
                         c_d = 0 on the fin's strips (bounds any resolution of the fin's lift, eq. 31)
@@ -143,7 +143,7 @@ class _SwitchedCoupling:
                 lift, moment, tilt, drag, flow = orig(kin, rho_, mach_)
                 return lift, moment, 0.0 * tilt, 0.0 * drag, flow
 
-            object.__setattr__(inner, "_circulatory", circulatory)  # study surgery on a sealed model (issue #10)
+            object.__setattr__(inner, "_circulatory", circulatory)  # study surgery on a sealed model
         elif resolution in ("fin_paper", "fin_normal"):
             # the paper's fin (eqs. 29-31): section drag linear in the fin's angle, d_v = q c C_Dav a_v = kappa l_v
             # (kappa = C_Dav / C_Lav), force l_v [0, a_v0, 1] + d_v [0, -1, a_v0] resolved with the fin's flow angle;
@@ -155,7 +155,7 @@ class _SwitchedCoupling:
                     return lift, moment, np.where(fin, 0.0, tilt), np.where(fin, 0.0, drag), flow
                 return lift, moment, tilt, np.where(fin, fin_kappa * lift, drag), flow
 
-            object.__setattr__(inner, "_circulatory", circulatory)  # study surgery on a sealed model (issue #10)
+            object.__setattr__(inner, "_circulatory", circulatory)  # study surgery on a sealed model
         elif resolution != "local":
             raise ValueError(f"resolution = {resolution!r}: must be local, normal, fin_paper or fin_normal")
 
@@ -249,8 +249,8 @@ class Decomposition:
         if s.switch == "thrust":
             u[0] = 0.0
         for m in (qs, fs):
-            # Deliberate surgery on these two freshly built, study-private models (models are immutable, issue
-            # #10): object.__setattr__ bypasses the guard to switch one effect off; no library code does this.
+            # Deliberate surgery on these two freshly built, study-private models (models are immutable):
+            # object.__setattr__ bypasses the guard to switch one effect off; no library code does this.
             if cw:
                 object.__setattr__(m, "aero", _SwitchedCoupling(m.aero, **cw))
             if s.switch == "mass_matrix":

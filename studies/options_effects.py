@@ -1,4 +1,4 @@
-"""Effect of the issue-11 options on the GTM: drag, body moments and downwash, coordinated turn, bending incidence.
+"""Effect of the options beyond the paper on the GTM: drag, body moments and downwash, coordinated turn, bending incidence.
 
 Prints (docs/flutter.md "Options beyond the paper" and docs/options.md quote these figures):
 

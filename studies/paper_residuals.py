@@ -1,11 +1,11 @@
-"""Every column of the paper's Tables 2 and 3 for one configuration, with the residuals (issue 15 d).
+"""Every column of the paper's Tables 2 and 3 for one configuration, with the residuals.
 
 Configuration (study-level, all explicit on the command line and printed with the result):
 
 * ``--aircraft`` and ``--scaling`` (a JSON object of :class:`flexsim.aircraft.calibration.StructuralScaling`
   factors applied on top of the file);
 * ``--mass-factor``: every mass and inertia times k, stiffness unchanged (k = 0.907 is the paper's weight,
-  889.4 kN = T_e / sin(theta) of all eight rows, issue 15 fact 1; below StructuralScaling's bound of 1, which
+  889.4 kN = T_e / sin(theta) of all eight rows; below StructuralScaling's bound of 1, which
   keeps frequencies; here the frequencies rise by 1/sqrt(k));
 * ``--incidence WING HTAIL``: rigging incidence [deg] of the wing and stabilizer strips (the paper's section
   angle of attack is W/U plus the elastic twist, eq. 28: no incidence from the Table 1 angles, whose dihedral

@@ -1,5 +1,4 @@
-"""Re-measure the reliability table of issue #12 on the same kinds of cases as the review
-(``findings/reliability.md``): malformed aircraft files, bad CLI input and infeasible trims, damaged flight
+"""Re-measure the reliability table (docs/validation.md, "Bad input"): malformed aircraft files, bad CLI input and infeasible trims, damaged flight
 logs, and interrupted sweeps.
 
     python studies/reliability_census.py aircraft|cli|logs|sweeps|all [--out DIR] [--quick]

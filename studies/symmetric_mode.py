@@ -1,7 +1,7 @@
-"""The symmetric and the antisymmetric flutter boundaries apart, and what would make the paper's mode critical (issue 15).
+"""The symmetric and the antisymmetric flutter boundaries apart, and what would make the paper's mode critical.
 
 The paper's flutter mode is symmetric with the fuselage's first vertical bending q_f1 its largest linear
-coordinate (Figs. 11 and 16; issue 15 fact 2); flexsim's critical mode is an antisymmetric wing bending/torsion
+coordinate (Figs. 11 and 16); flexsim's critical mode is an antisymmetric wing bending/torsion
 mode. In symmetric flight the linear model commutes with the left-right mirror P of the coordinates
 (:mod:`flexsim.structure.mirror`), so its modes split exactly into a symmetric class (P V = V) and an
 antisymmetric one (P V = -V). This study computes, from one spectrum per Mach number, the largest real part of

@@ -1,9 +1,8 @@
-"""A corpus of malformed aircraft files and damaged flight logs (issue #12, reliability).
+"""A corpus of malformed aircraft files and damaged flight logs (reliability).
 
 Used by the fuzz tests (``tests/test_fuzz.py``) and by the census ``studies/reliability_census.py``,
-which re-measures the table of issue #12. The aircraft cases mirror the 117 variants of the review
-``findings/reliability.md`` section 1 (the bundled ``gtm.toml`` and ``goland_wing.toml`` parsed with
-``tomllib``, mutated, written back with :func:`dumps`), each with what a correct reader must do:
+which re-measures the reliability table. The aircraft cases are 117 variants of
+the bundled ``gtm.toml`` and ``goland_wing.toml`` (parsed with ``tomllib``, mutated, written back with :func:`dumps`), each with what a correct reader must do:
 ``"error"`` (a flexsim error naming the field) or ``"ok"`` (legal input, a sane result).
 """
 

@@ -1,4 +1,4 @@
-"""Every Python block of README.md and docs/*.md runs on its own (issue 13: docs that cannot drift).
+"""Every Python block of README.md and docs/*.md runs on its own (docs that cannot drift).
 
 Each fenced block opened with ```` ```python ```` is one test, named ``<file>:<line>``. It runs as a script in a fresh
 interpreter with the current directory an empty ``tmp_path`` (so a block must import what it uses and create

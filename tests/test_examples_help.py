@@ -1,4 +1,4 @@
-"""Every script under examples/ answers ``--help`` with a usage text and exit code 0 (issue 13).
+"""Every script under examples/ answers ``--help`` with a usage text and exit code 0.
 
 Run as a user runs them: ``python examples/....py --help`` from the repository root, flexsim importable (here
 through ``PYTHONPATH`` = this checkout). A script without a command line would print nothing and exit 0, so

@@ -1,4 +1,4 @@
-"""Fuzz tests (issue #12): malformed aircraft files and damaged flight logs give a clear flexsim error or
+"""Fuzz tests: malformed aircraft files and damaged flight logs give a clear flexsim error or
 a sane result — never a NaN, never a traceback from inside a library, in bounded time.
 
 Corpus: the 120 aircraft files of :mod:`tests.corpus` (the 117 cases of the reliability review, section

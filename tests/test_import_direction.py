@@ -1,4 +1,4 @@
-"""The package import graph is one-way (issue #10; docs/design.md, "Software design").
+"""The package import graph is one-way (docs/design.md, "Software design").
 
 Every ``import`` in ``flexsim/`` and ``envs/`` — module level and function-local, parsed with ``ast`` — may only
 go to the importing package itself or to a package of a lower layer::

@@ -1,7 +1,7 @@
 """Install layout: the top-level folder ``envs/`` installs as ``flexsim.envs`` and as nothing else.
 
 ``envs`` is a generic name already taken on the public package index, so the distribution claims only the
-top-level import name ``flexsim`` (issue 13). A source checkout that is not installed finds ``flexsim.envs``
+top-level import name ``flexsim``. A source checkout that is not installed finds ``flexsim.envs``
 through ``flexsim._SourceTreeEnvsFinder``; these tests check both routes lead to the checkout's ``envs/``.
 """
 

@@ -1,4 +1,4 @@
-"""The repository explains itself: nothing cites material outside it (issue #10).
+"""The repository explains itself: nothing cites material outside it.
 
 Every Python, Markdown and TOML file (except the reference notes kept verbatim under ``docs/reference/`` and
 ``flexsim/aircraft/data/sources/``, whose provenance ``docs/reference/README.md`` gives) is scanned for paths

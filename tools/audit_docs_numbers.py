@@ -1,6 +1,6 @@
 """List the lines of README.md and docs/*.md that quote numbers outside generated regions and code fences.
 
-A crude scanner for issue 13 ("every figure quoted is produced by a script or checked by a test"): it prints every
+A crude scanner for the rule ("every figure quoted is produced by a script or checked by a test"): it prints every
 line that holds a decimal number or a number with a unit (``%``, ``×``, ``s``, ``ms``, ``rad/s``, ``m``, ``Hz``,
 ``steps``) outside ``<!-- figures:NAME -->...<!-- /figures:NAME -->`` regions (written by
 ``tools/regenerate_docs_figures.py``) and outside fenced code blocks. Each hit is to be classified by a person:

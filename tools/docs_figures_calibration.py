@@ -3,7 +3,7 @@
 slow, about a CPU-minute together), §5 (the structure variants' altitude ratio; slow), §3 (the fits: the robust
 one from its output file, fast; the first one's procedure rerun with today's code, long) and §1 (the quasi-steady
 spectrum with the elastic axes at 0.625 c, rerun at its commit, long: ``docs_figures_core.run_at_commit``). The
-numbers of the text (issue 13) come from the same checkpoints: ``docs_figures_calibration_text.py``.
+numbers of the text come from the same checkpoints: ``docs_figures_calibration_text.py``.
 
 The computations are the studies' own functions, imported from ``studies/`` (never copied):
 ``manoeuvre_decomposition.configure`` builds each configuration, ``paper_residuals.flutter_rows`` and

@@ -1,4 +1,4 @@
-"""The numbers of docs/calibration.md's text (issue 13: every figure quoted is generated), for
+"""The numbers of docs/calibration.md's text (every figure quoted is generated), for
 ``regenerate_docs_figures.py`` (:data:`TEXT_FIGURES`): checks on the paper's own data (§1, §4, §6), readings of the
 static table at the paper's flight conditions, of C3-C5 and of the scorecards (§6-7), and the best-residual table
 (§6). Each is computed from the same checkpoints as the tables it reads (``docs_figures_calibration``), never typed.
@@ -338,7 +338,7 @@ def calibration_paper_v2pg() -> str:
 
 def calibration_best_residuals() -> str:
     """§6: the best residual per column of Tables 2-3 over the configurations (C1 for the flutter columns, C3 for
-    the static ones; 3048-9144 m unless noted), with each target (an input of issue 15) and whether it is met."""
+    the static ones; 3048-9144 m unless noted), with each target (an input of the replication) and whether it is met."""
     from flexsim.linear.paper_data import TABLE_US
 
     upper = ALTITUDES_M[1:]

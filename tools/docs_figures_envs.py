@@ -112,7 +112,7 @@ def agent_shaped_verdict() -> str:
     wins = int(np.sum(agent > trim))
     every = "on every seed" if wins == len(agent) else f"on {wins} of {len(agent)} seeds"
     curve = r["training_curve"]["mean_return_100"]
-    return (f"Agent / LQR = **{r['agent_over_baseline']:.3f}** (issue 13's target: 0.8), and the agent beats the trim "
+    return (f"Agent / LQR = **{r['agent_over_baseline']:.3f}** (the target: 0.8), and the agent beats the trim "
             f"hold {every} (per-seed returns in the JSON: {agent.min():.0f}-{agent.max():.0f} against "
             f"{trim.min():.0f}-{trim.max():.0f}). The training curve shows the mean return of the last 100 training "
             f"episodes with the shaped reward (it includes the shaping terms, so its level is not the env's; the "
@@ -131,7 +131,7 @@ def agent_shaped_rerun() -> str:
             f"({r['train_steps_per_s']:,.0f} steps/s, {r['train_steps_per_s'] / first['train_steps_per_s']:.1f}x the first "
             f"run's) and returned {_pm(r['agent'])}: **{r['agent_over_baseline']:.3f}** of the LQR; stopped at the first "
             f"run's {short['train_steps']:,} steps ({short['train_wall_s']:.0f} s) **{short['agent_over_baseline']:.3f}**, "
-            f"{verdict} issue 13's 0.8 (trim hold / LQR {r['trim_over_baseline']:.3f}, random "
+            f"{verdict} the target of 0.8 (trim hold / LQR {r['trim_over_baseline']:.3f}, random "
             f"{_pm(r['random'])}). The same {short['train_steps']:,} steps with training seeds 0, 1, 2 "
             f"(`--seed`): {', '.join(f'{x:.3f}' for x in seeds)} of the LQR (mean {np.mean(seeds):.3f}; "
             f"{sum(x >= 0.8 for x in seeds)} of {len(seeds)} at or above 0.8)")
@@ -195,7 +195,7 @@ def agent_recipe_verdict() -> str:
     parts, lqr = _parts(r0, "agent"), _parts(r0, "baseline")
     wall = max(r["train_wall_s"] + r["setup_wall_s"] + r["eval_wall_s"] for r in runs)
     return (f"agent / LQR {min(ratios):.3f}-{max(ratios):.3f} (mean {np.mean(ratios):.3f}; {sum(x >= 0.8 for x in ratios)} of "
-            f"{len(ratios)} at or above issue 13's 0.8), each run at most {wall / 60:.1f} min from start to result on the 2 cores; "
+            f"{len(ratios)} at or above the target of 0.8), each run at most {wall / 60:.1f} min from start to result on the 2 cores; "
             f"the same evaluation's LQR returns {_pm(r0['baseline'])}, the trim hold {_pm(r0['trim'])}, random actions "
             f"{_pm(r0['random'])}. Seed 0's agent costs {parts['altitude_error_m']:.1f} in altitude and "
             f"{parts['heading_error_rad']:.1f} in heading per episode (the LQR {lqr['altitude_error_m']:.1f} and "
@@ -234,7 +234,7 @@ def agent_v0() -> str:
 def agent_v0_run() -> str:
     r = _agent("levelhold_v0_ppo")
     return (f"{r['train_steps']:,} steps) returned {_pm(r['agent'])}: {r['agent_over_baseline']:.3f} of the LQR, which "
-            f"{'passes' if r['agent_over_baseline'] >= 0.8 else 'misses'} the 80 % figure of issue 13 "
+            f"{'passes' if r['agent_over_baseline'] >= 0.8 else 'misses'} the target of 80 % "
             f"{'without beating' if r['agent']['mean_return'] < r['trim']['mean_return'] else 'and beats'} the trim hold")
 
 

@@ -196,7 +196,7 @@ def _options_study():
 
 @functools.cache
 def options_effects_points() -> tuple:
-    """Sea-level finite-state flutter points of the bundled gtm with each issue-11 option switched, the cases and
+    """Sea-level finite-state flutter points of the bundled gtm with each option beyond the paper switched, the cases and
     search of ``python studies/options_effects.py``: ``((label, FlutterPoint), ...)``, the bundled gtm first and the
     parasite drag off second."""
     from flexsim.aircraft.toml_loader import load_aircraft
@@ -217,7 +217,7 @@ def options_effects_points() -> tuple:
 
 
 def options_effects_flutter() -> str:
-    """Sea-level finite-state flutter of the bundled gtm with each issue-11 option switched (docs/flutter.md),
+    """Sea-level finite-state flutter of the bundled gtm with each option beyond the paper switched (docs/flutter.md),
     the cases and search of ``python studies/options_effects.py``."""
     def small(x: float, unit: str = "°") -> str:
         return "0" if abs(x) < 0.005 else f"{_num(x, '+.2f')}{unit}"

@@ -37,7 +37,7 @@ climb search, and about 4 minutes for the baselines table):
   coordinated and the paper's turn at 9144 m, M 0.78, R = 5 km (``studies/coordinated_turn.py``'s trim);
 * ``options-bending-incidence`` (fast): docs/options.md, static aeroelastic figures with the bending incidence
   off and on (``studies/options_effects.py --skip-flutter``);
-* ``options-effects-flutter`` (fast): docs/flutter.md, sea-level finite-state flutter with each issue-11 option switched
+* ``options-effects-flutter`` (fast): docs/flutter.md, sea-level finite-state flutter with each option beyond the paper switched
   (``studies/options_effects.py``'s cases; about 15 s);
 * ``goland-compressible``, ``goland-incompressible-102`` (fast): docs/validation.md, docs/options.md,
   docs/design.md, the Goland wing with the Prandtl-Glauert factor on (1.225 kg/m^3) and off (1.02 kg/m^3);

@@ -19,7 +19,7 @@ result.json alone.
 The default task is ``FlexSim/GTM-LevelHold-v1``: on v0 the trim controls held already return 93 % of the LQR
 baseline's return, so no learning can show there (docs/environments.md, "A learning agent").
 
-What the learner sees (changed from the raw env, issue #13; the env, its reward and ``info["reward_parts"]``
+What the learner sees (changed from the raw env; the env, its reward and ``info["reward_parts"]``
 are unchanged):
 
 * **Actions relative to the trim** (``--residual-scale`` s, default 0.1): the agent's action a in [-1, 1]^4
@@ -642,7 +642,7 @@ def main(argv: list[str] | None = None) -> None:
         r = result[kind]
         print(f"  {label:24s} return {r['mean_return']:8.1f} +- {r['std_return']:6.1f}  terminations {len(r['terminations'])}")
     ok = result["agent_over_baseline"] >= 0.8
-    print(f"agent / LQR = {result['agent_over_baseline']:.3f} ({'meets' if ok else 'below'} the 0.8 target of issue #13), "
+    print(f"agent / LQR = {result['agent_over_baseline']:.3f} ({'meets' if ok else 'below'} the 0.8 target), "
           f"trim hold / LQR = {result['trim_over_baseline']:.3f}; curve {args.out / 'learning_curve.png'}, numbers {args.out / 'result.json'}")
 
 

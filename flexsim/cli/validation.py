@@ -1,4 +1,4 @@
-"""Checks of command-line options, run before any computation (issue #12: the CLI never silently
+"""Checks of command-line options, run before any computation (the CLI never silently
 changes the question).
 
 Every check raises :class:`CliError` naming the option as the user typed it, the value and what is

@@ -83,7 +83,7 @@ class StructuralModel(Immutable):
         return f"elastic coordinate {i}"
 
     def _check_assembled(self) -> None:
-        """Derived quantities of the assembled structure must be physical (issue #12).
+        """Derived quantities of the assembled structure must be physical.
 
         Checks, each raising :class:`~flexsim.errors.AircraftDefinitionError` with the value and the
         allowed range: the elastic mass block M0_ee is positive definite (every shape function carries

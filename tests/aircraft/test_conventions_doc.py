@@ -1,4 +1,4 @@
-"""docs/conventions.md: the figures it quotes about the bundled GTM are the data's (issue 13, docs cannot drift).
+"""docs/conventions.md: the figures it quotes about the bundled GTM are the data's (docs cannot drift).
 
 The page's example orientation ("For the GTM right wing (0°, 5.16°, 110.55°), x_w points outboard, aft
 (20.55° sweep) and up (5.16° dihedral)") and its elastic-axis positions ("GTM wing and stabilizer: 0.375 → a =

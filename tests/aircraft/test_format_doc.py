@@ -3,7 +3,7 @@
 The example is the first ```toml block of the page; it is written to ``tmp_path`` and loaded with
 ``load_aircraft`` (so it must be a complete aircraft). Every key of the loader's key tables
 (``flexsim.aircraft.toml_loader._*_KEYS``) must appear in the example, so a key added to the format without
-documentation fails here (issue 13: the ``[components.*.aero]`` table was missing).
+documentation fails here (the ``[components.*.aero]`` table was missing).
 """
 
 import re

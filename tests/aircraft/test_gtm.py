@@ -85,7 +85,7 @@ def test_gtm_topology_and_paper_table_1(gtm):
 
 
 def test_paper_reproduction_gtm_weighs_the_papers_889_kN():
-    """gtm_paper (issue 15 b): W = 889.4 kN (Tables 2-3: T_e / sin(theta) = 889.41-889.47 kN) to 1e-4, reached by
+    """gtm_paper: W = 889.4 kN (Tables 2-3: T_e / sin(theta) = 889.41-889.47 kN) to 1e-4, reached by
     burning centre-tank fuel only: every component table and the engines equal gtm's (gtm.md)."""
     from flexsim.model.aircraft_model import STANDARD_GRAVITY
 

@@ -1,4 +1,4 @@
-"""``tools/make_gtm_toml.py`` regenerates the three bundled GTM files from the repository alone (issue #10).
+"""``tools/make_gtm_toml.py`` regenerates the three bundled GTM files from the repository alone.
 
 The tool is run from a copy of the tool alone in ``tmp_path`` (so that nothing outside the repository, such as
 a sibling ``shared/`` folder, can be read through a relative path), with the calibration file of the

@@ -1,4 +1,4 @@
-"""Validation that knows physics (issue #12): plausible ranges with the field, the value and the range
+"""Validation that knows physics: plausible ranges with the field, the value and the range
 in the message; derived quantities checked after assembly; size limits; singular trims named."""
 
 import tomllib
@@ -58,7 +58,7 @@ def test_lumped_mass_far_from_its_component():
 
 
 def test_derived_elastic_frequency_checked_after_assembly():
-    """Every station value plausible, but EI x 1e-6 on the GTM gives a 0.016 rad/s wing (findings section 8)."""
+    """Every station value plausible, but EI x 1e-6 on the GTM gives a 0.016 rad/s wing."""
     doc = _doc("gtm")
     for c in doc["components"].values():
         c["sections"]["ei_nm2"] = [v * 1e-6 for v in c["sections"]["ei_nm2"]]

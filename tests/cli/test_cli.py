@@ -1,4 +1,4 @@
-"""The flexsim command line: info and modes (issue 2), text and JSON output, clear errors."""
+"""The flexsim command line: info and modes, text and JSON output, clear errors."""
 
 import json
 import subprocess
@@ -82,7 +82,7 @@ def test_quick_exit_keeps_output_and_exit_code():
 
 
 def test_aero_plot_and_gtm_lift_slopes(capsys, tmp_path):
-    # Issue 3: the GTM sectional Cl_alpha from the vortex lattice is below 2 pi everywhere and falls
+    # The GTM sectional Cl_alpha from the vortex lattice is below 2 pi everywhere and falls
     # towards the tips (over the outboard strips, past its maximum near 85 % semispan on this notional
     # planform of taper 0.2, whose sectional cl rises outboard before the tip loss).
     plot = tmp_path / "cla.png"

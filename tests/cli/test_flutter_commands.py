@@ -1,4 +1,4 @@
-"""``flexsim trim``, ``flexsim flutter`` and ``flexsim sweep`` (issue #10): each command on a reduced case.
+"""``flexsim trim``, ``flexsim flutter`` and ``flexsim sweep``: each command on a reduced case.
 
 * trim: level flight at M 0.75, 9144 m flies at the ISA true airspeed M a(h) (``flexsim.atmosphere``, an
   independent conversion) with gamma = phi = 0 and load factor 1 up to the thrust's share (2 %); a level turn

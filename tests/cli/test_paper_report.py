@@ -1,4 +1,4 @@
-"""`flexsim trim/flutter/sweep` with the formulation option and the paper comparison (issue 15 items a, b, g).
+"""`flexsim trim/flutter/sweep` with the formulation option and the paper comparison.
 
 * gtm_paper weighs the paper's 889.4 kN (Tables 2-3: T_e / sin(theta) = 889.41-889.47 kN), and its level trim
   (formulation "paper" from its file) has T_e = W sin(theta) to 1e-6 (body-x equilibrium, docs/design.md).

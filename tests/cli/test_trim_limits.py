@@ -1,5 +1,5 @@
 """`flexsim trim` beyond the linear aerodynamics' angle-of-attack range: a clear error, or the solution with
---no-limits (the census's two silent trims, docs/reference/findings/reliability.md sec. 3; the limit is the GTM
+--no-limits (the two trims that ``studies/reliability_census.py trim`` found silently beyond it; the limit is the GTM
 file's ``[aero] max_alpha_deg`` = 11 deg, tests/aircraft/test_gtm_alpha_limit.py)."""
 
 import json

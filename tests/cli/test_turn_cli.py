@@ -1,4 +1,4 @@
-"""`flexsim trim --coordinated --json` reports sideslip, load factor and bank (issue 11 acceptance command)."""
+"""`flexsim trim --coordinated --json` reports sideslip, load factor and bank."""
 
 import json
 import math

@@ -1,4 +1,4 @@
-"""The CLI never silently changes the question (issue #12): conflicting or out-of-validity options are
+"""The CLI never silently changes the question: conflicting or out-of-validity options are
 errors naming the option, the value and the allowed range, checked before any computation; names from
 files are printed with terminal escape sequences shown escaped."""
 

@@ -60,7 +60,7 @@ def test_invalid_actions_raise(env):
     ([0.5, 0.0, 1 + 2j, 0.0], "complex"),
 ])
 def test_non_real_actions_are_rejected_not_converted(env, action, kind):
-    """Numeric strings, booleans and complex values were converted silently by numpy (issue #12)."""
+    """Numeric strings, booleans and complex values were converted silently by numpy."""
     env.reset(seed=0)
     with pytest.raises(ValueError, match=rf"must be 4 real numbers.*{kind}"):
         env.unwrapped.step(action)

@@ -77,7 +77,7 @@ def test_reward_parts_definition():
 
 
 def test_turn_reset_with_turbulence_does_not_depend_on_the_previous_episode():
-    """Issue #10, defect 1a: with turbulence, ``reset(seed=1)`` after ``reset(seed=0)`` must equal a fresh
+    """With turbulence, ``reset(seed=1)`` after ``reset(seed=0)`` must equal a fresh
     ``reset(seed=1)`` (Gymnasium's reset-determinism contract). The old model carried the episode's wind as
     state, so the second episode's trim was computed in the first episode's wind (0.07 deg of pitch) and
     cached. Quasi-steady aero for speed; 5 steps at the trim action; exact equality."""

@@ -1,4 +1,4 @@
-"""The flutter-margin target is computed for the aircraft given, cached by its content (issue #10, defect 2).
+"""The flutter-margin target is computed for the aircraft given, cached by its content.
 
 The old cache was keyed by the aircraft's file path and name and reloaded the file, so an aircraft modified in
 memory (``StructuralScaling.apply`` keeps ``source`` and ``name``) got the stock GTM's flutter point

@@ -73,7 +73,7 @@ def test_crash_located_within_the_period(monkeypatch):
     z = dyn.layout.position.start + 2
     sink = np.zeros(n)
     sink[z] = 10.0  # down-rate [m/s]
-    # the model is immutable (issue #10): the right-hand side is replaced on its class, for this test only
+    # the model is immutable: the right-hand side is replaced on its class, for this test only
     monkeypatch.setattr(type(dyn.model), "rhs", lambda self, t, x, u, wind=None: sink)
     x = np.zeros(n)
     x[z] = -0.27

@@ -1,4 +1,4 @@
-"""FlexSim/GTM-LevelHold-v1 (issue 13): v0 with an offset start and a tighter reward.
+"""FlexSim/GTM-LevelHold-v1: v0 with an offset start and a tighter reward.
 
 Fast checks: v1 is exactly v0 made with ``task=LevelHoldTask(reward=CAPTURE_REWARD)`` and
 ``perturbation=CAPTURE_PERTURBATION`` (same observations, rewards and reward parts over 20 steps of a

@@ -51,7 +51,7 @@ def test_flight_log_recorder_round_trip(tmp_path):
     assert log.state_names == base.dynamics.state_names() and log.state_names[6].startswith("q_fuselage_1")
     assert log.control_names == ("thrust_N", "aileron_rad", "elevator_rad", "rudder_rad")
     assert "tip_deflection_right_wing_m" in log.signal_names and "reward" in log.signal_names
-    # one vocabulary and one output layer (issue #10): the env log names and computes what a simulate() log of the
+    # one vocabulary and one output layer: the env log names and computes what a simulate() log of the
     # same model does; the env adds its task errors and the reward after the simulator's signals
     out = base.dynamics.outputs
     assert log.signal_names[: len(out.signal_names)] == out.signal_names and log.format_version == "2"
@@ -98,7 +98,7 @@ def test_human_mode_streams_to_rerun_without_spawning(monkeypatch):
 
 def test_flight_log_records_non_finite_termination(tmp_path):
     """A blow-up in the first sub-step ends the episode without advancing time: the recorder used to
-    raise "time must increase strictly" and lose the termination (issue #12, reliability finding 8)."""
+    raise "time must increase strictly" and lose the termination."""
     path = tmp_path / "blowup.mcap"
     env = envs.FlightLogRecorder(gym.make("FlexSim/GTM-LevelHold-v0", aero="quasi-steady", turbulence="none"), path)
     _, info = env.reset(seed=0)

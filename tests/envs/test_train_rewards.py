@@ -1,4 +1,4 @@
-"""The learner's side of ``examples/agents/train_sb3.py`` (issue 13) without Stable-Baselines3: its training rewards,
+"""The learner's side of ``examples/agents/train_sb3.py`` without Stable-Baselines3: its training rewards,
 its deterministic actor and its checkpoint choice on validation seeds.
 
 * Potential-based shaping (Ng, Harada & Russell 1999, eq. 2: F = gamma Phi(s') - Phi(s)) telescopes: over an

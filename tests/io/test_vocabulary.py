@@ -1,10 +1,10 @@
-"""One output vocabulary (flexsim.io.vocabulary) and the flight-log format versions 1 and 2 (issue #10).
+"""One output vocabulary (flexsim.io.vocabulary) and the flight-log format versions 1 and 2.
 
 * The table: every name ends in the unit the table gives it; patterns are unique; the writer rejects a name
   outside the vocabulary (and a format-1-only name), naming the name and its position.
 * Format 2 is written, with the units of every column in the file.
 * Format 1 still loads, in both of its dialects: ``tests/io/data/v1_simulate.mcap`` and ``v1_env.mcap`` were
-  written by main's code at commit d8600f6 (format 1; ``tests/io/data/README.md`` says how). The reader's
+  written by format-1 code (``tests/io/data/README.md`` names the commit and says how). The reader's
   translated arrays are checked against the raw messages decoded here independently with the ``mcap`` library:
   states bit for bit, degree signals times pi/180 (to 1 ulp), renamed signals bit for bit, and the dropped
   attitude/rate signals equal to the state entries they duplicated (to 1e-12 deg), so nothing is lost.

@@ -1,11 +1,11 @@
-"""Eigen-analysis and flutter of the linearised model (issue 4).
+"""Eigen-analysis and flutter of the linearised model.
 
 * Goland wing (uniform cantilever; Goland 1945, J. Appl. Mech. 12: flutter 137.2 m/s at 70.7 rad/s,
   the value Patil, Hodges & Cesnik 2001 reproduce with Peters' finite-state aerodynamics) clamped in a
   wind tunnel at sea level, incompressible as Goland's problem (the bundled file sets
   ``compressibility = "none"``): finite-state and Theodorsen p-k flutter speeds and frequencies within 2 %
   (measured 136.2 and 137.0 m/s, 70.0 rad/s; with Prandtl-Glauert 131.6 and 132.3 m/s: tests/linear/test_wind_tunnel.py).
-* Theodorsen p-k and finite-state flutter speeds agree within 2 % (issue 4 consistency point).
+* Theodorsen p-k and finite-state flutter speeds agree within 2 %.
 * Mode classification: the GTM in cruise has 8 rigid-body dominated roots (spiral, phugoid, Dutch roll,
   roll, short period, after X, Y, Z, psi are removed); in vacuum every elastic mode has elastic fraction 1.
 * Steady manoeuvres that tend to level flight give the level-flight flutter point (R = 1e6 m within
@@ -117,7 +117,7 @@ def test_calibrated_gtm_us_flutter_within_3_percent_of_table_3(altitude_m, mach_
     """Paper Table 3 (US): M_F 0.6742 at 0 m, 0.7433 (34.923 rad/s) at 3048 m; docs/calibration.md.
 
     The two altitudes the calibration meets (3 % in Mach, 10 % in frequency at 3048 m); 6096 and 9144 m
-    are +11.6 % and +17.1 % (documented, not asserted). Finite state and p-k agree within 2 % (issue 4).
+    are +11.6 % and +17.1 % (documented, not asserted). Finite state and p-k agree within 2 %.
     The calibration was fitted to the paper's aerodynamics, strips only: the bundled file's fuselage and nacelle
     moments and tail downwash (beyond the paper, docs/options.md) are taken out here; with them M_F is
     +0.16 % (0 m) and +0.10 % (3048 m) higher (measured p-k: 0.68579 against 0.68466, 0.76587 against 0.76507).
@@ -134,7 +134,7 @@ def test_calibrated_gtm_us_flutter_within_3_percent_of_table_3(altitude_m, mach_
 
 
 def test_flutter_point_reports_symmetry_and_participation(sea_level_level_flutter):
-    """Issue 15 item c: the calibrated GTM's level-flight flutter mode is antisymmetric (the mirror image of its
+    """The calibrated GTM's level-flight flutter mode is antisymmetric (the mirror image of its
     motion is minus itself: symmetric energy share 0 to round-off); its participation lists linear [m] and
     angle [deg] coordinates by decreasing magnitude, the normalising coordinate first with magnitude 1, phase 0."""
     _, level = sea_level_level_flutter
@@ -184,7 +184,7 @@ def test_flutter_point_reports_formulation_and_density(sea_level_level_flutter):
 
 
 def test_linear_density_fixed_at_the_flight_altitude_reproduces_the_default():
-    """Issue 15 item f: the replication option is exact when it names the flight's own density."""
+    """The replication option is exact when it names the flight's own density."""
     from flexsim.atmosphere import isa_density
 
     gtm = load_aircraft("gtm")

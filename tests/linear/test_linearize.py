@@ -1,5 +1,5 @@
-"""linearize() takes a trim point as its operating point and names its states and inputs (issue #10 item 7:
-named results, python-control's OperatingPoint / StateSpace names).
+"""linearize() takes a trim point as its operating point and names its states and inputs
+(named results, python-control's OperatingPoint / StateSpace names).
 
 The linear model about a TrimPoint equals the one about its (x, u) exactly (same Jacobian); its state names are the
 vocabulary names of the kept states (X, Y, Z and psi dropped); bad calls raise ValueError naming u0.

@@ -2,7 +2,7 @@
 converged reference (a full eig every step, rtol 1e-10).
 
 At 9144 m, M 0.90 (level flight, bundled calibrated GTM) two start roots of the former p-k converged to the
-same root (45.4 rad/s listed twice, docs/reference/findings/paper-mechanism-probe.md "Side observation"), so one
+same root (45.4 rad/s listed twice), so one
 root was missing. Tolerances: fixed point p in eig(A(Im p)) to 1e-6 relative (the iteration stops at
 |d Im p| < 1e-7 max(1, |Im p|)); reference roots matched one to one within 1e-6 relative; two roots are
 distinct when more than 1e-6 |p| apart.

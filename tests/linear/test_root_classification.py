@@ -1,4 +1,4 @@
-"""Rigid-body, elastic and aerodynamic-lag roots told apart with unsteady aerodynamics (issue 11).
+"""Rigid-body, elastic and aerodynamic-lag roots told apart with unsteady aerodynamics.
 
 Invariant: the finite-state model has as many structural roots as the quasi-steady model has roots (its
 states are the same plus the inflow states); the structural roots are those least tied to the inflow states

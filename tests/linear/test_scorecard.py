@@ -1,4 +1,4 @@
-"""Trend scorecard (issue 15 item g) on rows with known slopes; the paper's values never enter a computed field.
+"""Trend scorecard on rows with known slopes; the paper's values never enter a computed field.
 
 Closed forms: the least-squares slope of exactly linear data is its slope (to round-off); a sign change
 between two altitudes interpolates linearly: h0 + (h1 - h0) d0 / (d0 - d1).

@@ -1,4 +1,4 @@
-"""Flutter studies (issue 4 item 4): chained parallel runs, CSV/JSON/PNG outputs, glide interpolation."""
+"""Flutter studies: chained parallel runs, CSV/JSON/PNG outputs, glide interpolation."""
 
 import json
 import math
@@ -16,7 +16,7 @@ def test_small_turn_study_runs_in_parallel_and_writes_outputs(tmp_path):
     rows = run_study(cases, workers=2, progress=False)
     assert [r["turn_radius_m"] for r in rows] == [10000.0, 12000.0, math.inf]
     assert all("mach" in r for r in rows), rows
-    # issue 15 item c: every row names the mode's symmetry (the calibrated GTM's wing mode is antisymmetric)
+    # every row names the mode's symmetry (the calibrated GTM's wing mode is antisymmetric)
     assert all(r["mode_symmetry"] == "antisymmetric" and r["participation"] for r in rows)
     assert abs(rows[1]["mach"] - rows[2]["mach"]) < abs(rows[0]["mach"] - rows[2]["mach"]) + 1e-3  # tends to level
     csv_path, json_path = write_results(rows, tmp_path, "turn")

@@ -1,4 +1,4 @@
-"""Sweeps keep and resume their results (issue #12): every point is written as it finishes, a killed
+"""Sweeps keep and resume their results: every point is written as it finishes, a killed
 worker costs only its in-flight points (retried, reported), Ctrl-C stops within 5 s keeping what is
 done, ``resume`` skips finished points, and progress is printed line by line when not on a terminal.
 

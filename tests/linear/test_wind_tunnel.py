@@ -1,4 +1,4 @@
-"""Wind-tunnel inputs, the divergence finder and the compressibility switch (issue 11).
+"""Wind-tunnel inputs, the divergence finder and the compressibility switch.
 
 * Goland wing (Goland 1945: 137.2 m/s, 70.7 rad/s, incompressible strip theory; SI data of Patil, Hodges
   & Cesnik 2001): switched off (the bundled file), Theodorsen p-k and Peters N = 6 within 2 %; with the

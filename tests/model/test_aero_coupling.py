@@ -1,4 +1,4 @@
-"""Strip aerodynamics coupled to the structure (issue 3), on the restrained Goland wing.
+"""Strip aerodynamics coupled to the structure, on the restrained Goland wing.
 
 * The strip loads assembled into generalized forces equal Theodorsen's closed-form rigid-section loads
   with C = 1 (NACA Rep. 496; Hodges & Pierce 2011 ch. 5; the quasi-steady limit of Peters' loads,

@@ -1,4 +1,4 @@
-"""Swept-wing bending-incidence coupling (issue 11), off by default (the paper's model).
+"""Swept-wing bending-incidence coupling, off by default (the paper's model).
 
 Kinematic closed form: with the option on, a bending deflection q of a swept wing pitches each streamwise
 strip by alpha_b = (p . -y_i) dw/dx = sin(Lambda) dw/dx (to 1e-3 with the GTM's 5 deg dihedral), w = U(x) q the

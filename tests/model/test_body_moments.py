@@ -1,4 +1,4 @@
-"""Fuselage and nacelle moments, tail downwash and compressible induced drag (issue 11, not in the paper).
+"""Fuselage and nacelle moments, tail downwash and compressible induced drag (not in the paper).
 
 * Lamb's closed-form apparent-mass coefficients of prolate spheroids (*Hydrodynamics*, 6th ed., 1932,
   sec. 373) against quadratures of their integral definitions (sec. 114) to 1e-9, the sphere limit 1/2 and the

@@ -1,4 +1,4 @@
-"""Force resolution as a selectable formulation (issue 15 item a) and the density of the aerodynamics.
+"""Force resolution as a selectable formulation and the density of the aerodynamics.
 
 * "paper" (the paper's eq. 28 with d = l alpha_i0, docs/design.md "Force resolution"): the airloads of wing
   and stabilizer strips have no body-x component, so in steady level flight the body-x equilibrium is
@@ -6,8 +6,8 @@
   The paper's Tables 2-3 satisfy it to 0.003 % (T_e / sin(theta) = 889.41-889.47 kN). Tolerance 1e-6: the
   trim residual is ~1e-13, so only round-off remains.
 * "physical" (default) resolves lift normal to the local wind and drag along it: its T_e/(W sin theta) is
-  far from 1 (0.14-0.18 on the calibrated GTM with induced drag only, docs/reference/findings/paper-mechanism-probe.md
-  section D; 0.53 with the GTM's parasite-drag items, issue 11).
+  far from 1 (0.14-0.18 on the calibrated GTM with induced drag only;
+  0.53 with the GTM's parasite-drag items).
 * One key in the aircraft file, one option in the API (AeroOptions.formulation overrides the file).
 * aero_density_kg_m3: fixing the aerodynamics' density at the ISA value of the flight altitude reproduces the
   default exactly (the same numbers, bit for bit).

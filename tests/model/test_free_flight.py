@@ -1,4 +1,4 @@
-"""The free-flying GTM in vacuum: rigid-body modes and conservation laws (issue 2 acceptance).
+"""The free-flying GTM in vacuum: rigid-body modes and conservation laws.
 
 Conservation: without external forces the equations of motion (eq. 33) conserve the total energy
 T + V and the inertial linear momentum C^T p_v and angular momentum C^T rho_omega + R x C^T p_v

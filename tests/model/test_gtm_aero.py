@@ -1,4 +1,4 @@
-"""Aerodynamics on the whole GTM (issue 3 acceptance), quasi-rigid (rigidised) aircraft.
+"""Aerodynamics on the whole GTM, quasi-rigid (rigidised) aircraft.
 
 * The total aerodynamic force from the generalized forces equals the vector sum of the strip loads
   (1e-9), and its lift slope matches the vortex lattice's (the lattice that supplies the strips'

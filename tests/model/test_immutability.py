@@ -1,4 +1,4 @@
-"""Models are immutable after construction (issue #10; house style: state passed per call, not stored).
+"""Models are immutable after construction (house style: state passed per call, not stored).
 
 * Setting or deleting an attribute of an ``AircraftModel`` or of what it is built from (``StructuralModel``,
   ``AeroCoupling``, ``ParasiteDrag``) raises AttributeError naming the class and the attribute.

@@ -52,7 +52,7 @@ def test_structured_jacobian_equals_dense_and_exact(gtm_state, monkeypatch):
     lay = model.layout
     calls = []
     rhs = type(model).rhs
-    # the model is immutable (issue #10): the rhs is wrapped on its class to count the calls, for this block only
+    # the model is immutable: the rhs is wrapped on its class to count the calls, for this block only
     monkeypatch.setattr(type(model), "rhs", lambda self, t, xx, uu, wind=None: calls.append(1) or rhs(self, t, xx, uu, wind))
     try:
         a_s, b_s = jacobian(model, x, u, t=0.3, wind=_gust)

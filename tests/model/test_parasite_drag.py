@@ -1,4 +1,4 @@
-"""Parasite drag items (issue 11): closed forms of a body's drag and the GTM's realistic polar.
+"""Parasite drag items: closed forms of a body's drag and the GTM's realistic polar.
 
 * In straight flight without rotation every drag item moves with the body velocity v, so the items'
   resultant is F = -1/2 rho |v| v sum(f_i) and their moment about o is sum r_i x F_i (Raymer 2018, sec. 12.5:

@@ -1,6 +1,6 @@
-"""The block-sparse right-hand side equals the dense one it replaced (issue 14), and its sparsity is exact.
+"""The block-sparse right-hand side equals the dense one it replaced, and its sparsity is exact.
 
-``data/rhs_reference.npz`` holds state derivatives computed by the compiled kernel of main at ``9d7f24c`` (a dense
+``data/rhs_reference.npz`` holds state derivatives computed by the earlier compiled kernel (``data/README.md`` names its commit; a dense
 30 x 30 elimination of E V_dot = f, apparent mass as one dense product; ``data/README.md`` gives the script) at
 near-trim states of seven GTM models: quasi-steady and unsteady, bending-incidence coupling, the paper's force
 resolution, vacuum, restrained with structural damping, quasi-rigid; the fourth state of each in a 1-cos gust.

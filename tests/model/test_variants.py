@@ -1,4 +1,4 @@
-"""Model variants from one definition: free, restrained, quasi-rigid, component subsets (issue 2)."""
+"""Model variants from one definition: free, restrained, quasi-rigid, component subsets."""
 
 import numpy as np
 import pytest

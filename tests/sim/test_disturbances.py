@@ -1,4 +1,4 @@
-"""Disturbances against closed forms (issue 5).
+"""Disturbances against closed forms.
 
 Sources and tolerances:
 * 1-cos gust, CS-25.341(a): U(s) = (U_ds/2)(1 - cos(pi s/H)) on 0 <= s <= 2H, zero outside; MIL-F-8785C

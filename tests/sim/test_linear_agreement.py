@@ -1,4 +1,4 @@
-"""Time domain and eigen-analysis agree (issue 5 acceptance).
+"""Time domain and eigen-analysis agree.
 
 The Goland wing clamped in a wind tunnel (finite-state aerodynamics, flutter at 136.2 m/s in our
 model) is started on the real part of the eigenvector of its least-stable elastic mode, below (110 m/s)

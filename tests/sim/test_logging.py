@@ -1,4 +1,4 @@
-"""Flight logs written by simulate(): round trip, crash safety, Rerun readers, ``flexsim view`` (issue 5).
+"""Flight logs written by simulate(): round trip, crash safety, Rerun readers, ``flexsim view``.
 
 Sources and tolerances:
 * Round trip: the log holds exactly (bit for bit) the samples of the result at the log times, with the

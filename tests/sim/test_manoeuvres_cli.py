@@ -1,4 +1,4 @@
-"""Named manoeuvres, example scripts and the ``flexsim simulate`` command (issue 5).
+"""Named manoeuvres, example scripts and the ``flexsim simulate`` command.
 
 Sources and tolerances:
 * Every registered manoeuvre builds and runs (short durations, quasi-steady aerodynamics where the physics

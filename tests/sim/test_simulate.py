@@ -1,8 +1,8 @@
-"""simulate(): trim holding, a steady turn's circle, controls, events and bad input (issue 5).
+"""simulate(): trim holding, a steady turn's circle, controls, events and bad input.
 
 Sources and tolerances:
 * (a) From a level-flight trim (GTM, unsteady N = 6, 9144 m, M 0.75) 60 s of flight: |speed drift| < 0.1 m/s
-  and |altitude drift| < 1 m (issue 5 acceptance; the trim residual is ~1e-13, so the drift measures the
+  and |altitude drift| < 1 m (the trim residual is ~1e-13, so the drift measures the
   integrator).
 * (b) From a level-turn trim (R = 8000 m) the body origin flies a circle (paper eqs. 36-37,
   R = V cos(gamma) / Omega): the radius fitted to 60 s of the horizontal track is R within 0.5 %.
@@ -261,7 +261,7 @@ def test_bad_arguments_are_rejected_with_clear_messages(quasi_steady, tmp_path):
 
 
 def test_integration_settings_are_frozen_validated_and_resolved(quasi_steady):
-    """The numerical settings of a run are one frozen, validated object (issue #10: ``_integrate`` took 18 arguments)."""
+    """The numerical settings of a run are one frozen, validated object (``_integrate`` took 18 arguments)."""
     n = quasi_steady.layout.n_states
     s = IntegrationSettings.resolve(quasi_steady, 2.0)
     assert (s.method, s.rtol, s.max_step, s.t_end_s, s.implicit, s.needs_jacobian) == ("ETD2RK", 1e-6, 0.02, 2.0, False, True)

@@ -1,4 +1,4 @@
-"""`flexsim validate`: every built-in case is a test, user case files, and the CLI (issue 11).
+"""`flexsim validate`: every built-in case is a test, user case files, and the CLI.
 
 The references, sources and tolerances are in :mod:`flexsim.sim.validation` and docs/validation.md; each case
 asserts |error| <= its tolerance against a published value or a closed form.

@@ -29,7 +29,7 @@ def _uncoupled_goland():
 
 
 def test_uniform_cantilever_frequencies_match_closed_forms():
-    # Acceptance (issue 2): first three bending and first two torsion frequencies within 0.5 %.
+    # Acceptance: first three bending and first two torsion frequencies within 0.5 %.
     aircraft, wing = _uncoupled_goland()
     model = AircraftModel(aircraft, variant="restrained", gravity_m_s2=0.0)
     w = in_vacuo_modes(model).frequencies_rad_s

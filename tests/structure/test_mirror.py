@@ -1,7 +1,6 @@
-"""The mirror operator of the coordinates and the tie-breaking of mirror pairs (issue 15 item c).
+"""The mirror operator of the coordinates and the tie-breaking of mirror pairs.
 
-* Hand cases (docs/reference/findings/paper-mechanism-probe.md, section A, checked there by mirroring leading-edge
-  displacements): u, w, q and fuselage vertical bending even; v, p, r, fuselage torsion and the fin odd;
+* Hand cases (checked by mirroring leading-edge displacements): u, w, q and fuselage vertical bending even; v, p, r, fuselage torsion and the fin odd;
   q_R <-> q_L; xi_R <-> -xi_L (positive xi_R1 with negative xi_L1 is a symmetric nose-up twist).
 * Invariants: P^2 = I and P^T M(0) P = M(0) to 1e-12 relative (exact for a symmetric aircraft).
 * Independent check: the displacement of points *off* the elastic axes (leading edge at 70 % span, from

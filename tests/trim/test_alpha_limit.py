@@ -1,9 +1,9 @@
-"""The trim's angle-of-attack limit: the linear (no-stall) aerodynamics' range (issue #12, reliability census).
+"""The trim's angle-of-attack limit: the linear (no-stall) aerodynamics' range (reliability census).
 
 A trim whose centre of gravity flies beyond the aircraft's ``[aero] max_alpha_deg`` (the GTM's 11 deg: the end of
 the linear lift range of the NASA T2 wind-tunnel database, tests/aircraft/test_gtm_alpha_limit.py) is refused with a
 TrimError naming the angle of attack, its value and the allowed range; ``check_limits=False`` returns it as asked.
-The two cases are the census's (docs/reference/findings/reliability.md sec. 3): 20000 m at M 0.78 trims at
+The two cases are those ``studies/reliability_census.py trim`` found trimmed silently: 20000 m at M 0.78 trims at
 alpha = 21.95 deg, a glide at M 0.3 and 3000 m at 18.8 deg.
 """
 

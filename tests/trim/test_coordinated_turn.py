@@ -1,4 +1,4 @@
-"""Coordinated turn (issue 11): zero sideslip at the centre of gravity with the heading free.
+"""Coordinated turn: zero sideslip at the centre of gravity with the heading free.
 
 Closed forms for a steady level coordinated turn of radius R at speed V (Stevens & Lewis, *Aircraft Control
 and Simulation*, 2nd ed., 2003, sec. 3.6, turn-coordination constraint with gamma = 0, beta = 0):

@@ -1,4 +1,4 @@
-"""Static margin (issue 11): the neutral point is the point about which the pitching moment does not change
+"""Static margin: the neutral point is the point about which the pitching moment does not change
 with the angle of attack (Etkin & Reid 1996, sec. 2.3).
 
 Bound and source. The bundled GTM (fuselage and nacelle Munk moments, DATCOM tail downwash; docs/options.md) at

@@ -1,4 +1,4 @@
-"""Trim of the full nonlinear GTM model in steady manoeuvres (paper eqs. 34-39; issue 4).
+"""Trim of the full nonlinear GTM model in steady manoeuvres (paper eqs. 34-39).
 
 Acceptance: the scaled norm of the right-hand side at every trim state < 1e-8 (level flight, turn,
 climb, glide, climbing turn); a simulation started at a trim holds it; gamma = 0 climb equals level
