@@ -5,7 +5,7 @@ Fast checks: v1 is exactly v0 made with ``task=LevelHoldTask(reward=CAPTURE_REWA
 seeded episode, exact equality: the same code path), and its defaults are the documented ones.
 Slow check (``-m slow``): the property v1 was made for. Over seeds 0-9 (full 20 s episodes, finite-state
 aero, light turbulence), the trim controls held return at most 60 % of the LQR baseline's mean return
-(measured 2026-12-01: about 0.52, docs/environments.md "A learning agent"); on v0 they return 93 %.
+(measured 2026-12-01: about 0.52, docs/environments.md "Training an agent"); on v0 they return 93 %.
 """
 
 import math
