@@ -3,7 +3,7 @@ with the angle of attack (Etkin & Reid 1996, sec. 2.3).
 
 Bound and source. The bundled GTM (fuselage and nacelle Munk moments, DATCOM tail downwash; docs/options.md) at
 9144 m, M 0.78 puts the neutral point 1.41 m = 27.7 % of the exposed wing's mean chord (5.09 m) behind the CG.
-The issue's range for a transport is 5-25 %; the GTM's own public wind-tunnel database (NASA T2, bundled as
+The usual range for a transport is 5-25 %; the GTM's own public wind-tunnel database (NASA T2, bundled as
 flexsim/aircraft/data/sources/t2_aero_basic_beta0.csv) puts the neutral point at 25 % - Cm_alpha/CN_alpha =
 57.1 % of its reference chord, i.e. a margin of 34 % at the model's CG (22.7 % of that chord). The test asserts
 a stable margin no larger than the T2's (0.05 <= h_n - h <= T2) and the neutral point within 10 % of the chord
