@@ -3,7 +3,7 @@
 A = d rhs / dx and B = d rhs / du by central differences of :meth:`AircraftModel.rhs`
 (:func:`flexsim.model.jacobian.jacobian`: steps scaled to each state's magnitude, structured columns over
 the inflow states); the same right-hand side as simulation and trim, inflow states included
-(docs/reference/original-design.md §6). The states X, Y and psi do not appear in the equations and give
+(docs/design.md, "Trim, linearisation, flutter, calibration"). The states X, Y and psi do not appear in the equations and give
 exact zero eigenvalues; the altitude Z enters only through the air density. For the eigen-analysis
 of a steady manoeuvre they are removed (:attr:`LinearModel.reduced`), which also freezes the density at
 the trim altitude, as the paper's time-invariant climbs require.

@@ -4,7 +4,7 @@ Source: Tuzcu & Nguyen (2014), "Numerical Model": linearise eq. (33) about the s
 solve the eigenvalue problem; the first 12 eigenvalues are rigid-body dominated, the others elastic; the
 "US" results use the frequency-domain wake (Theodorsen, eq. 27), valid at flutter.
 
-Three aerodynamic models (docs/reference/original-design.md §5): ``quasi-steady`` (lambda0 = 0), ``unsteady`` (Peters finite-state
+Three aerodynamic models (docs/design.md, "Aerodynamics on the aircraft"): ``quasi-steady`` (lambda0 = 0), ``unsteady`` (Peters finite-state
 inflow in state space), ``theodorsen`` (p-k iteration: lambda0 = (1 - C(k_j)) (w0 + w1/2) at every strip,
 k_j = omega b_j / u0_j, iterated on omega for every mode until consistent).
 
