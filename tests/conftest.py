@@ -3,7 +3,7 @@
 import os
 
 # Small dense linear algebra does not benefit from BLAS threads and suffers from oversubscription
-# (see docs/design.md, "Performance"); pin before numpy is imported by the tests.
+# (see docs/performance.md, "BLAS threads"); pin before numpy is imported by the tests.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("MPLBACKEND", "Agg")

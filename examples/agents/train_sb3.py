@@ -17,7 +17,7 @@ horizontal lines) to ``<out>/learning_curve.png``. ``--plot RESULT_JSON [--png P
 result.json alone.
 
 The default task is ``FlexSim/GTM-LevelHold-v1``: on v0 the trim controls held already return 93 % of the LQR
-baseline's return, so no learning can show there (docs/environments.md, "A learning agent").
+baseline's return, so no learning can show there (docs/environments.md, "Training an agent").
 
 What the learner sees (changed from the raw env; the env, its reward and ``info["reward_parts"]``
 are unchanged):
