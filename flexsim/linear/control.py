@@ -12,7 +12,9 @@ The state-space model about an operating point (a trim, :func:`flexsim.trim.trim
   at every aerodynamic strip, the wind argument of ``model.rhs(t, x, u, wind)`` (:mod:`flexsim.sim.disturbances`
   passes frozen fields the same way). Its column of B is the central difference of ``model.rhs`` over that uniform
   wind. A uniform vertical gust does not depend on the heading psi, so the linear model stays time invariant in a
-  turn; a gust's penetration delay along the aircraft (nose before tail) is not represented.
+  turn; a gust's penetration delay along the aircraft (nose before tail) is not represented. The column has what
+  the model's wind has: the strips see the gust, the parasite drag and the slender-body moments do not (the model's
+  documented simplifications, ``docs/options.md``), and the tail's downwash scales with the inertial speed.
 * The outputs are the structural sensor bank (:class:`flexsim.model.sensors.SensorBank`: tip deflection and its rate,
   tip twist and its rate, root bending moment of every flexible component, paper eq. 1 with the clamped-free shapes),
   optionally followed by the states themselves; D = 0 (the sensors read the state only).
