@@ -228,7 +228,12 @@ def open_recording(path: str | os.PathLike, *, connect: str | None = None, viewe
                 f"cannot open a Rerun viewer: {reason}; the recording {str(path)!r} is complete: open it with "
                 f"`rerun {path}` where there is a display, or stream it to a viewer running elsewhere "
                 f"(flexsim view {path} --connect rerun+http://HOST:9876/proxy)")
-    rec = rr.RecordingStream(APPLICATION_ID)
+    from rerun.chunk import RrdReader
+
+    stores = [e for e in RrdReader(path).recordings() if e.kind == "recording"]
+    # send as the file's own recording, so that the viewer gets one recording, not the file's and an empty one
+    rec = (rr.RecordingStream(stores[0].application_id, recording_id=stores[0].recording_id) if stores
+           else rr.RecordingStream(APPLICATION_ID))
     url = connect if connect is not None else spawn_viewer(rec, port=viewer_port, executable=viewer_executable)
     rec.set_sinks(rr.GrpcSink(url))
     try:

@@ -94,7 +94,7 @@ def mode_animation(model: AircraftModel, x0: np.ndarray, velocity_shape: np.ndar
             + 1j * (m.positions(q0 + dq.imag, xi0 + dxi.imag) - rest[name]) for name, m in maps.items()}
     t = np.linspace(0.0, cycles * 2.0 * math.pi / omega, cycles * frames_per_cycle + 1)
     phase = np.exp(1j * omega * t)  # (N,)
-    largest = max(float(np.abs((phase[:, None, None] * u[None]).real).max()) for u in unit.values())
+    largest = max(float(np.linalg.norm((phase[:, None, None] * u[None]).real, axis=2).max()) for u in unit.values())
     if not largest > 0.0:
         raise ValueError("velocity_shape: the mode moves no beam node (no elastic displacement to show)")
     if peak_deflection_m is None:
