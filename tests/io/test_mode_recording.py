@@ -184,3 +184,12 @@ def test_view_connect_sends_the_recording_to_a_running_server(goland, tmp_path, 
     finally:
         server.wait(timeout=30)
     assert rows[("/world/aircraft/structure/right_wing", False)] == 9
+
+
+def test_flutter_mode_option_writes_a_verified_recording(tmp_path, capsys):
+    path = tmp_path / "qs.rrd"
+    assert cli_main(["flutter", "gtm", "--altitudes", "9144", "--models", "QS", "--workers", "1", "--paper-replication",
+                     "--mode", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert f"recorded to {path}" in out and "right_wing torsion 1" in out
+    assert _verify(path).returncode == 0
