@@ -311,7 +311,7 @@ def _sensor_rows(model: AircraftModel) -> tuple[np.ndarray, tuple[str, ...]]:
     for c, comp in enumerate(names):
         s = sensors[comp]
         present = (s.w_tip.size, s.w_tip.size, s.psi_tip.size, s.psi_tip.size, s.w_tip.size)
-        for k, quantity in enumerate(SENSOR_QUANTITIES):
+        for k in range(len(SENSOR_QUANTITIES)):
             if present[k]:
                 cols.append(len(SENSOR_QUANTITIES) * c + k)
                 out.append(_SENSOR_NAMES[k].format(c=comp))
