@@ -193,3 +193,23 @@ def test_flutter_mode_option_writes_a_verified_recording(tmp_path, capsys):
     out = capsys.readouterr().out
     assert f"recorded to {path}" in out and "right_wing torsion 1" in out
     assert _verify(path).returncode == 0
+
+
+@pytest.mark.skipif(os.name != "posix", reason="the viewer stand-in is a POSIX shell wrapper")
+def test_view_spawns_a_viewer_with_the_recording(goland, tmp_path, monkeypatch):
+    """``flexsim view FILE.rrd --viewer EXE``: the spawn path of ``flexsim view`` starts the viewer (a stand-in that
+    saves what it receives, as in tests/io/test_viewer.py) and sends it the recording."""
+    from tests.io.test_viewer import RERUN_EXE, _free_port, _stop_and_read
+
+    model, x0, mode = goland
+    path = write_mode_recording(mode_animation(model, x0, mode.shape, mode.eigenvalue, cycles=1, frames_per_cycle=8),
+                                tmp_path / "mode.rrd")
+    monkeypatch.setenv("DISPLAY", ":flexsim-test")  # the stand-in needs none; the check must let it start
+    monkeypatch.setenv("RERUN_ANALYTICS", "0")
+    received, pid_file = tmp_path / "received.rrd", tmp_path / "viewer.pid"
+    wrapper = tmp_path / "rerun-viewer"
+    wrapper.write_text(f'#!/bin/sh\necho $$ > "{pid_file}"\nexec "{RERUN_EXE}" --bind 127.0.0.1 --save "{received}" "$@"\n')
+    wrapper.chmod(0o755)
+    assert cli_main(["view", str(path), "--port", str(_free_port()), "--viewer", str(wrapper)]) == 0
+    rows = _stop_and_read(int(pid_file.read_text()), received, {("/world/aircraft/structure/right_wing", False): 9})
+    assert rows[("/world/aircraft/structure/right_wing", False)] == 9
