@@ -99,6 +99,10 @@ def _flutter(args: argparse.Namespace) -> int:
     check_altitudes(args.altitudes)
     check_workers(args.workers)
     check_damping(args.structural_damping)
+    if args.mode:  # the critical mode's recording: its path checked before the search
+        from flexsim.linear.mode_animation import check_recording_path, record_critical_mode
+
+        check_recording_path(args.mode, "--mode")
     settings = _settings(args)
     labelled = [(s.label, StudyCase(s.aircraft, k, h, mach_min=args.mach_min, mach_max=args.mach_max,
                                     structural_damping=args.structural_damping, formulation=s.formulation,
@@ -110,6 +114,8 @@ def _flutter(args: argparse.Namespace) -> int:
         if "mach" in row:
             row["mode_matches_paper"] = mode_matches_paper(row)
     lines, doc = flutter_report(rows, settings, keys)
+    if args.mode:
+        print(record_critical_mode([c for _, c in labelled], rows, args.mode), file=sys.stderr if args.json else sys.stdout)
     if args.json:
         print(json_text(doc))
         return 0
@@ -230,6 +236,8 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_fl.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
                       help="modal damping ratio of the elastic modes [the aircraft file's; 0 = the paper's undamped structure]")
     _add_formulation(p_fl, replication=True)
+    p_fl.add_argument("--mode", metavar="FILE.rrd", help="write a Rerun recording of the lowest flutter point's mode: the "
+                      "aircraft oscillating (amplitude scaled for display) and the mode's participation as bar charts")
     p_fl.set_defaults(func=_flutter)
 
     p_sw = sub.add_parser("sweep", help="flutter versus turn radius or climb angle (paper Figs. 7-16)")

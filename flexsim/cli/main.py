@@ -6,6 +6,7 @@
     flexsim aero  [AIRCRAFT] [--mach M] [--plot FILE.png] [--json]
     flexsim trim  [AIRCRAFT] [--altitude-m H] [--mach M] [--turn-radius-m R] [--climb-deg G | --glide]
     flexsim flutter [AIRCRAFT] [--altitudes H ...] [--models QS,US] [--workers N] [--json]
+    flexsim linearize [AIRCRAFT] --altitude-m H --mach M [--turn-radius-m R | --climb-deg G] --out FILE.npz
     flexsim validate [CASE ...] [--json]
     flexsim sweep (--turn | --climb) [AIRCRAFT] [--altitudes H ...] [--scheduler ADDRESS] [--out DIR]
 
@@ -157,7 +158,7 @@ def _aero(args: argparse.Namespace) -> int:
 #: Commands registered by the other CLI modules; ``simulate`` and ``view`` import flexsim.sim (manoeuvre names and
 #: integration methods for their help), which the other commands do not need.
 _MODULE_COMMANDS = {"trim": "flutter", "flutter": "flutter", "sweep": "flutter", "simulate": "sim", "view": "sim",
-                    "validate": "validate"}
+                    "validate": "validate", "linearize": "linear"}
 
 
 def _parser(command: str | None = None) -> argparse.ArgumentParser:
@@ -199,6 +200,10 @@ def _parser(command: str | None = None) -> argparse.ArgumentParser:
         from flexsim.cli.sim_commands import add_sim_commands
 
         add_sim_commands(sub)
+    if group in (None, "linear"):
+        from flexsim.cli.linear_commands import add_linear_commands
+
+        add_linear_commands(sub, add_aircraft)
     if group in (None, "validate"):
         from flexsim.cli.validate_command import add_validate_command
 

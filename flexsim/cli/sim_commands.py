@@ -108,6 +108,13 @@ def _executable(text: str) -> str:
 
 
 def _view(args: argparse.Namespace) -> int:
+    if args.log.endswith(".rrd"):  # a Rerun recording (e.g. of a flutter mode): shown as it is
+        from flexsim.io.mode_recording import open_recording
+
+        if args.save:
+            raise ValueError(f"--save = {args.save!r}: {args.log!r} is already a Rerun recording (open it with `rerun {args.log}`)")
+        print(f"sent {args.log} to {open_recording(args.log, connect=args.connect, viewer_port=args.port, viewer_executable=args.viewer)}")
+        return 0
     from flexsim.io.flight_log import FlightLogRecoveryWarning, read_flight_log
     from flexsim.io.viewer import HEADLESS_HINT, ViewerUnavailableError, viewer_unavailable_reason
 
@@ -162,7 +169,7 @@ def add_sim_commands(subparsers: argparse._SubParsersAction) -> None:
     p_sim.set_defaults(func=_simulate)
 
     p_view = subparsers.add_parser("view", help="show a flight log in Rerun, or save it as a Rerun recording")
-    p_view.add_argument("log", metavar="LOG.mcap", help="flight log written by flexsim simulate")
+    p_view.add_argument("log", metavar="LOG.mcap", help="flight log written by flexsim simulate, or a Rerun recording (.rrd)")
     p_view.add_argument("--save", metavar="FILE.rrd", help="write a Rerun recording instead of opening a viewer")
     p_view.add_argument("--connect", metavar="URL",
                         help="stream to a Rerun viewer or server already running at URL (rerun+http://HOST:9876/proxy) "
