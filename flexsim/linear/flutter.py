@@ -347,6 +347,8 @@ class FlutterAnalysis:
                 if all(g(float(m)) <= 0 for m in below[-2:]):
                     return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state, name, shared, (lo, hi))
         grid = np.arange(lo, hi + 1e-12, mach_step)
+        if grid[-1] < hi - 1e-9:  # the scan ends at the upper end of the range, not a step short of it
+            grid = np.append(grid, hi)
         prev_m, prev_g = None, None
         skipped: list[float] = []
         _, surf_hi = self.aircraft.control_limits()

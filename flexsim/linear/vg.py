@@ -33,7 +33,8 @@ speeds is kept and the crossing says so (``refined`` False).
 
 Which roots: every oscillatory elastic root (Im(lambda) >= 0.5 rad/s, upper half-plane) and, for a free aircraft,
 the short-period and Dutch-roll roots: the rigid-body oscillatory roots with the largest frequency whose kinetic
-energy in the rigid-body coordinates is mostly longitudinal (u, w, q) or lateral (v, p, r) respectively. A free
+energy in the rigid-body coordinates is mostly longitudinal (u, w, q; more in heave and pitch than in forward
+speed, which would be the phugoid) or lateral (v, p, r) respectively. A free
 aircraft is re-trimmed at every speed (the quasi-steady trim of :class:`~flexsim.linear.flutter.FlutterAnalysis`);
 a restrained one (a wind tunnel: the Goland wing) is analysed in the stream at each speed with the density and
 altitude of the model given.
@@ -362,7 +363,12 @@ def _roots(spec: Spectrum, model: AircraftModel) -> list[tuple[Mode, str, str]]:
         best: dict[str, Mode] = {}
         for m in rigid:
             e = np.abs(m.shape[:6]) ** 2 * weight
-            kind = "short period" if e[[0, 2, 4]].sum() >= e[[1, 3, 5]].sum() else "Dutch roll"
+            if e[[0, 2, 4]].sum() >= e[[1, 3, 5]].sum():
+                if e[2] + e[4] < e[0]:
+                    continue  # the phugoid: forward speed, not heave and pitch
+                kind = "short period"
+            else:
+                kind = "Dutch roll"
             if kind not in best or m.frequency_rad_s > best[kind].frequency_rad_s:
                 best[kind] = m
         out += [(m, kind, kind) for kind, m in best.items()]
