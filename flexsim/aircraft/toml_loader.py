@@ -38,7 +38,7 @@ from flexsim.aircraft.definition import (
 )
 from flexsim.errors import AircraftDefinitionError
 
-__all__ = ["load_aircraft", "parse_aircraft", "bundled_aircraft_names", "resolve_aircraft_path"]
+__all__ = ["load_aircraft", "load_envelope", "parse_aircraft", "bundled_aircraft_names", "resolve_aircraft_path"]
 
 SCHEMA_VERSION = 1
 #: Largest aircraft file read [bytes]: the bundled files are about 10 kB; a table of a few hundred
@@ -303,6 +303,27 @@ def _envelope(table: Any) -> Envelope | None:
         return None
     _check_keys("envelope", table, _ENVELOPE_KEYS)
     return Envelope(**{key: _number(f"envelope.{key}", value) for key, value in table.items()})
+
+
+def load_envelope(name_or_path: str | Path) -> Envelope | None:
+    """The ``[envelope]`` table of an aircraft file alone (None without one), without building the aircraft.
+
+    For a command that needs only the flight envelope before the aircraft is loaded where it is used (the flutter
+    search range, :func:`flexsim.linear.envelope.search_range`). The rest of the file is checked when it is loaded.
+
+    Raises
+    ------
+    AircraftDefinitionError
+        For a file that is not TOML or a bad ``[envelope]`` table, prefixed with the file name.
+    """
+    path = resolve_aircraft_path(name_or_path)
+    try:
+        doc = tomllib.loads(path.read_text(encoding="utf-8-sig"))
+        return _envelope(doc.get("envelope"))
+    except tomllib.TOMLDecodeError as exc:
+        raise AircraftDefinitionError(f"{path}: not valid TOML: {exc}") from None
+    except AircraftDefinitionError as exc:
+        raise AircraftDefinitionError(f"{path}: {exc}") from None
 
 
 def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:

@@ -108,7 +108,8 @@ def _flutter(args: argparse.Namespace) -> int:
         raise CliError("--glide, --climb-deg: a glide finds its own flight-path angle; give one of them")
     settings = _settings(args)
     shape = _manoeuvre(args, args.altitudes[0], 0.5)  # the kind of manoeuvre (its speed is searched)
-    ranges = {(s.label, h): _search_range(s, h, shape, args) for s in settings for h in args.altitudes}
+    # the aircraft file's [envelope] sets the search range (the aircraft itself is loaded where it is searched)
+    ranges = {(s.label, h): _search_range(s.aircraft, h, shape, args) for s in settings for h in args.altitudes}
     labelled = [(s.label, StudyCase(s.aircraft, k, h, mach_min=ranges[s.label, h].mach_min,
                                     mach_max=ranges[s.label, h].mach_max, turn_radius_m=shape.turn_radius_m,
                                     climb_angle_deg=None if shape.is_glide else math.degrees(shape.climb_angle_rad),
@@ -163,12 +164,10 @@ def _at(shape: SteadyManoeuvre, altitude_m: float) -> SteadyManoeuvre:
                            shape.climb_angle_rad, shape.coordinated)
 
 
-def _search_range(setting: RunSettings, altitude_m: float, shape: SteadyManoeuvre, args: argparse.Namespace):
-    """The Mach range searched for one setting and altitude: --mach-min/--mach-max, else the aircraft's envelope."""
+def _search_range(model: str | AircraftModel, altitude_m: float, shape: SteadyManoeuvre, args: argparse.Namespace):
+    """The Mach range searched at one altitude: --mach-min/--mach-max, else the aircraft's envelope."""
     from flexsim.linear.envelope import search_range
 
-    model = AircraftModel(load_aircraft(setting.aircraft), aero=AeroOptions("quasi-steady", formulation=setting.formulation),
-                          structural_damping=args.structural_damping)
     return search_range(model, _at(shape, altitude_m), mach_min=args.mach_min, mach_max=args.mach_max)
 
 
@@ -182,7 +181,7 @@ def _vg(args: argparse.Namespace, shape: SteadyManoeuvre, keys: list[str]) -> li
     target = Path(args.vg)
     for h in args.altitudes:
         man = _at(shape, h)
-        rng = _search_range(RunSettings("as given", args.aircraft, args.formulation), h, shape, args)
+        rng = _search_range(model, h, shape, args)
         speeds = [m * speed_of_sound(h) for m in _linspace(rng.mach_min, rng.mach_max, args.vg_points)]
         d = vg_diagram(model, manoeuvre=man, speeds_m_s=speeds, models=keys)
         path = target if len(args.altitudes) == 1 else target.with_name(f"{target.stem}_{h:.0f}m{target.suffix}")

@@ -20,7 +20,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
+from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.model.aircraft_model import AircraftModel
 
@@ -72,15 +74,16 @@ def _eas_to_mach(eas_m_s: float, altitude_m: float) -> float:
     return eas_m_s * math.sqrt(RHO_0 / float(isa_density(altitude_m))) / speed_of_sound(altitude_m)
 
 
-def search_range(model: AircraftModel, manoeuvre, *, mach_min: float | None = None,
+def search_range(model: AircraftModel | Aircraft | str | Path, manoeuvre, *, mach_min: float | None = None,
                  mach_max: float | None = None) -> SearchRange:
     """The Mach range of a flutter search of ``manoeuvre`` (its altitude and kind; its speed is not used).
 
     Parameters
     ----------
-    model : AircraftModel
-        A free model with aerodynamics; its aircraft's ``envelope`` and ``aero_settings.max_alpha_rad`` are read,
-        and the stall estimate trims its quasi-steady sibling (module docstring).
+    model : AircraftModel, Aircraft, str or Path
+        A free model with aerodynamics, an aircraft, or an aircraft file (bundled name or path: only its
+        ``[envelope]`` is read unless the stall estimate is needed); the stall estimate (only when needed) trims the
+        model's quasi-steady sibling, or ``AircraftModel(aircraft, aero="quasi-steady")`` (module docstring).
     manoeuvre : SteadyManoeuvre
     mach_min, mach_max : float, optional
         Ends given by the caller; they override the file and the derivation.
@@ -95,7 +98,14 @@ def search_range(model: AircraftModel, manoeuvre, *, mach_min: float | None = No
         When the resulting range is empty (lower end >= upper end), naming both ends and their sources.
     """
     h = float(manoeuvre.altitude_m)
-    env = model.aircraft.envelope
+    if isinstance(model, (str, Path)):
+        from flexsim.aircraft.toml_loader import load_aircraft, load_envelope
+
+        env, source = load_envelope(model), model
+        aircraft = None
+    else:
+        aircraft = model if isinstance(model, Aircraft) else model.aircraft
+        env = aircraft.envelope
     lows: list[tuple[float, str]] = []
     highs: list[tuple[float, str]] = []
     if env is not None:
@@ -112,7 +122,9 @@ def search_range(model: AircraftModel, manoeuvre, *, mach_min: float | None = No
     elif lows:
         lo = max(lows)
     else:
-        lo = _stall_mach(model, manoeuvre)
+        if aircraft is None:
+            aircraft = load_aircraft(source)
+        lo = _stall_mach(model if isinstance(model, AircraftModel) else AircraftModel(aircraft, aero="quasi-steady"), manoeuvre)
     if mach_max is not None:
         hi = (float(mach_max), "given")
     elif highs:
