@@ -86,6 +86,13 @@ def flutter_report(rows: list[dict], settings: list[RunSettings], models: list[s
              "structure estimated from public data, calibrated to Table 3, docs/calibration.md). Settings:"]
     lines += [f"  {s.describe()}" for s in settings]
     lines.append(f"  paper's critical mode: {PAPER_MODE} (Figs. 11, 16)")
+    searched: dict[tuple[float, float], list[float]] = {}
+    for r in rows:
+        hs = searched.setdefault((r["mach_min"], r["mach_max"]), [])
+        if r["altitude_m"] not in hs:
+            hs.append(r["altitude_m"])
+    lines += [f"  searched M {lo:.3f}-{hi:.3f} at {', '.join(f'{h:.0f}' for h in sorted(hs))} m (the aircraft files' "
+              "[envelope] or --mach-min/--mach-max)" for (lo, hi), hs in searched.items()]
     for key in models:
         lines += ["", f"{key} ({MODELS[key]}) beside paper Table {'2' if key == 'QS' else '3'}", _HEADER]
         table = {p[0]: p for p in paper[key]}
