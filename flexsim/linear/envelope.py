@@ -141,7 +141,7 @@ def _stall_mach(model: AircraftModel, manoeuvre) -> tuple[float, str]:
     """(Mach, source) of the stall estimate of the module docstring: two quasi-steady trims, limits not enforced."""
     from dataclasses import replace
 
-    from flexsim.trim import trim
+    from flexsim.trim import TrimError, trim
 
     qs = model
     if model.aero.options.model != "quasi-steady":
@@ -153,7 +153,12 @@ def _stall_mach(model: AircraftModel, manoeuvre) -> tuple[float, str]:
     alpha_max = model.aircraft.aero_settings.max_alpha_rad
 
     def alpha_at(mach: float) -> tuple[float, float]:
-        point = trim(qs, manoeuvre.with_speed(mach * a), check_limits=False)
+        try:
+            point = trim(qs, manoeuvre.with_speed(mach * a), check_limits=False)
+        except TrimError as exc:
+            raise ValueError(f"{model.aircraft.name}: the stall speed (lower end of the flutter search) is estimated from "
+                             f"trims, and the trim at M {mach:.3f} failed ({exc}); give the file an [envelope] table "
+                             "(docs/aircraft-format.md) or the search range") from None
         return 0.5 * rho * (mach * a) ** 2, point.alpha
 
     pts = [alpha_at(0.3), alpha_at(0.6)]
