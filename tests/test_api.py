@@ -164,3 +164,10 @@ def test_envelope_is_read_and_optional():
     env = parse_aircraft(_MINIMAL + "\n[envelope]\nmax_speed_eas_m_s = 60\n", "x.toml").envelope
     assert env.max_speed_eas_m_s == 60.0 and env.min_mach is None
     assert np.isfinite(env.max_speed_eas_m_s)
+
+
+def test_scan_step_is_the_papers_on_its_range_and_finer_on_a_narrow_one():
+    from flexsim.linear.flutter import scan_step
+
+    assert scan_step((0.5, 0.95)) == 0.05
+    assert scan_step((0.066, 0.24)) == pytest.approx(0.174 / 8, rel=1e-12)

@@ -28,7 +28,7 @@ from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
-__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter"]
+__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter"]
 
 
 class FlutterNotFound(FlexsimError, RuntimeError):
@@ -452,9 +452,24 @@ def _check_flutter_model(model: AircraftModel) -> None:
                          "density of the linearised aerodynamics with linear_aero_density_kg_m3 of the analysis instead")
 
 
+#: Largest Mach step of a flutter scan, and the fewest steps over the range (:func:`scan_step`).
+MAX_MACH_STEP = 0.05
+MIN_SCAN_STEPS = 8
+
+
+def scan_step(mach_range: tuple[float, float]) -> float:
+    """The Mach step of a flutter scan over ``mach_range``: 0.05, or an eighth of a narrower range [-].
+
+    0.05 on the paper's M 0.5-0.95; a sailplane's envelope (M 0.07-0.24) is scanned at 9 points instead of 4, so a
+    crossing that goes unstable and back between two scan points is as unlikely as on the wide range.
+    """
+    lo, hi = mach_range
+    return min(MAX_MACH_STEP, (hi - lo) / MIN_SCAN_STEPS)
+
+
 @single_blas_thread
 def flutter(model: AircraftModel, manoeuvre: SteadyManoeuvre, aero_model: str = "theodorsen", *,
-            mach_range: tuple[float, float] | None = None, mach_step: float = 0.05, tol: float = 1e-4,
+            mach_range: tuple[float, float] | None = None, mach_step: float | None = None, tol: float = 1e-4,
             linear_aero_density_kg_m3: float | None = None) -> FlutterPoint:
     """Lowest flutter Mach number of ``model`` flying ``manoeuvre`` (Tuzcu & Nguyen 2014, "Numerical Model").
 
@@ -470,8 +485,10 @@ def flutter(model: AircraftModel, manoeuvre: SteadyManoeuvre, aero_model: str = 
     mach_range : (float, float), optional
         Searched Mach numbers; default the aircraft's envelope at the altitude
         (:func:`flexsim.linear.envelope.search_range`).
-    mach_step, tol : float
-        Scan step and Brent tolerance in Mach [-].
+    mach_step : float, optional
+        Scan step in Mach [-]; default :func:`scan_step` of the range.
+    tol : float
+        Brent tolerance in Mach [-].
     linear_aero_density_kg_m3 : float, optional
         Paper-replication setting of :class:`FlutterAnalysis`.
 
@@ -491,7 +508,8 @@ def flutter(model: AircraftModel, manoeuvre: SteadyManoeuvre, aero_model: str = 
     if mach_range is None:
         mach_range = (lambda r: (r.mach_min, r.mach_max))(search_range(model, manoeuvre))
     analysis = FlutterAnalysis(model, aero_model, linear_aero_density_kg_m3=linear_aero_density_kg_m3)
-    return analysis.search(manoeuvre, mach_range=mach_range, mach_step=mach_step, tol=tol)
+    step = scan_step(mach_range) if mach_step is None else mach_step
+    return analysis.search(manoeuvre, mach_range=mach_range, mach_step=step, tol=tol)
 
 
 @dataclass(frozen=True, eq=False)
