@@ -132,7 +132,7 @@ def flutter_report(rows: list[dict], settings: list[RunSettings], models: list[s
     return lines, doc
 
 
-_TABLE_HEADER = (f"{'settings':<10} {'h [m]':>6} {'M_F [-]':>8} {'V_F [m/s]':>9} {'w_F [rad/s]':>11} {'theta [deg]':>11} "
+_TABLE_HEADER = (f"{'settings':<18} {'h [m]':>6} {'M_F [-]':>8} {'V_F [m/s]':>9} {'w_F [rad/s]':>11} {'theta [deg]':>11} "
                  f"{'phi [deg]':>9} {'gamma [deg]':>11} {'T_e [kN]':>9} {'d_e [deg]':>9} {'w_tip [m]':>9}  critical mode")
 
 
@@ -153,16 +153,16 @@ def flutter_table(rows: list[dict], settings: list[RunSettings], models: list[st
         key = (r["settings"], r["altitude_m"])
         if key not in seen:
             seen.add(key)
-            lines.append(f"  {r['settings']:<10} {r['search_range']}")
+            lines.append(f"  {r['settings']:<18} {r['search_range']}")
     for key in models:
         lines += ["", f"{key} ({MODELS[key]})", _TABLE_HEADER]
         for r in [r for r in rows if r["model"] == key]:
             h = r["altitude_m"]
             if "error" in r:
-                lines.append(f"{r['settings']:<10} {h:6.0f}  no flutter found in M {r['mach_min']:.3f}-{r['mach_max']:.3f} "
+                lines.append(f"{r['settings']:<18} {h:6.0f}  no flutter found in M {r['mach_min']:.3f}-{r['mach_max']:.3f} "
                              f"(V {r['mach_min'] * speed_of_sound(h):.1f}-{r['mach_max'] * speed_of_sound(h):.1f} m/s): {r['error']}")
                 continue
-            lines.append(f"{r['settings']:<10} {h:6.0f} {r['mach']:8.4f} {r['mach'] * speed_of_sound(h):9.2f} {r['omega_rad_s']:11.3f} "
+            lines.append(f"{r['settings']:<18} {h:6.0f} {r['mach']:8.4f} {r['mach'] * speed_of_sound(h):9.2f} {r['omega_rad_s']:11.3f} "
                          f"{r['theta_deg']:11.3f} {r['phi_deg']:9.3f} {r['gamma_deg']:11.3f} {r['thrust_kN']:9.3f} "
                          f"{r['elevator_deg']:9.3f} {r['tip_deflection_m']:9.4f}  {r['mode_symmetry']}: {r['mode']}")
     doc = {"rows": rows, "settings": [s.__dict__ for s in settings], "condition": condition}
