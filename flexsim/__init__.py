@@ -6,6 +6,17 @@ formulation (Lagrange's equations in quasi-coordinates).
 
 Conventions (SI units and radians inside the library, body axes x forward / y right / z down) are in
 ``docs/conventions.md``.
+
+The top-level API, one import for a script::
+
+    import flexsim as fs
+
+    model = fs.AircraftModel(fs.load_aircraft("gtm"), aero="unsteady")
+    level = fs.trim(model, fs.SteadyManoeuvre.level(9144.0, mach=0.75))
+    point = fs.flutter(model, fs.SteadyManoeuvre.level(0.0, mach=0.6))
+
+The names below are loaded on first use (module ``__getattr__``, PEP 562), so ``import flexsim`` stays cheap and
+a command pays only for what it uses; ``import flexsim.envs`` registers the gymnasium environments.
 """
 
 from __future__ import annotations
@@ -13,9 +24,91 @@ from __future__ import annotations
 import importlib.abc
 import importlib.util
 import sys
+import types
 from pathlib import Path
 
 __version__ = "0.1.0"
+
+#: Public name -> module that defines it (loaded on first attribute access).
+_API: dict[str, str] = {
+    "load_aircraft": "flexsim.aircraft.toml_loader",
+    "Aircraft": "flexsim.aircraft.definition",
+    "AircraftModel": "flexsim.model.aircraft_model",
+    "AeroOptions": "flexsim.model.coupling",
+    "SteadyManoeuvre": "flexsim.trim",
+    "TrimPoint": "flexsim.trim",
+    "TrimError": "flexsim.trim",
+    "trim": "flexsim.trim",
+    "LinearModel": "flexsim.linear.linearize",
+    "linearize": "flexsim.linear.linearize",
+    "Mode": "flexsim.linear.stability",
+    "Spectrum": "flexsim.linear.stability",
+    "spectrum": "flexsim.linear.stability",
+    "flutter": "flexsim.linear.flutter",
+    "FlutterAnalysis": "flexsim.linear.flutter",
+    "FlutterPoint": "flexsim.linear.flutter",
+    "FlutterNotFound": "flexsim.linear.flutter",
+    "wind_tunnel": "flexsim.linear.flutter",
+    "WindTunnelResult": "flexsim.linear.flutter",
+    "SearchRange": "flexsim.linear.envelope",
+    "search_range": "flexsim.linear.envelope",
+    "vg_diagram": "flexsim.linear.vg",
+    "VgDiagram": "flexsim.linear.vg",
+    "VgTrack": "flexsim.linear.vg",
+    "simulate": "flexsim.sim.simulate",
+    "SimulationResult": "flexsim.sim.result",
+    "OneMinusCosineGust": "flexsim.sim.disturbances",
+    "DrydenTurbulence": "flexsim.sim.disturbances",
+}
+
+__all__ = ["__version__", *_API]
+#: Public functions named like a subpackage (kept by :class:`_Package`).
+_SHADOWED = frozenset({"trim"})
+
+
+def __getattr__(name: str):
+    """The public API of :data:`_API`, imported when first asked for (PEP 562)."""
+    module = _API.get(name)
+    if module is None:
+        raise AttributeError(f"module 'flexsim' has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(module), name)
+    if name not in _SHADOWED:
+        globals()[name] = value  # later look-ups do not come here
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_API))
+
+
+class _SubpackageShadowed:
+    """A public function named like a subpackage (``flexsim.trim``, the function, and ``flexsim.trim``, the package).
+
+    Importing a subpackage binds it as an attribute of its parent; a data descriptor on the package's module type
+    takes precedence over that binding, so ``flexsim.trim`` stays the function whatever was imported before, and
+    ``from flexsim.trim import TrimPoint`` still finds the subpackage (in ``sys.modules``).
+    """
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def __get__(self, package, owner=None):
+        return self if package is None else __getattr__(self.name)
+
+    def __set__(self, package, value) -> None:
+        if not isinstance(value, types.ModuleType):
+            raise AttributeError(f"flexsim.{self.name} is the public function; it cannot be replaced")
+
+
+class _Package(types.ModuleType):
+    """The module type of ``flexsim``: see :class:`_SubpackageShadowed`."""
+
+    trim = _SubpackageShadowed("trim")
+
+
+sys.modules[__name__].__class__ = _Package
 
 
 def _checkout_envs_dir(package_dir: Path) -> Path | None:

@@ -330,4 +330,12 @@ if args.calibration and not args.paper:  # the paper-replication file keeps the 
         w(f'diameter_m = {diameter}')
         w(f'volume_m3 = {0.8 * math.pi * diameter**2 * length / 4.0:.4f}')
         w('')
+# Flutter search range (docs/aircraft-format.md, [envelope]): the paper's, Mach 0.5-0.95 at every altitude (its
+# Tables 2-3 find M_F = 0.67-0.78), so that `flexsim flutter` searches this aircraft where the paper did. Not a
+# certified envelope: the notional GTM has none.
+if out[-1] != '':
+    w('')
+w('[envelope]')
+w('min_mach = 0.5    # the paper\'s flutter search range (Tables 2-3), not a certified envelope')
+w('max_mach = 0.95')
 print("\n".join(out))

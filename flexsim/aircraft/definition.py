@@ -32,6 +32,7 @@ __all__ = [
     "SectionTable",
     "StripAero",
     "AeroSettings",
+    "Envelope",
     "DragItem",
     "BodyItem",
     "COMPRESSIBILITY",
@@ -459,6 +460,39 @@ class Engine(LumpedMass):
         object.__setattr__(self, "max_thrust_n", float(self.max_thrust_n))
 
 
+@dataclass(frozen=True)
+class Envelope:
+    """Where the aircraft flies, as far as a flutter search needs it (the file's ``[envelope]`` table).
+
+    Every limit is optional; a search runs from the larger of the given lower limits to the smaller of the given
+    upper limits at its altitude (:func:`flexsim.linear.envelope.search_range`). Equivalent airspeeds (EAS) are
+    converted to Mach at the altitude with the ISA density and speed of sound.
+
+    Attributes
+    ----------
+    min_mach, max_mach : float or None
+        Mach limits [-], 0 < min_mach < max_mach <= 0.99 (subsonic strip theory).
+    min_speed_eas_m_s, max_speed_eas_m_s : float or None
+        Equivalent-airspeed limits [m/s] (e.g. the stall speed and the dive speed with its flutter margin), in
+        (0, 400] m/s.
+    """
+
+    min_mach: float | None = None
+    max_mach: float | None = None
+    min_speed_eas_m_s: float | None = None
+    max_speed_eas_m_s: float | None = None
+
+    def __post_init__(self) -> None:
+        for name, hi in (("min_mach", 0.99), ("max_mach", 0.99), ("min_speed_eas_m_s", 400.0), ("max_speed_eas_m_s", 400.0)):
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, _check_scalar(f"envelope.{name}", value, 0.0, hi, lo_open=True))
+        for lo, hi in (("min_mach", "max_mach"), ("min_speed_eas_m_s", "max_speed_eas_m_s")):
+            a, b = getattr(self, lo), getattr(self, hi)
+            if a is not None and b is not None and not a < b:
+                _fail(f"envelope.{lo}", a, f"must be below envelope.{hi} = {b!r}")
+
+
 @dataclass(frozen=True, eq=False)
 class Aircraft:
     """A whole aircraft definition: components, lumped masses and engines (body axes, SI).
@@ -487,6 +521,9 @@ class Aircraft:
         aircraft use it unless their :class:`~flexsim.model.coupling.AeroOptions` say otherwise.
     aero_settings : AeroSettings
         Aircraft-wide aerodynamic settings (the file's ``[aero]`` table).
+    envelope : Envelope or None
+        The flight envelope of the flutter search (the file's ``[envelope]`` table); None: derived
+        (:func:`flexsim.linear.envelope.search_range`).
     """
 
     name: str
@@ -499,6 +536,7 @@ class Aircraft:
     structural_damping_ratio: float = 0.0
     formulation: str = "physical"
     aero_settings: AeroSettings = field(default_factory=AeroSettings)
+    envelope: Envelope | None = None
 
     def to_design_frame(self, point_m: np.ndarray) -> np.ndarray:
         """A body-axes point [m] in the file's design frame (x aft, y right, z up) [m]."""

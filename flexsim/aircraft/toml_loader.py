@@ -20,6 +20,7 @@ import numpy as np
 
 from flexsim.aircraft.definition import (
     COMPONENT_NAMES,
+    Envelope,
     DEFAULT_MAX_ALPHA_DEG,
     MAX_ALPHA_LIMIT_DEG,
     AeroSettings,
@@ -37,7 +38,7 @@ from flexsim.aircraft.definition import (
 )
 from flexsim.errors import AircraftDefinitionError
 
-__all__ = ["load_aircraft", "parse_aircraft", "bundled_aircraft_names", "resolve_aircraft_path"]
+__all__ = ["load_aircraft", "load_envelope", "parse_aircraft", "bundled_aircraft_names", "resolve_aircraft_path"]
 
 SCHEMA_VERSION = 1
 #: Largest aircraft file read [bytes]: the bundled files are about 10 kB; a table of a few hundred
@@ -48,7 +49,8 @@ _DESIGN_TO_BODY = np.diag([-1.0, 1.0, -1.0])
 
 _TOP_KEYS = {"schema_version": True, "name": True, "description": False, "frame": False,
              "components": True, "lumped_masses": False, "engines": False, "structural_damping_ratio": False,
-             "formulation": False, "aero": False}
+             "formulation": False, "aero": False, "envelope": False}
+_ENVELOPE_KEYS = {"min_mach": False, "max_mach": False, "min_speed_eas_m_s": False, "max_speed_eas_m_s": False}
 _AIRCRAFT_AERO_KEYS = {"compressibility": False, "drag": False, "bending_incidence": False, "body": False,
                        "downwash_gradient": False, "max_alpha_deg": False}
 _DRAG_KEYS = {"name": True, "component": True, "position_m": True, "drag_area_m2": True}
@@ -296,6 +298,34 @@ def _aero_settings(table: Any, frame: "_Frame") -> AeroSettings:
                         max_alpha_rad=float(np.deg2rad(max_alpha_deg)))
 
 
+def _envelope(table: Any) -> Envelope | None:
+    if table is None:
+        return None
+    _check_keys("envelope", table, _ENVELOPE_KEYS)
+    return Envelope(**{key: _number(f"envelope.{key}", value) for key, value in table.items()})
+
+
+def load_envelope(name_or_path: str | Path) -> Envelope | None:
+    """The ``[envelope]`` table of an aircraft file alone (None without one), without building the aircraft.
+
+    For a command that needs only the flight envelope before the aircraft is loaded where it is used (the flutter
+    search range, :func:`flexsim.linear.envelope.search_range`). The rest of the file is checked when it is loaded.
+
+    Raises
+    ------
+    AircraftDefinitionError
+        For a file that is not TOML or a bad ``[envelope]`` table, prefixed with the file name.
+    """
+    path = resolve_aircraft_path(name_or_path)
+    try:
+        doc = tomllib.loads(path.read_text(encoding="utf-8-sig"))
+        return _envelope(doc.get("envelope"))
+    except tomllib.TOMLDecodeError as exc:
+        raise AircraftDefinitionError(f"{path}: not valid TOML: {exc}") from None
+    except AircraftDefinitionError as exc:
+        raise AircraftDefinitionError(f"{path}: {exc}") from None
+
+
 def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:
     """Parse the TOML text of an aircraft definition.
 
@@ -343,6 +373,7 @@ def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:
             structural_damping_ratio=doc.get("structural_damping_ratio", 0.0),
             formulation=doc.get("formulation", "physical"),
             aero_settings=_aero_settings(doc.get("aero"), frame),
+            envelope=_envelope(doc.get("envelope")),
         )
     except AircraftDefinitionError as exc:
         raise AircraftDefinitionError(f"{source}: {exc}") from None

@@ -12,12 +12,12 @@ from pathlib import Path
 from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.cli.validation import CliError, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
-from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, mode_matches_paper, physical_settings, sweep_report
+from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, flutter_table, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
 from flexsim.linear.study import StudyCase, StudyRecord, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.atmosphere import mach_to_true_airspeed
+from flexsim.atmosphere import mach_to_true_airspeed, speed_of_sound
 from flexsim.trim import SteadyManoeuvre, trim
 
 __all__ = ["add_flutter_commands"]
@@ -95,7 +95,8 @@ def _flutter(args: argparse.Namespace) -> int:
     for k in keys:
         if k not in _MODELS:
             raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
-    check_mach_range(args.mach_min, args.mach_max)
+    if args.mach_min is not None and args.mach_max is not None:
+        check_mach_range(args.mach_min, args.mach_max)
     check_altitudes(args.altitudes)
     check_workers(args.workers)
     check_damping(args.structural_damping)
@@ -103,17 +104,44 @@ def _flutter(args: argparse.Namespace) -> int:
         from flexsim.linear.mode_animation import check_recording_path, record_critical_mode
 
         check_recording_path(args.mode, "--mode")
+    if args.vg is not None and not str(args.vg).lower().endswith(".png"):
+        raise CliError(f"--vg {args.vg!r}: must name a .png file")
+    if args.vg_points < 3:
+        raise CliError(f"--vg-points = {args.vg_points}: must be an integer >= 3")
+    if args.glide and args.climb_deg is not None:
+        raise CliError("--glide, --climb-deg: a glide finds its own flight-path angle; give one of them")
     settings = _settings(args)
-    labelled = [(s.label, StudyCase(s.aircraft, k, h, mach_min=args.mach_min, mach_max=args.mach_max,
-                                    structural_damping=args.structural_damping, formulation=s.formulation,
-                                    linear_density_altitude_m=s.linear_density_altitude_m))
+    shape = _manoeuvre(args, args.altitudes[0], 0.5)  # the kind of manoeuvre (its speed is searched)
+    # the aircraft file's [envelope] sets the search range (the aircraft itself is loaded where it is searched)
+    ranges = {(s.label, h): _search_range(s.aircraft, h, shape, args) for s in settings for h in args.altitudes}
+    labelled = [(s.label, StudyCase(s.aircraft, k, h, mach_min=ranges[s.label, h].mach_min,
+                                    mach_max=ranges[s.label, h].mach_max, turn_radius_m=shape.turn_radius_m,
+                                    climb_angle_deg=None if shape.is_glide else math.degrees(shape.climb_angle_rad),
+                                    coordinated=shape.coordinated, structural_damping=args.structural_damping,
+                                    formulation=s.formulation, linear_density_altitude_m=s.linear_density_altitude_m))
                 for s in settings for k in keys for h in args.altitudes]
     rows = run_study([c for _, c in labelled], workers=args.workers, progress=not args.json)
+    paper = _is_paper_aircraft(settings) and shape.turn_radius_m == math.inf and shape.climb_angle_rad == 0.0
     for (label, _), row in zip(labelled, rows):
         row["settings"] = label
-        if "mach" in row:
+        row["search_range"] = ranges[label, row["altitude_m"]].describe()
+        if "mach" in row and paper:
             row["mode_matches_paper"] = mode_matches_paper(row)
-    lines, doc = flutter_report(rows, settings, keys)
+    condition = shape.describe().split(" at M ")[0]
+    lines, doc = flutter_report(rows, settings, keys) if paper else flutter_table(rows, settings, keys, condition)
+    if args.vg is not None:
+        diagrams = _vg(args, shape, keys)
+        doc["vg"] = [d.as_dict() for d, _ in diagrams]
+        lines += ["", "V-g / V-f diagrams (damping g = 2 Re(lambda)/|Im(lambda)|, > 0 unstable; branches tracked by "
+                  "eigenvector correlation):"]
+        for d, path in diagrams:
+            lines.append(f"  {path}: {d.aircraft}, {d.condition}, {len(d.tracks)} branches, "
+                         f"{d.speeds_m_s[0]:.1f}-{d.speeds_m_s[-1]:.1f} m/s")
+            for c in d.crossings:
+                lines.append(f"    {_MODEL_KEY[c.aero_model]:<3} {c.label:<34} crosses {'into instability' if c.direction == 'unstable' else 'back to stability':<18} "
+                             f"at {c.speed_m_s:8.2f} m/s (M {c.mach:.4f}), {c.frequency_rad_s:8.3f} rad/s")
+            if not d.crossings:
+                lines.append("    no branch crosses in the range")
     if args.mode:
         print(record_critical_mode([c for _, c in labelled], rows, args.mode), file=sys.stderr if args.json else sys.stdout)
     if args.json:
@@ -121,6 +149,54 @@ def _flutter(args: argparse.Namespace) -> int:
         return 0
     print("\n".join(lines))
     return 0
+
+
+_MODEL_KEY = {v: k for k, v in _MODELS.items()}
+#: The paper's aircraft, whose results are printed beside its Tables 2-3.
+PAPER_AIRCRAFT = ("gtm", "gtm_paper")
+
+
+def _is_paper_aircraft(settings: list[RunSettings]) -> bool:
+    """True when every setting flies one of :data:`PAPER_AIRCRAFT` (by bundled name or the bundled file's path)."""
+    from flexsim.aircraft.toml_loader import resolve_aircraft_path
+
+    paper = {resolve_aircraft_path(n).resolve() for n in PAPER_AIRCRAFT}
+    return all(resolve_aircraft_path(s.aircraft).resolve() in paper for s in settings)
+
+
+def _at(shape: SteadyManoeuvre, altitude_m: float) -> SteadyManoeuvre:
+    """The manoeuvre ``shape`` (turn, climb, glide) at another altitude (speed M 0.5, replaced by the search)."""
+    return SteadyManoeuvre(float(mach_to_true_airspeed(0.5, altitude_m)), altitude_m, shape.turn_radius_m,
+                           shape.climb_angle_rad, shape.coordinated)
+
+
+def _search_range(model: str | AircraftModel, altitude_m: float, shape: SteadyManoeuvre, args: argparse.Namespace):
+    """The Mach range searched at one altitude: --mach-min/--mach-max, else the aircraft's envelope."""
+    from flexsim.linear.envelope import search_range
+
+    return search_range(model, _at(shape, altitude_m), mach_min=args.mach_min, mach_max=args.mach_max)
+
+
+def _vg(args: argparse.Namespace, shape: SteadyManoeuvre, keys: list[str]) -> list[tuple[object, Path]]:
+    """The V-g diagram of the aircraft as given at every altitude: (VgDiagram, PNG path written)."""
+    from flexsim.linear.vg import vg_diagram
+
+    model = AircraftModel(load_aircraft(args.aircraft), aero=AeroOptions("quasi-steady", formulation=args.formulation),
+                          structural_damping=args.structural_damping)
+    out = []
+    target = Path(args.vg)
+    for h in args.altitudes:
+        man = _at(shape, h)
+        rng = _search_range(model, h, shape, args)
+        speeds = [m * speed_of_sound(h) for m in _linspace(rng.mach_min, rng.mach_max, args.vg_points)]
+        d = vg_diagram(model, manoeuvre=man, speeds_m_s=speeds, models=keys)
+        path = target if len(args.altitudes) == 1 else target.with_name(f"{target.stem}_{h:.0f}m{target.suffix}")
+        out.append((d, d.plot(path)))
+    return out
+
+
+def _linspace(lo: float, hi: float, n: int) -> list[float]:
+    return [lo + (hi - lo) * i / (n - 1) for i in range(n)]
 
 
 def _sweep(args: argparse.Namespace) -> int:
@@ -226,12 +302,23 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
                              "aerodynamic-lag [unsteady]")
     p_trim.set_defaults(func=_trim)
 
-    p_fl = sub.add_parser("flutter", help="flutter Mach and frequency in level flight (paper Tables 2-3)")
+    p_fl = sub.add_parser("flutter", help="flutter Mach and frequency of a steady manoeuvre (level flight: paper Tables 2-3)")
     add_aircraft(p_fl)
     p_fl.add_argument("--altitudes", type=float, nargs="+", default=[0.0, 3048.0, 6096.0, 9144.0], metavar="H")
     p_fl.add_argument("--models", default="QS,US", help="comma list of QS (quasi-steady), US (Theodorsen p-k), FS (finite-state)")
-    p_fl.add_argument("--mach-min", type=float, default=0.5)
-    p_fl.add_argument("--mach-max", type=float, default=0.95)
+    p_fl.add_argument("--mach-min", type=float, default=None,
+                      help="lower end of the search [the aircraft file's [envelope], else the estimated stall speed]")
+    p_fl.add_argument("--mach-max", type=float, default=None,
+                      help="upper end of the search [the aircraft file's [envelope], else M 0.95]")
+    p_fl.add_argument("--turn-radius-m", type=float, default=None, metavar="R", help="steady level turn of radius R [m]")
+    p_fl.add_argument("--climb-deg", type=float, default=None, metavar="G", help="steady climb (G > 0) or descent [deg] [0]")
+    p_fl.add_argument("--glide", action="store_true", help="steady glide: thrust zero, flight-path angle found by trim")
+    p_fl.add_argument("--coordinated", action="store_true",
+                      help="with --turn-radius-m: coordinated turn (zero sideslip, heading free)")
+    p_fl.add_argument("--vg", default=None, metavar="FILE.png",
+                      help="also draw the V-g / V-f diagram (damping and frequency of every branch against speed) of the "
+                           "aircraft as given, one file per altitude (FILE_<H>m.png for several); --json carries the tracks")
+    p_fl.add_argument("--vg-points", type=int, default=25, metavar="N", help="speeds of the V-g diagram [25]")
     p_fl.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="local processes [all cores]")
     p_fl.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
                       help="modal damping ratio of the elastic modes [the aircraft file's; 0 = the paper's undamped structure]")

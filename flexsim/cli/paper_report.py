@@ -13,7 +13,7 @@ from flexsim.linear.paper_data import GLIDE_9144, PAPER_TREND_SIGNS, TABLE_QS, T
 from flexsim.linear.scorecard import crossover_altitude, critical_altitude, trend_signs
 from flexsim.linear.study import MODELS, glide_from_climb
 
-__all__ = ["RunSettings", "PAPER_REPLICATION", "physical_settings", "flutter_report", "sweep_report", "mode_matches_paper"]
+__all__ = ["RunSettings", "PAPER_REPLICATION", "physical_settings", "flutter_report", "flutter_table", "sweep_report", "mode_matches_paper"]
 
 #: The paper's critical mode (Figs. 11, 16 text), printed beside flexsim's.
 PAPER_MODE = "symmetric, q_f1 (fuselage bending 1) the largest linear coordinate"
@@ -86,6 +86,13 @@ def flutter_report(rows: list[dict], settings: list[RunSettings], models: list[s
              "structure estimated from public data, calibrated to Table 3, docs/calibration.md). Settings:"]
     lines += [f"  {s.describe()}" for s in settings]
     lines.append(f"  paper's critical mode: {PAPER_MODE} (Figs. 11, 16)")
+    searched: dict[tuple[float, float], list[float]] = {}
+    for r in rows:
+        hs = searched.setdefault((r["mach_min"], r["mach_max"]), [])
+        if r["altitude_m"] not in hs:
+            hs.append(r["altitude_m"])
+    lines += [f"  searched M {lo:.3f}-{hi:.3f} at {', '.join(f'{h:.0f}' for h in sorted(hs))} m (the aircraft files' "
+              "[envelope] or --mach-min/--mach-max)" for (lo, hi), hs in searched.items()]
     for key in models:
         lines += ["", f"{key} ({MODELS[key]}) beside paper Table {'2' if key == 'QS' else '3'}", _HEADER]
         table = {p[0]: p for p in paper[key]}
@@ -122,6 +129,43 @@ def flutter_report(rows: list[dict], settings: list[RunSettings], models: list[s
     doc = {"rows": rows, "scorecard": score, "settings": [s.__dict__ for s in settings],
            "paper": {"table_qs": TABLE_QS, "table_us": TABLE_US, "crossover_altitude_m": paper_crossover_altitude_m(),
                      "critical_mode": PAPER_MODE}}
+    return lines, doc
+
+
+_TABLE_HEADER = (f"{'settings':<18} {'h [m]':>6} {'M_F [-]':>8} {'V_F [m/s]':>9} {'w_F [rad/s]':>11} {'theta [deg]':>11} "
+                 f"{'phi [deg]':>9} {'gamma [deg]':>11} {'T_e [kN]':>9} {'d_e [deg]':>9} {'w_tip [m]':>9}  critical mode")
+
+
+def flutter_table(rows: list[dict], settings: list[RunSettings], models: list[str], condition: str) -> tuple[list[str], dict]:
+    """Text lines and the JSON document of ``flexsim flutter`` for any aircraft and manoeuvre (no paper columns).
+
+    Every row names the Mach range searched (``search_range``, from :func:`flexsim.linear.envelope.search_range`);
+    a row without a flutter point says that none was found in that range, with the search's reason.
+    """
+    from flexsim.atmosphere import speed_of_sound
+
+    lines = [f"Flutter in {condition}. Settings:"]
+    lines += [f"  {s.describe()}" for s in settings]
+    lines.append("Searched (Mach range per altitude; [envelope] of the aircraft file, --mach-min/--mach-max, or the estimates "
+                 "of docs/aircraft-format.md):")
+    seen = set()
+    for r in rows:
+        key = (r["settings"], r["altitude_m"])
+        if key not in seen:
+            seen.add(key)
+            lines.append(f"  {r['settings']:<18} {r['search_range']}")
+    for key in models:
+        lines += ["", f"{key} ({MODELS[key]})", _TABLE_HEADER]
+        for r in [r for r in rows if r["model"] == key]:
+            h = r["altitude_m"]
+            if "error" in r:
+                lines.append(f"{r['settings']:<18} {h:6.0f}  no flutter found in M {r['mach_min']:.3f}-{r['mach_max']:.3f} "
+                             f"(V {r['mach_min'] * speed_of_sound(h):.1f}-{r['mach_max'] * speed_of_sound(h):.1f} m/s): {r['error']}")
+                continue
+            lines.append(f"{r['settings']:<18} {h:6.0f} {r['mach']:8.4f} {r['mach'] * speed_of_sound(h):9.2f} {r['omega_rad_s']:11.3f} "
+                         f"{r['theta_deg']:11.3f} {r['phi_deg']:9.3f} {r['gamma_deg']:11.3f} {r['thrust_kN']:9.3f} "
+                         f"{r['elevator_deg']:9.3f} {r['tip_deflection_m']:9.4f}  {r['mode_symmetry']}: {r['mode']}")
+    doc = {"rows": rows, "settings": [s.__dict__ for s in settings], "condition": condition}
     return lines, doc
 
 

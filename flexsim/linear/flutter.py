@@ -11,7 +11,7 @@ method to 1e-4 in Mach.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable
 
 import numpy as np
@@ -28,11 +28,21 @@ from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
-__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter"]
+__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter"]
 
 
 class FlutterNotFound(FlexsimError, RuntimeError):
-    """No elastic mode crossed the imaginary axis in the searched range."""
+    """No elastic mode crossed the imaginary axis in the searched range.
+
+    Attributes
+    ----------
+    mach_range : (float, float) or None
+        The searched Mach range (None when the search did not get as far as a range).
+    """
+
+    def __init__(self, message: str, mach_range: tuple[float, float] | None = None) -> None:
+        super().__init__(message)
+        self.mach_range = mach_range
 
 
 @dataclass(frozen=True, eq=False)
@@ -78,6 +88,8 @@ class FlutterPoint:
         (Mach, eigenvalue, dominant DOF) of unstable rigid-body modes met during the search.
     evaluations : int
         Number of trims + eigen-analyses.
+    mach_range : (float, float)
+        The Mach range of the search [-].
     """
 
     aero_model: str
@@ -97,6 +109,7 @@ class FlutterPoint:
     formulation: str = "physical"
     aero_density_kg_m3: float = math.nan
     aero_density_fixed: bool = False
+    mach_range: tuple[float, float] = (math.nan, math.nan)
 
 
 @dataclass
@@ -164,19 +177,30 @@ class SharedEvaluations:
 class FlutterAnalysis:
     """Flutter of an aircraft in a steady manoeuvre, with the paper's aerodynamic models.
 
+    Built from the model the user made (:meth:`from_model`, or :func:`flutter`) or from an aircraft definition.
+    The analysis needs up to three models of the one aircraft: the quasi-steady model that every trim uses, the
+    model of the eigen-analysis (the same one unless the density of the linearised aerodynamics is fixed), and
+    the finite-state model of the "unsteady" analysis and of the p-k method's input and output matrices. From a
+    model they are that model itself where it is of the kind needed, otherwise its siblings: the same aircraft
+    object (not re-loaded), the same aerodynamic options (force resolution, compressibility, lift slopes, drag,
+    bodies, downwash), structural damping and gravity, only the aerodynamic model changed.
+
     Parameters
     ----------
-    aircraft : Aircraft
+    aircraft : Aircraft or AircraftModel
+        An aircraft definition, or a free-flying model with aerodynamics (then ``n_inflow`` of an "unsteady" model,
+        ``structural_damping`` and ``formulation`` are the model's and must not be given).
     aero_model : {"quasi-steady", "unsteady", "theodorsen"}
         ``theodorsen`` is the paper's "US" model (p-k); ``unsteady`` the finite-state state space.
-    n_inflow : int
-        Finite-state inflow states per strip (``unsteady`` and the p-k input/output matrices).
+    n_inflow : int, optional
+        Finite-state inflow states per strip (``unsteady`` and the p-k input/output matrices) [default 6, or the
+        model's own for an ``unsteady`` model].
     structural_damping : float, optional
         Modal damping ratio of the clamped elastic modes (default None: the aircraft's
-        ``structural_damping_ratio``; 0 reproduces the paper's undamped structure).
+        ``structural_damping_ratio``; 0 reproduces the paper's undamped structure). Aircraft only.
     formulation : {"physical", "paper"}, optional
         Resolution of the strip airloads (docs/design.md, "Force resolution"); default None: the aircraft
-        file's ``formulation``.
+        file's ``formulation``. Aircraft only.
     linear_aero_density_kg_m3 : float, optional
         A paper-replication setting (docs/flutter.md): the air density [kg/m^3] of the *linearised*
         aerodynamics of every eigen-analysis, while each trim keeps the true density of its altitude.
@@ -184,22 +208,55 @@ class FlutterAnalysis:
         stay the flight's.
     """
 
-    def __init__(self, aircraft: Aircraft, aero_model: str = "theodorsen", n_inflow: int = 6,
+    def __init__(self, aircraft: Aircraft | AircraftModel, aero_model: str = "theodorsen", n_inflow: int | None = None,
                  structural_damping: float | None = None, formulation: str | None = None,
                  linear_aero_density_kg_m3: float | None = None) -> None:
         if aero_model not in AERO_MODELS:
             raise ValueError(f"aero_model = {aero_model!r}: must be one of {', '.join(AERO_MODELS)}")
-        self.aircraft = aircraft
+        if isinstance(aircraft, AircraftModel):
+            model = aircraft
+            given = {k: v for k, v in (("structural_damping", structural_damping), ("formulation", formulation)) if v is not None}
+            if given:
+                raise ValueError(f"{', '.join(given)}: set on the model (AircraftModel(...)), not on the flutter analysis "
+                                 "of a model")
+            _check_flutter_model(model)
+            options = model.aero.options
+            if n_inflow is not None and options.model == "unsteady" and n_inflow != options.n_inflow:
+                raise ValueError(f"n_inflow = {n_inflow!r}: the model has {options.n_inflow} inflow states per strip; "
+                                 "build the model with the number wanted")
+        else:
+            options = AeroOptions("quasi-steady", formulation=formulation)
+            model = AircraftModel(aircraft, aero=options, structural_damping=structural_damping)
+        n_inflow = options.n_inflow if options.model == "unsteady" else (6 if n_inflow is None else n_inflow)
+        self.model = model
+        self.aircraft = model.aircraft
         self.aero_model = aero_model
         self.linear_aero_density_kg_m3 = linear_aero_density_kg_m3
-        qs_opts = AeroOptions("quasi-steady", formulation=formulation)
-        self.qs = AircraftModel(aircraft, aero=qs_opts, structural_damping=structural_damping)
+
+        def sibling(name: str, n: int, density: float | None) -> AircraftModel:
+            if options.model == name and (name != "unsteady" or options.n_inflow == n) and density is None:
+                return model
+            return AircraftModel(model.aircraft, aero=replace(options, model=name, n_inflow=n),
+                                 structural_damping=model.structural_damping, gravity_m_s2=model.gravity_m_s2,
+                                 aero_density_kg_m3=density)
+
+        #: The quasi-steady model of every trim.
+        self.qs = sibling("quasi-steady", options.n_inflow, None)
         self.formulation = self.qs.formulation
-        lin = dict(structural_damping=structural_damping, aero_density_kg_m3=linear_aero_density_kg_m3)
-        # the model of the eigen-analysis: the trim model unless the linearised aerodynamics' density is fixed
-        self.qs_linear = self.qs if linear_aero_density_kg_m3 is None else AircraftModel(aircraft, aero=qs_opts, **lin)
-        self.fs = (AircraftModel(aircraft, aero=AeroOptions("unsteady", n_inflow, formulation=formulation), **lin)
-                   if aero_model != "quasi-steady" else None)
+        #: The model of the eigen-analysis: the trim model unless the linearised aerodynamics' density is fixed.
+        self.qs_linear = self.qs if linear_aero_density_kg_m3 is None else sibling("quasi-steady", options.n_inflow,
+                                                                                    linear_aero_density_kg_m3)
+        #: The finite-state model ("unsteady" analysis, p-k input/output matrices), None for a quasi-steady analysis.
+        self.fs = sibling("unsteady", n_inflow, linear_aero_density_kg_m3) if aero_model != "quasi-steady" else None
+
+    @classmethod
+    def from_model(cls, model: AircraftModel, aero_model: str = "theodorsen", *,
+                   linear_aero_density_kg_m3: float | None = None) -> "FlutterAnalysis":
+        """The flutter analysis of ``model`` (see the class): its aircraft and options, with ``aero_model``."""
+        if not isinstance(model, AircraftModel):
+            raise TypeError(f"model: an AircraftModel, not {type(model).__name__} (load_aircraft gives an Aircraft; "
+                            "build AircraftModel(aircraft, ...) or pass the aircraft to FlutterAnalysis)")
+        return cls(model, aero_model, linear_aero_density_kg_m3=linear_aero_density_kg_m3)
 
     def _model_name(self, aero_model: str | None) -> str:
         """The aerodynamic model of a search: ``aero_model`` when given (one this analysis has the models for)."""
@@ -288,8 +345,10 @@ class FlutterAnalysis:
                 # the crossing near the guess is the lowest one if the coarse grid below it is stable
                 below = [m for m in np.arange(lo, a, mach_step)]
                 if all(g(float(m)) <= 0 for m in below[-2:]):
-                    return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state, name, shared)
+                    return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state, name, shared, (lo, hi))
         grid = np.arange(lo, hi + 1e-12, mach_step)
+        if grid[-1] < hi - 1e-9:  # the scan ends at the upper end of the range, not a step short of it
+            grid = np.append(grid, hi)
         prev_m, prev_g = None, None
         skipped: list[float] = []
         _, surf_hi = self.aircraft.control_limits()
@@ -307,19 +366,20 @@ class FlutterAnalysis:
                             f"{name}: unstable at M = {mach:.4f}, the first flyable Mach number of the search "
                             f"({manoeuvre.describe()}); the lower Mach numbers {skipped[0]:.3f} to {skipped[-1]:.3f} need a "
                             "control surface beyond its limit to trim, so the crossing cannot be bracketed there "
-                            "(a lower mach_range[0] would not help)"
+                            f"(a lower mach_range[0] would not help; searched {lo:.3f} <= M <= {hi:.3f})", (lo, hi)
                         )
                     raise FlutterNotFound(
                         f"{name}: already unstable at the lower end of the search, M = {mach:.4f} "
-                        f"({manoeuvre.describe()}); lower mach_range[0]"
+                        f"({manoeuvre.describe()}; searched {lo:.3f} <= M <= {hi:.3f}); lower mach_range[0]", (lo, hi)
                     )
-                return self._point(manoeuvre, brentq(g, prev_m, float(mach), xtol=tol), a_sound, state, name, shared)
+                return self._point(manoeuvre, brentq(g, prev_m, float(mach), xtol=tol), a_sound, state, name, shared, (lo, hi))
             prev_m, prev_g = float(mach), val
         if prev_m is None:
-            raise FlutterNotFound(f"{name}: no flyable trim (surfaces within limits) for {lo:.3f} <= M <= {hi:.3f} ({manoeuvre.describe()})")
+            raise FlutterNotFound(f"{name}: no flyable trim (surfaces within limits) for {lo:.3f} <= M <= {hi:.3f} "
+                                  f"({manoeuvre.describe()})", (lo, hi))
         raise FlutterNotFound(
             f"{name}: no elastic mode crosses the imaginary axis for {lo:.3f} <= M <= {hi:.3f} "
-            f"({manoeuvre.describe()}); largest elastic real part {prev_g:.4g} 1/s at M = {prev_m:.3f}"
+            f"({manoeuvre.describe()}); largest elastic real part {prev_g:.4g} 1/s at M = {prev_m:.3f}", (lo, hi)
         )
 
     @staticmethod
@@ -345,7 +405,7 @@ class FlutterAnalysis:
         return None
 
     def _point(self, manoeuvre: SteadyManoeuvre, mach_f: float, a_sound: float, state: _SearchState, name: str,
-               shared: SharedEvaluations | None) -> FlutterPoint:
+               shared: SharedEvaluations | None, mach_range: tuple[float, float]) -> FlutterPoint:
         mach_f = float(mach_f)
         if mach_f not in state.done:  # Brent returns a Mach number it evaluated; kept for other root finders
             state.done[mach_f] = self.evaluate(manoeuvre.with_speed(mach_f * a_sound), state.guess, aero_model=name,
@@ -373,7 +433,83 @@ class FlutterAnalysis:
             aero_density_fixed=self.linear_aero_density_kg_m3 is not None,
             rigid_instabilities=tuple(state.rigid),
             evaluations=state.n,
+            mach_range=(float(mach_range[0]), float(mach_range[1])),
         )
+
+
+def _check_flutter_model(model: AircraftModel) -> None:
+    """Refuse a model a flutter search of a manoeuvre cannot use, naming what is wrong."""
+    if not isinstance(model, AircraftModel):
+        raise TypeError(f"model: an AircraftModel, not {type(model).__name__}")
+    if model.variant.value != "free":
+        raise ValueError(f"model.variant = {model.variant.value!r}: a flutter search of a manoeuvre needs the free aircraft; "
+                         "a restrained structure in an airflow is flexsim.wind_tunnel(aircraft, ...)")
+    if model.aero is None:
+        raise ValueError("model.aero = None: a model without aerodynamics has no flutter; build it with aero=\"quasi-steady\" "
+                         "or \"unsteady\"")
+    if model.aero_density_kg_m3 is not None:
+        raise ValueError(f"model.aero_density_kg_m3 = {model.aero_density_kg_m3!r}: trims need the true density; fix the "
+                         "density of the linearised aerodynamics with linear_aero_density_kg_m3 of the analysis instead")
+
+
+#: Largest Mach step of a flutter scan, and the fewest steps over the range (:func:`scan_step`).
+MAX_MACH_STEP = 0.05
+MIN_SCAN_STEPS = 8
+
+
+def scan_step(mach_range: tuple[float, float]) -> float:
+    """The Mach step of a flutter scan over ``mach_range``: 0.05, or an eighth of a narrower range [-].
+
+    0.05 on the paper's M 0.5-0.95; a sailplane's envelope (M 0.07-0.24) is scanned at 9 points instead of 4, so a
+    crossing that goes unstable and back between two scan points is as unlikely as on the wide range.
+    """
+    lo, hi = mach_range
+    return min(MAX_MACH_STEP, (hi - lo) / MIN_SCAN_STEPS)
+
+
+@single_blas_thread
+def flutter(model: AircraftModel, manoeuvre: SteadyManoeuvre, aero_model: str = "theodorsen", *,
+            mach_range: tuple[float, float] | None = None, mach_step: float | None = None, tol: float = 1e-4,
+            linear_aero_density_kg_m3: float | None = None) -> FlutterPoint:
+    """Lowest flutter Mach number of ``model`` flying ``manoeuvre`` (Tuzcu & Nguyen 2014, "Numerical Model").
+
+    Parameters
+    ----------
+    model : AircraftModel
+        The free aircraft with its aerodynamic options (``AircraftModel(aircraft, aero=...)``): its aircraft, force
+        resolution, compressibility, damping and gravity are used, no file is re-loaded (:class:`FlutterAnalysis`).
+    manoeuvre : SteadyManoeuvre
+        The steady manoeuvre (level, turn, climb, glide); its altitude and kind are kept and its speed searched.
+    aero_model : {"theodorsen", "unsteady", "quasi-steady"}
+        The paper's "US" p-k model (default), finite state ("FS") or quasi-steady ("QS").
+    mach_range : (float, float), optional
+        Searched Mach numbers; default the aircraft's envelope at the altitude
+        (:func:`flexsim.linear.envelope.search_range`).
+    mach_step : float, optional
+        Scan step in Mach [-]; default :func:`scan_step` of the range.
+    tol : float
+        Brent tolerance in Mach [-].
+    linear_aero_density_kg_m3 : float, optional
+        Paper-replication setting of :class:`FlutterAnalysis`.
+
+    Returns
+    -------
+    FlutterPoint
+        With ``mach_range``, the range searched.
+
+    Raises
+    ------
+    FlutterNotFound
+        When no elastic mode crosses in the range; its message and ``mach_range`` say where it searched.
+    """
+    from flexsim.linear.envelope import search_range
+
+    _check_flutter_model(model)
+    if mach_range is None:
+        mach_range = (lambda r: (r.mach_min, r.mach_max))(search_range(model, manoeuvre))
+    analysis = FlutterAnalysis(model, aero_model, linear_aero_density_kg_m3=linear_aero_density_kg_m3)
+    step = scan_step(mach_range) if mach_step is None else mach_step
+    return analysis.search(manoeuvre, mach_range=mach_range, mach_step=step, tol=tol)
 
 
 @dataclass(frozen=True, eq=False)

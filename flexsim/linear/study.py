@@ -127,7 +127,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
     that analysis, holding the trims and linearisations of the other searches of the same manoeuvre.
     """
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-    from flexsim.linear.flutter import FlutterNotFound
+    from flexsim.linear.flutter import FlutterNotFound, scan_step
     from flexsim.trim import SteadyManoeuvre, TrimError
 
     row = asdict(case)
@@ -136,8 +136,8 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
         analysis = analysis or case.analysis()
         start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_min)
         man = SteadyManoeuvre(start.speed_m_s, case.altitude_m, case.turn_radius_m, gamma, case.coordinated)
-        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_guess=mach_guess,
-                             aero_model=MODELS[case.model], shared=shared)
+        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_step=scan_step((case.mach_min, case.mach_max)),
+                             mach_guess=mach_guess, aero_model=MODELS[case.model], shared=shared)
     except (FlutterNotFound, TrimError, ValueError) as exc:
         row["error"] = str(exc)
         return row
