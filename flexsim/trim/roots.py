@@ -243,7 +243,7 @@ def _first_elastic_of(key: ContentKey) -> float:
     two)."""
     model = AircraftModel(key.aircraft, aero=None, gravity_m_s2=0.0)
     st, active = model.structure, model.active_dofs
-    lam = eigh(st.stiffness[np.ix_(active, active)], st.inertia.m0[np.ix_(active, active)], eigvals_only=True)
+    lam, _ = eigh(st.stiffness[np.ix_(active, active)], st.inertia.m0[np.ix_(active, active)])  # as in_vacuo_modes: bit for bit
     n_rigid = int(np.sum(np.abs(lam) <= 1e-10 * max(np.abs(lam).max(), 1e-300)))
     freqs = np.sqrt(np.maximum(lam[n_rigid:], 0.0))
     return float(freqs[0]) if freqs.size else np.inf
