@@ -49,6 +49,18 @@ def test_the_gtm_flutter_trims_are_stable_and_rows_record_it():
     assert point.trim.stability.is_stable and point.trim.stability.aero_model == "quasi-steady"
 
 
+@pytest.mark.parametrize("aircraft, formulation", [("gtm", "physical"), ("gtm_paper", "paper")])
+def test_every_level_flutter_row_of_the_gtm_is_stable(aircraft, formulation):
+    """The rows of ``flexsim flutter`` (both settings, QS and US at the paper's four altitudes) record stable trims;
+    their flutter Mach numbers are those the command printed before trims were classified (its output is unchanged)."""
+    from flexsim.linear.study import run_study
+
+    cases = [StudyCase(aircraft, m, h, mach_min=0.5, mach_max=0.95, formulation=formulation)
+             for m in ("QS", "US") for h in (0.0, 3048.0, 6096.0, 9144.0)]
+    rows = run_study(cases, workers=1, progress=False)
+    assert [r.get("trim_stability") for r in rows] == ["stable"] * 8, [r.get("error") for r in rows]
+
+
 def test_simulation_carries_the_initial_trims_verdict(files):
     model = AircraftModel(load_aircraft(str(files["tail_forward"])), aero="quasi-steady")
     point = trim(model, CRUISE)

@@ -178,6 +178,24 @@ def test_slowly_unstable_phugoid_is_reported_not_refused(models):
     assert st.message.startswith("slowly unstable: rigid-body mode phugoid [u] (real root +0.00")
 
 
+@pytest.mark.parametrize("radius_m, verdict, doubling_s", [(5000.0, "dynamically unstable", 24.7),
+                                                           (7000.0, "dynamically unstable", 54.0),
+                                                           (10_000.0, "slowly unstable", 193.0)])
+def test_the_papers_turns_phugoid(models, radius_m, verdict, doubling_s):
+    """The paper's (sideslipping) turns at 9144 m, M 0.78, as docs/flutter.md quotes them: the phugoid doubles in
+    25 s, 54 s and 193 s at R = 5, 7 and 10 km; at 5 km the CG sideslips 11.5 deg and the fin's tip strip is at -12 deg."""
+    point = trim(models["gtm"], SteadyManoeuvre.turn(9144.0, radius_m, mach=0.78), check_limits=False)
+    (root,) = point.stability.unstable
+    assert point.stability.verdict == verdict and root.name == "phugoid"
+    assert root.time_to_double_s == pytest.approx(doubling_s, rel=0.005)
+    if radius_m == 5000.0:
+        assert math.degrees(point.sideslip_cg) == pytest.approx(11.5, abs=0.05)
+        local = point.max_local_alpha
+        assert (local.component, local.number, round(math.degrees(local.alpha_rad))) == ("vtail", 5, -12)
+        with pytest.raises(TrimError, match=r"local angle of attack -12\.02 deg at vtail strip 5"):
+            trim(models["gtm"], SteadyManoeuvre.turn(9144.0, radius_m, mach=0.78))
+
+
 def test_classify_false_leaves_it_to_the_caller(models):
     assert trim(models["gtm"], CRUISE, classify=False).stability is None
 
