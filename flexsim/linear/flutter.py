@@ -221,7 +221,7 @@ class FlutterAnalysis:
         ``linear_aero_density_kg_m3`` when the analysis fixes it. ``aero_model`` (default: the analysis's) may name
         another model this analysis has the models for: "quasi-steady" always, all three when it was built for
         "unsteady" or "theodorsen". ``shared``: trims and linearisations already computed by another search of
-        this analysis (:class:`SharedEvaluations`).
+        this analysis (:class:`SharedEvaluations`). The trim's ``stability`` is classified from this eigen-analysis.
         """
         name = self._model_name(aero_model)
         if shared is not None and shared.analysis is not self:

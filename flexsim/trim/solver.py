@@ -6,7 +6,9 @@ velocities v, omega (:meth:`SteadyManoeuvre.body_rates`); the elastic rates and 
 Equations: the model's own right-hand side, V_dot = 0 (6 rigid-body + all elastic equations) — a square
 system solved by scipy's MINPACK hybrid method. A coordinated turn adds the heading offset psi - chi as an
 unknown and zero sideslip at the centre of gravity as an equation. The residual reported is the norm of V_dot scaled by g
-(translations, elastic coordinates) and g / 5 m (rotations); trim converges to ~1e-12.
+(translations, elastic coordinates) and g / 5 m (rotations); trim converges to ~1e-12. Every trim records its
+largest local angle of attack (:class:`StripAngle`) and classifies its equilibrium from the roots of its own
+linearisation (:mod:`flexsim.trim.equilibrium`).
 """
 
 from __future__ import annotations
@@ -490,21 +492,19 @@ def _check_limits(model: AircraftModel, manoeuvre: SteadyManoeuvre, point: TrimP
 
     Angle of attack: the strip aerodynamics are linear (no stall), so a trim is accepted only while the angle of
     attack of the centre of gravity is within +-``aero_settings.max_alpha_rad`` (the file's ``[aero]
-    max_alpha_deg``), the aircraft's linear lift range. Why the CG's angle and not the strips': the limit stands for
-    the end of the aircraft's linear lift curve, and its public measurement (for the GTM, NASA's T2 wind-tunnel
-    database, :func:`flexsim.aircraft.t2_data.t2_linear_alpha_limit_deg`) is a whole-aircraft lift curve against
-    the angle of attack of the body axes, with the fuselage's upwash, the wing's twist, sweep and span loading and
-    the tail's downwash inside it. A limit per strip would need each section's stall angle (not in the public GTM
-    data) and a local flow that strip theory gets only roughly: it has no spanwise flow, which is what
-    makes a swept wing's tips stall first. The strips' angles differ from the CG's by the rigging, the elastic
-    twist and the rotation rates; they are not checked. The CG's angle is the flight-mechanics alpha of a
-    steady manoeuvre: equal to ``TrimPoint.alpha`` (taken at o) in straight flight; in a turn they differ by the
-    pitch rate times the arm.
+    max_alpha_deg``), the aircraft's linear lift range. The limit stands for the end of the aircraft's linear lift
+    curve, and its public measurement (for the GTM, NASA's T2 wind-tunnel database,
+    :func:`flexsim.aircraft.t2_data.t2_linear_alpha_limit_deg`) is a whole-aircraft lift curve against the angle of
+    attack of the body axes, with the fuselage's upwash, the wing's twist, sweep and span loading and the tail's
+    downwash inside it. The CG's angle is the flight-mechanics alpha of a steady manoeuvre: equal to
+    ``TrimPoint.alpha`` (taken at o) in straight flight; in a turn they differ by the pitch rate times the arm.
 
-    Local angles: the same limit applies to every strip's local angle of attack (:class:`StripAngle`: elastic
-    twist and incidence included), so that a trim whose wing has twisted beyond the linear range (e.g. past a
-    static divergence) is not accepted; the strip with the largest |alpha| is named. The CG's limit stays the
-    aircraft's lift-curve limit.
+    Local angles: the same limit applies to every strip's local angle of attack (:class:`StripAngle`: the rigging,
+    the elastic twist and the rotation rates included), and the strip with the largest |alpha| is named. Each
+    section's own stall angle is not in the public GTM data, and strip theory has no spanwise flow (which makes a
+    swept wing's tips stall first), so the whole aircraft's range is the only limit there is to apply; it refuses
+    what the linear aerodynamics cannot represent at all, e.g. a wing twisted -18 deg past a static divergence, or
+    a fin at -12 deg in a sideslipping turn.
 
     Controls: thrust in [0, the engines' maximum], each surface within +-its ``max_deflection``; the thrust is
     not checked in a glide (it is 0 there).
