@@ -208,6 +208,7 @@ def test_cli_divergent_trim_is_refused_then_named_with_no_limits(files, capsys):
     assert main(["trim", str(files["wing_gj"]), *CRUISE_ARGS, "--no-limits"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
     assert lines[-1].startswith("statically divergent: right_wing bending 1 (real root +37.9 1/s")
+    assert lines[-1] in (GTM_TOML.parents[3] / "docs" / "flutter.md").read_text()  # the line docs/flutter.md quotes
     assert any(re.match(r"\s+equilibrium\s+statically divergent$", line) for line in lines)
     assert main(["trim", str(files["wing_gj"]), *CRUISE_ARGS, "--no-limits", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
