@@ -1,9 +1,10 @@
-"""Cost of classifying a trim's equilibrium (``TrimPoint.stability``) on the bundled GTM (quasi-steady model).
+"""Cost of classifying a trim's equilibrium (``TrimPoint.stability``) on the bundled GTM.
 
 Side by side in one run, CPU medians of this thread (time.thread_time) over --repeats calls:
 
 * ``trim(classify=False)`` and ``trim()`` (the default classifies: linearisation, eig, root classification and the
-  static margin), cold and from a neighbouring trim, with their ratio;
+  static margin), cold and from a neighbouring trim, with their ratio, for the quasi-steady model (60 states) and
+  the finite-state one (252 states: the inflow states are in its linearisation);
 * what a flutter search adds per evaluation: :func:`flexsim.trim.equilibrium.with_stability` on the spectrum the
   search computes anyway (the static margin and the verdict), beside one ``FlutterAnalysis.evaluate`` (QS and US)
   without it.
@@ -47,11 +48,12 @@ def main() -> None:
     man = SteadyManoeuvre.level(9144.0, mach=0.78)
     neighbour = trim(model, SteadyManoeuvre.level(9144.0, mach=0.77), check_limits=False, classify=False)
     rows = []
-    for label, kw in (("cold", {}), ("from a neighbour", {"guess": neighbour})):
-        bare = _cpu_median(lambda: trim(model, man, check_limits=False, classify=False, **kw), args.repeats)
-        full = _cpu_median(lambda: trim(model, man, check_limits=False, **kw), args.repeats)
-        rows.append((f"trim {label}", bare, full))
-    print(f"GTM, 9144 m, M 0.78, quasi-steady; CPU medians of {args.repeats} calls [ms]")
+    for name, trim_model in (("QS", model), ("FS", analysis.fs)):
+        for label, kw in (("cold", {}), ("from a neighbour", {"guess": neighbour})):
+            bare = _cpu_median(lambda: trim(trim_model, man, check_limits=False, classify=False, **kw), args.repeats)
+            full = _cpu_median(lambda: trim(trim_model, man, check_limits=False, **kw), args.repeats)
+            rows.append((f"{name} trim {label}", bare, full))
+    print(f"GTM, 9144 m, M 0.78; CPU medians of {args.repeats} calls [ms]")
     print(f"  {'':<24} {'classify=False':>14} {'classify=True':>14} {'extra':>8} {'ratio':>6}")
     for label, bare, full in rows:
         print(f"  {label:<24} {1e3 * bare:14.2f} {1e3 * full:14.2f} {1e3 * (full - bare):8.2f} {full / bare:6.2f}")

@@ -213,15 +213,21 @@ def classify_equilibrium(model: "AircraftModel", x0: np.ndarray, spectrum: Spect
 
 def equilibrium_stability(model: "AircraftModel", x0: np.ndarray, u0: np.ndarray) -> EquilibriumStability:
     """Linearise ``model`` about (x0, u0) (:func:`flexsim.trim.roots.reduced_jacobian`), classify its roots and the
-    static margin, and give the verdict (:func:`classify_equilibrium`)."""
+    static margin, and give the verdict (:func:`classify_equilibrium`).
+
+    The eigenvalues come first without eigenvectors; only when one of them is unstable are the eigenvectors computed
+    and every root classified (a stable trim, the usual one, costs the Jacobian and ``eigvals``)."""
     from flexsim.trim.margin import static_margin_of_state
 
     rj = reduced_jacobian(model, x0, u0)
-    vals, vecs = np.linalg.eig(rj.a)
     label = "none" if model.aero is None else model.aero.options.model
     margin = static_margin_of_state(model, x0, u0)
-    return classify_equilibrium(model, x0, _classify(model, rj, vals, vecs, label),
-                                math.nan if margin is None else margin.fraction_of_mac)
+    margin_mac = math.nan if margin is None else margin.fraction_of_mac
+    lam = np.linalg.eigvals(rj.a)
+    if not np.any(lam.real > UNSTABLE_DAMPING * np.abs(lam)):
+        return classify_equilibrium(model, x0, Spectrum((), label), margin_mac)
+    vals, vecs = np.linalg.eig(rj.a)
+    return classify_equilibrium(model, x0, _classify(model, rj, vals, vecs, label), margin_mac)
 
 
 def with_stability(model: "AircraftModel", point, spectrum: Spectrum, neutral: complex | None = None):
