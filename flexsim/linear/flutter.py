@@ -260,7 +260,8 @@ class FlutterAnalysis:
         Raises
         ------
         FlutterNotFound
-            When no elastic mode becomes unstable in ``mach_range``.
+            When no elastic mode becomes unstable in ``mach_range``, or a trim of the grid scan is statically
+            divergent before any crossing (``TrimPoint.stability``; the message names its roots).
         """
         lo, hi = mach_range
         if not 0.0 < lo < hi < 1.0:
