@@ -45,7 +45,7 @@ from flexsim.sim import _step_kernels as _sk
 from flexsim.sim.fixed_step import ETD2RK
 from flexsim.sim.outputs import OutputMaps
 from flexsim.kinematics import euler_rate_matrix_inverse
-from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
+from flexsim.trim import SteadyManoeuvre, TrimError, TrimPoint, trim
 
 from flexsim.envs import row_kernels as _rk
 from flexsim.envs.config import FIXED_STEP_METHODS, ActuatorRates, IntegratorSettings
@@ -322,10 +322,16 @@ class FlightDynamics:
 
     # ------------------------------------------------------------------ trim and Jacobian
     def trim(self, manoeuvre: SteadyManoeuvre) -> TrimPoint:
-        """Still-air trim of ``manoeuvre`` (the last ``TRIM_CACHE`` trims are cached: trims are deterministic)."""
+        """Still-air trim of ``manoeuvre`` (the last ``TRIM_CACHE`` trims are cached: trims are deterministic).
+
+        Raises TrimError for a statically divergent trim (``TrimPoint.stability``): no episode starts from it."""
         point = self._trims.pop(manoeuvre, None)
         if point is None:
             point = trim(self.model, manoeuvre)
+            if point.stability.is_divergent:
+                raise TrimError(f"cannot start an episode from the trim of {self.model.aircraft.name} in "
+                                f"{manoeuvre.describe()}: it is not an equilibrium the aircraft stays in, "
+                                f"{point.stability.message}")
         self._trims[manoeuvre] = point
         _evict(self._trims)
         return point

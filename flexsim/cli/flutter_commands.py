@@ -45,13 +45,18 @@ def _trim(args: argparse.Namespace) -> int:
         margin = static_margin(model, point)
         out = {**out, "static_margin_mac": margin.fraction_of_mac, "neutral_point_aft_of_cg_m": margin.neutral_point_aft_of_cg_m}
     roots = _roots(aircraft, point, args.roots, args.formulation) if args.roots else None
+    local = point.max_local_alpha
     if args.json:
         extra = {"roots": roots} if roots is not None else {}
-        print(json_text({**out, "formulation": model.formulation, **extra}))
+        print(json_text({**out, "formulation": model.formulation, "stability": point.stability.as_dict(),
+                         "max_local_alpha": local.as_dict() if local is not None else None, **extra}))
         return 0
     print(f"Trim of {aircraft.name} ({model.formulation} force resolution): {point.manoeuvre.describe()}")
     for key, value in out.items():
         print(f"  {key:<18} {value: .6g}")
+    if local is not None:
+        print(f"  {'max_local_alpha':<18} {local.describe()}")
+    print(f"  {'equilibrium':<18} {point.stability.verdict}")
     if roots is not None:
         counts = {k: sum(r["kind"] == k for r in roots["modes"]) for k in ("rigid", "elastic", "aerodynamic")}
         print(f"Roots of the linearised trim ({roots['aero_model']}): {counts['rigid']} rigid-body, {counts['elastic']} elastic, "
@@ -61,6 +66,8 @@ def _trim(args: argparse.Namespace) -> int:
             if r["kind"] != "aerodynamic" and r["imag"] >= 0.0:
                 print(f"  {r['kind']:<12} {r['real']:11.5f} {r['imag']:12.5f} {r['damping_ratio']:8.4f}  {r['dominant_dof']}")
         print("  (aerodynamic-lag roots: --json lists them)")
+    if not point.stability.is_stable:
+        print(point.stability.message)
     return 0
 
 

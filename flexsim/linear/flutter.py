@@ -27,6 +27,7 @@ from flexsim.linear.stability import Mode, Spectrum, linear_spectrum, spectrum
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
+from flexsim.trim.equilibrium import with_stability
 
 __all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter"]
 
@@ -161,7 +162,7 @@ class SharedEvaluations:
         if key in self._trims:
             self.hits += 1
             return self._trims[key]
-        point = self._trims[key] = trim(self.analysis.qs, manoeuvre, guess=guess, check_limits=False)
+        point = self._trims[key] = trim(self.analysis.qs, manoeuvre, guess=guess, check_limits=False, classify=False)
         return point
 
     def linearize(self, point: TrimPoint) -> LinearModel:
@@ -277,19 +278,21 @@ class FlutterAnalysis:
         ``linear_aero_density_kg_m3`` when the analysis fixes it. ``aero_model`` (default: the analysis's) may name
         another model this analysis has the models for: "quasi-steady" always, all three when it was built for
         "unsteady" or "theodorsen". ``shared``: trims and linearisations already computed by another search of
-        this analysis (:class:`SharedEvaluations`).
+        this analysis (:class:`SharedEvaluations`). The trim's ``stability`` is classified from this eigen-analysis.
         """
         name = self._model_name(aero_model)
         if shared is not None and shared.analysis is not self:
             raise ValueError("shared: a SharedEvaluations of another FlutterAnalysis (its trims belong to other models)")
-        point = trim(self.qs, manoeuvre, guess=guess, check_limits=False) if shared is None else shared.trim(manoeuvre, guess)
+        point = (trim(self.qs, manoeuvre, guess=guess, check_limits=False, classify=False) if shared is None
+                 else shared.trim(manoeuvre, guess))
         if name == "unsteady":
             x = np.concatenate([point.x, np.zeros(self.fs.layout.n_inflow)])
-            return point, spectrum(self.fs, x, point.u, aero_model="unsteady")
-        pk = dict(pk_model=self.fs) if name == "theodorsen" else {}
-        if shared is None:
-            return point, spectrum(self.qs_linear, point.x, point.u, aero_model=name, **pk)
-        return point, linear_spectrum(self.qs_linear, shared.linearize(point), aero_model=name, **pk)
+            spec = spectrum(self.fs, x, point.u, aero_model="unsteady")
+        else:
+            pk = dict(pk_model=self.fs) if name == "theodorsen" else {}
+            spec = (spectrum(self.qs_linear, point.x, point.u, aero_model=name, **pk) if shared is None
+                    else linear_spectrum(self.qs_linear, shared.linearize(point), aero_model=name, **pk))
+        return with_stability(self.qs, point, spec), spec  # the trim classified from this analysis's own roots
 
     @single_blas_thread
     def search(self, manoeuvre: SteadyManoeuvre, *, mach_range: tuple[float, float] = (0.3, 0.95),
@@ -314,7 +317,8 @@ class FlutterAnalysis:
         Raises
         ------
         FlutterNotFound
-            When no elastic mode becomes unstable in ``mach_range``.
+            When no elastic mode becomes unstable in ``mach_range``, or a trim of the grid scan is statically
+            divergent before any crossing (``TrimPoint.stability``; the message names its roots).
         """
         lo, hi = mach_range
         if not 0.0 < lo < hi < 1.0:
@@ -359,6 +363,10 @@ class FlutterAnalysis:
                 state.guess = None  # trim needs a surface beyond its limit: not flyable, skip this speed
                 skipped.append(float(mach))
                 continue
+            if trim_point.stability.is_divergent:  # not an equilibrium the aircraft stays in: no flutter above it
+                where = "the lower end of the search" if prev_m is None else "below any flutter crossing"
+                raise FlutterNotFound(f"{name}: the trim at M = {mach:.4f} ({where}, {manoeuvre.describe()}) is not a valid "
+                                      f"equilibrium: {trim_point.stability.message}")
             if val > 0:
                 if prev_m is None:
                     if skipped:
@@ -413,6 +421,7 @@ class FlutterAnalysis:
             state.n += 1
         point, spec = state.done[mach_f]
         mode = spec.critical("elastic")
+        point = with_stability(self.qs, point, spec, neutral=mode.eigenvalue)  # the crossing mode is neutral here
         desc = describe_mode(self.qs.structure, mode.shape, mode.eigenvalue)
         return FlutterPoint(
             aero_model=name,

@@ -148,6 +148,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
         aileron_deg=s["aileron_deg"], elevator_deg=s["elevator_deg"], rudder_deg=s["rudder_deg"],
         tip_deflection_m=s["tip_deflection_m"], tip_twist_deg=s["tip_twist_deg"], evaluations=fp.evaluations,
         rigid_instabilities=len(fp.rigid_instabilities),
+        trim_stability=fp.trim.stability.verdict if fp.trim.stability is not None else None,
         mode_symmetry=fp.mode_symmetry, symmetric_fraction=fp.symmetric_fraction, normalised_by=fp.normalised_by,
         participation=[p.as_dict() for p in fp.participation],
         formulation=fp.formulation, aero_density_kg_m3=fp.aero_density_kg_m3, aero_density_fixed=fp.aero_density_fixed,

@@ -17,6 +17,7 @@ import numpy as np
 
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.sim.outputs import OutputMaps
+from flexsim.trim.equilibrium import EquilibriumStability
 
 __all__ = ["SimulationResult", "STATUSES"]
 
@@ -59,6 +60,9 @@ class SimulationResult:
         run (if any).
     wind : callable or None
         The disturbance the run was flown in (air data and loads are computed with it); None: still air.
+    initial_stability : EquilibriumStability or None
+        The classification of the trim the run started from (``TrimPoint.stability``,
+        :mod:`flexsim.trim.equilibrium`); None when it started from a state vector.
     """
 
     t: np.ndarray
@@ -76,6 +80,7 @@ class SimulationResult:
     log_path: Path | None = None
     events: tuple[tuple[float, str], ...] = ()
     wind: Wind | None = None
+    initial_stability: EquilibriumStability | None = None
 
     # ------------------------------------------------------------------ run facts
     @property

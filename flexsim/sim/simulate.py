@@ -516,7 +516,8 @@ def simulate(
     t, x, u = results.arrays()
     return SimulationResult(t=t, x=x, u=u, status=outcome.status, reason=outcome.reason, model=model, method=method,
                             rtol=float(rtol), nfev=outcome.nfev, njev=outcome.njev, nlu=outcome.nlu,
-                            wall_time_s=time.perf_counter() - wall0, log_path=path, events=outcome.crossings, wind=wind)
+                            wall_time_s=time.perf_counter() - wall0, log_path=path, events=outcome.crossings, wind=wind,
+                            initial_stability=initial.stability if isinstance(initial, TrimPoint) else None)
 
 
 def _integrate(problem: RunProblem, settings: IntegrationSettings, sinks: Sinks) -> RunOutcome:

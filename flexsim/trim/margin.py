@@ -18,7 +18,7 @@ import numpy as np
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.trim.solver import TrimPoint
 
-__all__ = ["StaticMargin", "static_margin"]
+__all__ = ["StaticMargin", "static_margin", "static_margin_of_state"]
 
 
 @dataclass(frozen=True)
@@ -42,15 +42,24 @@ def static_margin(model: AircraftModel, point: TrimPoint, dw_m_s: float = 0.5) -
     ValueError
         When the model has no aerodynamics or no right wing, or is not free.
     """
-    if model.aero is None or "right_wing" not in model.aero.strips.component or not model.layout.rigid:
+    margin = static_margin_of_state(model, point.x, point.u, dw_m_s)
+    if margin is None:
         raise ValueError("static margin: needs a free or quasi-rigid model with aerodynamic strips on a right wing")
+    return margin
+
+
+def static_margin_of_state(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, dw_m_s: float = 0.5) -> StaticMargin | None:
+    """:func:`static_margin` at the trim state ``x0`` and controls ``u0``; None where it is not defined (no
+    aerodynamics, no right wing, a restrained model)."""
+    if model.aero is None or "right_wing" not in model.aero.strips.component or not model.layout.rigid:
+        return None
     lay = model.layout
     cg = model.structure.mass_properties.cg_m
 
     def lift_and_moment(dw: float) -> tuple[float, float]:
-        x = point.x.copy()
+        x = np.array(x0, dtype=float)
         x[lay.v.start + 2] += dw
-        f = model.aerodynamic_force(x, point.u)
+        f = model.aerodynamic_force(x, u0)
         force = f[0:3]
         v = x[lay.v]
         alpha = np.arctan2(v[2], v[0])

@@ -6,14 +6,16 @@ velocities v, omega (:meth:`SteadyManoeuvre.body_rates`); the elastic rates and 
 Equations: the model's own right-hand side, V_dot = 0 (6 rigid-body + all elastic equations) — a square
 system solved by scipy's MINPACK hybrid method. A coordinated turn adds the heading offset psi - chi as an
 unknown and zero sideslip at the centre of gravity as an equation. The residual reported is the norm of V_dot scaled by g
-(translations, elastic coordinates) and g / 5 m (rotations); trim converges to ~1e-12.
+(translations, elastic coordinates) and g / 5 m (rotations); trim converges to ~1e-12. Every trim records its
+largest local angle of attack (:class:`StripAngle`) and classifies its equilibrium from the roots of its own
+linearisation (:mod:`flexsim.trim.equilibrium`).
 """
 
 from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.linalg import LinAlgWarning, lu_factor, lu_solve
@@ -21,13 +23,15 @@ from scipy.optimize import root
 
 from flexsim._arrays import readonly
 from flexsim._threads import single_blas_thread
+from flexsim.atmosphere import speed_of_sound
 from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel, Variant
 from flexsim.kinematics import dcm_321
 from flexsim.model.sensors import structural_sensors
+from flexsim.trim.equilibrium import EquilibriumStability, equilibrium_stability
 from flexsim.trim.manoeuvre import SteadyManoeuvre
 
-__all__ = ["TrimPoint", "TrimError", "trim"]
+__all__ = ["TrimPoint", "TrimError", "StripAngle", "trim"]
 
 _ROT_LENGTH = 5.0  # [m] scale converting angular accelerations to g units in the residual
 _TOLERANCE = 1e-8
@@ -41,6 +45,46 @@ _ROUND_OFF = 1e-12
 
 class TrimError(FlexsimError, RuntimeError):
     """Trim failed or is infeasible; the message names the manoeuvre, residuals and limiting quantity."""
+
+
+@dataclass(frozen=True)
+class StripAngle:
+    """The local angle of attack of one aerodynamic strip at a trim.
+
+    alpha = atan(w_EA / u0) of the strip's elastic-axis point: the normal velocity relative to the air (the tail
+    strips in the wing's downwash) over the chordwise speed, w_EA = n^T A(q) V + u0 (alpha_el + alpha_r), which
+    holds the elastic twist alpha_el and the rigging incidence alpha_r (:mod:`flexsim.model.coupling`); the
+    control-surface camber is not in it.
+
+    Attributes
+    ----------
+    alpha_rad : float
+        [rad], positive nose up against the wind.
+    strip : int
+        Index of the strip among all strips of the model.
+    component : str
+        The component the strip belongs to.
+    number : int
+        The strip's number on its component, 1 at the root.
+    station_m : float
+        Elastic-axis station of the strip midpoint from the component root [m].
+    """
+
+    alpha_rad: float
+    strip: int
+    component: str
+    number: int
+    station_m: float
+
+    def describe(self) -> str:
+        """E.g. "-17.09 deg at left_wing strip 10 (station 17.1 m from its root)"."""
+        return (f"{math.degrees(self.alpha_rad):.4g} deg at {self.component} strip {self.number} (station "
+                f"{self.station_m:.3g} m from its root)")
+
+    def as_dict(self) -> dict:
+        """Plain dict for JSON (the angle in degrees)."""
+        return {"alpha_deg": math.degrees(self.alpha_rad), "strip": self.strip, "component": self.component,
+                "number": self.number, "station_m": self.station_m}
 
 
 @dataclass(frozen=True, eq=False)
@@ -78,6 +122,11 @@ class TrimPoint:
         nose up) [rad], as in the paper's Tables 2-3.
     residual : float
         Scaled norm of the right-hand side at the trim state.
+    max_local_alpha : StripAngle or None
+        The strip with the largest local angle of attack |alpha| (None without aerodynamic strips).
+    stability : EquilibriumStability or None
+        The classification of the equilibrium from the roots of its linearisation
+        (:mod:`flexsim.trim.equilibrium`); None when the trim was asked not to classify (``classify=False``).
     """
 
     manoeuvre: SteadyManoeuvre
@@ -98,6 +147,8 @@ class TrimPoint:
     bank_wind: float = 0.0
     lift_n: float = 0.0
     drag_n: float = 0.0
+    max_local_alpha: StripAngle | None = None
+    stability: EquilibriumStability | None = None
 
     def __post_init__(self) -> None:
         # a frozen result: its arrays are read-only copies (the caller's arrays are not frozen)
@@ -134,6 +185,7 @@ class TrimPoint:
             "load_factor_total": self.load_factor_total,
             "tip_deflection_m": self.tip_deflection_m,
             "tip_twist_deg": math.degrees(self.tip_twist_rad),
+            "max_local_alpha_deg": math.degrees(self.max_local_alpha.alpha_rad) if self.max_local_alpha else math.nan,
             "residual": self.residual,
         }
 
@@ -224,7 +276,8 @@ class _Problem:
 
 
 @single_blas_thread
-def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint | None = None, check_limits: bool = True) -> TrimPoint:
+def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint | None = None, check_limits: bool = True,
+         classify: bool = True) -> TrimPoint:
     """Trim ``model`` in ``manoeuvre`` (eqs. 33-39) with its own right-hand side.
 
     Parameters
@@ -236,9 +289,13 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
     guess : TrimPoint, optional
         Starting point (e.g. the trim at a neighbouring speed).
     check_limits : bool
-        Raise when the angle of attack of the CG is beyond the linear aerodynamics' range (the aircraft's
-        ``[aero] max_alpha_deg``) or the thrust or a surface is beyond its limit (default True; False returns
-        the solution of the equations as asked).
+        Raise when the angle of attack of the CG or the local angle of attack of a strip is beyond the linear
+        aerodynamics' range (the aircraft's ``[aero] max_alpha_deg``) or the thrust or a surface is beyond its
+        limit (default True; False returns the solution of the equations as asked).
+    classify : bool
+        Classify the equilibrium from the roots of the model linearised about it (``TrimPoint.stability``,
+        :func:`flexsim.trim.equilibrium.equilibrium_stability`; default True). False leaves it None, for a caller
+        that classifies from an eigen-analysis of its own (the flutter search).
 
     Returns
     -------
@@ -291,6 +348,8 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         except TrimError:
             _check_singular(prob, z, jac)  # an absurd control from a singular system: say so instead
             raise
+    if classify:
+        point = replace(point, stability=equilibrium_stability(model, x, u))
     return point
 
 
@@ -433,16 +492,19 @@ def _check_limits(model: AircraftModel, manoeuvre: SteadyManoeuvre, point: TrimP
 
     Angle of attack: the strip aerodynamics are linear (no stall), so a trim is accepted only while the angle of
     attack of the centre of gravity is within +-``aero_settings.max_alpha_rad`` (the file's ``[aero]
-    max_alpha_deg``), the aircraft's linear lift range. Why the CG's angle and not the strips': the limit stands for
-    the end of the aircraft's linear lift curve, and its public measurement (for the GTM, NASA's T2 wind-tunnel
-    database, :func:`flexsim.aircraft.t2_data.t2_linear_alpha_limit_deg`) is a whole-aircraft lift curve against
-    the angle of attack of the body axes, with the fuselage's upwash, the wing's twist, sweep and span loading and
-    the tail's downwash inside it. A limit per strip would need each section's stall angle (not in the public GTM
-    data) and a local flow that strip theory gets only roughly: it has no spanwise flow, which is what
-    makes a swept wing's tips stall first. The strips' angles differ from the CG's by the rigging, the elastic
-    twist and the rotation rates; they are not checked. The CG's angle is the flight-mechanics alpha of a
-    steady manoeuvre: equal to ``TrimPoint.alpha`` (taken at o) in straight flight; in a turn they differ by the
-    pitch rate times the arm.
+    max_alpha_deg``), the aircraft's linear lift range. The limit stands for the end of the aircraft's linear lift
+    curve, and its public measurement (for the GTM, NASA's T2 wind-tunnel database,
+    :func:`flexsim.aircraft.t2_data.t2_linear_alpha_limit_deg`) is a whole-aircraft lift curve against the angle of
+    attack of the body axes, with the fuselage's upwash, the wing's twist, sweep and span loading and the tail's
+    downwash inside it. The CG's angle is the flight-mechanics alpha of a steady manoeuvre: equal to
+    ``TrimPoint.alpha`` (taken at o) in straight flight; in a turn they differ by the pitch rate times the arm.
+
+    Local angles: the same limit applies to every strip's local angle of attack (:class:`StripAngle`: the rigging,
+    the elastic twist and the rotation rates included), and the strip with the largest |alpha| is named. Each
+    section's own stall angle is not in the public GTM data, and strip theory has no spanwise flow (which makes a
+    swept wing's tips stall first), so the whole aircraft's range is the only limit there is to apply; it refuses
+    what the linear aerodynamics cannot represent at all, e.g. a wing twisted -18 deg past a static divergence, or
+    a fin at -12 deg in a sideslipping turn.
 
     Controls: thrust in [0, the engines' maximum], each surface within +-its ``max_deflection``; the thrust is
     not checked in a glide (it is 0 there).
@@ -453,6 +515,10 @@ def _check_limits(model: AircraftModel, manoeuvre: SteadyManoeuvre, point: TrimP
         problems.append(f"angle of attack alpha = {math.degrees(alpha):.4g} deg at the CG beyond the range of the linear "
                         f"(no-stall) aerodynamics, +-{math.degrees(limit):.4g} deg = [aero] max_alpha_deg of "
                         f"{model.aircraft.name}")
+    local = point.max_local_alpha
+    if local is not None and not abs(local.alpha_rad) <= limit + 1e-12:
+        problems.append(f"local angle of attack {local.describe()} beyond the range of the linear (no-stall) "
+                        f"aerodynamics, +-{math.degrees(limit):.4g} deg = [aero] max_alpha_deg of {model.aircraft.name}")
     lo, hi = model.aircraft.control_limits()
     names = ("thrust T_e [N]", "aileron delta_a [rad]", "elevator delta_e [rad]", "rudder delta_r [rad]")
     for k in range(4):
@@ -527,4 +593,22 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
         bank_wind=_wind_bank(eul, v_cg),
         lift_n=lift,
         drag_n=drag,
+        max_local_alpha=_max_local_alpha(model, x, u),
     )
+
+
+def _max_local_alpha(model: AircraftModel, x: np.ndarray, u: np.ndarray) -> StripAngle | None:
+    """The strip with the largest local angle of attack |atan(w_EA / u0)| at the state x (:class:`StripAngle`; the
+    strips' kinematics of :meth:`flexsim.model.coupling.AeroCoupling.strip_loads`, downwash included); None without
+    strips."""
+    if model.aero is None or model.aero.strips.n_strips == 0:
+        return None
+    _, _, q, xi, vel = model.unpack(x)
+    mach = float(np.linalg.norm(vel[0:3])) / speed_of_sound(float(-x[model.layout.position][2]))
+    loads = model.aero.strip_loads(q, xi, vel, x[model.layout.inflow], u, model.air_density(x), mach)
+    alpha = np.arctan2(loads.w_ea_m_s, loads.u0_m_s)
+    j = int(np.argmax(np.abs(alpha)))
+    strips = model.aero.strips
+    name = strips.component[j]
+    number = sum(1 for c in strips.component[:j] if c == name) + 1
+    return StripAngle(float(alpha[j]), j, name, number, float(strips.station_m[j]))
