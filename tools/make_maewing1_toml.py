@@ -254,7 +254,7 @@ if __name__ == "__main__":
             key = f"{name}_{comp}"
             w(f"\n[components.{key}]\nroot_m = {fmt(g0 * IN)}\neuler_deg = [0.0, 0.0, {psi:.6g}]   # sweep {abs(psi) - 90:.4g} deg")
             w(f"length_m = {l_c * IN:.6g}")
-            w("rigid = true" if comp == "htail" else "bending_modes = 4\ntorsion_modes = 3")
+            w("rigid = true" if comp == "htail" else "bending_modes = 6\ntorsion_modes = 4")
             w(f"[components.{key}.aero]\nstrips = {3 if comp == 'htail' else 12}\nlift_slope = {cla:.6g}   # whole-wing CL_alpha [1/rad], DATCOM 4.1.3.2")
             w(f'[components.{key}.control_surface]\nkind = "{kind}"   # {"body flap" if kind == "elevator" else "outer flap"}')
             w(f"hinge_fraction = {(x_h - le_m) / (te_m - le_m):.4g}\nstart_m = {s0 * IN:.6g}\nend_m = {s1 * IN:.6g}")
