@@ -33,9 +33,7 @@ MAX_THRUST_N = 30.0  # not in the FEM: an assumed motor thrust, so that flexsim'
 def number(text):
     """A NASTRAN real or integer ("1.1468-7", "5.098e-1", "0.", blank -> 0)."""
     t = text.strip()
-    if not t:
-        return 0.0
-    return float(re.sub(r"(?<=[0-9.])([+-]\d+)$", r"E\1", t))
+    return float(re.sub(r"(?<=[0-9.])([+-]\d+)$", r"E\1", t)) if t else 0.0
 
 
 def cards(folder):
@@ -50,11 +48,10 @@ def cards(folder):
             fields = [line[i:i + 8] for i in range(8, min(len(line), 72), 8)]
             fields += [""] * (8 - len(fields))
             if head == "" or head.startswith("+"):
-                if last is not None:
-                    last.extend(fields)
-                continue
-            last = fields
-            out.setdefault(head.upper(), []).append(last)
+                last.extend(fields)
+            else:
+                last = fields
+                out.setdefault(head.upper(), []).append(last)
     return out
 
 
@@ -106,11 +103,6 @@ def model(folder):
     return grid, elems, points, c, cs
 
 
-def totals(elems, points):
-    """Mass [lb], CG [in] and inertia about the CG [lb in^2] of the whole model (lumped beam mass at the nodes)."""
-    return combine([item for e in elems for item in halves(e)] + points)
-
-
 def halves(e):
     """An element's mass as two point masses at its (offset) ends, each with half its polar inertia about its axis."""
     length = np.linalg.norm(e["b"] - e["a"])
@@ -150,6 +142,11 @@ def fmt(values, digits=6):
     return "[" + ", ".join(f"{v:.{digits}g}" for v in values) + "]"
 
 
+def datcom_slope(aspect, sweep):
+    """Lift-curve slope of a wing [1/rad] (Helmbold-Diederich, USAF DATCOM 4.1.3.2; Mach 0, section slope 2 pi)."""
+    return 2 * math.pi * aspect / (2 + math.sqrt(aspect**2 * (1 + math.tan(sweep) ** 2) + 4))
+
+
 def wing_tables(elems, points, root, tip):
     """Stations [in] and section tables (lb/in, lbf in^2, lb in^2/in, in) of one wing from its elements."""
     a = (tip - root) / np.linalg.norm(tip - root)
@@ -187,15 +184,13 @@ if __name__ == "__main__":
     parser.add_argument("--totals", action="store_true", help="print the model's mass [kg], CG [m] and inertia [kg m^2] and stop")
     args = parser.parse_args()
     grid, elems, points, c, cs = model(args.source)
-    m, cg, inertia = totals(elems, [p[:3] for p in points])
+    m, cg, inertia = combine([item for e in elems for item in halves(e)] + [p[:3] for p in points])  # [lb], [in], [lb in^2]
     if args.totals:
         print(f"mass_kg = {m * LB:.6g}\ncg_m = {fmt(cg * IN)}\ninertia_kg_m2 = {fmt(np.diag(inertia) * LB * IN**2)}")
         raise SystemExit
     edges, area, span = planform(c)
-    aspect = span**2 / area
-    sweep = math.atan2(*(grid[2080] - grid[2020])[:2])  # outer wing: constant chord, so the half-chord sweep
-    # lift slope of the whole wing (Helmbold-Diederich, USAF DATCOM 4.1.3.2, Mach 0, section slope 2 pi), on every strip
-    cla = 2 * math.pi * aspect / (2 + math.sqrt(aspect**2 * (1 + math.tan(sweep) ** 2) + 4))
+    # the whole wing's lift slope on every strip; the outer wing has a constant chord: its beam sweep is the half-chord's
+    cla = datcom_slope(span**2 / area, math.atan2(*(grid[2080] - grid[2020])[:2]))
     # the two tip winglets (CAERO1 1101001-2102001, upper and lower panels) as one centreline fin of twice their chord
     # (same area, same x): flexsim has one fin; its axis at x = 27 in, the origin o at its root
     fin = sorted((number(f[10 + 4 * k]), number(f[8 + 4 * k]), 2 * number(f[11 + 4 * k])) for f in c["CAERO1"]
@@ -203,8 +198,7 @@ if __name__ == "__main__":
     fin = np.array([fin[0]] + [fin[k] for k in range(1, len(fin)) if fin[k][0] > fin[k - 1][0] + 1e-9])
     x_fin, fin_span = 27.0, fin[-1, 0] - fin[0, 0]
     fin_aspect = 2 * fin_span**2 / np.trapezoid(fin[:, 2], fin[:, 0])  # one winglet: half the fin's area
-    fin_sweep = math.atan2(fin[-1, 1] + 0.25 * fin[-1, 2] - fin[1, 1] - 0.25 * fin[1, 2], fin[-1, 0] - fin[1, 0])
-    fin_cla = 2 * math.pi * fin_aspect / (2 + math.sqrt(fin_aspect**2 * (1 + math.tan(fin_sweep) ** 2) + 4))
+    fin_cla = datcom_slope(fin_aspect, math.atan2(*(fin[-1, 1:] @ [1, 0.25] - fin[1, 1:] @ [1, 0.25], fin[-1, 0] - fin[1, 0])))
     tail, nose = np.array([x_fin, 0.0, 0.0]), grid[3001]
     out = []
     w = out.append
@@ -281,19 +275,18 @@ if __name__ == "__main__":
             a = grid[2090 if p[1][1] > 0 else 1090] - grid[2010 if p[1][1] > 0 else 1010]
             a /= np.linalg.norm(a)
             cb_items.append((0.0, p[1], p[2] - (a @ p[2] @ a) * np.outer(a, a)))
-    lumped.insert(0, ("centre_body", "fuselage", *combine(cb_items)))
-    for name_, comp, mg, pos, tens in lumped:
-        w(f'\n[[lumped_masses]]\nname = "{name_}"\ncomponent = "{comp}"\nposition_m = {fmt(pos * IN)}\nmass_kg = {mg * LB:.6g}')
-        tens = np.where(np.abs(tens) > 1e-9 * np.abs(tens).max(), tens, 0.0)
-        pos = np.where(np.abs(pos) > 1e-9, pos, 0.0)
-        if np.abs(tens).max() > 0:
-            w(f"inertia_kg_m2 = [{', '.join(fmt(row * LB * IN**2) for row in tens)}]")
     w(f"\n[components.vtail]   # both winglets as one rigid fin: chord x 2, bottom to top; no rudder: trims in sideslip")
     w(f"root_m = {fmt(np.array([x_fin, 0.0, fin[0, 0]]) * IN)}\neuler_deg = [90.0, 90.0, 0.0]\nlength_m = {fin_span * IN:.6g}\nrigid = true")
     w(f"[components.vtail.aero]\nstrips = 4\nlift_slope = {fin_cla:.6g}   # DATCOM 4.1.3.2, one winglet's aspect ratio {fin_aspect:.3g}")
     w(f"[components.vtail.sections]\nstation_m = {fmt((fin[:, 0] - fin[0, 0]) * IN)}\nmass_kg_per_m = {fmt(np.zeros(len(fin)))}")
     w(f"torsional_inertia_kg_m = {fmt(np.zeros(len(fin)))}\nei_nm2 = {fmt([keel['EI'] * LBIN2] * len(fin))}")
     w(f"gj_nm2 = {fmt([keel['GJ'] * LBIN2] * len(fin))}\nchord_m = {fmt(fin[:, 2] * IN)}\nea_fraction = {fmt((x_fin - fin[:, 1]) / fin[:, 2])}")
+    lumped.insert(0, ("centre_body", "fuselage", *combine(cb_items)))
+    for name_, comp, mg, pos, tens in lumped:
+        pos, tens = np.where(np.abs(pos) > 1e-6, pos, 0.0), np.where(np.abs(tens) > 1e-9 * np.abs(tens).max(), tens, 0.0)
+        w(f'\n[[lumped_masses]]\nname = "{name_}"\ncomponent = "{comp}"\nposition_m = {fmt(pos * IN)}\nmass_kg = {mg * LB:.6g}')
+        if np.abs(tens).max() > 0:
+            w(f"inertia_kg_m2 = [{', '.join(fmt(row * LB * IN**2) for row in tens)}]")
     motor = next(p for p in points if p[3] == 303)
     w(f'\n[[engines]]\nname = "motor"   # CONM2 303\ncomponent = "fuselage"\nposition_m = {fmt(motor[1] * IN)}\nmass_kg = {motor[0] * LB:.6g}')
     w(f"max_thrust_n = {MAX_THRUST_N}   # assumed (not in the FEM)")
