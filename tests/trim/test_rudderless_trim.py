@@ -1,8 +1,9 @@
 """Trim of an aircraft without a rudder (the mAEWing1 flying wing): the heading offset (sideslip) balances yaw.
 
 Invariant: an aircraft that is mirror-symmetric about its x-z plane trims in level flight with zero bank, aileron
-and sideslip (to round-off, 1e-9 rad); the bundled mAEWing1, whose two wings differ in stiffness (its FEM v5.2),
-needs a small sideslip and aileron instead, and its rudder stays at zero. A coordinated (zero-sideslip) manoeuvre
+and sideslip, to 1e-7 rad (the trim converges to a scaled residual of 1e-8 g, and the roll and yaw residuals change
+by about 1-5 g per radian of aileron or sideslip: a few 1e-9 rad); the bundled mAEWing1, whose two wings differ in
+stiffness (its FEM v5.2), needs an aileron (> 1e-4 rad) and a sideslip instead, and its rudder stays at zero. A coordinated (zero-sideslip) manoeuvre
 cannot be trimmed without a rudder and is refused with a message saying so.
 """
 
@@ -28,7 +29,7 @@ def _mirrored(aircraft):
 def test_symmetric_rudderless_aircraft_trims_without_sideslip():
     point = trim(AircraftModel(_mirrored(load_aircraft("maewing1")), aero="quasi-steady"), LEVEL)
     assert point.residual < 1e-8
-    assert abs(point.phi) < 1e-9 and abs(point.u[1]) < 1e-9 and abs(point.heading_offset) < 1e-9
+    assert abs(point.phi) < 1e-7 and abs(point.u[1]) < 1e-7 and abs(point.heading_offset) < 1e-7
     assert point.u[3] == 0.0
 
 
@@ -36,7 +37,8 @@ def test_asymmetric_rudderless_aircraft_trims_in_sideslip():
     point = trim(AircraftModel(load_aircraft("maewing1"), aero="quasi-steady"), LEVEL)
     assert point.residual < 1e-8
     assert point.u[3] == 0.0
-    assert 1e-9 < abs(point.heading_offset) < np.radians(1.0)
+    assert abs(point.u[1]) > 1e-4
+    assert 1e-7 < abs(point.heading_offset) < np.radians(1.0)
 
 
 def test_coordinated_manoeuvre_without_rudder_is_refused():
