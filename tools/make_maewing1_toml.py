@@ -134,12 +134,26 @@ def planform(c):
                 x, ch = xa + t * (xb - xa), ca + t * (cb - ca)
                 le, te = min(le, x), max(te, x + ch)
         return le, te
-    area = 2 * sum((yb - ya) * 0.5 * (ca + cb) for ya, yb, (_, ca), (_, cb) in panels)
-    return edges, area, 2 * max(p[1] for p in panels)
+    breaks = np.unique([y for p in panels for y in p[:2]])
+    return edges, breaks
 
 
 def fmt(values, digits=6):
     return "[" + ", ".join(f"{v:.{digits}g}" for v in values) + "]"
+
+
+def vlm_slopes(edges, breaks):
+    """Mean sectional lift slope [1/rad] (chord-weighted) of the centre body (|y| < ROOT_Y) and of the wing, from
+    flexsim's vortex lattice (flexsim.aero.vlm) of the whole flat CAERO1 planform, both halves, Mach 0."""
+    from flexsim.aero.vlm import LiftingSurface, solve_vlm
+    le, te = np.array([edges(y) for y in breaks]).T
+    per = [max(4, int(round(b - a))) for a, b in zip(breaks[:-1], breaks[1:])]  # spanwise panels about 1 in wide
+    half = LiftingSurface("wing", np.column_stack([le, breaks, 0 * breaks]) * IN, (te - le) * IN, n_chordwise=6,
+                          n_spanwise=per, mirror=True)
+    s = solve_vlm([half]).surfaces[0]
+    weight = s.chord_m * s.width_m * (s.y_m > 0)
+    inner = s.y_m < ROOT_Y * IN
+    return tuple(float(np.sum((s.cl_alpha_per_rad * weight)[k]) / np.sum(weight[k])) for k in (inner, ~inner))
 
 
 def datcom_slope(aspect, sweep):
@@ -188,9 +202,9 @@ if __name__ == "__main__":
     if args.totals:
         print(f"mass_kg = {m * LB:.6g}\ncg_m = {fmt(cg * IN)}\ninertia_kg_m2 = {fmt(np.diag(inertia) * LB * IN**2)}")
         raise SystemExit
-    edges, area, span = planform(c)
-    # the whole wing's lift slope on every strip; the outer wing has a constant chord: its beam sweep is the half-chord's
-    cla = datcom_slope(span**2 / area, math.atan2(*(grid[2080] - grid[2020])[:2]))
+    edges, breaks = planform(c)
+    span = 2 * breaks[-1]
+    cla = dict(zip(("htail", "wing"), vlm_slopes(edges, breaks)))
     # the two tip winglets (CAERO1 1101001-2102001, upper and lower panels) as one centreline fin of twice their chord
     # (same area, same x): flexsim has one fin; its axis at x = 27 in, the origin o at its root
     fin = sorted((number(f[10 + 4 * k]), number(f[8 + 4 * k]), 2 * number(f[11 + 4 * k])) for f in c["CAERO1"]
@@ -249,7 +263,7 @@ if __name__ == "__main__":
             w(f"\n[components.{key}]\nroot_m = {fmt(g0 * IN)}\neuler_deg = [0.0, 0.0, {psi:.6g}]   # sweep {abs(psi) - 90:.4g} deg")
             w(f"length_m = {l_c * IN:.6g}")
             w("rigid = true" if comp == "htail" else "bending_modes = 6\ntorsion_modes = 4")
-            w(f"[components.{key}.aero]\nstrips = {3 if comp == 'htail' else 12}\nlift_slope = {cla:.6g}   # whole-wing CL_alpha [1/rad], DATCOM 4.1.3.2")
+            w(f"[components.{key}.aero]\nstrips = {3 if comp == 'htail' else 12}\nlift_slope = {cla[comp]:.6g}   # vortex lattice of the planform, mean")
             w(f'[components.{key}.control_surface]\nkind = "{kind}"   # {"body flap" if kind == "elevator" else "outer flap"}')
             w(f"hinge_fraction = {(x_h - le_m) / (te_m - le_m):.4g}\nstart_m = {s0 * IN:.6g}\nend_m = {s1 * IN:.6g}")
             w(f"[components.{key}.sections]\nstation_m = {fmt(st * IN)}\nmass_kg_per_m = {fmt(rows[:, 0] * LB / IN)}")
