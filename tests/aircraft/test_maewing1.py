@@ -85,7 +85,7 @@ def test_body_freedom_flutter_in_the_free_aircraft_only():
     mostly rigid-body kinetic energy (crossing at 34.6 m/s, maewing1.md). At 30 m/s every root there is stable.
     Restrained (clamped at the centre body, no rigid-body freedom): the wings' first-bending branches (the two lowest
     roots) are heavily damped at 42 m/s (damping ratio > 0.3); what is unstable there is the right wing's own
-    bending-torsion flutter above 7.5 Hz (from 22.1 m/s at 9.03 Hz, maewing1.md), not a body-freedom mode.
+    bending-torsion flutter above 7.5 Hz (from 21.9 m/s at 9.03 Hz, maewing1.md), not a body-freedom mode.
     Sea level, Theodorsen p-k (the paper's "US")."""
     aircraft = load_aircraft("maewing1")
     analysis = FlutterAnalysis(aircraft, aero_model="theodorsen")
