@@ -10,8 +10,8 @@ flexsim's "design" frame. The reduction (maewing1.md): a rigid centre body (fuse
 every mass inboard of the wing-root ribs (|y| <= 7.65 in) as one lumped mass, and the motor as an engine;
 rigid centre-body halves (right/left_htail) carrying the centre body's strips and the body flaps as elevator;
 flexible wings from the root ribs (GRID 1010/2010) to the tips (GRID 1090/2090) along the straight spar line, with EI =
-E I1 and GJ = G J of foam+cover and spar beams summed, element masses rho A + NSM as mass per span, CONM2 point masses
-as lumped masses, the foam's CONM2 rotary inertia about the spar smeared into the torsional inertia. Run from the root:
+E I1 and GJ = G J of foam+cover and spar beams summed, element masses rho A + NSM as mass per span, the CONM2 point
+masses (with the foam's CONM2 of zero mass: pure rotary inertias) as lumped masses at their grids. Run from the root:
     python tools/make_maewing1_toml.py > flexsim/aircraft/data/maewing1.toml
 """
 
@@ -113,7 +113,7 @@ def halves(e):
 def combine(items):
     """Total mass, CG and inertia tensor about the CG of (mass, position, own inertia) items."""
     m = sum(i[0] for i in items)
-    cg = sum(i[0] * i[1] for i in items) / m
+    cg = sum(i[0] * i[1] for i in items) / m if m > 0 else items[0][1]  # zero mass: a pure rotary inertia
     inertia = sum(i[2] + i[0] * ((i[1] - cg) @ (i[1] - cg) * np.eye(3) - np.outer(i[1] - cg, i[1] - cg)) for i in items)
     return m, cg, inertia
 
@@ -161,7 +161,7 @@ def datcom_slope(aspect, sweep):
     return 2 * math.pi * aspect / (2 + math.sqrt(aspect**2 * (1 + math.tan(sweep) ** 2) + 4))
 
 
-def wing_tables(elems, points, root, tip):
+def wing_tables(elems, root, tip):
     """Stations [in] and section tables (lb/in, lbf in^2, lb in^2/in, in) of one wing from its elements."""
     a = (tip - root) / np.linalg.norm(tip - root)
     n = np.array([1.0, 0.0, 0.0]) - a[0] * a
@@ -178,7 +178,6 @@ def wing_tables(elems, points, root, tip):
         it = sum(e["ipl"] + e["mpl"] * ((e["off"] @ n) / abs(a[1])) ** 2 for e in on)
         rows.append((m, e_s, it, sum(e["EI"] for e in on), sum(e["GJ"] for e in on)))
     length = float(nodes[-1])
-    foam = sum(p[2] @ a @ a for p in points if p[0] == 0.0 and side * p[1][1] > ROOT_Y + 1e-6)  # CONM2 of zero mass
     st, vals = [0.0], [rows[0]]
     for k in range(1, len(rows)):  # a property jump at a node becomes two stations 0.5 mm apart
         if rows[k] != rows[k - 1]:
@@ -186,9 +185,7 @@ def wing_tables(elems, points, root, tip):
             vals += [rows[k - 1], rows[k]]
     st.append(length)
     vals.append(rows[-1])
-    vals = np.array(vals)
-    vals[:, 2] += foam / length
-    return a, n, length, np.array(st), vals
+    return a, n, length, np.array(st), np.array(vals)
 
 
 if __name__ == "__main__":
@@ -239,7 +236,7 @@ if __name__ == "__main__":
         o, r = cs[cid_bf]
         h0, h1 = (o + r[:, 1] * side * y for y in (0.0, 12.45))  # hinge line (y axis of the body-flap frame), GRID 5021-5022
         for comp, g0, l_c, kind, hinge, tables in (("htail", root, length, "elevator", (h0, h1), None),
-                                                    ("wing", grid[g_root], None, "aileron", None, wing_tables(elems, points, grid[g_root], grid[g_tip]))):
+                                                    ("wing", grid[g_root], None, "aileron", None, wing_tables(elems, grid[g_root], grid[g_tip]))):
             if tables is None:
                 st = np.array([0.0, 0.5 * l_c, l_c])
                 rows = np.array([[0.0, 0.0, 0.0, sum(e["EI"] for e in cb), sum(e["GJ"] for e in cb)]] * 3)
@@ -262,7 +259,7 @@ if __name__ == "__main__":
             key = f"{name}_{comp}"
             w(f"\n[components.{key}]\nroot_m = {fmt(g0 * IN)}\neuler_deg = [0.0, 0.0, {psi:.6g}]   # sweep {abs(psi) - 90:.4g} deg")
             w(f"length_m = {l_c * IN:.6g}")
-            w("rigid = true" if comp == "htail" else "bending_modes = 6\ntorsion_modes = 4")
+            w("rigid = true" if comp == "htail" else "bending_modes = 10\ntorsion_modes = 6")
             w(f"[components.{key}.aero]\nstrips = {3 if comp == 'htail' else 12}\nlift_slope = {cla[comp]:.6g}   # vortex lattice of the planform, mean")
             w(f'[components.{key}.control_surface]\nkind = "{kind}"   # {"body flap" if kind == "elevator" else "outer flap"}')
             w(f"hinge_fraction = {(x_h - le_m) / (te_m - le_m):.4g}\nstart_m = {s0 * IN:.6g}\nend_m = {s1 * IN:.6g}")
@@ -272,7 +269,7 @@ if __name__ == "__main__":
             if comp == "wing":
                 on = {}
                 for p in points:
-                    if p[0] > 0 and side * p[1][1] > ROOT_Y + 1e-6:
+                    if side * p[1][1] > ROOT_Y + 1e-6:  # with the foam's CONM2 of zero mass: pure rotary inertias
                         on.setdefault(p[4], []).append(p)
                 for gid, group in sorted(on.items()):
                     mg, pos, tens = combine([p[:3] for p in group])
@@ -281,14 +278,6 @@ if __name__ == "__main__":
                     lumped.append((f"conm2_{'_'.join(str(p[3]) for p in group)}", key, mg, pos, tens))
     cb_items = [it for e in elems if abs(0.5 * (e["a"] + e["b"])[1]) <= ROOT_Y + 1e-6 for it in halves(e)]
     cb_items += [p[:3] for p in points if abs(p[1][1]) <= ROOT_Y + 1e-6 and p[3] != 303]
-    # the wing foam's CONM2 inertia (zero mass) other than about the spar (in the torsional inertia): a pure rotary
-    # inertia, about the chordwise axis, which flexsim's sections do not carry (no bending-slope rotation, paper
-    # eqs. 5-6); it adds the same tensor to the aircraft's inertia wherever it sits, so the centre body takes it
-    for p in points:
-        if p[0] == 0.0 and abs(p[1][1]) > ROOT_Y + 1e-6:
-            a = grid[2090 if p[1][1] > 0 else 1090] - grid[2010 if p[1][1] > 0 else 1010]
-            a /= np.linalg.norm(a)
-            cb_items.append((0.0, p[1], p[2] - (a @ p[2] @ a) * np.outer(a, a)))
     w(f"\n[components.vtail]   # both winglets as one rigid fin: chord x 2, bottom to top; no rudder: trims in sideslip")
     w(f"root_m = {fmt(np.array([x_fin, 0.0, fin[0, 0]]) * IN)}\neuler_deg = [90.0, 90.0, 0.0]\nlength_m = {fin_span * IN:.6g}\nrigid = true")
     w(f"[components.vtail.aero]\nstrips = 4\nlift_slope = {fin_cla:.6g}   # DATCOM 4.1.3.2, one winglet's aspect ratio {fin_aspect:.3g}")
