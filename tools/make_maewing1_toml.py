@@ -218,13 +218,15 @@ if __name__ == "__main__":
     w("# reduction and its checks against the FEM's own NASTRAN results are in maewing1.md beside this file.")
     w('schema_version = 1\nname = "mAEWing1"')
     w(f'description = "mAEWing1 flying wing (span {span * IN:.3f} m, {m * LB:.3f} kg) from its public NASTRAN FEM v5.2; see maewing1.md"')
-    w(f'\n[frame]\nkind = "design"   # the FEM\'s basic frame: x aft, y right, z up [m]\nbody_origin_m = {fmt(tail * IN)}   # on the centreline below the fin axis')
+    w('\n[frame]\nkind = "design"   # the FEM\'s basic frame: x aft, y right, z up [m]')
+    w(f"body_origin_m = {fmt(tail * IN)}   # on the centreline below the fin axis")
     w('\n[aero]\ncompressibility = "none"   # the FEM\'s doublet lattice is at Mach 0; flutter near Mach 0.1')
     keel = next(e for e in elems if np.allclose(e["a"], grid[3001]))
     w(f"\n[components.fuselage]   # rigid centre body: the nose (GRID 3001) to the fin axis, past the keel's tail (GRID 3007)")
     w(f"root_m = {fmt(tail * IN)}\neuler_deg = [0.0, 0.0, 0.0]\nlength_m = {(tail - nose)[0] * IN:.6g}\nrigid = true")
     w(f'section_inertia = "axisymmetric"\n[components.fuselage.sections]\nstation_m = [0.0, {(tail - nose)[0] * IN:.6g}]')
-    w(f"mass_kg_per_m = [0.0, 0.0]\ntorsional_inertia_kg_m = [0.0, 0.0]\nei_nm2 = {fmt([keel['EI'] * LBIN2] * 2)}\ngj_nm2 = {fmt([keel['GJ'] * LBIN2] * 2)}")
+    w("mass_kg_per_m = [0.0, 0.0]\ntorsional_inertia_kg_m = [0.0, 0.0]")
+    w(f"ei_nm2 = {fmt([keel['EI'] * LBIN2] * 2)}\ngj_nm2 = {fmt([keel['GJ'] * LBIN2] * 2)}")
     lumped = []
     for side, name, g_root, g_tip, cid_bf, cid_cs in ((1, "right", 2010, 2090, 201, 202), (-1, "left", 1010, 1090, 101, 102)):
         # centre-body half: rigid, carries the centre body's strips and the body flap (elevator)
@@ -260,12 +262,14 @@ if __name__ == "__main__":
             w(f"\n[components.{key}]\nroot_m = {fmt(g0 * IN)}\neuler_deg = [0.0, 0.0, {psi:.6g}]   # sweep {abs(psi) - 90:.4g} deg")
             w(f"length_m = {l_c * IN:.6g}")
             w("rigid = true" if comp == "htail" else "bending_modes = 10\ntorsion_modes = 6")
-            w(f"[components.{key}.aero]\nstrips = {3 if comp == 'htail' else 12}\nlift_slope = {cla[comp]:.6g}   # vortex lattice of the planform, mean")
+            w(f"[components.{key}.aero]\nstrips = {3 if comp == 'htail' else 12}")
+            w(f"lift_slope = {cla[comp]:.6g}   # vortex lattice of the planform, mean")
             w(f'[components.{key}.control_surface]\nkind = "{kind}"   # {"body flap" if kind == "elevator" else "outer flap"}')
             w(f"hinge_fraction = {(x_h - le_m) / (te_m - le_m):.4g}\nstart_m = {s0 * IN:.6g}\nend_m = {s1 * IN:.6g}")
             w(f"[components.{key}.sections]\nstation_m = {fmt(st * IN)}\nmass_kg_per_m = {fmt(rows[:, 0] * LB / IN)}")
             w(f"cg_offset_m = {fmt(rows[:, 1] * IN)}\ntorsional_inertia_kg_m = {fmt(rows[:, 2] * LB * IN)}")
-            w(f"ei_nm2 = {fmt(rows[:, 3] * LBIN2)}\ngj_nm2 = {fmt(rows[:, 4] * LBIN2)}\nchord_m = {fmt(chord * IN)}\nea_fraction = {fmt(ea)}")
+            w(f"ei_nm2 = {fmt(rows[:, 3] * LBIN2)}\ngj_nm2 = {fmt(rows[:, 4] * LBIN2)}")
+            w(f"chord_m = {fmt(chord * IN)}\nea_fraction = {fmt(ea)}")
             if comp == "wing":
                 on = {}
                 for p in points:
@@ -279,11 +283,13 @@ if __name__ == "__main__":
     cb_items = [it for e in elems if abs(0.5 * (e["a"] + e["b"])[1]) <= ROOT_Y + 1e-6 for it in halves(e)]
     cb_items += [p[:3] for p in points if abs(p[1][1]) <= ROOT_Y + 1e-6 and p[3] != 303]
     w(f"\n[components.vtail]   # both winglets as one rigid fin: chord x 2, bottom to top; no rudder: trims in sideslip")
-    w(f"root_m = {fmt(np.array([x_fin, 0.0, fin[0, 0]]) * IN)}\neuler_deg = [90.0, 90.0, 0.0]\nlength_m = {fin_span * IN:.6g}\nrigid = true")
+    w(f"root_m = {fmt(np.array([x_fin, 0.0, fin[0, 0]]) * IN)}\neuler_deg = [90.0, 90.0, 0.0]")
+    w(f"length_m = {fin_span * IN:.6g}\nrigid = true")
     w(f"[components.vtail.aero]\nstrips = 4\nlift_slope = {fin_cla:.6g}   # DATCOM 4.1.3.2, one winglet's aspect ratio {fin_aspect:.3g}")
     w(f"[components.vtail.sections]\nstation_m = {fmt((fin[:, 0] - fin[0, 0]) * IN)}\nmass_kg_per_m = {fmt(np.zeros(len(fin)))}")
     w(f"torsional_inertia_kg_m = {fmt(np.zeros(len(fin)))}\nei_nm2 = {fmt([keel['EI'] * LBIN2] * len(fin))}")
-    w(f"gj_nm2 = {fmt([keel['GJ'] * LBIN2] * len(fin))}\nchord_m = {fmt(fin[:, 2] * IN)}\nea_fraction = {fmt((x_fin - fin[:, 1]) / fin[:, 2])}")
+    w(f"gj_nm2 = {fmt([keel['GJ'] * LBIN2] * len(fin))}\nchord_m = {fmt(fin[:, 2] * IN)}")
+    w(f"ea_fraction = {fmt((x_fin - fin[:, 1]) / fin[:, 2])}")
     lumped.insert(0, ("centre_body", "fuselage", *combine(cb_items)))
     for name_, comp, mg, pos, tens in lumped:
         pos, tens = np.where(np.abs(pos) > 1e-6, pos, 0.0), np.where(np.abs(tens) > 1e-9 * np.abs(tens).max(), tens, 0.0)
@@ -291,6 +297,7 @@ if __name__ == "__main__":
         if np.abs(tens).max() > 0:
             w(f"inertia_kg_m2 = [{', '.join(fmt(row * LB * IN**2) for row in tens)}]")
     motor = next(p for p in points if p[3] == 303)
-    w(f'\n[[engines]]\nname = "motor"   # CONM2 303\ncomponent = "fuselage"\nposition_m = {fmt(motor[1] * IN)}\nmass_kg = {motor[0] * LB:.6g}')
+    w('\n[[engines]]\nname = "motor"   # CONM2 303\ncomponent = "fuselage"')
+    w(f"position_m = {fmt(motor[1] * IN)}\nmass_kg = {motor[0] * LB:.6g}")
     w(f"max_thrust_n = {MAX_THRUST_N}   # assumed (not in the FEM)")
     print("\n".join(out))
