@@ -2,7 +2,7 @@
 
 Invariant: an aircraft that is mirror-symmetric about its x-z plane trims in level flight with zero bank, aileron
 and sideslip, to 1e-7 rad (the trim converges to a scaled residual of 1e-8 g, and the roll and yaw residuals change
-by about 1-5 g per radian of aileron or sideslip: a few 1e-9 rad); the bundled mAEWing1, whose two wings differ in
+by about 1-6 g per radian of aileron or sideslip: a few 1e-9 rad); the bundled mAEWing1, whose two wings differ in
 stiffness (its FEM v5.2), needs an aileron (> 1e-4 rad) and a sideslip instead, and its rudder stays at zero.
 A coordinated (zero-sideslip) manoeuvre cannot be trimmed without a rudder and is refused with a message saying so.
 """
