@@ -413,6 +413,7 @@ class LumpedMass:
     position_m : ndarray, shape (3,)
         Centre of mass in body axes [m].
     mass_kg : float
+        [kg], >= 0; 0 only with a nonzero ``inertia_kg_m2`` (a pure rotary inertia, as a NASTRAN CONM2 of zero mass).
     inertia_kg_m2 : ndarray, shape (3, 3)
         Inertia tensor about its own centre of mass, body axes [kg m^2].
     """
@@ -428,8 +429,17 @@ class LumpedMass:
         w = f"{self.where}.{self.name}"
         object.__setattr__(self, "position_m", _frozen_array(f"{w}.position_m", self.position_m, (3,)))
         _in_plausible(f"{w}.position_m", self.position_m, "position_m")
-        _check_scalar(f"{w}.mass_kg", self.mass_kg, 0.0, np.inf, lo_open=True)
-        _in_plausible(f"{w}.mass_kg", self.mass_kg, "mass_kg", lo_open=True)
+        zero = not isinstance(self.mass_kg, bool) and isinstance(self.mass_kg, (int, float, np.number)) and self.mass_kg == 0
+        try:
+            rotary = bool(np.any(np.nan_to_num(np.asarray(self.inertia_kg_m2, dtype=float))))
+        except (TypeError, ValueError):
+            rotary = True  # a malformed inertia: named by its own check below
+        if zero and not rotary:
+            _fail(f"{w}.mass_kg", self.mass_kg, "must be in (0.0, inf], or 0 with a nonzero inertia_kg_m2 (a pure rotary "
+                                                "inertia, as a NASTRAN CONM2 of zero mass)")
+        if not zero:
+            _check_scalar(f"{w}.mass_kg", self.mass_kg, 0.0, np.inf, lo_open=True)
+            _in_plausible(f"{w}.mass_kg", self.mass_kg, "mass_kg", lo_open=True)
         object.__setattr__(self, "mass_kg", float(self.mass_kg))
         inertia = np.array(self.inertia_kg_m2, dtype=float) if np.ndim(self.inertia_kg_m2) else None
         if inertia is not None and inertia.shape == (3,):
@@ -455,6 +465,7 @@ class Engine(LumpedMass):
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        _check_scalar(f"{self.where}.{self.name}.mass_kg", self.mass_kg, 0.0, np.inf, lo_open=True)
         _check_scalar(f"{self.where}.{self.name}.max_thrust_n", self.max_thrust_n, 0.0, np.inf, lo_open=True)
         _in_plausible(f"{self.where}.{self.name}.max_thrust_n", self.max_thrust_n, "max_thrust_n", lo_open=True)
         object.__setattr__(self, "max_thrust_n", float(self.max_thrust_n))

@@ -197,6 +197,12 @@ class _Problem:
         if model.variant is Variant.RESTRAINED:
             raise ValueError("trim needs a free or quasi-rigid model (a restrained aircraft has no flight path)")
         self.model, self.man = model, manoeuvre
+        # without a rudder (a flying wing) the yaw balance is met by sideslip: the heading offset psi - chi takes the
+        # rudder's place among the unknowns (the rudder stays 0); a coordinated manoeuvre, zero sideslip, cannot be flown
+        self.sideslip = bool(model.aircraft.control_limits()[1][3] == 0.0)
+        if self.sideslip and manoeuvre.coordinated:
+            raise TrimError(f"trim infeasible for {manoeuvre.describe()}: {model.aircraft.name} has no rudder, so it "
+                            "balances yaw by sideslip; a coordinated (zero-sideslip) manoeuvre needs a rudder")
         lay = model.layout
         self.n_el = lay.nq + lay.nxi
         mass = model.structure.mass_properties.mass_kg
@@ -219,9 +225,9 @@ class _Problem:
             gamma, thrust = z[2], 0.0
         else:
             gamma, thrust = self.man.climb_angle_rad, z[2] * self.weight
-        u = np.array([thrust, z[3], z[4], z[5]])
+        u = np.array([thrust, z[3], z[4], 0.0 if self.sideslip else z[5]])
         lay = self.model.layout
-        dpsi = z[-1] if self.coordinated else 0.0
+        dpsi = z[-1] if self.coordinated else z[5] if self.sideslip else 0.0
         v, omega = self.man.body_rates(phi, theta, gamma, dpsi)
         x = lay.zeros()
         x[lay.position] = [0.0, 0.0, -self.man.altitude_m]
@@ -259,7 +265,7 @@ class _Problem:
         us = np.tile(u0, (2 * n, 1))
         # unknowns 0-2 (and the heading offset) enter the velocities and attitude: the full state map;
         # the controls and elastic coordinates are copied into place as state() does
-        moving = [0, 1, 2] + ([n - 1] if self.coordinated else [])
+        moving = [0, 1, 2] + ([n - 1] if self.coordinated else []) + ([5] if self.sideslip else [])
         rows = [j for j in moving] + [n + j for j in moving]
         for r in rows:
             xs[r], us[r], _ = self.state(zs[r])
@@ -267,6 +273,8 @@ class _Problem:
         if not self.man.is_glide:
             us[copy, 0] = zs[copy, 2] * self.weight
         us[copy, 1:] = zs[copy, 3:6]
+        if self.sideslip:
+            us[copy, 3] = 0.0
         xs[copy, lay.q.start : lay.xi.stop] = zs[copy, 6 : 6 + self.n_el]
         r = self.model.rhs_batch(0.0, xs, us)[:, lay.velocity] * self.scale
         if self.coordinated:
@@ -313,6 +321,8 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         z0[0], z0[1] = guess.theta, guess.phi
         z0[2] = guess.gamma if manoeuvre.is_glide else guess.u[0] / prob.weight
         z0[3:6] = guess.u[1:]
+        if prob.sideslip:
+            z0[5] = guess.heading_offset
         z0[6 : 6 + prob.n_el] = guess.x[lay.q.start : lay.xi.stop]
         if manoeuvre.coordinated:
             z0[-1] = guess.heading_offset
@@ -339,7 +349,7 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         raise TrimError(f"trim failed for {manoeuvre.describe()}: scaled residual {norm:.3g} > {_TOLERANCE:g}; largest: {detail}"
                         f"{_demand(model, manoeuvre)}")
     x, u, gamma = prob.state(z)
-    point = _trim_point(model, manoeuvre, x, u, gamma, norm, float(z[-1]) if manoeuvre.coordinated else 0.0)
+    point = _trim_point(model, manoeuvre, x, u, gamma, norm, float(z[-1]) if manoeuvre.coordinated else float(z[5]) if prob.sideslip else 0.0)
     if not check_limits:
         _check_singular(prob, z, jac)  # without limits a singular direction would be returned as a trim
     else:
@@ -358,7 +368,8 @@ def _unknown_labels(prob: "_Problem") -> list[str]:
     labels = prob.model.structure.dofs.labels
     el = [labels[i] for i in prob.model.active_dofs][6:]
     third = "flight-path angle gamma" if prob.man.is_glide else "thrust T_e"
-    return ["pitch theta", "bank phi", third, "aileron delta_a", "elevator delta_e", "rudder delta_r", *el][: 6 + prob.n_el]
+    yaw = "heading offset psi - chi (sideslip, no rudder)" if prob.sideslip else "rudder delta_r"
+    return ["pitch theta", "bank phi", third, "aileron delta_a", "elevator delta_e", yaw, *el][: 6 + prob.n_el]
 
 
 def _check_singular(prob: "_Problem", z: np.ndarray, jac: np.ndarray | None = None) -> None:
