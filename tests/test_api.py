@@ -177,3 +177,15 @@ def test_scan_step_is_the_papers_on_its_range_and_finer_on_a_narrow_one():
 
     assert scan_step((0.5, 0.95)) == 0.05
     assert scan_step((0.066, 0.24)) == pytest.approx(0.174 / 8, rel=1e-12)
+
+
+def test_stall_estimate_of_a_slow_aircraft_is_refitted_near_its_stall():
+    """The 6 kg mAEWing1 trims at nearly the same alpha at M 0.3 and 0.6 (the secant's first two points), so the first
+    extrapolation falls below M 0.01; it is clamped and refitted there, and ends where the level trim flies at
+    max_alpha_deg (within 1 deg: d alpha / dM is about 700 deg per unit Mach near M 0.03, the secant stops at 1e-3)."""
+    wing = fs.load_aircraft("maewing1")
+    model = fs.AircraftModel(wing, aero="quasi-steady")
+    r = fs.search_range(model, fs.SteadyManoeuvre.level(0.0, mach=0.05))
+    assert "stall estimate" in r.lower_source and 0.01 < r.mach_min < 0.05
+    point = fs.trim(model, fs.SteadyManoeuvre.level(0.0, mach=r.mach_min), check_limits=False)
+    assert math.degrees(point.alpha) == pytest.approx(math.degrees(wing.aero_settings.max_alpha_rad), abs=1.0)

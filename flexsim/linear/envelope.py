@@ -172,8 +172,9 @@ def _stall_mach(model: AircraftModel, manoeuvre) -> tuple[float, str]:
                              f"attack {math.degrees(a1):.2f} and {math.degrees(a2):.2f} deg at V = {math.sqrt(2 * q1 / rho):.1f} "
                              f"and {math.sqrt(2 * q2 / rho):.1f} m/s do not fall with speed); give the file an [envelope] "
                              "table (docs/aircraft-format.md) or the search range")
-        new = math.sqrt(2.0 * k / (alpha_max - alpha_0) / rho) / a
-        if abs(new - mach) < 1e-3 or not 0.01 < new < 0.95:
+        # an extrapolation beyond the bounds (far from the two trims it fits) is clamped and refitted there
+        new = min(max(math.sqrt(2.0 * k / (alpha_max - alpha_0) / rho) / a, 0.01), 0.95)
+        if abs(new - mach) < 1e-3:
             mach = new
             break
         mach = new
