@@ -1,8 +1,8 @@
 """The common gymnasium adapter of the flexsim tasks: spaces, action mapping, stepping, termination.
 
-The physics lives in :mod:`flexsim.envs.dynamics` (and below it in flexsim); a task subclass only says how an
-episode starts (trim, perturbation, wind), which errors it tracks and how they are rewarded
-(:class:`~flexsim.envs.config.TrackingReward`).
+The physics and its integration over control periods live in flexsim (:mod:`flexsim.sim.periods`); a task
+subclass only says how an episode starts (trim, perturbation, wind), which errors it tracks and how they are
+rewarded (:class:`~flexsim.envs.config.TrackingReward`).
 """
 
 from __future__ import annotations
@@ -17,24 +17,20 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
 from flexsim.io.vocabulary import CONTROL_NAMES as VOCABULARY_CONTROL_NAMES
 from flexsim.model.aircraft_model import CONTROL_NAMES
+from flexsim.sim.measurements import MeasurementBatch, Measurements
+from flexsim.sim.periods import SENSOR_COMPONENTS, BatchOutcome, FlightDynamics, advance_period
 from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.config import (AERO_MODELS, DEFAULT_MAX_STEP_S, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
                          IntegratorSettings, TrackingReward)
 from flexsim.envs import row_kernels as _rk
 from flexsim.envs.batch import EpisodeBatch
-from flexsim.envs.dynamics import (SENSOR_COMPONENTS, BatchOutcome, FlightDynamics, MeasurementBatch, Measurements, StepOutcome,
-                                   advance_rows)
 from flexsim.envs.parallel import limit_blas_threads
-from flexsim.envs import dynamics as _dynamics
-from flexsim import _kernels as _k
-from flexsim.sim import _step_kernels as _sk
 
 __all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
 
@@ -276,8 +272,6 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._constants: tuple | None = None  # the arguments of the compiled outputs from limits and reward (_kernel_constants)
         self._act_low, self._act_high = self.action_space.low.astype(np.float64), self.action_space.high.astype(np.float64)
         self._act_low_list, self._act_high_list = self._act_low.tolist(), self._act_high.tolist()
-        #: Per number of rows m: the outcome arrays of a period in which no row failed (read only).
-        self._clear_rows: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
         self._observe_data = (self._u_scale, self._act_low, self._act_high, len(SENSOR_COMPONENTS), self._obs_low, self._obs_high)
 
     # ------------------------------------------------------------------ task hooks
@@ -418,26 +412,19 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             raise RuntimeError("step() called after the episode terminated; call reset()")
 
     def _step_rows(self, b: EpisodeBatch, rows: np.ndarray | slice, a: np.ndarray, clipped: np.ndarray) -> RowsStep:
-        """One control period of the aircraft ``rows`` (sorted indices, or a slice) of ``b`` with the checked, clipped actions ``a`` (m, 4): actuator
-        rate limits, the integration, measurements and termination (one compiled call, :meth:`_period_compiled`, where
-        it applies; else :meth:`FlightDynamics.rate_limit`, one :func:`advance_rows` call and the compiled outputs),
-        the task errors, then reward parts and observation (:func:`flexsim.envs.row_kernels.finish_rows`), all over the
-        rows (the single env is this with one row)."""
-        dyn = self.dynamics
+        """One control period of the aircraft ``rows`` (sorted indices, or a slice) of ``b`` with the checked, clipped
+        actions ``a`` (m, 4): actuator rate limits, the integration and measurements (one
+        :func:`flexsim.sim.periods.advance_period` call), termination, the task errors, then reward parts and
+        observation (:func:`flexsim.envs.row_kernels.finish_rows`), all over the rows (the single env is this with
+        one row)."""
         if not isinstance(rows, slice) and len(rows) == b.n:  # all rows, in order (rows are sorted and unique)
             rows = slice(0, b.n)
         steps = b.steps[rows]
         winds, dynamics = (b.winds[rows], b.dynamics[rows]) if isinstance(rows, slice) else ([b.winds[i] for i in rows],
                                                                                              [b.dynamics[i] for i in rows])
-        packed = b.packed_rows(rows)
-        period = self._period_compiled(b, rows, a, steps, dynamics, winds, packed)
-        if period is not None:
-            outcome, u, meas, codes = period
-        else:
-            u = dyn.rate_limit(b.u[rows], a * self._u_scale)
-            outcome = advance_rows(dynamics, b.x[rows], u, steps * self.dt, (steps + 1) * self.dt, winds, packed=packed)
-            meas = dyn.measure_batch(outcome.x, outcome.time_s, winds, packed)
-            codes = self._termination_codes(outcome, meas)
+        outcome, u, meas = advance_period(dynamics, b.x[rows], b.u[rows], a * self._u_scale, steps * self.dt, (steps + 1) * self.dt,
+                                          winds, b.packed_rows(rows))
+        codes = self._termination_codes(outcome, meas)
         b.x[rows], b.u[rows], b.time_s[rows] = outcome.x, u, outcome.time_s
         b.steps[rows] = steps + 1
         terminated = codes > 0
@@ -456,55 +443,6 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         if self.render_mode is not None:
             b.record_path(rows, meas.position_ned_m)
         return RowsStep(obs, reward, terminated, codes, dict(zip(part_names, parts.T)), errors, outcome, clipped)
-
-    @single_blas_thread
-    def _period_compiled(self, b: EpisodeBatch, rows, a: np.ndarray, steps: np.ndarray, dynamics, winds,
-                         packed) -> tuple | None:
-        """(outcome, applied controls, measurements, termination codes) of the period of ``rows`` from one compiled
-        call (:func:`flexsim.envs.row_kernels.period_rows`: rate limits, ETD2RK steps, measurements, termination),
-        or None where that call does not apply (and :meth:`_step_rows` takes the general path, with the same
-        arithmetic): another integrator, rows flown about different trims, a model without compiled data, winds that
-        cannot be packed, or a model error in a row (the general path reports the model's message). From
-        :data:`~flexsim.envs.dynamics.COMPILED_ROWS_BELOW` rows on, the call takes the products as matrix products over
-        the rows (:func:`flexsim.sim._step_kernels.etd2rk_rows_gemm`, faster there), below it row by row."""
-        dyn = self.dynamics
-        stepper = dyn.stepper
-        m = len(dynamics)
-        if stepper is None or not dyn.substeps:
-            return None
-        model = dyn.model
-        data = getattr(model, "kernel_data", None)
-        if not isinstance(data, _k.KernelData) or not isinstance(packed, _k.BatchWind):
-            return None
-        for d in dynamics:
-            if d.stepper is not stepper:
-                return None
-        still = winds[0] is None if m == 1 else all(w is None for w in winds)
-        n_comp = len(SENSOR_COMPONENTS)
-        x_out, u, t_out = np.empty((m, dyn.layout.n_states)), np.empty((m, 4)), np.empty(m)
-        status, taken, codes = np.empty(m, np.int64), np.empty(m, np.int64), np.empty(m, np.int64)
-        meas = np.empty((m, dyn._n_meas))
-        lo, hi = model.altitude_range_m
-        _rk.period_rows(*data, *packed, b.x[rows], b.u[rows], a, self._u_scale, dyn._rate_step, steps, self.dt, stepper.h,
-                        dyn.substeps, stepper._h_phi1, stepper._h_phi2, stepper._jac, dyn._z, float(lo), float(hi),
-                        m >= _dynamics.COMPILED_ROWS_BELOW,
-                        _rk.WIND_STILL if still else _rk.WIND_PACKED, *dyn._measure_data, self._kernel_constants()[2], n_comp,
-                        u, x_out, t_out, status, taken, meas, codes)
-        clear = self._clear_rows.get(m)
-        if clear is None:
-            clear = self._clear_rows[m] = (np.full(m, "", dtype=object), np.zeros(m, dtype=np.bool_), np.zeros(m, dtype=np.int64))
-        failure, crashed, nlu = clear
-        if np.count_nonzero(status):
-            if np.count_nonzero(status == _sk.ROW_MODEL_ERROR):
-                return None
-            crashed = status == _sk.ROW_GROUND
-            failure = failure.copy()
-            for r in np.flatnonzero(status == _sk.ROW_NON_FINITE):
-                t_start = steps[r] * self.dt + (taken[r] - 1) * stepper.h
-                failure[r] = f"non-finite state: ETD2RK step {int(taken[r])} of {dyn.substeps} from t = {float(t_start):.6g} s"
-        outcome = BatchOutcome(x_out, t_out, crashed, failure, 2 * taken, nlu)
-        batch = MeasurementBatch(t_out, meas)
-        return outcome, u, batch, self._task_termination(codes, batch)
 
     def _kernel_constants(self) -> tuple:
         """(limits, reward, limit data, reward data, reward-term error columns, part names): the arguments of
@@ -544,8 +482,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
 
     def _task_termination(self, codes: np.ndarray, meas: MeasurementBatch) -> np.ndarray:
         """The termination codes (m,) of m aircraft with the task's own conditions added to the common ones
-        (``codes``, from :func:`flexsim.envs.row_kernels.termination_rows`; 0: flying). Both paths of
-        :meth:`_step_rows` call it. Default: none."""
+        (``codes``, from :func:`flexsim.envs.row_kernels.termination_rows`; 0: flying). Default: none."""
         return codes
 
     def _observe_rows(self, meas: MeasurementBatch, errors: np.ndarray, u: np.ndarray) -> np.ndarray:

@@ -12,7 +12,7 @@ from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import InitialPerturbation, RewardTerm, TrackingReward
-from flexsim.envs.dynamics import MeasurementBatch
+from flexsim.sim.measurements import MeasurementBatch
 from flexsim.envs.episodes import perturbed_state, turbulence_field, wrap_angle
 
 __all__ = ["LevelHoldTask", "LevelHoldEnv", "LevelHoldCaptureEnv", "CAPTURE_REWARD", "CAPTURE_PERTURBATION"]

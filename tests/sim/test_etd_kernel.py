@@ -162,14 +162,10 @@ def test_rows_as_matrix_products_equal_the_rows_one_by_one(gtm):
     x[4, z] = -1e6  # model error at the start
     x[5, model.layout.omega.start] = 0.05
     winds = model.pack_winds([None, gust, None, None, gust, None])
-    lo, hi = model.altitude_range_m
     outs = []
-    for kernel in (_sk.etd2rk_rows, _sk.etd2rk_rows_gemm):
-        x_out, t_out = np.empty_like(x), np.empty(6)
-        status, steps = np.empty(6, np.int64), np.empty(6, np.int64)
-        kernel(*model.kernel_data, *winds, x, u, np.full(6, 1.0), np.full(6, 1.0 + k * h), h, k, stepper._h_phi1,
-               stepper._h_phi2, stepper._jac, z, float(lo), float(hi), x_out, t_out, status, steps)
-        outs.append((x_out, t_out, status, steps))
+    for over_rows in (False, True):  # etd2rk_rows, etd2rk_rows_gemm
+        res = stepper.advance_rows(model, x, u, np.full(6, 1.0), np.full(6, 1.0 + k * h), k, winds, over_rows=over_rows)
+        outs.append((res.x, res.t, res.status, res.steps))
     (xa, ta, sa, na), (xb, tb, sb, nb) = outs
     assert sa.tolist() == sb.tolist() == [_sk.ROW_RUNNING] * 2 + [_sk.ROW_GROUND] + [_sk.ROW_MODEL_ERROR] * 2 + [_sk.ROW_RUNNING]
     assert na.tolist() == nb.tolist()
