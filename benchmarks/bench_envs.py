@@ -8,7 +8,7 @@
    evaluations and LU factorisations per step, the share of the step spent outside the integration
    (``flexsim.sim.periods.advance_period``: rate limits, integration and measurements) (termination, task errors,
    observation, reward, info), and the accuracy of each choice over 25 periods against DOP853
-   at rtol 1e-10 (altitude, pitch, tip deflection). Budget: >= 200 steps/s (unsteady aero); target (issue #14):
+   at rtol 1e-10 (altitude, pitch, tip deflection). Budget: >= 200 steps/s (unsteady aero); target:
    >= 2,000 steps/s.
 2. The flutter fidelity: over 5 s of open-loop FlexSim/GTM-FlutterMargin-v0 (fin flutter growing at
    about 0.25 1/s), the fin tip twist amplitude of each integrator against the tight reference, and steps/s.
@@ -24,10 +24,10 @@
    env, gymnasium's ``SyncVectorEnv`` and ``AsyncVectorEnv`` (N = 1 and 16; at 256 each of their
    sub-envs builds its own model, trim and matrix exponential, about 1 s each, and the async one starts
    256 processes: skipped unless ``--sync-256``); median of ``--repeats`` runs of about 512 env-steps
-   each (at least 3 steps), reset and one warm-up step excluded. Target (issue #14): >= 10,000
+   each (at least 3 steps), reset and one warm-up step excluded. Target: >= 10,000
    env-steps/s per core at 256 aircraft.
 
-5. Issue #14 rows 4 and 5 side by side with a reference revision (``--compare [REV]``, or ``--compare-only``
+5. One env and 256 batched envs side by side with a reference revision (``--compare [REV]``, or ``--compare-only``
    for this section alone; default reference 1276784, main when those rows were measured idle at 1,370 steps/s and
    3,788 env-steps per CPU-second): one env (``gym.make``, all wrappers) steps per CPU-second, the same steps on
    the unwrapped env and the time of a reset (cached trim), and N = 256 batched env-steps per CPU-second
@@ -274,11 +274,11 @@ def batched_rates(repeats: int, sync_256: bool) -> None:
                 return gym.make_vec(ENV_ID, num_envs=n, vectorization_mode=mode, max_episode_steps=10_000)
             cpu, wall = _per_cpu_second(make, n, steps, repeats)
             print(f"  {label:38s} {f'N = {n}':>7s} {cpu:9.0f} / {wall:7.0f}   {cpu / base:4.2f}", flush=True)
-    print(f"  target: {TARGET_BATCHED:,.0f} env-steps/s per core at N = 256 (issue #14); last column: per-core ratio to the "
+    print(f"  target: {TARGET_BATCHED:,.0f} env-steps/s per core at N = 256; last column: per-core ratio to the "
           "single env of the same run")
 
 
-#: The reference of section 5: main when issue 14's env rows were last measured idle (docs/performance.md: 1,370 steps/s,
+#: The default reference of section 5: main when the one-env and batched rows were last measured idle (docs/performance.md: 1,370 steps/s,
 #: 3,788 env-steps per CPU-second at 256; ETD2RK 10 ms steps).
 COMPARE_REFERENCE = "1276784"
 #: The ETD2RK step both trees are also measured at in section 5 (the reference's default).
@@ -301,7 +301,7 @@ def compare(reference: str, reference_tree: str | None, repeats: int) -> None:
     """Section 5 of the module docstring."""
     ref = reference_tree or str(checkout_of(reference))
     label = reference_tree or reference
-    print(f"issue #14 rows 4-5: this tree against {label}, fresh processes alternating, median of {repeats}; env-steps per "
+    print(f"one env and 256 batched envs: this tree against {label}, fresh processes alternating, median of {repeats}; env-steps per "
           f"CPU-second; {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f}", flush=True)
     # about 0.3-1 s of CPU per worker run: 300 single steps or 4 vector steps were 0.1 s and spread 1.7x under load
     rows = (("one env, LevelHold-v0, default integrator", "single", 1000, None, TARGET_STEPS_S),
@@ -366,7 +366,7 @@ def main() -> None:
             auto = " (default)" if default == settings.method and settings.max_step_s == 0.02 else ""
             print(f"{aero:13s} {label:11s} {r['steps_s']:8.1f} {r['min']:6.1f}-{r['max']:6.1f} {r['nfev']:9.1f} {r['nlu']:7.1f} "
                   f"{100 * r['outside']:6.1f}%   {err[0]:.1e}, {err[1]:.1e}, {err[2]:.1e}{auto}", flush=True)
-    print(f"budget: {BUDGET_STEPS_S:.0f} steps/s, target {TARGET_STEPS_S:,.0f} steps/s (issue #14; one env, unsteady aero); ETD2RK / Radau = "
+    print(f"budget: {BUDGET_STEPS_S:.0f} steps/s, target {TARGET_STEPS_S:,.0f} steps/s (one env, unsteady aero); ETD2RK / Radau = "
           f"{unsteady['ETD2RK 20ms']['steps_s'] / unsteady['Radau']['steps_s']:.2f}, ETD2RK / DOP853 = "
           f"{unsteady['ETD2RK 20ms']['steps_s'] / unsteady['DOP853']['steps_s']:.2f} (medians of the same run)")
     print("flutter fidelity, FlexSim/GTM-FlutterMargin-v0 open loop, 5 s: fin tip twist amplitude over the last 0.5 s")

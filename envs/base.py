@@ -71,14 +71,11 @@ OBSERVATION_BASE_ROWS_DOC = """    | Num   | Observation                        
 
 #: The v0 entry of the Version History of the tasks whose default integrator moved from Radau to ETD2RK.
 V0_HISTORY_DOC = """\
-    * v0: initial version (flexsim issue 6); default integrator ETD2RK (5 ms steps) instead of Radau for
-      the finite-state model, same trajectories to within the integration error, about 7 times faster
-      (LevelHold: 574 against 82 steps/s, docs/environments.md); ETD2RK steps of 10 ms by default since
-      issue 14, and of 20 ms (one per 50 Hz control period) for LevelHold and Turn since its session 7
-      (GustAlleviation keeps 10 ms, ``default_max_step_s``): 25 periods in still air within 2.0e-6 m
-      altitude and 2.0e-6 m wing tip of DOP853 at rtol 1e-10 (10 ms: 2.1e-7 m, 1.7e-7 m); 2 s of small
-      random actions in light turbulence: rewards within 2.6e-5, structural rates within 1.6e-2 m/s or rad/s
-      of DOP853 at rtol 1e-9 (10 ms: 7.8e-7, 4.4e-3; ``IntegratorSettings.max_step_s``, docs/environments.md).
+    * v0: initial version; default integrator ETD2RK instead of Radau for the finite-state model (the same
+      trajectories to within the integration error, about 7 times faster), steps of 20 ms for LevelHold and
+      Turn and 10 ms for GustAlleviation (``default_max_step_s``; accuracy in docs/environments.md); the
+      quasi-steady model integrated with ETD2RK by default too, as ``simulate`` does (DOP853 before:
+      ``IntegratorSettings(method="DOP853")``).
 """
 
 
@@ -476,7 +473,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         non-finite state or solver failure, crash, structural limit, gimbal lock, envelope
         (:func:`flexsim.envs.row_kernels.termination_rows`)."""
         codes = np.empty(len(outcome.time_s), dtype=np.int64)
-        _rk.termination_rows(meas.matrix, outcome.failure != "", outcome.crashed, self._kernel_constants()[2], len(SENSOR_COMPONENTS),
+        _rk.termination_rows(meas.matrix, outcome.failed, outcome.crashed, self._kernel_constants()[2], len(SENSOR_COMPONENTS),
                              codes)
         return self._task_termination(codes, meas)
 

@@ -235,8 +235,8 @@ class FlutterMarginEnv(FlexSimEnv):
     the mode numerically (amplitude 22 % low).
 
     ## Version History
-    * v0: initial version (flexsim issue 6); default aircraft pinned to ``gtm_uncalibrated`` when the bundled
-      ``gtm`` became the calibrated aircraft (issue 4), so that the task keeps its fin-flutter mode;
+    * v0: initial version; default aircraft pinned to ``gtm_uncalibrated`` when the bundled ``gtm`` became the
+      calibrated aircraft, so that the task keeps its fin-flutter mode;
       default integrator ETD2RK (5 ms steps) instead of DOP853, same trajectories to within the
       integration error, about 10 times faster (622 against 64 steps/s open loop, docs/environments.md).
     """

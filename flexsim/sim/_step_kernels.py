@@ -267,24 +267,28 @@ def etd2rk_rows(model, wind, step, xs, us, t0s, t1s, x_out, t_out, status, steps
     """``step.n_steps`` ETD2RK steps of ``step.h`` over [t0, t1] for N aircraft of one model (``model``: its kernel
     data) with held controls (a control period), two right-hand sides per step.
 
+    The step is :func:`etd2rk_run`'s, product for product (``d = h phi_1 k_1``, ``a = x + d``, ``x_new = a + h phi_2
+    (k_2 - k_1 - J d)``), so a period of the environments and a run of ``simulate`` take the same arithmetic.
     Row i starts at xs[i] (N, n) with controls us[i] (N, 4) and the winds ``wind.rows[i]`` of the packed ``wind``.
     Step j ends at t0 + j h (the last at t1). Per row, into x_out (N, n), t_out (N,), status (N,) and steps (N,)
     (steps taken): ROW_RUNNING (0): the period completed, x_out = state at t1; ROW_GROUND (1): the altitude reached
     0 within step ``steps``, x_out and t_out at the crossing (:func:`ground_crossing`); ROW_NON_FINITE (2): step
     ``steps`` gave a non-finite state, x_out = the state before it; ROW_MODEL_ERROR (3): the right-hand side could
     not be evaluated at the state before step ``steps`` (singular system matrix, or an altitude outside
-    [alt_lo, alt_hi]), x_out = that state. Rows are independent and the products are the matrix-vector products of
-    :func:`etd2rk_run`, so a row's result does not depend on the others.
+    [alt_lo, alt_hi]), x_out = that state. Rows are independent: a row's result does not depend on the others.
     """
     F, I = model.F, model.I
     h, n_steps, h_phi1, h_phi2, jac, z_index = step.h, step.n_steps, step.h_phi1, step.h_phi2, step.jac, step.z_index
     alt_lo, alt_hi = step.alt_lo, step.alt_hi
     rows, turb_grid = wind.rows, wind.turb_grid
+    n = xs.shape[1]
+    x, x_new = np.empty(n), np.empty(n)
+    d, a, jd, r, inc = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)  # as in _run
     for i in range(xs.shape[0]):
         g = wind.gusts[rows[i, 0]:rows[i, 1]]
         tb = wind.turb[rows[i, 2]:rows[i, 3]]
         u = us[i]
-        x = xs[i].copy()
+        x[:] = xs[i]
         t = t0s[i]
         st = ROW_RUNNING
         j = 0
@@ -296,7 +300,9 @@ def etd2rk_rows(model, wind, step, xs, us, t0s, t1s, x_out, t_out, status, steps
                 break
             try:
                 k1 = _rhs_wind(F, I, g, tb, turb_grid, x, u)
-                a = x + h_phi1 @ k1
+                _matvec(h_phi1, k1, d)
+                for c in range(n):
+                    a[c] = x[c] + d[c]
                 if not _altitude_ok(a, alt_lo, alt_hi):
                     st = ROW_MODEL_ERROR
                     break
@@ -304,12 +310,15 @@ def etd2rk_rows(model, wind, step, xs, us, t0s, t1s, x_out, t_out, status, steps
             except Exception:  # singular system matrix (ZeroDivisionError in solve)
                 st = ROW_MODEL_ERROR
                 break
-            x_new = a + h_phi2 @ (k2 - k1 - jac @ (a - x))
+            _matvec(jac, d, jd)
+            for c in range(n):
+                r[c] = k2[c] - k1[c] - jd[c]
+            _matvec(h_phi2, r, inc)
             finite = True
-            for m in range(x_new.shape[0]):
-                if not math.isfinite(x_new[m]):
+            for c in range(n):
+                x_new[c] = a[c] + inc[c]
+                if not math.isfinite(x_new[c]):
                     finite = False
-                    break
             if not finite:
                 st = ROW_NON_FINITE
                 break
@@ -318,7 +327,7 @@ def etd2rk_rows(model, wind, step, xs, us, t0s, t1s, x_out, t_out, status, steps
                 t = t_hit
                 st = ROW_GROUND
                 break
-            x = x_new
+            x[:] = x_new
             t = t_next
         x_out[i] = x
         t_out[i] = t
@@ -404,18 +413,26 @@ def etd2rk_rows_gemm(model, wind, step, xs, us, t0s, t1s, x_out, t_out, status, 
 
 @_depends
 @_jit
-def period_rows(model, wind, step, measure, start, wind_mode, over_rows, out):
-    """One control period of N aircraft flown about one trim, in one call: the actuator rate limits
-    (:func:`rate_limit_rows`: ``start.u`` towards ``start.command`` into ``out.u``, then held), the ETD2RK steps
-    (:func:`etd2rk_rows`, or with ``over_rows`` :func:`etd2rk_rows_gemm`) over [start.t0, start.t1] into ``out.x``,
-    ``out.t``, ``out.status``, ``out.taken``, and the measurements of the states reached
-    (:func:`flexsim.sim.measurements.measure_rows`, ``wind_mode`` still air or packed ``wind``; ``measure`` a
-    :class:`~flexsim.sim.measurements.MeasureData`) into ``out.meas``. ``model``: the kernel data of the model,
-    ``step`` a :class:`StepData`, ``start`` a :class:`PeriodStart`, ``out`` a :class:`PeriodOut`. The same
-    arithmetic as the separate calls, so the results are equal bit for bit."""
-    rate_limit_rows(start.u, start.command, start.rate_step, out.u)
+def period_rows(F, I, rows, gusts, turb, turb_grid, h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo, alt_hi, index, s_ptr, s_idx,
+                s_w, h_range, x, u, command, rate_step, t0, t1, wind_mode, over_rows, u_out, x_out, t_out, status, taken, meas):
+    """One control period of N aircraft flown about one trim, in one call; the arguments are the fields of the named
+    data, called as ``period_rows(*model, *wind, *step, *measure, *start, wind_mode, over_rows, *out)`` with
+    ``model`` the model's kernel data, ``wind`` its packed winds (``BatchWind``), ``step`` a :class:`StepData`,
+    ``measure`` a :class:`~flexsim.sim.measurements.MeasureData`, ``start`` a :class:`PeriodStart` and ``out`` a
+    :class:`PeriodOut` (flat, because numba's dispatcher types a flat argument list in compiled code and a tuple
+    argument in Python, which took 13 us more per call).
+
+    The actuator rate limits (:func:`rate_limit_rows`: ``start.u`` towards ``start.command`` into ``out.u``, then
+    held), the ETD2RK steps (:func:`etd2rk_rows`, or with ``over_rows`` :func:`etd2rk_rows_gemm`) over
+    [start.t0, start.t1] into ``out.x``, ``out.t``, ``out.status``, ``out.taken``, and the measurements of the
+    states reached (:func:`flexsim.sim.measurements.measure_rows`, ``wind_mode`` still air or packed ``wind``) into
+    ``out.meas``: the arithmetic of the separate calls, so the results are equal bit for bit."""
+    model = _k.KernelData(F, I)
+    wind = _k.BatchWind(rows, gusts, turb, turb_grid)
+    step = StepData(h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo, alt_hi)
+    rate_limit_rows(u, command, rate_step, u_out)
     if over_rows:
-        etd2rk_rows_gemm(model, wind, step, start.x, out.u, start.t0, start.t1, out.x, out.t, out.status, out.taken)
+        etd2rk_rows_gemm(model, wind, step, x, u_out, t0, t1, x_out, t_out, status, taken)
     else:
-        etd2rk_rows(model, wind, step, start.x, out.u, start.t0, start.t1, out.x, out.t, out.status, out.taken)
-    _ms.measure_rows(out.x, wind_mode, np.empty((0, 3)), wind, measure, out.meas)
+        etd2rk_rows(model, wind, step, x, u_out, t0, t1, x_out, t_out, status, taken)
+    _ms.measure_rows(x_out, wind_mode, np.empty((0, 3)), wind, _ms.MeasureData(index, s_ptr, s_idx, s_w, h_range), meas)

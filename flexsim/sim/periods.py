@@ -47,6 +47,7 @@ from flexsim.sim import measurements as _ms
 from flexsim.sim.fixed_step import ETD2RK
 from flexsim.sim.measurements import MeasurementBatch, Measurements
 from flexsim.sim.outputs import OutputMaps
+from flexsim.sim.simulate import default_method
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
 __all__ = ["IntegratorSettings", "ActuatorRates", "FlightDynamics", "StepOutcome", "BatchOutcome", "PeriodResult", "advance_rows",
@@ -162,11 +163,7 @@ class IntegratorSettings:
     def resolve(self, model: AircraftModel) -> str:
         """The method used for ``model``: ``method``, or for ``"auto"`` :func:`flexsim.sim.simulate.default_method`
         of the model in still air (class docstring)."""
-        if self.method != "auto":
-            return self.method
-        from flexsim.sim.simulate import default_method
-
-        return default_method(model, None)
+        return default_method(model, None) if self.method == "auto" else self.method
 
     def substeps(self, period_s: float) -> int:
         """Number of equal ETD2RK steps per control period of ``period_s`` [s]: ceil(period / max_step_s)."""
@@ -217,7 +214,7 @@ class StepOutcome:
 class BatchOutcome:
     """Results of one control period of N aircraft: the :class:`StepOutcome` fields as arrays over the rows (``x``
     (N, n), ``time_s`` (N,), ``crashed`` (N,) bool, ``failure`` (N,) object array of str, ``nfev`` and ``nlu`` (N,)
-    int)."""
+    int), and ``failed`` (N,) bool: the rows whose ``failure`` is not empty."""
 
     x: np.ndarray
     time_s: np.ndarray
@@ -225,6 +222,7 @@ class BatchOutcome:
     failure: np.ndarray
     nfev: np.ndarray
     nlu: np.ndarray
+    failed: np.ndarray
 
     def row(self, i: int) -> StepOutcome:
         """The :class:`StepOutcome` of row i."""
@@ -234,9 +232,10 @@ class BatchOutcome:
     @classmethod
     def of(cls, outcomes: list[StepOutcome]) -> BatchOutcome:
         """The batch of single :class:`StepOutcome` s, in order."""
+        failure = np.array([o.failure for o in outcomes], dtype=object)
         return cls(np.array([o.x for o in outcomes], dtype=float), np.array([o.time_s for o in outcomes], dtype=float),
-                   np.array([o.crashed for o in outcomes], dtype=bool), np.array([o.failure for o in outcomes], dtype=object),
-                   np.array([o.nfev for o in outcomes], dtype=np.int64), np.array([o.nlu for o in outcomes], dtype=np.int64))
+                   np.array([o.crashed for o in outcomes], dtype=bool), failure, np.array([o.nfev for o in outcomes], dtype=np.int64),
+                   np.array([o.nlu for o in outcomes], dtype=np.int64), failure != "")
 
 
 class PeriodResult(NamedTuple):
@@ -344,6 +343,12 @@ class FlightDynamics:
         """The ETD2RK step of the current episode (None for the ``solve_ivp`` methods or before :meth:`start`)."""
         return self._stepper
 
+    @property
+    def step_data(self) -> _sk.StepData | None:
+        """The ETD2RK step of the current episode as the compiled periods take it (:meth:`ETD2RK.step_data`; None
+        without a stepper)."""
+        return self._step_data
+
     # ------------------------------------------------------------------ trim and Jacobian
     def trim(self, manoeuvre: SteadyManoeuvre) -> TrimPoint:
         """Still-air trim of ``manoeuvre`` (the last :data:`TRIM_CACHE` trims are cached: trims are deterministic)."""
@@ -433,7 +438,8 @@ class FlightDynamics:
             self._h_next = span
         return StepOutcome(sol.y[:, -1].copy(), float(sol.t[-1]), sol.status == 1, "", sol.nfev, sol.nlu)
 
-    def _check_span(self, span) -> None:
+    def check_span(self, span) -> None:
+        """Refuse period lengths ``span`` [s] (scalar or (N,)) other than the control period (ETD2RK's fixed steps)."""
         spans = np.asarray(span, float).reshape(-1)
         bad = np.flatnonzero(~(np.abs(spans - self.dt) <= 1e-9 * self.dt))
         if bad.size:
@@ -445,7 +451,7 @@ class FlightDynamics:
         stepper = self._stepper
         if stepper is None:
             raise RuntimeError("advance() called before start(): ETD2RK needs the trim Jacobian")
-        self._check_span(t1 - t0)
+        self.check_span(t1 - t0)
         k, h = self.substeps, stepper.h
         rhs = self.model.rhs
         x = np.asarray(x, dtype=float)
@@ -466,22 +472,24 @@ class FlightDynamics:
                 x, t = x_next, t_next
         return StepOutcome(x, t1, False, "", 2 * k)
 
-    def _outcome(self, x, t, status, taken, t0) -> BatchOutcome:
-        """The :class:`BatchOutcome` of compiled rows (status codes of :func:`flexsim.sim._step_kernels.etd2rk_rows`);
-        a row with a model error (whose message only ``model.rhs`` gives) reads "model error" here."""
+    def rows_outcome(self, x, t, status, taken, t0) -> BatchOutcome:
+        """The :class:`BatchOutcome` of compiled rows of this dynamics' stepper: states x (N, n) and times t (N,) [s]
+        reached, status codes and steps taken (N,) of :func:`flexsim.sim._step_kernels.etd2rk_rows`, period starts t0
+        (N,) [s]; a row with a model error (whose message only ``model.rhs`` gives) reads "model error" here."""
         m = len(t)
         clear = self._clear.get(m)
-        if clear is None:
-            clear = self._clear[m] = (np.full(m, "", dtype=object), np.zeros(m, dtype=np.bool_), np.zeros(m, dtype=np.int64))
-        failure, crashed, nlu = clear
-        if np.count_nonzero(status):
-            crashed = status == _sk.ROW_GROUND
-            failure = failure.copy()
-            failure[status == _sk.ROW_MODEL_ERROR] = "model error"
-            for r in np.flatnonzero(status == _sk.ROW_NON_FINITE):
-                t_start = t0[r] + (taken[r] - 1) * self._stepper.h
-                failure[r] = f"non-finite state: ETD2RK step {int(taken[r])} of {self.substeps} from t = {float(t_start):.6g} s"
-        return BatchOutcome(x, t, crashed, failure, 2 * taken, nlu)
+        if clear is None:  # the arrays of a period in which no row stopped, shared by such periods: not to be written
+            clear = self._clear[m] = (np.full(m, "", dtype=object), np.zeros(m, dtype=np.bool_), np.zeros(m, dtype=np.int64),
+                                      np.full(m, 2 * self.substeps, np.int64))
+        failure, none, nlu, nfev = clear
+        if not np.count_nonzero(status):
+            return BatchOutcome(x, t, none, failure, nfev, nlu, none)
+        failure = failure.copy()
+        failure[status == _sk.ROW_MODEL_ERROR] = "model error"
+        for r in np.flatnonzero(status == _sk.ROW_NON_FINITE):
+            t_start = t0[r] + (taken[r] - 1) * self._stepper.h
+            failure[r] = f"non-finite state: ETD2RK step {int(taken[r])} of {self.substeps} from t = {float(t_start):.6g} s"
+        return BatchOutcome(x, t, status == _sk.ROW_GROUND, failure, 2 * taken, nlu, failure != "")
 
     # ------------------------------------------------------------------ outputs
     def measure(self, x: np.ndarray, t: float, wind: Wind | None = None) -> Measurements:
@@ -567,13 +575,13 @@ def advance_rows(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarra
     still = all(w is None for w in winds)
     if stepper is not None and (still or isinstance(packed, _k.BatchWind)):
         t0, t1 = np.asarray(t0, float), np.asarray(t1, float)
-        first._check_span(t1 - t0)
+        first.check_span(t1 - t0)
         res = stepper.advance_rows(first.model, x, u, t0, t1, first.substeps, None if still else packed,
                                    over_rows=n >= COMPILED_ROWS_BELOW)
-        out = first._outcome(res.x, res.t, res.status, res.steps, t0)
+        out = first.rows_outcome(res.x, res.t, res.status, res.steps, t0)
         for i in np.flatnonzero(res.status == _sk.ROW_MODEL_ERROR):  # the model's message: this row through model.rhs
             again = dynamics[i].advance(x[i], u[i], float(t0[i]), float(t1[i]), winds[i])
-            out.x[i], out.time_s[i], out.failure[i], out.nfev[i] = again.x, again.time_s, again.failure, again.nfev
+            out.x[i], out.time_s[i], out.failure[i], out.nfev[i], out.failed[i] = again.x, again.time_s, again.failure, again.nfev, True
         return out
     return BatchOutcome.of([d.advance(x[i], u[i], float(t0[i]), float(t1[i]), winds[i]) for i, d in enumerate(dynamics)])
 
@@ -582,7 +590,8 @@ def advance_rows(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarra
 def advance_period(dynamics: Sequence[FlightDynamics], x: np.ndarray, applied: np.ndarray, command: np.ndarray, t0: np.ndarray,
                    t1: np.ndarray, winds, packed=None) -> PeriodResult:
     """One control period of N aircraft: rate limits from the ``applied`` towards the ``command`` controls (N, 4)
-    [N, rad], the integration over [t0, t1] (N,) [s] and the measurements of the states reached.
+    [N, rad], the integration over [t0, t1] (N,) [s] (with ETD2RK, t1 - t0 the control period ``dt``) and the
+    measurements of the states reached.
 
     ``dynamics[i]`` flies row i (after :meth:`FlightDynamics.start` of its episode; the rate limits and outputs are
     those of ``dynamics[0]``, shared by forks); ``winds`` the N wind fields, ``packed`` the same packed by the
@@ -599,10 +608,10 @@ def advance_period(dynamics: Sequence[FlightDynamics], x: np.ndarray, applied: n
         out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
                             np.empty(m, np.int64), np.empty((m, first.n_measurements)))
         start = _sk.PeriodStart(x, applied, command, first.rate_step, t0, t1)
-        _sk.period_rows(first.model.kernel_data, packed, first._step_data, first.measure_data, start,
-                        _ms.WIND_STILL if still else _ms.WIND_PACKED, m >= COMPILED_ROWS_BELOW, out)
-        if not out.status.any() or not (out.status == _sk.ROW_MODEL_ERROR).any():
-            return PeriodResult(first._outcome(out.x, out.t, out.status, out.taken, t0), out.u,
+        _sk.period_rows(*first.model.kernel_data, *packed, *first.step_data, *first.measure_data, *start,
+                        _ms.WIND_STILL if still else _ms.WIND_PACKED, m >= COMPILED_ROWS_BELOW, *out)
+        if not np.count_nonzero(out.status) or not np.count_nonzero(out.status == _sk.ROW_MODEL_ERROR):
+            return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, t0), out.u,
                                 MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))
     u = first.rate_limit(applied, command)
     outcome = advance_rows(dynamics, x, u, t0, t1, winds, packed=packed)
