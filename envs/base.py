@@ -38,7 +38,7 @@ __all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample"
 _FLOAT_ACTIONS = (np.dtype(np.float32), np.dtype(np.float64))
 #: Values of ``info["termination_reason"]`` ("" while flying).
 TERMINATION_REASONS = ("non_finite", "crash", "structural_limit", "gimbal_lock", "envelope")
-#: ``info["termination_reason"]`` of each termination code (:meth:`FlexSimEnv._termination_codes`; 0: flying).
+#: ``info["termination_reason"]`` of each termination code (:func:`flexsim.envs.row_kernels.termination_rows`; 0: flying).
 TERMINATION_CODES = ("", *TERMINATION_REASONS)
 #: Physical control names of the flight logs (the output vocabulary's, :mod:`flexsim.io.vocabulary`).
 LOG_CONTROL_NAMES = VOCABULARY_CONTROL_NAMES
@@ -269,6 +269,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._constants: tuple | None = None  # the arguments of the compiled outputs from limits and reward (_kernel_constants)
         self._act_low, self._act_high = self.action_space.low.astype(np.float64), self.action_space.high.astype(np.float64)
         self._act_low_list, self._act_high_list = self._act_low.tolist(), self._act_high.tolist()
+        self._zeros: dict[int, np.ndarray] = {}
         self._observe_data = (self._u_scale, self._act_low, self._act_high, len(SENSOR_COMPONENTS), self._obs_low, self._obs_high)
 
     # ------------------------------------------------------------------ task hooks
@@ -411,30 +412,29 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     def _step_rows(self, b: EpisodeBatch, rows: np.ndarray | slice, a: np.ndarray, clipped: np.ndarray) -> RowsStep:
         """One control period of the aircraft ``rows`` (sorted indices, or a slice) of ``b`` with the checked, clipped
         actions ``a`` (m, 4): actuator rate limits, the integration and measurements (one
-        :func:`flexsim.sim.periods.advance_period` call), termination, the task errors, then reward parts and
-        observation (:func:`flexsim.envs.row_kernels.finish_rows`), all over the rows (the single env is this with
-        one row)."""
+        :func:`flexsim.sim.periods.advance_period` call), the task errors, then termination, reward parts and
+        observation (one :func:`flexsim.envs.row_kernels.finish_rows` call), all over the rows (the single env is this
+        with one row)."""
         if not isinstance(rows, slice) and len(rows) == b.n:  # all rows, in order (rows are sorted and unique)
             rows = slice(0, b.n)
         steps = b.steps[rows]
         winds, dynamics = (b.winds[rows], b.dynamics[rows]) if isinstance(rows, slice) else ([b.winds[i] for i in rows],
                                                                                              [b.dynamics[i] for i in rows])
-        outcome, u, meas = advance_period(dynamics, b.x[rows], b.u[rows], a * self._u_scale, steps * self.dt, (steps + 1) * self.dt,
-                                          winds, b.packed_rows(rows))
-        codes = self._termination_codes(outcome, meas)
+        outcome, u, meas = advance_period(dynamics, b.x[rows], b.u[rows], a * self._u_scale, steps, winds, b.packed_rows(rows))
         b.x[rows], b.u[rows], b.time_s[rows] = outcome.x, u, outcome.time_s
         b.steps[rows] = steps + 1
-        terminated = codes > 0
-        b.ended[rows] = terminated
         errors = self._task_errors(meas, b.references(rows))
         error_matrix = self._error_matrix(errors)
         b.errors[rows] = error_matrix
-        _, _, _, reward_data, terms, part_names = self._kernel_constants()
-        m = len(terminated)
-        parts, reward = np.empty((m, len(part_names))), np.empty(m)
+        _, _, limit_data, reward_data, terms, part_names = self._kernel_constants()
+        m = len(steps)
+        task_codes = self._task_termination(meas)
+        codes, parts, reward = np.empty(m, np.int64), np.empty((m, len(part_names))), np.empty(m)
         obs = np.empty((m, self._obs_low.shape[0]), np.float32)
-        _rk.finish_rows(meas.matrix, error_matrix, terms, terminated, a - b.last_action[rows], reward_data, u, *self._observe_data,
-                        parts, reward, obs)
+        _rk.finish_rows(meas.matrix, outcome.failed, outcome.crashed, limit_data, self._no_task_codes(m) if task_codes is None else task_codes,
+                        error_matrix, terms, a - b.last_action[rows], reward_data, u, *self._observe_data, codes, parts, reward, obs)
+        terminated = codes > 0
+        b.ended[rows] = terminated
         b.last_action[rows] = a
         b.last_reward[rows] = reward
         if self.render_mode is not None:
@@ -468,19 +468,18 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             out[:, j] = v
         return out
 
-    def _termination_codes(self, outcome: BatchOutcome, meas: MeasurementBatch) -> np.ndarray:
-        """Index into :data:`TERMINATION_CODES` of each row's termination (0: flying), the first that applies of
-        non-finite state or solver failure, crash, structural limit, gimbal lock, envelope
-        (:func:`flexsim.envs.row_kernels.termination_rows`)."""
-        codes = np.empty(len(outcome.time_s), dtype=np.int64)
-        _rk.termination_rows(meas.matrix, outcome.failed, outcome.crashed, self._kernel_constants()[2], len(SENSOR_COMPONENTS),
-                             codes)
-        return self._task_termination(codes, meas)
+    def _task_termination(self, meas: MeasurementBatch) -> np.ndarray | None:
+        """The task's own termination codes (m,) int of m aircraft (index into :data:`TERMINATION_CODES`, 0: none),
+        applied where the common ones (:func:`flexsim.envs.row_kernels.termination_rows`: non-finite state or solver
+        failure, crash, structural limit, gimbal lock, envelope) do not end the episode; None: none (default)."""
+        return None
 
-    def _task_termination(self, codes: np.ndarray, meas: MeasurementBatch) -> np.ndarray:
-        """The termination codes (m,) of m aircraft with the task's own conditions added to the common ones
-        (``codes``, from :func:`flexsim.envs.row_kernels.termination_rows`; 0: flying). Default: none."""
-        return codes
+    def _no_task_codes(self, m: int) -> np.ndarray:
+        """Zeros (m,) int: no task termination (shared per m, read by the kernel only)."""
+        zeros = self._zeros.get(m)
+        if zeros is None:
+            zeros = self._zeros[m] = np.zeros(m, np.int64)
+        return zeros
 
     def _observe_rows(self, meas: MeasurementBatch, errors: np.ndarray, u: np.ndarray) -> np.ndarray:
         """Observations (m, n_obs) float32 of m aircraft (measurements, task errors (m, k), applied controls (m, 4))."""

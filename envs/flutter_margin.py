@@ -287,14 +287,14 @@ class FlutterMarginEnv(FlexSimEnv):
                 "altitude_error_m": meas.altitude_m - ref["altitude_m"],
                 "flutter_margin_m_s": margin}
 
-    def _task_termination(self, codes: np.ndarray, meas: MeasurementBatch) -> np.ndarray:
+    def _task_termination(self, meas: MeasurementBatch) -> np.ndarray | None:
         limit = self.task.wing_tip_twist_limit_rad
-        if math.isfinite(limit):
-            twist = meas.tip_twist_rad
-            with np.errstate(invalid="ignore"):
-                over = ~(np.maximum(np.abs(twist["right_wing"]), np.abs(twist["left_wing"])) <= limit)
-            codes = np.where((codes == 0) & over, TERMINATION_CODES.index("structural_limit"), codes)
-        return codes
+        if not math.isfinite(limit):
+            return None
+        twist = meas.tip_twist_rad
+        with np.errstate(invalid="ignore"):
+            over = ~(np.maximum(np.abs(twist["right_wing"]), np.abs(twist["left_wing"])) <= limit)
+        return np.where(over, TERMINATION_CODES.index("structural_limit"), 0).astype(np.int64)
 
     def task_label(self) -> str:
         return f"GTM flutter margin M {self.target.mach:.3f} (M_f {self.flutter.mach:.3f})"

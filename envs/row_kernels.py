@@ -2,7 +2,7 @@
 
 One implementation over rows of aircraft, used by the single environment (as one row) and by the batched
 :class:`~flexsim.envs.vector.FlexSimVectorEnv` (N rows): :meth:`FlexSimEnv._step_rows` calls, per control period,
-:func:`termination_rows` and :func:`finish_rows` (reward parts, reward and observation) on the measurement rows of
+:func:`finish_rows` (termination, reward parts, reward and observation) on the measurement rows of
 :mod:`flexsim.sim.measurements`; only the task errors (a few lines of array code per task) stay in Python. Reward:
 :class:`flexsim.envs.config.TrackingReward` (parts in the order of ``part_names``, summed left to right);
 observation: the layout of :meth:`FlexSimEnv._observation_layout` (NaN replaced by 0, clipped to the bounds,
@@ -135,8 +135,16 @@ def reward_rows(errors, terms, terminated, da, reward_data, parts, reward):
 
 
 @_jit
-def finish_rows(meas, errors, terms, terminated, da, reward_data, u, u_scale, act_low, act_high, n_comp, obs_low, obs_high,
-                parts, reward, obs):
-    """:func:`reward_rows` and :func:`observe_rows` in one call (the end of a control period)."""
+def finish_rows(meas, failed, crashed, limits, task_codes, errors, terms, da, reward_data, u, u_scale, act_low, act_high, n_comp,
+                obs_low, obs_high, codes, parts, reward, obs):
+    """The end of a control period in one call: :func:`termination_rows` into ``codes`` (N,), where it gives 0 the
+    task's own code ``task_codes[i]`` (0: none), then :func:`reward_rows` (terminated: code > 0) and
+    :func:`observe_rows`."""
+    termination_rows(meas, failed, crashed, limits, n_comp, codes)
+    terminated = np.empty(codes.shape[0], np.bool_)
+    for i in range(codes.shape[0]):
+        if codes[i] == 0:
+            codes[i] = task_codes[i]
+        terminated[i] = codes[i] > 0
     reward_rows(errors, terms, terminated, da, reward_data, parts, reward)
     observe_rows(meas, errors, u, u_scale, act_low, act_high, n_comp, obs_low, obs_high, obs)

@@ -214,15 +214,15 @@ class StepData(NamedTuple):
 
 class PeriodStart(NamedTuple):
     """The start of a control period of N aircraft: states ``x`` (N, n), the controls applied so far ``u`` (N, 4)
-    and commanded ``command`` (N, 4) [N, rad], the actuator rates times the period ``rate_step`` (4,), the period
-    ends ``t0``, ``t1`` (N,) [s]."""
+    and commanded ``command`` (N, 4) [N, rad], the actuator rates times the period ``rate_step`` (4,), the index
+    ``k`` (N,) int of each row's period, which spans [k dt, (k + 1) dt] [s], and the period ``dt`` [s]."""
 
     x: np.ndarray
     u: np.ndarray
     command: np.ndarray
     rate_step: np.ndarray
-    t0: np.ndarray
-    t1: np.ndarray
+    k: np.ndarray
+    dt: float
 
 
 class PeriodOut(NamedTuple):
@@ -414,7 +414,7 @@ def etd2rk_rows_gemm(model, wind, step, xs, us, t0s, t1s, x_out, t_out, status, 
 @_depends
 @_jit
 def period_rows(F, I, rows, gusts, turb, turb_grid, h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo, alt_hi, index, s_ptr, s_idx,
-                s_w, h_range, x, u, command, rate_step, t0, t1, wind_mode, over_rows, u_out, x_out, t_out, status, taken, meas):
+                s_w, h_range, x, u, command, rate_step, k, dt, wind_mode, over_rows, u_out, x_out, t_out, status, taken, meas):
     """One control period of N aircraft flown about one trim, in one call; the arguments are the fields of the named
     data, called as ``period_rows(*model, *wind, *step, *measure, *start, wind_mode, over_rows, *out)`` with
     ``model`` the model's kernel data, ``wind`` its packed winds (``BatchWind``), ``step`` a :class:`StepData`,
@@ -424,12 +424,16 @@ def period_rows(F, I, rows, gusts, turb, turb_grid, h, n_steps, h_phi1, h_phi2, 
 
     The actuator rate limits (:func:`rate_limit_rows`: ``start.u`` towards ``start.command`` into ``out.u``, then
     held), the ETD2RK steps (:func:`etd2rk_rows`, or with ``over_rows`` :func:`etd2rk_rows_gemm`) over
-    [start.t0, start.t1] into ``out.x``, ``out.t``, ``out.status``, ``out.taken``, and the measurements of the
+    [k dt, (k + 1) dt] into ``out.x``, ``out.t``, ``out.status``, ``out.taken``, and the measurements of the
     states reached (:func:`flexsim.sim.measurements.measure_rows`, ``wind_mode`` still air or packed ``wind``) into
     ``out.meas``: the arithmetic of the separate calls, so the results are equal bit for bit."""
     model = _k.KernelData(F, I)
     wind = _k.BatchWind(rows, gusts, turb, turb_grid)
     step = StepData(h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo, alt_hi)
+    t0, t1 = np.empty(k.shape[0]), np.empty(k.shape[0])
+    for i in range(k.shape[0]):
+        t0[i] = k[i] * dt
+        t1[i] = (k[i] + 1) * dt
     rate_limit_rows(u, command, rate_step, u_out)
     if over_rows:
         etd2rk_rows_gemm(model, wind, step, x, u_out, t0, t1, x_out, t_out, status, taken)

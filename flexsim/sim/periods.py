@@ -475,7 +475,8 @@ class FlightDynamics:
     def rows_outcome(self, x, t, status, taken, t0) -> BatchOutcome:
         """The :class:`BatchOutcome` of compiled rows of this dynamics' stepper: states x (N, n) and times t (N,) [s]
         reached, status codes and steps taken (N,) of :func:`flexsim.sim._step_kernels.etd2rk_rows`, period starts t0
-        (N,) [s]; a row with a model error (whose message only ``model.rhs`` gives) reads "model error" here."""
+        (N,) [s] (read for stopped rows only; None if no row stopped); a row with a model error (whose message only
+        ``model.rhs`` gives) reads "model error" here."""
         m = len(t)
         clear = self._clear.get(m)
         if clear is None:  # the arrays of a period in which no row stopped, shared by such periods: not to be written
@@ -587,11 +588,11 @@ def advance_rows(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarra
 
 
 @single_blas_thread
-def advance_period(dynamics: Sequence[FlightDynamics], x: np.ndarray, applied: np.ndarray, command: np.ndarray, t0: np.ndarray,
-                   t1: np.ndarray, winds, packed=None) -> PeriodResult:
+def advance_period(dynamics: Sequence[FlightDynamics], x: np.ndarray, applied: np.ndarray, command: np.ndarray, k: np.ndarray,
+                   winds, packed=None) -> PeriodResult:
     """One control period of N aircraft: rate limits from the ``applied`` towards the ``command`` controls (N, 4)
-    [N, rad], the integration over [t0, t1] (N,) [s] (with ETD2RK, t1 - t0 the control period ``dt``) and the
-    measurements of the states reached.
+    [N, rad], the integration of period ``k[i]`` (N,) int of row i, [k dt, (k + 1) dt] [s] with the control period
+    ``dt`` of the dynamics, and the measurements of the states reached.
 
     ``dynamics[i]`` flies row i (after :meth:`FlightDynamics.start` of its episode; the rate limits and outputs are
     those of ``dynamics[0]``, shared by forks); ``winds`` the N wind fields, ``packed`` the same packed by the
@@ -607,12 +608,14 @@ def advance_period(dynamics: Sequence[FlightDynamics], x: np.ndarray, applied: n
         still = winds[0] is None if m == 1 else all(w is None for w in winds)
         out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
                             np.empty(m, np.int64), np.empty((m, first.n_measurements)))
-        start = _sk.PeriodStart(x, applied, command, first.rate_step, t0, t1)
+        start = _sk.PeriodStart(x, applied, command, first.rate_step, k, first.dt)
         _sk.period_rows(*first.model.kernel_data, *packed, *first.step_data, *first.measure_data, *start,
                         _ms.WIND_STILL if still else _ms.WIND_PACKED, m >= COMPILED_ROWS_BELOW, *out)
-        if not np.count_nonzero(out.status) or not np.count_nonzero(out.status == _sk.ROW_MODEL_ERROR):
-            return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, t0), out.u,
+        stopped = np.count_nonzero(out.status)
+        if not stopped or not np.count_nonzero(out.status == _sk.ROW_MODEL_ERROR):
+            return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None), out.u,
                                 MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))
+    t0, t1 = k * first.dt, (k + 1) * first.dt
     u = first.rate_limit(applied, command)
     outcome = advance_rows(dynamics, x, u, t0, t1, winds, packed=packed)
     return PeriodResult(outcome, u, first.measure_batch(outcome.x, outcome.time_s, winds, packed))

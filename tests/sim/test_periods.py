@@ -67,9 +67,10 @@ def test_one_compiled_call_equals_the_separate_calls(three, rows_below, monkeypa
     monkeypatch.setattr(periods, "COMPILED_ROWS_BELOW", rows_below)
     dyns, x, applied, command = three
     dyn = dyns[0]
-    t0, t1 = np.full(3, 0.4), np.full(3, 0.42)
+    k = np.full(3, 20)  # the period [0.4, 0.42] s
+    t0, t1 = k * dyn.dt, (k + 1) * dyn.dt
     winds = [None] * 3
-    one = advance_period(dyns, x, applied, command, t0, t1, winds, dyn.model.pack_winds(winds))
+    one = advance_period(dyns, x, applied, command, k, winds, dyn.model.pack_winds(winds))
     u = dyn.rate_limit(applied, command)
     np.testing.assert_array_equal(one.u, u)
     separate = advance_rows(dyns, x, u, t0, t1, winds)
