@@ -43,9 +43,10 @@ arithmetic). On the GTM trim Jacobian (252 states) at h = 5-20 ms the two agree 
 entry (asserted in tests/sim/test_fixed_step.py); timings are in benchmarks/, not here.
 
 Compiled steps: :meth:`ETD2RK.run` (a run of one aircraft, for :func:`flexsim.sim.simulate`) and
-:meth:`ETD2RK.advance_rows` (control periods of N aircraft, for the environments) call the numba kernels
-:func:`flexsim.sim._step_kernels.etd2rk_run` and :func:`flexsim.sim._step_kernels.etd2rk_rows` with the model's compiled
-right-hand side: the same arithmetic as :meth:`ETD2RK.step` without a Python call per step.
+:meth:`ETD2RK.advance_rows` (control periods of N aircraft, for :mod:`flexsim.sim.periods` and the environments) call
+the numba kernels :func:`flexsim.sim._step_kernels.etd2rk_run` and :func:`flexsim.sim._step_kernels.etd2rk_rows` with
+the model's compiled right-hand side: the steps of :meth:`ETD2RK.step`, both with the same products (summed in another
+order than BLAS: equal to rounding), without a Python call per step.
 
 References
 ----------
