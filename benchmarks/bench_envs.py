@@ -5,9 +5,9 @@
    and 10 and 5 ms, linear part the trim Jacobian), DOP853, Radau (constant trim Jacobian). Median over ``--repeats``
    runs of ``--steps`` steps after a warm-up reset and step; the repeats of all integrators are interleaved (repeat 1 of each, then
    repeat 2, ...) so that a drifting machine load affects them alike. Also the right-hand-side
-   evaluations and LU factorisations per step, the share of the step spent outside the integration (``advance_rows``,
-   or the one compiled call of a period, ``row_kernels.period_rows``, which includes the measurements and the
-   termination) (task errors, observation, reward, info), and the accuracy of each choice over 25 periods against DOP853
+   evaluations and LU factorisations per step, the share of the step spent outside the integration
+   (``flexsim.sim.periods.advance_period``: rate limits, integration and measurements) (termination, task errors,
+   observation, reward, info), and the accuracy of each choice over 25 periods against DOP853
    at rtol 1e-10 (altitude, pitch, tip deflection). Budget: >= 200 steps/s (unsteady aero); target:
    >= 2,000 steps/s.
 2. The flutter fidelity: over 5 s of open-loop FlexSim/GTM-FlutterMargin-v0 (fin flutter growing at
@@ -20,14 +20,14 @@
 4. Batched envs (``--batched``, or ``--batched-only`` for this section alone): env-steps per CPU-second
    (all processes of the run counted: "per core") of N = 1, 16, 256 aircraft of LevelHold-v0 (default
    settings) in ``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")``
-   (:class:`flexsim.envs.vector.FlexSimVectorEnv`, one ``advance_batch`` call per step) beside the single
+   (:class:`flexsim.envs.vector.FlexSimVectorEnv`, one ``advance_period`` call per step) beside the single
    env, gymnasium's ``SyncVectorEnv`` and ``AsyncVectorEnv`` (N = 1 and 16; at 256 each of their
    sub-envs builds its own model, trim and matrix exponential, about 1 s each, and the async one starts
    256 processes: skipped unless ``--sync-256``); median of ``--repeats`` runs of about 512 env-steps
    each (at least 3 steps), reset and one warm-up step excluded. Target: >= 10,000
    env-steps/s per core at 256 aircraft.
 
-5. Rows 4 and 5 side by side with a reference revision (``--compare [REV]``, or ``--compare-only``
+5. One env and 256 batched envs side by side with a reference revision (``--compare [REV]``, or ``--compare-only``
    for this section alone; default reference main): one env (``gym.make``, all wrappers) steps per CPU-second, the same steps on
    the unwrapped env and the time of a reset (cached trim), and N = 256 batched env-steps per CPU-second
    (``vector_entry_point``), each tree's default integrator and both at the reference's 10 ms ETD2RK step, in
@@ -83,8 +83,7 @@ def _actions(trim: np.ndarray, n: int, seed: int) -> np.ndarray:
 
 
 class _Timed:
-    """Wraps the integration of a step (``advance_rows`` or ``row_kernels.period_rows``, called by ``FlexSimEnv._step_rows``)
-    to add up its time."""
+    """Wraps the integration of a step (``advance_period``, called by ``FlexSimEnv._step_rows``) to add up its time."""
 
     def __init__(self, advance) -> None:
         self.advance, self.seconds = advance, 0.0
@@ -99,10 +98,8 @@ class _Timed:
 def steps_per_second(aero: str, repeats: int, steps: int) -> dict[str, dict[str, float]]:
     """Per integrator label: median steps/s (min, max), nfev and LU per step, share of time outside the integration."""
     made = {label: gym.make(ENV_ID, aero=aero, integrator=settings, max_episode_steps=10 * steps) for label, settings in INTEGRATORS}
-    timer = _Timed(env_base.advance_rows)
-    env_base.advance_rows = timer
-    kernel = _Timed(env_base._rk.period_rows)
-    env_base._rk.period_rows = kernel
+    timer = _Timed(env_base.advance_period)
+    env_base.advance_period = timer
     for env in made.values():
         # trim, Jacobian and matrix functions, and the first step, which loads the compiled period from numba's
         # cache (about 0.1-0.5 s: it fell in the first timed run before, whose rate was then a third of the others')
@@ -114,7 +111,7 @@ def steps_per_second(aero: str, repeats: int, steps: int) -> dict[str, dict[str,
             _, info = env.reset(seed=r)
             actions = _actions(info["trim_action"], steps, r)
             calls = lus = 0
-            timer.seconds = kernel.seconds = 0.0
+            timer.seconds = 0.0
             t0 = time.perf_counter()
             for a in actions:
                 _, _, terminated, truncated, info = env.step(a)
@@ -126,9 +123,8 @@ def steps_per_second(aero: str, repeats: int, steps: int) -> dict[str, dict[str,
             runs[label]["rate"].append(steps / elapsed)
             runs[label]["nfev"].append(calls / steps)
             runs[label]["nlu"].append(lus / steps)
-            runs[label]["outside"].append(1.0 - (timer.seconds + kernel.seconds) / elapsed)
-    env_base.advance_rows = timer.advance
-    env_base._rk.period_rows = kernel.advance
+            runs[label]["outside"].append(1.0 - timer.seconds / elapsed)
+    env_base.advance_period = timer.advance
     for env in made.values():
         env.close()
     return {label: {"steps_s": statistics.median(v["rate"]), "min": min(v["rate"]), "max": max(v["rate"]),
@@ -303,7 +299,7 @@ def compare(reference: str, reference_tree: str | None, repeats: int) -> None:
     """Section 5 of the module docstring."""
     ref = reference_tree or str(checkout_of(reference))
     label = reference_tree or reference
-    print(f"rows 4-5: this tree against {label}, fresh processes alternating, median of {repeats}; env-steps per "
+    print(f"one env and 256 batched envs: this tree against {label}, fresh processes alternating, median of {repeats}; env-steps per "
           f"CPU-second; {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f}", flush=True)
     # about 0.3-1 s of CPU per worker run: 300 single steps or 4 vector steps were 0.1 s and spread 1.7x under load
     rows = (("one env, LevelHold-v0, default integrator", "single", 1000, None, TARGET_STEPS_S),
@@ -358,13 +354,14 @@ def main() -> None:
           f"accuracy over 0.5 s: altitude [m], pitch [rad], tip [m]")
     unsteady = {}
     for aero in ("unsteady", "quasi-steady"):
+        default = gym.make(ENV_ID, aero=aero).unwrapped.dynamics.method
         rates = steps_per_second(aero, args.repeats, args.steps)
         if aero == "unsteady":
             unsteady = rates
         for label, settings in INTEGRATORS:
             r = rates[label]
             err = accuracy(aero, settings)
-            auto = " (default)" if envs.IntegratorSettings().resolve(aero) == settings.method and settings.max_step_s == 0.02 else ""
+            auto = " (default)" if default == settings.method and settings.max_step_s == 0.02 else ""
             print(f"{aero:13s} {label:11s} {r['steps_s']:8.1f} {r['min']:6.1f}-{r['max']:6.1f} {r['nfev']:9.1f} {r['nlu']:7.1f} "
                   f"{100 * r['outside']:6.1f}%   {err[0]:.1e}, {err[1]:.1e}, {err[2]:.1e}{auto}", flush=True)
     print(f"budget: {BUDGET_STEPS_S:.0f} steps/s, target {TARGET_STEPS_S:,.0f} steps/s (one env, unsteady aero); ETD2RK / Radau = "

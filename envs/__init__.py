@@ -6,10 +6,10 @@ Importing this package registers (idempotently) the environment ids of :data:`EN
     import flexsim.envs  # noqa: F401  (registers the FlexSim/* ids)
     env = gym.make("FlexSim/GTM-LevelHold-v0")
 
-or, without the import, ``gym.make("flexsim.envs:FlexSim/GTM-LevelHold-v0")``. Each environment is a thin adapter
-that integrates the one nonlinear model ``AircraftModel.rhs`` over each control period (:mod:`flexsim.envs.dynamics`:
-ETD2RK about the trim by default for the finite-state model, or ``scipy.integrate.solve_ivp``); see
-``docs/environments.md``. ``gym.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")`` steps N
+or, without the import, ``gym.make("flexsim.envs:FlexSim/GTM-LevelHold-v0")``. Each environment holds the task
+(episode start, errors, reward, observation, spaces) and leaves the integration of the one nonlinear model
+``AircraftModel.rhs`` over each control period to :mod:`flexsim.sim.periods` (ETD2RK about the trim by default,
+or ``scipy.integrate.solve_ivp``); see ``docs/environments.md``. ``gym.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")`` steps N
 aircraft of a task in one call (:mod:`flexsim.envs.vector`).
 """
 

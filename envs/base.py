@@ -1,8 +1,8 @@
 """The common gymnasium adapter of the flexsim tasks: spaces, action mapping, stepping, termination.
 
-The physics lives in :mod:`flexsim.envs.dynamics` (and below it in flexsim); a task subclass only says how an
-episode starts (trim, perturbation, wind), which errors it tracks and how they are rewarded
-(:class:`~flexsim.envs.config.TrackingReward`).
+The physics and its integration over control periods live in flexsim (:mod:`flexsim.sim.periods`); a task
+subclass only says how an episode starts (trim, perturbation, wind), which errors it tracks and how they are
+rewarded (:class:`~flexsim.envs.config.TrackingReward`).
 """
 
 from __future__ import annotations
@@ -17,24 +17,20 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
 from flexsim.io.vocabulary import CONTROL_NAMES as VOCABULARY_CONTROL_NAMES
 from flexsim.model.aircraft_model import CONTROL_NAMES
+from flexsim.sim.measurements import MeasurementBatch, Measurements
+from flexsim.sim.periods import SENSOR_COMPONENTS, BatchOutcome, FlightDynamics, advance_period
 from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.config import (AERO_MODELS, DEFAULT_MAX_STEP_S, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
                          IntegratorSettings, TrackingReward)
 from flexsim.envs import row_kernels as _rk
 from flexsim.envs.batch import EpisodeBatch
-from flexsim.envs.dynamics import (SENSOR_COMPONENTS, BatchOutcome, FlightDynamics, MeasurementBatch, Measurements, StepOutcome,
-                                   advance_rows)
 from flexsim.envs.parallel import limit_blas_threads
-from flexsim.envs import dynamics as _dynamics
-from flexsim import _kernels as _k
-from flexsim.sim import _step_kernels as _sk
 
 __all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
 
@@ -42,7 +38,7 @@ __all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample"
 _FLOAT_ACTIONS = (np.dtype(np.float32), np.dtype(np.float64))
 #: Values of ``info["termination_reason"]`` ("" while flying).
 TERMINATION_REASONS = ("non_finite", "crash", "structural_limit", "gimbal_lock", "envelope")
-#: ``info["termination_reason"]`` of each termination code (:meth:`FlexSimEnv._termination_codes`; 0: flying).
+#: ``info["termination_reason"]`` of each termination code (:func:`flexsim.envs.row_kernels.termination_rows`; 0: flying).
 TERMINATION_CODES = ("", *TERMINATION_REASONS)
 #: Physical control names of the flight logs (the output vocabulary's, :mod:`flexsim.io.vocabulary`).
 LOG_CONTROL_NAMES = VOCABULARY_CONTROL_NAMES
@@ -75,14 +71,11 @@ OBSERVATION_BASE_ROWS_DOC = """    | Num   | Observation                        
 
 #: The v0 entry of the Version History of the tasks whose default integrator moved from Radau to ETD2RK.
 V0_HISTORY_DOC = """\
-    * v0: initial version (flexsim issue 6); default integrator ETD2RK (5 ms steps) instead of Radau for
-      the finite-state model, same trajectories to within the integration error, about 7 times faster
-      (LevelHold: 574 against 82 steps/s, docs/environments.md); ETD2RK steps of 10 ms by default since
-      issue 14, and of 20 ms (one per 50 Hz control period) for LevelHold and Turn since its session 7
-      (GustAlleviation keeps 10 ms, ``default_max_step_s``): 25 periods in still air within 2.0e-6 m
-      altitude and 2.0e-6 m wing tip of DOP853 at rtol 1e-10 (10 ms: 2.1e-7 m, 1.7e-7 m); 2 s of small
-      random actions in light turbulence: rewards within 2.6e-5, structural rates within 1.6e-2 m/s or rad/s
-      of DOP853 at rtol 1e-9 (10 ms: 7.8e-7, 4.4e-3; ``IntegratorSettings.max_step_s``, docs/environments.md).
+    * v0: initial version; default integrator ETD2RK instead of Radau for the finite-state model (the same
+      trajectories to within the integration error, about 7 times faster), steps of 20 ms for LevelHold and
+      Turn and 10 ms for GustAlleviation (``default_max_step_s``; accuracy in docs/environments.md); the
+      quasi-steady model integrated with ETD2RK by default too, as ``simulate`` does (DOP853 before:
+      ``IntegratorSettings(method="DOP853")``).
 """
 
 
@@ -276,8 +269,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._constants: tuple | None = None  # the arguments of the compiled outputs from limits and reward (_kernel_constants)
         self._act_low, self._act_high = self.action_space.low.astype(np.float64), self.action_space.high.astype(np.float64)
         self._act_low_list, self._act_high_list = self._act_low.tolist(), self._act_high.tolist()
-        #: Per number of rows m: the outcome arrays of a period in which no row failed (read only).
-        self._clear_rows: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+        self._zeros: dict[int, np.ndarray] = {}
         self._observe_data = (self._u_scale, self._act_low, self._act_high, len(SENSOR_COMPONENTS), self._obs_low, self._obs_high)
 
     # ------------------------------------------------------------------ task hooks
@@ -418,93 +410,36 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             raise RuntimeError("step() called after the episode terminated; call reset()")
 
     def _step_rows(self, b: EpisodeBatch, rows: np.ndarray | slice, a: np.ndarray, clipped: np.ndarray) -> RowsStep:
-        """One control period of the aircraft ``rows`` (sorted indices, or a slice) of ``b`` with the checked, clipped actions ``a`` (m, 4): actuator
-        rate limits, the integration, measurements and termination (one compiled call, :meth:`_period_compiled`, where
-        it applies; else :meth:`FlightDynamics.rate_limit`, one :func:`advance_rows` call and the compiled outputs),
-        the task errors, then reward parts and observation (:func:`flexsim.envs.row_kernels.finish_rows`), all over the
-        rows (the single env is this with one row)."""
-        dyn = self.dynamics
+        """One control period of the aircraft ``rows`` (sorted indices, or a slice) of ``b`` with the checked, clipped
+        actions ``a`` (m, 4): actuator rate limits, the integration and measurements (one
+        :func:`flexsim.sim.periods.advance_period` call), the task errors, then termination, reward parts and
+        observation (one :func:`flexsim.envs.row_kernels.finish_rows` call), all over the rows (the single env is this
+        with one row)."""
         if not isinstance(rows, slice) and len(rows) == b.n:  # all rows, in order (rows are sorted and unique)
             rows = slice(0, b.n)
         steps = b.steps[rows]
         winds, dynamics = (b.winds[rows], b.dynamics[rows]) if isinstance(rows, slice) else ([b.winds[i] for i in rows],
                                                                                              [b.dynamics[i] for i in rows])
-        packed = b.packed_rows(rows)
-        period = self._period_compiled(b, rows, a, steps, dynamics, winds, packed)
-        if period is not None:
-            outcome, u, meas, codes = period
-        else:
-            u = dyn.rate_limit(b.u[rows], a * self._u_scale)
-            outcome = advance_rows(dynamics, b.x[rows], u, steps * self.dt, (steps + 1) * self.dt, winds, packed=packed)
-            meas = dyn.measure_batch(outcome.x, outcome.time_s, winds, packed)
-            codes = self._termination_codes(outcome, meas)
+        outcome, u, meas = advance_period(dynamics, b.x[rows], b.u[rows], a * self._u_scale, steps, winds, b.packed_rows(rows))
         b.x[rows], b.u[rows], b.time_s[rows] = outcome.x, u, outcome.time_s
         b.steps[rows] = steps + 1
-        terminated = codes > 0
-        b.ended[rows] = terminated
         errors = self._task_errors(meas, b.references(rows))
         error_matrix = self._error_matrix(errors)
         b.errors[rows] = error_matrix
-        _, _, _, reward_data, terms, part_names = self._kernel_constants()
-        m = len(terminated)
-        parts, reward = np.empty((m, len(part_names))), np.empty(m)
+        _, _, limit_data, reward_data, terms, part_names = self._kernel_constants()
+        m = len(steps)
+        task_codes = self._task_termination(meas)
+        codes, parts, reward = np.empty(m, np.int64), np.empty((m, len(part_names))), np.empty(m)
         obs = np.empty((m, self._obs_low.shape[0]), np.float32)
-        _rk.finish_rows(meas.matrix, error_matrix, terms, terminated, a - b.last_action[rows], reward_data, u, *self._observe_data,
-                        parts, reward, obs)
+        _rk.finish_rows(meas.matrix, outcome.failed, outcome.crashed, limit_data, self._no_task_codes(m) if task_codes is None else task_codes,
+                        error_matrix, terms, a - b.last_action[rows], reward_data, u, *self._observe_data, codes, parts, reward, obs)
+        terminated = codes > 0
+        b.ended[rows] = terminated
         b.last_action[rows] = a
         b.last_reward[rows] = reward
         if self.render_mode is not None:
             b.record_path(rows, meas.position_ned_m)
         return RowsStep(obs, reward, terminated, codes, dict(zip(part_names, parts.T)), errors, outcome, clipped)
-
-    @single_blas_thread
-    def _period_compiled(self, b: EpisodeBatch, rows, a: np.ndarray, steps: np.ndarray, dynamics, winds,
-                         packed) -> tuple | None:
-        """(outcome, applied controls, measurements, termination codes) of the period of ``rows`` from one compiled
-        call (:func:`flexsim.envs.row_kernels.period_rows`: rate limits, ETD2RK steps, measurements, termination),
-        or None where that call does not apply (and :meth:`_step_rows` takes the general path, with the same
-        arithmetic): another integrator, rows flown about different trims, a model without compiled data, winds that
-        cannot be packed, or a model error in a row (the general path reports the model's message). From
-        :data:`~flexsim.envs.dynamics.COMPILED_ROWS_BELOW` rows on, the call takes the products as matrix products over
-        the rows (:func:`flexsim.sim._step_kernels.etd2rk_rows_gemm`, faster there), below it row by row."""
-        dyn = self.dynamics
-        stepper = dyn.stepper
-        m = len(dynamics)
-        if stepper is None or not dyn.substeps:
-            return None
-        model = dyn.model
-        data = getattr(model, "kernel_data", None)
-        if not isinstance(data, _k.KernelData) or not isinstance(packed, _k.BatchWind):
-            return None
-        for d in dynamics:
-            if d.stepper is not stepper:
-                return None
-        still = winds[0] is None if m == 1 else all(w is None for w in winds)
-        n_comp = len(SENSOR_COMPONENTS)
-        x_out, u, t_out = np.empty((m, dyn.layout.n_states)), np.empty((m, 4)), np.empty(m)
-        status, taken, codes = np.empty(m, np.int64), np.empty(m, np.int64), np.empty(m, np.int64)
-        meas = np.empty((m, dyn._n_meas))
-        lo, hi = model.altitude_range_m
-        _rk.period_rows(*data, *packed, b.x[rows], b.u[rows], a, self._u_scale, dyn._rate_step, steps, self.dt, stepper.h,
-                        dyn.substeps, stepper._h_phi1, stepper._h_phi2, stepper._jac, dyn._z, float(lo), float(hi),
-                        m >= _dynamics.COMPILED_ROWS_BELOW,
-                        _rk.WIND_STILL if still else _rk.WIND_PACKED, *dyn._measure_data, self._kernel_constants()[2], n_comp,
-                        u, x_out, t_out, status, taken, meas, codes)
-        clear = self._clear_rows.get(m)
-        if clear is None:
-            clear = self._clear_rows[m] = (np.full(m, "", dtype=object), np.zeros(m, dtype=np.bool_), np.zeros(m, dtype=np.int64))
-        failure, crashed, nlu = clear
-        if np.count_nonzero(status):
-            if np.count_nonzero(status == _sk.ROW_MODEL_ERROR):
-                return None
-            crashed = status == _sk.ROW_GROUND
-            failure = failure.copy()
-            for r in np.flatnonzero(status == _sk.ROW_NON_FINITE):
-                t_start = steps[r] * self.dt + (taken[r] - 1) * stepper.h
-                failure[r] = f"non-finite state: ETD2RK step {int(taken[r])} of {dyn.substeps} from t = {float(t_start):.6g} s"
-        outcome = BatchOutcome(x_out, t_out, crashed, failure, 2 * taken, nlu)
-        batch = MeasurementBatch(t_out, meas)
-        return outcome, u, batch, self._task_termination(codes, batch)
 
     def _kernel_constants(self) -> tuple:
         """(limits, reward, limit data, reward data, reward-term error columns, part names): the arguments of
@@ -533,20 +468,18 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             out[:, j] = v
         return out
 
-    def _termination_codes(self, outcome: BatchOutcome, meas: MeasurementBatch) -> np.ndarray:
-        """Index into :data:`TERMINATION_CODES` of each row's termination (0: flying), the first that applies of
-        non-finite state or solver failure, crash, structural limit, gimbal lock, envelope
-        (:func:`flexsim.envs.row_kernels.termination_rows`)."""
-        codes = np.empty(len(outcome.time_s), dtype=np.int64)
-        _rk.termination_rows(meas.matrix, outcome.failure != "", outcome.crashed, self._kernel_constants()[2], len(SENSOR_COMPONENTS),
-                             codes)
-        return self._task_termination(codes, meas)
+    def _task_termination(self, meas: MeasurementBatch) -> np.ndarray | None:
+        """The task's own termination codes (m,) int of m aircraft (index into :data:`TERMINATION_CODES`, 0: none),
+        applied where the common ones (:func:`flexsim.envs.row_kernels.termination_rows`: non-finite state or solver
+        failure, crash, structural limit, gimbal lock, envelope) do not end the episode; None: none (default)."""
+        return None
 
-    def _task_termination(self, codes: np.ndarray, meas: MeasurementBatch) -> np.ndarray:
-        """The termination codes (m,) of m aircraft with the task's own conditions added to the common ones
-        (``codes``, from :func:`flexsim.envs.row_kernels.termination_rows`; 0: flying). Both paths of
-        :meth:`_step_rows` call it. Default: none."""
-        return codes
+    def _no_task_codes(self, m: int) -> np.ndarray:
+        """Zeros (m,) int: no task termination (shared per m, read by the kernel only)."""
+        zeros = self._zeros.get(m)
+        if zeros is None:
+            zeros = self._zeros[m] = np.zeros(m, np.int64)
+        return zeros
 
     def _observe_rows(self, meas: MeasurementBatch, errors: np.ndarray, u: np.ndarray) -> np.ndarray:
         """Observations (m, n_obs) float32 of m aircraft (measurements, task errors (m, k), applied controls (m, 4))."""

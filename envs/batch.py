@@ -53,7 +53,7 @@ class EpisodeBatch:
     winds : list
         Wind field of each row's episode (None: still air).
     dynamics : list
-        The :class:`~flexsim.envs.dynamics.FlightDynamics` each row is flown on (forks of one model).
+        The :class:`~flexsim.sim.periods.FlightDynamics` each row is flown on (forks of one model).
     """
 
     def __init__(self, n: int, n_states: int, n_errors: int) -> None:

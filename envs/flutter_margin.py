@@ -19,7 +19,7 @@ from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import TERMINATION_CODES, Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import FLUTTER_MAX_STEP_S, RewardTerm, TrackingReward
-from flexsim.envs.dynamics import MeasurementBatch
+from flexsim.sim.measurements import MeasurementBatch
 from flexsim.envs.episodes import perturbed_state, turbulence_field
 
 __all__ = ["FlutterMarginTask", "WingFlutterMarginTask", "FlutterMarginEnv", "WingFlutterMarginEnv", "FlutterCondition",
@@ -235,8 +235,8 @@ class FlutterMarginEnv(FlexSimEnv):
     the mode numerically (amplitude 22 % low).
 
     ## Version History
-    * v0: initial version (flexsim issue 6); default aircraft pinned to ``gtm_uncalibrated`` when the bundled
-      ``gtm`` became the calibrated aircraft (issue 4), so that the task keeps its fin-flutter mode;
+    * v0: initial version; default aircraft pinned to ``gtm_uncalibrated`` when the bundled ``gtm`` became the
+      calibrated aircraft, so that the task keeps its fin-flutter mode;
       default integrator ETD2RK (5 ms steps) instead of DOP853, same trajectories to within the
       integration error, about 10 times faster (622 against 64 steps/s open loop, docs/environments.md).
     """
@@ -287,14 +287,14 @@ class FlutterMarginEnv(FlexSimEnv):
                 "altitude_error_m": meas.altitude_m - ref["altitude_m"],
                 "flutter_margin_m_s": margin}
 
-    def _task_termination(self, codes: np.ndarray, meas: MeasurementBatch) -> np.ndarray:
+    def _task_termination(self, meas: MeasurementBatch) -> np.ndarray | None:
         limit = self.task.wing_tip_twist_limit_rad
-        if math.isfinite(limit):
-            twist = meas.tip_twist_rad
-            with np.errstate(invalid="ignore"):
-                over = ~(np.maximum(np.abs(twist["right_wing"]), np.abs(twist["left_wing"])) <= limit)
-            codes = np.where((codes == 0) & over, TERMINATION_CODES.index("structural_limit"), codes)
-        return codes
+        if not math.isfinite(limit):
+            return None
+        twist = meas.tip_twist_rad
+        with np.errstate(invalid="ignore"):
+            over = ~(np.maximum(np.abs(twist["right_wing"]), np.abs(twist["left_wing"])) <= limit)
+        return np.where(over, TERMINATION_CODES.index("structural_limit"), 0).astype(np.int64)
 
     def task_label(self) -> str:
         return f"GTM flutter margin M {self.target.mach:.3f} (M_f {self.flutter.mach:.3f})"

@@ -12,7 +12,7 @@ from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import InitialPerturbation, RewardTerm, TrackingReward
-from flexsim.envs.dynamics import MeasurementBatch
+from flexsim.sim.measurements import MeasurementBatch
 from flexsim.envs.episodes import perturbed_state, turbulence_field, wrap_angle
 
 __all__ = ["LevelHoldTask", "LevelHoldEnv", "LevelHoldCaptureEnv", "CAPTURE_REWARD", "CAPTURE_PERTURBATION"]
@@ -149,7 +149,7 @@ class LevelHoldCaptureEnv(LevelHoldEnv):
     ## Description
     ``FlexSim/GTM-LevelHold-v0`` (:class:`LevelHoldEnv`: the flexible notional GTM in level flight at 9144 m
     and Mach 0.75, light Dryden turbulence, 20 s at 50 Hz) with two changes that make it a task on which a
-    controller visibly beats the trim controls held (the reason for v1, flexsim issue 13):
+    controller visibly beats the trim controls held (the reason for v1):
 
     * the aircraft starts up to **30 m** off the reference altitude and **3 deg** off the reference heading
       (``CAPTURE_PERTURBATION``; v0: 5 m, 0.57 deg), so it must capture them: held trim controls correct
@@ -194,7 +194,7 @@ class LevelHoldCaptureEnv(LevelHoldEnv):
     ``perturbation`` to ``CAPTURE_PERTURBATION``.
 
     ## Version History
-    * v1: this task (flexsim issue 13): offset start and tighter reward; v0 unchanged.
+    * v1: this task: offset start and tighter reward; v0 unchanged.
     * v0: see ``FlexSim/GTM-LevelHold-v0`` (:class:`LevelHoldEnv`).
     """
 

@@ -16,7 +16,8 @@ import numpy as np
 from flexsim.io.flight_log import ENU_FROM_NED, viewer_pose
 from flexsim.kinematics import dcm_321
 
-from flexsim.envs.dynamics import SENSOR_COMPONENTS, Measurements
+from flexsim.sim.measurements import Measurements
+from flexsim.sim.periods import SENSOR_COMPONENTS
 
 __all__ = ["RgbRenderer", "RerunStreamer"]
 

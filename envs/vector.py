@@ -2,23 +2,18 @@
 
 ``gymnasium.make_vec("FlexSim/GTM-LevelHold-v0", num_envs=N, vectorization_mode="vector_entry_point")``
 (every FlexSim id) gives a :class:`FlexSimVectorEnv`: N sub-environments of the task class that share one
-:class:`~flexsim.envs.dynamics.FlightDynamics` (one model build, one trim, one Jacobian and one matrix
+:class:`~flexsim.sim.periods.FlightDynamics` (one model build, one trim, one Jacobian and one matrix
 exponential for all N; :meth:`FlightDynamics.fork`), each with its own episode (state, wind field,
-random stream). All N episodes live in one :class:`~flexsim.envs.batch.EpisodeBatch` (sub-environment i is its row i), so a
-step is one pass of array code over the stepping rows, with no per-aircraft Python on the way
-(:meth:`FlexSimEnv._step_rows`, the code the single env runs with one row): the actions checked and clipped
-as one array, the actuator rate limits, one :func:`~flexsim.envs.dynamics.advance_rows` call (all ETD2RK
-substeps of all aircraft flown about one trim as matrix products over the rows of an (N, n) state array,
-the right-hand sides of all rows in one compiled call, ``AircraftModel.rhs_batch``), the measurements
-(:meth:`FlightDynamics.measure_batch`), termination (rows flown about one trim: rate limits to termination in one
-compiled call, :func:`flexsim.envs.row_kernels.period_rows`, the products over the rows as GEMMs from
-:data:`~flexsim.envs.dynamics.COMPILED_ROWS_BELOW` rows on), task errors, reward parts and observations; the info
-is built as gymnasium's vector info arrays directly. Other integrators fall back to each aircraft's
-``FlightDynamics.advance``.
+random stream). All N episodes live in one :class:`~flexsim.envs.batch.EpisodeBatch` (sub-environment i is its
+row i), so a step is one pass of array code over the stepping rows (:meth:`FlexSimEnv._step_rows`, the code the
+single env runs with one row): the actions checked and clipped as one array, one
+:func:`flexsim.sim.periods.advance_period` call (rate limits, integration and measurements of all rows, compiled),
+termination, task errors, reward parts and observations; the info is built as gymnasium's vector info arrays
+directly.
 
-The physics is the one right-hand side ``AircraftModel.rhs``; each sub-environment's trajectory equals the
-single environment's with the same seed and actions (exactly for ``solve_ivp`` methods, to rounding for
-ETD2RK, whose products are GEMMs over different numbers of rows: tests/envs/test_vector_batched.py).
+Each sub-environment's trajectory equals the single environment's with the same seed and actions (exactly for
+``solve_ivp`` methods, to rounding for ETD2RK, whose products are matrix products over the rows from
+:data:`flexsim.sim.periods.COMPILED_ROWS_BELOW` rows on: tests/envs/test_vector_batched.py).
 
 Conventions (gymnasium 1.x, as :class:`gymnasium.vector.SyncVectorEnv`): ``metadata["autoreset_mode"]``
 (``NEXT_STEP`` by default; ``SAME_STEP`` and ``DISABLED`` with ``options["reset_mask"]``); ``reset(seed=s)``
@@ -29,7 +24,7 @@ seeds sub-env i with ``s + i`` (or a list of seeds); batched ``observation_space
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any, ClassVar
 
 import numpy as np
@@ -41,7 +36,6 @@ from flexsim.aircraft.toml_loader import load_aircraft
 
 from flexsim.envs.base import TERMINATION_CODES, FlexSimEnv, RowsStep
 from flexsim.envs.batch import EpisodeBatch
-from flexsim.envs.dynamics import FlightDynamics, StepOutcome, advance_rows, rhs_rows
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.envs.flutter_margin import FlutterMarginEnv, WingFlutterMarginEnv
 from flexsim.envs.gust_alleviation import GustAlleviationEnv
@@ -49,17 +43,10 @@ from flexsim.envs.level_hold import LevelHoldCaptureEnv, LevelHoldEnv
 from flexsim.envs.turn import TurnEnv
 
 __all__ = ["FlexSimVectorEnv", "LevelHoldVectorEnv", "LevelHoldCaptureVectorEnv", "TurnVectorEnv", "GustAlleviationVectorEnv", "FlutterMarginVectorEnv",
-           "WingFlutterMarginVectorEnv", "advance_batch", "rhs_rows"]
+           "WingFlutterMarginVectorEnv"]
 
 #: Attributes of the sub-environments that the batched step reads from the first one only (all equal).
 _SHARED = ("limits", "task", "reward_definition")
-
-
-def advance_batch(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.ndarray,
-                  winds: Sequence, rhs: Callable = rhs_rows, packed: Any = None) -> list[StepOutcome]:
-    """:func:`~flexsim.envs.dynamics.advance_rows` as one :class:`StepOutcome` per row."""
-    out = advance_rows(dynamics, x, u, t0, t1, winds, rhs=rhs, packed=packed)
-    return [out.row(i) for i in range(len(dynamics))]
 
 
 class FlexSimVectorEnv(VectorEnv):
@@ -158,7 +145,7 @@ class FlexSimVectorEnv(VectorEnv):
 
     def step(self, actions: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict]:
         """Step every sub-environment with its row of ``actions`` (shape (num_envs, 4)): one pass of array code over
-        the stepping rows (:meth:`FlexSimEnv._step_rows`: one compiled period call, or one :func:`advance_rows` call)."""
+        the stepping rows (:meth:`FlexSimEnv._step_rows`: one :func:`flexsim.sim.periods.advance_period` call)."""
         n = self.num_envs
         a, clipped = self._check_actions(actions)
         rewards = np.zeros(n, dtype=np.float64)

@@ -50,16 +50,17 @@ def test_cached_caller_sees_changed_callee(tmp_path, decorated):
 
 
 def test_step_kernels_are_keyed_on_the_rhs_source():
-    """The ETD2RK kernels' cache stamp includes the digest of the package flexsim._kernels."""
+    """The ETD2RK kernels' cache stamp includes the digest of the package flexsim._kernels and of the measurements
+    they embed (flexsim.sim.measurements)."""
     from flexsim import _kernels
     from flexsim._numba_cache import source_digest
-    from flexsim.sim import _step_kernels
+    from flexsim.sim import _step_kernels, measurements
 
     cache = getattr(_step_kernels.etd2rk_run, "_cache", None)
     if cache is None:
         pytest.skip("NUMBA_DISABLE_JIT=1: no cache")
     for kernel in (_step_kernels.etd2rk_run, _step_kernels.etd2rk_rows):
-        assert kernel._cache._cache_file._source_stamp[1] == source_digest(_kernels)
+        assert kernel._cache._cache_file._source_stamp[1] == source_digest(_kernels, measurements)
 
 
 PACKAGE_CALLER = """

@@ -6,7 +6,9 @@ Modules: :mod:`flexsim.sim.simulate` (``simulate``, ``SimEvent``, ``HoldingRadau
 :mod:`flexsim.sim.recording` (log paths, the log sink), :mod:`flexsim.sim.disturbances`
 (``OneMinusCosineGust``, ``DrydenTurbulence``, ``combine``), :mod:`flexsim.sim.manoeuvres`
 (``build_manoeuvre``, ``manoeuvre_names``), :mod:`flexsim.sim.fixed_step` (``ETD2RK``, the fixed-step
-exponential integrator of the gymnasium environments). Import the function as ``from flexsim.sim.simulate import simulate``; the package
+exponential integrator of ``simulate`` and of the control periods), :mod:`flexsim.sim.periods` (``FlightDynamics``,
+``advance_period``, ``IntegratorSettings``, ``ActuatorRates``: the control periods of the gymnasium environments,
+single and batched), :mod:`flexsim.sim.measurements` (air data, attitude and structural sensors of many states). Import the function as ``from flexsim.sim.simulate import simulate``; the package
 does not re-export it, so that ``flexsim.sim.simulate`` always names the module.
 """
 

@@ -1,9 +1,11 @@
 """Compiled ETD2RK steps (numba) over the one compiled right-hand side: a run of one aircraft and control periods
-of N aircraft.
+of N aircraft, with the one implementation of the actuator rate limits and of the ground crossing.
 
-:func:`etd2rk_run` serves :meth:`flexsim.sim.fixed_step.ETD2RK.run` (``simulate(..., method="ETD2RK")``) and
-:func:`etd2rk_rows` serves :meth:`~flexsim.sim.fixed_step.ETD2RK.advance_rows` (the environments' control
-periods): one implementation of the step for both. The right-hand side is :func:`flexsim._kernels._rhs_wind`
+:func:`etd2rk_run` serves :meth:`flexsim.sim.fixed_step.ETD2RK.run` (``simulate(..., method="ETD2RK")``),
+:func:`etd2rk_rows` and :func:`etd2rk_rows_gemm` serve :meth:`~flexsim.sim.fixed_step.ETD2RK.advance_rows` and
+:func:`period_rows` (control periods, :mod:`flexsim.sim.periods`): one implementation of the step for all.
+:func:`rate_limit_rows` and :func:`ground_crossing` are called by the compiled periods and by the Python periods
+of :class:`flexsim.sim.periods.FlightDynamics` alike. The right-hand side is :func:`flexsim._kernels._rhs_wind`
 (the kernel of :func:`flexsim._kernels.rhs`, paper eqs. 4, 33); the method, its matrix functions and its
 properties are documented in :mod:`flexsim.sim.fixed_step`.
 
@@ -22,6 +24,7 @@ S. M. Cox and P. C. Matthews, "Exponential time differencing for stiff systems",
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -29,11 +32,13 @@ from numba import njit
 from flexsim import _kernels as _k
 from flexsim._kernels import _rhs_wind
 from flexsim._numba_cache import depends_on
+from flexsim.sim import measurements as _ms
 
-__all__ = ["etd2rk_run", "etd2rk_run_dense", "etd2rk_rows", "etd2rk_rows_gemm", "ROW_RUNNING", "ROW_GROUND", "ROW_NON_FINITE", "ROW_MODEL_ERROR"]
+__all__ = ["etd2rk_run", "etd2rk_run_dense", "etd2rk_rows", "etd2rk_rows_gemm", "period_rows", "rate_limit_rows", "ground_crossing",
+           "StepData", "PeriodStart", "PeriodOut", "ROW_RUNNING", "ROW_GROUND", "ROW_NON_FINITE", "ROW_MODEL_ERROR"]
 
 _jit = njit(cache=True, nogil=True)
-_depends = depends_on(_k)
+_depends = depends_on(_k, _ms)
 
 # x_{n+1} = a + h phi_2(hJ) [k_2 - k_1 - J (a - x_n)], a = x_n + h phi_1(hJ) k_1, k_1 = f(t_n, x_n), k_2 = f(t_n + h, a)
 # (Cox & Matthews 2002, ETD2RK; the form of flexsim.sim.fixed_step.ETD2RK.step). The wind fields are frozen in
@@ -191,27 +196,99 @@ def _run(F, I, gusts, turb, turb_grid, x0, f0, t0, t_bound, h, max_steps, land, 
 ROW_RUNNING, ROW_GROUND, ROW_NON_FINITE, ROW_MODEL_ERROR = 0, 1, 2, 3
 
 
+class StepData(NamedTuple):
+    """The fixed ETD2RK step of a control period (:meth:`flexsim.sim.fixed_step.ETD2RK.step_data`): step ``h`` [s],
+    ``n_steps`` steps per period, the matrices ``h_phi1`` = h phi_1(hJ), ``h_phi2`` = h phi_2(hJ) and ``jac`` = J
+    (n, n), the state index ``z_index`` of the down coordinate (altitude -x[z_index]) and the model's altitude range
+    [alt_lo, alt_hi] [m]."""
+
+    h: float
+    n_steps: int
+    h_phi1: np.ndarray
+    h_phi2: np.ndarray
+    jac: np.ndarray
+    z_index: int
+    alt_lo: float
+    alt_hi: float
+
+
+class PeriodStart(NamedTuple):
+    """The start of a control period of N aircraft: states ``x`` (N, n), the controls applied so far ``u`` (N, 4)
+    and commanded ``command`` (N, 4) [N, rad], the actuator rates times the period ``rate_step`` (4,), the index
+    ``k`` (N,) int of each row's period, which spans [k dt, (k + 1) dt] [s], and the period ``dt`` [s]."""
+
+    x: np.ndarray
+    u: np.ndarray
+    command: np.ndarray
+    rate_step: np.ndarray
+    k: np.ndarray
+    dt: float
+
+
+class PeriodOut(NamedTuple):
+    """Results of :func:`period_rows` (written in place): applied controls ``u`` (N, 4), state ``x`` (N, n) and time
+    ``t`` (N,) reached, ``status`` and steps ``taken`` (N,) as :func:`etd2rk_rows`, measurements ``meas`` (N, m)
+    (:func:`flexsim.sim.measurements.measure_rows`)."""
+
+    u: np.ndarray
+    x: np.ndarray
+    t: np.ndarray
+    status: np.ndarray
+    taken: np.ndarray
+    meas: np.ndarray
+
+
+@_jit
+def rate_limit_rows(applied, command, rate_step, out):
+    """Actuator rate limits: ``out = applied + min(max(command - applied, -rate_step), rate_step)``, rows (N, 4), the
+    controls after one period of rate-limited motion towards the command (rate_step (4,): rate times period)."""
+    for i in range(applied.shape[0]):
+        for a in range(applied.shape[1]):
+            d = command[i, a] - applied[i, a]
+            out[i, a] = applied[i, a] + min(max(d, -rate_step[a]), rate_step[a])
+
+
+@_jit
+def ground_crossing(x, x_new, t, t_next, z_index, x_out):
+    """The ground contact within a step from (t, x) to (t_next, x_new): if the altitude -x[z_index] goes from above 0
+    to 0 or below, the state interpolated linearly at the crossing, fraction ``s = x_z / (x_z - x_new_z)``, into
+    x_out (which may be x itself), and its time t + s (t_next - t) [s] is returned; else -inf (x_out untouched)."""
+    if not x_new[z_index] >= 0.0 > x[z_index]:
+        return -np.inf
+    s = x[z_index] / (x[z_index] - x_new[z_index])
+    for c in range(x.shape[0]):
+        x_out[c] = x[c] + s * (x_new[c] - x[c])
+    return t + s * (t_next - t)
+
+
 @_depends
 @_jit
-def etd2rk_rows(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo,
-                alt_hi, x_out, t_out, status, steps):
-    """``n_steps`` ETD2RK steps of h over [t0, t1] for N aircraft of one model with held controls (a control period of
-    the environments; ``FlightDynamics._advance_fixed`` row by row), two right-hand sides per step.
+def etd2rk_rows(model, wind, step, xs, us, t0s, t1s, x_out, t_out, status, steps):
+    """``step.n_steps`` ETD2RK steps of ``step.h`` over [t0, t1] for N aircraft of one model (``model``: its kernel
+    data) with held controls (a control period), two right-hand sides per step.
 
-    Row i starts at xs[i] (N, n) with controls us[i] (N, 4) and the winds rows[i] (:func:`rhs_batch`). Step j ends at
-    t0 + j h (the last at t1). Per row, into x_out (N, n), t_out (N,), status (N,) and steps (N,) (steps taken):
-    ROW_RUNNING (0): the period completed, x_out = state at t1; ROW_GROUND (1): the altitude -x[z_index] reached 0
-    within step ``steps``, x_out and t_out interpolated linearly within it; ROW_NON_FINITE (2): step ``steps``
-    gave a non-finite state, x_out = the state before it; ROW_MODEL_ERROR (3): the right-hand side could not be
-    evaluated at the state before step ``steps`` (singular system matrix, or an altitude outside [alt_lo, alt_hi]),
-    x_out = that state. Rows are independent and the products are the matrix-vector products of
-    :func:`etd2rk_run`, so a row's result does not depend on the others.
+    The step is :func:`etd2rk_run`'s, product for product (``d = h phi_1 k_1``, ``a = x + d``, ``x_new = a + h phi_2
+    (k_2 - k_1 - J d)``), so a period of the environments and a run of ``simulate`` take the same arithmetic.
+    Row i starts at xs[i] (N, n) with controls us[i] (N, 4) and the winds ``wind.rows[i]`` of the packed ``wind``.
+    Step j ends at t0 + j h (the last at t1). Per row, into x_out (N, n), t_out (N,), status (N,) and steps (N,)
+    (steps taken): ROW_RUNNING (0): the period completed, x_out = state at t1; ROW_GROUND (1): the altitude reached
+    0 within step ``steps``, x_out and t_out at the crossing (:func:`ground_crossing`); ROW_NON_FINITE (2): step
+    ``steps`` gave a non-finite state, x_out = the state before it; ROW_MODEL_ERROR (3): the right-hand side could
+    not be evaluated at the state before step ``steps`` (singular system matrix, or an altitude outside
+    [alt_lo, alt_hi]), x_out = that state. Rows are independent: a row's result does not depend on the others.
     """
+    F, I = model.F, model.I
+    h, n_steps, h_phi1, h_phi2, jac, z_index = step.h, step.n_steps, step.h_phi1, step.h_phi2, step.jac, step.z_index
+    alt_lo, alt_hi = step.alt_lo, step.alt_hi
+    rows, turb_grid = wind.rows, wind.turb_grid
+    n = xs.shape[1]
+    x, x_new = np.empty(n), np.empty(n)
+    d, a, jd, r, inc = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)  # as in _run
     for i in range(xs.shape[0]):
-        g = gusts[rows[i, 0]:rows[i, 1]]
-        tb = turb[rows[i, 2]:rows[i, 3]]
+        g = wind.gusts[rows[i, 0]:rows[i, 1]]
+        tb = wind.turb[rows[i, 2]:rows[i, 3]]
         u = us[i]
-        x = xs[i].copy()
+        x[:] = xs[i]
         t = t0s[i]
         st = ROW_RUNNING
         j = 0
@@ -223,7 +300,9 @@ def etd2rk_rows(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_steps
                 break
             try:
                 k1 = _rhs_wind(F, I, g, tb, turb_grid, x, u)
-                a = x + h_phi1 @ k1
+                _matvec(h_phi1, k1, d)
+                for c in range(n):
+                    a[c] = x[c] + d[c]
                 if not _altitude_ok(a, alt_lo, alt_hi):
                     st = ROW_MODEL_ERROR
                     break
@@ -231,22 +310,24 @@ def etd2rk_rows(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_steps
             except Exception:  # singular system matrix (ZeroDivisionError in solve)
                 st = ROW_MODEL_ERROR
                 break
-            x_new = a + h_phi2 @ (k2 - k1 - jac @ (a - x))
+            _matvec(jac, d, jd)
+            for c in range(n):
+                r[c] = k2[c] - k1[c] - jd[c]
+            _matvec(h_phi2, r, inc)
             finite = True
-            for m in range(x_new.shape[0]):
-                if not math.isfinite(x_new[m]):
+            for c in range(n):
+                x_new[c] = a[c] + inc[c]
+                if not math.isfinite(x_new[c]):
                     finite = False
-                    break
             if not finite:
                 st = ROW_NON_FINITE
                 break
-            if x_new[z_index] >= 0.0 > x[z_index]:
-                s = x[z_index] / (x[z_index] - x_new[z_index])
-                x = x + s * (x_new - x)
-                t = t + s * (t_next - t)
+            t_hit = ground_crossing(x, x_new, t, t_next, z_index, x)
+            if t_hit != -np.inf:
+                t = t_hit
                 st = ROW_GROUND
                 break
-            x = x_new
+            x[:] = x_new
             t = t_next
         x_out[i] = x
         t_out[i] = t
@@ -256,8 +337,7 @@ def etd2rk_rows(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_steps
 
 @_depends
 @_jit
-def etd2rk_rows_gemm(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo,
-                     alt_hi, x_out, t_out, status, steps):
+def etd2rk_rows_gemm(model, wind, step, xs, us, t0s, t1s, x_out, t_out, status, steps):
     """:func:`etd2rk_rows` (same arguments, results and status codes) with each stage of all rows at once: the
     right-hand sides row by row, then the products with the (n, n) matrices as matrix products over the rows
     (BLAS dgemm), ``a = x + k_1 h phi_1^T``, ``x_new = a + (k_2 - k_1 - (a - x) J^T) h phi_2^T`` (the arithmetic
@@ -265,6 +345,10 @@ def etd2rk_rows_gemm(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_
     once per row. A row that stopped (status not ROW_RUNNING) takes zero derivatives in the products that follow
     and keeps its state; rows are independent (a row's result does not depend on the others, to rounding of the
     products)."""
+    F, I = model.F, model.I
+    h, n_steps, h_phi1, h_phi2, jac, z_index = step.h, step.n_steps, step.h_phi1, step.h_phi2, step.jac, step.z_index
+    alt_lo, alt_hi = step.alt_lo, step.alt_hi
+    rows, gusts, turb, turb_grid = wind.rows, wind.gusts, wind.turb, wind.turb_grid
     m, n = xs.shape
     x = xs.copy()
     t = t0s.copy()
@@ -313,11 +397,10 @@ def etd2rk_rows_gemm(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_
                     break
             if not finite:
                 st[i] = ROW_NON_FINITE
-            elif x_new[i, z_index] >= 0.0 > x[i, z_index]:
-                s = x[i, z_index] / (x[i, z_index] - x_new[i, z_index])
-                for c in range(n):
-                    x[i, c] = x[i, c] + s * (x_new[i, c] - x[i, c])
-                t[i] = t[i] + s * (t_next - t[i])
+                continue
+            t_hit = ground_crossing(x[i], x_new[i], t[i], t_next, z_index, x[i])
+            if t_hit != -np.inf:
+                t[i] = t_hit
                 st[i] = ROW_GROUND
             else:
                 x[i] = x_new[i]
@@ -326,3 +409,34 @@ def etd2rk_rows_gemm(F, I, rows, gusts, turb, turb_grid, xs, us, t0s, t1s, h, n_
     t_out[:] = t
     status[:] = st
     steps[:] = taken
+
+
+@_depends
+@_jit
+def period_rows(F, I, rows, gusts, turb, turb_grid, h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo, alt_hi, index, s_ptr, s_idx,
+                s_w, h_range, x, u, command, rate_step, k, dt, wind_mode, over_rows, u_out, x_out, t_out, status, taken, meas):
+    """One control period of N aircraft flown about one trim, in one call; the arguments are the fields of the named
+    data, called as ``period_rows(*model, *wind, *step, *measure, *start, wind_mode, over_rows, *out)`` with
+    ``model`` the model's kernel data, ``wind`` its packed winds (``BatchWind``), ``step`` a :class:`StepData`,
+    ``measure`` a :class:`~flexsim.sim.measurements.MeasureData`, ``start`` a :class:`PeriodStart` and ``out`` a
+    :class:`PeriodOut` (flat, because numba's dispatcher types a flat argument list in compiled code and a tuple
+    argument in Python, which took 13 us more per call).
+
+    The actuator rate limits (:func:`rate_limit_rows`: ``start.u`` towards ``start.command`` into ``out.u``, then
+    held), the ETD2RK steps (:func:`etd2rk_rows`, or with ``over_rows`` :func:`etd2rk_rows_gemm`) over
+    [k dt, (k + 1) dt] into ``out.x``, ``out.t``, ``out.status``, ``out.taken``, and the measurements of the
+    states reached (:func:`flexsim.sim.measurements.measure_rows`, ``wind_mode`` still air or packed ``wind``) into
+    ``out.meas``: the arithmetic of the separate calls, so the results are equal bit for bit."""
+    model = _k.KernelData(F, I)
+    wind = _k.BatchWind(rows, gusts, turb, turb_grid)
+    step = StepData(h, n_steps, h_phi1, h_phi2, jac, z_index, alt_lo, alt_hi)
+    t0, t1 = np.empty(k.shape[0]), np.empty(k.shape[0])
+    for i in range(k.shape[0]):
+        t0[i] = k[i] * dt
+        t1[i] = (k[i] + 1) * dt
+    rate_limit_rows(u, command, rate_step, u_out)
+    if over_rows:
+        etd2rk_rows_gemm(model, wind, step, x, u_out, t0, t1, x_out, t_out, status, taken)
+    else:
+        etd2rk_rows(model, wind, step, x, u_out, t0, t1, x_out, t_out, status, taken)
+    _ms.measure_rows(x_out, wind_mode, np.empty((0, 3)), wind, _ms.MeasureData(index, s_ptr, s_idx, s_w, h_range), meas)

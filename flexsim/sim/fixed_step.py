@@ -43,9 +43,10 @@ arithmetic). On the GTM trim Jacobian (252 states) at h = 5-20 ms the two agree 
 entry (asserted in tests/sim/test_fixed_step.py); timings are in benchmarks/, not here.
 
 Compiled steps: :meth:`ETD2RK.run` (a run of one aircraft, for :func:`flexsim.sim.simulate`) and
-:meth:`ETD2RK.advance_rows` (control periods of N aircraft, for the environments) call the numba kernels
-:func:`flexsim.sim._step_kernels.etd2rk_run` and :func:`flexsim.sim._step_kernels.etd2rk_rows` with the model's compiled
-right-hand side: the same arithmetic as :meth:`ETD2RK.step` without a Python call per step.
+:meth:`ETD2RK.advance_rows` (control periods of N aircraft, for :mod:`flexsim.sim.periods` and the environments) call
+the numba kernels :func:`flexsim.sim._step_kernels.etd2rk_run` and :func:`flexsim.sim._step_kernels.etd2rk_rows` with
+the model's compiled right-hand side: the steps of :meth:`ETD2RK.step`, both with the same products (summed in another
+order than BLAS: equal to rounding), without a Python call per step.
 
 References
 ----------
@@ -262,6 +263,15 @@ class ETD2RK:
         """The linear part J (read-only), shape (n, n) [1/s]."""
         return self._jac
 
+    def step_data(self, model, n_steps: int) -> _sk.StepData:
+        """The step as the compiled periods take it (:class:`flexsim.sim._step_kernels.StepData`): ``n_steps`` steps
+        of h per period for ``model`` (its down coordinate and altitude range)."""
+        if isinstance(n_steps, bool) or not (isinstance(n_steps, (int, np.integer)) and n_steps >= 1):
+            raise ValueError(f"n_steps = {n_steps!r}: must be an integer >= 1")
+        lo, hi = model.altitude_range_m
+        return _sk.StepData(self.h, int(n_steps), self._h_phi1, self._h_phi2, self._jac, int(model.layout.position.start + 2),
+                            float(lo), float(hi))
+
     def step(self, fun: Callable[..., np.ndarray], t: float, x: np.ndarray, args: tuple = (),
              k1: np.ndarray | None = None) -> np.ndarray:
         """One step from (t, x) to t + h.
@@ -374,7 +384,7 @@ class ETD2RK:
         return RunSteps(ts[:done + 1], xs[:done + 1], fs[:done + 1])
 
     def advance_rows(self, model, x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.ndarray, n_steps: int,
-                     wind=None) -> RowsAdvance:
+                     wind=None, over_rows: bool = False) -> RowsAdvance:
         """``n_steps`` compiled steps of N aircraft over their control periods [t0, t1] with held controls
         (:func:`flexsim.sim._step_kernels.etd2rk_rows`; the environments' ``_advance_fixed``, row by row).
 
@@ -392,6 +402,9 @@ class ETD2RK:
             Steps per period (>= 1).
         wind : None or BatchWind
             Still air, or the winds of the rows packed once by :meth:`AircraftModel.pack_winds`.
+        over_rows : bool
+            Take the products as matrix products over the rows (:func:`flexsim.sim._step_kernels.etd2rk_rows_gemm`,
+            faster for many rows) instead of row by row.
 
         Returns
         -------
@@ -406,18 +419,16 @@ class ETD2RK:
         us = np.ascontiguousarray(np.broadcast_to(np.asarray(u, dtype=float), (m, 4)))
         t0s = np.ascontiguousarray(np.broadcast_to(np.asarray(t0, dtype=float), (m,)))
         t1s = np.ascontiguousarray(np.broadcast_to(np.asarray(t1, dtype=float), (m,)))
-        if isinstance(n_steps, bool) or not (isinstance(n_steps, (int, np.integer)) and n_steps >= 1):
-            raise ValueError(f"n_steps = {n_steps!r}: must be an integer >= 1")
+        step = self.step_data(model, n_steps)
         if wind is None:
             wind = model.pack_winds([None] * m)
         elif not isinstance(wind, _k.BatchWind) or wind.rows.shape[0] != m:
             raise ValueError(f"wind: expected None or a BatchWind of {m} rows (AircraftModel.pack_winds)")
-        lo, hi = model.altitude_range_m
         x_out, t_out = np.empty_like(xs), np.empty(m)
         status, steps = np.empty(m, np.int64), np.empty(m, np.int64)
+        kernel = _sk.etd2rk_rows_gemm if over_rows else _sk.etd2rk_rows
         with np.errstate(all="ignore"):
-            _sk.etd2rk_rows(*model.kernel_data, *wind, xs, us, t0s, t1s, self.h, int(n_steps), self._h_phi1, self._h_phi2,
-                           self._jac, model.layout.position.start + 2, float(lo), float(hi), x_out, t_out, status, steps)
+            kernel(model.kernel_data, wind, step, xs, us, t0s, t1s, x_out, t_out, status, steps)
         return RowsAdvance(x_out, t_out, status, steps)
 
 

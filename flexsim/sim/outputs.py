@@ -2,7 +2,7 @@
 
 One :class:`OutputMaps` per model computes every output quantity for the simulation result
 (:mod:`flexsim.sim.result`), the simulator's flight log (:mod:`flexsim.sim.recording`) and the environments'
-observations and flight logs (:mod:`flexsim.envs.dynamics`, :mod:`flexsim.envs.wrappers`), and names each from the
+observations and flight logs (:mod:`flexsim.sim.periods`, :mod:`flexsim.envs.wrappers`), and names each from the
 one vocabulary :data:`flexsim.io.vocabulary.QUANTITIES` (SI units and radians, the unit in the name; table in
 ``docs/logs.md``). The structural outputs come from :mod:`flexsim.model.sensors`, the aerodynamic force from
 :meth:`AircraftModel.aerodynamic_force` — the same code the trim uses. The disturbance (``wind``) is passed per call,
@@ -23,6 +23,7 @@ from flexsim.kinematics import dcm_321
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.naming import state_names
 from flexsim.model.sensors import ComponentSensor, structural_sensors
+from flexsim.sim.measurements import air_angles_rows, heading_rate_rows
 
 __all__ = ["OutputMaps", "AirData", "air_angles", "heading_rate", "CONTROL_NAMES", "WINGS", "STRUCTURE_NODES"]
 
@@ -55,30 +56,30 @@ class AirData:
 
 def air_angles(v_air_body: np.ndarray) -> tuple:
     """Airspeed [m/s], angle of attack atan2(w_a, u_a) [rad] and sideslip asin(v_a / |v_a|) [rad] (0 at zero
-    airspeed) from the velocity relative to the air in body axes (u_a, v_a, w_a) [m/s].
+    airspeed) from the velocity relative to the air in body axes (u_a, v_a, w_a) [m/s]
+    (:func:`flexsim.sim.measurements.air_data`, the one implementation the environments' measurements use too).
 
     ``v_air_body`` of shape (3,) gives three floats; of shape (N, 3) three arrays (N,) (batched environments)."""
     v = np.asarray(v_air_body, dtype=float)
-    ua, va, wa = v[..., 0], v[..., 1], v[..., 2]
-    speed = np.sqrt(ua * ua + va * va + wa * wa)
-    beta = np.arcsin(np.clip(va / np.where(speed > 0.0, speed, 1.0), -1.0, 1.0))  # v_a = 0 at zero airspeed: 0
-    alpha = np.arctan2(wa, ua)
+    out = np.empty((max(v.size // 3, 0), 3))
+    air_angles_rows(np.ascontiguousarray(v.reshape(-1, 3)), out)
     if v.ndim == 1:
-        return float(speed), float(alpha), float(beta)
-    return speed, alpha, beta
+        return float(out[0, 0]), float(out[0, 1]), float(out[0, 2])
+    return out[:, 0], out[:, 1], out[:, 2]
 
 
 def heading_rate(euler_rad: np.ndarray, velocity: np.ndarray):
     """psi_dot = (Q sin(phi) + R cos(phi)) / cos(theta) [rad/s] (the turn rate of a level turn; NaN at
-    cos(theta) = 0) from the Euler angles [rad] and the velocity vector V = [v, omega, ...] (omega = V[3:6]).
+    cos(theta) = 0) from the Euler angles [rad] and the velocity vector V = [v, omega, ...] (omega = V[3:6])
+    (:func:`flexsim.sim.measurements.heading_rate_rows`).
 
     Shapes (3,) and (n_v,) give a float; (N, 3) and (N, n_v) an array (N,) (batched environments)."""
     eul, vel = np.asarray(euler_rad, dtype=float), np.asarray(velocity, dtype=float)
-    phi, theta = eul[..., 0], eul[..., 1]
-    cos_theta = np.cos(theta)
-    with np.errstate(all="ignore"):
-        rate = np.where(cos_theta == 0.0, np.nan, (vel[..., 4] * np.sin(phi) + vel[..., 5] * np.cos(phi)) / cos_theta)
-    return float(rate) if rate.ndim == 0 else rate
+    rows = np.ascontiguousarray(eul.reshape(-1, 3))
+    rates = np.ascontiguousarray(vel.reshape(rows.shape[0], -1)[:, 3:6])
+    out = np.empty(rows.shape[0])
+    heading_rate_rows(rows, rates, out)
+    return float(out[0]) if eul.ndim == 1 else out
 
 
 class OutputMaps:

@@ -1,9 +1,10 @@
 """The fixed-step integrator of the environments (ETD2RK) inside FlightDynamics.
 
 Checks:
-* ``IntegratorSettings``: "auto" resolves to ETD2RK for the finite-state model (also for the flutter
-  task) and to DOP853 for the quasi-steady one; ``substeps(period) = ceil(period / max_step_s)`` (exact
-  integers); a ``max_step_s`` outside [1e-4, 0.05] s raises ValueError naming field, value and range.
+* ``IntegratorSettings`` (one class, :mod:`flexsim.sim.periods`): "auto" resolves to the method ``simulate`` takes
+  for the same model in still air (``flexsim.sim.simulate.default_method``): ETD2RK for the finite-state and the
+  quasi-steady model; ``substeps(period) = ceil(period / max_step_s)`` (exact integers); a ``max_step_s``
+  outside [1e-4, 0.05] s raises ValueError naming field, value and range.
 * An env step with ETD2RK reports 2 right-hand sides per step (``nfev = 2 * substeps``) and no LU; the tasks'
   default steps (``default_max_step_s``): LevelHold 20 ms (1 step per 50 Hz period), GustAlleviation 10 ms,
   FlutterMargin 5 ms; an ``integrator`` passed in is used as given.
@@ -24,13 +25,19 @@ import pytest
 
 from flexsim import envs
 from flexsim.sim.fixed_step import ETD2RK
+from flexsim.sim.periods import IntegratorSettings
+from flexsim.sim.simulate import default_method
 
 
 def test_auto_resolution_substeps_and_range():
     auto = envs.IntegratorSettings()
-    assert auto.resolve("unsteady") == "ETD2RK"
-    assert auto.resolve("quasi-steady") == "DOP853"
-    assert envs.IntegratorSettings(method="Radau").resolve("unsteady") == "Radau"
+    assert envs.IntegratorSettings is IntegratorSettings  # one settings class, re-exported
+    for aero in ("unsteady", "quasi-steady"):
+        env = gym.make("FlexSim/GTM-LevelHold-v0", aero=aero)
+        model = env.unwrapped.dynamics.model
+        assert auto.resolve(model) == default_method(model, None) == "ETD2RK" == env.unwrapped.dynamics.method
+        assert envs.IntegratorSettings(method="Radau").resolve(model) == "Radau"
+        env.close()
     assert [auto.substeps(dt) for dt in (0.02, 0.05, 0.001, 1.0 / 30.0, 0.005)] == [1, 3, 1, 2, 1]  # max_step_s 0.02 s
     assert envs.IntegratorSettings(max_step_s=0.01).substeps(0.02) == 2
     assert envs.IntegratorSettings(max_step_s=0.005).substeps(0.02) == 4

@@ -10,8 +10,10 @@ Checks:
   NextStep and SameStep autoresets give the same observations, rewards, terminations, truncations and
   ``final_obs`` as ``SyncVectorEnv`` of the same id and seeds (the reference implementation of the
   convention); ``Disabled`` requires a masked reset; the info arrays carry ``_key`` masks;
-* :func:`advance_batch` reports a crash, a non-finite state and a model error per row exactly as
-  ``FlightDynamics.advance`` does for that aircraft alone (stubbed right-hand sides as in test_integrator);
+* :func:`flexsim.sim.periods.advance_rows` reports a crash, a non-finite state and a model error per row exactly as
+  ``FlightDynamics.advance`` does for that aircraft alone (stubbed right-hand sides as in test_integrator, and the
+  compiled rows: ground, an altitude outside the ISA range, a normal period); many rows (matrix products over the
+  rows) follow the single env (row by row) to rounding;
 * bad input (wrong action shape, NaN in one row, num_envs 0, a FlightDynamics of other settings) raises
   a ValueError naming the field.
 """
@@ -22,9 +24,14 @@ import pytest
 from gymnasium.vector import AutoresetMode
 
 from flexsim import envs
-from flexsim.envs import dynamics
-from flexsim.envs.vector import advance_batch
+from flexsim.sim import periods
 from flexsim.sim.fixed_step import ETD2RK
+
+
+def advance_batch(dynamics, x, u, t0, t1, winds):
+    """:func:`flexsim.sim.periods.advance_rows` as one StepOutcome per row."""
+    out = periods.advance_rows(dynamics, x, u, t0, t1, winds)
+    return [out.row(i) for i in range(len(dynamics))]
 
 
 def _actions(trim, k, space):
@@ -178,94 +185,8 @@ def test_bad_input_is_named():
     venv.close()
 
 
-def test_rows_in_still_air_use_a_batched_model_kernel():
-    """rhs_rows calls a model's rhs_batch once for still-air rows of one model (the hook of a compiled batched
-    kernel) and returns what the per-row rhs gives; rows with a wind, and a batch call that raised, go row by row."""
-    from flexsim.envs.vector import rhs_rows
-
-    venv = envs.vector.LevelHoldVectorEnv(3, aero="quasi-steady", turbulence="none")
-    venv.reset(seed=0)
-    dyns = [e.dynamics for e in venv.envs]
-    model = dyns[0].model
-    calls = []
-
-    class Batched:
-        def __init__(self, fail):
-            self.fail = fail
-
-        def rhs(self, t, x, u, wind=None):
-            return model.rhs(t, x, u, wind)
-
-        def rhs_batch(self, t, xs, us, wind=None):
-            calls.append(len(xs))
-            if self.fail:
-                raise ValueError("one row is bad")
-            return np.stack([model.rhs(t, a, b) for a, b in zip(xs, us)])
-
-    x = np.array([e.state for e in venv.envs])
-    u = np.array([e.applied_controls for e in venv.envs])
-    expected = np.stack([model.rhs(0.0, a, b) for a, b in zip(x, u)])
-    for fail, n_calls in ((False, [3]), (True, [3])):
-        stub = Batched(fail)
-        for d in dyns:
-            d.model = stub
-        calls.clear()
-        errors = {}
-        np.testing.assert_array_equal(rhs_rows(dyns, np.zeros(3), x, u, [None] * 3, errors), expected)
-        assert calls == n_calls and errors == {}
-    calls.clear()
-    rhs_rows(dyns, np.zeros(3), x, u, [None, lambda t, p: np.zeros_like(p), None], {})
-    assert calls == []
-    venv.close()
-
-
-def test_packed_winds_reach_a_batched_model_kernel(monkeypatch):
-    """With a model offering pack_winds and rhs_batch (a compiled model's interface), the vector env packs the
-    episode winds once per reset and every right-hand side of a step is one rhs_batch call over the stepping
-    rows with their winds; the trajectories equal those of the row-by-row path exactly (same arithmetic)."""
-    from collections import namedtuple
-
-    Packed = namedtuple("Packed", ["rows", "winds"])
-    monkeypatch.setattr(dynamics, "COMPILED_ROWS_BELOW", 0)  # both runs as matrix products over the rows
-    kw = dict(aero="quasi-steady", turbulence="light", integrator=envs.IntegratorSettings(method="ETD2RK"))
-    plain = envs.vector.LevelHoldVectorEnv(3, **kw)
-    batched = envs.vector.LevelHoldVectorEnv(3, **kw)
-    model = batched.envs[0].dynamics.model
-    calls = []
-
-    class Compiled:
-        def rhs(self, t, x, u, wind=None):
-            return model.rhs(t, x, u, wind)
-
-        @staticmethod
-        def pack_winds(winds):
-            calls.append("pack")
-            return Packed(np.repeat(np.arange(len(winds))[:, None], 4, axis=1), list(winds))
-
-        def rhs_batch(self, t, xs, us, wind=None):
-            assert isinstance(wind, Packed)
-            calls.append(len(xs))
-            return np.stack([model.rhs(t, a, b, wind.winds[r]) for a, b, r in zip(xs, us, wind.rows[:, 0])])
-
-    batched.reset(seed=5)  # trim, Jacobian and matrix functions with the real model (cached per manoeuvre)
-    stub = Compiled()
-    for e in batched.envs:
-        e.dynamics.model = stub
-    out = []
-    for venv in (plain, batched):
-        _, info = venv.reset(seed=5)
-        for k in range(3):
-            venv.step(_actions(info["trim_action"], k, venv.single_action_space))
-        out.append(np.array([e.state for e in venv.envs]))
-    np.testing.assert_array_equal(out[0], out[1])
-    substeps = batched.envs[0].dynamics.substeps
-    assert calls == ["pack"] + [3] * (3 * substeps * 2)  # one pack after the reset; 3 steps x substeps x 2 evaluations
-    plain.close()
-    batched.close()
-
-
 def test_compiled_rows_report_as_the_single_aircraft_advance():
-    """Few rows go through the compiled ETD2RK kernel (dynamics.COMPILED_ROWS_BELOW): a crash, an altitude outside
+    """Few rows go through the compiled ETD2RK kernel (periods.COMPILED_ROWS_BELOW): a crash, an altitude outside
     the ISA range (model error, with the model's message) and a normal period equal FlightDynamics.advance of each
     aircraft alone (same matrix-vector arithmetic: to 1e-12)."""
     venv = envs.vector.LevelHoldVectorEnv(3, turbulence="none")  # unsteady aero: ETD2RK
@@ -279,7 +200,7 @@ def test_compiled_rows_report_as_the_single_aircraft_advance():
     u = np.array([e.applied_controls for e in venv.envs])
     t0, t1 = np.zeros(3), np.full(3, dyns[0].dt)
     batch = advance_batch(dyns, x, u, t0, t1, [None] * 3)
-    assert dynamics.COMPILED_ROWS_BELOW > 3
+    assert periods.COMPILED_ROWS_BELOW > 3
     for i, dyn in enumerate(dyns):
         alone = dyn.advance(x[i], u[i], 0.0, dyn.dt)
         assert (batch[i].crashed, batch[i].failure, batch[i].nfev) == (alone.crashed, alone.failure, alone.nfev), i
@@ -293,5 +214,5 @@ def test_compiled_rows_report_as_the_single_aircraft_advance():
 def test_products_over_rows_follow_the_compiled_single_env(monkeypatch):
     """Many rows step as GEMMs over the rows, one row through the compiled kernel: with the threshold at 2 the 3-row
     batch takes the products and each single env the kernel; states equal to 1e-9 relative (rounding only)."""
-    monkeypatch.setattr(dynamics, "COMPILED_ROWS_BELOW", 2)
+    monkeypatch.setattr(periods, "COMPILED_ROWS_BELOW", 2)
     assert _compare_with_single("FlexSim/GTM-LevelHold-v0", steps=8) <= 1e-9

@@ -1,0 +1,627 @@
+"""Control periods: one aircraft model, trimmed, stepped over fixed periods with held, rate-limited controls.
+
+The integration layer of the gymnasium environments (:mod:`flexsim.envs`), single and batched. A
+:class:`FlightDynamics` holds one :class:`~flexsim.model.aircraft_model.AircraftModel` (whose ``rhs(t, x, u)`` is
+integrated unchanged), trims it with :func:`flexsim.trim.trim`, computes the Jacobian of the trim
+(:func:`flexsim.model.jacobian.jacobian`, once per trim, cached) and integrates a control period:
+
+* zero-order hold: the control vector is constant over the period;
+* actuator rate limits (:class:`ActuatorRates`): the applied controls move towards the commanded ones by at most
+  rate * period (:func:`flexsim.sim._step_kernels.rate_limit_rows`, the one implementation), then are held;
+* ETD2RK (:class:`flexsim.sim.fixed_step.ETD2RK`, the default, :meth:`IntegratorSettings.resolve`): a fixed number
+  of equal steps per period with the trim Jacobian as its linear part (its matrix functions computed once per
+  trim); after every step the state is checked for non-finite values and for the ground contact, the crossing of
+  altitude 0 located by linear interpolation within the step (:func:`flexsim.sim._step_kernels.ground_crossing`);
+* DOP853 or Radau (``scipy.integrate.solve_ivp``): a restart per period (the right-hand side changes with the
+  controls), warm-started with the step the solver reached in the previous period, shortened so that a whole
+  number of steps fills the period; Radau gets the constant trim Jacobian; a terminal event at altitude 0.
+
+:func:`advance_period` is the one entry point of a period of N aircraft (N = 1 for a single environment): rate
+limits, integration and measurements (:mod:`flexsim.sim.measurements`) in one compiled call
+(:func:`flexsim.sim._step_kernels.period_rows`) for rows flown about one trim with packed winds, the products over
+the rows as matrix products from :data:`COMPILED_ROWS_BELOW` rows on; otherwise the same arithmetic in separate
+calls. The wind field of each episode is passed per call and reaches ``model.rhs(t, x, u, wind)``; nothing here
+stores it, so trims are in still air and do not depend on earlier episodes.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from flexsim import _kernels as _k
+from flexsim._threads import single_blas_thread
+from flexsim.aircraft.definition import Aircraft
+from flexsim.kinematics import euler_rate_matrix_inverse
+from flexsim.model.aircraft_model import AircraftModel, Wind
+from flexsim.model.jacobian import jacobian
+from flexsim.model.sensors import SensorBank
+from flexsim.sim import _step_kernels as _sk
+from flexsim.sim import measurements as _ms
+from flexsim.sim.fixed_step import ETD2RK
+from flexsim.sim.measurements import MeasurementBatch, Measurements
+from flexsim.sim.outputs import OutputMaps
+from flexsim.sim.simulate import default_method
+from flexsim.trim import SteadyManoeuvre, TrimError, TrimPoint, trim
+
+__all__ = ["IntegratorSettings", "ActuatorRates", "FlightDynamics", "StepOutcome", "BatchOutcome", "PeriodResult", "advance_rows",
+           "advance_period", "SENSOR_COMPONENTS", "INTEGRATOR_METHODS", "FIXED_STEP_METHODS", "DEFAULT_MAX_STEP_S",
+           "MAX_STEP_RANGE_S", "COMPILED_ROWS_BELOW", "TRIM_CACHE"]
+
+#: Components carrying the structural sensors (tip deflection, twist and their rates), in order.
+SENSOR_COMPONENTS = ("right_wing", "left_wing", "vtail")
+#: Integration methods accepted by :class:`IntegratorSettings` (``"auto"``: :meth:`IntegratorSettings.resolve`).
+INTEGRATOR_METHODS = ("auto", "ETD2RK", "DOP853", "Radau")
+#: The fixed-step methods among them (:mod:`flexsim.sim.fixed_step`); the others are ``solve_ivp`` methods.
+FIXED_STEP_METHODS = ("ETD2RK",)
+#: Default ETD2RK step [s] (:attr:`IntegratorSettings.max_step_s`): 1 step per 50 Hz control period.
+DEFAULT_MAX_STEP_S = 0.02
+#: Allowed range of :attr:`IntegratorSettings.max_step_s` [s].
+MAX_STEP_RANGE_S = (1e-4, 0.05)
+#: Number of trims kept per :class:`FlightDynamics` (tasks with random targets trim every episode).
+TRIM_CACHE = 16
+#: From this many rows sharing one stepper on, the products of a period are matrix products over the rows
+#: (:func:`flexsim.sim._step_kernels.etd2rk_rows_gemm`); below it row by row. Measured (benchmarks/bench_envs.py
+#: --batched): row by row 2x faster at N = 1, equal near N = 16, 25 % slower at N = 256.
+COMPILED_ROWS_BELOW = 32
+#: Remaining fraction of a period below which a solver stop counts as having reached its end.
+_SLIVER = 1e-12
+#: Exceptions of the model that end one aircraft's period as a "model error".
+_MODEL_ERRORS = (ValueError, ArithmeticError, np.linalg.LinAlgError)
+
+
+def _positive(name: str, value: float) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r}: must be a finite number > 0") from None
+    if not (math.isfinite(v) and v > 0.0):
+        raise ValueError(f"{name} = {value!r}: must be a finite number > 0")
+    return v
+
+
+@dataclass(frozen=True)
+class ActuatorRates:
+    """Rate limits of the actuators (applied to the commanded controls every control period).
+
+    The notional GTM file has no actuator data; the defaults are typical of a 757-class transport
+    (hydraulic surfaces 40-60 deg/s, engine spool-up from idle to full thrust in about 4 s).
+
+    Attributes
+    ----------
+    thrust_fraction_per_s : float
+        Largest thrust change per second as a fraction of the maximum thrust [1/s] (default 0.25).
+    aileron_rad_s, elevator_rad_s, rudder_rad_s : float
+        Largest surface rates [rad/s] (defaults 60, 40 and 60 deg/s).
+    """
+
+    thrust_fraction_per_s: float = 0.25
+    aileron_rad_s: float = math.radians(60.0)
+    elevator_rad_s: float = math.radians(40.0)
+    rudder_rad_s: float = math.radians(60.0)
+
+    def __post_init__(self) -> None:
+        for name in ("thrust_fraction_per_s", "aileron_rad_s", "elevator_rad_s", "rudder_rad_s"):
+            object.__setattr__(self, name, _positive(name, getattr(self, name)))
+
+    def limits(self, max_thrust_n: float) -> np.ndarray:
+        """Rates of u = [T_e, delta_a, delta_e, delta_r]: [N/s, rad/s, rad/s, rad/s], shape (4,)."""
+        return np.array([self.thrust_fraction_per_s * max_thrust_n, self.aileron_rad_s, self.elevator_rad_s, self.rudder_rad_s])
+
+
+@dataclass(frozen=True)
+class IntegratorSettings:
+    """How each control period is integrated.
+
+    Attributes
+    ----------
+    method : {"auto", "ETD2RK", "DOP853", "Radau"}
+        ``"auto"`` (default) takes the method :func:`flexsim.sim.simulate.default_method` takes for a run of the same
+        model in still air or a field of :mod:`flexsim.sim.disturbances` (the winds of the environments): ETD2RK
+        for a model with aerodynamics, finite-state or quasi-steady, DOP853 without. ETD2RK
+        (:class:`flexsim.sim.fixed_step.ETD2RK`) is a fixed-step second-order exponential integrator whose linear
+        part is the Jacobian of the trim the episode starts from: it treats the stiff finite-state inflow states
+        and the structural modes exactly to first order about the trim and does not damp them numerically (the
+        179 rad/s fin flutter mode keeps its growth rate), with 2 right-hand sides per step and no error control.
+        DOP853 and Radau are ``scipy.integrate.solve_ivp`` methods with error control (``rtol``, :meth:`atol`);
+        Radau gets the constant trim Jacobian and damps lightly damped high-frequency modes (the fin flutter
+        amplitude after 5 s is 22 % low at the default tolerances). Accuracy in ``docs/environments.md``.
+    rtol : float
+        Relative tolerance of DOP853 and Radau, in [1e-12, 1e-2] (default 1e-3). Not used by ETD2RK.
+    atol_scale : float
+        Multiplies the per-state absolute tolerances of :meth:`atol` (default 10). Not used by ETD2RK.
+    max_step_s : float
+        Largest step of ETD2RK [s], in [1e-4, 0.05] (default 0.02, :data:`DEFAULT_MAX_STEP_S`): each control
+        period is split into ``ceil(period / max_step_s)`` equal steps. Not used by DOP853 and Radau.
+    """
+
+    method: str = "auto"
+    rtol: float = 1e-3
+    atol_scale: float = 10.0
+    max_step_s: float = DEFAULT_MAX_STEP_S
+
+    def __post_init__(self) -> None:
+        if self.method not in INTEGRATOR_METHODS:
+            raise ValueError(f"method = {self.method!r}: must be one of {', '.join(INTEGRATOR_METHODS)}")
+        rtol = _positive("rtol", self.rtol)
+        if not 1e-12 <= rtol <= 1e-2:
+            raise ValueError(f"rtol = {self.rtol!r}: must be in [1e-12, 1e-2]")
+        object.__setattr__(self, "rtol", rtol)
+        object.__setattr__(self, "atol_scale", _positive("atol_scale", self.atol_scale))
+        lo, hi = MAX_STEP_RANGE_S
+        step = _positive("max_step_s", self.max_step_s)
+        if not lo <= step <= hi:
+            raise ValueError(f"max_step_s = {self.max_step_s!r}: must be in [{lo:g}, {hi:g}] s")
+        object.__setattr__(self, "max_step_s", step)
+
+    def resolve(self, model: AircraftModel) -> str:
+        """The method used for ``model``: ``method``, or for ``"auto"`` :func:`flexsim.sim.simulate.default_method`
+        of the model in still air (class docstring)."""
+        return default_method(model, None) if self.method == "auto" else self.method
+
+    def substeps(self, period_s: float) -> int:
+        """Number of equal ETD2RK steps per control period of ``period_s`` [s]: ceil(period / max_step_s)."""
+        return max(1, math.ceil(period_s / self.max_step_s * (1.0 - 1e-12)))
+
+    def atol(self, layout) -> np.ndarray:
+        """Per-state absolute tolerances for a :class:`~flexsim.model.layout.StateLayout`.
+
+        Base values (times ``atol_scale``): position 1e-3 m, Euler angles 1e-6 rad, bending 1e-5 m,
+        torsion 1e-6 rad, body velocity 1e-4 m/s, body rates 1e-6 rad/s, bending rates 1e-4 m/s,
+        torsion rates 1e-5 rad/s, inflow 1e-3 m/s.
+        """
+        a = np.empty(layout.n_states)
+        for name, value in (("position", 1e-3), ("euler", 1e-6), ("q", 1e-5), ("xi", 1e-6), ("v", 1e-4),
+                            ("omega", 1e-6), ("s", 1e-4), ("eta", 1e-5), ("inflow", 1e-3)):
+            a[getattr(layout, name)] = value
+        return a * self.atol_scale
+
+
+@dataclass(frozen=True)
+class StepOutcome:
+    """Result of one control period.
+
+    Attributes
+    ----------
+    x : ndarray
+        State at the end (the last finite state if the integration failed).
+    time_s : float
+        Time reached [s] (earlier than the period's end after a crash event or a failure).
+    crashed : bool
+        The ground (altitude 0) stopped the integration.
+    failure : str
+        Empty, or why the integration failed (non-finite state, solver failure, model error).
+    nfev, nlu : int
+        Right-hand-side evaluations and LU factorisations of the period (ETD2RK: 2 evaluations per step and no
+        factorisation; its matrix functions are computed once per trim, in :meth:`FlightDynamics.start`).
+    """
+
+    x: np.ndarray
+    time_s: float
+    crashed: bool
+    failure: str
+    nfev: int
+    nlu: int = 0
+
+
+@dataclass(frozen=True)
+class BatchOutcome:
+    """Results of one control period of N aircraft: the :class:`StepOutcome` fields as arrays over the rows (``x``
+    (N, n), ``time_s`` (N,), ``crashed`` (N,) bool, ``failure`` (N,) object array of str, ``nfev`` and ``nlu`` (N,)
+    int), and ``failed`` (N,) bool: the rows whose ``failure`` is not empty."""
+
+    x: np.ndarray
+    time_s: np.ndarray
+    crashed: np.ndarray
+    failure: np.ndarray
+    nfev: np.ndarray
+    nlu: np.ndarray
+    failed: np.ndarray
+
+    def row(self, i: int) -> StepOutcome:
+        """The :class:`StepOutcome` of row i."""
+        return StepOutcome(self.x[i].copy(), float(self.time_s[i]), bool(self.crashed[i]), str(self.failure[i]), int(self.nfev[i]),
+                           int(self.nlu[i]))
+
+    @classmethod
+    def of(cls, outcomes: list[StepOutcome]) -> BatchOutcome:
+        """The batch of single :class:`StepOutcome` s, in order."""
+        failure = np.array([o.failure for o in outcomes], dtype=object)
+        return cls(np.array([o.x for o in outcomes], dtype=float), np.array([o.time_s for o in outcomes], dtype=float),
+                   np.array([o.crashed for o in outcomes], dtype=bool), failure, np.array([o.nfev for o in outcomes], dtype=np.int64),
+                   np.array([o.nlu for o in outcomes], dtype=np.int64), failure != "")
+
+
+class PeriodResult(NamedTuple):
+    """One control period of N aircraft (:func:`advance_period`): the integration ``outcome``, the applied controls
+    ``u`` (N, 4) [N, rad] and the measurements of the states reached ``meas``."""
+
+    outcome: BatchOutcome
+    u: np.ndarray
+    meas: MeasurementBatch
+
+
+def _evict(cache: dict) -> None:
+    """Drop the oldest entries of an insertion-ordered cache beyond :data:`TRIM_CACHE`."""
+    while len(cache) > TRIM_CACHE:
+        del cache[next(iter(cache))]
+
+
+class FlightDynamics:
+    """One flexsim model of an aircraft, with trim, Jacobian cache, actuators and the period integrator.
+
+    Parameters
+    ----------
+    aircraft : Aircraft
+    aero : {"unsteady", "quasi-steady"}
+    integrator : IntegratorSettings
+        Method and tolerances or step (``method="auto"`` resolved for the model).
+    rates : ActuatorRates
+    control_dt_s : float
+        Control period [s].
+
+    Attributes
+    ----------
+    method : str
+        The integration method in use.
+    substeps : int
+        ETD2RK steps per control period (0 for the ``solve_ivp`` methods).
+    rate_step : ndarray, shape (4,)
+        The largest control change per period [N, rad].
+    outputs : OutputMaps
+        The output layer of the model (names, air data, structural outputs, deformed beams, flight signals).
+    """
+
+    def __init__(self, aircraft: Aircraft, aero: str, integrator: IntegratorSettings, rates: ActuatorRates,
+                 control_dt_s: float) -> None:
+        self.aircraft = aircraft
+        self.aero = aero
+        self.integrator_settings = integrator
+        self.actuator_rates = rates
+        self.model = AircraftModel(aircraft, aero=aero)
+        self.layout = self.model.layout
+        for name in SENSOR_COMPONENTS:
+            aircraft.component(name)  # KeyError naming the missing component
+        self.outputs = OutputMaps(self.model)
+        missing = [name for name in SENSOR_COMPONENTS if name not in self.outputs.sensors]
+        if missing:
+            raise ValueError(f"aircraft {aircraft.name!r}: components {missing} have no elastic modes; the environments' "
+                             f"structural sensors need bending and torsion modes on {', '.join(SENSOR_COMPONENTS)}")
+        self.sensors = {name: self.outputs.sensors[name] for name in SENSOR_COMPONENTS}
+        bank = SensorBank.of(self.sensors, SENSOR_COMPONENTS, self.layout.n_states)
+        #: What the compiled measurements need of the model (:class:`flexsim.sim.measurements.MeasureData`).
+        self.measure_data = _ms.measure_data(self.layout, bank.matrix, len(SENSOR_COMPONENTS))
+        #: Columns of a measurement row.
+        self.n_measurements = _ms.SENSORS_AT + bank.matrix.shape[1]
+        self._still = self.model.pack_winds([None])._replace(rows=np.zeros((0, 4), np.int64))
+        self.method = integrator.resolve(self.model)
+        self.rtol = integrator.rtol
+        self.atol = integrator.atol(self.layout)
+        self.dt = float(control_dt_s)
+        self.substeps = integrator.substeps(self.dt) if self.method in FIXED_STEP_METHODS else 0
+        lo, hi = aircraft.control_limits()
+        self.u_low, self.u_high = lo, hi
+        self.rate_limits = rates.limits(float(hi[0]))
+        self.rate_step = self.rate_limits * self.dt
+        self._trims: dict[SteadyManoeuvre, TrimPoint] = {}
+        self._jacobians: dict[SteadyManoeuvre, np.ndarray] = {}
+        self._steppers: dict[SteadyManoeuvre, ETD2RK] = {}
+        self._clear: dict[int, tuple] = {}
+        self._stepper: ETD2RK | None = None
+        self._step_data: _sk.StepData | None = None
+        self._jac = None
+        self._h_next = None
+        z = self._z = self.layout.position.start + 2
+
+        def ground(t: float, y: np.ndarray, u: np.ndarray, wind) -> float:
+            return -y[z]
+
+        ground.terminal = True
+        ground.direction = -1.0
+        self._ground = ground
+
+    def fork(self) -> FlightDynamics:
+        """Another :class:`FlightDynamics` of the same model for a second episode running at the same time.
+
+        It shares this one's model, sensors and caches (trims, Jacobians and ETD2RK matrix functions: each a
+        deterministic function of the manoeuvre, never changed once computed) and has its own episode state (the
+        ETD2RK stepper or Radau Jacobian of its episode, Radau's warm-start step), so N aircraft cost one model
+        build, one trim and one matrix exponential.
+        """
+        twin = copy.copy(self)
+        twin._jac, twin._stepper, twin._step_data, twin._h_next = None, None, None, None
+        return twin
+
+    @property
+    def stepper(self) -> ETD2RK | None:
+        """The ETD2RK step of the current episode (None for the ``solve_ivp`` methods or before :meth:`start`)."""
+        return self._stepper
+
+    @property
+    def step_data(self) -> _sk.StepData | None:
+        """The ETD2RK step of the current episode as the compiled periods take it (:meth:`ETD2RK.step_data`; None
+        without a stepper)."""
+        return self._step_data
+
+    # ------------------------------------------------------------------ trim and Jacobian
+    def trim(self, manoeuvre: SteadyManoeuvre) -> TrimPoint:
+        """Still-air trim of ``manoeuvre`` (the last :data:`TRIM_CACHE` trims are cached: trims are deterministic).
+
+        Raises TrimError for a statically divergent trim (``TrimPoint.stability``): no episode starts from it."""
+        point = self._trims.pop(manoeuvre, None)
+        if point is None:
+            point = trim(self.model, manoeuvre)
+            if point.stability.is_divergent:
+                raise TrimError(f"cannot start an episode from the trim of {self.model.aircraft.name} in "
+                                f"{manoeuvre.describe()}: it is not an equilibrium the aircraft stays in, "
+                                f"{point.stability.message}")
+        self._trims[manoeuvre] = point
+        _evict(self._trims)
+        return point
+
+    @single_blas_thread
+    def start(self, manoeuvre: SteadyManoeuvre) -> None:
+        """Prepare an episode flown about the (still-air) trim of ``manoeuvre``.
+
+        For Radau and ETD2RK, the Jacobian d rhs / dx at that trim is computed once and cached per manoeuvre
+        (:data:`TRIM_CACHE` of them): for Radau it only steers the Newton iterations; for ETD2RK it is the linear
+        part, whose matrix functions for the step ``dt / substeps`` are computed here too, once per manoeuvre.
+        """
+        self._h_next = None
+        self._jac, self._stepper, self._step_data = None, None, None
+        if self.method not in ("Radau", *FIXED_STEP_METHODS):
+            return
+        jac = self._jacobians.pop(manoeuvre, None)
+        if jac is None:
+            point = self.trim(manoeuvre)
+            jac = jacobian(self.model, point.x, point.u, controls=False)[0]
+        self._jacobians[manoeuvre] = jac
+        _evict(self._jacobians)
+        if self.method == "Radau":
+            self._jac = jac
+            return
+        stepper = self._steppers.pop(manoeuvre, None)
+        if stepper is None:
+            stepper = ETD2RK(jac, self.dt / self.substeps)
+        self._steppers[manoeuvre] = stepper
+        _evict(self._steppers)
+        self._stepper = stepper
+        self._step_data = stepper.step_data(self.model, self.substeps)
+
+    # ------------------------------------------------------------------ actuators
+    def rate_limit(self, applied: np.ndarray, command: np.ndarray) -> np.ndarray:
+        """Controls after one period of rate-limited motion from ``applied`` towards ``command`` (rows (m, 4) or (4,);
+        :func:`flexsim.sim._step_kernels.rate_limit_rows`)."""
+        a = np.ascontiguousarray(applied, dtype=float)
+        rows = a.reshape(-1, 4)
+        out = np.empty_like(rows)
+        _sk.rate_limit_rows(rows, np.ascontiguousarray(command, dtype=float).reshape(-1, 4), self.rate_step, out)
+        return out.reshape(a.shape)
+
+    # ------------------------------------------------------------------ integration
+    @single_blas_thread
+    def advance(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float, wind: Wind | None = None) -> StepOutcome:
+        """Integrate ``rhs`` from t0 to t1 [s] with the controls ``u`` held (zero-order hold) in the wind field
+        ``wind`` (``wind(t, positions_ned_m)``; None: still air).
+
+        With ETD2RK, t1 - t0 must be the control period ``dt`` (its step is fixed) and :meth:`start` must have been
+        called.
+        """
+        if self.substeps:
+            return self._advance_fixed(x, u, t0, t1, wind)
+        span = t1 - t0
+        first = None if self._h_next is None else min(self._h_next, span)
+        options = {"jac": self._jac} if self.method == "Radau" else {}
+        try:
+            with np.errstate(all="ignore"):
+                sol = solve_ivp(self.model.rhs, (t0, t1), x, method=self.method, args=(u, wind), rtol=self.rtol,
+                                atol=self.atol, first_step=first, events=self._ground, **options)
+        except _MODEL_ERRORS as exc:
+            return StepOutcome(x, t0, False, f"model error: {exc}", 0)
+        if sol.status < 0 and t1 - sol.t[-1] <= _SLIVER * span and np.all(np.isfinite(sol.y[:, -1])):
+            # scipy stops with "step size less than spacing between numbers" when rounding leaves a
+            # remaining interval of a few ulp; the state there is the state at t1 to within |f| * 1e-12 s
+            sol.status, sol.t[-1] = 0, t1
+        if sol.status < 0 or not np.all(np.isfinite(sol.y[:, -1])):
+            good = np.flatnonzero(np.all(np.isfinite(sol.y), axis=0))
+            last = int(good[-1]) if good.size else None
+            x_end = sol.y[:, last] if last is not None else x
+            t_end = float(sol.t[last]) if last is not None else t0
+            return StepOutcome(x_end.copy(), t_end, False, f"non-finite state or solver failure: {sol.message}", sol.nfev, sol.nlu)
+        steps = np.diff(sol.t)
+        if steps.size > 1:
+            h = float(steps[:-1].max())
+            # a whole number of steps per period, 1e-6 long so that rounding cannot leave a sliver at the end
+            # (scipy fails when the remaining step is below its spacing of numbers)
+            self._h_next = span / math.ceil(span / h * (1.0 - 1e-9)) * (1.0 + 1e-6)
+        elif steps.size == 1:
+            self._h_next = span
+        return StepOutcome(sol.y[:, -1].copy(), float(sol.t[-1]), sol.status == 1, "", sol.nfev, sol.nlu)
+
+    def check_span(self, span) -> None:
+        """Refuse period lengths ``span`` [s] (scalar or (N,)) other than the control period (ETD2RK's fixed steps)."""
+        spans = np.asarray(span, float).reshape(-1)
+        bad = np.flatnonzero(~(np.abs(spans - self.dt) <= 1e-9 * self.dt))
+        if bad.size:
+            raise ValueError(f"t1 - t0 = {float(spans[bad[0]])!r} s: ETD2RK steps whole control periods, must be dt = {self.dt!r} s")
+
+    def _advance_fixed(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float, wind: Wind | None) -> StepOutcome:
+        """ETD2RK over one period in Python (``model.rhs``, which names a model error): ``substeps`` equal steps, each
+        checked for non-finite states and the ground (:func:`flexsim.sim._step_kernels.ground_crossing`)."""
+        stepper = self._stepper
+        if stepper is None:
+            raise RuntimeError("advance() called before start(): ETD2RK needs the trim Jacobian")
+        self.check_span(t1 - t0)
+        k, h = self.substeps, stepper.h
+        rhs = self.model.rhs
+        x = np.asarray(x, dtype=float)
+        x_hit = np.empty_like(x)
+        t = t0
+        with np.errstate(all="ignore"):
+            for i in range(1, k + 1):
+                t_next = t1 if i == k else t0 + i * h
+                try:
+                    x_next = stepper.step(rhs, t, x, (u, wind))
+                except _MODEL_ERRORS as exc:
+                    return StepOutcome(x.copy(), t, False, f"model error: {exc}", 2 * i)
+                if not np.all(np.isfinite(x_next)):
+                    return StepOutcome(x.copy(), t, False, f"non-finite state: ETD2RK step {i} of {k} from t = {t:.6g} s", 2 * i)
+                t_hit = _sk.ground_crossing(x, x_next, float(t), float(t_next), self._z, x_hit)
+                if t_hit != -math.inf:
+                    return StepOutcome(x_hit, t_hit, True, "", 2 * i)
+                x, t = x_next, t_next
+        return StepOutcome(x, t1, False, "", 2 * k)
+
+    def rows_outcome(self, x, t, status, taken, t0) -> BatchOutcome:
+        """The :class:`BatchOutcome` of compiled rows of this dynamics' stepper: states x (N, n) and times t (N,) [s]
+        reached, status codes and steps taken (N,) of :func:`flexsim.sim._step_kernels.etd2rk_rows`, period starts t0
+        (N,) [s] (read for stopped rows only; None if no row stopped); a row with a model error (whose message only
+        ``model.rhs`` gives) reads "model error" here."""
+        m = len(t)
+        clear = self._clear.get(m)
+        if clear is None:  # the arrays of a period in which no row stopped, shared by such periods: not to be written
+            clear = self._clear[m] = (np.full(m, "", dtype=object), np.zeros(m, dtype=np.bool_), np.zeros(m, dtype=np.int64),
+                                      np.full(m, 2 * self.substeps, np.int64))
+        failure, none, nlu, nfev = clear
+        if not np.count_nonzero(status):
+            return BatchOutcome(x, t, none, failure, nfev, nlu, none)
+        failure = failure.copy()
+        failure[status == _sk.ROW_MODEL_ERROR] = "model error"
+        for r in np.flatnonzero(status == _sk.ROW_NON_FINITE):
+            t_start = t0[r] + (taken[r] - 1) * self._stepper.h
+            failure[r] = f"non-finite state: ETD2RK step {int(taken[r])} of {self.substeps} from t = {float(t_start):.6g} s"
+        return BatchOutcome(x, t, status == _sk.ROW_GROUND, failure, 2 * taken, nlu, failure != "")
+
+    # ------------------------------------------------------------------ outputs
+    def measure(self, x: np.ndarray, t: float, wind: Wind | None = None) -> Measurements:
+        """Air data, attitude and structural sensors of state ``x`` at time ``t`` [s] in the wind field ``wind``
+        (:meth:`measure_batch` of one state)."""
+        return self.measure_batch(np.asarray(x, dtype=float)[None, :], np.array([float(t)]), [wind]).row(0)
+
+    def measure_batch(self, x: np.ndarray, t: np.ndarray, winds=None, packed=None) -> MeasurementBatch:
+        """:class:`~flexsim.sim.measurements.MeasurementBatch` of states x (N, n) at times t (N,) [s], aircraft i in
+        the wind ``winds[i]``.
+
+        ``winds``: a sequence of N wind fields (None entries: still air) or None (all in still air); ``packed``: the
+        same winds packed by the model's ``pack_winds`` (then the air data are computed in the compiled
+        :func:`flexsim.sim.measurements.measure_rows` too), or None (then each wind is asked in Python,
+        :meth:`OutputMaps.air_velocity_body`). A wind field that cannot answer at a position gives still-air data.
+        """
+        x = np.ascontiguousarray(x, dtype=float)
+        n = x.shape[0]
+        t = np.array(t, dtype=float) if np.shape(t) == (n,) else np.full(n, float(t))
+        out = np.empty((n, self.n_measurements))
+        wind, given, mode = self._still, np.zeros((0, 3)), _ms.WIND_STILL
+        if winds is not None and not all(w is None for w in winds):
+            if isinstance(packed, _k.BatchWind):
+                wind, mode = packed, _ms.WIND_PACKED
+            else:
+                given, mode = self._air_velocity(t, x, winds), _ms.WIND_GIVEN
+        _ms.measure_rows(x, mode, given, wind, self.measure_data, out)
+        return MeasurementBatch(t, out, SENSOR_COMPONENTS)
+
+    def _air_velocity(self, t, x, winds) -> np.ndarray:
+        """Body-axes velocity relative to the air at the body origin (N, 3) [m/s] of winds given as callables."""
+        out = np.array(x[:, self.layout.v])
+        with np.errstate(all="ignore"):
+            for i, wind in enumerate(winds):
+                if wind is not None:
+                    try:
+                        out[i] = self.outputs.air_velocity_body(float(t[i]), x[i], wind)
+                    except ValueError:  # a wind field that cannot answer at this position: still-air data
+                        pass
+        return out
+
+    def euler_rates(self, x: np.ndarray) -> np.ndarray:
+        """Theta_dot = E^-1 omega [rad/s] of state ``x``."""
+        eul = x[self.layout.euler]
+        return euler_rate_matrix_inverse(eul[0], eul[1]) @ x[self.layout.omega]
+
+    def structure_nodes(self, x: np.ndarray) -> dict[str, np.ndarray]:
+        """Deformed beam nodes of every component in body axes [m], shape (n_nodes, 3) each (:meth:`OutputMaps.structure`)."""
+        return self.outputs.structure(x)
+
+    def state_names(self) -> tuple[str, ...]:
+        """A vocabulary name with unit for every entry of the state vector (:attr:`OutputMaps.state_names`)."""
+        return self.outputs.state_names
+
+
+# ---------------------------------------------------------------------- many aircraft
+def _shared_stepper(dynamics: Sequence[FlightDynamics]) -> ETD2RK | None:
+    """The ETD2RK stepper of all rows if they share one (same trim Jacobian and step) and one model with compiled
+    data, else None."""
+    first, model = dynamics[0].stepper, dynamics[0].model
+    if first is None or not dynamics[0].substeps or not isinstance(getattr(model, "kernel_data", None), _k.KernelData):
+        return None
+    for d in dynamics:
+        if d.stepper is not first or d.model is not model:
+            return None
+    return first
+
+
+@single_blas_thread
+def advance_rows(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.ndarray, winds,
+                 packed=None) -> BatchOutcome:
+    """Integrate one control period of many aircraft (zero-order hold of each row's controls u (N, 4)).
+
+    Row i is what ``dynamics[i].advance(x[i], u[i], t0[i], t1[i], winds[i])`` returns (same checks: non-finite
+    state, model error, ground contact located by linear interpolation within the ETD2RK step). Rows sharing one
+    ETD2RK stepper, in still air or with their winds ``packed`` (the model's ``pack_winds`` of the N winds), take the
+    compiled steps (:meth:`ETD2RK.advance_rows`; matrix products over the rows from :data:`COMPILED_ROWS_BELOW`
+    rows on); rows whose model raised there, and all others, the Python period of each aircraft.
+    """
+    n = len(dynamics)
+    first = dynamics[0]
+    stepper = _shared_stepper(dynamics)
+    still = all(w is None for w in winds)
+    if stepper is not None and (still or isinstance(packed, _k.BatchWind)):
+        t0, t1 = np.asarray(t0, float), np.asarray(t1, float)
+        first.check_span(t1 - t0)
+        res = stepper.advance_rows(first.model, x, u, t0, t1, first.substeps, None if still else packed,
+                                   over_rows=n >= COMPILED_ROWS_BELOW)
+        out = first.rows_outcome(res.x, res.t, res.status, res.steps, t0)
+        for i in np.flatnonzero(res.status == _sk.ROW_MODEL_ERROR):  # the model's message: this row through model.rhs
+            again = dynamics[i].advance(x[i], u[i], float(t0[i]), float(t1[i]), winds[i])
+            out.x[i], out.time_s[i], out.failure[i], out.nfev[i], out.failed[i] = again.x, again.time_s, again.failure, again.nfev, True
+        return out
+    return BatchOutcome.of([d.advance(x[i], u[i], float(t0[i]), float(t1[i]), winds[i]) for i, d in enumerate(dynamics)])
+
+
+@single_blas_thread
+def advance_period(dynamics: Sequence[FlightDynamics], x: np.ndarray, applied: np.ndarray, command: np.ndarray, k: np.ndarray,
+                   winds, packed=None) -> PeriodResult:
+    """One control period of N aircraft: rate limits from the ``applied`` towards the ``command`` controls (N, 4)
+    [N, rad], the integration of period ``k[i]`` (N,) int of row i, [k dt, (k + 1) dt] [s] with the control period
+    ``dt`` of the dynamics, and the measurements of the states reached.
+
+    ``dynamics[i]`` flies row i (after :meth:`FlightDynamics.start` of its episode; the rate limits and outputs are
+    those of ``dynamics[0]``, shared by forks); ``winds`` the N wind fields, ``packed`` the same packed by the
+    model's ``pack_winds`` (or None). Rows flown about one trim with packed winds take one compiled call
+    (:func:`flexsim.sim._step_kernels.period_rows`); a model error in a row, other integrators or winds that cannot
+    be packed take :meth:`FlightDynamics.rate_limit`, :func:`advance_rows` and :meth:`FlightDynamics.measure_batch`,
+    the same arithmetic.
+    """
+    first = dynamics[0]
+    m = len(dynamics)
+    stepper = _shared_stepper(dynamics)
+    if stepper is not None and isinstance(packed, _k.BatchWind):
+        still = winds[0] is None if m == 1 else all(w is None for w in winds)
+        out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
+                            np.empty(m, np.int64), np.empty((m, first.n_measurements)))
+        start = _sk.PeriodStart(x, applied, command, first.rate_step, k, first.dt)
+        _sk.period_rows(*first.model.kernel_data, *packed, *first.step_data, *first.measure_data, *start,
+                        _ms.WIND_STILL if still else _ms.WIND_PACKED, m >= COMPILED_ROWS_BELOW, *out)
+        stopped = np.count_nonzero(out.status)
+        if not stopped or not np.count_nonzero(out.status == _sk.ROW_MODEL_ERROR):
+            return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None), out.u,
+                                MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))
+    t0, t1 = k * first.dt, (k + 1) * first.dt
+    u = first.rate_limit(applied, command)
+    outcome = advance_rows(dynamics, x, u, t0, t1, winds, packed=packed)
+    return PeriodResult(outcome, u, first.measure_batch(outcome.x, outcome.time_s, winds, packed))
