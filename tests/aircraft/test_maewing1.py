@@ -12,6 +12,7 @@ import os
 import shutil
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -118,3 +119,79 @@ def test_a_lumped_mass_of_zero_mass_needs_an_inertia():
         LumpedMass(**base, mass_kg=0.0)
     with pytest.raises(AircraftDefinitionError, match=r"mass_kg = 0\.0: must be in \(0\.0, inf\]"):
         Engine(**base, mass_kg=0.0, inertia_kg_m2=[1e-3, 2e-3, 0.0], max_thrust_n=10.0)
+
+
+def _restrained(aircraft, speed_m_s, aero, **kw):
+    return AircraftModel(aircraft, aero=None if aero is None else AeroOptions(aero), variant="restrained", gravity_m_s2=0.0,
+                         altitude_m=0.0, restrained_velocity_m_s=[speed_m_s, 0.0, 0.0], **kw)
+
+
+def test_restrained_quasi_steady_torsion_is_undamped_from_zero_speed():
+    """Why the clamped aircraft is unstable in the quasi-steady model at every speed: the torsion modes' airloads.
+
+    In vacuo every clamped root is neutral (|Re| <= 1e-9 |lambda|: no structural artefact; measured 5e-12 1/s).
+    Quasi-steady at 1 m/s the least-damped root is the right wing's first torsion, growing with the density
+    (aerodynamic; half the density: 0.521 of the growth, the rest the apparent mass's shift of the frequency), and
+    on the wing's strips its point at rest lies between mid-chord and 1/(2 kappa) semichords aft of it. There
+    the quasi-steady strip damping is negative: flexsim's strip loads (Theodorsen, NACA Rep. 496, 1935, with
+    C(k) = 1 and the circulatory part scaled by kappa = Cl_alpha / 2 pi) absorb the power per unit span
+    pi rho U b [2 kappa |hdot|^2 + (1 - 4 kappa a) Re(hdot conj(b alphadot)) + a (2 kappa a - 1) |b alphadot|^2],
+    whose roots in hdot / (b alphadot) are a and a - 1/(2 kappa): it is negative exactly when the point at rest,
+    a - hdot / (b alphadot) semichords aft of mid-chord, lies in (0, 1/(2 kappa)) (the three-quarter chord for
+    kappa = 1). The mAEWing1's elastic axis is at 48 % chord (a = -0.035) and its torsion mode turns about 0.01 to
+    0.13 semichords aft of mid-chord. The finite-state root (the wake's lag) at 1 m/s is damped."""
+    aircraft = load_aircraft("maewing1")
+    vacuo = _restrained(aircraft, 1.0, None)
+    roots = spectrum(vacuo, vacuo.layout.zeros(), np.zeros(4), aero_model="quasi-steady").modes
+    assert all(abs(m.eigenvalue.real) <= 1e-9 * abs(m.eigenvalue) for m in roots)
+
+    def least_damped(model, aero):
+        spec = spectrum(model, model.layout.zeros(), np.zeros(4), aero_model=aero)
+        return max((m for m in spec.modes if m.kind == "elastic"), key=lambda m: m.eigenvalue.real)
+
+    qs = _restrained(aircraft, 1.0, "quasi-steady")
+    root = least_damped(qs, "quasi-steady")
+    assert root.dominant_dof == "right_wing torsion 1" and root.eigenvalue.real > 0
+    thin = least_damped(_restrained(aircraft, 1.0, "quasi-steady", air_density_kg_m3=0.6125), "quasi-steady")
+    assert thin.eigenvalue.real / root.eigenvalue.real == pytest.approx(0.5, rel=0.06)
+    assert not qs.aero.bending_incidence  # the strips pitch with the torsion alone (proj_p)
+    strips = qs.aero.strips
+    wing = np.array([c == "right_wing" for c in strips.component]) & (strips.station_m > 0.25)
+    hdot, b_alphadot = strips.proj_n0 @ root.shape, strips.semichord_m * (strips.proj_p @ root.shape)
+    node = strips.a[wing] + np.real(-hdot[wing] / b_alphadot[wing])
+    kappa = strips.lift_slope0[wing] / (2 * np.pi)
+    assert np.all((node > 0.0) & (node < 0.5 / kappa) & (node < 0.5))
+    fs = least_damped(_restrained(aircraft, 1.0, "unsteady"), "unsteady")
+    assert fs.dominant_dof == "right_wing torsion 1" and fs.eigenvalue.real < 0
+
+
+def test_restrained_is_the_free_aircraft_with_an_infinitely_heavy_centre_body():
+    """The clamp is the limit of a free aircraft whose centre body's mass and inertia grow without bound: at 28 m/s
+    (finite-state strips, no gravity, wings undeformed) the restrained wing-flutter root and the free aircraft's
+    with the centre body 10^4 times heavier agree within 0.02 1/s (measured 3e-3 + 4e-3 j; the difference falls as
+    1 / factor: 0.053 at 10^3). With the aircraft's own 3.0 kg centre body that root is damped at 28 m/s: the
+    body's plunge and pitch take part in the wing modes (free wing flutter 41.3 m/s here, the body heavier by
+    10: 31.5 m/s, by 100: 18.2 m/s, clamped 20.6 m/s; maewing1.md), so a clamped mAEWing1 flutters at half the
+    free one's speed."""
+    aircraft = load_aircraft("maewing1")
+    speed = 28.0
+
+    def wing_flutter_root(model, x0):
+        spec = spectrum(model, x0, np.zeros(4), aero_model="unsteady")
+        return max((m for m in spec.modes if m.kind != "aerodynamic" and m.frequency_rad_s > 2 * np.pi * 6.5),
+                   key=lambda m: m.eigenvalue.real)
+
+    clamped = _restrained(aircraft, speed, "unsteady")
+    root = wing_flutter_root(clamped, clamped.layout.zeros())
+    assert root.eigenvalue.real > 0
+
+    def free(body_factor):
+        heavier = lambda m: replace(m, mass_kg=m.mass_kg * body_factor, inertia_kg_m2=np.asarray(m.inertia_kg_m2) * body_factor)
+        masses = tuple(heavier(m) if m.name == "centre_body" else m for m in aircraft.lumped_masses)
+        model = AircraftModel(replace(aircraft, lumped_masses=masses), aero=AeroOptions("unsteady"), gravity_m_s2=0.0)
+        x0 = model.layout.zeros()
+        x0[model.layout.velocity.start] = speed  # body-x velocity, wings level at zero incidence
+        return wing_flutter_root(model, x0)
+
+    assert abs(free(1e4).eigenvalue - root.eigenvalue) < 0.02
+    assert free(1.0).eigenvalue.real < 0
