@@ -76,7 +76,7 @@ class IntegratorChoice:
         return f"{self.method} rtol {self.rtol:.0e}" if self.rtol is not None else self.method
 
 
-#: simulate's default with aerodynamics, the default before it (issue 14, 10 ms steps) and the default before that.
+#: simulate's default with aerodynamics, the default before it (10 ms steps) and the default before that.
 DEFAULT_CHOICE = IntegratorChoice("default", "ETD2RK", step_s=DEFAULT_MAX_STEP["ETD2RK"])
 PREVIOUS_CHOICE = IntegratorChoice("previous default", "ETD2RK", step_s=0.01)
 RADAU_CHOICE = IntegratorChoice("Radau", "Radau", rtol=1e-3)

@@ -215,7 +215,7 @@ class _Problem:
         self.r_cg = model.structure.mass_properties.cg_m
         # the residual through the batched kernel (one row; equal to ``rhs`` bit for bit), which the Jacobian needs
         # anyway: a process that only trims and linearises then loads one compiled right-hand side from numba's
-        # cache instead of two (about 0.1 s per process, issue 14); a model class with its own rhs: its rhs
+        # cache instead of two (about 0.1 s per process); a model class with its own rhs: its rhs
         batched = type(model).rhs is AircraftModel.rhs and type(model).rhs_batch is AircraftModel.rhs_batch
         self._still_air = model.pack_winds([None]) if batched else None
 
