@@ -8,6 +8,7 @@ import math
 import os
 import sys
 from pathlib import Path
+from dataclasses import replace
 
 from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.aircraft.toml_loader import load_aircraft
@@ -241,6 +242,18 @@ def _sweep(args: argparse.Namespace) -> int:
     cases = make(setting.aircraft, altitudes_m=args.altitudes, models=models, structural_damping=args.structural_damping,
                  formulation=setting.formulation, linear_density_altitude_m=setting.linear_density_altitude_m,
                  **({"coordinated": True} if args.coordinated else {}), **points)
+    if args.mach_min is not None and args.mach_max is not None:
+        check_mach_range(args.mach_min, args.mach_max)
+    # each case searched over the aircraft's envelope for its manoeuvre ([envelope], else the stall estimate)
+    ranges = {}
+    for c in cases:
+        key = (c.altitude_m, c.turn_radius_m, c.climb_angle_deg, c.coordinated)
+        if key not in ranges:
+            shape = SteadyManoeuvre(float(mach_to_true_airspeed(0.5, c.altitude_m)), c.altitude_m, c.turn_radius_m,
+                                    math.radians(c.climb_angle_deg), c.coordinated)
+            ranges[key] = _search_range(setting.aircraft, c.altitude_m, shape, args)
+    keys = [(c.altitude_m, c.turn_radius_m, c.climb_angle_deg, c.coordinated) for c in cases]
+    cases = [replace(c, mach_min=ranges[k].mach_min, mach_max=ranges[k].mach_max) for c, k in zip(cases, keys)]
     try:
         rows = run_study(cases, scheduler=args.scheduler, workers=args.workers, progress=True, record=record,
                          chain_length=args.chain_length)
@@ -251,15 +264,16 @@ def _sweep(args: argparse.Namespace) -> int:
               f"(run the same command with --resume to continue)", file=sys.stderr)
         raise
     record.close()
-    for row in rows:
+    for row, k in zip(rows, keys):
         row["settings"] = setting.label
+        row["search_range"] = ranges[k].describe()
     csv_path, json_path = write_results(rows, out, stem)
     png = plot_study(rows, kind, out / f"{stem}.png")
     figures = [png]
     top = max(args.altitudes)
     if any(r["altitude_m"] == top and "mach" in r for r in rows):
         figures.append(plot_trim(rows, kind, out / f"{stem}_trim_{top:.0f}m.png", altitude_m=top))
-    lines, doc = sweep_report(rows, kind)
+    lines, doc = sweep_report(rows, kind, paper_aircraft=_is_paper_aircraft([setting]))
     doc["settings"] = setting.__dict__
     score_path = out / f"flutter_{kind}_scorecard.json"
     score_path.write_text(json.dumps(doc, indent=2, default=str))
@@ -340,6 +354,10 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     group.add_argument("--turn", action="store_true", help="level turns, R = 5-12 km")
     group.add_argument("--climb", action="store_true", help="climbs and descents, gamma = -15..15 deg")
     p_sw.add_argument("--altitudes", type=float, nargs="+", default=[0.0, 3048.0, 6096.0, 9144.0], metavar="H")
+    p_sw.add_argument("--mach-min", type=float, default=None,
+                      help="lower end of each search [the aircraft file's [envelope], else the estimated stall speed]")
+    p_sw.add_argument("--mach-max", type=float, default=None,
+                      help="upper end of each search [the aircraft file's [envelope], else M 0.95]")
     p_sw.add_argument("--models", default="QS,US")
     p_sw.add_argument("--coordinated", action="store_true", help="with --turn: coordinated turns (zero sideslip, heading free)")
     p_sw.add_argument("--radii-m", type=float, nargs="+", default=None, metavar="R",

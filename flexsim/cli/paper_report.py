@@ -7,7 +7,7 @@ separate ``paper`` key in JSON; every computed field comes from the study rows
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from flexsim.linear.paper_data import GLIDE_9144, PAPER_TREND_SIGNS, TABLE_QS, TABLE_US, paper_crossover_altitude_m
 from flexsim.linear.scorecard import crossover_altitude, critical_altitude, trend_signs
@@ -179,19 +179,26 @@ def _sign(s: int | None) -> str:
     return {1: "+", -1: "-", 0: "0", None: "n/a"}[s]
 
 
-def sweep_report(rows: list[dict], kind: str) -> tuple[list[str], dict]:
-    """Text lines and the JSON scorecard of ``flexsim sweep --turn|--climb`` beside the paper's trends."""
+def sweep_report(rows: list[dict], kind: str, paper_aircraft: bool = True) -> tuple[list[str], dict]:
+    """Text lines and the JSON scorecard of ``flexsim sweep --turn|--climb`` beside the paper's trends.
+
+    ``paper_aircraft=False`` (any aircraft but the paper's): the trends and glide points alone, nothing of the paper."""
     signs = trend_signs(rows, kind)
+    if not paper_aircraft:
+        signs = [replace(t, paper_sign=None, match=None) for t in signs]
     per = "km" if kind == "turn" else "deg"
     x = "R" if kind == "turn" else "gamma"
     lines = ["", f"Trend scorecard ({kind}; sign of the least-squares slope over the study, 0 = change over the range below the "
              "search resolution, 1e-4 in M_F or rad/s; change = slope x range, [-] or [rad/s]; paper: its text to Figs. 7-10, 12-15)",
              f"{'model':<6} {'h [m]':>6} {'quantity':<16} {'slope':>12} {'unit':<12} {'change':>10} {'sign':>5} {'paper':>6}  match"]
+    if not paper_aircraft:
+        lines[1] = lines[1].split("; paper:")[0] + ")"
+        lines[2] = lines[2].split(" paper")[0].rstrip()
     for t in signs:
         mark = "" if t.match is None else ("yes" if t.match else "NO")
         unit = f"1/{per}" if t.quantity.startswith("dM_F") else f"rad/s/{per}"
-        lines.append(f"{t.model:<6} {t.altitude_m:6.0f} {t.quantity:<16} {t.slope:12.4e} {unit:<12} {t.change:+10.5f} {_sign(t.sign):>5} "
-                     f"{_sign(t.paper_sign):>6}  {mark}")
+        line = f"{t.model:<6} {t.altitude_m:6.0f} {t.quantity:<16} {t.slope:12.4e} {unit:<12} {t.change:+10.5f} {_sign(t.sign):>5}"
+        lines.append(line + (f" {_sign(t.paper_sign):>6}  {mark}" if paper_aircraft else ""))
     score: dict = {"kind": kind, "trends": [t.as_dict() for t in signs]}
     for model in sorted({t.model for t in signs}):
         judged = [t for t in signs if t.model == model and t.match is not None]
@@ -218,5 +225,8 @@ def sweep_report(rows: list[dict], kind: str) -> tuple[list[str], dict]:
         score["glide"] = glides
         paper["glide_9144_US"] = {"gamma_deg": GLIDE_9144[0], "mach": GLIDE_9144[1], "omega_rad_s": GLIDE_9144[2]}
         lines.append(f"paper glide at 9144 m (US): gamma = {GLIDE_9144[0]} deg, M_F = {GLIDE_9144[1]}, omega_F = {GLIDE_9144[2]} rad/s")
+    if not paper_aircraft:
+        lines = [ln for ln in lines if "paper" not in ln]
+        return lines, {"scorecard": score}
     return lines, {"scorecard": score, "paper": paper}
 
