@@ -16,6 +16,7 @@ import numpy as np
 from flexsim._kernels.drag import body_force, parasite_drag
 from flexsim._kernels.isa import _geopotential, _sound_speed, dcm_321, isa_scalar
 from flexsim._kernels.layout import (ACTIVE, ALL_ACTIVE, C_EL, EULER_FIXED, FLOATS, HAS_AERO, HAS_BODIES, HAS_DAMPING,
+                                     HAS_INERTIA_OFFSET, INERTIA_DQ,
                                      HAS_DRAG, INFLOW_START, K_BENDING, K_TORSION, M0, M2, H, N_INFLOW, N_V, NQ, NXI,
                                      Q_FROZEN, Q_START, RIGID, SEMICHORD, SOLVE_PERM, SOLVE_PTR, THRUST_T0, THRUST_T1,
                                      USE_FROZEN, V_FIXED, VEL_START, XI_FROZEN, XI_START, _f1, _f2, _f3, _f4, _flag,
@@ -86,7 +87,10 @@ def assemble(F, I, x, u, wind_c, has_wind):
     """
     nq = _flag(I, NQ)
     pos, eul, q, xi, vel = unpack(F, I, x)
-    m, dtdq, mdot_v = inertia(_f2(F, I, M0), _f3(F, I, H), _f4(F, I, M2), vel, q, vel[6:6 + nq])
+    q_inertia = q
+    if _flag(I, HAS_INERTIA_OFFSET):  # M(q), dT/dq, M_dot at q + dq (flexsim.model.terms.Terms.inertia_q_offset_m)
+        q_inertia = q + _f1(F, I, INERTIA_DQ)
+    m, dtdq, mdot_v = inertia(_f2(F, I, M0), _f3(F, I, H), _f4(F, I, M2), vel, q_inertia, vel[6:6 + nq])
     n_v = vel.shape[0]
     nxi = xi.shape[0]
     p = np.empty(n_v)  # M V

@@ -43,7 +43,7 @@ FLOAT_FIELDS = (
     ("semichord", 1), ("ab", 1), ("k0", 1), ("pr_w", 1), ("width", 1), ("cd0", 1), ("flap_sign", 1), ("paper_strips", 1),
     ("n_over_d_x", 1), ("flap_w", 2), ("d", 2), ("n", 2), ("strip_dcm", 3), ("strip_pos", 2), ("a_inv", 2), ("a_inv_c", 1),
     ("b_vec", 1),
-    # wing downwash at the tail: [d epsilon/d alpha at M -> 0]; wing weights and n . z_body of the tail strips
+    # [wing downwash gradient at the tail at M -> 0, frozen Mach of beta (nan: none)]; wing weights; n . z_body of the tail strips
     ("aero_floats", 1), ("dw_wing_weight", 1), ("dw_tail_nz", 1),
     # parasite drag items
     ("drag_area", 1), ("drag_g0", 3), ("drag_g1", 4), ("drag_offset", 2),
@@ -51,6 +51,10 @@ FLOAT_FIELDS = (
     ("body_vol_dk", 1), ("body_g0", 3), ("body_g1", 4), ("body_offset", 2), ("body_axis", 2),
     # the pitch part of the strips' apparent mass per unit density, sum_j pi b^4 w / 8 (p^T B)^T (p^T B) [m^4]
     ("apparent_pitch", 2),
+    # terms switched at construction (flexsim.model.terms.Terms): the inertia's offset dq (nq,) [m]; per strip the
+    # scales of the lift's tilt and of the drag in the force resolution and the drag per unit lift (n_s,); the
+    # velocity offset the strips see (3,) [m/s]
+    ("inertia_dq", 1), ("tilt_scale", 1), ("drag_scale", 1), ("drag_per_lift", 1), ("aero_dv", 1),
 )
 #: Int fields of I: flags and sizes (``ints``, entries below), active entries of V, flap control index per
 #: strip, unsteady strips; derived by :func:`pack` (:func:`strip_columns`, :func:`solve_structure`): the columns
@@ -59,17 +63,18 @@ INT_FIELDS = ("ints", "active", "flap_index", "inflow_idx", "strip_col_ptr", "st
 #: Entries of the ``ints`` field.
 INT_NAMES = ("n_v", "nq", "nxi", "rigid", "use_frozen", "all_active", "n_states", "vel_start", "inflow_start", "n_inflow",
              "has_aero", "has_drag", "has_damping", "q_start", "xi_start", "finite_state", "n_inflow_per_strip",
-             "prandtl_glauert", "paper", "has_bodies")
+             "prandtl_glauert", "paper", "has_bodies", "has_inertia_offset", "has_aero_dv")
 _NF = len(FLOAT_FIELDS)
 _HEAD = 5 * _NF + 2 * len(INT_FIELDS)
 (FLOATS, EULER_FIXED, V_FIXED, Q_FROZEN, XI_FROZEN, M0, H, M2, K_BENDING, K_TORSION, C_EL, THRUST_T0, THRUST_T1,
  PROJ_N0, PROJ_D0, PROJ_N1, PROJ_D1, PROJ_P, REL, INCIDENCE, SEMICHORD, AB, K0, PR_W, WIDTH, CD0, FLAP_SIGN,
  PAPER_STRIPS, N_OVER_D_X, FLAP_W, D, N, STRIP_DCM, STRIP_POS, A_INV, A_INV_C, B_VEC, AERO_FLOATS, DW_WING_WEIGHT,
  DW_TAIL_NZ, DRAG_AREA, DRAG_G0, DRAG_G1, DRAG_OFFSET, BODY_VOL_DK, BODY_G0, BODY_G1, BODY_OFFSET, BODY_AXIS,
- APPARENT_PITCH) = range(_NF)
+ APPARENT_PITCH, INERTIA_DQ, TILT_SCALE, DRAG_SCALE, DRAG_PER_LIFT, AERO_DV) = range(_NF)
 INTS, ACTIVE, FLAP_INDEX, INFLOW_IDX, STRIP_COL_PTR, STRIP_COLS, SOLVE_PERM, SOLVE_PTR = range(len(INT_FIELDS))
 (N_V, NQ, NXI, RIGID, USE_FROZEN, ALL_ACTIVE, N_STATES, VEL_START, INFLOW_START, N_INFLOW, HAS_AERO, HAS_DRAG,
- HAS_DAMPING, Q_START, XI_START, FINITE_STATE, N_PER_STRIP, PRANDTL_GLAUERT, PAPER, HAS_BODIES) = range(len(INT_NAMES))
+ HAS_DAMPING, Q_START, XI_START, FINITE_STATE, N_PER_STRIP, PRANDTL_GLAUERT, PAPER, HAS_BODIES, HAS_INERTIA_OFFSET,
+ HAS_AERO_DV) = range(len(INT_NAMES))
 
 
 class KernelData(NamedTuple):
@@ -87,9 +92,10 @@ def pack(floats: dict, ints: dict) -> KernelData:
     h (n_v, 3, nq); m2 (3, 3, nq, nq); k_bending (nq, nq); k_torsion (nxi, nxi); c_el (n_el, n_el); thrust_t0
     (n_v,); thrust_t1 (n_v, nq); proj_n0, proj_d0, proj_p (n_s, n_v); proj_n1, proj_d1 (n_s, 3, nq); rel
     (n_s, n_el); per-strip vectors (n_s,); flap_w, d, n, strip_pos (n_s, 3); strip_dcm (n_s, 3, 3); a_inv
-    (N, N); a_inv_c, b_vec (N,); aero_floats (1,); dw_wing_weight, dw_tail_nz (n_s,); drag_area (k,); drag_g0
+    (N, N); a_inv_c, b_vec (N,); aero_floats (2,) [d epsilon/d alpha at M -> 0, frozen Mach of the compressibility
+    (nan: the flight's)]; dw_wing_weight, dw_tail_nz (n_s,); drag_area (k,); drag_g0
     (k, 6, n_v); drag_g1 (k, 3, 3, nq); drag_offset (k, 3); body_vol_dk (k_b,); body_g0, body_g1, body_offset
-    like the drag's; body_axis (k_b, 3).
+    like the drag's; body_axis (k_b, 3); inertia_dq (nq,); tilt_scale, drag_scale, drag_per_lift (n_s,); aero_dv (3,).
     ``ints``: ``ints`` (len(INT_NAMES),) with the entries of :data:`INT_NAMES` (given as a dict by name),
     active, flap_index, inflow_idx. The sparsity fields are derived here from the float fields
     (:func:`strip_columns`, :func:`solve_structure`).

@@ -14,13 +14,34 @@ import math
 
 import numpy as np
 
-from flexsim._kernels.layout import (AB, AERO_FLOATS, A_INV, A_INV_C, APPARENT_PITCH, B_VEC, CD0, D, DW_TAIL_NZ,
+from flexsim._kernels.layout import (AB, AERO_DV, AERO_FLOATS, A_INV, A_INV_C, APPARENT_PITCH, B_VEC, CD0, D, DW_TAIL_NZ,
                                      DW_WING_WEIGHT, FINITE_STATE, FLAP_INDEX, FLAP_SIGN, FLAP_W, INCIDENCE, INFLOW_IDX,
-                                     K0, N, N_OVER_D_X, N_PER_STRIP, PAPER, PAPER_STRIPS, PR_W, PRANDTL_GLAUERT, PROJ_D0,
-                                     PROJ_D1, PROJ_N0, PROJ_N1, PROJ_P, REL, SEMICHORD, STRIP_COL_PTR, STRIP_COLS,
+                                     HAS_AERO_DV, K0, N, N_OVER_D_X, N_PER_STRIP, PAPER, PAPER_STRIPS, PR_W, PRANDTL_GLAUERT, PROJ_D0,
+                                     PROJ_D1, PROJ_N0, PROJ_N1, PROJ_P, REL, DRAG_PER_LIFT, DRAG_SCALE, TILT_SCALE, SEMICHORD, STRIP_COL_PTR, STRIP_COLS,
                                      WIDTH, _f1, _f2, _f3, _flag, _i1, kernel)
 
 _MACH_CAP = 0.95
+
+
+@kernel
+def aero_velocity(F, I, vel):
+    """The velocity V the strips see (n_v,): V with the body velocity offset dv (field ``aero_dv``, body axes
+    [m/s]) added to v when the model has one (:attr:`flexsim.model.terms.Terms.aero_velocity_offset_m_s`), else V."""
+    if not _flag(I, HAS_AERO_DV):
+        return vel
+    dv = _f1(F, I, AERO_DV)
+    out = vel.copy()
+    for a in range(3):
+        out[a] += dv[a]
+    return out
+
+
+@kernel
+def strip_mach(F, I, mach):
+    """The Mach number of the strips' compressibility factor: the frozen one (``aero_floats[1]``;
+    :attr:`flexsim.model.terms.Terms.compressibility_mach`) when the model has one, else the flight's ``mach``."""
+    frozen = _f1(F, I, AERO_FLOATS)[1]
+    return mach if math.isnan(frozen) else frozen
 
 
 @kernel
@@ -34,8 +55,9 @@ def strip_kinematics(F, I, q, xi, vel, lam, u, wind_c, has_wind):
 
     Returns p_mat (n_s, n_v), d_mat (n_s, n_v), alpha_el, u0, w_ea, w34 = w0 + w1/2, wc = w34 - lambda0,
     w_moment = w0 - lambda0 - w2/2, alpha_chord (elastic pitch + rigging + flap camber angle), adot
-    (arrays (n_s,) unless noted).
+    (arrays (n_s,) unless noted). V is the velocity the strips see (:func:`aero_velocity`).
     """
+    vel = aero_velocity(F, I, vel)
     semichord = _f1(F, I, SEMICHORD)
     ab = _f1(F, I, AB)
     incidence = _f1(F, I, INCIDENCE)
@@ -131,14 +153,20 @@ def circulatory(F, I, u0, wc, w_moment, alpha_chord, rho, mach):
     [N];  Cl_a = Cl_a0 / beta with beta = sqrt(1 - min(M, 0.95)^2) (Prandtl-Glauert, Glauert 1928) or 1
     (compressibility "none"). Flow angle relative to the component axes a0 = (w0 + w1/2 - lambda0)/u0 -
     alpha_chord (formed as products with the lift, without dividing by u0); drag = induced L alpha_e
-    (1 - Cl_a0/2 pi) + rho u0^2 b cd0 (module docstring of :mod:`flexsim.model.coupling`).
+    (1 - Cl_a0/2 pi) + rho u0^2 b cd0 (module docstring of :mod:`flexsim.model.coupling`). The flow-angle terms
+    of the resolution are scaled per strip (:class:`flexsim.model.terms.Terms`): lift x flow angle by
+    ``tilt_scale``, the drag by ``drag_scale``, plus ``drag_per_lift`` x L (the paper's fin drag law, eq. 30,
+    d_v = kappa l_v); 1, 1 and 0 in the full model. beta at :func:`strip_mach`.
     """
-    beta = compressibility_factor(_flag(I, PRANDTL_GLAUERT) != 0, mach)
+    beta = compressibility_factor(_flag(I, PRANDTL_GLAUERT) != 0, strip_mach(F, I, mach))
     beta_i = 1.0 if _flag(I, PAPER) else beta  # induced angle of the compressible lift (physical formulation)
     b = _f1(F, I, SEMICHORD)
     k0 = _f1(F, I, K0)
     ab = _f1(F, I, AB)
     cd0 = _f1(F, I, CD0)
+    tilt_scale = _f1(F, I, TILT_SCALE)
+    drag_scale = _f1(F, I, DRAG_SCALE)
+    drag_per_lift = _f1(F, I, DRAG_PER_LIFT)
     n_s = b.shape[0]
     lift = np.empty(n_s)
     moment = np.empty(n_s)
@@ -150,8 +178,9 @@ def circulatory(F, I, u0, wc, w_moment, alpha_chord, rho, mach):
         lift[j] = two_pi_rho_b * u0[j] * wc[j]
         moment[j] = 0.5 * two_pi_rho_b * b[j] * u0[j] * w_moment[j] + ab[j] * lift[j]
         flow = wc[j] - u0[j] * alpha_chord[j]  # u0 x flow angle [m/s]
-        lift_tilt[j] = two_pi_rho_b * wc[j] * flow
-        drag[j] = two_pi_rho_b * wc[j] * wc[j] * (1.0 - k0[j]) / beta_i + rho * u0[j] * u0[j] * b[j] * cd0[j]
+        lift_tilt[j] = tilt_scale[j] * (two_pi_rho_b * wc[j] * flow)
+        drag[j] = (drag_scale[j] * (two_pi_rho_b * wc[j] * wc[j] * (1.0 - k0[j]) / beta_i + rho * u0[j] * u0[j] * b[j] * cd0[j])
+                   + drag_per_lift[j] * lift[j])
         flow_angle[j] = flow / max(u0[j], 1.0)
     return lift, moment, lift_tilt, drag, flow_angle
 
@@ -177,8 +206,9 @@ def downwash_shift(F, I, vel, u0, wc, mach):
     gradient = _f1(F, I, AERO_FLOATS)[0]
     if gradient == 0.0:
         return out
+    vel = aero_velocity(F, I, vel)
     speed = math.sqrt(vel[0] * vel[0] + vel[1] * vel[1] + vel[2] * vel[2])
-    beta = compressibility_factor(_flag(I, PRANDTL_GLAUERT) != 0, mach)
+    beta = compressibility_factor(_flag(I, PRANDTL_GLAUERT) != 0, strip_mach(F, I, mach))
     eps = tail_downwash(_f1(F, I, DW_WING_WEIGHT), u0, wc, speed, beta, gradient)
     nz = _f1(F, I, DW_TAIL_NZ)
     for j in range(n_s):
