@@ -7,12 +7,51 @@ for the velocity of an attached point. Component axes, SI units.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
-from flexsim._kernels.layout import (BODY_AXIS, BODY_G0, BODY_G1, BODY_OFFSET, BODY_VOL_DK, DRAG_AREA, DRAG_G0,
-                                     DRAG_G1, DRAG_OFFSET, _f1, _f2, _f3, _f4, kernel)
+from flexsim._kernels.layout import _f1, _f2, _f3, _f4, kernel, packed, term_data
+
+
+@term_data
+@dataclasses.dataclass(frozen=True)
+class ParasiteDragData:
+    """The file's parasite-drag items (Raymer 2018 sec. 12.5; :class:`flexsim.model.drag.ParasiteDrag`): k items, each
+    a drag area at a point attached to a component, moving with it (maps as for the velocity of an attached point)."""
+
+    drag_area: np.ndarray = packed(1, "S C_D0 of each item (k,) [m^2]")
+    drag_g0: np.ndarray = packed(3, "velocity and rotation of the point per unit V at q = 0 (k, 6, n_v)")
+    drag_g1: np.ndarray = packed(4, "the q part of its velocity map in the omega columns (k, 3, 3, nq)")
+    drag_offset: np.ndarray = packed(2, "offset of the point from its attachment (k, 3) [m], component axes")
+    has_drag: int = packed(0, "1 with parasite-drag items", "flag")
+
+
+@term_data
+@dataclasses.dataclass(frozen=True)
+class SlenderBodyData:
+    """The file's slender bodies' Munk moments (Munk 1924, NACA Report 184; :class:`flexsim.model.bodies.SlenderBodies`)."""
+
+    body_vol_dk: np.ndarray = packed(1, "rho-free coefficient Vol (k2 - k1) of each body (k_b,) [m^3]")
+    body_g0: np.ndarray = packed(3, "velocity and rotation per unit V at q = 0 (k_b, 6, n_v)")
+    body_g1: np.ndarray = packed(4, "the q part of the velocity map (k_b, 3, 3, nq)")
+    body_offset: np.ndarray = packed(2, "offset from the attachment (k_b, 3) [m]")
+    body_axis: np.ndarray = packed(2, "unit axis of each body (k_b, 3), component axes")
+    has_bodies: int = packed(0, "1 with slender bodies", "flag")
+
+
+DRAG_AREA = ParasiteDragData.index["drag_area"]
+DRAG_G0 = ParasiteDragData.index["drag_g0"]
+DRAG_G1 = ParasiteDragData.index["drag_g1"]
+DRAG_OFFSET = ParasiteDragData.index["drag_offset"]
+HAS_DRAG = ParasiteDragData.index["has_drag"]
+BODY_VOL_DK = SlenderBodyData.index["body_vol_dk"]
+BODY_G0 = SlenderBodyData.index["body_g0"]
+BODY_G1 = SlenderBodyData.index["body_g1"]
+BODY_OFFSET = SlenderBodyData.index["body_offset"]
+BODY_AXIS = SlenderBodyData.index["body_axis"]
+HAS_BODIES = SlenderBodyData.index["has_bodies"]
 
 
 @kernel

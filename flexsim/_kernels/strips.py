@@ -10,15 +10,118 @@ p = d x n; SI units, radians.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
-from flexsim._kernels.layout import (AB, AERO_DV, AERO_FLOATS, A_INV, A_INV_C, APPARENT_PITCH, B_VEC, CD0, D, DW_TAIL_NZ,
-                                     DW_WING_WEIGHT, FINITE_STATE, FLAP_INDEX, FLAP_SIGN, FLAP_W, INCIDENCE, INFLOW_IDX,
-                                     HAS_AERO_DV, K0, N, N_OVER_D_X, N_PER_STRIP, PAPER, PAPER_STRIPS, PR_W, PRANDTL_GLAUERT, PROJ_D0,
-                                     PROJ_D1, PROJ_N0, PROJ_N1, PROJ_P, REL, DRAG_PER_LIFT, DRAG_SCALE, TILT_SCALE, SEMICHORD, STRIP_COL_PTR, STRIP_COLS,
-                                     WIDTH, _f1, _f2, _f3, _flag, _i1, kernel)
+from flexsim._kernels.layout import STRIP_COL_PTR, STRIP_COLS, _f1, _f2, _f3, _flag, _i1, kernel, packed, term_data
+
+
+@term_data
+@dataclasses.dataclass(frozen=True)
+class StripData:
+    """The strips' geometry, kinematic maps and airload coefficients (paper eqs. 17-31, built by
+    :class:`flexsim.model.coupling.AeroCoupling`); n_s strips, strip axes d, n, p, component axes, V = [v, omega, s, eta]."""
+
+    proj_n0: np.ndarray = packed(2, "n^T A at q = 0 (n_s, n_v): plunge velocity per unit V [-, m]")
+    proj_d0: np.ndarray = packed(2, "d^T A at q = 0 (n_s, n_v): chordwise velocity per unit V")
+    proj_n1: np.ndarray = packed(3, "the q part of n^T A in the omega columns (n_s, 3, nq) [-]")
+    proj_d1: np.ndarray = packed(3, "the q part of d^T A in the omega columns (n_s, 3, nq) [-]")
+    proj_p: np.ndarray = packed(2, "p^T B (n_s, n_v): pitch rate per unit V [1/m, -]")
+    rel: np.ndarray = packed(2, "elastic pitch per unit [q, xi] (n_s, n_el) [rad/m, -]")
+    incidence: np.ndarray = packed(1, "rigging incidence alpha_r (n_s,) [rad]")
+    semichord: np.ndarray = packed(1, "b (n_s,) [m]")
+    ab: np.ndarray = packed(1, "a b (n_s,): elastic axis behind mid-chord [m]")
+    k0: np.ndarray = packed(1, "Cl_a0 / 2 pi (n_s,) [-]")
+    pr_w: np.ndarray = packed(1, "pi b^2 w (n_s,): apparent mass per unit density [m^3]")
+    width: np.ndarray = packed(1, "strip width w (n_s,) [m]")
+    cd0: np.ndarray = packed(1, "section profile drag coefficient (n_s,) [-]")
+    flap_sign: np.ndarray = packed(1, "sign of the control deflection on the strip (n_s,) [-]")
+    paper_strips: np.ndarray = packed(1, "1 on strips resolved as the paper's eq. 28 (n_s,)")
+    n_over_d_x: np.ndarray = packed(1, "n_x / d_x, body-x components of n and d (n_s,) [-]")
+    flap_w: np.ndarray = packed(2, "flap camber coefficients f0, f1, f2 (n_s, 3) [-]")
+    d: np.ndarray = packed(2, "chord direction d in component axes (n_s, 3)")
+    n: np.ndarray = packed(2, "plunge direction n in component axes (n_s, 3)")
+    strip_dcm: np.ndarray = packed(3, "component-to-body rotation of each strip (n_s, 3, 3)")
+    strip_pos: np.ndarray = packed(2, "elastic-axis point in body axes at q = 0 (n_s, 3) [m]")
+    apparent_pitch: np.ndarray = packed(2, "sum_j pi b^4 w / 8 (p^T B)^T (p^T B) (n_v, n_v) [m^4]")
+    tilt_scale: np.ndarray = packed(1, "scale of the lift's tilt by the flow angle (n_s,) (Terms.force_resolution)")
+    drag_scale: np.ndarray = packed(1, "scale of the drag (n_s,) (Terms.force_resolution, fin_drag_per_lift)")
+    drag_per_lift: np.ndarray = packed(1, "drag per unit lift kappa (n_s,) (Terms.fin_drag_per_lift, eq. 30)")
+    aero_dv: np.ndarray = packed(1, "body velocity offset the strips see (3,) [m/s] (Terms.aero_velocity_offset_m_s)")
+    strip_mach: np.ndarray = packed(1, "[Mach of a frozen compressibility factor] (1,), nan: the flight's")
+    flap_index: np.ndarray = packed(1, "index in u of each strip's control surface, 0: none (n_s,)", "ints")
+    prandtl_glauert: int = packed(0, "1: Prandtl-Glauert factor on Cl_alpha (Glauert 1928)", "flag")
+    paper: int = packed(0, "1: the paper's force resolution (eq. 28) on the paper_strips", "flag")
+    has_aero_dv: int = packed(0, "1 when aero_dv is applied", "flag")
+
+
+@term_data
+@dataclasses.dataclass(frozen=True)
+class PetersData:
+    """Finite-state inflow of the unsteady strips (Peters, Karunamoorthy & Cao 1995; docs/reference/aero-kinematics.md
+    section 2.1): A lambda_dot + (u0/b) lambda = c (w0_dot + w1_dot/2), lambda0 = 1/2 b^T lambda."""
+
+    a_inv: np.ndarray = packed(2, "A^-1 (N, N) [-]")
+    a_inv_c: np.ndarray = packed(1, "A^-1 c (N,) [-]")
+    b_vec: np.ndarray = packed(1, "b (N,) [-]")
+    inflow_idx: np.ndarray = packed(1, "the unsteady strips (n_u,)", "ints")
+    finite_state: int = packed(0, "1: the unsteady model (inflow states)", "flag")
+    n_inflow_per_strip: int = packed(0, "N, inflow states per unsteady strip", "flag")
+
+
+@term_data
+@dataclasses.dataclass(frozen=True)
+class DownwashData:
+    """The wing's downwash at the horizontal tail (USAF DATCOM sec. 4.4.1; :func:`tail_downwash`; not in the paper)."""
+
+    downwash_gradient: np.ndarray = packed(1, "[(d epsilon / d alpha) at M -> 0] (1,) [-] (0: none)")
+    dw_wing_weight: np.ndarray = packed(1, "Cl_a0 b w of each wing strip over their sum, 0 elsewhere (n_s,) [-]")
+    dw_tail_nz: np.ndarray = packed(1, "n . z_body of the tail strips, 0 elsewhere (n_s,) [-]")
+
+
+# the fields' indices (kernel constants, generated by term_data)
+PROJ_N0 = StripData.index["proj_n0"]
+PROJ_D0 = StripData.index["proj_d0"]
+PROJ_N1 = StripData.index["proj_n1"]
+PROJ_D1 = StripData.index["proj_d1"]
+PROJ_P = StripData.index["proj_p"]
+REL = StripData.index["rel"]
+INCIDENCE = StripData.index["incidence"]
+SEMICHORD = StripData.index["semichord"]
+AB = StripData.index["ab"]
+K0 = StripData.index["k0"]
+PR_W = StripData.index["pr_w"]
+WIDTH = StripData.index["width"]
+CD0 = StripData.index["cd0"]
+FLAP_SIGN = StripData.index["flap_sign"]
+PAPER_STRIPS = StripData.index["paper_strips"]
+N_OVER_D_X = StripData.index["n_over_d_x"]
+FLAP_W = StripData.index["flap_w"]
+D = StripData.index["d"]
+N = StripData.index["n"]
+STRIP_DCM = StripData.index["strip_dcm"]
+STRIP_POS = StripData.index["strip_pos"]
+APPARENT_PITCH = StripData.index["apparent_pitch"]
+TILT_SCALE = StripData.index["tilt_scale"]
+DRAG_SCALE = StripData.index["drag_scale"]
+DRAG_PER_LIFT = StripData.index["drag_per_lift"]
+AERO_DV = StripData.index["aero_dv"]
+STRIP_MACH = StripData.index["strip_mach"]
+FLAP_INDEX = StripData.index["flap_index"]
+PRANDTL_GLAUERT = StripData.index["prandtl_glauert"]
+PAPER = StripData.index["paper"]
+HAS_AERO_DV = StripData.index["has_aero_dv"]
+A_INV = PetersData.index["a_inv"]
+A_INV_C = PetersData.index["a_inv_c"]
+B_VEC = PetersData.index["b_vec"]
+INFLOW_IDX = PetersData.index["inflow_idx"]
+FINITE_STATE = PetersData.index["finite_state"]
+N_PER_STRIP = PetersData.index["n_inflow_per_strip"]
+DOWNWASH_GRADIENT = DownwashData.index["downwash_gradient"]
+DW_WING_WEIGHT = DownwashData.index["dw_wing_weight"]
+DW_TAIL_NZ = DownwashData.index["dw_tail_nz"]
 
 _MACH_CAP = 0.95
 
@@ -38,9 +141,9 @@ def aero_velocity(F, I, vel):
 
 @kernel
 def strip_mach(F, I, mach):
-    """The Mach number of the strips' compressibility factor: the frozen one (``aero_floats[1]``;
+    """The Mach number of the strips' compressibility factor: the frozen one (field ``strip_mach``;
     :attr:`flexsim.model.terms.Terms.compressibility_mach`) when the model has one, else the flight's ``mach``."""
-    frozen = _f1(F, I, AERO_FLOATS)[1]
+    frozen = _f1(F, I, STRIP_MACH)[0]
     return mach if math.isnan(frozen) else frozen
 
 
@@ -203,7 +306,7 @@ def downwash_shift(F, I, vel, u0, wc, mach):
     moment's downwash, not the inflow forcing or the apparent mass). Zero without a downwash gradient."""
     n_s = u0.shape[0]
     out = np.zeros(n_s)
-    gradient = _f1(F, I, AERO_FLOATS)[0]
+    gradient = _f1(F, I, DOWNWASH_GRADIENT)[0]
     if gradient == 0.0:
         return out
     vel = aero_velocity(F, I, vel)

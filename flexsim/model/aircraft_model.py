@@ -239,8 +239,8 @@ class AircraftModel(Immutable):
         nan = float("nan")
         inertia = st.inertia
         floats = dict(
-            floats=[self.gravity_m_s2, self.altitude_m, nan if self._rho_fixed is None else self._rho_fixed,
-                    nan if self.aero_density_kg_m3 is None else self.aero_density_kg_m3],
+            g=[self.gravity_m_s2], air=[self.altitude_m, nan if self._rho_fixed is None else self._rho_fixed,
+                                        nan if self.aero_density_kg_m3 is None else self.aero_density_kg_m3],
             euler_fixed=self._euler_fixed, v_fixed=self._v_fixed, q_frozen=self._q_frozen, xi_frozen=self._xi_frozen,
             m0=inertia.m0, h=inertia.h, m2=inertia.m2, k_bending=st.k_bending, k_torsion=st.k_torsion,
             c_el=np.zeros((n_el, n_el)) if self._c_el is None else self._c_el, thrust_t0=st.thrust.t0,
@@ -248,7 +248,7 @@ class AircraftModel(Immutable):
             inertia_dq=np.zeros(d.nq) if self.terms.inertia_q_offset_m is None else np.asarray(self.terms.inertia_q_offset_m),
             proj_n0=np.zeros((0, d.n_v)), proj_d0=np.zeros((0, d.n_v)), proj_p=np.zeros((0, d.n_v)), rel=np.zeros((0, n_el)),
             proj_n1=np.zeros((0, 3, d.nq)), proj_d1=np.zeros((0, 3, d.nq)), a_inv=np.zeros((1, 1)), a_inv_c=np.zeros(1),
-            b_vec=np.zeros(1), aero_floats=[0.0, nan], drag_g0=np.zeros((0, 6, d.n_v)), drag_g1=np.zeros((0, 3, 3, d.nq)),
+            b_vec=np.zeros(1), downwash_gradient=[0.0], strip_mach=[nan], drag_g0=np.zeros((0, 6, d.n_v)), drag_g1=np.zeros((0, 3, 3, d.nq)),
             body_g0=np.zeros((0, 6, d.n_v)), body_g1=np.zeros((0, 3, 3, d.nq)))
         flags = dict(n_v=d.n_v, nq=d.nq, nxi=d.nxi, rigid=lay.rigid, use_frozen=self.variant is Variant.QUASI_RIGID,
                      all_active=self._all_active, n_states=lay.n_states, vel_start=lay.velocity.start,
