@@ -16,9 +16,9 @@ Modules (every public name is importable from ``flexsim._kernels`` itself):
 * one module per term of eq. 33, each with its data class and kernel: :mod:`~flexsim._kernels.structure`
   (inertia: M(q), dT/dq, dM/dt V, eqs. 8-10, 33), :mod:`~flexsim._kernels.elasticity` (eqs. 14-16),
   :mod:`~flexsim._kernels.gravity` (eq. 32), :mod:`~flexsim._kernels.thrust` (eqs. 17-24);
-* :mod:`~flexsim._kernels.strips` -- strip kinematics and airloads, apparent mass, Peters inflow, tail downwash
-  (eqs. 17-31);
-* :mod:`~flexsim._kernels.drag` -- parasite drag items and slender-body moments;
+* :mod:`~flexsim._kernels.strips` -- strip kinematics and airloads, apparent mass, Peters inflow (eqs. 17-31);
+* :mod:`~flexsim._kernels.downwash` -- the wing's downwash at the tail (DATCOM 4.4.1);
+* :mod:`~flexsim._kernels.drag` -- parasite drag items; :mod:`~flexsim._kernels.bodies` -- slender-body moments;
 * :mod:`~flexsim._kernels.wind` -- gusts and Dryden fields as arrays and their evaluation;
 * :mod:`~flexsim._kernels.solve` -- Gaussian and block elimination of E V_dot = f;
 * :mod:`~flexsim._kernels.equations` -- assembly of E V_dot = f and the right-hand side (eqs. 4, 33).
@@ -47,7 +47,9 @@ axes x_i y_i z_i (paper Table 1), strip axes d (chord, to the trailing edge), n 
 
 from __future__ import annotations
 
-from flexsim._kernels.drag import body_force, body_moments, munk_moments, parasite_drag, point_velocity
+from flexsim._kernels.bodies import body_force, body_moments, munk_moments
+from flexsim._kernels.downwash import downwash_velocity
+from flexsim._kernels.drag import parasite_drag, point_velocity
 from flexsim._kernels.equations import (_rhs, _rhs_wind, aerodynamic_force, air, assemble, rhs, rhs_batch,
                                         rhs_strip_wind, strip_wind_at, unpack)
 from flexsim._kernels.isa import (_EXPONENT, _SCALE, EARTH_RADIUS, G0, GAMMA, GAS_CONSTANT, H_TROPOPAUSE, LAPSE_RATE,

@@ -4,8 +4,9 @@ Tuzcu & Nguyen (2014) "Flutter of Maneuvering Aircraft": eqs. (2)-(4) kinematics
 motion. Each term of eq. 33 is a module of this package with its data class and kernel:
 :mod:`~flexsim._kernels.structure` (inertia, eqs. 8-10), :mod:`~flexsim._kernels.elasticity` (eqs. 14-16),
 :mod:`~flexsim._kernels.gravity` (eq. 32), :mod:`~flexsim._kernels.thrust` (eqs. 17-24),
-:mod:`~flexsim._kernels.strips` (strip airloads, Peters inflow, tail downwash, eqs. 17-31),
-:mod:`~flexsim._kernels.drag` (parasite drag, slender bodies), :mod:`~flexsim._kernels.wind` (gusts, turbulence);
+:mod:`~flexsim._kernels.strips` (strip airloads and Peters inflow, eqs. 17-31), :mod:`~flexsim._kernels.downwash`
+(the wing's downwash at the tail), :mod:`~flexsim._kernels.drag` (parasite drag), :mod:`~flexsim._kernels.bodies`
+(slender bodies), :mod:`~flexsim._kernels.wind` (gusts, turbulence);
 :mod:`~flexsim._kernels.solve` eliminates E V_dot = f. Body axes xyz (x forward, y right, z down), inertial NED;
 SI units, radians.
 """
@@ -17,7 +18,8 @@ import math
 
 import numpy as np
 
-from flexsim._kernels.drag import HAS_BODIES, HAS_DRAG, body_force, parasite_drag
+from flexsim._kernels.bodies import HAS_BODIES, body_force
+from flexsim._kernels.drag import HAS_DRAG, parasite_drag
 from flexsim._kernels.elasticity import elastic_force
 from flexsim._kernels.gravity import gravity_force
 from flexsim._kernels.isa import _geopotential, _sound_speed, dcm_321, isa_scalar
