@@ -62,7 +62,12 @@ def packed(rank: int, doc: str, kind: str = "float"):
 
 def term_data(cls):
     """Register a term's frozen data class (class decorator): each field gets the next index of its kind, read back
-    with ``cls.index[name]`` (module-level constants of the kernels, frozen into their machine code)."""
+    with ``cls.index[name]`` (module-level constants of the kernels, frozen into their machine code).
+
+    A class may build its own fields from the model: a static method ``fields_of(model) -> (floats, flags)`` (dicts
+    by field name) is called by :class:`flexsim.model.aircraft_model.AircraftModel` when it packs its data (the
+    model's ``terms``, ``structure`` and ``layout`` are set by then); without it the model's builders fill the
+    fields."""
     if not (dataclasses.is_dataclass(cls) and cls.__dataclass_params__.frozen):
         raise TypeError(f"{cls.__name__}: a term's data must be a frozen dataclass")
     taken = {n for fields in _FIELDS.values() for n, _, _ in fields}

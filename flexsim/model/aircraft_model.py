@@ -266,6 +266,12 @@ class AircraftModel(Immutable):
             floats.update(self.parasite_drag.kernel_fields)
         if self.bodies is not None:
             floats.update(self.bodies.kernel_fields)
+        for term in _k.TERMS:  # terms that build their own data from the model (flexsim._kernels.layout.term_data)
+            build = getattr(term, "fields_of", None)
+            if build is not None:
+                term_floats, term_flags = build(self)
+                floats.update(term_floats)
+                flags.update(term_flags)
         ints["ints"] = flags
         return _k.pack(floats, ints)
 
