@@ -15,7 +15,8 @@ Modules (every public name is importable from ``flexsim._kernels`` itself):
 * :mod:`~flexsim._kernels.isa` -- ISA 1976 constants and scalar state, the 3-2-1 rotation;
 * one module per term of eq. 33, each with its data class and kernel: :mod:`~flexsim._kernels.structure`
   (inertia: M(q), dT/dq, dM/dt V, eqs. 8-10, 33), :mod:`~flexsim._kernels.elasticity` (eqs. 14-16),
-  :mod:`~flexsim._kernels.gravity` (eq. 32), :mod:`~flexsim._kernels.thrust` (eqs. 17-24);
+  :mod:`~flexsim._kernels.gravity` (eq. 32), :mod:`~flexsim._kernels.thrust` (eqs. 17-24),
+  :mod:`~flexsim._kernels.gyroscopic` (the engines' rotors);
 * :mod:`~flexsim._kernels.strips` -- strip kinematics and airloads, apparent mass, Peters inflow (eqs. 17-31);
 * :mod:`~flexsim._kernels.downwash` -- the wing's downwash at the tail (DATCOM 4.4.1);
 * :mod:`~flexsim._kernels.drag` -- parasite drag items; :mod:`~flexsim._kernels.bodies` -- slender-body moments;
@@ -61,6 +62,7 @@ from flexsim._kernels.strips import (aero_evaluate, circulatory, compressibility
                                      strip_kinematics, tail_downwash)
 from flexsim._kernels.elasticity import elastic_force
 from flexsim._kernels.gravity import gravity_force
+from flexsim._kernels.gyroscopic import gyroscopic_force
 from flexsim._kernels.structure import inertia, inertia_term
 from flexsim._kernels.thrust import thrust_force
 from flexsim._kernels.wind import (NO_WIND, BatchWind, WindData, air_velocity_rows, dryden_along_track, dryden_track,
@@ -72,4 +74,4 @@ __all__ = ["TERMS", "float_fields", "int_fields", "flag_names", "KernelData", "p
            "strip_kinematics", "circulatory", "tail_downwash", "downwash_shift", "aero_evaluate", "inflow_rate",
            "point_velocity", "parasite_drag", "munk_moments", "body_moments", "body_force", "strip_positions", "strip_wind",
            "strip_wind_at", "wind_ned", "gust_profile", "gust_profiles", "dryden_along_track", "dryden_track", "isa_scalar",
-           "dcm_321", "inertia_term", "elastic_force", "gravity_force", "thrust_force", "solve", "block_solve", "blocks_decoupled", "strip_columns", "solve_structure", "compressibility_factor"]
+           "dcm_321", "inertia_term", "elastic_force", "gravity_force", "thrust_force", "gyroscopic_force", "solve", "block_solve", "blocks_decoupled", "strip_columns", "solve_structure", "compressibility_factor"]

@@ -4,6 +4,7 @@ Tuzcu & Nguyen (2014) "Flutter of Maneuvering Aircraft": eqs. (2)-(4) kinematics
 motion. Each term of eq. 33 is a module of this package with its data class and kernel:
 :mod:`~flexsim._kernels.structure` (inertia, eqs. 8-10), :mod:`~flexsim._kernels.elasticity` (eqs. 14-16),
 :mod:`~flexsim._kernels.gravity` (eq. 32), :mod:`~flexsim._kernels.thrust` (eqs. 17-24),
+:mod:`~flexsim._kernels.gyroscopic` (the engines' rotors, Etkin & Reid 1996),
 :mod:`~flexsim._kernels.strips` (strip airloads and Peters inflow, eqs. 17-31), :mod:`~flexsim._kernels.downwash`
 (the wing's downwash at the tail), :mod:`~flexsim._kernels.drag` (parasite drag), :mod:`~flexsim._kernels.bodies`
 (slender bodies), :mod:`~flexsim._kernels.wind` (gusts, turbulence);
@@ -22,6 +23,7 @@ from flexsim._kernels.bodies import HAS_BODIES, body_force
 from flexsim._kernels.drag import HAS_DRAG, parasite_drag
 from flexsim._kernels.elasticity import elastic_force
 from flexsim._kernels.gravity import gravity_force
+from flexsim._kernels.gyroscopic import gyroscopic_force
 from flexsim._kernels.isa import _geopotential, _sound_speed, dcm_321, isa_scalar
 from flexsim._kernels.layout import SOLVE_PERM, SOLVE_PTR, _f1, _flag, _i1, kernel, packed, term_data
 from flexsim._kernels.solve import block_solve
@@ -130,11 +132,12 @@ def air(F, I, x):
 def assemble(F, I, x, u, wind_c, has_wind):
     """E = M(q) + M_a and f of E V_dot = f (full size; paper eq. 33 in velocity form, docs/design.md):
 
-        E = M(q) + M_a,   f = Q_inertia + Q_elastic + Q_g + Q_T + Q_a + Q_D + Q_B
+        E = M(q) + M_a,   f = Q_inertia + Q_elastic + Q_g + Q_T + Q_gyro + Q_a + Q_D + Q_B
 
     Q_inertia = -M_dot V + g(V, p) + [0, 0, dT/dq, 0] (:func:`inertia_term`), Q_elastic = -K [0, 0, q, xi] -
     C_el V_el (:func:`elastic_force`), Q_g = M(q) [g_b; 0] (:func:`gravity_force`), Q_T = T_e (t0 + t1 q)
-    (:func:`thrust_force`), the strips' airloads Q_a with their apparent mass M_a (:func:`aero_evaluate`), the
+    (:func:`thrust_force`), the engines' gyroscopic moment Q_gyro = [0; -omega x h_e; 0] (:func:`gyroscopic_force`),
+    the strips' airloads Q_a with their apparent mass M_a (:func:`aero_evaluate`), the
     parasite drag Q_D (:func:`parasite_drag`) and the slender bodies' Munk moments Q_B (:func:`body_force`).
 
     Returns m (n_v, n_v), f (n_v,), row0 (n_s, n_v), w_ea_x (n_s,), u0 (n_s,) (the inflow's terms).
@@ -144,6 +147,7 @@ def assemble(F, I, x, u, wind_c, has_wind):
     elastic_force(F, I, q, xi, vel, f)
     gravity_force(F, I, m, eul, f)
     thrust_force(F, I, q, u, f)
+    gyroscopic_force(F, I, vel, f)
     row0, w_ea_x, u0 = aerodynamic_terms(F, I, x, q, xi, vel, u, wind_c, has_wind, m, f)
     return m, f, row0, w_ea_x, u0
 

@@ -91,6 +91,10 @@ class Terms:
     thrust_follows_deflection : bool
         True (default): the thrust's generalized force T_e (t0 + t1 q) follows the bending of the engines' mounts
         (eqs. 17-24); False: T_e t0, the thrust line of the undeformed aircraft (no thrust stiffness).
+    engine_angular_momentum : tuple of float or None
+        h_e (3,) [kg m^2/s], body axes: the angular momentum of the engines' rotors, whose gyroscopic moment
+        -omega x h_e enters the moment equations (:mod:`flexsim._kernels.gyroscopic`; Etkin & Reid 1996, ch. 4). None
+        (default): no gyroscopic term (the paper has none).
     inertia_q_offset_m : tuple of float or None
         dq (nq,) [m]: the inertia term (M(q), dT/dq and M_dot V, eqs. 8-10, 33, and the gravity that acts through
         M(q)) evaluated at q + dq instead of q, the rest of the model at q. E.g. the level flight's static deflection
@@ -110,6 +114,7 @@ class Terms:
     force_resolution: str = "full"
     fin_drag_per_lift: float | None = None
     thrust_follows_deflection: bool = True
+    engine_angular_momentum: tuple[float, float, float] | None = None
     inertia_q_offset_m: tuple[float, ...] | None = None
     aero_velocity_offset_m_s: tuple[float, float, float] | None = None
 
@@ -144,6 +149,8 @@ class Terms:
             object.__setattr__(self, "fin_drag_per_lift", float(k))
         if not isinstance(self.thrust_follows_deflection, bool):
             raise ValueError(f"thrust_follows_deflection = {self.thrust_follows_deflection!r}: must be True or False")
+        object.__setattr__(self, "engine_angular_momentum",
+                           _finite_tuple("engine_angular_momentum", self.engine_angular_momentum, 3))
         object.__setattr__(self, "inertia_q_offset_m", _finite_tuple("inertia_q_offset_m", self.inertia_q_offset_m))
         object.__setattr__(self, "aero_velocity_offset_m_s",
                            _finite_tuple("aero_velocity_offset_m_s", self.aero_velocity_offset_m_s, 3))
