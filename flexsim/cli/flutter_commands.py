@@ -47,7 +47,7 @@ def _trim(args: argparse.Namespace) -> int:
     roots = _roots(aircraft, point, args.roots, args.formulation) if args.roots else None
     if args.json:
         extra = {"roots": roots} if roots is not None else {}
-        print(json_text({**out, "formulation": model.formulation, **extra}))
+        print(json_text({**out, "formulation": model.formulation, "terms": model.terms.record(), **extra}))
         return 0
     print(f"Trim of {aircraft.name} ({model.formulation} force resolution): {point.manoeuvre.describe()}")
     for key, value in out.items():

@@ -74,6 +74,8 @@ class FlutterPoint:
         flight altitude unless the analysis fixed it (``linear_aero_density_kg_m3``).
     aero_density_fixed : bool
         True when that density was fixed by the analysis rather than the flight's true density.
+    terms : dict
+        The physical terms of the eigen-analysis's model (:meth:`flexsim.model.terms.Terms.record`).
     rigid_instabilities : tuple of (float, complex, str)
         (Mach, eigenvalue, dominant DOF) of unstable rigid-body modes met during the search.
     evaluations : int
@@ -97,6 +99,7 @@ class FlutterPoint:
     formulation: str = "physical"
     aero_density_kg_m3: float = math.nan
     aero_density_fixed: bool = False
+    terms: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -371,6 +374,7 @@ class FlutterAnalysis:
             aero_density_kg_m3=(float(isa_density(float(manoeuvre.altitude_m))) if self.linear_aero_density_kg_m3 is None
                                 else float(self.linear_aero_density_kg_m3)),
             aero_density_fixed=self.linear_aero_density_kg_m3 is not None,
+            terms=self.qs_linear.terms.record(),
             rigid_instabilities=tuple(state.rigid),
             evaluations=state.n,
         )

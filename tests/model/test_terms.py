@@ -166,3 +166,14 @@ def test_aero_velocity_offset(gtm, point):
     expected = plain.aerodynamic_force(x2, u)
     np.testing.assert_allclose(offset.aerodynamic_force(x, u), expected, rtol=0, atol=1e-12 * np.max(np.abs(expected)))
     assert np.max(np.abs(offset.aerodynamic_force(x, u) - plain.aerodynamic_force(x, u))) > 1e-3 * np.max(np.abs(expected))
+
+
+def test_flutter_points_record_their_terms(gtm):
+    """A flutter point names the terms of its eigen-analysis's model (here the fixed density of the linearised
+    aerodynamics)."""
+    from flexsim.linear.flutter import FlutterAnalysis
+
+    analysis = FlutterAnalysis(gtm, "quasi-steady", linear_aero_density_kg_m3=0.9)
+    p = analysis.search(SteadyManoeuvre.level(9144.0, mach=0.8), mach_guess=0.81)
+    assert p.terms == analysis.qs_linear.terms.record() and p.terms["aero_density_kg_m3"] == 0.9
+    assert json.loads(json.dumps(p.terms))["aero"]["model"] == "quasi-steady"
