@@ -17,7 +17,8 @@ Modules (every public name is importable from ``flexsim._kernels`` itself):
   (inertia: M(q), dT/dq, dM/dt V, eqs. 8-10, 33), :mod:`~flexsim._kernels.elasticity` (eqs. 14-16),
   :mod:`~flexsim._kernels.gravity` (eq. 32), :mod:`~flexsim._kernels.thrust` (eqs. 17-24),
   :mod:`~flexsim._kernels.gyroscopic` (the engines' rotors);
-* :mod:`~flexsim._kernels.strips` -- strip kinematics and airloads, apparent mass, Peters inflow (eqs. 17-31);
+* :mod:`~flexsim._kernels.strips` -- strip kinematics and airloads, apparent mass (eqs. 17-31);
+* :mod:`~flexsim._kernels.peters` -- Peters finite-state inflow;
 * :mod:`~flexsim._kernels.downwash` -- the wing's downwash at the tail (DATCOM 4.4.1);
 * :mod:`~flexsim._kernels.drag` -- parasite drag items; :mod:`~flexsim._kernels.bodies` -- slender-body moments;
 * :mod:`~flexsim._kernels.wind` -- gusts and Dryden fields as arrays and their evaluation;
@@ -57,6 +58,7 @@ from flexsim._kernels.isa import (_EXPONENT, _SCALE, EARTH_RADIUS, G0, GAMMA, GA
                                   P0, P_TROPOPAUSE, T0, T_TROPOPAUSE, _geopotential, _sound_speed, dcm_321, isa_scalar)
 from flexsim._kernels.layout import (SOLVE_PERM, SOLVE_PTR, TERMS, KernelData, _f1, _f2, _f3, _f4, _flag, _i1,
                                      flag_names, float_fields, int_fields, pack, solve_structure, strip_columns)
+from flexsim._kernels.peters import inflow_derivative, inflow_lambda0
 from flexsim._kernels.solve import _gauss, block_solve, blocks_decoupled, solve
 from flexsim._kernels.strips import (aero_evaluate, circulatory, compressibility_factor, downwash_shift, inflow_rate,
                                      strip_kinematics, tail_downwash)

@@ -5,7 +5,7 @@ motion. Each term of eq. 33 is a module of this package with its data class and 
 :mod:`~flexsim._kernels.structure` (inertia, eqs. 8-10), :mod:`~flexsim._kernels.elasticity` (eqs. 14-16),
 :mod:`~flexsim._kernels.gravity` (eq. 32), :mod:`~flexsim._kernels.thrust` (eqs. 17-24),
 :mod:`~flexsim._kernels.gyroscopic` (the engines' rotors, Etkin & Reid 1996),
-:mod:`~flexsim._kernels.strips` (strip airloads and Peters inflow, eqs. 17-31), :mod:`~flexsim._kernels.downwash`
+:mod:`~flexsim._kernels.strips` (strip airloads, eqs. 17-31), :mod:`~flexsim._kernels.peters` (inflow), :mod:`~flexsim._kernels.downwash`
 (the wing's downwash at the tail), :mod:`~flexsim._kernels.drag` (parasite drag), :mod:`~flexsim._kernels.bodies`
 (slender bodies), :mod:`~flexsim._kernels.wind` (gusts, turbulence);
 :mod:`~flexsim._kernels.solve` eliminates E V_dot = f. Body axes xyz (x forward, y right, z down), inertial NED;
