@@ -6,8 +6,9 @@ At one altitude (default 9144 m) the US (Theodorsen p-k) flutter Mach number of
   (eqs. 38-39)
 
 is computed with the aircraft trimmed as usual (the one nonlinear model, true density) and the *linear model*
-of the flutter analysis built with one ingredient switched off at a time. The switches are study-level: they
-modify the linearisation point or the linear model only, never the trim, and are listed in ``SWITCHES``:
+of the flutter analysis built with one ingredient switched off at a time. The switches modify the linearisation
+point or the physical terms of the linear model (a field of :class:`flexsim.model.terms.Terms`, chosen when the
+model is built), never the trim, and are listed in ``SWITCHES``:
 
 ======================  ===========================================================================================
 ``none``                the reference: linearised about the trim as in ``FlutterAnalysis``
@@ -15,26 +16,37 @@ modify the linearisation point or the linear model only, never the trim, and are
                         of eq. 33, dT/dq, and the steady rotation's contribution to the strip velocities)
 ``mass_matrix``         M(q), dT/dq and M_dot evaluated at the level-flight static deformation (same Mach) instead
                         of the manoeuvre's: the static deflection's effect on the inertia
+                        (``Terms.inertia_q_offset_m`` = level q - manoeuvre q)
 ``static_deformation``  q, xi := level-flight static deformation in the whole linearisation point (inertia and
                         aerodynamics)
 ``force_resolution``    the trim-alpha terms of the strip force resolution removed from the linear model: the lift
-                        tilt L a0 and the drag (c_n = -L, c_d = 0 in strip axes; eq. 28 with alpha_i0 = 0, d = 0)
+                        tilt L a0 and the drag (c_n = -L, c_d = 0 in strip axes; eq. 28 with alpha_i0 = 0, d = 0;
+                        ``Terms.force_resolution = "normal"``)
 ``aero_alpha``          the aerodynamics linearised about the level-flight body velocity (angle of attack and
                         sideslip of the level trim at the same Mach), structure about the manoeuvre
-``thrust``              T_e := 0 in the linearisation point (the thrust line's stiffness: its arm follows bending)
-``gravity``             g := 0 in the linear model (eq. 32)
+                        (``Terms.aero_velocity_offset_m_s`` = level v - manoeuvre v)
+``thrust``              the thrust line's stiffness removed (its arm follows bending, eqs. 17-24:
+                        ``Terms.thrust_follows_deflection = False``)
+``gravity``             g := 0 in the linear model (eq. 32; ``Terms.gravity_m_s2``)
 ``prandtl_glauert``     the Prandtl-Glauert factor of the linear model frozen at the level flight's flutter Mach
-``damping``             structural damping ratio 0 instead of the aircraft's
+                        (``Terms.compressibility_mach``)
+``damping``             structural damping ratio 0 instead of the aircraft's (``Terms.structural_damping``)
 ``density``             the linearised aerodynamics at one density, rho(``--rho-altitude``, default 3048 m), trim at
-                        the true density (the paper-replication hypothesis); with ``--fixed-density``
-                        the reference is at the fixed density and this switch restores the true one
+                        the true density (the paper-replication hypothesis of docs/flutter.md); with
+                        ``--fixed-density`` the reference is at the fixed density and this switch restores the true
+                        one (``Terms.aero_density_kg_m3``)
 ``fin_normal``          (not in the default set) the fin's lift without tilt or drag in the linear model: c_n = -L,
-                        c_d = 0 on the fin's strips (bounds any resolution of the fin's lift, eq. 31)
+                        c_d = 0 on the fin's strips (bounds any resolution of the fin's lift, eq. 31;
+                        ``Terms.force_resolution = "fin-normal"``)
 ``fin_drag<k>``         (not in the default set) the paper's fin, eqs. 29-31: section drag *linear* in the fin's
                         angle, d_v = q c C_Dav a_v = k l_v with k = C_Dav / C_Lav (the paper gives no value; e.g.
                         ``fin_drag+0.1``; the sign of the paper's y_v relative to the chord is not stated, so both
                         signs are run), resolved with the fin's flow angle, in the linear model
+                        (``Terms.fin_drag_per_lift``)
 ======================  ===========================================================================================
+
+Every row records the terms of its linear model (``terms``: the fields of :class:`Terms` that differ from the full
+model; the offsets, which differ from case to case, as the switch's name).
 
 ``--formulation paper`` uses the library's force resolution of the paper (``AeroOptions(formulation="paper")``,
 docs/design.md "Force resolution": eq. 28 with alpha_i0 = W/U and d = l alpha_i0, no body-x component of a wing or
@@ -75,6 +87,7 @@ from flexsim.atmosphere import isa_density, speed_of_sound  # noqa: E402
 from flexsim.linear.stability import spectrum  # noqa: E402
 from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
 from flexsim.model.coupling import AeroOptions  # noqa: E402
+from flexsim.model.terms import Terms  # noqa: E402
 from flexsim.structure.mirror import ranked  # noqa: E402
 from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
 
@@ -85,13 +98,6 @@ SWITCHES = ("none", "rotation", "mass_matrix", "static_deformation", "force_reso
 FIN_SWITCHES = ("fin_normal", "fin_drag+0.1", "fin_drag-0.1", "fin_drag+0.3", "fin_drag-0.3")
 #: Switches that leave the level-flight linear model unchanged (the level case is then taken from ``none``).
 LEVEL_NEUTRAL = ("rotation", "mass_matrix", "static_deformation", "aero_alpha")
-#: Switches that patch the Python-level strip coupling or inertia of a built model (``_SwitchedCoupling``,
-#: ``_ShiftedInertia``). The compiled right-hand side (``flexsim/_kernels.py``, since 14f57d7) reads the packed
-#: arrays built at construction, not these objects, and ``AircraftModel`` refuses to evaluate a patched model
-#: (bf96e8e). Their rows in docs/flutter.md were measured on the numpy right-hand side; re-run them in a checkout of
-#: the last numpy commit: ``git worktree add /tmp/numpy-rhs b32192e`` and run this script there.
-NUMPY_RHS_SWITCHES = ("mass_matrix", "force_resolution", "aero_alpha", "prandtl_glauert") + FIN_SWITCHES
-NUMPY_RHS_COMMIT = "b32192e"
 CASES = {"level": (math.inf, 0.0), "R5km": (5000.0, 0.0), "R12km": (12000.0, 0.0),
          "g+15": (math.inf, 15.0), "g-15": (math.inf, -15.0)}
 
@@ -128,70 +134,6 @@ def configure(name: str, scaling: dict | None, mass_factor: float, incidence: tu
     return ac
 
 
-class _SwitchedCoupling:
-    """The aircraft's strip aerodynamics with study switches (Mach of the P-G factor, velocity shift, force
-    resolution); everything else delegates to the wrapped :class:`AeroCoupling`. The density of the linearised
-    aerodynamics is the library's option ``AircraftModel(aero_density_kg_m3=...)``."""
-
-    def __init__(self, inner, *, mach=None, dv=None, resolution="local", fin_kappa=0.0):
-        self._inner, self._mach, self._dv = inner, mach, dv
-        orig = inner._circulatory
-        fin = ~inner.strips.unsteady  # the fin's strips (quasi-steady, eqs. 29-31); wing and stabilizer have inflow
-        if resolution == "normal":  # c_n = -L, c_d = 0 on every strip: no lift tilt, no drag
-
-            def circulatory(kin, rho_, mach_):
-                lift, moment, tilt, drag, flow = orig(kin, rho_, mach_)
-                return lift, moment, 0.0 * tilt, 0.0 * drag, flow
-
-            object.__setattr__(inner, "_circulatory", circulatory)  # study surgery on a sealed model
-        elif resolution in ("fin_paper", "fin_normal"):
-            # the paper's fin (eqs. 29-31): section drag linear in the fin's angle, d_v = q c C_Dav a_v = kappa l_v
-            # (kappa = C_Dav / C_Lav), force l_v [0, a_v0, 1] + d_v [0, -1, a_v0] resolved with the fin's flow angle;
-            # "fin_normal": the fin's lift without tilt or drag (c_n = -L, c_d = 0), wing and stabilizer unchanged
-
-            def circulatory(kin, rho_, mach_):
-                lift, moment, tilt, drag, flow = orig(kin, rho_, mach_)
-                if resolution == "fin_normal":
-                    return lift, moment, np.where(fin, 0.0, tilt), np.where(fin, 0.0, drag), flow
-                return lift, moment, tilt, np.where(fin, fin_kappa * lift, drag), flow
-
-            object.__setattr__(inner, "_circulatory", circulatory)  # study surgery on a sealed model
-        elif resolution != "local":
-            raise ValueError(f"resolution = {resolution!r}: must be local, normal, fin_paper or fin_normal")
-
-    def __getattr__(self, name):
-        return getattr(self._inner, name)
-
-    def _shift(self, vel):
-        if self._dv is None:
-            return vel
-        vel = np.array(vel, dtype=float, copy=True)
-        vel[0:3] += self._dv
-        return vel
-
-    def kinematics(self, q, xi, vel, lam, u, wind_c=None):
-        return self._inner.kinematics(q, xi, self._shift(vel), lam, u, wind_c)
-
-    def evaluate(self, q, xi, vel, lam, u, rho, mach, wind_c=None):
-        return self._inner.evaluate(q, xi, self._shift(vel), lam, u, rho, mach if self._mach is None else self._mach, wind_c)
-
-
-class _ShiftedInertia:
-    """Inertia evaluated at q + dq (the level-flight static deformation instead of the manoeuvre's)."""
-
-    def __init__(self, inner, dq):
-        self._inner, self._dq = inner, dq
-
-    def __getattr__(self, name):
-        return getattr(self._inner, name)
-
-    def evaluate(self, vel, q, s):
-        return self._inner.evaluate(vel, q + self._dq, s)
-
-    def mass_matrix(self, q):
-        return self._inner.mass_matrix(q + self._dq)
-
-
 @dataclass
 class Setup:
     aircraft: object
@@ -213,8 +155,11 @@ class Decomposition:
         ac = setup.aircraft
         self.trim_model = AircraftModel(ac, aero=AeroOptions("quasi-steady", formulation=setup.formulation))
         self._trim_guess = {}
+        self.last_terms = None  # the terms of the last evaluation's linear model
 
-    def _linear_models(self, point, level_point):
+    def terms(self, point, level_point) -> Terms:
+        """The physical terms of the linear models at ``point`` (the trim of a case; ``level_point``: the level trim
+        at the same speed): the reference's, with the one term of the switch changed (:class:`Terms`)."""
         s = self.s
         kw = {}
         if s.switch == "gravity":
@@ -224,37 +169,38 @@ class Decomposition:
         fixed = s.base_rho_altitude_m
         if s.switch == "density":  # the density switch toggles between the true and one fixed density
             fixed = s.rho_altitude_m if fixed is None else None
-        if fixed is not None:  # the library's replication option (AircraftModel.aero_density_kg_m3)
+        if fixed is not None:
             kw["aero_density_kg_m3"] = float(isa_density(fixed))
-        qs = AircraftModel(s.aircraft, aero=AeroOptions("quasi-steady", formulation=s.formulation), **kw)
-        fs = AircraftModel(s.aircraft, aero=AeroOptions("unsteady", 6, formulation=s.formulation), **kw)
+        if s.switch == "prandtl_glauert":
+            kw["compressibility_mach"] = s.mach_pg
+        if s.switch == "force_resolution" and s.formulation == "physical":
+            kw["force_resolution"] = "normal"
+        if s.switch == "fin_normal":
+            kw["force_resolution"] = "fin-normal"
+        if s.switch.startswith("fin_drag"):  # fin_drag+0.1: the paper's fin drag with kappa = C_Dav/C_Lav = +0.1
+            kw["fin_drag_per_lift"] = float(s.switch[len("fin_drag"):])
+        if s.switch == "thrust":
+            kw["thrust_follows_deflection"] = False
+        lay = self.trim_model.layout
+        if s.switch == "aero_alpha":
+            kw["aero_velocity_offset_m_s"] = tuple(level_point.x[lay.velocity][0:3] - point.x[lay.velocity][0:3])
+        if s.switch == "mass_matrix":
+            kw["inertia_q_offset_m"] = tuple(level_point.x[lay.q] - point.x[lay.q])
+        return Terms(aero=AeroOptions("quasi-steady", formulation=s.formulation), **kw)
+
+    def _linear_models(self, point, level_point):
+        """The quasi-steady and finite-state models of the eigen-analysis and the linearisation point (x, u)."""
+        s = self.s
+        terms = self.terms(point, level_point)
+        qs = AircraftModel(s.aircraft, terms=terms)
+        fs = AircraftModel(s.aircraft, terms=replace(terms, aero=AeroOptions("unsteady", 6, formulation=s.formulation)))
         x, u = point.x.copy(), point.u.copy()
         lay = self.trim_model.layout
-        cw = {}
-        if s.switch == "prandtl_glauert":
-            cw["mach"] = s.mach_pg
-        if s.switch == "force_resolution" and s.formulation == "physical":
-            cw["resolution"] = "normal"
-        if s.switch == "fin_normal":
-            cw["resolution"] = "fin_normal"
-        if s.switch.startswith("fin_drag"):  # fin_drag+0.1: the paper's fin with kappa = C_Dav/C_Lav = +0.1
-            cw["resolution"], cw["fin_kappa"] = "fin_paper", float(s.switch[len("fin_drag"):])
-        if s.switch == "aero_alpha":
-            cw["dv"] = level_point.x[lay.velocity][0:3] - x[lay.velocity][0:3]
         if s.switch == "rotation":
             x[lay.velocity.start + 3: lay.velocity.start + 6] = 0.0
         if s.switch == "static_deformation":
             x[lay.q] = level_point.x[lay.q]
             x[lay.xi] = level_point.x[lay.xi]
-        if s.switch == "thrust":
-            u[0] = 0.0
-        for m in (qs, fs):
-            # Deliberate surgery on these two freshly built, study-private models (models are immutable):
-            # object.__setattr__ bypasses the guard to switch one effect off; no library code does this.
-            if cw:
-                object.__setattr__(m, "aero", _SwitchedCoupling(m.aero, **cw))
-            if s.switch == "mass_matrix":
-                object.__setattr__(m.structure, "inertia", _ShiftedInertia(m.structure.inertia, level_point.x[lay.q] - point.x[lay.q]))
         return qs, fs, x, u
 
     def g(self, case: str, mach: float) -> tuple[float, object]:
@@ -265,7 +211,7 @@ class Decomposition:
         point = trim(self.trim_model, man, guess=self._trim_guess.get(case), check_limits=False)
         self._trim_guess[case] = point
         level = point
-        if case != "level" and self.s.switch in ("mass_matrix", "static_deformation", "aero_alpha"):
+        if case != "level" and self.s.switch in LEVEL_NEUTRAL:
             level = trim(self.trim_model, SteadyManoeuvre.level(self.s.altitude_m, speed_m_s=mach * a),
                          guess=self._trim_guess.get("level"), check_limits=False)
         qs, fs, x, u = self._linear_models(point, level)
@@ -276,6 +222,7 @@ class Decomposition:
         else:
             spec = spectrum(qs, x, u, aero_model="theodorsen", pk_model=fs)
         self.last = (point, spec, qs)
+        self.last_terms = qs.terms
         if self.s.mode_class == "any":
             return spec.max_real("elastic"), spec.critical("elastic")
         want = self.s.mode_class == "symmetric"
@@ -323,6 +270,17 @@ class Decomposition:
         return mf, mode.frequency_rad_s, n + 1
 
 
+def changed_terms(terms: Terms) -> dict:
+    """The fields of ``terms`` that differ from the full model's (:meth:`Terms.record`; the aerodynamic options in
+    full); offsets, which depend on the case, as ``"level minus case"``."""
+    full = Terms(aero=terms.aero).record()
+    out = {"aero": full["aero"]}
+    for name, value in terms.record().items():
+        if value != full[name]:
+            out[name] = "level minus case" if name.endswith("_offset_m") or name.endswith("_offset_m_s") else value
+    return out
+
+
 def mode_info(model: AircraftModel, mode) -> dict:
     """Symmetric share of the mode's kinetic energy (M(0); the library's mirror operator,
     :mod:`flexsim.structure.mirror`), |q_f1| / largest linear elastic displacement (bending coordinates, as the
@@ -365,7 +323,7 @@ def run(ac, aircraft_name: str, altitude_m: float, switches, rho_altitude_m: flo
             res[case] = (mf, wf)
             evals += n
         row = {"switch": sw, "aircraft": aircraft_name, "altitude_m": altitude_m, "evaluations": evals,
-               "seconds": round(time.time() - t0, 1)}
+               "seconds": round(time.time() - t0, 1), "terms": None if dec.last_terms is None else changed_terms(dec.last_terms)}
         for case, (mf, wf) in res.items():
             row[f"M_{case}"] = round(mf, 5)
             row[f"w_{case}"] = round(wf, 4)
@@ -438,15 +396,6 @@ def main() -> None:
     ap.add_argument("--scorecard", type=Path, nargs="+", default=None, metavar="JSON",
                     help="only print the trend scorecard from earlier --json outputs (their 'none' rows, one per altitude)")
     a = ap.parse_args()
-    patched = [s for s in a.switches if s in NUMPY_RHS_SWITCHES]
-    if patched and "--switches" in sys.argv:
-        ap.error(f"--switches {' '.join(patched)}: these switches patch the model's Python-level coupling or inertia, "
-                 f"which the compiled right-hand side does not read; run them in a checkout of {NUMPY_RHS_COMMIT} "
-                 f"(git worktree add /tmp/numpy-rhs {NUMPY_RHS_COMMIT}), where the table's rows were measured")
-    if patched:
-        print(f"# skipped switches {', '.join(patched)}: they need the numpy right-hand side of {NUMPY_RHS_COMMIT} "
-              "(see NUMPY_RHS_SWITCHES)", flush=True)
-        a.switches = [s for s in a.switches if s not in NUMPY_RHS_SWITCHES]
     if a.scorecard:
         rows = [r for f in a.scorecard for r in json.loads(f.read_text()) if r["switch"] == "none"]
         print(scorecard(rows))

@@ -165,17 +165,6 @@ def test_regenerating_the_figures_changes_nothing(tmp_path):
     assert run.returncode == 0, run.stdout + run.stderr
 
 
-def test_a_historical_run_needs_its_commit_and_says_so(tmp_path, monkeypatch):
-    """``run_at_commit`` names the figure and the commit when the history does not hold it (a source archive, a
-    shallow clone)."""
-    core = _core()
-    with pytest.raises(RuntimeError, match=r"calibration-x .*commit 0000000.*history"):
-        core.resolve_commit("0000000", "calibration-x")
-    monkeypatch.setattr(core, "ROOT", tmp_path)  # not a git repository
-    with pytest.raises(RuntimeError, match=r"commit df7ff6d"):
-        core.run_at_commit("calibration-x", "df7ff6d", ["python", "-c", "print(1)"], cache_dir=tmp_path)
-
-
 def test_a_calibration_fit_output_is_read_as_its_figure():
     """The fit summary of docs/calibration.md §3 from a ``calibrate_gtm.py --out`` file in df7ff6d's format (the
     rerun at that commit, a long figure) and in today's (``tools/gtm_calibration.toml``)."""

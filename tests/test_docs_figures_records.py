@@ -1,5 +1,5 @@
-"""The historical rows of docs/flutter.md (``tools/docs_figures_records.py``) fail with a clear message, naming the
-commit, where the repository's git history is missing (an sdist, a shallow clone)."""
+"""The decomposition rows of docs/flutter.md (``tools/docs_figures_records.py``): every switch of the study is a
+physical term of today's model, and the command the docs quote runs."""
 
 import importlib
 import subprocess
@@ -17,18 +17,54 @@ def _records():
     return importlib.import_module("docs_figures_records")
 
 
-def test_without_git_history_the_historical_rows_name_the_commit(tmp_path, monkeypatch):
-    records = _records()
-    core = importlib.import_module("docs_figures_core")
-    monkeypatch.setattr(core, "ROOT", tmp_path)  # not a git repository
-    monkeypatch.setattr(core, "CACHE_DIR", tmp_path / "cache")
-    with pytest.raises(RuntimeError, match="b32192e.*not in this checkout's git history"):
-        records._historical.__wrapped__(records.GTM, ("none",), "decomposition-historical")
+def test_every_switch_is_a_term_of_the_current_model():
+    """Each switch of the decomposition study builds its linear models with one field of ``Terms`` changed (or
+    changes the linearisation point), on today's code: no model is patched after construction."""
+    import math
+
+    import numpy as np
+
+    _records()
+    import manoeuvre_decomposition as md
+    from flexsim.trim import SteadyManoeuvre, trim
+
+    source = (ROOT / "studies" / "manoeuvre_decomposition.py").read_text(encoding="utf-8")
+    assert "object.__setattr__" not in source and "NUMPY_RHS" not in source
+    ac = md.configure("gtm", None, 1.0, None, None)
+    dec = md.Decomposition(md.Setup(ac, 9144.0, "none", 3048.0, mach_pg=0.9))
+    a = 297.0
+    level = trim(dec.trim_model, SteadyManoeuvre.level(9144.0, speed_m_s=0.85 * a), check_limits=False)
+    turn = trim(dec.trim_model, SteadyManoeuvre.turn(9144.0, 5000.0, speed_m_s=0.85 * a), check_limits=False)
+    lay = dec.trim_model.layout
+    expected = {"none": {}, "rotation": {}, "static_deformation": {}, "gravity": {"gravity_m_s2": 0.0},
+                "damping": {"structural_damping": 0.0}, "prandtl_glauert": {"compressibility_mach": 0.9},
+                "force_resolution": {"force_resolution": "normal"}, "fin_normal": {"force_resolution": "fin-normal"},
+                "fin_drag+0.3": {"fin_drag_per_lift": 0.3}, "thrust": {"thrust_follows_deflection": False},
+                "density": {"aero_density_kg_m3": "rho"},
+                "aero_alpha": {"aero_velocity_offset_m_s": tuple(level.x[lay.velocity][0:3] - turn.x[lay.velocity][0:3])},
+                "mass_matrix": {"inertia_q_offset_m": tuple(level.x[lay.q] - turn.x[lay.q])}}
+    assert set(md.SWITCHES) | {"fin_normal", "fin_drag+0.3"} == set(expected)
+    for switch, fields in expected.items():
+        dec.s.switch = switch
+        terms = dec.terms(turn, level)
+        changed = {k: v for k, v in terms.record().items() if v != md.Terms(aero=terms.aero).record()[k]}
+        assert set(changed) == set(fields), switch
+        for k, v in fields.items():
+            got = getattr(terms, k)
+            if v == "rho":
+                assert 0.9 < got < 0.91  # rho(3048 m) = 0.9046 kg/m^3 (ISA)
+            elif isinstance(v, (str, bool)):
+                assert got == v, switch
+            else:
+                np.testing.assert_array_equal(np.asarray(got, float), np.asarray(v, float))
+    dec.s.switch = "rotation"
+    _, _, x, _ = dec._linear_models(turn, level)
+    assert np.all(x[lay.velocity.start + 3: lay.velocity.start + 6] == 0.0) and not math.isnan(x.sum())
 
 
 def test_the_recorded_command_is_the_scripts_own_spelling():
-    """The command a historical figure runs parses with the study script's own options (today's parser; the
-    options are the same at b32192e), so the docs quote a command that runs."""
+    """The command a recorded figure quotes parses with the study script's own options, so the docs quote a
+    command that runs."""
     records = _records()
     args = records.C1.args(["none"])
     assert args[:2] == ["--scaling", records.C1.get("--scaling")]

@@ -2,7 +2,7 @@
 15 d: the paper-replication configurations C1-C4, their trend scorecards and the figures the text reads from them;
 slow, about a CPU-minute together), §5 (the structure variants' altitude ratio; slow), §3 (the fits: the robust
 one from its output file, fast; the first one's procedure rerun with today's code, long) and §1 (the quasi-steady
-spectrum with the elastic axes at 0.625 c, rerun at its commit, long: ``docs_figures_core.run_at_commit``). The
+spectrum of the gtm.toml with the elastic axes at 0.625 c, today's code, long). The
 numbers of the text come from the same checkpoints: ``docs_figures_calibration_text.py``.
 
 The computations are the studies' own functions, imported from ``studies/`` (never copied):
@@ -21,6 +21,7 @@ centre tank): :data:`CONFIGS`.
 from __future__ import annotations
 
 import functools
+import os
 import re
 import sys
 from pathlib import Path
@@ -406,7 +407,7 @@ def calibration_variants() -> str:
             f"(paper {paper[9144.0] / paper[0.0]:.3f}).\n")
 
 
-# --- historical runs (long figures: the recorded command in a temporary git worktree of its commit) -------------
+# --- historical inputs (long figures: today's code on an input of an earlier commit) ------------------------------
 
 #: The first calibration's procedure (df7ff6d: plain least squares, no structural damping) with today's code.
 PLAIN_FIT_ARGV = ("studies/calibrate_gtm.py", "--damping", "0", "--loss", "linear")
@@ -492,14 +493,37 @@ def calibration_robust_fit() -> str:
     return _fit_summary((ROOT / "tools" / "gtm_calibration.toml").read_text(encoding="utf-8"))[1]
 
 
-def calibration_aft_axis() -> str:
-    """§1: the quasi-steady model with the elastic axis at 0.625 c (gtm.toml at 67cf98a)."""
+def _aft_axis_rows() -> list[dict]:
+    """``AFT_AXIS_SNIPPET``'s rows on today's code with the aircraft file ``gtm.toml`` of ``AFT_AXIS_COMMIT`` (read
+    from the repository's history with ``git show``: the data of that commit, not its code), checkpointed."""
     import json
+    import subprocess
+    import tempfile
 
-    from docs_figures_core import run_at_commit
+    try:
+        text = subprocess.run(["git", "-C", str(ROOT), "show", f"{AFT_AXIS_COMMIT}:flexsim/aircraft/data/gtm.toml"],
+                              capture_output=True, text=True, timeout=60, check=True).stdout
+    except (OSError, subprocess.SubprocessError) as exc:
+        raise RuntimeError(f"calibration-aft-axis reads gtm.toml of {AFT_AXIS_COMMIT} from the git history, which this "
+                           f"checkout lacks ({exc}); run the tool in a clone with full history, or --skip-long") from exc
 
-    out = run_at_commit("calibration-aft-axis", AFT_AXIS_COMMIT, ["python", "-c", AFT_AXIS_SNIPPET])
-    rows = [json.loads(line) for line in out["stdout"].splitlines() if line.startswith("{")]
+    def compute() -> list[dict]:
+        with tempfile.TemporaryDirectory(prefix="flexsim-aft-axis-") as tmp:
+            path = Path(tmp) / "gtm.toml"
+            path.write_text(text, encoding="utf-8")
+            code = AFT_AXIS_SNIPPET.replace('load_aircraft("gtm")', f"load_aircraft({str(path)!r})")
+            run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=3600,
+                                 env={**os.environ, "PYTHONPATH": str(ROOT), "OMP_NUM_THREADS": "1"})
+            if run.returncode != 0:
+                raise RuntimeError(f"calibration-aft-axis failed: {run.stderr.strip()[-2000:]}")
+            return [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
+
+    return checkpoint("calibration-aft-axis", {"commit": AFT_AXIS_COMMIT, "file": text}, compute)
+
+
+def calibration_aft_axis() -> str:
+    """§1: the quasi-steady model with the elastic axis at 0.625 c (gtm.toml of 67cf98a, today's code)."""
+    rows = _aft_axis_rows()
     ea = {f for r in rows for f in r["wing_ea_fraction"]}
     if ea != {0.625}:
         raise RuntimeError(f"calibration-aft-axis: gtm.toml at {AFT_AXIS_COMMIT} has the wing's elastic axis at {ea}")
@@ -522,7 +546,7 @@ def calibration_aft_axis() -> str:
             f"{_minus(format(max(r['real_1_s'] for r in rows), '+.2f'))} s⁻¹), most in " + "; ".join(parts)
             + (f"; {', '.join(others)}" if others else "")
             + f"; the wing's torsion alone is unstable at M 0.45 at {', '.join(wing_unstable) or 'no altitude'} m "
-            f"(`gtm.toml` at {AFT_AXIS_COMMIT}, the last commit with that reading: wing and stabilizer axes at 0.625 c, "
+            f"(`gtm.toml` of {AFT_AXIS_COMMIT}, the last commit with that reading: wing and stabilizer axes at 0.625 c, "
             "the uncalibrated stiffness, no structural damping)")
 
 

@@ -35,8 +35,6 @@ import functools
 import hashlib
 import json
 import os
-import subprocess
-import sys
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
@@ -79,7 +77,7 @@ def source_digest(root: Path = ROOT) -> str:
 
 def checkpoint_path(name: str, args: dict, cache_dir: Path | None = None, source: str | None = None) -> Path:
     """The file of one piece of a long study: ``<cache>/<name>/<sha256 of name, args and the source>.json``
-    (``source``: the :func:`source_digest` of this tree, or the full hash of the commit a historical run uses)."""
+    (``source``: the :func:`source_digest` of this tree unless given)."""
     if not name or not name.replace("-", "").replace("_", "").isalnum():
         raise ValueError(f"checkpoint name {name!r}: letters, digits, '-' and '_' only")
     key = json.dumps({"name": name, "args": args, "source": source or source_digest()}, sort_keys=True, allow_nan=True)
@@ -94,8 +92,7 @@ def checkpoint(name: str, args: dict, compute: Callable[[], Any], cache_dir: Pat
 
     ``args`` must determine the result together with the code (every input of ``compute``: aircraft, factors,
     options, altitudes, starting values); it is stored beside the result for reading. ``source`` replaces the
-    tree's source digest in the key when the result comes from other code (a commit's full hash:
-    :func:`run_at_commit`)."""
+    tree's source digest in the key when the result comes from other code."""
     path = checkpoint_path(name, args, cache_dir, source)
     if path.is_file():
         stored = json.loads(path.read_text(encoding="utf-8"))
@@ -109,49 +106,3 @@ def checkpoint(name: str, args: dict, compute: Callable[[], Any], cache_dir: Pat
     return result
 
 
-def resolve_commit(commit: str, figure: str) -> str:
-    """The full hash of ``commit`` in this repository's history, or a clear error naming the figure and commit."""
-    try:
-        run = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--verify", f"{commit}^{{commit}}"],
-                             capture_output=True, text=True, timeout=60)
-    except (OSError, subprocess.TimeoutExpired) as exc:
-        raise RuntimeError(f"docs figure {figure} reruns a command at commit {commit}, which needs git and the "
-                           f"repository's history: {exc}") from exc
-    if run.returncode != 0:
-        raise RuntimeError(f"docs figure {figure} reruns a command at commit {commit}, which is not in this "
-                           f"checkout's git history ({run.stderr.strip() or 'no git repository'}); run the tool in a "
-                           f"clone with full history (not a shallow clone or a source archive), or --skip-long")
-    return run.stdout.strip()
-
-
-def run_at_commit(figure: str, commit: str, argv: list[str], outputs: tuple[str, ...] = (), timeout_s: float = 3600.0,
-                  cache_dir: Path | None = None) -> dict:
-    """Run a recorded command (``argv``, e.g. ``["python", "studies/calibrate_gtm.py", "--out", "fit.toml"]``; a
-    leading ``python`` is this interpreter) in a temporary ``git worktree`` of ``commit`` with that tree's code on
-    ``PYTHONPATH`` and one BLAS thread, and return ``{"stdout": ..., "outputs": {name: text}}`` (the files
-    ``outputs`` it writes, relative to the tree). A checkpoint keyed by the commit's full hash and ``argv``: a
-    historical run is computed once per machine. Clear errors when the history is missing or the command fails."""
-    full = resolve_commit(commit, figure)
-
-    def compute() -> dict:
-        with tempfile.TemporaryDirectory(prefix=f"flexsim-{commit}-") as tmp:
-            tree = Path(tmp) / "tree"
-            add = subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", str(tree), full],
-                                 capture_output=True, text=True, timeout=600)
-            if add.returncode != 0:
-                raise RuntimeError(f"docs figure {figure}: git worktree add of {commit} failed: {add.stderr.strip()}")
-            try:
-                env = {**os.environ, "PYTHONPATH": str(tree), "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
-                cmd = [sys.executable, *argv[1:]] if argv and argv[0] == "python" else list(argv)
-                print(f"  {figure}: running {' '.join(argv)} at {commit} ...", flush=True)
-                run = subprocess.run(cmd, cwd=tree, env=env, capture_output=True, text=True, timeout=timeout_s)
-                if run.returncode != 0:
-                    raise RuntimeError(f"docs figure {figure}: {' '.join(argv)} at {commit} failed "
-                                       f"(exit {run.returncode}): {run.stderr.strip()[-2000:]}")
-                return {"stdout": run.stdout, "outputs": {name: (tree / name).read_text(encoding="utf-8")
-                                                          for name in outputs}}
-            finally:
-                subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(tree)],
-                               capture_output=True, timeout=600)
-
-    return checkpoint(f"commit-{figure}", {"argv": list(argv), "outputs": list(outputs)}, compute, cache_dir, full)

@@ -1,17 +1,10 @@
 """Figures of docs/flutter.md that were recorded study output, for ``regenerate_docs_figures.py``.
 
 Each function returns the text of one ``<!-- figures:NAME -->`` region; the registry is ``RECORD_FIGURES`` at the
-end (all of them are long studies). Two kinds:
-
-* **current code**: the studies' own functions (``symmetric_mode.bounds``, ``manoeuvre_decomposition.run``,
-  ``options_effects``'s aircraft options, imported from ``studies/``, never copied) on today's library;
-* **historical**: the switches ``mass_matrix``, ``force_resolution``, ``aero_alpha``, ``prandtl_glauert`` and the
-  fin switches of ``studies/manoeuvre_decomposition.py`` patch the Python-level coupling or inertia of a built
-  model, which the compiled right-hand side does not read (``manoeuvre_decomposition.NUMPY_RHS_SWITCHES``). Their
-  rows are reproduced by running that script (one switch per run, ``--ref-level`` from the ``none`` row) in a
-  temporary worktree of the last numpy right-hand side, ``manoeuvre_decomposition.NUMPY_RHS_COMMIT`` (b32192e),
-  through ``docs_figures_core.run_at_commit`` (checkpointed by the commit's hash and the command; it needs the
-  repository's git history and names the commit when it is missing). About 30 s of CPU per switch.
+end (all of them are long studies): the studies' own functions (``symmetric_mode.bounds``,
+``manoeuvre_decomposition.run``, ``options_effects``'s aircraft options, imported from ``studies/``, never copied)
+on today's library. Every switch of ``studies/manoeuvre_decomposition.py`` is a physical term of the current model
+(:class:`flexsim.model.terms.Terms`) or a change of the linearisation point; one checkpoint per switch.
 
 Where a paragraph reads the numbers, the function writes the paragraph and raises ``RuntimeError`` naming the
 claim when a qualitative statement of it no longer holds (the prose must then be rewritten by hand).
@@ -28,7 +21,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "studies"))
 sys.path.insert(0, str(ROOT / "tools"))
-from docs_figures_core import Figure, checkpoint, run_at_commit  # noqa: E402
+from docs_figures_core import Figure, checkpoint  # noqa: E402
 from docs_figures_static import _num  # noqa: E402
 from docs_figures_studies import MORE_BOUNDS, PAPER_ALTITUDES_M, _bounds, _bounds_label, _class_bounds, _minus  # noqa: E402
 
@@ -174,7 +167,7 @@ def options_body_moments_pk() -> str:
     return f"{', '.join(parts)}: {', '.join(pairs)}"
 
 
-# --- the decomposition of docs/flutter.md: current code and the historical rows at b32192e --------------------------
+# --- the decomposition of docs/flutter.md ------------------------------------------------------------------------
 
 class Decomposition(tuple):
     """The options of one ``python studies/manoeuvre_decomposition.py`` command (all but the switches), as a hashable
@@ -240,10 +233,8 @@ def _current(config: Decomposition, switches: tuple[str, ...]) -> dict[str, dict
     checkpoint per switch (the others start from the ``none`` row's level flutter point, as in one run)."""
     import manoeuvre_decomposition as md
 
-    bad = set(switches) & set(md.NUMPY_RHS_SWITCHES)
-    if bad or switches[0] != "none":
-        raise ValueError(f"switches {switches}: 'none' first, and none of {sorted(md.NUMPY_RHS_SWITCHES)} (those need "
-                         "the numpy right-hand side: _historical)")
+    if switches[0] != "none":
+        raise ValueError(f"switches {switches}: 'none' first")
     print(f"  {config.command(switches)}", flush=True)
     rows, ref = {}, None
     for sw in switches:
@@ -258,35 +249,10 @@ def _current(config: Decomposition, switches: tuple[str, ...]) -> dict[str, dict
     return rows
 
 
-@functools.cache
-def _historical(config: Decomposition, switches: tuple[str, ...], figure: str) -> dict[str, dict]:
-    """``config``'s decomposition run by the script of ``NUMPY_RHS_COMMIT`` in a temporary worktree of that commit
-    (``docs_figures_core.run_at_commit``, checkpointed by the commit's hash and the command), its ``--json`` rows
-    keyed by switch: one command per switch, the others with ``--ref-level`` from the ``none`` row (the script's
-    split runs)."""
-    import manoeuvre_decomposition as md
-
-    if switches[0] != "none":
-        raise ValueError(f"switches {switches}: 'none' first")
-    print(f"  at {md.NUMPY_RHS_COMMIT}: {config.command(switches)}", flush=True)
-    rows, ref = {}, []
-    for sw in switches:
-        argv = ["python", "studies/manoeuvre_decomposition.py", *config.args([sw]), *ref, "--json", "rows.json"]
-        run = run_at_commit(figure, md.NUMPY_RHS_COMMIT, argv, outputs=("rows.json",))
-        (rows[sw],) = json.loads(run["outputs"]["rows.json"])
-        if sw == "none":
-            ref = ["--ref-level", repr(rows[sw]["M_level"]), repr(rows[sw]["w_level"])]
-    return rows
-
-
 def _table(rows) -> str:
     import manoeuvre_decomposition as md
 
     return _minus(md.table(list(rows)))
-
-
-def _at(row: dict, commit: str) -> dict:
-    return {**row, "switch": f"{row['switch']} (at {commit})"}
 
 
 def _pg_slope(mach: float) -> float:
@@ -294,39 +260,26 @@ def _pg_slope(mach: float) -> float:
     return mach / (1.0 - mach * mach) ** 1.5
 
 
-def _commit() -> str:
-    import manoeuvre_decomposition as md
-
-    return md.NUMPY_RHS_COMMIT
-
-
-#: The historical switches of the bundled gtm's decomposition (b32192e), with their reference row.
-HISTORICAL_GTM = ("none", "mass_matrix", "force_resolution", "aero_alpha", "prandtl_glauert")
-
-
-def decomposition_historical() -> str:
-    """The rows of the switches today's model cannot evaluate (at b32192e) on the bundled gtm and their reading."""
+def decomposition_reading() -> str:
+    """The reading of the bundled gtm's decomposition table (``decomposition-gtm``, every switch on today's model)."""
     from docs_figures_studies import _decomposition_gtm
 
-    rows = _historical(GTM, HISTORICAL_GTM, "decomposition-historical")
-    ref, aa, pg, mm, fr = (rows[s] for s in HISTORICAL_GTM[0:1] + ("aero_alpha", "prandtl_glauert", "mass_matrix",
-                                                                   "force_resolution"))
-    dens = {r["switch"]: r for r in _decomposition_gtm()}["density"]
+    rows = {r["switch"]: r for r in _decomposition_gtm()}
+    ref, aa, pg, mm, fr, dens = (rows[s] for s in ("none", "aero_alpha", "prandtl_glauert", "mass_matrix",
+                                                    "force_resolution", "density"))
     t0 = ref["turn_dM"]
     small = max(abs(mm["turn_dM"] - t0), abs(fr["turn_dM"] - t0))
     if small > 1.5e-4 or not pg["turn_dM"] > t0 or not abs(aa["turn_dM"]) < 0.5 * abs(t0):
-        raise RuntimeError("decomposition-historical: the reading (aero_alpha carries the turn effect, P-G compresses "
+        raise RuntimeError("decomposition-reading: the reading (aero_alpha carries the turn effect, P-G compresses "
                            "it, M(q) and the force resolution change it by 0.0001 or less) no longer holds: "
                            f"{ {s: r['turn_dM'] for s, r in rows.items()} }")
     share = 100 * (1 - aa["turn_dM"] / t0)
     carried = "**entirely**" if abs(aa["turn_dM"]) <= 1.5e-4 else f"**{share:.0f} %**"
-    c = _commit()
-    return ("\n" + _table(rows.values()) + "\n\n"
-            f"Reading: the turn effect is carried {carried} by the aerodynamics linearised about the turn's larger angle "
-            f"of attack and its sideslip (at {c}, `aero_alpha`: {_num(t0, '+.4f')} → {_num(aa['turn_dM'], '+.4f')}); "
-            "rotation rates, the whole static deformation, thrust and gravity (table above), and there the static "
-            f"deflection's effect on M(q) and the force resolution's trim-α terms, each change it by {small:.4f} or less. "
-            f"The **Prandtl–Glauert factor compresses it** (at {c}: frozen at the level flutter Mach the turn effect is "
+    return (f"Reading: the turn effect is carried {carried} by the aerodynamics linearised about the turn's larger angle "
+            f"of attack and its sideslip (`aero_alpha`: {_num(t0, '+.4f')} → {_num(aa['turn_dM'], '+.4f')}); "
+            "rotation rates, the whole static deformation, thrust, gravity, the static deflection's effect on M(q) and "
+            f"the force resolution's trim-α terms each change it by {small:.4f} or less. "
+            f"The **Prandtl–Glauert factor compresses it** (frozen at the level flutter Mach the turn effect is "
             f"{_num(pg['turn_dM'], '+.4f')}, {pg['turn_dM'] / t0:.1f}× larger) — at M {ref['M_level']:.2f} the P-G "
             f"factor's slope (d[1/√(1−M²)]/dM = M/(1−M²)^1.5 = {_pg_slope(ref['M_level']):.1f}) makes the aerodynamic "
             "stiffness rise so fast with Mach that any destabilising change is met within a few thousandths in Mach. "
@@ -335,13 +288,13 @@ def decomposition_historical() -> str:
             "smaller).")
 
 
-#: The fin switches (the paper's fin, eqs. 29-31) with their reference row, on gtm_paper (b32192e).
-HISTORICAL_FIN = ("none", "fin_normal", "fin_drag+0.3", "fin_drag-0.3")
+#: The fin switches (the paper's fin, eqs. 29-31) with their reference row, on gtm_paper.
+FIN_SWITCHES = ("none", "fin_normal", "fin_drag+0.3", "fin_drag-0.3")
 
 
 def decomposition_fin() -> str:
-    """The fin switches' rows (at b32192e) on gtm_paper and how much they move the turn and climb effects."""
-    rows = _historical(GTM_PAPER, HISTORICAL_FIN, "decomposition-fin")
+    """The fin switches' rows on gtm_paper and how much they move the turn and climb effects."""
+    rows = _current(GTM_PAPER, FIN_SWITCHES)
     ref = rows["none"]
     label = {**rows, "none": {**ref, "switch": "none (`gtm_paper`)"}}
     dm = max(abs(r[k] - ref[k]) for r in rows.values() for k in ("turn_dM", "climb_dM"))
@@ -351,35 +304,34 @@ def decomposition_fin() -> str:
             f"{dm:.0e} in Mach and {dw:.3f} rad/s)").replace("e-0", "e-")
 
 
-#: C1's switches today's model evaluates, and those run at b32192e (with their reference row there).
-C1_CURRENT = ("none", "rotation", "static_deformation", "thrust", "gravity", "damping")
-C1_HISTORICAL = ("none", "mass_matrix", "aero_alpha", "prandtl_glauert")
+#: C1's switches.
+C1_SWITCHES = ("none", "rotation", "static_deformation", "thrust", "gravity", "damping", "mass_matrix", "aero_alpha",
+               "prandtl_glauert")
 
 
 def decomposition_c1() -> str:
-    """C1's decomposition on the symmetric mode (today's switches, then b32192e's) and its reading."""
+    """C1's decomposition on the symmetric mode and its reading."""
     from flexsim.linear.paper_data import TABLE_US
 
-    cur, hist = _current(C1, C1_CURRENT), _historical(C1, C1_HISTORICAL, "decomposition-c1")
-    c = _commit()
-    ref, href = cur["none"], hist["none"]
+    cur = _current(C1, C1_SWITCHES)
+    ref = cur["none"]
     paper = TABLE_US[3]
-    table = _table([*cur.values(), *(_at(r, c) for r in hist.values())])
+    table = _table(cur.values())
     table += f"\n| paper (Figs. 10, 15; glide point) | {paper[1]:.4f} / {paper[2]:.2f} | ≈ +0.03 … +0.1 | < 0 | ≈ +0.004 | < 0 |"
-    t0, th = ref["turn_dM"], href["turn_dM"]
-    aa, pg, rot, mm = hist["aero_alpha"], hist["prandtl_glauert"], cur["rotation"], hist["mass_matrix"]
-    nothing = {"M(q)": mm["turn_dM"] - th, "the static deformation": cur["static_deformation"]["turn_dM"] - t0,
+    t0 = ref["turn_dM"]
+    aa, pg, rot, mm = cur["aero_alpha"], cur["prandtl_glauert"], cur["rotation"], cur["mass_matrix"]
+    nothing = {"M(q)": mm["turn_dM"] - t0, "the static deformation": cur["static_deformation"]["turn_dM"] - t0,
                "the thrust line": cur["thrust"]["turn_dM"] - t0, "gravity": cur["gravity"]["turn_dM"] - t0}
-    if not (t0 > 0 and aa["turn_dM"] < 0.5 * th and pg["turn_dM"] > th and max(map(abs, nothing.values())) < 2e-4):
+    if not (t0 > 0 and aa["turn_dM"] < 0.5 * t0 and pg["turn_dM"] > t0 and max(map(abs, nothing.values())) < 2e-4):
         raise RuntimeError("decomposition-c1: the reading (aero_alpha carries most of the turn effect, P-G compresses "
                            "it, M(q), static deformation, thrust and gravity nothing) no longer holds")
     dw0, dw_sd = ref["turn_dw"], cur["static_deformation"]["turn_dw"]
     rises = "rises" if dw0 < 0 else "falls"
     sign = "the paper's sign" if dw0 < 0 else "not the paper's sign"
-    left = t0 - (th - aa["turn_dM"]) - (t0 - rot["turn_dM"])
+    left = t0 - (t0 - aa["turn_dM"]) - (t0 - rot["turn_dM"])
     damp = cur["damping"]
-    climbs = [r["climb_dM"] for r in (*cur.values(), *hist.values())]
-    wrong = ", the wrong way" if ref["climb_dM"] - cur["thrust"]["climb_dM"] < 0 and href["climb_dM"] - mm["climb_dM"] < 0 else ""
+    climbs = [r["climb_dM"] for r in cur.values()]
+    wrong = ", the wrong way" if ref["climb_dM"] - cur["thrust"]["climb_dM"] < 0 and ref["climb_dM"] - mm["climb_dM"] < 0 else ""
     reverse = "and no switch here reverses it" if max(climbs) <= 0 else "and a switch reverses it"
     fragile = (f"the turn's static deformation alone sets its sign ({_num(dw_sd, '+.3f')} rad/s without it)"
                if (dw_sd > 0) != (dw0 > 0) else f"without the static deformation it is {_num(dw_sd, '+.3f')} rad/s")
@@ -387,10 +339,10 @@ def decomposition_c1() -> str:
             f"Reading: with the paper's settings and on the symmetric mode the turn effect is {_num(t0, '+.4f')} (M_F "
             f"{'falling' if t0 > 0 else 'rising'} as R grows, as in the paper, but {0.03 / t0:.0f}-{0.1 / t0:.0f}× smaller) "
             f"and ω_F {rises} with R ({_num(dw0, '+.3f')} rad/s from 5 to 12 km: {sign}). The aerodynamics linearised "
-            f"about the turn's α and sideslip again carry most of it (at {c}, `aero_alpha`: "
-            f"{100 * (1 - aa['turn_dM'] / th):.0f} %, {_num(th, '+.4f')} → {_num(aa['turn_dM'], '+.4f')}); Prandtl–Glauert "
-            f"still compresses it (frozen: {_num(pg['turn_dM'], '+.4f')}, at M {href['M_level']:.2f} its slope is "
-            f"{_pg_slope(0.91) / _pg_slope(href['M_level']):.1f}× smaller than at M 0.91). The rotation-rate terms carry "
+            f"about the turn's α and sideslip again carry most of it (`aero_alpha`: "
+            f"{100 * (1 - aa['turn_dM'] / t0):.0f} %, {_num(t0, '+.4f')} → {_num(aa['turn_dM'], '+.4f')}); Prandtl–Glauert "
+            f"still compresses it (frozen: {_num(pg['turn_dM'], '+.4f')}, at M {ref['M_level']:.2f} its slope is "
+            f"{_pg_slope(0.91) / _pg_slope(ref['M_level']):.1f}× smaller than at M 0.91). The rotation-rate terms carry "
             f"{100 * (1 - rot['turn_dM'] / t0):.0f} % ({_num(rot['turn_dM'], '+.4f')} without them); "
             f"{', '.join(nothing)} change it by {max(map(abs, nothing.values())):.4f} or less; about {left:.4f} is left to "
             f"the interaction of the switched terms. The small ω_F trend is fragile: {fragile}. The paper's undamped "
@@ -400,7 +352,7 @@ def decomposition_c1() -> str:
             f"{_num(damp['turn_dM'], '+.4f')}. The climb effect stays at {_num(ref['climb_dM'], '+.4f')} (the paper's sign "
             f"is +; {_num(damp['climb_dM'], '+.4f')} with ζ = 0); the thrust line contributes "
             f"{_num(ref['climb_dM'] - cur['thrust']['climb_dM'], '+.5f')} and M(q) "
-            f"{_num(href['climb_dM'] - mm['climb_dM'], '+.5f')} of it{wrong}, {reverse}.")
+            f"{_num(ref['climb_dM'] - mm['climb_dM'], '+.5f')} of it{wrong}, {reverse}.")
 
 
 def _reference(row: dict) -> str:
@@ -418,11 +370,10 @@ def decomposition_c4() -> str:
 
 
 def _with_aero_alpha(config: Decomposition, figure: str, extra: tuple[str, ...] = ()) -> str:
-    cur = _current(config, ("none", *extra))
-    hist = _historical(config, ("none", "aero_alpha"), figure)
-    aa, href = hist["aero_alpha"]["turn_dM"], hist["none"]["turn_dM"]
-    text = (_reference(cur["none"]) + f"; with `aero_alpha` (at {_commit()}, whose `none` row has "
-            f"{_num(href, '+.4f')}) the turn effect drops to {_num(aa, '+.4f')} — {100 * (1 - aa / href):.0f} % of it is "
+    cur = _current(config, ("none", "aero_alpha", *extra))
+    aa, href = cur["aero_alpha"]["turn_dM"], cur["none"]["turn_dM"]
+    text = (_reference(cur["none"]) + f"; with `aero_alpha` the turn effect drops to {_num(aa, '+.4f')} — "
+            f"{100 * (1 - aa / href):.0f} % of it is "
             "again the aerodynamics linearised about the turn's angle of attack and sideslip")
     for sw in extra:
         text += f"; `{sw}`: {_num(cur[sw]['turn_dM'], '+.4f')}"
@@ -935,7 +886,7 @@ RECORD_FIGURES = {name: Figure(compute, long=True) for name, compute in {
     "symmetric-vary-reading": symmetric_vary_reading,
     "symmetric-bounds-reading": symmetric_bounds_reading,
     "symmetric-soft-torsion": symmetric_soft_torsion,
-    "decomposition-historical": decomposition_historical,
+    "decomposition-reading": decomposition_reading,
     "decomposition-fin": decomposition_fin,
     "decomposition-c1": decomposition_c1,
     "decomposition-c4": decomposition_c4,

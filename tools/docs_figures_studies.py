@@ -493,10 +493,11 @@ def validation_phugoid_case() -> str:
 # --- docs/flutter.md: the decomposition at 9144 m ----------------------------------------------------------------
 
 def _decomposition_switches() -> tuple[str, ...]:
-    """The default switches of ``studies/manoeuvre_decomposition.py`` that today's compiled model evaluates."""
+    """The default switches of ``studies/manoeuvre_decomposition.py`` (every one a term or a linearisation point of
+    today's model)."""
     import manoeuvre_decomposition as md
 
-    return tuple(s for s in md.SWITCHES if s not in md.NUMPY_RHS_SWITCHES)
+    return tuple(md.SWITCHES)
 
 
 @functools.cache
@@ -509,7 +510,7 @@ def _decomposition_gtm() -> tuple[dict, ...]:
 
 
 def decomposition_gtm() -> str:
-    """The decomposition table of the bundled gtm at 9144 m (switches today's model evaluates) and its reading."""
+    """The decomposition table of the bundled gtm at 9144 m (every switch) and its summary."""
     import manoeuvre_decomposition as md
 
     rows = {r["switch"]: r for r in _decomposition_gtm()}

@@ -45,13 +45,11 @@ climb search, and about 4 minutes for the baselines table):
   DOP853 (rtol 1e-9) on every named manoeuvre (``tools/docs_figures_simulation.py``, ``flexsim.sim.accuracy``;
   about 3-6 minutes);
 * ``symmetric-bounds-fs``, ``symmetric-force-resolution``, ``symmetric-vary``, ``symmetric-vary-reading``,
-  ``symmetric-bounds-reading``, ``symmetric-soft-torsion``, ``decomposition-historical``, ``decomposition-fin``,
+  ``symmetric-bounds-reading``, ``symmetric-soft-torsion``, ``decomposition-reading``, ``decomposition-fin``,
   ``decomposition-c1``, ``decomposition-c4``, ``decomposition-c5``, ``decomposition-paper-mode``,
   ``options-body-moments-pk`` (long): docs/flutter.md's formerly recorded study output, the class boundaries of
-  ``studies/symmetric_mode.py`` and the decompositions of ``studies/manoeuvre_decomposition.py``, whose switches
-  that patch the Python-level coupling run at b32192e (the last numpy right-hand side) in a temporary worktree of
-  that commit (``tools/docs_figures_records.py``, ``docs_figures_core.run_at_commit``; checkpointed per row and
-  switch; about 11 minutes of CPU together, 30 minutes of wall time on a loaded 2-core machine);
+  ``studies/symmetric_mode.py`` and the decompositions of ``studies/manoeuvre_decomposition.py``, every switch a
+  term of the current model (``tools/docs_figures_records.py``; checkpointed per row and switch);
 * ``design-lift-slope``, ``design-lift-slope-total`` (fast): docs/design.md, the strips' lift slope against the
   vortex lattice's on the exposed surfaces, and the whole lattice's (``tools/docs_figures_design.py``);
 * ``flutter-study-evaluations`` (the turn and climb studies' evaluation counts, docs/flutter.md), ``options-margin-change``
@@ -74,7 +72,7 @@ climb search, and about 4 minutes for the baselines table):
   ``tools/gtm_calibration.toml``;
 * long: ``calibration-plain-fit`` (docs/calibration.md §3: the first fit's procedure with today's code, ``python
   studies/calibrate_gtm.py --damping 0 --loss linear``, 14 minutes on 2 loaded cores), ``calibration-aft-axis`` (§1: the
-  quasi-steady spectrum of ``gtm.toml`` at 67cf98a, the elastic axis at 0.625 c).
+  quasi-steady spectrum of the ``gtm.toml`` of 67cf98a, the elastic axis at 0.625 c, on today's code).
 
 The trim, validation and Goland figures are computed in ``tools/docs_figures_static.py``; the figures of the
 ``studies/`` scripts quoted in docs/flutter.md, docs/calibration.md and docs/validation.md (density, class
@@ -86,8 +84,7 @@ take up to about a minute each). ``benchmarks/`` figures (docs/performance.md, s
 regenerated.
 
 **Long studies** (``Figure(..., long=True)``, ``tools/docs_figures_core.py``): the figures that take 10 minutes
-to an hour each (historical runs at a recorded commit, ``docs_figures_core.run_at_commit``; the recorded rows
-of docs/flutter.md). The plain command regenerates them
+to an hour each (the recorded rows of docs/flutter.md and docs/calibration.md). The plain command regenerates them
 with everything else (it is the one command); ``--skip-long`` leaves them out (and ``--fast`` never includes
 them). They compute their points through ``docs_figures_core.checkpoint``: every finished piece (one
 configuration at one altitude) is stored as JSON under ``~/.cache/flexsim/docs-figures`` (outside the

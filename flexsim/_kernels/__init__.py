@@ -9,12 +9,18 @@ kept in ``__pycache__``; a fresh process loads it in a fraction of a second) and
 
 Modules (every public name is importable from ``flexsim._kernels`` itself):
 
-* :mod:`~flexsim._kernels.layout` -- the packed data (F, I), field views, sparsity derived at pack time, and the
-  compile decorator :func:`~flexsim._kernels.layout.kernel`;
+* :mod:`~flexsim._kernels.layout` -- the packed data (F, I) generated from the terms' data classes
+  (:func:`~flexsim._kernels.layout.term_data`), field views, sparsity derived at pack time, and the compile
+  decorator :func:`~flexsim._kernels.layout.kernel`;
 * :mod:`~flexsim._kernels.isa` -- ISA 1976 constants and scalar state, the 3-2-1 rotation;
-* :mod:`~flexsim._kernels.structure` -- M(q), dT/dq, dM/dt V (eqs. 8-10, 33);
-* :mod:`~flexsim._kernels.strips` -- strip kinematics and airloads, apparent mass, inflow (eqs. 17-31);
-* :mod:`~flexsim._kernels.drag` -- parasite drag items and slender-body moments;
+* one module per term of eq. 33, each with its data class and kernel: :mod:`~flexsim._kernels.structure`
+  (inertia: M(q), dT/dq, dM/dt V, eqs. 8-10, 33), :mod:`~flexsim._kernels.elasticity` (eqs. 14-16),
+  :mod:`~flexsim._kernels.gravity` (eq. 32), :mod:`~flexsim._kernels.thrust` (eqs. 17-24),
+  :mod:`~flexsim._kernels.gyroscopic` (the engines' rotors);
+* :mod:`~flexsim._kernels.strips` -- strip kinematics and airloads, apparent mass (eqs. 17-31);
+* :mod:`~flexsim._kernels.peters` -- Peters finite-state inflow;
+* :mod:`~flexsim._kernels.downwash` -- the wing's downwash at the tail (DATCOM 4.4.1);
+* :mod:`~flexsim._kernels.drag` -- parasite drag items; :mod:`~flexsim._kernels.bodies` -- slender-body moments;
 * :mod:`~flexsim._kernels.wind` -- gusts and Dryden fields as arrays and their evaluation;
 * :mod:`~flexsim._kernels.solve` -- Gaussian and block elimination of E V_dot = f;
 * :mod:`~flexsim._kernels.equations` -- assembly of E V_dot = f and the right-hand side (eqs. 4, 33).
@@ -43,24 +49,31 @@ axes x_i y_i z_i (paper Table 1), strip axes d (chord, to the trailing edge), n 
 
 from __future__ import annotations
 
-from flexsim._kernels.drag import body_force, body_moments, munk_moments, parasite_drag, point_velocity
+from flexsim._kernels.bodies import body_force, body_moments, munk_moments
+from flexsim._kernels.downwash import downwash_velocity
+from flexsim._kernels.drag import parasite_drag, point_velocity
 from flexsim._kernels.equations import (_rhs, _rhs_wind, aerodynamic_force, air, assemble, rhs, rhs_batch,
                                         rhs_strip_wind, strip_wind_at, unpack)
 from flexsim._kernels.isa import (_EXPONENT, _SCALE, EARTH_RADIUS, G0, GAMMA, GAS_CONSTANT, H_TROPOPAUSE, LAPSE_RATE,
                                   P0, P_TROPOPAUSE, T0, T_TROPOPAUSE, _geopotential, _sound_speed, dcm_321, isa_scalar)
-from flexsim._kernels.layout import (FLOAT_FIELDS, INT_FIELDS, INT_NAMES, SOLVE_PERM, SOLVE_PTR, KernelData, _f1, _f2,
-                                     _f3, _f4, _flag, _i1, pack, solve_structure, strip_columns)
+from flexsim._kernels.layout import (SOLVE_PERM, SOLVE_PTR, TERMS, KernelData, _f1, _f2, _f3, _f4, _flag, _i1,
+                                     flag_names, float_fields, int_fields, pack, solve_structure, strip_columns)
+from flexsim._kernels.peters import inflow_derivative, inflow_lambda0
 from flexsim._kernels.solve import _gauss, block_solve, blocks_decoupled, solve
 from flexsim._kernels.strips import (aero_evaluate, circulatory, compressibility_factor, downwash_shift, inflow_rate,
                                      strip_kinematics, tail_downwash)
-from flexsim._kernels.structure import inertia
+from flexsim._kernels.elasticity import elastic_force
+from flexsim._kernels.gravity import gravity_force
+from flexsim._kernels.gyroscopic import gyroscopic_force
+from flexsim._kernels.structure import inertia, inertia_term
+from flexsim._kernels.thrust import thrust_force
 from flexsim._kernels.wind import (NO_WIND, BatchWind, WindData, air_velocity_rows, dryden_along_track, dryden_track,
                                    gust_profile, gust_profiles, join_winds, pack_winds, strip_positions, strip_wind,
                                    wind_ned)
 
-__all__ = ["FLOAT_FIELDS", "INT_FIELDS", "INT_NAMES", "KernelData", "pack", "WindData", "NO_WIND", "BatchWind", "pack_winds",
+__all__ = ["TERMS", "float_fields", "int_fields", "flag_names", "KernelData", "pack", "WindData", "NO_WIND", "BatchWind", "pack_winds",
            "join_winds", "rhs", "rhs_batch", "air_velocity_rows", "rhs_strip_wind", "assemble", "aerodynamic_force", "unpack", "air", "inertia",
            "strip_kinematics", "circulatory", "tail_downwash", "downwash_shift", "aero_evaluate", "inflow_rate",
            "point_velocity", "parasite_drag", "munk_moments", "body_moments", "body_force", "strip_positions", "strip_wind",
            "strip_wind_at", "wind_ned", "gust_profile", "gust_profiles", "dryden_along_track", "dryden_track", "isa_scalar",
-           "dcm_321", "solve", "block_solve", "blocks_decoupled", "strip_columns", "solve_structure", "compressibility_factor"]
+           "dcm_321", "inertia_term", "elastic_force", "gravity_force", "thrust_force", "gyroscopic_force", "solve", "block_solve", "blocks_decoupled", "strip_columns", "solve_structure", "compressibility_factor"]

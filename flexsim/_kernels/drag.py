@@ -1,18 +1,38 @@
-"""Parasite drag items and slender-body Munk moments, compiled (generalized forces by virtual work, eqs. 17-24).
+"""Parasite drag: its data and its generalized force (by virtual work, paper eqs. 17-24), compiled.
 
-Sources: Raymer (2018) sec. 12.5, parasite drag of the file's drag items (:mod:`flexsim.model.drag`); Munk (1924),
-NACA Report 184, slender-body moments (:mod:`flexsim.model.bodies`); the paper (Tuzcu & Nguyen 2014) eqs. 5-6, 18
-for the velocity of an attached point. Component axes, SI units.
+Sources: Raymer (2018) sec. 12.5, parasite drag of the file's drag items (:mod:`flexsim.model.drag`); the paper
+(Tuzcu & Nguyen 2014) eqs. 5-6, 18 for the velocity of an attached point (:func:`point_velocity`, also used by the
+slender bodies, :mod:`~flexsim._kernels.bodies`). Component axes, SI units.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
-from flexsim._kernels.layout import (BODY_AXIS, BODY_G0, BODY_G1, BODY_OFFSET, BODY_VOL_DK, DRAG_AREA, DRAG_G0,
-                                     DRAG_G1, DRAG_OFFSET, _f1, _f2, _f3, _f4, kernel)
+from flexsim._kernels.layout import _f1, _f2, _f3, _f4, kernel, packed, term_data
+
+
+@term_data
+@dataclasses.dataclass(frozen=True)
+class ParasiteDragData:
+    """The file's parasite-drag items (Raymer 2018 sec. 12.5; :class:`flexsim.model.drag.ParasiteDrag`): k items, each
+    a drag area at a point attached to a component, moving with it (maps as for the velocity of an attached point)."""
+
+    drag_area: np.ndarray = packed(1, "S C_D0 of each item (k,) [m^2]")
+    drag_g0: np.ndarray = packed(3, "velocity and rotation of the point per unit V at q = 0 (k, 6, n_v)")
+    drag_g1: np.ndarray = packed(4, "the q part of its velocity map in the omega columns (k, 3, 3, nq)")
+    drag_offset: np.ndarray = packed(2, "offset of the point from its attachment (k, 3) [m], component axes")
+    has_drag: int = packed(0, "1 with parasite-drag items", "flag")
+
+
+DRAG_AREA = ParasiteDragData.index["drag_area"]
+DRAG_G0 = ParasiteDragData.index["drag_g0"]
+DRAG_G1 = ParasiteDragData.index["drag_g1"]
+DRAG_OFFSET = ParasiteDragData.index["drag_offset"]
+HAS_DRAG = ParasiteDragData.index["has_drag"]
 
 
 @kernel
@@ -76,48 +96,3 @@ def parasite_drag(F, I, q, vel, rho):
         for a in range(3):  # the q part of A_i(q) on the omega columns
             out[3 + a] += g1q[0, a] * f0 + g1q[1, a] * f1 + g1q[2, a] * f2
     return out
-
-
-@kernel
-def munk_moments(v_p, axis, coeff):
-    """Munk moment M = coeff (v . a)(v x a) of each body (k, 3) [N m] (Munk, NACA Report 184, 1924; Newman,
-    *Marine Hydrodynamics*, 1977, sec. 4.13): v_p (k, 3) velocity relative to the air [m/s], axis (k, 3) unit
-    axes, coeff (k,) = rho Vol (k2 - k1) [kg]; all in one set of axes."""
-    out = np.empty((v_p.shape[0], 3))
-    for j in range(v_p.shape[0]):
-        vp = v_p[j]
-        ax = axis[j]
-        c = coeff[j] * (vp[0] * ax[0] + vp[1] * ax[1] + vp[2] * ax[2])
-        out[j, 0] = c * (vp[1] * ax[2] - vp[2] * ax[1])
-        out[j, 1] = c * (vp[2] * ax[0] - vp[0] * ax[2])
-        out[j, 2] = c * (vp[0] * ax[1] - vp[1] * ax[0])
-    return out
-
-
-@kernel
-def body_moments(F, I, q, vel, rho):
-    """Munk moment of every slender body (k, 3) [N m], component axes (:mod:`flexsim.model.bodies`;
-    :func:`munk_moments` of the body velocities of :func:`point_velocity`)."""
-    vol_dk = _f1(F, I, BODY_VOL_DK)
-    g0 = _f3(F, I, BODY_G0)
-    g1 = _f4(F, I, BODY_G1)
-    offset = _f2(F, I, BODY_OFFSET)
-    v_p = np.empty((vol_dk.shape[0], 3))
-    g1q = np.empty((3, 3))
-    for j in range(vol_dk.shape[0]):
-        v_p[j, 0], v_p[j, 1], v_p[j, 2] = point_velocity(g0, g1, offset, j, q, vel, g1q)
-    return munk_moments(v_p, _f2(F, I, BODY_AXIS), rho * vol_dk)
-
-
-@kernel
-def body_force(F, I, q, vel, rho):
-    """Q_body = sum_i B_i^T M_i (n_v,) [N, N m] of the Munk moments (virtual work, eqs. 17-24)."""
-    n_v = vel.shape[0]
-    out = np.zeros(n_v)
-    mom = body_moments(F, I, q, vel, rho)
-    g0 = _f3(F, I, BODY_G0)
-    for j in range(mom.shape[0]):
-        for i in range(n_v):
-            out[i] += g0[j, 3, i] * mom[j, 0] + g0[j, 4, i] * mom[j, 1] + g0[j, 5, i] * mom[j, 2]
-    return out
-

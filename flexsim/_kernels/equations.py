@@ -1,29 +1,85 @@
-"""The equations of motion, compiled: E V_dot = f assembled and solved, and the right-hand side x_dot = rhs(t, x, u).
+"""The equations of motion, compiled: E V_dot = f assembled from the terms and solved; x_dot = rhs(t, x, u).
 
-Tuzcu & Nguyen (2014) "Flutter of Maneuvering Aircraft": eqs. (2)-(4) kinematics, (7)-(10) M(q), (12) and (33)
-equations of motion, (14)-(16) stiffness, (17)-(24) generalized forces, (32) gravity; the pieces are in
-:mod:`~flexsim._kernels.structure`, :mod:`~flexsim._kernels.strips`, :mod:`~flexsim._kernels.drag`,
-:mod:`~flexsim._kernels.wind` and :mod:`~flexsim._kernels.solve`. Body axes xyz (x forward, y right, z down),
-inertial NED; SI units, radians.
+Tuzcu & Nguyen (2014) "Flutter of Maneuvering Aircraft": eqs. (2)-(4) kinematics, (12) and (33) equations of
+motion. Each term of eq. 33 is a module of this package with its data class and kernel:
+:mod:`~flexsim._kernels.structure` (inertia, eqs. 8-10), :mod:`~flexsim._kernels.elasticity` (eqs. 14-16),
+:mod:`~flexsim._kernels.gravity` (eq. 32), :mod:`~flexsim._kernels.thrust` (eqs. 17-24),
+:mod:`~flexsim._kernels.gyroscopic` (the engines' rotors, Etkin & Reid 1996),
+:mod:`~flexsim._kernels.strips` (strip airloads, eqs. 17-31), :mod:`~flexsim._kernels.peters` (inflow), :mod:`~flexsim._kernels.downwash`
+(the wing's downwash at the tail), :mod:`~flexsim._kernels.drag` (parasite drag), :mod:`~flexsim._kernels.bodies`
+(slender bodies), :mod:`~flexsim._kernels.wind` (gusts, turbulence);
+:mod:`~flexsim._kernels.solve` eliminates E V_dot = f. Body axes xyz (x forward, y right, z down), inertial NED;
+SI units, radians.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
-from flexsim._kernels.drag import body_force, parasite_drag
+from flexsim._kernels.bodies import HAS_BODIES, body_force
+from flexsim._kernels.drag import HAS_DRAG, parasite_drag
+from flexsim._kernels.elasticity import elastic_force
+from flexsim._kernels.gravity import gravity_force
+from flexsim._kernels.gyroscopic import gyroscopic_force
 from flexsim._kernels.isa import _geopotential, _sound_speed, dcm_321, isa_scalar
-from flexsim._kernels.layout import (ACTIVE, ALL_ACTIVE, C_EL, EULER_FIXED, FLOATS, HAS_AERO, HAS_BODIES, HAS_DAMPING,
-                                     HAS_DRAG, INFLOW_START, K_BENDING, K_TORSION, M0, M2, H, N_INFLOW, N_V, NQ, NXI,
-                                     Q_FROZEN, Q_START, RIGID, SEMICHORD, SOLVE_PERM, SOLVE_PTR, THRUST_T0, THRUST_T1,
-                                     USE_FROZEN, V_FIXED, VEL_START, XI_FROZEN, XI_START, _f1, _f2, _f3, _f4, _flag,
-                                     _i1, kernel)
+from flexsim._kernels.layout import SOLVE_PERM, SOLVE_PTR, _f1, _flag, _i1, kernel, packed, term_data
 from flexsim._kernels.solve import block_solve
-from flexsim._kernels.strips import aero_evaluate, inflow_rate
-from flexsim._kernels.structure import inertia
+from flexsim._kernels.strips import SEMICHORD, aero_evaluate, inflow_rate
+from flexsim._kernels.structure import inertia_term
+from flexsim._kernels.thrust import thrust_force
 from flexsim._kernels.wind import strip_positions, strip_wind, wind_ned
+
+
+@term_data
+@dataclasses.dataclass(frozen=True)
+class ModelData:
+    """The model variant and its state vector x (:class:`flexsim.model.aircraft_model.AircraftModel`,
+    :class:`flexsim.model.layout.StateLayout`): sizes, where each block of x starts, fixed and frozen blocks, air."""
+
+    air: np.ndarray = packed(1, "[altitude of a restrained model [m], tunnel density [kg/m^3] (nan: none), "
+                                "density of the aerodynamics [kg/m^3] (nan: ISA)] (3,)")
+    euler_fixed: np.ndarray = packed(1, "attitude of a restrained model (3,) [rad]")
+    v_fixed: np.ndarray = packed(1, "body velocity of a restrained model (3,) [m/s]")
+    q_frozen: np.ndarray = packed(1, "bending coordinates of a quasi-rigid model (nq,) [m]")
+    xi_frozen: np.ndarray = packed(1, "torsion coordinates of a quasi-rigid model (nxi,) [rad]")
+    active: np.ndarray = packed(1, "the entries of V that are degrees of freedom", "ints")
+    n_v: int = packed(0, "entries of V = [v, omega, s, eta]", "flag")
+    nq: int = packed(0, "bending coordinates", "flag")
+    nxi: int = packed(0, "torsion coordinates", "flag")
+    rigid: int = packed(0, "1: rigid-body motion free (free, quasi-rigid)", "flag")
+    use_frozen: int = packed(0, "1: elastic coordinates frozen (quasi-rigid)", "flag")
+    all_active: int = packed(0, "1: every entry of V is a degree of freedom", "flag")
+    n_states: int = packed(0, "entries of x", "flag")
+    vel_start: int = packed(0, "first entry of the velocities in x", "flag")
+    inflow_start: int = packed(0, "first inflow state in x", "flag")
+    n_inflow: int = packed(0, "inflow states", "flag")
+    q_start: int = packed(0, "first bending coordinate in x", "flag")
+    xi_start: int = packed(0, "first torsion coordinate in x", "flag")
+    has_aero: int = packed(0, "1: the model has aerodynamics", "flag")
+
+
+AIR = ModelData.index["air"]
+EULER_FIXED = ModelData.index["euler_fixed"]
+V_FIXED = ModelData.index["v_fixed"]
+Q_FROZEN = ModelData.index["q_frozen"]
+XI_FROZEN = ModelData.index["xi_frozen"]
+ACTIVE = ModelData.index["active"]
+N_V = ModelData.index["n_v"]
+NQ = ModelData.index["nq"]
+NXI = ModelData.index["nxi"]
+RIGID = ModelData.index["rigid"]
+USE_FROZEN = ModelData.index["use_frozen"]
+ALL_ACTIVE = ModelData.index["all_active"]
+N_STATES = ModelData.index["n_states"]
+VEL_START = ModelData.index["vel_start"]
+INFLOW_START = ModelData.index["inflow_start"]
+N_INFLOW = ModelData.index["n_inflow"]
+Q_START = ModelData.index["q_start"]
+XI_START = ModelData.index["xi_start"]
+HAS_AERO = ModelData.index["has_aero"]
 
 
 @kernel
@@ -60,13 +116,13 @@ def unpack(F, I, x):
 def air(F, I, x):
     """(altitude [m] geometric, density of the aerodynamics [kg/m^3], speed of sound [m/s]) at state x:
     the tunnel density, else the fixed aerodynamic density, else ISA at -Z (restrained: altitude_m)."""
-    fl = _f1(F, I, FLOATS)
-    altitude = -x[2] if _flag(I, RIGID) else fl[1]
+    fl = _f1(F, I, AIR)
+    altitude = -x[2] if _flag(I, RIGID) else fl[0]
     hgp = _geopotential(altitude)
-    if not math.isnan(fl[2]):
+    if not math.isnan(fl[1]):
+        rho = fl[1]
+    elif not math.isnan(fl[2]):
         rho = fl[2]
-    elif not math.isnan(fl[3]):
-        rho = fl[3]
     else:
         rho = isa_scalar(hgp)[0]
     return altitude, rho, _sound_speed(hgp)
@@ -74,81 +130,38 @@ def air(F, I, x):
 
 @kernel
 def assemble(F, I, x, u, wind_c, has_wind):
-    """E = M(q) + M_a and f of E V_dot = f (full size, paper eq. 33 in velocity form, docs/design.md):
+    """E = M(q) + M_a and f of E V_dot = f (full size; paper eq. 33 in velocity form, docs/design.md):
 
-    f = -M_dot V + g(V, p) + [0, 0, dT/dq, 0] - K [0, 0, q, xi] - C_el V_el + M(q)[g_b; 0] + Q_T + Q_a + Q_D
-    with p = M V, g_v = -omega x p_v, g_omega = -v x p_v - omega x p_omega (quasi-coordinates, eq. 33),
-    g_b = C [0, 0, g] (eq. 32: Q_g = M(q) [g_b; 0] exactly, :mod:`flexsim.structure.loads`),
-    Q_T = T_e (t0 + t1 q) (eqs. 17-24), Q_a and M_a from :func:`aero_evaluate`, Q_D from :func:`parasite_drag`,
-    the slender bodies' Munk moments from :func:`body_force`.
+        E = M(q) + M_a,   f = Q_inertia + Q_elastic + Q_g + Q_T + Q_gyro + Q_a + Q_D + Q_B
 
-    Returns m (n_v, n_v), f (n_v,), row0 (n_s, n_v), w_ea_x (n_s,), u0 (n_s,).
+    Q_inertia = -M_dot V + g(V, p) + [0, 0, dT/dq, 0] (:func:`inertia_term`), Q_elastic = -K [0, 0, q, xi] -
+    C_el V_el (:func:`elastic_force`), Q_g = M(q) [g_b; 0] (:func:`gravity_force`), Q_T = T_e (t0 + t1 q)
+    (:func:`thrust_force`), the engines' gyroscopic moment Q_gyro = [0; -omega x h_e; 0] (:func:`gyroscopic_force`),
+    the strips' airloads Q_a with their apparent mass M_a (:func:`aero_evaluate`), the
+    parasite drag Q_D (:func:`parasite_drag`) and the slender bodies' Munk moments Q_B (:func:`body_force`).
+
+    Returns m (n_v, n_v), f (n_v,), row0 (n_s, n_v), w_ea_x (n_s,), u0 (n_s,) (the inflow's terms).
     """
-    nq = _flag(I, NQ)
     pos, eul, q, xi, vel = unpack(F, I, x)
-    m, dtdq, mdot_v = inertia(_f2(F, I, M0), _f3(F, I, H), _f4(F, I, M2), vel, q, vel[6:6 + nq])
+    m, f = inertia_term(F, I, q, vel)
+    elastic_force(F, I, q, xi, vel, f)
+    gravity_force(F, I, m, eul, f)
+    thrust_force(F, I, q, u, f)
+    gyroscopic_force(F, I, vel, f)
+    row0, w_ea_x, u0 = aerodynamic_terms(F, I, x, q, xi, vel, u, wind_c, has_wind, m, f)
+    return m, f, row0, w_ea_x, u0
+
+
+@kernel
+def aerodynamic_terms(F, I, x, q, xi, vel, u, wind_c, has_wind, m, f):
+    """m += M_a and f += Q_a + Q_D + Q_B (strip airloads, parasite drag, slender bodies) at the air density and Mach
+    number of state x (:func:`air`); returns the inflow's terms row0 (n_s, n_v), w_ea_x (n_s,), u0 (n_s,)."""
     n_v = vel.shape[0]
-    nxi = xi.shape[0]
-    p = np.empty(n_v)  # M V
-    f = np.empty(n_v)
-    for i in range(n_v):
-        acc = 0.0
-        for k in range(n_v):
-            acc += m[i, k] * vel[k]
-        p[i] = acc
-        f[i] = -mdot_v[i]
-    v = vel[0:3]
-    w = vel[3:6]
-    # quasi-coordinate terms (eq. 33): -omega x p_v and -v x p_v - omega x p_omega
-    f[0] -= w[1] * p[2] - w[2] * p[1]
-    f[1] -= w[2] * p[0] - w[0] * p[2]
-    f[2] -= w[0] * p[1] - w[1] * p[0]
-    f[3] -= v[1] * p[2] - v[2] * p[1] + w[1] * p[5] - w[2] * p[4]
-    f[4] -= v[2] * p[0] - v[0] * p[2] + w[2] * p[3] - w[0] * p[5]
-    f[5] -= v[0] * p[1] - v[1] * p[0] + w[0] * p[4] - w[1] * p[3]
-    # [0, 0, dT/dq, 0] - K [0, 0, q, xi] (eqs. 15, 33)
-    k_b = _f2(F, I, K_BENDING)
-    k_t = _f2(F, I, K_TORSION)
-    for i in range(nq):
-        acc = dtdq[i]
-        for k in range(nq):
-            acc -= k_b[i, k] * q[k]
-        f[6 + i] += acc
-    for i in range(nxi):
-        acc = 0.0
-        for k in range(nxi):
-            acc += k_t[i, k] * xi[k]
-        f[6 + nq + i] -= acc
-    if _flag(I, HAS_DAMPING):
-        c_el = _f2(F, I, C_EL)
-        n_el = n_v - 6
-        for i in range(n_el):
-            acc = 0.0
-            for k in range(n_el):
-                acc += c_el[i, k] * vel[6 + k]
-            f[6 + i] -= acc
-    g = _f1(F, I, FLOATS)[0]
-    if g != 0.0:
-        # Q_g = M(q) [g_b; 0], g_b = C [0, 0, g] (eq. 32)
-        sf, cf = math.sin(eul[0]), math.cos(eul[0])
-        st, ct = math.sin(eul[1]), math.cos(eul[1])
-        g0, g1, g2 = -st * g, sf * ct * g, cf * ct * g
-        for i in range(n_v):
-            f[i] += m[i, 0] * g0 + m[i, 1] * g1 + m[i, 2] * g2
-    if u[0] != 0.0:
-        # Q_T = T_e (t0 + t1 q) (eqs. 17-24)
-        t0 = _f1(F, I, THRUST_T0)
-        t1 = _f2(F, I, THRUST_T1)
-        for i in range(n_v):
-            acc = t0[i]
-            for k in range(nq):
-                acc += t1[i, k] * q[k]
-            f[i] += u[0] * acc
     if not _flag(I, HAS_AERO):
         n_s = _f1(F, I, SEMICHORD).shape[0]
-        return m, f, np.zeros((n_s, n_v)), np.zeros(n_s), np.zeros(n_s)
+        return np.zeros((n_s, n_v)), np.zeros(n_s), np.zeros(n_s)
     _, rho, a_sound = air(F, I, x)
-    mach = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) / a_sound
+    mach = math.sqrt(vel[0] * vel[0] + vel[1] * vel[1] + vel[2] * vel[2]) / a_sound
     lam = x[_flag(I, INFLOW_START):_flag(I, INFLOW_START) + _flag(I, N_INFLOW)]
     m_a, q_a, row0, w_ea_x, u0 = aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind)
     for i in range(n_v):
@@ -163,7 +176,7 @@ def assemble(F, I, x, u, wind_c, has_wind):
         q_b = body_force(F, I, q, vel, rho)
         for i in range(n_v):
             f[i] += q_b[i]
-    return m, f, row0, w_ea_x, u0
+    return row0, w_ea_x, u0
 
 
 @kernel

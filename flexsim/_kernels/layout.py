@@ -1,11 +1,20 @@
-"""Data layout of the compiled kernels: the packed buffers (F, I), their field views, and the compile decorator.
+"""Data layout of the compiled kernels: the packed buffers (F, I) generated from the terms' data classes.
 
-A model's frozen arrays are packed once into one float64 buffer ``F`` and one int64 buffer ``I`` (:func:`pack`;
-:class:`KernelData`); a kernel takes views of the fields it needs by name (``_f2(F, I, M0)``: the field's offset
-and shape are in the header of ``I``). Two flat arrays compile and dispatch fast; a NamedTuple of ~50 arrays cost
-about 1.4 s of compilation per kernel signature and ~10 us per call (measured). :func:`pack` also derives the
-sparsity of the strips' rows (:func:`strip_columns`) and the elimination order of E V_dot = f
-(:func:`solve_structure`; paper eqs. 8-10, 33).
+Each physical term declares the arrays its kernel reads as a frozen dataclass in its own module (symbols, units,
+frames and equations in the field's documentation), registered with :func:`term_data`: e.g. gravity
+(:class:`~flexsim._kernels.gravity.GravityData`, eq. 32) beside its kernel. The fields of all registered classes
+make the layout: :func:`pack` packs a model's arrays by field name into one float64 buffer ``F`` and one int64
+buffer ``I`` (:class:`KernelData`), and a kernel takes views of its fields by the index the registration gave
+(``_f2(F, I, M0)``: the field's offset and shape are in the header of ``I``). No list of positions is kept by hand:
+a field exists once, in its term's class, and its index is generated from it. Two flat arrays compile and dispatch
+fast; a NamedTuple of ~50 arrays cost about 1.4 s of compilation per kernel signature and ~10 us per call
+(measured). :func:`pack` also derives the sparsity of the strips' rows (:func:`strip_columns`) and the elimination
+order of E V_dot = f (:func:`solve_structure`; paper eqs. 8-10, 33).
+
+Field kinds (:func:`packed`): ``"float"`` an array of F of the given rank; ``"flag"`` an int64 scalar (a size or a
+switch, in I's flag array, read with :func:`_flag`); ``"ints"`` an int64 array of I (:func:`_i1`). The header of
+I: I[0] = number of float fields n_f, then 5 entries per float field (offset, shape padded to rank 4), then 2 per
+int array (offset, size); the flags are int array 0.
 
 :data:`kernel` compiles a function with numba (``cache=True``, ``nogil``) and keys its on-disk cache on the source
 of every file of this package (:func:`flexsim._numba_cache.depends_on`): the kernels call each other across the
@@ -14,7 +23,9 @@ package's files, and numba alone would key a cached function on its own file onl
 
 from __future__ import annotations
 
+import dataclasses
 import sys
+from types import MappingProxyType
 from typing import NamedTuple
 
 import numpy as np
@@ -32,44 +43,62 @@ def kernel(function):
     return _package(_numba(function))
 
 
-#: Float fields of F, in order (name, rank); shapes in :func:`pack`'s docstring.
-FLOAT_FIELDS = (
-    # model: [g [m/s^2], altitude_m (restrained), tunnel density (nan: none), aerodynamics density (nan: ISA)]
-    ("floats", 1), ("euler_fixed", 1), ("v_fixed", 1), ("q_frozen", 1), ("xi_frozen", 1),
-    # structure (paper eqs. 8-10, 14-16, 17-24)
-    ("m0", 2), ("h", 3), ("m2", 4), ("k_bending", 2), ("k_torsion", 2), ("c_el", 2), ("thrust_t0", 1), ("thrust_t1", 2),
-    # strips (eqs. 25-31) and Peters inflow
-    ("proj_n0", 2), ("proj_d0", 2), ("proj_n1", 3), ("proj_d1", 3), ("proj_p", 2), ("rel", 2), ("incidence", 1),
-    ("semichord", 1), ("ab", 1), ("k0", 1), ("pr_w", 1), ("width", 1), ("cd0", 1), ("flap_sign", 1), ("paper_strips", 1),
-    ("n_over_d_x", 1), ("flap_w", 2), ("d", 2), ("n", 2), ("strip_dcm", 3), ("strip_pos", 2), ("a_inv", 2), ("a_inv_c", 1),
-    ("b_vec", 1),
-    # wing downwash at the tail: [d epsilon/d alpha at M -> 0]; wing weights and n . z_body of the tail strips
-    ("aero_floats", 1), ("dw_wing_weight", 1), ("dw_tail_nz", 1),
-    # parasite drag items
-    ("drag_area", 1), ("drag_g0", 3), ("drag_g1", 4), ("drag_offset", 2),
-    # slender bodies (Munk moments): rho-free coefficient Vol (k2 - k1) [m^3], maps, offsets, unit axes
-    ("body_vol_dk", 1), ("body_g0", 3), ("body_g1", 4), ("body_offset", 2), ("body_axis", 2),
-    # the pitch part of the strips' apparent mass per unit density, sum_j pi b^4 w / 8 (p^T B)^T (p^T B) [m^4]
-    ("apparent_pitch", 2),
-)
-#: Int fields of I: flags and sizes (``ints``, entries below), active entries of V, flap control index per
-#: strip, unsteady strips; derived by :func:`pack` (:func:`strip_columns`, :func:`solve_structure`): the columns
-#: of V each strip's rows touch (CSR: pointers, indices) and the elimination order of E V_dot = f (order, pointers).
-INT_FIELDS = ("ints", "active", "flap_index", "inflow_idx", "strip_col_ptr", "strip_cols", "solve_perm", "solve_ptr")
-#: Entries of the ``ints`` field.
-INT_NAMES = ("n_v", "nq", "nxi", "rigid", "use_frozen", "all_active", "n_states", "vel_start", "inflow_start", "n_inflow",
-             "has_aero", "has_drag", "has_damping", "q_start", "xi_start", "finite_state", "n_inflow_per_strip",
-             "prandtl_glauert", "paper", "has_bodies")
-_NF = len(FLOAT_FIELDS)
-_HEAD = 5 * _NF + 2 * len(INT_FIELDS)
-(FLOATS, EULER_FIXED, V_FIXED, Q_FROZEN, XI_FROZEN, M0, H, M2, K_BENDING, K_TORSION, C_EL, THRUST_T0, THRUST_T1,
- PROJ_N0, PROJ_D0, PROJ_N1, PROJ_D1, PROJ_P, REL, INCIDENCE, SEMICHORD, AB, K0, PR_W, WIDTH, CD0, FLAP_SIGN,
- PAPER_STRIPS, N_OVER_D_X, FLAP_W, D, N, STRIP_DCM, STRIP_POS, A_INV, A_INV_C, B_VEC, AERO_FLOATS, DW_WING_WEIGHT,
- DW_TAIL_NZ, DRAG_AREA, DRAG_G0, DRAG_G1, DRAG_OFFSET, BODY_VOL_DK, BODY_G0, BODY_G1, BODY_OFFSET, BODY_AXIS,
- APPARENT_PITCH) = range(_NF)
-INTS, ACTIVE, FLAP_INDEX, INFLOW_IDX, STRIP_COL_PTR, STRIP_COLS, SOLVE_PERM, SOLVE_PTR = range(len(INT_FIELDS))
-(N_V, NQ, NXI, RIGID, USE_FROZEN, ALL_ACTIVE, N_STATES, VEL_START, INFLOW_START, N_INFLOW, HAS_AERO, HAS_DRAG,
- HAS_DAMPING, Q_START, XI_START, FINITE_STATE, N_PER_STRIP, PRANDTL_GLAUERT, PAPER, HAS_BODIES) = range(len(INT_NAMES))
+# ------------------------------------------------------------------ the terms' data classes
+_KINDS = ("float", "flag", "ints")
+#: Registered fields by kind, in registration order: (name, rank, owner class name).
+_FIELDS: dict[str, list[tuple[str, int, str]]] = {kind: [] for kind in _KINDS}
+_FIELDS["ints"].append(("ints", 1, "layout"))  # int array 0: the flags
+#: The registered term data classes, in registration order.
+TERMS: list[type] = []
+
+
+def packed(rank: int, doc: str, kind: str = "float"):
+    """A field of a term's data class: an array of ``rank`` dimensions in F (``kind="float"``), an int64 scalar flag
+    (``"flag"``, rank 0) or an int64 array of I (``"ints"``, rank 1); ``doc``: symbol, unit, frame, equation."""
+    if kind not in _KINDS:
+        raise ValueError(f"kind = {kind!r}: must be one of {', '.join(_KINDS)}")
+    return dataclasses.field(default=None, metadata={"rank": rank, "doc": doc, "kind": kind})
+
+
+def term_data(cls):
+    """Register a term's frozen data class (class decorator): each field gets the next index of its kind, read back
+    with ``cls.index[name]`` (module-level constants of the kernels, frozen into their machine code).
+
+    A class may build its own fields from the model: a static method ``fields_of(model) -> (floats, flags)`` (dicts
+    by field name) is called by :class:`flexsim.model.aircraft_model.AircraftModel` when it packs its data (the
+    model's ``terms``, ``structure`` and ``layout`` are set by then); without it the model's builders fill the
+    fields."""
+    if not (dataclasses.is_dataclass(cls) and cls.__dataclass_params__.frozen):
+        raise TypeError(f"{cls.__name__}: a term's data must be a frozen dataclass")
+    taken = {n for fields in _FIELDS.values() for n, _, _ in fields}
+    for f in dataclasses.fields(cls):  # all checked before any is registered
+        if f.name in taken:
+            raise ValueError(f"{cls.__name__}.{f.name}: a field of that name is already registered")
+        if f.metadata.get("kind") not in _KINDS:
+            raise ValueError(f"{cls.__name__}.{f.name}: declare it with packed(rank, doc, kind)")
+    index = {}
+    for f in dataclasses.fields(cls):
+        kind = f.metadata["kind"]
+        index[f.name] = len(_FIELDS[kind])
+        _FIELDS[kind].append((f.name, f.metadata["rank"], cls.__name__))
+    cls.index = MappingProxyType(index)
+    TERMS.append(cls)
+    return cls
+
+
+def float_fields() -> tuple[tuple[str, int], ...]:
+    """(name, rank) of every float field of F, in layout order (generated from the registered classes)."""
+    return tuple((n, r) for n, r, _ in _FIELDS["float"])
+
+
+def int_fields() -> tuple[str, ...]:
+    """Names of the int arrays of I, in layout order (``ints``, the flags, first)."""
+    return tuple(n for n, _, _ in _FIELDS["ints"])
+
+
+def flag_names() -> tuple[str, ...]:
+    """Names of the flags (entries of int array 0), in layout order."""
+    return tuple(n for n, _, _ in _FIELDS["flag"])
 
 
 class KernelData(NamedTuple):
@@ -80,40 +109,38 @@ class KernelData(NamedTuple):
 
 
 def pack(floats: dict, ints: dict) -> KernelData:
-    """Pack named arrays into (F, I) (missing fields are empty arrays of their rank).
+    """Pack named arrays into (F, I) (missing fields are empty arrays of their rank; flags missing are 0).
 
-    Shapes (n_v velocities, nq / nxi elastic coordinates, n_s strips, N inflow states per unsteady strip,
-    k drag items): floats (4,); euler_fixed, v_fixed (3,); q_frozen (nq,); xi_frozen (nxi,); m0 (n_v, n_v);
-    h (n_v, 3, nq); m2 (3, 3, nq, nq); k_bending (nq, nq); k_torsion (nxi, nxi); c_el (n_el, n_el); thrust_t0
-    (n_v,); thrust_t1 (n_v, nq); proj_n0, proj_d0, proj_p (n_s, n_v); proj_n1, proj_d1 (n_s, 3, nq); rel
-    (n_s, n_el); per-strip vectors (n_s,); flap_w, d, n, strip_pos (n_s, 3); strip_dcm (n_s, 3, 3); a_inv
-    (N, N); a_inv_c, b_vec (N,); aero_floats (1,); dw_wing_weight, dw_tail_nz (n_s,); drag_area (k,); drag_g0
-    (k, 6, n_v); drag_g1 (k, 3, 3, nq); drag_offset (k, 3); body_vol_dk (k_b,); body_g0, body_g1, body_offset
-    like the drag's; body_axis (k_b, 3).
-    ``ints``: ``ints`` (len(INT_NAMES),) with the entries of :data:`INT_NAMES` (given as a dict by name),
-    active, flap_index, inflow_idx. The sparsity fields are derived here from the float fields
-    (:func:`strip_columns`, :func:`solve_structure`).
+    ``floats``: arrays by the name of a registered float field (shapes in each term's data class). ``ints``:
+    ``ints`` a dict of flags by name, and int arrays by name. An unknown name is refused (ValueError). The
+    sparsity fields are derived here from the float fields (:func:`strip_columns`, :func:`solve_structure`).
     """
+    f_fields, i_fields, flags_ = float_fields(), int_fields(), flag_names()
+    unknown = (set(floats) - {n for n, _ in f_fields}) | (set(ints) - set(i_fields)) | (set(ints.get("ints", {})) - set(flags_))
+    if unknown:
+        raise ValueError(f"kernel fields {sorted(unknown)}: not fields of any registered term data class")
     strip_ptr, strip_cols = strip_columns(floats)
     perm, ptr = solve_structure(floats, ints.get("active"), strip_ptr, strip_cols)
     ints = {**ints, "strip_col_ptr": strip_ptr, "strip_cols": strip_cols, "solve_perm": perm, "solve_ptr": ptr}
-    head = np.zeros(_HEAD, np.int64)
+    nf = len(f_fields)
+    head = np.zeros(1 + 5 * nf + 2 * len(i_fields), np.int64)
+    head[0] = nf
     chunks, off = [], 0
-    for k, (name, rank) in enumerate(FLOAT_FIELDS):
+    for k, (name, rank) in enumerate(f_fields):
         a = np.ascontiguousarray(floats.get(name, np.zeros((0,) * rank)), dtype=float)
         if a.ndim != rank:
             raise ValueError(f"kernel field {name}: rank {a.ndim}, expected {rank}")
         shape = a.shape + (1,) * (4 - rank)
-        head[5 * k:5 * k + 5] = (off, *shape)
+        head[1 + 5 * k:1 + 5 * k + 5] = (off, *shape)
         chunks.append(a.ravel())
         off += a.size
-    flags = np.zeros(len(INT_NAMES), np.int64)
+    flags = np.zeros(len(flags_), np.int64)
     for name, value in ints.get("ints", {}).items():
-        flags[INT_NAMES.index(name)] = int(value)
-    int_chunks, ioff = [], _HEAD
-    for k, name in enumerate(INT_FIELDS):
+        flags[flags_.index(name)] = int(value)
+    int_chunks, ioff = [], head.size
+    for k, name in enumerate(i_fields):
         a = flags if name == "ints" else np.asarray(ints.get(name, np.zeros(0)), dtype=np.int64).ravel()
-        head[5 * _NF + 2 * k:5 * _NF + 2 * k + 2] = (ioff, a.size)
+        head[1 + 5 * nf + 2 * k:1 + 5 * nf + 2 * k + 2] = (ioff, a.size)
         int_chunks.append(a)
         ioff += a.size
     f = frozen_array(np.concatenate(chunks) if off else np.zeros(0))
@@ -201,38 +228,54 @@ def solve_structure(floats: dict, active, strip_ptr: np.ndarray, strip_cols: np.
     return act[np.asarray(order, np.int64)].astype(np.int64), ptr.astype(np.int64)
 
 
+@term_data
+@dataclasses.dataclass(frozen=True)
+class SparsityData:
+    """Derived by :func:`pack` from the other fields: the columns of V each strip's rows touch (CSR) and the
+    elimination order of E V_dot = f (paper eqs. 8-10, 33; :func:`strip_columns`, :func:`solve_structure`)."""
+
+    strip_col_ptr: np.ndarray = packed(1, "CSR pointers (n_s + 1,) into strip_cols", "ints")
+    strip_cols: np.ndarray = packed(1, "ascending columns of V of each strip's rows", "ints")
+    solve_perm: np.ndarray = packed(1, "active entries of V, block after block, then the core", "ints")
+    solve_ptr: np.ndarray = packed(1, "block pointers (n_blocks + 2,) into solve_perm", "ints")
+
+
+STRIP_COL_PTR, STRIP_COLS, SOLVE_PERM, SOLVE_PTR = (SparsityData.index[n] for n in
+                                                    ("strip_col_ptr", "strip_cols", "solve_perm", "solve_ptr"))
+
+
 # ------------------------------------------------------------------ field views
 @kernel
 def _f1(F, I, k):
-    o = I[5 * k]
-    return F[o:o + I[5 * k + 1]]
+    o = I[1 + 5 * k]
+    return F[o:o + I[2 + 5 * k]]
 
 
 @kernel
 def _f2(F, I, k):
-    o, a, b = I[5 * k], I[5 * k + 1], I[5 * k + 2]
+    o, a, b = I[1 + 5 * k], I[2 + 5 * k], I[3 + 5 * k]
     return F[o:o + a * b].reshape((a, b))
 
 
 @kernel
 def _f3(F, I, k):
-    o, a, b, c = I[5 * k], I[5 * k + 1], I[5 * k + 2], I[5 * k + 3]
+    o, a, b, c = I[1 + 5 * k], I[2 + 5 * k], I[3 + 5 * k], I[4 + 5 * k]
     return F[o:o + a * b * c].reshape((a, b, c))
 
 
 @kernel
 def _f4(F, I, k):
-    o, a, b, c, d = I[5 * k], I[5 * k + 1], I[5 * k + 2], I[5 * k + 3], I[5 * k + 4]
+    o, a, b, c, d = I[1 + 5 * k], I[2 + 5 * k], I[3 + 5 * k], I[4 + 5 * k], I[5 + 5 * k]
     return F[o:o + a * b * c * d].reshape((a, b, c, d))
 
 
 @kernel
 def _i1(I, k):
-    o = I[5 * _NF + 2 * k]
-    return I[o:o + I[5 * _NF + 2 * k + 1]]
+    h = 1 + 5 * I[0] + 2 * k
+    o = I[h]
+    return I[o:o + I[h + 1]]
 
 
 @kernel
 def _flag(I, k):
-    return I[I[5 * _NF] + k]
-
+    return I[I[1 + 5 * I[0]] + k]

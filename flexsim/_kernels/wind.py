@@ -14,7 +14,8 @@ import numpy as np
 
 from flexsim._arrays import frozen_array
 from flexsim._kernels.isa import dcm_321
-from flexsim._kernels.layout import STRIP_DCM, STRIP_POS, _f2, _f3, kernel
+from flexsim._kernels.layout import _f2, _f3, kernel
+from flexsim._kernels.strips import STRIP_DCM, STRIP_POS
 
 
 class WindData(NamedTuple):

@@ -49,7 +49,8 @@ def _trim(args: argparse.Namespace) -> int:
     local = point.max_local_alpha
     if args.json:
         extra = {"roots": roots} if roots is not None else {}
-        print(json_text({**out, "formulation": model.formulation, "stability": point.stability.as_dict(),
+        print(json_text({**out, "formulation": model.formulation, "terms": model.terms.record(),
+                         "stability": point.stability.as_dict(),
                          "max_local_alpha": local.as_dict() if local is not None else None, **extra}))
         return 0
     print(f"Trim of {aircraft.name} ({model.formulation} force resolution): {point.manoeuvre.describe()}")

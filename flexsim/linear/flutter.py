@@ -85,6 +85,8 @@ class FlutterPoint:
         flight altitude unless the analysis fixed it (``linear_aero_density_kg_m3``).
     aero_density_fixed : bool
         True when that density was fixed by the analysis rather than the flight's true density.
+    terms : dict
+        The physical terms of the eigen-analysis's model (:meth:`flexsim.model.terms.Terms.record`).
     rigid_instabilities : tuple of (float, complex, str)
         (Mach, eigenvalue, dominant DOF) of unstable rigid-body modes met during the search.
     evaluations : int
@@ -111,6 +113,7 @@ class FlutterPoint:
     aero_density_kg_m3: float = math.nan
     aero_density_fixed: bool = False
     mach_range: tuple[float, float] = (math.nan, math.nan)
+    terms: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -440,6 +443,7 @@ class FlutterAnalysis:
             aero_density_kg_m3=(float(isa_density(float(manoeuvre.altitude_m))) if self.linear_aero_density_kg_m3 is None
                                 else float(self.linear_aero_density_kg_m3)),
             aero_density_fixed=self.linear_aero_density_kg_m3 is not None,
+            terms=self.qs_linear.terms.record(),
             rigid_instabilities=tuple(state.rigid),
             evaluations=state.n,
             mach_range=(float(mach_range[0]), float(mach_range[1])),

@@ -38,6 +38,7 @@ from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.bodies import SlenderBodies
 from flexsim.model.drag import ParasiteDrag
 from flexsim.model.layout import StateLayout
+from flexsim.model.terms import Terms
 from flexsim.kinematics import dcm_321
 from flexsim.structure.model import StructuralModel, structural_model
 
@@ -49,6 +50,24 @@ STANDARD_GRAVITY = G0
 Wind = Callable[[float, np.ndarray], np.ndarray]
 #: The control vector u of the paper (text after eq. 33): [T_e (N), delta_a, delta_e, delta_r (rad)].
 CONTROL_NAMES = ("thrust", "aileron", "elevator", "rudder")
+
+
+_UNSET = object()  # a keyword argument not given (the terms then come from ``terms`` or Terms' defaults)
+
+
+def _terms(terms: "Terms | None", **legacy) -> "Terms":
+    """The model's :class:`Terms`: ``terms``, or the keyword arguments that map onto it (``aero`` may be a model name)."""
+    given = {k: v for k, v in legacy.items() if v is not _UNSET}
+    if terms is not None:
+        if not isinstance(terms, Terms):
+            raise ValueError(f"terms = {terms!r}: must be a flexsim.model.terms.Terms (or None)")
+        if given:
+            raise ValueError(f"terms and {', '.join(given)}: give the physical terms either as terms=Terms(...) or as "
+                             "these keyword arguments, not both")
+        return terms
+    if isinstance(given.get("aero"), str):
+        given["aero"] = AeroOptions(model=given["aero"])
+    return Terms(**given)
 
 
 class Variant(str, Enum):
@@ -80,9 +99,15 @@ class AircraftModel(Immutable):
         ``"free"`` (default), ``"restrained"`` or ``"quasi-rigid"``.
     gravity_m_s2 : float, optional
         Gravitational acceleration g [m/s^2] of eq. (32); 0 for vacuum-and-no-gravity studies.
+    terms : Terms, optional
+        The physical terms of the model (:class:`flexsim.model.terms.Terms`: aerodynamics, gravity, structural
+        damping, the density of the aerodynamics, a frozen compressibility Mach number, the force resolution's
+        flow-angle terms, the thrust line, the inertia's and the strips' offsets). Default: every term on. The
+        keyword arguments ``aero``, ``gravity_m_s2``, ``structural_damping`` and ``aero_density_kg_m3`` are the
+        same fields of :class:`Terms` given loose (either ``terms`` or those, not both).
     aero : AeroOptions, str or None, optional
         Aerodynamic model: an :class:`AeroOptions`, a model name (``"unsteady"`` default,
-        ``"quasi-steady"``), or None for no aerodynamics (vacuum).
+        ``"quasi-steady"``), or None for no aerodynamics (vacuum) (``Terms.aero``).
     restrained_euler_rad : array_like, shape (3,), optional
         Attitude [phi, theta, psi] of a restrained aircraft [rad] (sets the direction of gravity).
     restrained_velocity_m_s : array_like, shape (3,), optional
@@ -110,6 +135,7 @@ class AircraftModel(Immutable):
     aircraft : Aircraft
     structure : StructuralModel
     variant : Variant
+    terms : Terms
     layout : StateLayout
     """
 
@@ -118,16 +144,17 @@ class AircraftModel(Immutable):
         aircraft: Aircraft,
         *,
         variant: Variant | str = Variant.FREE,
-        gravity_m_s2: float = STANDARD_GRAVITY,
-        aero: AeroOptions | str | None = "unsteady",
+        terms: Terms | None = None,
+        gravity_m_s2: float = _UNSET,
+        aero: AeroOptions | str | None = _UNSET,
         restrained_euler_rad: np.ndarray | None = None,
         restrained_velocity_m_s: np.ndarray | None = None,
         altitude_m: float = 0.0,
         air_density_kg_m3: float | None = None,
         frozen_q: np.ndarray | None = None,
         frozen_xi: np.ndarray | None = None,
-        structural_damping: float | None = None,
-        aero_density_kg_m3: float | None = None,
+        structural_damping: float | None = _UNSET,
+        aero_density_kg_m3: float | None = _UNSET,
     ) -> None:
         try:
             self.variant = Variant(variant)
@@ -135,31 +162,36 @@ class AircraftModel(Immutable):
             raise ValueError(
                 f"variant = {variant!r}: must be one of {', '.join(v.value for v in Variant)}"
             ) from None
-        if not np.isfinite(gravity_m_s2) or gravity_m_s2 < 0:
-            raise ValueError(f"gravity_m_s2 = {gravity_m_s2!r}: must be a finite number >= 0")
+        terms = _terms(terms, gravity_m_s2=gravity_m_s2, aero=aero, structural_damping=structural_damping,
+                       aero_density_kg_m3=aero_density_kg_m3)
+        aero = terms.aero
         self.aircraft = aircraft
         self.structure = structural_model(aircraft)  # one per aircraft content: immutable, shared
+        structural_damping = terms.structural_damping
         if structural_damping is None:
             structural_damping = aircraft.structural_damping_ratio
         if not (np.isfinite(structural_damping) and 0.0 <= structural_damping < 1.0):
             raise ValueError(f"structural_damping = {structural_damping!r}: must be a damping ratio in [0, 1)")
+        if terms.inertia_q_offset_m is not None and len(terms.inertia_q_offset_m) != self.structure.dofs.nq:
+            raise ValueError(f"inertia_q_offset_m: {len(terms.inertia_q_offset_m)} entries; {aircraft.name} has "
+                             f"nq = {self.structure.dofs.nq} bending coordinates")
+        #: The physical terms of this model (:class:`flexsim.model.terms.Terms`; ``terms.record()`` for logs and rows).
+        self.terms = terms
         self.structural_damping = float(structural_damping)
         self._c_el = self.structure.damping(self.structural_damping) if structural_damping else None
-        self.gravity_m_s2 = float(gravity_m_s2)
+        self.gravity_m_s2 = terms.gravity_m_s2
         dofs = self.structure.dofs
         rigid = self.variant is not Variant.RESTRAINED
         elastic = self.variant is not Variant.QUASI_RIGID
-        if isinstance(aero, str):
-            aero = AeroOptions(model=aero)
         if aero is not None and aero.model == "theodorsen":
             raise ValueError(
                 'aero model = "theodorsen": the Theodorsen function is a frequency-domain model for linear '
                 'flutter analysis (flexsim.linear); the time-domain model takes "unsteady" or "quasi-steady"'
             )
-        self.aero = None if aero is None else AeroCoupling(self.structure, aero)
-        if aero_density_kg_m3 is not None and not (np.isfinite(aero_density_kg_m3) and 0.0 < aero_density_kg_m3 < 2.0):
-            raise ValueError(f"aero_density_kg_m3 = {aero_density_kg_m3!r}: must be an air density in (0, 2) kg/m^3 (or None: the ISA density)")
-        self.aero_density_kg_m3 = None if aero_density_kg_m3 is None else float(aero_density_kg_m3)
+        self.aero = None if aero is None else AeroCoupling(
+            self.structure, aero, compressibility_mach=terms.compressibility_mach, force_resolution=terms.force_resolution,
+            fin_drag_per_lift=terms.fin_drag_per_lift, velocity_offset_m_s=terms.aero_velocity_offset_m_s)
+        self.aero_density_kg_m3 = terms.aero_density_kg_m3
         # parasite drag belongs to the physical force resolution; the paper's (eq. 28) has the strips' drag only
         has_drag = (aero is not None and aero.parasite_drag and bool(aircraft.aero_settings.drag)
                     and self.aero.formulation == "physical")
@@ -207,20 +239,23 @@ class AircraftModel(Immutable):
         nan = float("nan")
         inertia = st.inertia
         floats = dict(
-            floats=[self.gravity_m_s2, self.altitude_m, nan if self._rho_fixed is None else self._rho_fixed,
-                    nan if self.aero_density_kg_m3 is None else self.aero_density_kg_m3],
+            g=[self.gravity_m_s2], air=[self.altitude_m, nan if self._rho_fixed is None else self._rho_fixed,
+                                        nan if self.aero_density_kg_m3 is None else self.aero_density_kg_m3],
             euler_fixed=self._euler_fixed, v_fixed=self._v_fixed, q_frozen=self._q_frozen, xi_frozen=self._xi_frozen,
             m0=inertia.m0, h=inertia.h, m2=inertia.m2, k_bending=st.k_bending, k_torsion=st.k_torsion,
-            c_el=np.zeros((n_el, n_el)) if self._c_el is None else self._c_el, thrust_t0=st.thrust.t0, thrust_t1=st.thrust.t1,
+            c_el=np.zeros((n_el, n_el)) if self._c_el is None else self._c_el, thrust_t0=st.thrust.t0,
+            thrust_t1=st.thrust.t1 if self.terms.thrust_follows_deflection else np.zeros_like(st.thrust.t1),
+            inertia_dq=np.zeros(d.nq) if self.terms.inertia_q_offset_m is None else np.asarray(self.terms.inertia_q_offset_m),
             proj_n0=np.zeros((0, d.n_v)), proj_d0=np.zeros((0, d.n_v)), proj_p=np.zeros((0, d.n_v)), rel=np.zeros((0, n_el)),
             proj_n1=np.zeros((0, 3, d.nq)), proj_d1=np.zeros((0, 3, d.nq)), a_inv=np.zeros((1, 1)), a_inv_c=np.zeros(1),
-            b_vec=np.zeros(1), aero_floats=np.zeros(1), drag_g0=np.zeros((0, 6, d.n_v)), drag_g1=np.zeros((0, 3, 3, d.nq)),
+            b_vec=np.zeros(1), downwash_gradient=[0.0], strip_mach=[nan], drag_g0=np.zeros((0, 6, d.n_v)), drag_g1=np.zeros((0, 3, 3, d.nq)),
             body_g0=np.zeros((0, 6, d.n_v)), body_g1=np.zeros((0, 3, 3, d.nq)))
         flags = dict(n_v=d.n_v, nq=d.nq, nxi=d.nxi, rigid=lay.rigid, use_frozen=self.variant is Variant.QUASI_RIGID,
                      all_active=self._all_active, n_states=lay.n_states, vel_start=lay.velocity.start,
                      inflow_start=lay.inflow.start, n_inflow=lay.n_inflow, has_aero=self.aero is not None,
                      has_drag=self.parasite_drag is not None, has_bodies=self.bodies is not None,
                      has_damping=self._c_el is not None, q_start=lay.q.start,
+                     has_inertia_offset=self.terms.inertia_q_offset_m is not None,
                      xi_start=lay.xi.start, n_inflow_per_strip=1)
         ints = dict(active=self._active)
         if self.aero is not None:
@@ -231,6 +266,12 @@ class AircraftModel(Immutable):
             floats.update(self.parasite_drag.kernel_fields)
         if self.bodies is not None:
             floats.update(self.bodies.kernel_fields)
+        for term in _k.TERMS:  # terms that build their own data from the model (flexsim._kernels.layout.term_data)
+            build = getattr(term, "fields_of", None)
+            if build is not None:
+                term_floats, term_flags = build(self)
+                floats.update(term_floats)
+                flags.update(term_flags)
         ints["ints"] = flags
         return _k.pack(floats, ints)
 
@@ -476,10 +517,15 @@ class AircraftModel(Immutable):
         return _k.pack_winds(data)
 
     # ------------------------------------------------------------------ invariants
+    def _q_inertia(self, q: np.ndarray) -> np.ndarray:
+        """q at which the inertia term is evaluated: q + dq (``terms.inertia_q_offset_m``) or q."""
+        dq = self.terms.inertia_q_offset_m
+        return q if dq is None else q + np.asarray(dq)
+
     def kinetic_energy(self, x: np.ndarray) -> float:
         """T = 1/2 V^T M(q) V [J] (eq. 8)."""
         _, _, q, _, vel = self.unpack(x)
-        return 0.5 * float(vel @ self.structure.inertia.mass_matrix(q) @ vel)
+        return 0.5 * float(vel @ self.structure.inertia.mass_matrix(self._q_inertia(q)) @ vel)
 
     def strain_energy(self, x: np.ndarray) -> float:
         """V = 1/2 (q^T K q + xi^T K~ xi) [J] (eq. 15)."""
@@ -494,7 +540,7 @@ class AircraftModel(Immutable):
         (consequence of eq. 33, see docs/design.md).
         """
         pos, eul, q, _, vel = self.unpack(x)
-        p = self.structure.inertia.mass_matrix(q) @ vel
+        p = self.structure.inertia.mass_matrix(self._q_inertia(q)) @ vel
         c = dcm_321(*eul)
         p_lin = c.T @ p[0:3]
         return p_lin, c.T @ p[3:6] + np.cross(pos, p_lin)

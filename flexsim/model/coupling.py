@@ -232,9 +232,17 @@ class AeroCoupling(Immutable):
     ----------
     structure : StructuralModel
     options : AeroOptions
+    compressibility_mach, force_resolution, fin_drag_per_lift, velocity_offset_m_s : optional
+        The aerodynamic terms' switches of :class:`flexsim.model.terms.Terms` (``compressibility_mach``,
+        ``force_resolution``, ``fin_drag_per_lift``, ``aero_velocity_offset_m_s``; validated there): the Mach number
+        of a frozen compressibility factor (None: the flight's), which strips lose the flow-angle terms of the force
+        resolution ("full": none, "normal": all, "fin-normal": the fin's), kappa of the paper's fin drag law (eq. 30;
+        None: the fin's own drag), the body velocity offset the strips see [m/s].
     """
 
-    def __init__(self, structure: StructuralModel, options: AeroOptions) -> None:
+    def __init__(self, structure: StructuralModel, options: AeroOptions, *, compressibility_mach: float | None = None,
+                 force_resolution: str = "full", fin_drag_per_lift: float | None = None,
+                 velocity_offset_m_s=None) -> None:
         self.options = options
         comp = options.compressibility
         #: The compressibility correction in force ("prandtl-glauert" or "none"), resolved from the file.
@@ -276,6 +284,25 @@ class AeroCoupling(Immutable):
         z_b = np.array([structure.aircraft.component(c).dcm[:, 2] for c in s.component]) if s.n_strips else np.zeros((0, 3))
         self._dw_tail_nz = np.where(tail, np.einsum("sk,sk->s", s.n, z_b), 0.0)  # n . z_body of the tail strips
         self._n_over_d_x = np.where(self._paper_strips, np.einsum("sk,sk->s", s.n, x_b) / np.where(np.abs(d_x) < 1e-3, 1.0, d_x), 0.0)
+        # the terms' switches (flexsim.model.terms.Terms): flow-angle terms of the resolution per strip, velocity offset
+        fin = ~s.unsteady  # the fin's strips: those without inflow states (quasi-steady, eqs. 29-31)
+        if force_resolution == "full":
+            scale = np.ones(s.n_strips)
+        elif force_resolution == "normal":
+            scale = np.zeros(s.n_strips)
+        elif force_resolution == "fin-normal":
+            scale = np.where(fin, 0.0, 1.0)
+        else:
+            raise ValueError(f"force_resolution = {force_resolution!r}: must be full, normal or fin-normal")
+        drag_scale, drag_per_lift = scale.copy(), np.zeros(s.n_strips)
+        if fin_drag_per_lift is not None:  # the paper's fin drag, eq. 30: d_v = q c C_Dav a_v = kappa l_v
+            drag_scale[fin] = 0.0
+            drag_per_lift[fin] = float(fin_drag_per_lift)
+        dv = np.zeros(3) if velocity_offset_m_s is None else np.asarray(velocity_offset_m_s, float)
+        if dv.shape != (3,) or not np.all(np.isfinite(dv)):
+            raise ValueError(f"velocity_offset_m_s = {velocity_offset_m_s!r}: must be 3 finite numbers [m/s]")
+        #: Mach number of the frozen compressibility factor (None: the flight's at every state).
+        self.compressibility_mach = None if compressibility_mach is None else float(compressibility_mach)
         comp_dcm = (np.stack([structure.aircraft.component(c).dcm for c in s.component]) if s.n_strips else np.zeros((0, 3, 3)))
         coef = self.inflow
         #: Fields of the compiled kernels (:func:`flexsim._kernels.pack`): floats and ints by name.
@@ -284,11 +311,15 @@ class AeroCoupling(Immutable):
                  incidence=s.incidence_rad, semichord=self._b, ab=self._ab, k0=self._k0, pr_w=self._pr_w, width=s.width_m,
                  cd0=s.cd0, flap_sign=s.flap_sign, paper_strips=self._paper_strips.astype(float), n_over_d_x=self._n_over_d_x,
                  flap_w=s.flap_w, d=s.d, n=s.n, strip_dcm=comp_dcm, strip_pos=s.position_body_m, a_inv=coef.A_inv,
-                 a_inv_c=coef.A_inv_c, b_vec=coef.b, aero_floats=[self.downwash_gradient],
+                 a_inv_c=coef.A_inv_c, b_vec=coef.b,
+                 downwash_gradient=[self.downwash_gradient],
+                 strip_mach=[np.nan if compressibility_mach is None else float(compressibility_mach)],
+                 tilt_scale=scale, drag_scale=drag_scale, drag_per_lift=drag_per_lift, aero_dv=dv,
                  dw_wing_weight=self._dw_wing_weight, dw_tail_nz=self._dw_tail_nz,
                  apparent_pitch=np.einsum("s,si,sk->ik", self._pr_w * self._b**2 / 8.0, self._proj_p, self._proj_p)),
             dict(ints=dict(finite_state=self._finite_state, n_inflow_per_strip=options.n_inflow,
-                           prandtl_glauert=self.compressibility == "prandtl-glauert", paper=self.formulation == "paper"),
+                           prandtl_glauert=self.compressibility == "prandtl-glauert", paper=self.formulation == "paper",
+                           has_aero_dv=velocity_offset_m_s is not None),
                  flap_index=s.flap_index, inflow_idx=self._inflow_idx))
         #: The strips' packed data (:class:`flexsim._kernels.KernelData`).
         self.kernel_data = _k.pack(*self.kernel_fields)
@@ -312,6 +343,8 @@ class AeroCoupling(Immutable):
         beta = sqrt(1 - M^2) with M capped at 0.95 (the paper's "Numerical Model"); 1 when the
         correction is switched off (``compressibility = "none"``).
         """
+        if self.compressibility_mach is not None:
+            mach = self.compressibility_mach
         return _k.compressibility_factor(self.compressibility == "prandtl-glauert", float(mach))
 
     def _with_downwash(self, kin: StripKinematics, vel: np.ndarray, mach: float) -> StripKinematics:
