@@ -1,9 +1,5 @@
-"""Figures of docs/options.md, docs/validation.md and the Goland figures, for ``regenerate_docs_figures.py``.
-
-Trims, ``flexsim validate`` and single flutter searches: every figure here is fast (seconds each). Each function
-returns the text of one ``<!-- figures:NAME -->`` region; the registry and the command are in
-``tools/regenerate_docs_figures.py``.
-"""
+"""Figures of docs/options.md, docs/validation.md and the Goland figures (trims, ``flexsim validate``, single
+flutter searches: seconds each), for ``regenerate_docs_figures.py``."""
 
 from __future__ import annotations
 
@@ -18,6 +14,14 @@ ROOT = Path(__file__).resolve().parents[1]
 def _num(x: float, fmt: str) -> str:
     """``format(x, fmt)`` with a typographic minus (as the docs write negative numbers)."""
     return format(x, fmt).replace("-", "−")
+
+
+def bound(x: float, limit: float, what: str) -> str:
+    """``limit`` as the docs print it (``1e-12``) once ``|x| < limit`` is checked: a round-off residual is stated as
+    the bound it meets, never by its digits, which differ between machines and BLAS builds."""
+    if not abs(x) < limit:
+        raise RuntimeError(f"{what}: {x:.3g} is not below {limit:g}")
+    return f"{limit:.0e}".replace("e-0", "e-")
 
 
 @functools.cache
@@ -196,7 +200,7 @@ def _options_study():
 
 @functools.cache
 def options_effects_points() -> tuple:
-    """Sea-level finite-state flutter points of the bundled gtm with each issue-11 option switched, the cases and
+    """Sea-level finite-state flutter points of the bundled gtm with each body option switched, the cases and
     search of ``python studies/options_effects.py``: ``((label, FlutterPoint), ...)``, the bundled gtm first and the
     parasite drag off second."""
     from flexsim.aircraft.toml_loader import load_aircraft
@@ -217,7 +221,7 @@ def options_effects_points() -> tuple:
 
 
 def options_effects_flutter() -> str:
-    """Sea-level finite-state flutter of the bundled gtm with each issue-11 option switched (docs/flutter.md),
+    """Sea-level finite-state flutter of the bundled gtm with each body option switched (docs/flutter.md),
     the cases and search of ``python studies/options_effects.py``."""
     def small(x: float, unit: str = "°") -> str:
         return "0" if abs(x) < 0.005 else f"{_num(x, '+.2f')}{unit}"
@@ -270,3 +274,10 @@ def goland_incompressible_102() -> str:
     """The Goland wing at 1.02 kg/m^3 without the Prandtl-Glauert factor."""
     (u_t, _), (u_p, _) = _goland("theodorsen", "none", 1.02), _goland("unsteady", "none", 1.02)
     return f"{u_t:.1f} m/s (Theodorsen) and {u_p:.1f} m/s (Peters)"
+
+
+def options_paper_turn_effect() -> str:
+    """The paper's turn (R = 5 km) against level flight at sea level (finite state; options-effects-flutter's points)."""
+    points = dict(options_effects_points())
+    level, turn = points["level flight, bundled `gtm`"], points["turn R = 5 km, the paper's (heading on track)"]
+    return f"{_num(100 * (turn.mach / level.mach - 1), '+.2f')} % at R = 5 km"
