@@ -85,6 +85,10 @@ def test_a_stale_region_is_reported(tmp_path, monkeypatch):
     ("M_F decreases as R increases", "M_F increases as R increases", 0.0, False),  # the words are exact
     ("DOP853 at rtol 1e-9", "DOP854 at rtol 1e-9", 0.0, False),  # digits inside a word are text
     ("| C1 | 0.714 |", "| C1 | 0.7140 |", 0.0, True),  # a figure printed with another number of digits
+    ("to 1e-13", "to 2e-13", 0.0, True),  # a one-digit residual: one unit is all it resolves ...
+    ("to 1e-13", "to 3e-13", 0.0, False),
+    ("within 1e-12", "within 1e-11", 0.0, False),  # ... and a bound keeps its exponent
+    ("9.1e-05 m", "1.0e-04 m", 0.5, True),
 ])
 def test_figures_are_compared_at_the_printed_precision(old, new, rtol, agrees):
     assert (_tool().difference(old, new, rtol) is None) == agrees

@@ -62,9 +62,8 @@ TIGHT_TOL = 1e-7
 
 
 class Figure(NamedTuple):
-    """A figure of the docs: the function computing its text; ``fast``: checked by the default test suite;
-    ``study``: the study it reads ("turn", "climb"), whose ``docs/figures/flutter_<study>*.png`` are redrawn;
-    ``rtol``: relative tolerance of its numbers beyond the printed precision (adaptive integrators, searches)."""
+    """A figure: the function computing its text; ``fast``: checked by the default test suite; ``study``: the study
+    it reads ("turn", "climb": its plots are redrawn); ``rtol``: a tolerance beyond the printed precision."""
 
     compute: Callable[[], str]
     fast: bool = False
@@ -72,25 +71,27 @@ class Figure(NamedTuple):
     rtol: float = 0.0
 
 
-def _value(number: str) -> tuple[float, float, bool]:
-    """A printed number's value, the unit of its last digit and whether it is an integer (a count)."""
+def _value(number: str) -> tuple[float, float, str]:
+    """A printed number's value, the unit of its last digit and its kind: "count", "fixed" or "e<exponent>"."""
     text = number.replace("−", "-").replace(",", "")
-    mantissa, _, exponent = text.lower().partition("e")
+    mantissa, e, exponent = text.lower().partition("e")
     decimals = len(mantissa.partition(".")[2])
-    return float(text), 10.0 ** (int(exponent or 0) - decimals), not exponent and "." not in mantissa
+    kind = f"e{int(exponent)}" if e else "fixed" if "." in mantissa else "count"
+    return float(text), 10.0 ** (int(exponent or 0) - decimals), kind
 
 
 def difference(old: str, new: str, rtol: float = 0.0) -> str | None:
-    """How the text ``old`` differs from ``new`` at the printed precision, or None where they agree: equal text
-    between the numbers, equal integers, other numbers within one unit of the coarser last digit or ``rtol``."""
+    """How ``old`` differs from ``new`` at the printed precision (None: they agree): equal text and counts, other
+    numbers within one unit of the coarser last digit (same exponent: ``1e-12`` is not ``1e-11``) or ``rtol``."""
     old_text, new_text = NUMBER.split(old), NUMBER.split(new)
     if old_text != new_text:
         a, b = next(((a, b) for a, b in zip(old_text, new_text) if a != b), (old_text[-1], new_text[-1]))
         return f"text {a.strip()[:60]!r} against {b.strip()[:60]!r}" if a != b else "a different count of numbers"
     for a, b in zip(NUMBER.findall(old), NUMBER.findall(new)):
-        (x, unit_a, count_a), (y, unit_b, count_b) = _value(a), _value(b)
-        tol = max(rtol * max(abs(x), abs(y)), 0.0 if count_a and count_b else max(unit_a, unit_b) * (1 + 1e-9))
-        if abs(x - y) > tol:
+        (x, unit_a, kind_a), (y, unit_b, kind_b) = _value(a), _value(b)
+        scientific = kind_a.startswith("e") or kind_b.startswith("e")
+        digits = kind_a == kind_b if scientific else "fixed" in (kind_a, kind_b)
+        if abs(x - y) > max(max(unit_a, unit_b) * (1 + 1e-9) if digits else 0.0, rtol * max(abs(x), abs(y))):
             return f"{a} against {b}"
     return None
 
