@@ -7,6 +7,7 @@ Python block of README.md and docs/*.md, the fast docs figures, the examples' ``
 """
 
 import os
+import signal
 
 import pytest
 
@@ -15,6 +16,12 @@ import pytest
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("MPLBACKEND", "Agg")
+
+# A run started with SIGINT ignored (in the background of a non-interactive shell, under GNU time) passes that on to
+# every child: the Rerun servers of tests/io/test_viewer.py then ignore the SIGINT that stops them and are killed
+# after 10 s each. With Python's own handler, as in a terminal, the children start with the default disposition.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 #: Test files (relative to tests/) whose tests run the documentation, and single tests of other files.
 DOCS_FILES = {"test_docs.py", "test_examples_help.py"}
