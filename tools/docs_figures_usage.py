@@ -64,7 +64,6 @@ def options_turn_hold() -> str:
             f"{h.v_over_r_rad_s:.6f} rad/s")
 
 
-
 @functools.cache
 def _margin_against_t2() -> dict:
     """The default GTM's CG and neutral point (cruise trim at 9144 m, M 0.78) and the T2's, in T2 c-bar fractions."""
@@ -100,7 +99,6 @@ def options_cg_shift() -> str:
 def options_mean_chord() -> str:
     """Mean aerodynamic chord of the exposed right wing's strips (``flexsim/trim/margin.py``)."""
     return f"{_margin_against_t2()['margin'].mean_chord_m:.2f} m"
-
 
 
 #: Wing reference area of the GTM [m^2] (the paper's; ``tools/make_gtm_toml.py``), for C_D0 and C_L.
@@ -238,7 +236,6 @@ def logs_damaged_chunk() -> str:
     if log.complete:
         raise RuntimeError("logs-damaged-chunk: the damaged log was read as complete")
     return message.removeprefix(f"{path}: ")
-
 
 
 # --- docs/design.md ------------------------------------------------------------------------------------------------

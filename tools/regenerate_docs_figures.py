@@ -433,7 +433,8 @@ FIGURES: dict[str, Figure] = {
     "options-effects-flutter": Figure(options_effects_flutter, fast=True),
     "goland-compressible": Figure(goland_compressible, fast=True),
     "goland-incompressible-102": Figure(goland_incompressible_102, fast=True),
-    "env-baselines": Figure(env_baselines),
+    # FlutterMargin-v0's episodes fly just past its flutter point: its baseline return is 989.3-989.7 on two builds
+    "env-baselines": Figure(env_baselines, rtol=1e-3),
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in USAGE_FIGURES.items()},
     **{name: Figure(*spec) for name, spec in SIMULATION_FIGURES.items()},
     **{name: Figure(compute, fast=fast) for name, (compute, fast) in STUDY_FIGURES.items()},
