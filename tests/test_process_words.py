@@ -43,17 +43,6 @@ ALLOWED: dict[str, frozenset[str]] = {
     "docs/reference/aero-kinematics.md": frozenset({"issue #43", "#43", "d88b597", "1501a89", "6ca95da", "48483cf"}),
 }
 
-#: TEMPORARY: files being rewritten elsewhere right now, or holding machinery whose removal is under way. Their hits
-#: are printed (``pytest -s``) but do not fail the test. Empty this list once they are clean.
-PENDING_CLEANUP: tuple[str, ...] = (
-    # historical-commit figure machinery (runs studies at old commits) and its tests, being removed from tools/:
-    "tools/docs_figures_records.py",
-    "tools/docs_figures_calibration.py",
-    "tools/regenerate_docs_figures.py",
-    "tests/test_docs_figures.py",
-    "tests/test_docs_figures_records.py",
-)
-
 #: Third-party data copied verbatim (NASTRAN Bulk Data and the like): not our words.
 VENDORED: tuple[str, ...] = ("flexsim/aircraft/data/sources/",)
 
@@ -98,12 +87,7 @@ def tracked_files(root: Path = ROOT) -> list[str]:
 def test_the_tracked_files_hold_no_process_words():
     files = tracked_files()
     assert len(files) > 100  # the scan sees the repository (guards against an empty file list)
-    pending = [p for p in files if p.startswith(PENDING_CLEANUP)]
-    pending_hits = scan(ROOT, pending)
-    if pending_hits:
-        print(f"\n{len(pending_hits)} process words left in files pending cleanup (PENDING_CLEANUP):")
-        print("\n".join(pending_hits))
-    hits = scan(ROOT, [p for p in files if p not in pending])
+    hits = scan(ROOT, files)
     assert not hits, f"{len(hits)} lines name the development process:\n" + "\n".join(hits)
 
 

@@ -1,14 +1,9 @@
-"""Figures of the usage docs (docs/options.md, docs/logs.md, docs/design.md; docs/environments.md's in
-``tools/docs_figures_envs.py``), for ``regenerate_docs_figures.py``.
-
-Each function returns the text of one ``<!-- figures:NAME -->`` region; the registry and the command are in
-``tools/regenerate_docs_figures.py``, which takes ``USAGE_FIGURES`` (this module's and docs_figures_envs.py's).
-"""
+"""Figures of docs/options.md, docs/logs.md and docs/design.md (and, through ``USAGE_FIGURES``, of
+docs/environments.md: ``docs_figures_envs.py``), for ``regenerate_docs_figures.py``."""
 
 from __future__ import annotations
 
 import functools
-import json
 import math
 import sys
 from pathlib import Path
@@ -16,10 +11,16 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-FIGURE_DIR = ROOT / "docs" / "figures"
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(ROOT))
 from docs_figures_envs import ENV_FIGURES  # noqa: E402
 from docs_figures_static import _num  # noqa: E402
+from flexsim.aero.lift_slopes import exposed_lift_slope, vlm_surfaces  # noqa: E402
+from flexsim.aero.vlm import solve_vlm  # noqa: E402
+from flexsim.aircraft.toml_loader import load_aircraft  # noqa: E402
+from flexsim.atmosphere import isa_density, speed_of_sound  # noqa: E402
+from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
+from flexsim.model.coupling import AeroOptions  # noqa: E402
 
 
 # --- docs/options.md ---------------------------------------------------------------------------------------------
@@ -49,7 +50,6 @@ def options_turn_hold() -> str:
     """``python studies/coordinated_turn.py``'s 30 s hold of the coordinated turn's trim controls (unsteady)."""
     from docs_figures_static import _turn_trim
 
-    from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.trim import SteadyManoeuvre
 
     point, _ = _turn_trim(True)
@@ -64,15 +64,12 @@ def options_turn_hold() -> str:
             f"{h.v_over_r_rad_s:.6f} rad/s")
 
 
-
 @functools.cache
 def _margin_against_t2() -> dict:
     """The default GTM's CG and neutral point (cruise trim at 9144 m, M 0.78) and the T2's, in T2 c-bar fractions."""
     from docs_figures_static import _cruise_trim
 
     from flexsim.aircraft.t2_data import CBAR_M, T2_CG_CBAR, cbar_fraction, t2_pitch
-    from flexsim.aircraft.toml_loader import load_aircraft
-    from flexsim.model.aircraft_model import AircraftModel
 
     gtm = load_aircraft("gtm")
     _, margin = _cruise_trim(9144.0, 0.78)
@@ -104,7 +101,6 @@ def options_mean_chord() -> str:
     return f"{_margin_against_t2()['margin'].mean_chord_m:.2f} m"
 
 
-
 #: Wing reference area of the GTM [m^2] (the paper's; ``tools/make_gtm_toml.py``), for C_D0 and C_L.
 GTM_WING_AREA_M2 = 181.25
 #: OpenAP's drag polar of the 757-200, C_D = C_D0 + k C_L^2 (Sun, Hoekstra & Ellerbroek 2020;
@@ -114,8 +110,6 @@ OPENAP_B752_CD0, OPENAP_B752_K = 0.021, 0.049
 
 def options_gtm_polar() -> str:
     """The bundled gtm's total drag area and C_D0 (the sum of its ``[[aero.drag]]`` items)."""
-    from flexsim.aircraft.toml_loader import load_aircraft
-
     f = sum(item.drag_area_m2 for item in load_aircraft("gtm").aero_settings.drag)
     return f"f = {f:.3f} m², C_D0 = {f / GTM_WING_AREA_M2:.4f} on {GTM_WING_AREA_M2:g} m²"
 
@@ -147,7 +141,6 @@ def options_strips_only() -> str:
 def _static_figures(bending: bool):
     from docs_figures_static import _options_study
 
-    from flexsim.aircraft.toml_loader import load_aircraft
 
     return _options_study().static_figures(load_aircraft("gtm"), bending)
 
@@ -172,7 +165,6 @@ def options_drag_flutter() -> str:
 
 def options_goland_divergence() -> str:
     """Divergence speed of the Goland wing (quasi-steady strips, its file's settings) at 1.225 and 1.02 kg/m^3."""
-    from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.linear.flutter import wind_tunnel
 
     goland = load_aircraft("goland_wing")
@@ -183,7 +175,6 @@ def options_goland_divergence() -> str:
 
 def options_munk_items() -> str:
     """Volumes and k2 - k1 of the bundled gtm's Munk bodies (``flexsim.model.bodies.spheroid_apparent_mass``)."""
-    from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.model.bodies import spheroid_apparent_mass
 
     bodies = {b.name: b for b in load_aircraft("gtm").aero_settings.bodies}
@@ -200,8 +191,6 @@ def options_munk_items() -> str:
 
 def options_downwash() -> str:
     """The bundled gtm's downwash gradient and its Prandtl-Glauert value at M 0.78."""
-    from flexsim.aircraft.toml_loader import load_aircraft
-
     g = load_aircraft("gtm").aero_settings.downwash_gradient
     return f"{g:.3f}", f"{g:.3f}/β = {g / math.sqrt(1 - 0.78 ** 2):.2f}"
 
@@ -214,7 +203,6 @@ def options_downwash_gradient() -> str:
 def options_downwash_mach() -> str:
     """Its value with the Prandtl-Glauert factor at M 0.78."""
     return options_downwash()[1]
-
 
 
 # --- docs/logs.md ------------------------------------------------------------------------------------------------------
@@ -250,90 +238,68 @@ def logs_damaged_chunk() -> str:
     return message.removeprefix(f"{path}: ")
 
 
-
 # --- docs/design.md ------------------------------------------------------------------------------------------------
 
-def design_roots() -> str:
-    """``flexsim trim gtm --altitude-m 9144 --mach 0.75 --roots --json``: the roots by kind and the roll subsidence."""
-    import contextlib
-    import io
-
-    from flexsim.cli.main import main as flexsim_main
-
-    out = io.StringIO()
-    with contextlib.redirect_stdout(out):
-        code = flexsim_main(["trim", "gtm", "--altitude-m", "9144", "--mach", "0.75", "--roots", "--json"])
-    if code:
-        raise RuntimeError(f"design-roots: flexsim trim exited with status {code}")
-    modes = json.loads(out.getvalue())["roots"]["modes"]
-    count = {k: sum(m["kind"] == k for m in modes) for k in ("rigid", "elastic", "aerodynamic")}
-    roll = [m for m in modes if m["kind"] == "rigid" and m["dominant_dof"] == "p"]
-    pair = ""
-    if len(roll) == 2 and roll[0]["imag"] != 0.0:
-        pair = (f" (the roll subsidence pairs with a wake root, {_num(roll[0]['real'], '.2f')} ± "
-                f"{abs(roll[0]['imag']):.2f}j)")
-    return f"{count['rigid']} rigid{pair}, {count['elastic']} elastic, {count['aerodynamic']} aerodynamic-lag"
+_SPEED = 70.0  # [m/s] sea level, M 0.21 (tests/model/test_gtm_aero.py)
+_S_REF = 181.25  # [m^2] GTM reference area (flexsim/aircraft/data/sources/gtm-notional.md 2a)
+_ALPHA, _DALPHA = 0.03, 0.02  # [rad] central difference of the lift about this incidence
 
 
-#: The figures of this module and of docs_figures_envs.py: region name -> (function, fast: checked in the default
-#: test suite).
-def options_margin_change() -> str:
-    """Static margin of the cruise trim (9144 m, M 0.78) of the paper's strips alone and of the default (body
-    moments and downwash), the first and last rows of options-static-margin."""
-    from docs_figures_static import MARGIN_ROWS, _cruise_trim
-
-    (_, first), (_, last) = MARGIN_ROWS[0], MARGIN_ROWS[-1]
-    a, b = (100 * _cruise_trim(9144.0, 0.78, **switches)[1].fraction_of_mac for switches in (first, last))
-    return f"{a:.1f} % → {b:.1f} %"
-
-
-#: The parts of ``studies/reliability_census.py`` whose verdicts are counts (the sweeps part kills processes and
-#: times Ctrl-C: a dated record in docs/design.md, not a figure).
-CENSUS_PARTS = ("aircraft", "cli", "logs")
+def _strip_lift_slope(downwash: bool) -> float:
+    """dCL/dalpha [1/rad] on S_ref of the quasi-rigid gtm's strips (quasi-steady), from the model's generalized forces."""
+    model = AircraftModel(load_aircraft("gtm"), variant="quasi-rigid", aero=AeroOptions(model="quasi-steady", downwash=downwash),
+                          gravity_m_s2=0.0)
+    lift = []
+    for alpha in (_ALPHA - _DALPHA, _ALPHA + _DALPHA):
+        vel = np.zeros(model.structure.dofs.n_v)
+        vel[0:3] = _SPEED * np.array([np.cos(alpha), 0.0, np.sin(alpha)])
+        _, f = model.generalized_forces(model.pack(position_m=[0.0, 0.0, 0.0], velocity=vel), np.zeros(4))
+        lift.append(-f[2] * np.cos(alpha) + f[0] * np.sin(alpha))
+    q_dyn = 0.5 * isa_density(0.0) * _SPEED**2
+    return (lift[1] - lift[0]) / (2 * _DALPHA) / (q_dyn * _S_REF)
 
 
-def design_reliability_census() -> str:
-    """``python studies/reliability_census.py aircraft|cli|logs --quick``, each in a child process (the parts
-    arm signal alarms and write temporary files), counted by verdict; the cases that are not a clear error,
-    a warning or a sane answer are named. About 30 s of CPU."""
-    import collections
-    import subprocess
-    import tempfile
-
-    with tempfile.TemporaryDirectory(prefix="flexsim-census-") as tmp:
-        for part in CENSUS_PARTS:
-            run = subprocess.run([sys.executable, str(ROOT / "studies" / "reliability_census.py"), part, "--quick",
-                                  "--out", tmp], cwd=tmp, capture_output=True, text=True, timeout=1800)
-            if run.returncode != 0:
-                raise RuntimeError(f"design-reliability-census: reliability_census.py {part} failed "
-                                   f"(exit {run.returncode}): {run.stderr.strip()[-2000:]}")
-        rows = {part: json.loads((Path(tmp) / f"{part}.json").read_text(encoding="utf-8")) for part in CENSUS_PARTS}
-
-    def counts(rs, legal: str, warned: str = "") -> str:
-        c = collections.Counter(r["verdict"] for r in rs)
-        text = f"{len(rs)} {{}} → {c['CLEAR']} clear" + (f", {c['WARNED']} {warned}" if warned else "") + \
-            f", {c['OK']} {legal}"
-        for verdict in ("OBSCURE", "TRACEBACK", "SILENT", "HANG"):
-            named = [f"`flexsim {' '.join(r['argv'])}`" if r.get("argv") else r["id"] for r in rs if r["verdict"] == verdict]
-            text += f", {len(named)} {verdict.lower()}" + (f" ({', '.join(named)})" if named else "")
-        other = len(rs) - sum(c[v] for v in ("CLEAR", "OK", "WARNED", "OBSCURE", "TRACEBACK", "SILENT", "HANG"))
-        return text + (f", {other} other" if other else "")
-
-    cli = [r for r in rows["cli"] if r.get("group", "cli") == "cli"]
-    trims = [r for r in rows["cli"] if r.get("group") == "trim"]
-    logs = [r for r in rows["logs"] if not r.get("identical")]
-    flagged = sum(r["verdict"] in ("FLAGGED", "ERROR (clear)") for r in logs)
-    altered = sum(r["verdict"].startswith("SILENT") or "altered" in r["verdict"] for r in logs)
-    return "; ".join([
-        counts(rows["aircraft"], "legal files answered sanely").format("aircraft files"),
-        counts(cli, "legal", "explicit warnings (Mach ≥ 0.95)").format("CLI cases"),
-        counts(trims, "feasible", "warned").format("infeasible trims"),
-        f"{len(logs)} damaged logs → {flagged} flagged ({sum(r['verdict'] == 'ERROR (clear)' for r in logs)} clear "
-        f"errors, {sum(r['verdict'] == 'FLAGGED' for r in logs)} recovered with the damage named), {altered} altered "
-        f"values"])
+@functools.cache
+def _lift_slopes() -> tuple[float, float, float, float]:
+    """(strips without the tail downwash, strips with the file's, lattice on the exposed surfaces, whole lattice),
+    dCL/dalpha [1/rad] on S_ref at 70 m/s, sea level; Prandtl-Glauert on the lattice as on the strips."""
+    aircraft = load_aircraft("gtm")
+    beta = np.sqrt(1.0 - (_SPEED / speed_of_sound(0.0)) ** 2)
+    vlm = solve_vlm(vlm_surfaces(aircraft), mach=0.0, s_ref_m2=_S_REF)
+    return (_strip_lift_slope(False), _strip_lift_slope(True), exposed_lift_slope(aircraft, vlm) / beta,
+            vlm.lift_slope_per_rad / beta)
 
 
+def design_lift_slope() -> str:
+    """The strips' lift slope against the lattice's on the same exposed surfaces."""
+    strips, with_downwash, exposed, _ = _lift_slopes()
+    return (f"{abs(strips / exposed - 1.0) * 100:.2f} % ({strips:.3f} vs {exposed:.3f} /rad on S_ref at M "
+            f"{_SPEED / speed_of_sound(0.0):.2f}, sea level, without the file's tail downwash, which the lattice "
+            f"holds already; with it the strips' is {with_downwash:.3f} /rad)")
+
+
+def design_lift_slope_total() -> str:
+    """The whole lattice's lift slope, carry-over across the fuselage included."""
+    return f"{_lift_slopes()[3]:.2f} /rad"
+
+
+def design_cla_peak() -> str:
+    """Where the right wing's sectional lift slope (incompressible lattice, ``flexsim aero gtm``) peaks."""
+    vlm = solve_vlm(vlm_surfaces(load_aircraft("gtm")), mach=0.0, s_ref_m2=_S_REF)
+    wing = vlm.surface("right_wing")
+    outboard = wing.eta > 0.0
+    eta = wing.eta[outboard][np.argmax(wing.cl_alpha_per_rad[outboard])]
+    if not 0.5 < eta < 1.0:
+        raise RuntimeError(f"design-cla-peak: the sectional lift slope peaks at {eta:.2f} of the semispan, not "
+                           f"outboard; rewrite the sentence of docs/design.md")
+    return f"near {100 * eta:.0f} % of the semispan"
+
+
+#: The figures of this module and of docs_figures_envs.py: region name -> (function, fast).
 USAGE_FIGURES = {
+    "design-lift-slope": (design_lift_slope, True),
+    "design-lift-slope-total": (design_lift_slope_total, True),
+    "design-cla-peak": (design_cla_peak, True),
     **ENV_FIGURES,
     "options-turn-hold": (options_turn_hold, False),
     "options-t2": (options_t2, True),
@@ -349,7 +315,4 @@ USAGE_FIGURES = {
     "options-downwash-gradient": (options_downwash_gradient, True),
     "options-downwash-mach": (options_downwash_mach, True),
     "logs-damaged-chunk": (logs_damaged_chunk, True),
-    "design-roots": (design_roots, False),
-    "options-margin-change": (options_margin_change, True),
-    "design-reliability-census": (design_reliability_census, False),
 }

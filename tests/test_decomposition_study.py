@@ -1,5 +1,6 @@
-"""The decomposition rows of docs/flutter.md (``tools/docs_figures_records.py``): every switch of the study is a
-physical term of today's model, and the command the docs quote runs."""
+"""The decomposition study (``studies/manoeuvre_decomposition.py``, docs/replication.md): every switch builds its
+linear models from today's model with one field of ``Terms`` changed (or changes the linearisation point), and the
+command the docs quote runs."""
 
 import importlib
 import subprocess
@@ -11,10 +12,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _records():
-    sys.path.insert(0, str(ROOT / "tools"))
+def _study():
     sys.path.insert(0, str(ROOT / "studies"))
-    return importlib.import_module("docs_figures_records")
+    return importlib.import_module("manoeuvre_decomposition")
 
 
 def test_every_switch_is_a_term_of_the_current_model():
@@ -24,8 +24,7 @@ def test_every_switch_is_a_term_of_the_current_model():
 
     import numpy as np
 
-    _records()
-    import manoeuvre_decomposition as md
+    md = _study()
     from flexsim.trim import SteadyManoeuvre, trim
 
     source = (ROOT / "studies" / "manoeuvre_decomposition.py").read_text(encoding="utf-8")
@@ -62,13 +61,13 @@ def test_every_switch_is_a_term_of_the_current_model():
     assert np.all(x[lay.velocity.start + 3: lay.velocity.start + 6] == 0.0) and not math.isnan(x.sum())
 
 
-def test_the_recorded_command_is_the_scripts_own_spelling():
-    """The command a recorded figure quotes parses with the study script's own options, so the docs quote a
-    command that runs."""
-    records = _records()
-    args = records.C1.args(["none"])
-    assert args[:2] == ["--scaling", records.C1.get("--scaling")]
-    assert args[args.index("--incidence") + 1: args.index("--incidence") + 3] == ["1.81", "2.7"]
+def test_the_quoted_command_parses():
+    """The C1 scorecard command docs/replication.md quotes parses with the study script's own options."""
+    args = ["--scaling", '{"fuselage_ei":1.587,"wing_gj":0.816,"wing_ei":0.635,"fuselage_gj":0.907,'
+            '"htail_stiffness":0.907,"vtail_stiffness":0.907}', "--mass-factor", "0.907", "--incidence", "1.81", "2.7",
+            "--formulation", "paper", "--fixed-density", "3048", "--damping", "0.01", "--altitude", "9144",
+            "--switches", "none", "--mode-class", "symmetric", "--json", "9144.json"]
+    assert " ".join(args[2:]).replace("9144", "h") in (ROOT / "docs" / "replication.md").read_text(encoding="utf-8")
     run = subprocess.run([sys.executable, str(ROOT / "studies" / "manoeuvre_decomposition.py"), *args, "--help"],
                          capture_output=True, text=True, timeout=300, cwd=ROOT)
     assert run.returncode == 0, run.stderr
