@@ -6,9 +6,12 @@ products over the rows as matrix products), plus two quasi-steady cases integrat
 tests/envs/data/record_env_reference.py from the environments before their integration moved into
 :mod:`flexsim.sim.periods`. The episodes here are the same (same seeds and actions, :func:`run_case`).
 
-Tolerances: observations (float32) within one float32 spacing of the recorded value (the integration may round
-differently in the last bit of a float64 before the cast; one spacing of float32 is 6e-8 relative); rewards within
-1e-6 relative (plus 1e-12 absolute for zero parts).
+Tolerances: observations (float32) within 4 float32 spacings of each observation component's largest magnitude in
+the recorded episode (2.4e-7 of that scale); rewards within 1e-6 relative (plus 1e-12 absolute for zero parts). The
+right-hand side sums its terms in another order than when the reference was recorded (it agrees within 3e-15
+relative: tests/model/test_reference_values.py); the FlutterMargin tasks fly a growing flutter mode and their
+ETD2RK linear part is a finite-difference Jacobian of that right-hand side, which turns the round-off into
+observation changes of up to 1.2e-7 of a component's scale (2 spacings; measured), the other tasks 5.5e-9 or less.
 """
 
 import sys
@@ -30,7 +33,8 @@ def test_observations_and_rewards_equal_the_recorded_reference(name, env_id, num
     obs, reward = run_case(env_id, num_envs, kwargs)
     ref_obs, ref_reward = REFERENCE[f"{name}/obs"], REFERENCE[f"{name}/reward"]
     assert obs.shape == ref_obs.shape and obs.dtype == np.float32
-    spacing = np.spacing(np.abs(ref_obs)).astype(np.float64)
-    excess = np.abs(obs.astype(np.float64) - ref_obs.astype(np.float64)) - spacing
+    scale = np.abs(ref_obs).reshape(-1, ref_obs.shape[-1]).max(axis=0)  # each component's largest magnitude
+    tolerance = 4.0 * np.spacing(scale).astype(np.float64)
+    excess = np.abs(obs.astype(np.float64) - ref_obs.astype(np.float64)) - tolerance
     assert excess.max() <= 0.0, (name, np.unravel_index(np.argmax(excess), excess.shape), float(excess.max()))
     np.testing.assert_allclose(reward, ref_reward, rtol=1e-6, atol=1e-12)
