@@ -12,10 +12,9 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 from pathlib import Path
 
-from flexsim.cli.validation import CliError, check_trim_options, json_text
+from flexsim.cli.validation import CliError, check_trim_options, check_writable_dir, json_text
 
 __all__ = ["add_linear_commands"]
 
@@ -27,11 +26,7 @@ def _check_out(path: str) -> Path:
         raise CliError(f"--out = {path!r}: is a directory; give a file name such as {str(p / 'linear.npz')!r}")
     if p.suffix != ".npz":
         raise CliError(f"--out = {path!r}: must end in .npz (the numpy archive the linear model is written to)")
-    parent = p.parent if str(p.parent) else Path(".")
-    if not parent.is_dir():
-        raise CliError(f"--out = {path!r}: directory {str(parent)!r} does not exist")
-    if not os.access(parent, os.W_OK):
-        raise CliError(f"--out = {path!r}: directory {str(parent)!r} is not writable")
+    check_writable_dir("--out", path, p.parent)
     return p
 
 

@@ -149,11 +149,12 @@ def check_plot_path(path: str) -> Path:
     suffix = p.suffix.lstrip(".").lower()
     if suffix not in formats:
         raise CliError(f"--plot = {path!r}: the suffix must be one of {', '.join('.' + f for f in sorted(formats))}")
-    _check_writable_dir("--plot", path, p.parent)
+    check_writable_dir("--plot", path, p.parent)
     return p
 
 
-def _check_writable_dir(option: str, path: str, directory: Path) -> None:
+def check_writable_dir(option: str, path: str, directory: Path) -> None:
+    """``option = path``: its directory exists and is writable (CliError naming both otherwise)."""
     directory = directory if str(directory) else Path(".")
     if not directory.is_dir():
         raise CliError(f"{option} = {path!r}: directory {str(directory)!r} does not exist")
