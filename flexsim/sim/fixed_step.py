@@ -73,7 +73,7 @@ from typing import NamedTuple
 from scipy.linalg import expm, matrix_balance
 
 from flexsim import _kernels as _k
-from flexsim._arrays import readonly
+from flexsim._arrays import kernel_arg, readonly
 from flexsim.sim import _dense_kernels as _dk
 from flexsim.sim import _step_kernels as _sk
 
@@ -364,7 +364,7 @@ class ETD2RK:
             or whose altitude leaves the model's range (:attr:`AircraftModel.altitude_range_m`); that step is the
             last row, and ``model.rhs`` at it reports the reason.
         """
-        x0 = np.ascontiguousarray(x0, dtype=float)
+        x0 = kernel_arg(x0)  # writable: a read-only trim state would compile the step kernel a second time
         if x0.shape != (self.n,):
             raise ValueError(f"x0: expected shape ({self.n},) to match jac, got shape {x0.shape}")
         k = int(max_steps)
@@ -372,8 +372,8 @@ class ETD2RK:
         t_u, u_u, du_dt = controls
         lo, hi = model.altitude_range_m
         w = _k.NO_WIND if wind is None else wind
-        args = (*model.kernel_data, *w, x0, np.ascontiguousarray(f0, dtype=float), float(t0), float(t_bound), self.h, k,
-                bool(land), float(t_u), np.ascontiguousarray(u_u, dtype=float), np.ascontiguousarray(du_dt, dtype=float),
+        args = (*model.kernel_data, *w, x0, kernel_arg(f0), float(t0), float(t_bound), self.h, k,
+                bool(land), float(t_u), kernel_arg(u_u), kernel_arg(du_dt),
                 self._h_phi1, self._h_phi2, self._jac, float(lo), float(hi), ts, xs, fs)
         with np.errstate(all="ignore"):
             if dense:
