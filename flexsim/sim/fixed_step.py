@@ -74,6 +74,7 @@ from scipy.linalg import expm, matrix_balance
 
 from flexsim import _kernels as _k
 from flexsim._arrays import kernel_arg, readonly
+from flexsim.errors import positive_number
 from flexsim.sim import _dense_kernels as _dk
 from flexsim.sim import _step_kernels as _sk
 
@@ -102,13 +103,7 @@ def _check_matrix(name: str, a: np.ndarray) -> np.ndarray:
 
 
 def _check_step(h: float) -> float:
-    try:
-        step = float(h)
-    except (TypeError, ValueError):
-        raise ValueError(f"h = {h!r}: must be a finite number > 0 [s]") from None
-    if not (math.isfinite(step) and step > 0.0):
-        raise ValueError(f"h = {h!r}: must be a finite number > 0 [s]")
-    return step
+    return positive_number("h", h, "s")
 
 
 def phi_functions(jac: np.ndarray, h: float, method: str = "scaled") -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -38,6 +38,7 @@ from scipy.integrate import solve_ivp
 from flexsim import _kernels as _k
 from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
+from flexsim.errors import positive_number
 from flexsim.kinematics import euler_rate_matrix_inverse
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.jacobian import jacobian
@@ -76,16 +77,6 @@ _SLIVER = 1e-12
 _MODEL_ERRORS = (ValueError, ArithmeticError, np.linalg.LinAlgError)
 
 
-def _positive(name: str, value: float) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} = {value!r}: must be a finite number > 0") from None
-    if not (math.isfinite(v) and v > 0.0):
-        raise ValueError(f"{name} = {value!r}: must be a finite number > 0")
-    return v
-
-
 @dataclass(frozen=True)
 class ActuatorRates:
     """Rate limits of the actuators (applied to the commanded controls every control period).
@@ -108,7 +99,7 @@ class ActuatorRates:
 
     def __post_init__(self) -> None:
         for name in ("thrust_fraction_per_s", "aileron_rad_s", "elevator_rad_s", "rudder_rad_s"):
-            object.__setattr__(self, name, _positive(name, getattr(self, name)))
+            object.__setattr__(self, name, positive_number(name, getattr(self, name)))
 
     def limits(self, max_thrust_n: float) -> np.ndarray:
         """Rates of u = [T_e, delta_a, delta_e, delta_r]: [N/s, rad/s, rad/s, rad/s], shape (4,)."""
@@ -149,13 +140,13 @@ class IntegratorSettings:
     def __post_init__(self) -> None:
         if self.method not in INTEGRATOR_METHODS:
             raise ValueError(f"method = {self.method!r}: must be one of {', '.join(INTEGRATOR_METHODS)}")
-        rtol = _positive("rtol", self.rtol)
+        rtol = positive_number("rtol", self.rtol)
         if not 1e-12 <= rtol <= 1e-2:
             raise ValueError(f"rtol = {self.rtol!r}: must be in [1e-12, 1e-2]")
         object.__setattr__(self, "rtol", rtol)
-        object.__setattr__(self, "atol_scale", _positive("atol_scale", self.atol_scale))
+        object.__setattr__(self, "atol_scale", positive_number("atol_scale", self.atol_scale))
         lo, hi = MAX_STEP_RANGE_S
-        step = _positive("max_step_s", self.max_step_s)
+        step = positive_number("max_step_s", self.max_step_s)
         if not lo <= step <= hi:
             raise ValueError(f"max_step_s = {self.max_step_s!r}: must be in [{lo:g}, {hi:g}] s")
         object.__setattr__(self, "max_step_s", step)
