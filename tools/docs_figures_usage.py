@@ -1,20 +1,15 @@
-"""Figures of docs/options.md, docs/logs.md and docs/design.md (and, through ``USAGE_FIGURES``, of
-docs/environments.md: ``docs_figures_envs.py``), for ``regenerate_docs_figures.py``."""
+"""Figures of docs/options.md, docs/logs.md and docs/design.md, for ``regenerate_docs_figures.py``."""
 
 from __future__ import annotations
 
 import functools
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
+from docs_figures_static import _cruise_trim, _options_effects_points, _static_figures, _turn_trim
+from figure_text import exponent, figure, num
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(0, str(ROOT))
-from docs_figures_envs import ENV_FIGURES  # noqa: E402
-from docs_figures_static import _num  # noqa: E402
 from flexsim.aero.lift_slopes import exposed_lift_slope, vlm_surfaces  # noqa: E402
 from flexsim.aero.vlm import solve_vlm  # noqa: E402
 from flexsim.aircraft.toml_loader import load_aircraft  # noqa: E402
@@ -25,37 +20,27 @@ from flexsim.model.coupling import AeroOptions  # noqa: E402
 
 # --- docs/options.md ---------------------------------------------------------------------------------------------
 
-def _study(name: str):
-    """``studies/<name>.py`` as a module."""
-    import importlib.util
-
-    spec = importlib.util.spec_from_file_location(name, ROOT / "studies" / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # its dataclasses / NamedTuples resolve their module by name
-    spec.loader.exec_module(module)
-    return module
-
-
 def _small(x: float, unit: str, floor: float = 1e-9) -> str:
     """A drift: ``0``, ``below 1e-9`` (round-off, whose digits vary with the platform) or ``2.5e-6`` with ``unit``."""
     sep = "" if unit == "°" else " "
     if x == 0.0:
         return f"0{sep}{unit}"
     if abs(x) < floor:
-        return f"below {floor:.0e}{sep}{unit}".replace("e-0", "e-")
-    return f"{x:.1e}{sep}{unit}".replace("e-0", "e-")
+        return f"below {exponent(floor)}{sep}{unit}"
+    return f"{exponent(x, '.1e')}{sep}{unit}"
 
 
+@figure(fast=False)
 def options_turn_hold() -> str:
     """``python studies/coordinated_turn.py``'s 30 s hold of the coordinated turn's trim controls (unsteady)."""
-    from docs_figures_static import _turn_trim
+    import coordinated_turn
 
     from flexsim.trim import SteadyManoeuvre
 
     point, _ = _turn_trim(True)
     man = SteadyManoeuvre.turn(9144.0, 5000.0, mach=0.78, coordinated=True)
     duration = 30.0
-    h = _study("coordinated_turn").hold_trim(load_aircraft("gtm"), point, man, duration, "unsteady")
+    h = coordinated_turn.hold_trim(load_aircraft("gtm"), point, man, duration, "unsteady")
     if h.status != "completed":
         raise RuntimeError(f"options-turn-hold: the hold ended {h.status}")
     return (f"holds the trim's controls for {duration:g} s with the nonlinear model and unsteady aerodynamics "
@@ -67,8 +52,6 @@ def options_turn_hold() -> str:
 @functools.cache
 def _margin_against_t2() -> dict:
     """The default GTM's CG and neutral point (cruise trim at 9144 m, M 0.78) and the T2's, in T2 c-bar fractions."""
-    from docs_figures_static import _cruise_trim
-
     from flexsim.aircraft.t2_data import CBAR_M, T2_CG_CBAR, cbar_fraction, t2_pitch
 
     gtm = load_aircraft("gtm")
@@ -83,7 +66,7 @@ def options_t2() -> str:
     """The T2's pitch derivatives, neutral point and margin against the model's CG and neutral point."""
     f = _margin_against_t2()
     t2 = f["t2"]
-    return (f"has Cm_α = {_num(t2.cm_alpha_per_rad, '.3f')} and CN_α = {t2.cn_alpha_per_rad:.3f} per radian (α = 0-6°) "
+    return (f"has Cm_α = {num(t2.cm_alpha_per_rad, '.3f')} and CN_α = {t2.cn_alpha_per_rad:.3f} per radian (α = 0-6°) "
             f"about 25 % of its reference chord c̄ ({f['cbar_m']:.3f} m at full scale), a neutral point at "
             f"{100 * t2.neutral_point_cbar:.1f} % c̄ and a margin of {100 * (t2.neutral_point_cbar - f['t2_cg']):.0f} % at its "
             f"own CG ({100 * f['t2_cg']:.2f} % c̄). The model's CG is at {100 * f['cg']:.1f} % c̄ and its neutral point at "
@@ -116,8 +99,6 @@ def options_gtm_polar() -> str:
 
 def options_openap() -> str:
     """OpenAP's 757-200 polar at the cruise trim's lift coefficient (9144 m, M 0.78)."""
-    from docs_figures_static import _cruise_trim
-
     from flexsim.atmosphere import isa_density, mach_to_true_airspeed
 
     s, _ = _cruise_trim(9144.0, 0.78)
@@ -129,20 +110,10 @@ def options_openap() -> str:
 
 def options_strips_only() -> str:
     """The cruise trim and glide at 9144 m, M 0.78 without the parasite drag items (the strips' induced drag only)."""
-    from docs_figures_static import _cruise_trim
-
     bare, _ = _cruise_trim(9144.0, 0.78, parasite_drag=False)
     glide, _ = _cruise_trim(9144.0, 0.78, glide=True, parasite_drag=False)
     return (f"L/D {bare['lift_to_drag']:.1f} with {bare['thrust_kN']:.1f} kN of thrust at 9144 m, M 0.78 and a glide of "
-            f"{_num(glide['gamma_deg'], '.2f')}°")
-
-
-@functools.cache
-def _static_figures(bending: bool):
-    from docs_figures_static import _options_study
-
-
-    return _options_study().static_figures(load_aircraft("gtm"), bending)
+            f"{num(glide['gamma_deg'], '.2f')}°")
 
 
 def options_aileron_washin() -> str:
@@ -153,11 +124,9 @@ def options_aileron_washin() -> str:
 
 def options_drag_flutter() -> str:
     """Sea-level finite-state level flutter with and without the parasite drag items (``studies/options_effects.py``)."""
-    from docs_figures_static import options_effects_points
-
-    (_, with_drag), (_, without) = options_effects_points()[:2]
+    (_, with_drag), (_, without) = _options_effects_points()[:2]
     d = abs(with_drag.mach - without.mach)
-    diff = "less than 1e-4 (the search's Mach tolerance)" if d < 1e-4 else f"{d:.1e}".replace("e-0", "e-")
+    diff = "less than 1e-4 (the search's Mach tolerance)" if d < 1e-4 else exponent(d, ".1e")
     return (f"M_F {with_drag.mach:.4f} against {without.mach:.4f} without the items, a difference of {diff}, "
             f"although the trim thrust is "
             f"{with_drag.trim.thrust_n / without.trim.thrust_n:.0f} times larger")
@@ -189,20 +158,15 @@ def options_munk_items() -> str:
             f"Ø {nac.diameter_m:g} m, {nac.volume_m3:.1f} m³ each (k₂ − k₁ = {dk(nac):.3f})")
 
 
-def options_downwash() -> str:
-    """The bundled gtm's downwash gradient and its Prandtl-Glauert value at M 0.78."""
-    g = load_aircraft("gtm").aero_settings.downwash_gradient
-    return f"{g:.3f}", f"{g:.3f}/β = {g / math.sqrt(1 - 0.78 ** 2):.2f}"
-
-
 def options_downwash_gradient() -> str:
     """The bundled gtm's downwash gradient (``[aero] downwash_gradient``)."""
-    return options_downwash()[0]
+    return f"{load_aircraft('gtm').aero_settings.downwash_gradient:.3f}"
 
 
 def options_downwash_mach() -> str:
     """Its value with the Prandtl-Glauert factor at M 0.78."""
-    return options_downwash()[1]
+    g = load_aircraft("gtm").aero_settings.downwash_gradient
+    return f"{g:.3f}/β = {g / math.sqrt(1 - 0.78 ** 2):.2f}"
 
 
 # --- docs/logs.md ------------------------------------------------------------------------------------------------------
@@ -293,26 +257,3 @@ def design_cla_peak() -> str:
         raise RuntimeError(f"design-cla-peak: the sectional lift slope peaks at {eta:.2f} of the semispan, not "
                            f"outboard; rewrite the sentence of docs/design.md")
     return f"near {100 * eta:.0f} % of the semispan"
-
-
-#: The figures of this module and of docs_figures_envs.py: region name -> (function, fast).
-USAGE_FIGURES = {
-    "design-lift-slope": (design_lift_slope, True),
-    "design-lift-slope-total": (design_lift_slope_total, True),
-    "design-cla-peak": (design_cla_peak, True),
-    **ENV_FIGURES,
-    "options-turn-hold": (options_turn_hold, False),
-    "options-t2": (options_t2, True),
-    "options-cg-shift": (options_cg_shift, True),
-    "options-mean-chord": (options_mean_chord, True),
-    "options-gtm-polar": (options_gtm_polar, True),
-    "options-openap": (options_openap, True),
-    "options-strips-only": (options_strips_only, True),
-    "options-aileron-washin": (options_aileron_washin, True),
-    "options-drag-flutter": (options_drag_flutter, True),
-    "options-goland-divergence": (options_goland_divergence, True),
-    "options-munk-items": (options_munk_items, True),
-    "options-downwash-gradient": (options_downwash_gradient, True),
-    "options-downwash-mach": (options_downwash_mach, True),
-    "logs-damaged-chunk": (logs_damaged_chunk, True),
-}
