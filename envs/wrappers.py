@@ -23,7 +23,8 @@ class FlightLogRecorder(gym.Wrapper):
     ``q_<component>_<k>_m``, ``xi_<component>_<k>_rad``, ...), the applied controls ``thrust_N, aileron_rad,
     elevator_rad, rudder_rad``, the simulator's flight signals (air data, load factor, tip deflections and twists
     with their rates, root bending moments) followed by ``error_<task error>`` and ``reward``, the deformed beam
-    nodes of every component and events (reset, termination with its reason, truncation). View one with
+    nodes of every component and events (reset, termination with its reason, truncation); the header records the
+    model's physical terms (:attr:`flexsim.io.flight_log.FlightLog.terms`). View one with
     ``python -m flexsim.io.rerun_view LOG.mcap --rrd out.rrd``.
 
     Parameters
@@ -89,7 +90,8 @@ class FlightLogRecorder(gym.Wrapper):
         nodes = base.dynamics.structure_nodes(base.state)
         self._writer = FlightLogWriter(path, state_names=base.dynamics.state_names(), control_names=LOG_CONTROL_NAMES,
                                        signal_names=base.signal_names(), structure_topology={k: len(v) for k, v in nodes.items()},
-                                       metadata=metadata)
+                                       metadata=metadata, terms=base.dynamics.model.terms.record(),
+                                       formulation=base.dynamics.model.formulation)
         self.paths.append(path)
         self._last_sample_t = float("-inf")
         self._writer.event(0.0, f"reset: {type(base).__name__}, seed {seed}, reference {info.get('reference', {})}")
