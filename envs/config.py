@@ -1,8 +1,8 @@
 """Frozen parameter sets shared by every flexsim environment (limits, initial perturbation, rewards).
 
 All quantities SI and radians. Each dataclass validates itself and raises ``ValueError`` naming the field, the
-value and the allowed range. The integration's settings, :class:`~flexsim.sim.periods.IntegratorSettings` and
-:class:`~flexsim.sim.periods.ActuatorRates`, live with the integration in :mod:`flexsim.sim.periods`.
+value and the allowed range. The integration's settings, :class:`flexsim.sim.IntegratorSettings` (the one class of
+``simulate`` and of the control periods) and :class:`~flexsim.sim.periods.ActuatorRates`, live with the integration.
 """
 
 from __future__ import annotations
@@ -13,7 +13,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from flexsim.sim.periods import DEFAULT_MAX_STEP_S, FIXED_STEP_METHODS, INTEGRATOR_METHODS, ActuatorRates, IntegratorSettings
+from flexsim.sim import IntegratorSettings
+from flexsim.sim.periods import DEFAULT_MAX_STEP_S, FIXED_STEP_METHODS, INTEGRATOR_METHODS, ActuatorRates
 
 from flexsim.envs.row_kernels import reward_rows
 
