@@ -576,7 +576,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             return None
         if self._x is None:
             raise RuntimeError("render() called before reset()")
-        from flexsim.envs.rendering import RerunStreamer, RgbRenderer
+        from flexsim.io.rendering import RerunStreamer, RgbRenderer
 
         if self._renderer is None:
             self._renderer = RgbRenderer() if self.render_mode == "rgb_array" else RerunStreamer()
