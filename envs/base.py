@@ -149,7 +149,7 @@ class RowsStep:
 
 @dataclass(frozen=True)
 class LogSample:
-    """One flight-log sample of the current state (see :class:`flexsim.envs.wrappers.FlightLogRecorder`)."""
+    """One flight-log sample of the current state (see :class:`flexsim.io.env_log.FlightLogRecorder`)."""
 
     time_s: float
     position_ned_m: np.ndarray
