@@ -82,7 +82,7 @@ def test_human_mode_streams_to_rerun_without_spawning(monkeypatch):
     # in-memory one beforehand, so the drawing code runs against rerun-sdk without any viewer.
     import rerun as rr
 
-    from flexsim.envs.rendering import RerunStreamer
+    from flexsim.io.rendering import RerunStreamer
 
     monkeypatch.setenv("DISPLAY", ":flexsim-test")  # human mode is refused where no viewer can open
     env = envs.LevelHoldEnv(aero="quasi-steady", render_mode="human")

@@ -1,4 +1,4 @@
-"""Wrappers of the flexsim environments."""
+"""The flight-log recorder of the flexsim environments (:mod:`flexsim.envs`), a gymnasium wrapper."""
 
 from __future__ import annotations
 
@@ -9,8 +9,7 @@ from typing import Any
 import gymnasium as gym
 
 from flexsim.io.flight_log import FlightLogWriter
-
-from flexsim.envs.base import LOG_CONTROL_NAMES, FlexSimEnv
+from flexsim.io.vocabulary import CONTROL_NAMES as LOG_CONTROL_NAMES
 
 __all__ = ["FlightLogRecorder"]
 
@@ -47,7 +46,7 @@ class FlightLogRecorder(gym.Wrapper):
 
     def __init__(self, env: gym.Env, path: str | os.PathLike, metadata: dict[str, str] | None = None) -> None:
         super().__init__(env)
-        if not isinstance(env.unwrapped, FlexSimEnv):
+        if not all(hasattr(env.unwrapped, name) for name in ("log_sample", "signal_names", "dynamics")):
             raise ValueError(f"env = {env!r}: FlightLogRecorder needs a flexsim environment (FlexSimEnv)")
         path = Path(path)
         if path.suffix != ".mcap":
@@ -81,7 +80,7 @@ class FlightLogRecorder(gym.Wrapper):
         obs, info = self.env.reset(seed=seed, options=options)
         self._close_writer()
         self._episode += 1
-        base: FlexSimEnv = self.env.unwrapped
+        base = self.env.unwrapped
         path = self._episode_path(self._episode)
         metadata = {"aircraft": str(base.aircraft_source), "env": type(base).__name__, "episode": str(self._episode),
                     "seed": str(seed), "aero": base.dynamics.aero, "integrator": base.dynamics.method,
