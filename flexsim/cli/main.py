@@ -27,10 +27,10 @@ from typing import Sequence
 
 import numpy as np
 
+from flexsim._numba_cache import announce_compilation
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import bundled_aircraft_names, load_aircraft
 from flexsim.cli.validation import SanitisedStream, check_count, check_mach, check_plot_path, json_text, printable
-from flexsim._numba_cache import announce_compilation
 from flexsim.errors import FlexsimError
 from flexsim.linear.modes import in_vacuo_modes
 from flexsim.model.aircraft_model import AircraftModel, Variant
