@@ -5,7 +5,8 @@ Runs against any revision with ``flexsim.sim.simulate.simulate`` and the GTM uns
 Times are process CPU (time.process_time) and wall (perf_counter) of ``runs`` runs of ``duration`` simulated seconds
 after a short warm-up run (which loads the compiled kernels). Prints JSON; writes t, x, altitude, airspeed and the
 right-wing tip deflection of the last run to the .npz path given.
-Usage: python _simulate_worker.py RUNS DURATION OUT.npz
+With a fourth argument ``log``, every timed run also writes a 50 Hz flight log (MCAP) into a temporary directory.
+Usage: python _simulate_worker.py RUNS DURATION OUT.npz [log]
 """
 
 from __future__ import annotations
@@ -39,17 +40,22 @@ def scenario():
 
 
 def main() -> None:
+    import tempfile
+
     runs, duration, out = int(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
+    log = len(sys.argv) > 4 and sys.argv[4] == "log"
     from flexsim.sim.simulate import simulate
 
     model, point, gust = scenario()
     simulate(model, point, 0.1, wind=gust)  # load the compiled kernels (not timed)
     cpu, wall = [], []
     for _ in range(runs):
-        c0, w0 = time.process_time(), time.perf_counter()
-        result = simulate(model, point, duration, wind=gust)
-        cpu.append(time.process_time() - c0)
-        wall.append(time.perf_counter() - w0)
+        with tempfile.TemporaryDirectory() as tmp:
+            options = {"log_path": os.path.join(tmp, "bench.mcap")} if log else {}
+            c0, w0 = time.process_time(), time.perf_counter()
+            result = simulate(model, point, duration, wind=gust, **options)
+            cpu.append(time.process_time() - c0)
+            wall.append(time.perf_counter() - w0)
     np.savez(out, t=result.t, x=result.x, altitude=result.altitude_m, airspeed=result.airspeed_m_s,
              tip=result.tip_deflection_m())
     print(json.dumps({"cpu_s": cpu, "wall_s": wall, "status": result.status, "nfev": result.nfev,

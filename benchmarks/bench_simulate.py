@@ -28,7 +28,8 @@ functions, Jacobian, the rest).
 alternately (reference, this, reference, ...) ``--repeats`` times, so both see the same load; each process times
 ``--inner`` default runs of the scenario after a warm-up. Prints the median CPU time and real-time factor of each
 side, their ratio, and the largest difference of the trajectories (100 Hz samples): per group of the state layout
-relative to the group's largest magnitude, and of altitude, airspeed and tip deflection in SI units. The reference
+relative to the group's largest magnitude, and of altitude, airspeed and tip deflection in SI units; then the same
+with every run writing a 50 Hz flight log (MCAP, in a temporary directory). The reference
 is extracted with ``git archive`` into ``~/.cache/flexsim-bench/<revision>`` (kept with numba's cache of its kernels:
 the first run compiles them, 2-7 min of CPU), or taken from ``--reference-tree``.
 
@@ -79,16 +80,17 @@ WORKER = HERE / "benchmarks" / "_simulate_worker.py"
 COMPARE_REFERENCE = "main"
 
 
-def compare(ref: Path, repeats: int, inner: int, duration: float) -> None:
-    """This tree against the reference tree, side by side (module docstring, ``--compare``)."""
-    print(f"default simulate, {duration:g} s of the gust scenario: reference {ref} against this tree {HERE}; "
+def compare(ref: Path, repeats: int, inner: int, duration: float, log: bool = False) -> None:
+    """This tree against the reference tree, side by side (module docstring, ``--compare``); ``log``: every run
+    writes a 50 Hz flight log (MCAP) into a temporary directory."""
+    print(f"default simulate{' with a 50 Hz flight log' if log else ''}, {duration:g} s of the gust scenario: reference {ref} against this tree {HERE}; "
           f"{repeats} alternating process pairs x {inner} runs; load average {os.getloadavg()[0]:.2f} at start", flush=True)
     runs: dict[str, list[dict]] = {"ref": [], "this": []}
     with tempfile.TemporaryDirectory() as tmp:
         for _ in range(repeats):
             for side, tree in (("ref", ref), ("this", HERE)):
                 env = dict(os.environ, PYTHONPATH=str(tree), OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
-                out = subprocess.run([sys.executable, str(WORKER), str(inner), str(duration), f"{tmp}/{side}.npz"],
+                out = subprocess.run([sys.executable, str(WORKER), str(inner), str(duration), f"{tmp}/{side}.npz"] + (["log"] if log else []),
                                      cwd=tree, env=env, check=True, capture_output=True, text=True)
                 runs[side].append(json.loads(out.stdout.strip().splitlines()[-1]))
         samples = {side: dict(np.load(f"{tmp}/{side}.npz")) for side in runs}
@@ -205,7 +207,8 @@ def main() -> None:
         return
     if args.compare or args.reference_tree:
         ref = args.reference_tree.resolve() if args.reference_tree else checkout_of(args.compare or COMPARE_REFERENCE)
-        compare(ref, args.repeats, args.inner, args.duration)
+        for log in (False, True):
+            compare(ref, args.repeats, args.inner, args.duration, log)
         return
     model, point, gust = scenario()
     if args.parts:

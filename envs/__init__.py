@@ -23,7 +23,7 @@ from flexsim.envs.flutter_margin import FlutterMarginEnv, FlutterMarginTask, Win
 from flexsim.envs.gust_alleviation import GustAlleviationEnv, GustAlleviationTask
 from flexsim.envs.level_hold import LevelHoldCaptureEnv, LevelHoldEnv, LevelHoldTask
 from flexsim.envs.turn import TurnEnv, TurnTask
-from flexsim.envs.wrappers import FlightLogRecorder
+from flexsim.io.env_log import FlightLogRecorder
 
 __all__ = [
     "ENV_IDS", "VECTOR_ENTRY_POINTS", "register_envs", "FlexSimEnv", "LevelHoldEnv", "LevelHoldCaptureEnv", "TurnEnv", "GustAlleviationEnv", "FlutterMarginEnv",

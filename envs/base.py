@@ -23,6 +23,7 @@ from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
 from flexsim.io.vocabulary import CONTROL_NAMES as VOCABULARY_CONTROL_NAMES
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.sim.measurements import MeasurementBatch, Measurements
+from flexsim.threads import limit_blas_threads
 from flexsim.sim.periods import SENSOR_COMPONENTS, BatchOutcome, FlightDynamics, advance_period
 from flexsim.trim import SteadyManoeuvre
 
@@ -30,7 +31,6 @@ from flexsim.envs.config import (AERO_MODELS, DEFAULT_MAX_STEP_S, TURBULENCE_LEV
                          IntegratorSettings, TrackingReward)
 from flexsim.envs import row_kernels as _rk
 from flexsim.envs.batch import EpisodeBatch
-from flexsim.envs.parallel import limit_blas_threads
 
 __all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
 
@@ -149,7 +149,7 @@ class RowsStep:
 
 @dataclass(frozen=True)
 class LogSample:
-    """One flight-log sample of the current state (see :class:`flexsim.envs.wrappers.FlightLogRecorder`)."""
+    """One flight-log sample of the current state (see :class:`flexsim.io.env_log.FlightLogRecorder`)."""
 
     time_s: float
     position_ned_m: np.ndarray
@@ -576,7 +576,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             return None
         if self._x is None:
             raise RuntimeError("render() called before reset()")
-        from flexsim.envs.rendering import RerunStreamer, RgbRenderer
+        from flexsim.io.rendering import RerunStreamer, RgbRenderer
 
         if self._renderer is None:
             self._renderer = RgbRenderer() if self.render_mode == "rgb_array" else RerunStreamer()

@@ -1,8 +1,8 @@
-"""Frozen parameter sets shared by every flexsim environment (limits, initial perturbation, rewards).
+"""Frozen parameter sets shared by every flexsim environment (limits, rewards; the initial perturbation re-exported).
 
 All quantities SI and radians. Each dataclass validates itself and raises ``ValueError`` naming the field, the
-value and the allowed range. The integration's settings, :class:`~flexsim.sim.periods.IntegratorSettings` and
-:class:`~flexsim.sim.periods.ActuatorRates`, live with the integration in :mod:`flexsim.sim.periods`.
+value and the allowed range. The integration's settings, :class:`flexsim.sim.IntegratorSettings` (the one class of
+``simulate`` and of the control periods) and :class:`~flexsim.sim.periods.ActuatorRates`, live with the integration.
 """
 
 from __future__ import annotations
@@ -13,7 +13,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from flexsim.sim.periods import DEFAULT_MAX_STEP_S, FIXED_STEP_METHODS, INTEGRATOR_METHODS, ActuatorRates, IntegratorSettings
+from flexsim.sim import IntegratorSettings
+from flexsim.sim.initial_states import InitialPerturbation
+from flexsim.sim.periods import DEFAULT_MAX_STEP_S, FIXED_STEP_METHODS, INTEGRATOR_METHODS, ActuatorRates
 
 from flexsim.envs.row_kernels import reward_rows
 
@@ -88,35 +90,6 @@ class FlightLimits:
             object.__setattr__(self, name, _positive(name, getattr(self, name)))
         if not self.max_abs_pitch_rad < math.pi / 2:
             raise ValueError(f"max_abs_pitch_rad = {self.max_abs_pitch_rad!r}: must be in (0, pi/2)")
-
-
-@dataclass(frozen=True)
-class InitialPerturbation:
-    """Half-widths of the uniform random perturbation added to the trim state at reset.
-
-    Attributes
-    ----------
-    attitude_rad : float
-        Roll and pitch [rad] (default 0.01).
-    heading_rad : float
-        Yaw [rad] (default 0.01).
-    body_rate_rad_s : float
-        Each body rate p, q, r [rad/s] (default 0.005).
-    airspeed_m_s : float
-        Forward body velocity u [m/s] (default 1).
-    altitude_m : float
-        Altitude [m] (default 5).
-    """
-
-    attitude_rad: float = 0.01
-    heading_rad: float = 0.01
-    body_rate_rad_s: float = 0.005
-    airspeed_m_s: float = 1.0
-    altitude_m: float = 5.0
-
-    def __post_init__(self) -> None:
-        for name in ("attitude_rad", "heading_rad", "body_rate_rad_s", "airspeed_m_s", "altitude_m"):
-            object.__setattr__(self, name, _positive(name, getattr(self, name), allow_zero=True))
 
 
 @dataclass(frozen=True)

@@ -6,15 +6,14 @@ antisymmetric wing flutter of the calibrated ``gtm``.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from flexsim.aircraft.definition import Aircraft, ContentKey
-from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
+from flexsim.aircraft.definition import Aircraft
+from flexsim.linear.flutter import FlutterCondition, flutter_condition
 from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import TERMINATION_CODES, Episode, FlexSimEnv, shared_docs
@@ -27,44 +26,6 @@ __all__ = ["FlutterMarginTask", "WingFlutterMarginTask", "FlutterMarginEnv", "Wi
 
 #: Structural subjects of the task: the rewarded tip twist rate and the seeded first-torsion rate.
 SUBJECTS = ("fin", "wing_antisymmetric")
-
-
-@dataclass(frozen=True)
-class FlutterCondition:
-    """The open-loop flutter point of level flight at the task altitude (``FlutterAnalysis.search``).
-
-    Attributes
-    ----------
-    mach, speed_m_s, frequency_rad_s : float
-        Flutter Mach number, true airspeed [m/s] and frequency [rad/s].
-    mode : str
-        Dominant DOF of the crossing mode (e.g. ``"vtail torsion 1"``).
-    """
-
-    mach: float
-    speed_m_s: float
-    frequency_rad_s: float
-    mode: str
-
-
-@functools.lru_cache(maxsize=8)
-def _cached_condition(key: ContentKey, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
-    return _search(key.aircraft, aero, altitude_m, mach_range)
-
-
-def _search(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
-    try:
-        point = FlutterAnalysis(aircraft, aero).search(SteadyManoeuvre.level(altitude_m, mach=0.6), mach_range=mach_range, mach_step=0.02)
-    except FlutterNotFound as exc:
-        raise ValueError(f"aero = {aero!r}: no usable open-loop flutter point of {aircraft.name} at {altitude_m:g} m for Mach in "
-                         f"{mach_range} ({exc}); the GTM task is defined with the finite-state model, aero = 'unsteady'") from None
-    return FlutterCondition(point.mach, point.speed_m_s, point.frequency_rad_s, point.mode.dominant_dof)
-
-
-def flutter_condition(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
-    """Flutter point of level flight of ``aircraft`` (cached by the aircraft's content, aerodynamic model,
-    altitude and range: a modified aircraft gets its own point)."""
-    return _cached_condition(aircraft.content_key(), aero, float(altitude_m), tuple(float(m) for m in mach_range))
 
 
 #: Observation rows 11-30 of both flutter-margin versions (docstring tables).

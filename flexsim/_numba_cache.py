@@ -10,16 +10,22 @@ package counts as the source of all its ``.py`` files (``flexsim._kernels``: the
 that call each other; each of its kernels and every compiled caller outside it depend on the whole package).
 
 Under ``NUMBA_DISABLE_JIT=1`` the decorated object is the plain Python function and is returned unchanged.
+
+:func:`is_cached` tells whether a dispatcher has machine code in the cache that its current source can load, and
+:func:`announce_compilation` prints one line when flexsim's kernels start compiling (the first run after an
+install or a change of the kernels' source: tens of seconds; a run after it loads them in about a second).
 """
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
+import sys
 from pathlib import Path
 from types import ModuleType
-from typing import Callable, TypeVar
+from typing import Callable, Iterator, TextIO, TypeVar
 
-__all__ = ["depends_on", "source_digest"]
+__all__ = ["depends_on", "source_digest", "is_cached", "announce_compilation"]
 
 F = TypeVar("F", bound=Callable)
 
@@ -59,3 +65,47 @@ def depends_on(*modules: ModuleType) -> Callable[[F], F]:
         return dispatcher
 
     return wrap
+
+
+def is_cached(*dispatchers) -> bool:
+    """Whether every one of ``dispatchers`` (``numba.njit(cache=True)`` functions) has a cache index that its
+    current source stamp (with :func:`depends_on`'s digests) can load, i.e. a later call loads machine code instead
+    of compiling it (a new signature still compiles). True under ``NUMBA_DISABLE_JIT=1`` (nothing compiles)."""
+    for dispatcher in dispatchers:
+        cache_file = getattr(getattr(dispatcher, "_cache", None), "_cache_file", None)
+        if cache_file is None:
+            if hasattr(dispatcher, "py_func"):  # a dispatcher without a cache: compiles in every process
+                return False
+            continue
+        if not cache_file._load_index():  # numba's index loader: {} when absent or of another source stamp
+            return False
+    return True
+
+
+@contextlib.contextmanager
+def announce_compilation(stream: TextIO | None = None) -> Iterator[None]:
+    """Within the block, print one line on ``stream`` (default ``sys.stderr``) when numba first starts compiling
+    a function of flexsim in this process (numba's ``numba:compile`` event, which fires on compilation only, not
+    on a load from the cache)."""
+    from numba.core import event
+
+    class _Announcer(event.Listener):
+        said = False
+
+        def on_start(self, ev) -> None:
+            dispatcher = ev.data.get("dispatcher")
+            module = getattr(getattr(dispatcher, "py_func", None), "__module__", "") or ""
+            if not self.said and module.startswith("flexsim"):
+                self.said = True
+                print("flexsim: compiling the numerical kernels for this machine (once after an install, cached "
+                      "for later runs; about 40 s of CPU) ...", file=stream or sys.stderr, flush=True)
+
+        def on_end(self, ev) -> None:
+            pass
+
+    listener = _Announcer()
+    event.register("numba:compile", listener)
+    try:
+        yield
+    finally:
+        event.unregister("numba:compile", listener)

@@ -3,7 +3,7 @@
 Every ``import`` in ``flexsim/`` and ``envs/`` — module level and function-local, parsed with ``ast`` — may only
 go to the importing package itself or to a package of a lower layer::
 
-    errors, _arrays, _threads  <  _kernels  <  atmosphere, kinematics, io  <  aircraft  <  structure  <  aero  <  model
+    errors, _arrays, _threads, threads  <  _kernels  <  atmosphere, kinematics, io  <  aircraft  <  structure  <  aero  <  model
         <  trim  <  linear  <  sim  <  cli, envs
 
 ``io`` (file formats: the flight log, depending on ``errors`` only) is a leaf library that ``sim`` writes its logs
@@ -23,7 +23,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: Layer of every package (top-level modules of flexsim count as packages); lower may not import higher.
 LAYERS: dict[str, int] = {
-    "errors": 0, "_arrays": 0, "_threads": 0, "_immutable": 0, "_numba_cache": 0,
+    "errors": 0, "_arrays": 0, "_threads": 0, "threads": 0, "_immutable": 0, "_numba_cache": 0,
     "_kernels": 1,
     "atmosphere": 2, "kinematics": 2, "io": 2,
     "aircraft": 3,

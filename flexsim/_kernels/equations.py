@@ -25,7 +25,7 @@ from flexsim._kernels.elasticity import elastic_force
 from flexsim._kernels.gravity import gravity_force
 from flexsim._kernels.gyroscopic import gyroscopic_force
 from flexsim._kernels.isa import _geopotential, _sound_speed, dcm_321, isa_scalar
-from flexsim._kernels.layout import SOLVE_PERM, SOLVE_PTR, _f1, _flag, _i1, kernel, packed, term_data
+from flexsim._kernels.layout import SOLVE_PERM, SOLVE_PTR, _f1, _flag, _i1, inline, kernel, packed, term_data
 from flexsim._kernels.solve import block_solve
 from flexsim._kernels.strips import SEMICHORD, aero_evaluate, inflow_rate
 from flexsim._kernels.structure import inertia_term
@@ -152,7 +152,7 @@ def assemble(F, I, x, u, wind_c, has_wind):
     return m, f, row0, w_ea_x, u0
 
 
-@kernel
+@inline
 def aerodynamic_terms(F, I, x, q, xi, vel, u, wind_c, has_wind, m, f):
     """m += M_a and f += Q_a + Q_D + Q_B (strip airloads, parasite drag, slender bodies) at the air density and Mach
     number of state x (:func:`air`); returns the inflow's terms row0 (n_s, n_v), w_ea_x (n_s,), u0 (n_s,)."""
@@ -211,7 +211,7 @@ def strip_wind_at(F, I, gusts, turb, turb_grid, x):
     return strip_wind(F, I, w_ned, c), True
 
 
-@kernel
+@inline
 def _rhs(F, I, x, u, wind_c, has_wind):
     m, f, row0, w_ea_x, u0 = assemble(F, I, x, u, wind_c, has_wind)
     act = _i1(I, ACTIVE)
@@ -258,7 +258,7 @@ def rhs(F, I, gusts, turb, turb_grid, x, u):
     return _rhs_wind(F, I, gusts, turb, turb_grid, x, u)
 
 
-@kernel
+@inline
 def _rhs_wind(F, I, gusts, turb, turb_grid, x, u):
     wind_c, has_wind = strip_wind_at(F, I, gusts, turb, turb_grid, x)
     return _rhs(F, I, x, u, wind_c, has_wind)
@@ -267,7 +267,10 @@ def _rhs_wind(F, I, gusts, turb, turb_grid, x, u):
 @kernel
 def rhs_strip_wind(F, I, x, u, wind_c):
     """:func:`rhs` with the strip air velocity (n_s, 3), component axes [m/s], given (any wind callable)."""
-    return _rhs(F, I, x, u, wind_c, True)
+    # a run-time bool (always true), not the literal True: numba compiles a callee once more, and with it the whole
+    # right-hand side, for a literal argument (flexsim._kernels.layout.inline)
+    has_wind = wind_c.shape[0] >= 0
+    return _rhs(F, I, x, u, wind_c, has_wind)
 
 
 @kernel

@@ -27,6 +27,7 @@ from typing import Sequence
 
 import numpy as np
 
+from flexsim._numba_cache import announce_compilation
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import bundled_aircraft_names, load_aircraft
 from flexsim.cli.validation import SanitisedStream, check_count, check_mach, check_plot_path, json_text, printable
@@ -220,7 +221,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     stdout = sys.stdout
     sys.stdout = SanitisedStream(stdout)  # names from files are printed with escape sequences shown, not run
     try:
-        return int(args.func(args))
+        with announce_compilation():
+            return int(args.func(args))
     except BrokenPipeError:  # output piped into e.g. `head`
         sys.stderr.close()
         return 0

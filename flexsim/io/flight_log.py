@@ -6,8 +6,10 @@ A flight log is an `MCAP <https://mcap.dev>`_ file with protobuf-encoded message
 (``foxglove.PointCloud`` of beam nodes in frame ``body``), ``/aircraft/state``
 (``flexsim.AircraftState``: exact t, NED position, Euler angles, state, controls, signals) and
 ``/events`` (``foxglove.Log``). Message log and publish times are the simulation time in ns from 0.
-The MCAP metadata record ``"flexsim"`` holds the format name and version, the name lists with their units
-and the structure topology (JSON strings); the record ``"run"`` holds the caller's metadata.
+The MCAP metadata record ``"flexsim"`` holds the format name and version, the name lists with their units,
+the structure topology and, when the writer is given them, the model's physical terms (``"terms"``:
+:meth:`flexsim.model.terms.Terms.record`) and its aerodynamic formulation (``"formulation"``) (JSON strings); the
+record ``"run"`` holds the caller's metadata.
 
 Names. Format 2 (written now) takes every state, control and signal name from the one output vocabulary,
 :data:`flexsim.io.vocabulary.QUANTITIES` (SI units and radians, the unit in the name; ``docs/logs.md``); the
@@ -193,6 +195,12 @@ class FlightLogWriter:
         Component name (letters, digits, ``_``) -> number of beam nodes logged for it (>= 1).
     metadata : mapping of str to str, optional
         Free run metadata (e.g. aircraft file, git revision), stored in the MCAP record ``"run"``.
+    terms : mapping, optional
+        The physical terms of the logged model, JSON-ready (:meth:`flexsim.model.terms.Terms.record`), stored as
+        JSON in the header record ``"flexsim"`` (key ``"terms"``) with ``formulation``; None: not recorded.
+    formulation : str, optional
+        The model's aerodynamic force resolution (``"physical"`` or ``"paper"``; None: no aerodynamics), recorded
+        with ``terms``.
     flush_interval_s : float, optional
         Simulation time [s] between flushes to disk; the writer also flushes at least every
         ``WALL_FLUSH_INTERVAL_S`` of wall time. A process killed with SIGKILL loses at most the
@@ -206,6 +214,7 @@ class FlightLogWriter:
     def __init__(self, path: str | os.PathLike, *, state_names: Sequence[str],
                  control_names: Sequence[str], signal_names: Sequence[str],
                  structure_topology: Mapping[str, int], metadata: Mapping[str, str] = {},
+                 terms: Mapping[str, Any] | None = None, formulation: str | None = None,
                  flush_interval_s: float = 1.0) -> None:
         path = Path(path)
         if path.suffix != ".mcap":
@@ -223,6 +232,14 @@ class FlightLogWriter:
         for key, value in metadata.items():
             if not isinstance(key, str) or not isinstance(value, str):
                 raise ValueError(f"metadata: keys and values must be str, got {key!r}: {value!r}")
+        model = {}
+        if terms is not None:
+            if formulation is not None and not isinstance(formulation, str):
+                raise ValueError(f"formulation = {formulation!r}: must be a str (or None: no aerodynamics)")
+            try:
+                model = {"terms": json.dumps(dict(terms), allow_nan=False), "formulation": json.dumps(formulation)}
+            except (TypeError, ValueError) as exc:
+                raise ValueError(f"terms = {terms!r}: must be a JSON-ready mapping of finite values ({exc})") from None
         if not (isinstance(flush_interval_s, numbers.Real) and 0 < flush_interval_s < math.inf):
             raise ValueError(f"flush_interval_s: must be a finite number > 0 [s], "
                              f"got {flush_interval_s!r}")
@@ -246,7 +263,7 @@ class FlightLogWriter:
             "structure_topology": json.dumps(self.structure_topology),
             "world_frame": "ENU (x east, y north, z up)",
             "body_frame": "FRD (x forward, y right, z down)",
-            "time": "log_time = simulation time in ns from 0"})
+            "time": "log_time = simulation time in ns from 0", **model})
         self._mcap.add_metadata(RUN_METADATA_RECORD, metadata)
         self._schema_ids: dict[str, int] = {}
         self._channels = {topic: self._register(topic, cls) for topic, cls in
@@ -440,6 +457,11 @@ class FlightLog:
         Events ``(t_s, level, text)`` sorted by time.
     metadata : dict of str to str
         Run metadata given to the writer.
+    terms : dict or None
+        The physical terms of the logged model (:meth:`flexsim.model.terms.Terms.record`, from the header record
+        ``"flexsim"``); None when the log does not record them (written without ``terms``, or before they were).
+    formulation : str or None
+        The model's aerodynamic force resolution recorded with ``terms`` (None: no aerodynamics, or not recorded).
     complete : bool
         False if the file had no valid footer (the writer did not finish) or is damaged, and was
         recovered.
@@ -468,6 +490,8 @@ class FlightLog:
     structure: dict[str, np.ndarray]
     events: tuple[LogEvent, ...]
     metadata: dict[str, str] = field(default_factory=dict)
+    terms: dict[str, Any] | None = None
+    formulation: str | None = None
     complete: bool = True
     recovered_until_s: float = math.nan
     damage: tuple[str, ...] = ()
@@ -716,6 +740,8 @@ def read_flight_log(path: str | os.PathLike) -> FlightLog:
         state_names, control_names, signal_names = (
             tuple(json.loads(info[key])) for key in ("state_names", "control_names", "signal_names"))
         topology = {str(k): int(v) for k, v in json.loads(info["structure_topology"]).items()}
+        terms = json.loads(info["terms"]) if "terms" in info else None
+        formulation = json.loads(info["formulation"]) if "formulation" in info else None
     except (KeyError, TypeError, ValueError) as exc:
         raise FlightLogError(f"{path}: corrupt '{METADATA_RECORD}' metadata record: {exc}") from exc
 
@@ -763,6 +789,6 @@ def read_flight_log(path: str | os.PathLike) -> FlightLog:
         state=_stack(rows["state"], (len(state_names),), "state", path),
         controls=_stack(rows["controls"], (len(control_names),), "control vector", path),
         signals=signals, state_names=state_names, control_names=control_names, signal_names=signal_names,
-        structure=structure, events=events, metadata=metadata.get(RUN_METADATA_RECORD, {}),
-        complete=complete, recovered_until_s=recovered_until_s, damage=damage, format_version=version,
+        structure=structure, events=events, metadata=metadata.get(RUN_METADATA_RECORD, {}), terms=terms,
+        formulation=formulation, complete=complete, recovered_until_s=recovered_until_s, damage=damage, format_version=version,
         dialect=dialect)

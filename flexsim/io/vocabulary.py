@@ -1,7 +1,7 @@
 """The one vocabulary of flexsim's outputs: the name and unit of every state entry, control and signal.
 
 The simulation result (:class:`flexsim.sim.result.SimulationResult`), the output maps that compute the signals
-(:class:`flexsim.sim.outputs.OutputMaps`), the environments' flight logs (:class:`flexsim.envs.wrappers.FlightLogRecorder`),
+(:class:`flexsim.sim.outputs.OutputMaps`), the environments' flight logs (:class:`flexsim.io.env_log.FlightLogRecorder`),
 the simulator's flight log (:mod:`flexsim.sim.recording`), the log reader and the Rerun view
 (:mod:`flexsim.io.rerun_view`) all name quantities from :data:`QUANTITIES`, the table below; ``docs/logs.md`` prints
 it. Units are SI and angles radians (house style: conversions at I/O only); every name ends in its unit

@@ -32,6 +32,7 @@ def w34_jacobian(f_model: np.ndarray, i_model: np.ndarray, f_aero: np.ndarray, i
     (the p-k analysis is of still air).
     """
     wind = np.zeros((n_strips, 3))
+    has_wind = n_strips < 0  # false; a run-time bool, as the right-hand side passes (not a literal: one compile fewer)
     out = np.zeros((strips.shape[0], stop))
     for j in range(first, stop):
         h = max(1e-7, 1e-6 * abs(x[j]))
@@ -40,9 +41,9 @@ def w34_jacobian(f_model: np.ndarray, i_model: np.ndarray, f_aero: np.ndarray, i
         xp[j] += h
         xm[j] -= h
         _, _, q, xi, v = _kernels.unpack(f_model, i_model, xp)
-        wp = _kernels.strip_kinematics(f_aero, i_aero, q, xi, v, xp[inflow_start:inflow_stop].copy(), u, wind, False)[5]
+        wp = _kernels.strip_kinematics(f_aero, i_aero, q, xi, v, xp[inflow_start:inflow_stop].copy(), u, wind, has_wind)[5]
         _, _, q, xi, v = _kernels.unpack(f_model, i_model, xm)
-        wm = _kernels.strip_kinematics(f_aero, i_aero, q, xi, v, xm[inflow_start:inflow_stop].copy(), u, wind, False)[5]
+        wm = _kernels.strip_kinematics(f_aero, i_aero, q, xi, v, xm[inflow_start:inflow_stop].copy(), u, wind, has_wind)[5]
         for r in range(strips.shape[0]):
             out[r, j] = (wp[strips[r]] - wm[strips[r]]) / (2 * h)
     return out

@@ -10,6 +10,7 @@ method to 1e-4 in Mach.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 from typing import Callable
@@ -18,7 +19,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from flexsim._threads import single_blas_thread
-from flexsim.aircraft.definition import Aircraft
+from flexsim.aircraft.definition import Aircraft, ContentKey
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.errors import FlexsimError
 from flexsim.linear.linearize import LinearModel, jacobian, linearize
@@ -29,7 +30,8 @@ from flexsim.model.coupling import AERO_MODELS, AeroOptions
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 from flexsim.trim.equilibrium import with_stability
 
-__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter"]
+__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter",
+           "FlutterCondition", "flutter_condition"]
 
 
 class FlutterNotFound(FlexsimError, RuntimeError):
@@ -711,3 +713,42 @@ def wind_tunnel_flutter(aircraft: Aircraft, *, aero_model: str = "unsteady", spe
     if res.flutter_speed_m_s is None:
         raise FlutterNotFound(f"no flutter for {speed_range[0]} <= U <= {speed_range[1]} m/s ({aero_model})")
     return res.flutter_speed_m_s, res.flutter_frequency_rad_s
+
+
+@dataclass(frozen=True)
+class FlutterCondition:
+    """The open-loop flutter point of level flight at one altitude (:meth:`FlutterAnalysis.search`, from M 0.6), the
+    target of the environments' flutter-margin tasks.
+
+    Attributes
+    ----------
+    mach, speed_m_s, frequency_rad_s : float
+        Flutter Mach number, true airspeed [m/s] and frequency [rad/s].
+    mode : str
+        Dominant DOF of the crossing mode (e.g. ``"vtail torsion 1"``).
+    """
+
+    mach: float
+    speed_m_s: float
+    frequency_rad_s: float
+    mode: str
+
+
+@functools.lru_cache(maxsize=8)
+def _cached_condition(key: ContentKey, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+    return _search(key.aircraft, aero, altitude_m, mach_range)
+
+
+def _search(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+    try:
+        point = FlutterAnalysis(aircraft, aero).search(SteadyManoeuvre.level(altitude_m, mach=0.6), mach_range=mach_range, mach_step=0.02)
+    except FlutterNotFound as exc:
+        raise ValueError(f"aero = {aero!r}: no usable open-loop flutter point of {aircraft.name} at {altitude_m:g} m for Mach in "
+                         f"{mach_range} ({exc}); the GTM flutter points are those of the finite-state model, aero = 'unsteady'") from None
+    return FlutterCondition(point.mach, point.speed_m_s, point.frequency_rad_s, point.mode.dominant_dof)
+
+
+def flutter_condition(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+    """Flutter point of level flight of ``aircraft`` (cached by the aircraft's content, aerodynamic model,
+    altitude and range: a modified aircraft gets its own point)."""
+    return _cached_condition(aircraft.content_key(), aero, float(altitude_m), tuple(float(m) for m in mach_range))

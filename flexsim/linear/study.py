@@ -403,6 +403,13 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
     chains_all = list(chains.values())
     chain_of = {i: k for k, g in enumerate(chains_all) for i in g}
 
+    def run_here(step: tuple[int, ...]) -> None:
+        """One step in this process (:func:`run_point` or :func:`run_points`), its rows finished."""
+        results = ([run_point(cases[step[0]], guess_for(step[0]))] if len(step) == 1
+                   else run_points([cases[i] for i in step]))
+        for i, (row, seconds) in zip(step, results):
+            finish(i, row, seconds)
+
     def guess_for(i: int) -> float | None:
         g = chains_all[chain_of[i]]
         prev = [rows[j] for j in g[: g.index(i)] if rows[j] is not None and "mach" in rows[j]]
@@ -417,15 +424,27 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
             if n == 1:
                 for queue in queues:
                     for step in queue:
-                        results = ([run_point(cases[step[0]], guess_for(step[0]))] if len(step) == 1
-                                   else run_points([cases[i] for i in step]))
-                        for i, (row, seconds) in zip(step, results):
-                            finish(i, row, seconds)
+                        run_here(step)
             else:
+                if not _kernels_cached():  # compiled once here, then loaded by the workers (not once in each)
+                    k = min(range(len(queues)), key=lambda k: _longest_first(cases, queues[k]))
+                    run_here(queues[k].pop(0))
+                    queues = [q for q in queues if q]
                 _run_pool(n, cases, queues, guess_for, finish, bar, attempts, max_attempts)
     finally:
         bar.close()
     return [r for r in rows if r is not None]
+
+
+def _kernels_cached() -> bool:
+    """Whether the kernels of a flutter point load from numba's cache. If not, :func:`run_study` computes one step
+    in this process before it starts the pool: the workers then load the machine code this process compiled and
+    saved, instead of each compiling the same kernels (about 40 s of CPU each on a first run)."""
+    from flexsim import _kernels
+    from flexsim._numba_cache import is_cached
+    from flexsim.aero import pk
+
+    return is_cached(_kernels.rhs_batch, _kernels.aerodynamic_force, pk._track_kernel)
 
 
 def _local_steps(cases: Sequence[StudyCase], todo: list[list[int]], chain_sizes: list[int]) -> list[list[tuple[int, ...]]]:

@@ -20,7 +20,7 @@ from flexsim.sim.fixed_step import ETD2RK, step_accelerations
 from flexsim.sim.run_parts import RunEvent, RunOutcome, RunProblem, Sinks, margin_rows, segment_controls
 
 if TYPE_CHECKING:
-    from flexsim.sim.simulate import IntegrationSettings
+    from flexsim.sim.simulate import IntegratorSettings
 
 __all__ = ["COMPILED_CHUNK_S", "CHECK_INTERVAL_S", "HALVINGS", "RELINEARISE_DRIFT", "compiled_wind", "integrate_compiled", "flight_condition"]
 
@@ -85,12 +85,12 @@ class _Steps:
         return y[0] if np.ndim(t) == 0 else y.T
 
 
-def integrate_compiled(problem: RunProblem, settings: IntegrationSettings, sinks: Sinks, wind_data) -> RunOutcome:
+def integrate_compiled(problem: RunProblem, settings: IntegratorSettings, sinks: Sinks, wind_data) -> RunOutcome:
     """ETD2RK by the compiled steps (:meth:`ETD2RK.run`): the steps, samples, events and log of :func:`_integrate`
     with :class:`ETD2RKSolver`, processed per chunk of :data:`COMPILED_CHUNK_S` instead of per step."""
     model, wind, ctrl, evs = problem.model, problem.wind, problem.ctrl, problem.events
-    t_end = settings.t_end_s
-    h = settings.max_step  # the current step: halved when a chunk fails (HALVINGS)
+    t_end = problem.t_end_s
+    h = settings.max_step_s  # the current step: halved when a chunk fails (HALVINGS)
     halvings = 0
     sink = sinks.log
     steppers: dict[float, ETD2RK] = {}

@@ -2,7 +2,7 @@
 
 One :class:`OutputMaps` per model computes every output quantity for the simulation result
 (:mod:`flexsim.sim.result`), the simulator's flight log (:mod:`flexsim.sim.recording`) and the environments'
-observations and flight logs (:mod:`flexsim.sim.periods`, :mod:`flexsim.envs.wrappers`), and names each from the
+observations and flight logs (:mod:`flexsim.sim.periods`, :mod:`flexsim.io.env_log`), and names each from the
 one vocabulary :data:`flexsim.io.vocabulary.QUANTITIES` (SI units and radians, the unit in the name; table in
 ``docs/logs.md``). The structural outputs come from :mod:`flexsim.model.sensors`, the aerodynamic force from
 :meth:`AircraftModel.aerodynamic_force` — the same code the trim uses. The disturbance (``wind``) is passed per call,

@@ -8,7 +8,7 @@ integrated unchanged), trims it with :func:`flexsim.trim.trim`, computes the Jac
 * zero-order hold: the control vector is constant over the period;
 * actuator rate limits (:class:`ActuatorRates`): the applied controls move towards the commanded ones by at most
   rate * period (:func:`flexsim.sim._step_kernels.rate_limit_rows`, the one implementation), then are held;
-* ETD2RK (:class:`flexsim.sim.fixed_step.ETD2RK`, the default, :meth:`IntegratorSettings.resolve`): a fixed number
+* ETD2RK (:class:`flexsim.sim.fixed_step.ETD2RK`, the default, :func:`check_period_settings`): a fixed number
   of equal steps per period with the trim Jacobian as its linear part (its matrix functions computed once per
   trim); after every step the state is checked for non-finite values and for the ground contact, the crossing of
   altitude 0 located by linear interpolation within the step (:func:`flexsim.sim._step_kernels.ground_crossing`);
@@ -48,22 +48,22 @@ from flexsim.sim import measurements as _ms
 from flexsim.sim.fixed_step import ETD2RK
 from flexsim.sim.measurements import MeasurementBatch, Measurements
 from flexsim.sim.outputs import OutputMaps
-from flexsim.sim.simulate import default_method
+from flexsim.sim.simulate import DEFAULT_MAX_STEP, IntegratorSettings
 from flexsim.trim import SteadyManoeuvre, TrimError, TrimPoint, trim
 
 __all__ = ["IntegratorSettings", "ActuatorRates", "FlightDynamics", "StepOutcome", "BatchOutcome", "PeriodResult", "advance_rows",
            "advance_period", "SENSOR_COMPONENTS", "INTEGRATOR_METHODS", "FIXED_STEP_METHODS", "DEFAULT_MAX_STEP_S",
-           "MAX_STEP_RANGE_S", "COMPILED_ROWS_BELOW", "TRIM_CACHE"]
+           "MAX_STEP_RANGE_S", "COMPILED_ROWS_BELOW", "TRIM_CACHE", "period_atol", "check_period_settings"]
 
 #: Components carrying the structural sensors (tip deflection, twist and their rates), in order.
 SENSOR_COMPONENTS = ("right_wing", "left_wing", "vtail")
-#: Integration methods accepted by :class:`IntegratorSettings` (``"auto"``: :meth:`IntegratorSettings.resolve`).
+#: Integration methods of the control periods (:func:`check_period_settings`; ``"auto"``: :meth:`IntegratorSettings.resolve`).
 INTEGRATOR_METHODS = ("auto", "ETD2RK", "DOP853", "Radau")
 #: The fixed-step methods among them (:mod:`flexsim.sim.fixed_step`); the others are ``solve_ivp`` methods.
 FIXED_STEP_METHODS = ("ETD2RK",)
 #: Default ETD2RK step [s] (:attr:`IntegratorSettings.max_step_s`): 1 step per 50 Hz control period.
-DEFAULT_MAX_STEP_S = 0.02
-#: Allowed range of :attr:`IntegratorSettings.max_step_s` [s].
+DEFAULT_MAX_STEP_S = DEFAULT_MAX_STEP["ETD2RK"]
+#: Allowed range of :attr:`IntegratorSettings.max_step_s` over a control period [s].
 MAX_STEP_RANGE_S = (1e-4, 0.05)
 #: Number of trims kept per :class:`FlightDynamics` (tasks with random targets trim every episode).
 TRIM_CACHE = 16
@@ -106,72 +106,40 @@ class ActuatorRates:
         return np.array([self.thrust_fraction_per_s * max_thrust_n, self.aileron_rad_s, self.elevator_rad_s, self.rudder_rad_s])
 
 
-@dataclass(frozen=True)
-class IntegratorSettings:
-    """How each control period is integrated.
+def period_atol(layout) -> np.ndarray:
+    """The default per-state absolute tolerances of DOP853 and Radau over a control period, shape (n_states,), for a
+    :class:`~flexsim.model.layout.StateLayout`: 10 times position 1e-3 m, Euler angles 1e-6 rad, bending 1e-5 m,
+    torsion 1e-6 rad, body velocity 1e-4 m/s, body rates 1e-6 rad/s, bending rates 1e-4 m/s, torsion rates
+    1e-5 rad/s, inflow 1e-3 m/s."""
+    a = np.empty(layout.n_states)
+    for name, value in (("position", 1e-3), ("euler", 1e-6), ("q", 1e-5), ("xi", 1e-6), ("v", 1e-4),
+                        ("omega", 1e-6), ("s", 1e-4), ("eta", 1e-5), ("inflow", 1e-3)):
+        a[getattr(layout, name)] = value
+    return 10.0 * a
 
-    Attributes
-    ----------
-    method : {"auto", "ETD2RK", "DOP853", "Radau"}
-        ``"auto"`` (default) takes the method :func:`flexsim.sim.simulate.default_method` takes for a run of the same
-        model in still air or a field of :mod:`flexsim.sim.disturbances` (the winds of the environments): ETD2RK
-        for a model with aerodynamics, finite-state or quasi-steady, DOP853 without. ETD2RK
-        (:class:`flexsim.sim.fixed_step.ETD2RK`) is a fixed-step second-order exponential integrator whose linear
-        part is the Jacobian of the trim the episode starts from: it treats the stiff finite-state inflow states
-        and the structural modes exactly to first order about the trim and does not damp them numerically (the
-        179 rad/s fin flutter mode keeps its growth rate), with 2 right-hand sides per step and no error control.
-        DOP853 and Radau are ``scipy.integrate.solve_ivp`` methods with error control (``rtol``, :meth:`atol`);
-        Radau gets the constant trim Jacobian and damps lightly damped high-frequency modes (the fin flutter
-        amplitude after 5 s is 22 % low at the default tolerances). Accuracy in ``docs/environments.md``.
-    rtol : float
-        Relative tolerance of DOP853 and Radau, in [1e-12, 1e-2] (default 1e-3). Not used by ETD2RK.
-    atol_scale : float
-        Multiplies the per-state absolute tolerances of :meth:`atol` (default 10). Not used by ETD2RK.
-    max_step_s : float
-        Largest step of ETD2RK [s], in [1e-4, 0.05] (default 0.02, :data:`DEFAULT_MAX_STEP_S`): each control
-        period is split into ``ceil(period / max_step_s)`` equal steps. Not used by DOP853 and Radau.
+
+def check_period_settings(settings: IntegratorSettings) -> IntegratorSettings:
+    """``settings`` when the control periods can use them (``method`` one of :data:`INTEGRATOR_METHODS`,
+    ``max_step_s`` None or in :data:`MAX_STEP_RANGE_S`), else a ValueError naming the field, value and range.
+
+    Over a period ``"auto"`` resolves as :func:`flexsim.sim.simulate.default_method` of the model in still air or a
+    field of :mod:`flexsim.sim.disturbances` (the winds of the environments): ETD2RK for a model with aerodynamics,
+    DOP853 without. ETD2RK (:class:`flexsim.sim.fixed_step.ETD2RK`) is a fixed-step second-order exponential
+    integrator whose linear part is the Jacobian of the trim the episode starts from: it treats the stiff
+    finite-state inflow states and the structural modes exactly to first order about the trim and does not damp
+    them numerically (the 179 rad/s fin flutter mode keeps its growth rate), with 2 right-hand sides per step and
+    no error control; each period is split into ``ceil(period / max_step_s)`` equal steps (default 0.02 s,
+    :data:`DEFAULT_MAX_STEP_S`). DOP853 and Radau are ``scipy.integrate.solve_ivp`` methods with error control
+    (``rtol``, default 1e-3; ``atol``, default :func:`period_atol`); Radau gets the constant trim Jacobian and damps
+    lightly damped high-frequency modes (the fin flutter amplitude after 5 s is 22 % low at the default
+    tolerances). Accuracy in ``docs/environments.md``.
     """
-
-    method: str = "auto"
-    rtol: float = 1e-3
-    atol_scale: float = 10.0
-    max_step_s: float = DEFAULT_MAX_STEP_S
-
-    def __post_init__(self) -> None:
-        if self.method not in INTEGRATOR_METHODS:
-            raise ValueError(f"method = {self.method!r}: must be one of {', '.join(INTEGRATOR_METHODS)}")
-        rtol = positive_number("rtol", self.rtol)
-        if not 1e-12 <= rtol <= 1e-2:
-            raise ValueError(f"rtol = {self.rtol!r}: must be in [1e-12, 1e-2]")
-        object.__setattr__(self, "rtol", rtol)
-        object.__setattr__(self, "atol_scale", positive_number("atol_scale", self.atol_scale))
-        lo, hi = MAX_STEP_RANGE_S
-        step = positive_number("max_step_s", self.max_step_s)
-        if not lo <= step <= hi:
-            raise ValueError(f"max_step_s = {self.max_step_s!r}: must be in [{lo:g}, {hi:g}] s")
-        object.__setattr__(self, "max_step_s", step)
-
-    def resolve(self, model: AircraftModel) -> str:
-        """The method used for ``model``: ``method``, or for ``"auto"`` :func:`flexsim.sim.simulate.default_method`
-        of the model in still air (class docstring)."""
-        return default_method(model, None) if self.method == "auto" else self.method
-
-    def substeps(self, period_s: float) -> int:
-        """Number of equal ETD2RK steps per control period of ``period_s`` [s]: ceil(period / max_step_s)."""
-        return max(1, math.ceil(period_s / self.max_step_s * (1.0 - 1e-12)))
-
-    def atol(self, layout) -> np.ndarray:
-        """Per-state absolute tolerances for a :class:`~flexsim.model.layout.StateLayout`.
-
-        Base values (times ``atol_scale``): position 1e-3 m, Euler angles 1e-6 rad, bending 1e-5 m,
-        torsion 1e-6 rad, body velocity 1e-4 m/s, body rates 1e-6 rad/s, bending rates 1e-4 m/s,
-        torsion rates 1e-5 rad/s, inflow 1e-3 m/s.
-        """
-        a = np.empty(layout.n_states)
-        for name, value in (("position", 1e-3), ("euler", 1e-6), ("q", 1e-5), ("xi", 1e-6), ("v", 1e-4),
-                            ("omega", 1e-6), ("s", 1e-4), ("eta", 1e-5), ("inflow", 1e-3)):
-            a[getattr(layout, name)] = value
-        return a * self.atol_scale
+    if settings.method not in INTEGRATOR_METHODS:
+        raise ValueError(f"integrator.method = {settings.method!r}: the control periods take one of {', '.join(INTEGRATOR_METHODS)}")
+    lo, hi = MAX_STEP_RANGE_S
+    if settings.max_step_s is not None and not lo <= settings.max_step_s <= hi:
+        raise ValueError(f"max_step_s = {settings.max_step_s!r}: must be in [{lo:g}, {hi:g}] s for the control periods")
+    return settings
 
 
 @dataclass(frozen=True)
@@ -252,7 +220,7 @@ class FlightDynamics:
     aircraft : Aircraft
     aero : {"unsteady", "quasi-steady"}
     integrator : IntegratorSettings
-        Method and tolerances or step (``method="auto"`` resolved for the model).
+        Method and tolerances or step (checked by :func:`check_period_settings`, resolved for the model).
     rates : ActuatorRates
     control_dt_s : float
         Control period [s].
@@ -291,11 +259,10 @@ class FlightDynamics:
         #: Columns of a measurement row.
         self.n_measurements = _ms.SENSORS_AT + bank.matrix.shape[1]
         self._still = self.model.pack_winds([None])._replace(rows=np.zeros((0, 4), np.int64))
-        self.method = integrator.resolve(self.model)
-        self.rtol = integrator.rtol
-        self.atol = integrator.atol(self.layout)
+        resolved = check_period_settings(integrator).resolve(self.model, None, rtol=1e-3, atol=period_atol(self.layout))
+        self.method, self.rtol, self.atol = resolved.method, resolved.rtol, resolved.atol
         self.dt = float(control_dt_s)
-        self.substeps = integrator.substeps(self.dt) if self.method in FIXED_STEP_METHODS else 0
+        self.substeps = resolved.substeps(self.dt) if self.method in FIXED_STEP_METHODS else 0
         lo, hi = aircraft.control_limits()
         self.u_low, self.u_high = lo, hi
         self.rate_limits = rates.limits(float(hi[0]))

@@ -3,7 +3,8 @@
 The log format is that of :mod:`flexsim.io.flight_log` (``docs/logs.md``): per sample the body pose,
 the state (named by :attr:`OutputMaps.state_names`), the controls, the flight signals
 (:attr:`OutputMaps.signal_names`, computed by :meth:`OutputMaps.signals` in the run's wind) and the deformed
-beams of every component (11 nodes each), plus events; every name is from :mod:`flexsim.io.vocabulary`. The writer flushes at least every ``flush_interval_s`` of simulated time (and every second of
+beams of every component (11 nodes each), plus events; the header records the model's physical terms
+(:meth:`flexsim.model.terms.Terms.record`) and aerodynamic formulation; every name is from :mod:`flexsim.io.vocabulary`. The writer flushes at least every ``flush_interval_s`` of simulated time (and every second of
 wall time), so a killed simulation leaves a log readable up to about that long before the kill.
 """
 
@@ -95,7 +96,8 @@ class LogSink:
             path, state_names=outputs.state_names, control_names=outputs.control_names,
             signal_names=outputs.signal_names,
             structure_topology={name: outputs.n_nodes for name in outputs.model.aircraft.component_names},
-            metadata=dict(metadata), flush_interval_s=flush_interval_s)
+            metadata=dict(metadata), terms=outputs.model.terms.record(), formulation=outputs.model.formulation,
+            flush_interval_s=flush_interval_s)
         self._last_ns = -1
         self._pending: list[tuple[float, str, str]] = []
 

@@ -103,6 +103,12 @@ class SimulationResult:
         """Names and output maps of the model (the run's wind is passed to them per call)."""
         return OutputMaps(self.model)
 
+    @property
+    def terms(self) -> dict:
+        """The physical terms of the simulated model as a JSON-ready dict (:meth:`flexsim.model.terms.Terms.record`,
+        as :attr:`flexsim.linear.flutter.FlutterPoint.terms` and the flight log's header)."""
+        return self.model.terms.record()
+
     # ------------------------------------------------------------------ states
     @cached_property
     def _unpacked(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

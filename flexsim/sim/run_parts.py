@@ -78,6 +78,8 @@ class RunProblem:
     u0: np.ndarray
     jacobian: np.ndarray | None
     events: tuple[RunEvent, ...]
+    #: End time of the run [s] (it starts at 0).
+    t_end_s: float
 
 
 @dataclass(frozen=True)

@@ -48,7 +48,7 @@ from flexsim.sim.run_parts import RunEvent, RunOutcome, RunProblem, Sampler, Sin
 from flexsim.sim.result import SimulationResult
 from flexsim.trim.solver import TrimPoint
 
-__all__ = ["ControlSchedule", "IntegrationSettings", "SimEvent", "simulate", "state_scales", "METHODS", "DEFAULT_EVENTS", "default_method",
+__all__ = ["ControlSchedule", "IntegratorSettings", "SimEvent", "simulate", "state_scales", "METHODS", "DEFAULT_EVENTS", "default_method",
            "DEFAULT_MAX_STEP", "RELINEARISE_DRIFT", "COMPILED_CHUNK_S"]
 
 #: Integration methods by name (scipy.integrate OdeSolver classes).
@@ -59,6 +59,8 @@ _IMPLICIT = ("Radau", "BDF", "LSODA")
 DEFAULT_EVENTS = ("ground", "structural_limit", "gimbal_lock")
 #: Default relative tolerance per method family (accuracy checks in docs/simulation.md).
 DEFAULT_RTOL = {"implicit": 1e-3, "explicit": 1e-6}
+#: Allowed range of :attr:`IntegratorSettings.rtol`.
+RTOL_RANGE = (1e-13, 0.1)
 #: Default largest step [s]: ETD2RK's fixed step, and the bound of the adaptive methods (so that no gust or event
 #: falls between two steps); errors of both in docs/simulation.md.
 DEFAULT_MAX_STEP = {"ETD2RK": 0.02, "other": 0.05}
@@ -96,23 +98,27 @@ class SimEvent:
             raise ValueError(f"SimEvent {self.name!r}: direction = {self.direction!r}: must be -1, 0 or +1")
 
 
-@dataclass(frozen=True)
-class IntegrationSettings:
-    """The numerical settings of one run, validated on construction (:func:`simulate` builds one with
-    :meth:`resolve`, which fills in the defaults).
+@dataclass(frozen=True, eq=False)
+class IntegratorSettings:
+    """How the one model is integrated: the settings of a :func:`simulate` run and of the control periods of the
+    environments (:class:`flexsim.sim.periods.FlightDynamics`), frozen and validated on construction.
+
+    A field left None takes its user's default in :meth:`resolve`, which returns the settings with every field set.
 
     Attributes
     ----------
     method : str
-        One of :data:`METHODS` (``"auto"`` is resolved by :meth:`resolve`).
-    rtol : float
-        Relative tolerance in [1e-13, 0.1] (not used by ETD2RK).
-    atol : ndarray, shape (n_states,)
-        Absolute tolerance per state entry, > 0 and finite; stored read-only.
-    max_step : float
-        Largest step [s], > 0 (``math.inf``: no limit); the fixed step of ETD2RK, which must be finite.
-    t_end_s : float
-        End time [s], finite and > 0 (the run starts at 0).
+        ``"auto"`` (default; :func:`default_method` of the model and its wind) or one of :data:`METHODS`.
+    rtol : float or None
+        Relative tolerance in [1e-13, 0.1] (not used by ETD2RK); None: :data:`DEFAULT_RTOL` per method family for
+        :func:`simulate`, 1e-3 for the control periods.
+    atol : float, ndarray of shape (n_states,), or None
+        Absolute tolerance, > 0 and finite: one number for every state entry, or one per entry (stored read-only);
+        None: ``rtol * state_scales(model)`` for :func:`simulate`, per-state values for the control periods
+        (:func:`flexsim.sim.periods.period_atol`).
+    max_step_s : float or None
+        Largest step [s], > 0 (``math.inf``: no limit); the fixed step of ETD2RK, which must be finite. None:
+        :data:`DEFAULT_MAX_STEP` per method.
 
     Raises
     ------
@@ -120,65 +126,73 @@ class IntegrationSettings:
         A field out of range; the message names the field, its value and the allowed range.
     """
 
-    method: str
-    rtol: float
-    atol: np.ndarray
-    max_step: float
-    t_end_s: float
+    method: str = "auto"
+    rtol: float | None = None
+    atol: float | np.ndarray | None = None
+    max_step_s: float | None = None
 
     def __post_init__(self) -> None:
-        if self.method not in METHODS:
+        if self.method != "auto" and self.method not in METHODS:
             raise ValueError(f"method = {self.method!r}: must be 'auto' or one of {', '.join(METHODS)}")
-        if isinstance(self.rtol, bool) or not (isinstance(self.rtol, (int, float)) and 1e-13 <= self.rtol <= 0.1):
-            raise ValueError(f"rtol = {self.rtol!r}: must be a number in [1e-13, 0.1]")
-        try:
-            atol = np.array(self.atol, dtype=float)
-        except (TypeError, ValueError):
-            raise ValueError(f"atol = {self.atol!r}: must be positive and finite numbers") from None
-        if atol.ndim != 1 or atol.size == 0 or not np.all(np.isfinite(atol)) or np.any(atol <= 0):
-            raise ValueError(f"atol = {self.atol!r}: must be positive and finite (one number per state entry)")
-        atol.setflags(write=False)
-        object.__setattr__(self, "atol", atol)
-        if isinstance(self.max_step, bool) or not (isinstance(self.max_step, (int, float)) and self.max_step > 0):
-            raise ValueError(f"max_step = {self.max_step!r}: must be a number > 0 [s] (math.inf for no limit)")
-        if self.method == "ETD2RK" and not math.isfinite(self.max_step):
-            raise ValueError(f"max_step = {self.max_step!r}: ETD2RK takes fixed steps of max_step, which must be finite [s]")
-        if isinstance(self.t_end_s, bool) or not (isinstance(self.t_end_s, (int, float)) and math.isfinite(self.t_end_s)
-                                                  and self.t_end_s > 0):
-            raise ValueError(f"t_end_s = {self.t_end_s!r}: must be a finite number > 0 [s]")
-        object.__setattr__(self, "rtol", float(self.rtol))
-        object.__setattr__(self, "max_step", float(self.max_step))
-        object.__setattr__(self, "t_end_s", float(self.t_end_s))
+        lo, hi = RTOL_RANGE
+        if self.rtol is not None:
+            if isinstance(self.rtol, bool) or not (isinstance(self.rtol, (int, float)) and lo <= self.rtol <= hi):
+                raise ValueError(f"rtol = {self.rtol!r}: must be a number in [{lo:g}, {hi:g}]")
+            object.__setattr__(self, "rtol", float(self.rtol))
+        if self.atol is not None:
+            try:
+                atol = np.array(self.atol, dtype=float)
+            except (TypeError, ValueError):
+                raise ValueError(f"atol = {self.atol!r}: must be positive and finite (a number or one per state entry)") from None
+            if atol.ndim > 1 or atol.size == 0 or not np.all(np.isfinite(atol)) or np.any(atol <= 0):
+                raise ValueError(f"atol = {self.atol!r}: must be positive and finite (a number or one per state entry)")
+            atol.setflags(write=False)
+            object.__setattr__(self, "atol", float(atol) if atol.ndim == 0 else atol)
+        if self.max_step_s is not None:
+            step = self.max_step_s
+            if isinstance(step, bool) or not (isinstance(step, (int, float)) and step > 0):
+                raise ValueError(f"max_step_s = {step!r}: must be a number > 0 [s] (math.inf for no limit)")
+            if self.method == "ETD2RK" and not math.isfinite(step):
+                raise ValueError(f"max_step_s = {step!r}: ETD2RK takes fixed steps of max_step_s, which must be finite [s]")
+            object.__setattr__(self, "max_step_s", float(step))
 
-    @classmethod
-    def resolve(cls, model: AircraftModel, t_end_s: float, *, method: str = "auto", rtol: float | None = None,
-                atol: float | np.ndarray | None = None, max_step: float | None = None,
-                wind: Wind | None = None) -> IntegrationSettings:
-        """Settings of a run of ``model`` in ``wind`` with :func:`simulate`'s defaults: ``"auto"`` ->
-        :func:`default_method`, ``rtol`` per method family (:data:`DEFAULT_RTOL`), ``atol = rtol *
-        state_scales(model)`` (a scalar ``atol`` applies to every state entry), ``max_step`` :data:`DEFAULT_MAX_STEP`
-        per method (ETD2RK: its fixed step)."""
-        if method == "auto":
-            method = default_method(model, wind)
-        if max_step is None and method in METHODS:
-            max_step = DEFAULT_MAX_STEP["ETD2RK" if method == "ETD2RK" else "other"]
-        if method not in METHODS:
-            raise ValueError(f"method = {method!r}: must be 'auto' or one of {', '.join(METHODS)}")
+    def _key(self) -> tuple:
+        atol = self.atol if not isinstance(self.atol, np.ndarray) else tuple(self.atol.tolist())
+        return self.method, self.rtol, atol, self.max_step_s
+
+    def __eq__(self, other: object) -> bool:
+        return self._key() == other._key() if isinstance(other, IntegratorSettings) else NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def resolve(self, model: AircraftModel, wind: Wind | None = None, *, rtol: float | None = None,
+                atol: np.ndarray | None = None) -> IntegratorSettings:
+        """These settings with every field set for a run of ``model`` in ``wind``: ``"auto"`` -> :func:`default_method`,
+        ``max_step_s`` :data:`DEFAULT_MAX_STEP` per method, ``rtol`` the caller's default ``rtol`` or :data:`DEFAULT_RTOL`
+        per method family, ``atol`` the caller's default ``atol`` or ``rtol * state_scales(model)``; a number ``atol``
+        becomes one per state entry."""
+        method = default_method(model, wind) if self.method == "auto" else self.method
+        step = self.max_step_s
+        if step is None:
+            step = DEFAULT_MAX_STEP["ETD2RK" if method == "ETD2RK" else "other"]
+        rtol = self.rtol if self.rtol is not None else rtol
         if rtol is None:
             rtol = DEFAULT_RTOL["implicit" if method in _IMPLICIT else "explicit"]
-        if isinstance(rtol, bool) or not (isinstance(rtol, (int, float)) and 1e-13 <= rtol <= 0.1):
-            raise ValueError(f"rtol = {rtol!r}: must be a number in [1e-13, 0.1]")
         n = model.layout.n_states
-        if atol is None:
-            atol_v = rtol * state_scales(model)
-        else:
-            try:
-                atol_v = np.broadcast_to(np.asarray(atol, dtype=float), (n,)).copy()
-            except (TypeError, ValueError):
-                raise ValueError(f"atol = {atol!r}: must be positive and finite (a number or {n} numbers)") from None
-            if not np.all(np.isfinite(atol_v)) or np.any(atol_v <= 0):
-                raise ValueError(f"atol = {atol!r}: must be positive and finite (a number or {n} numbers)")
-        return cls(method=method, rtol=rtol, atol=atol_v, max_step=max_step, t_end_s=t_end_s)
+        values = self.atol if self.atol is not None else atol
+        if values is None:
+            values = rtol * state_scales(model)
+        values = np.asarray(values, dtype=float)
+        if values.ndim == 1 and values.shape != (n,):
+            raise ValueError(f"atol = {self.atol!r}: must be positive and finite (a number or {n} numbers)")
+        return IntegratorSettings(method, rtol, np.broadcast_to(values, (n,)).copy(), step)
+
+    def substeps(self, period_s: float) -> int:
+        """Number of equal ETD2RK steps of at most ``max_step_s`` (None: :data:`DEFAULT_MAX_STEP` of ETD2RK) in a
+        period of ``period_s`` [s]: ceil(period / max_step_s)."""
+        step = DEFAULT_MAX_STEP["ETD2RK"] if self.max_step_s is None else self.max_step_s
+        return max(1, math.ceil(period_s / step * (1.0 - 1e-12)))
 
     @property
     def implicit(self) -> bool:
@@ -412,7 +426,8 @@ def simulate(
         Absolute tolerance; default ``rtol * state_scales(model)``.
     max_step : float, optional
         Largest step [s] (default 0.05), so that no gust or event falls between two steps; the fixed step
-        of ETD2RK (default 0.02) (:data:`DEFAULT_MAX_STEP`).
+        of ETD2RK (default 0.02) (:data:`DEFAULT_MAX_STEP`). ``method``, ``rtol``, ``atol`` and ``max_step`` are the
+        fields of an :class:`IntegratorSettings` (``max_step_s``), validated and resolved by it.
     control_period_s : float
         Period of a feedback controller [s] (default 0.02).
     events : sequence of str or SimEvent
@@ -450,8 +465,10 @@ def simulate(
         raise ValueError(f"t_end_s = {t_end_s!r}: must be a finite number > 0 [s]")
     t_end = float(t_end_s)
     ctrl = Controls(model, controls, u_trim, control_period_s)
-    settings = IntegrationSettings.resolve(model, t_end, method=method, rtol=rtol, atol=atol, max_step=max_step,
-                                           wind=wind)
+    try:
+        settings = IntegratorSettings(method, rtol, atol, max_step).resolve(model, wind)
+    except ValueError as exc:  # name the argument of simulate: max_step is the settings' max_step_s
+        raise ValueError(str(exc).replace("max_step_s", "max_step")) from None
     method, rtol = settings.method, settings.rtol
     out_grid = _grid(output_rate_hz, t_end, "output_rate_hz")
     log_grid = _grid(log_rate_hz, t_end, "log_rate_hz")
@@ -473,7 +490,7 @@ def simulate(
     u0 = ctrl.held(0.0, x0) if ctrl.controller is not None else ctrl.schedule(0.0)
     wall0 = time.perf_counter()
     jac_matrix = jacobian(model, x0, u0, controls=False, wind=wind)[0] if settings.needs_jacobian else None
-    problem = RunProblem(model=model, wind=wind, ctrl=ctrl, x0=x0, u0=u0, jacobian=jac_matrix, events=tuple(evs))
+    problem = RunProblem(model=model, wind=wind, ctrl=ctrl, x0=x0, u0=u0, jacobian=jac_matrix, events=tuple(evs), t_end_s=t_end)
     sink = None
     if path is not None:
         meta = {"aircraft": model.aircraft.name, "aircraft_source": str(model.aircraft.source),
@@ -520,10 +537,10 @@ def simulate(
                             initial_stability=initial.stability if isinstance(initial, TrimPoint) else None)
 
 
-def _integrate(problem: RunProblem, settings: IntegrationSettings, sinks: Sinks) -> RunOutcome:
+def _integrate(problem: RunProblem, settings: IntegratorSettings, sinks: Sinks) -> RunOutcome:
     """The stepping loop: a solver per control segment; sample, log and check events after every step."""
     model, wind, ctrl, evs = problem.model, problem.wind, problem.ctrl, problem.events
-    method, t_end, max_step = settings.method, settings.t_end_s, settings.max_step
+    method, t_end, max_step = settings.method, problem.t_end_s, settings.max_step_s
     sink = sinks.log
     bounds = ctrl.boundaries(t_end)
     h_next = None

@@ -10,7 +10,8 @@ flutter speed grows with the torsion frequency; Bisplinghoff, Ashley & Halfman 1
 
 from dataclasses import replace
 
-from flexsim.envs.flutter_margin import WingFlutterMarginTask, flutter_condition
+from flexsim.envs.flutter_margin import WingFlutterMarginTask
+from flexsim.linear.flutter import flutter_condition
 from flexsim.aircraft.calibration import StructuralScaling
 from flexsim.aircraft.toml_loader import load_aircraft
 

@@ -1,10 +1,11 @@
 """The fixed-step integrator of the environments (ETD2RK) inside FlightDynamics.
 
 Checks:
-* ``IntegratorSettings`` (one class, :mod:`flexsim.sim.periods`): "auto" resolves to the method ``simulate`` takes
+* ``IntegratorSettings`` (one class, ``simulate``'s too): "auto" resolves to the method ``simulate`` takes
   for the same model in still air (``flexsim.sim.simulate.default_method``): ETD2RK for the finite-state and the
   quasi-steady model; ``substeps(period) = ceil(period / max_step_s)`` (exact integers); a ``max_step_s``
-  outside [1e-4, 0.05] s raises ValueError naming field, value and range.
+  outside [1e-4, 0.05] s raises ValueError naming field, value and range (the class, or the control periods'
+  check); the periods' defaults are rtol 1e-3 and ``period_atol``.
 * An env step with ETD2RK reports 2 right-hand sides per step (``nfev = 2 * substeps``) and no LU; the tasks'
   default steps (``default_max_step_s``): LevelHold 20 ms (1 step per 50 Hz period), GustAlleviation 10 ms,
   FlutterMargin 5 ms; an ``integrator`` passed in is used as given.
@@ -25,7 +26,8 @@ import pytest
 
 from flexsim import envs
 from flexsim.sim.fixed_step import ETD2RK
-from flexsim.sim.periods import IntegratorSettings
+from flexsim.sim import IntegratorSettings
+from flexsim.sim.periods import check_period_settings, period_atol
 from flexsim.sim.simulate import default_method
 
 
@@ -35,17 +37,23 @@ def test_auto_resolution_substeps_and_range():
     for aero in ("unsteady", "quasi-steady"):
         env = gym.make("FlexSim/GTM-LevelHold-v0", aero=aero)
         model = env.unwrapped.dynamics.model
-        assert auto.resolve(model) == default_method(model, None) == "ETD2RK" == env.unwrapped.dynamics.method
-        assert envs.IntegratorSettings(method="Radau").resolve(model) == "Radau"
+        assert auto.resolve(model).method == default_method(model, None) == "ETD2RK" == env.unwrapped.dynamics.method
+        assert envs.IntegratorSettings(method="Radau").resolve(model).method == "Radau"
+        assert env.unwrapped.dynamics.rtol == 1e-3 and np.array_equal(env.unwrapped.dynamics.atol, period_atol(model.layout))
         env.close()
     assert [auto.substeps(dt) for dt in (0.02, 0.05, 0.001, 1.0 / 30.0, 0.005)] == [1, 3, 1, 2, 1]  # max_step_s 0.02 s
     assert envs.IntegratorSettings(max_step_s=0.01).substeps(0.02) == 2
     assert envs.IntegratorSettings(max_step_s=0.005).substeps(0.02) == 4
-    for bad in (0.0, 1e-5, 0.1, math.nan, "fast"):
+    for bad in (0.0, math.nan, "fast"):
         with pytest.raises(ValueError, match=r"max_step_s = .*: must be"):
             envs.IntegratorSettings(max_step_s=bad)
+    for bad in (1e-5, 0.1):
+        with pytest.raises(ValueError, match=r"max_step_s = .*: must be in \[0\.0001, 0\.05\] s"):
+            check_period_settings(envs.IntegratorSettings(max_step_s=bad))
     with pytest.raises(ValueError, match=r"max_step_s = 0\.1: must be in \[0\.0001, 0\.05\] s"):
-        envs.IntegratorSettings(max_step_s=0.1)
+        gym.make("FlexSim/GTM-LevelHold-v0", integrator=envs.IntegratorSettings(max_step_s=0.1))
+    with pytest.raises(ValueError, match=r"integrator.method = 'RK45': the control periods take one of auto, ETD2RK"):
+        check_period_settings(envs.IntegratorSettings(method="RK45"))
 
 
 def _level_hold(**kwargs):

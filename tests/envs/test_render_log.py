@@ -60,6 +60,7 @@ def test_flight_log_recorder_round_trip(tmp_path):
     assert set(log.structure) == set(base.aircraft.component_names)
     np.testing.assert_array_equal(log.state[-1], state)
     assert log.metadata["purpose"] == "test" and log.metadata["seed"] == "1"
+    assert log.terms == base.dynamics.model.terms.record() and log.terms["aero"]["model"] == "quasi-steady"
     assert log.events[0].text.startswith("reset")
     rrd = tmp_path / "run.rrd"
     log_to_recording(env.paths[1], rrd_path=rrd)
@@ -81,7 +82,7 @@ def test_human_mode_streams_to_rerun_without_spawning(monkeypatch):
     # in-memory one beforehand, so the drawing code runs against rerun-sdk without any viewer.
     import rerun as rr
 
-    from flexsim.envs.rendering import RerunStreamer
+    from flexsim.io.rendering import RerunStreamer
 
     monkeypatch.setenv("DISPLAY", ":flexsim-test")  # human mode is refused where no viewer can open
     env = envs.LevelHoldEnv(aero="quasi-steady", render_mode="human")

@@ -134,6 +134,27 @@ def test_round_trip_reproduces_arrays_names_events_and_metadata(tmp_path):
         log.state[0, 0] = 1.0  # arrays are read-only
 
 
+def test_header_records_the_model_terms_and_formulation(tmp_path):
+    """Terms given to the writer come back from the header record equal to Terms.record(), field by field (JSON
+    round trip: floats exact, tuples as lists); a log written without them reads back terms None."""
+    from flexsim.model.coupling import AeroOptions
+    from flexsim.model.terms import Terms
+
+    terms = Terms(aero=AeroOptions("quasi-steady"), gravity_m_s2=0.0, compressibility_mach=0.8,
+                  engine_angular_momentum=(1.5, 0.0, -2.25)).record()
+    _write_log(tmp_path / "terms.mcap", _random_samples(3), terms=terms, formulation="paper")
+    log = read_flight_log(tmp_path / "terms.mcap")
+    assert log.terms == terms and log.formulation == "paper"
+    assert log.terms["aero"]["model"] == "quasi-steady" and log.terms["engine_angular_momentum"] == [1.5, 0.0, -2.25]
+    _write_log(tmp_path / "plain.mcap", _random_samples(3))
+    plain = read_flight_log(tmp_path / "plain.mcap")
+    assert plain.terms is None and plain.formulation is None
+    with pytest.raises(ValueError, match="terms"):
+        _writer(tmp_path / "bad.mcap", terms={"gravity_m_s2": math.nan})
+    with pytest.raises(ValueError, match="formulation"):
+        _writer(tmp_path / "bad.mcap", terms=terms, formulation=3)
+
+
 def test_signal_with_unknown_name_raises_key_error_listing_available_names(tmp_path):
     path = tmp_path / "run.mcap"
     _write_log(path, _random_samples(3))

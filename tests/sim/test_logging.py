@@ -53,6 +53,9 @@ def test_log_round_trip_gives_the_same_arrays(logged_run):
     assert log.signal_names == out.signal_names and log.format_version == "2"
     for name in log.signal_names:  # the result and the log compute every signal with the one output layer
         np.testing.assert_allclose(log.signal(name), result.signal(name), rtol=1e-12, atol=1e-12, err_msg=name)
+    # the header records the model's terms: the quasi-steady strips of the manoeuvre's model, every other term on
+    assert log.terms == result.terms == result.model.terms.record() and log.terms["aero"]["model"] == "quasi-steady"
+    assert log.terms["gravity_m_s2"] == 9.80665 and log.formulation == result.model.formulation == "physical"
     assert set(log.structure) == set(COMPONENTS)
     k = 40
     for name, nodes in out.structure(result.x[k]).items():

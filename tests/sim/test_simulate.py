@@ -22,7 +22,7 @@ from scipy.integrate import Radau
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.result import SimulationResult
-from flexsim.sim.simulate import (HOLDING_RADAU_SCIPY, ControlSchedule, HoldingRadau, IntegrationSettings, SimEvent, radau_class,
+from flexsim.sim.simulate import (HOLDING_RADAU_SCIPY, ControlSchedule, HoldingRadau, IntegratorSettings, SimEvent, radau_class,
                                   simulate, state_scales)
 from flexsim.trim import SteadyManoeuvre, trim
 
@@ -261,31 +261,37 @@ def test_bad_arguments_are_rejected_with_clear_messages(quasi_steady, tmp_path):
 
 
 def test_integration_settings_are_frozen_validated_and_resolved(quasi_steady):
-    """The numerical settings of a run are one frozen, validated object (``_integrate`` took 18 arguments)."""
+    """The numerical settings of a run are one frozen, validated object (``_integrate`` took 18 arguments), the class
+    the environments' control periods take too."""
     n = quasi_steady.layout.n_states
-    s = IntegrationSettings.resolve(quasi_steady, 2.0)
-    assert (s.method, s.rtol, s.max_step, s.t_end_s, s.implicit, s.needs_jacobian) == ("ETD2RK", 1e-6, 0.02, 2.0, False, True)
-    assert IntegrationSettings.resolve(quasi_steady, 2.0, wind=lambda t, p: 0.0 * p).method == "Radau"  # a Python wind
-    s = IntegrationSettings.resolve(quasi_steady, 2.0, method="Radau")
-    assert (s.method, s.rtol, s.max_step, s.t_end_s, s.implicit, s.needs_jacobian) == ("Radau", 1e-3, 0.05, 2.0, True, True)
+    s = IntegratorSettings().resolve(quasi_steady)
+    assert (s.method, s.rtol, s.max_step_s, s.implicit, s.needs_jacobian) == ("ETD2RK", 1e-6, 0.02, False, True)
+    assert IntegratorSettings().resolve(quasi_steady, lambda t, p: 0.0 * p).method == "Radau"  # a Python wind
+    s = IntegratorSettings(method="Radau").resolve(quasi_steady)
+    assert (s.method, s.rtol, s.max_step_s, s.implicit, s.needs_jacobian) == ("Radau", 1e-3, 0.05, True, True)
     np.testing.assert_array_equal(s.atol, 1e-3 * state_scales(quasi_steady))
     with pytest.raises(ValueError, match="read-only"):
         s.atol[0] = 1.0
     with pytest.raises(AttributeError):
         s.rtol = 1e-6  # type: ignore[misc]
-    explicit = IntegrationSettings.resolve(quasi_steady, 1.0, method="DOP853", atol=1e-9)
+    assert s == IntegratorSettings(method="Radau").resolve(quasi_steady) and hash(s) == hash(IntegratorSettings("Radau").resolve(quasi_steady))
+    explicit = IntegratorSettings(method="DOP853", atol=1e-9).resolve(quasi_steady)
     assert explicit.rtol == 1e-6 and not explicit.needs_jacobian and explicit.atol.shape == (n,) and np.all(explicit.atol == 1e-9)
-    assert IntegrationSettings.resolve(quasi_steady, 1.0, method="ETD2RK").needs_jacobian
+    assert IntegratorSettings(method="ETD2RK").resolve(quasi_steady).needs_jacobian
+    assert IntegratorSettings(rtol=1e-4).resolve(quasi_steady, rtol=1e-3).rtol == 1e-4  # a caller's default only fills None
     for kwargs, match in [({"method": "Euler"}, r"method = 'Euler': must be 'auto' or one of"),
                           ({"rtol": 0.5}, r"rtol = 0.5: must be a number in \[1e-13, 0.1\]"),
                           ({"atol": -1.0}, r"atol = -1.0: must be positive and finite"),
-                          ({"atol": np.ones(3)}, r"atol = .*must be positive and finite \(a number or 60 numbers\)"),
-                          ({"max_step": 0.0}, r"max_step = 0.0: must be a number > 0"),
-                          ({"method": "ETD2RK", "max_step": math.inf}, r"max_step = inf: ETD2RK takes fixed steps")]:
+                          ({"max_step_s": 0.0}, r"max_step_s = 0.0: must be a number > 0"),
+                          ({"method": "ETD2RK", "max_step_s": math.inf}, r"max_step_s = inf: ETD2RK takes fixed steps")]:
         with pytest.raises(ValueError, match=match):
-            IntegrationSettings.resolve(quasi_steady, 1.0, **kwargs)
+            IntegratorSettings(**kwargs)
+    with pytest.raises(ValueError, match=r"atol = .*must be positive and finite \(a number or 60 numbers\)"):
+        IntegratorSettings(atol=np.ones(3)).resolve(quasi_steady)
+    with pytest.raises(ValueError, match=r"max_step = 0.0: must be a number > 0"):  # simulate names its own argument
+        simulate(quasi_steady, np.zeros(n), 1.0, controls=np.zeros(4), max_step=0.0)
     with pytest.raises(ValueError, match=r"t_end_s = nan: must be a finite number > 0"):
-        IntegrationSettings(method="Radau", rtol=1e-3, atol=np.ones(n), max_step=0.05, t_end_s=math.nan)
+        simulate(quasi_steady, np.zeros(n), math.nan)
 
 
 @pytest.mark.parametrize("times, values, match", [

@@ -1,4 +1,5 @@
-"""BLAS threads in vector-env workers.
+"""BLAS threads of a process, for the workers of vector environments (the public counterpart of the library's
+in-process :func:`flexsim._threads.single_blas_thread`).
 
 The right-hand side and Radau's LU factorisations are small dense linear algebra, which gains nothing
 from BLAS threads and slows down badly when several processes each start a thread pool on the same cores

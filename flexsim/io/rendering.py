@@ -1,4 +1,4 @@
-"""Render modes of the environments: ``rgb_array`` (matplotlib, Agg) and ``human`` (a Rerun viewer).
+"""The render modes of the environments (:mod:`flexsim.envs`): ``rgb_array`` (matplotlib, Agg) and ``human`` (a Rerun viewer).
 
 Both draw the deformed beams of every component (``PointMaps.positions``, body axes) placed with the
 aircraft's attitude, and the recent flight path. ``human`` starts a Rerun viewer on its first frame only
@@ -12,12 +12,9 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from flexsim.io.flight_log import ENU_FROM_NED, viewer_pose
-from flexsim.kinematics import dcm_321
-
-from flexsim.sim.measurements import Measurements
-from flexsim.sim.periods import SENSOR_COMPONENTS
 
 __all__ = ["RgbRenderer", "RerunStreamer"]
 
@@ -45,18 +42,20 @@ class RgbRenderer:
         self.ax3d = self.figure.add_subplot(1, 2, 1, projection="3d")
         self.ax_path = self.figure.add_subplot(1, 2, 2)
 
-    def draw(self, meas: Measurements, nodes: Mapping[str, np.ndarray], path_ned_m: np.ndarray, controls: np.ndarray,
+    def draw(self, meas, nodes: Mapping[str, np.ndarray], path_ned_m: np.ndarray, controls: np.ndarray,
              title: str, errors: Mapping[str, float]) -> np.ndarray:
-        """One frame as a uint8 array of shape (height, width, 3)."""
-        c_t = dcm_321(*meas.euler_rad).T
+        """One frame as a uint8 array of shape (height, width, 3) of the outputs ``meas``
+        (:class:`flexsim.sim.measurements.Measurements`), the beam ``nodes`` in body axes [m], the flight path (k, 3) [m,
+        NED], the applied ``controls`` [N, rad], a ``title`` and the task ``errors``."""
+        enu_from_body = Rotation.from_quat(viewer_pose(meas.position_ned_m, meas.euler_rad)[1]).as_matrix()
         ax = self.ax3d
         ax.clear()
         extent = 1.0
         for name, pts in nodes.items():
-            enu = (pts @ c_t.T) @ ENU_FROM_NED.T  # body -> NED -> ENU, relative to the body origin
+            enu = pts @ enu_from_body.T  # body -> ENU, relative to the body origin
             extent = max(extent, float(np.abs(enu).max()))
             ax.plot(enu[:, 0], enu[:, 1], enu[:, 2], "-o", ms=2, lw=2, color=_COLORS.get(name, "k"))
-        centre = np.mean([p.mean(axis=0) for p in nodes.values()], axis=0) @ c_t.T @ ENU_FROM_NED.T
+        centre = np.mean([p.mean(axis=0) for p in nodes.values()], axis=0) @ enu_from_body.T
         half = 0.6 * extent
         ax.set_xlim(centre[0] - half, centre[0] + half)
         ax.set_ylim(centre[1] - half, centre[1] + half)
@@ -65,7 +64,7 @@ class RgbRenderer:
         ax.set_ylabel("north [m]", fontsize=7)
         ax.set_zlabel("up [m]", fontsize=7)
         ax.tick_params(labelsize=6)
-        tips = ", ".join(f"{c.split('_')[0][0] if c != 'vtail' else 'fin'}:{meas.tip_deflection_m[c]:+.2f}" for c in SENSOR_COMPONENTS)
+        tips = ", ".join(f"{c.split('_')[0][0] if c != 'vtail' else 'fin'}:{v:+.2f}" for c, v in meas.tip_deflection_m.items())
         ax.set_title(f"t = {meas.time_s:5.2f} s   tip [m] {tips}", fontsize=7)
         axp = self.ax_path
         axp.clear()
@@ -111,9 +110,9 @@ class RerunStreamer:
             self._rec.log("/world/aircraft", rr.ViewCoordinates.FRD, static=True)
         return self._rec
 
-    def draw(self, meas: Measurements, nodes: Mapping[str, np.ndarray], path_ned_m: np.ndarray, controls: np.ndarray,
+    def draw(self, meas, nodes: Mapping[str, np.ndarray], path_ned_m: np.ndarray, controls: np.ndarray,
              title: str, errors: Mapping[str, float]) -> None:
-        """Send one frame (returns None, as gymnasium's human mode)."""
+        """Send one frame (arguments of :meth:`RgbRenderer.draw`; returns None, as gymnasium's human mode)."""
         import rerun as rr
 
         rec = self._recording()
@@ -126,8 +125,8 @@ class RerunStreamer:
             rec.log("/world/flight_path", rr.LineStrips3D([path_ned_m @ ENU_FROM_NED.T], colors=[(160, 160, 160)]))
         rec.log("/plots/altitude", rr.Scalars(meas.altitude_m))
         rec.log("/plots/speed", rr.Scalars(meas.airspeed_m_s))
-        for c in SENSOR_COMPONENTS:
-            rec.log(f"/plots/tip_deflections/{c}", rr.Scalars(meas.tip_deflection_m[c]))
+        for c, value in meas.tip_deflection_m.items():
+            rec.log(f"/plots/tip_deflections/{c}", rr.Scalars(value))
         for name, value in errors.items():
             rec.log(f"/plots/task/{name}", rr.Scalars(float(value)))
         for name, value in zip(("thrust_N", "aileron_rad", "elevator_rad", "rudder_rad"), controls):

@@ -1,4 +1,4 @@
-"""Wrappers of the flexsim environments."""
+"""The flight-log recorder of the flexsim environments (:mod:`flexsim.envs`), a gymnasium wrapper."""
 
 from __future__ import annotations
 
@@ -9,8 +9,7 @@ from typing import Any
 import gymnasium as gym
 
 from flexsim.io.flight_log import FlightLogWriter
-
-from flexsim.envs.base import LOG_CONTROL_NAMES, FlexSimEnv
+from flexsim.io.vocabulary import CONTROL_NAMES as LOG_CONTROL_NAMES
 
 __all__ = ["FlightLogRecorder"]
 
@@ -23,7 +22,8 @@ class FlightLogRecorder(gym.Wrapper):
     ``q_<component>_<k>_m``, ``xi_<component>_<k>_rad``, ...), the applied controls ``thrust_N, aileron_rad,
     elevator_rad, rudder_rad``, the simulator's flight signals (air data, load factor, tip deflections and twists
     with their rates, root bending moments) followed by ``error_<task error>`` and ``reward``, the deformed beam
-    nodes of every component and events (reset, termination with its reason, truncation). View one with
+    nodes of every component and events (reset, termination with its reason, truncation); the header records the
+    model's physical terms (:attr:`flexsim.io.flight_log.FlightLog.terms`). View one with
     ``python -m flexsim.io.rerun_view LOG.mcap --rrd out.rrd``.
 
     Parameters
@@ -46,7 +46,7 @@ class FlightLogRecorder(gym.Wrapper):
 
     def __init__(self, env: gym.Env, path: str | os.PathLike, metadata: dict[str, str] | None = None) -> None:
         super().__init__(env)
-        if not isinstance(env.unwrapped, FlexSimEnv):
+        if not all(hasattr(env.unwrapped, name) for name in ("log_sample", "signal_names", "dynamics")):
             raise ValueError(f"env = {env!r}: FlightLogRecorder needs a flexsim environment (FlexSimEnv)")
         path = Path(path)
         if path.suffix != ".mcap":
@@ -80,7 +80,7 @@ class FlightLogRecorder(gym.Wrapper):
         obs, info = self.env.reset(seed=seed, options=options)
         self._close_writer()
         self._episode += 1
-        base: FlexSimEnv = self.env.unwrapped
+        base = self.env.unwrapped
         path = self._episode_path(self._episode)
         metadata = {"aircraft": str(base.aircraft_source), "env": type(base).__name__, "episode": str(self._episode),
                     "seed": str(seed), "aero": base.dynamics.aero, "integrator": base.dynamics.method,
@@ -89,7 +89,8 @@ class FlightLogRecorder(gym.Wrapper):
         nodes = base.dynamics.structure_nodes(base.state)
         self._writer = FlightLogWriter(path, state_names=base.dynamics.state_names(), control_names=LOG_CONTROL_NAMES,
                                        signal_names=base.signal_names(), structure_topology={k: len(v) for k, v in nodes.items()},
-                                       metadata=metadata)
+                                       metadata=metadata, terms=base.dynamics.model.terms.record(),
+                                       formulation=base.dynamics.model.formulation)
         self.paths.append(path)
         self._last_sample_t = float("-inf")
         self._writer.event(0.0, f"reset: {type(base).__name__}, seed {seed}, reference {info.get('reference', {})}")
