@@ -32,14 +32,6 @@ def exponent(x: float, fmt: str = ".0e") -> str:
     return format(x, fmt).replace("e-0", "e-")
 
 
-def bound(x: float, limit: float, what: str) -> str:
-    """``limit`` as the docs print it (``1e-12``) once ``|x| < limit`` is checked: a round-off residual is stated as
-    the bound it meets, never by its digits, which differ between machines and BLAS builds."""
-    if not abs(x) < limit:
-        raise RuntimeError(f"{what}: {x:.3g} is not below {limit:g}")
-    return exponent(limit)
-
-
 def span(values, fmt: str, sep: str = "-") -> str:
     """``lo-hi`` of ``values`` in ``fmt``, one number where both print alike."""
     lo, hi = num(min(values), fmt), num(max(values), fmt)

@@ -7,8 +7,8 @@ recomputes each region's text (:data:`FIGURES`) and compares it with the documen
 within one unit of its last printed digit (two correct roundings of values less than a unit apart differ by at most
 one unit), or within the figure's ``rtol`` (adaptive integrators and searches, whose step or iteration sequence
 round-off can move). A region that agrees is left alone; a stale one is rewritten (``--check``: named, exit 1).
-Round-off residuals are never printed: a figure prints the bound it checks (``figure_text.bound``). The
-plain command also redraws ``docs/figures/flutter_turn*.png`` and ``flutter_climb*.png`` from the study run.
+Round-off residuals are never printed: a figure prints the bound it checks. The plain command also redraws
+``docs/figures/flutter_turn*.png`` and ``flutter_climb*.png`` from the study run.
 
 ``fast`` figures (well under a minute together) are checked by the default test suite
 (``tests/test_docs_figures.py``); the others (the turn and climb studies, the environments, the simulation
