@@ -50,38 +50,6 @@ def env_flutter_v0_point() -> str:
     return f"{_condition_text(0)}, dominant DOF {_flutter_env(0)[0].unwrapped.flutter.mode}"
 
 
-def _hz(version: int) -> str:
-    return f"{_flutter_env(version)[0].unwrapped.flutter.frequency_rad_s / (2 * math.pi):.1f} Hz"
-
-
-def _target(version: int) -> str:
-    return f"M {_flutter_env(version)[0].unwrapped.target.mach:.4f}"
-
-
-@figure(fast=False)
-def env_flutter_v0_hz() -> str:
-    """FlutterMargin-v0's flutter frequency [Hz]."""
-    return _hz(0)
-
-
-@figure(fast=False)
-def env_flutter_v1_hz() -> str:
-    """FlutterMargin-v1's flutter frequency [Hz]."""
-    return _hz(1)
-
-
-@figure(fast=False)
-def env_flutter_v0_target() -> str:
-    """FlutterMargin-v0's target Mach (M_f + 0.01)."""
-    return _target(0)
-
-
-@figure(fast=False)
-def env_flutter_v1_target() -> str:
-    """FlutterMargin-v1's target Mach (M_f + 0.01)."""
-    return _target(1)
-
-
 def _trim_hold(version: int, seed: int) -> dict:
     """One episode with the trim action held: return, end time, reason and the final wing/fin tip figures."""
     env = _flutter_env(version)[0]

@@ -305,19 +305,6 @@ def simulation_goland_flutter() -> str:
             f"flies at {tunnel / flutter:.2f} x {flutter:.1f} = {tunnel:.1f} m/s for either aerodynamic model")
 
 
-def simulation_structural_limits() -> str:
-    """The default structural limit (``STRUCTURAL_LIMIT_FRACTION`` x the wing's length) on the two bundled
-    aircraft with wings."""
-    from flexsim.aircraft.toml_loader import load_aircraft
-    from flexsim.sim.simulate import STRUCTURAL_LIMIT_FRACTION
-
-    def limit(name: str) -> float:
-        return STRUCTURAL_LIMIT_FRACTION * load_aircraft(name).component("right_wing").length_m
-
-    return (f"{STRUCTURAL_LIMIT_FRACTION:g} x the wing's length: {limit('gtm'):.2f} m on the GTM, "
-            f"{limit('goland_wing'):.2f} m on the Goland wing")
-
-
 @functools.cache
 def _gtm_trim_jacobian():
     """The Jacobian of the unsteady GTM (m = n = 2, N = 6) at the named manoeuvres' level trim (9144 m, M 0.75)."""

@@ -53,14 +53,6 @@ def calibration_structure() -> str:
             f"{freq('wings torsion 1 (symmetric)')} (sym.) and {freq('wings torsion 1 (antisymmetric)')} (antisym.) rad/s")
 
 
-def goland_pk_fs() -> str:
-    """Peters N = 6 against Theodorsen p-k on the Goland wing (1.225 kg/m^3, its file's incompressible strips)."""
-    from docs_figures_static import _goland
-
-    (u_t, _), (u_p, _) = _goland("theodorsen", "none"), _goland("unsteady", "none")
-    return f"{100 * abs(u_p / u_t - 1):.1f} %"
-
-
 @figure(fast=False)
 def calibration_summary() -> str:
     """What the calibration meets, from the level-flight rows of the bundled gtm (US, FS, QS)."""

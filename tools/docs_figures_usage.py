@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import functools
-import math
 from pathlib import Path
 
 import numpy as np
-from docs_figures_static import _cruise_trim, _options_effects_points, _static_figures, _turn_trim
+from docs_figures_static import _cruise_trim, _options_effects_points, _turn_trim
 from figure_text import exponent, figure, num
 
 from flexsim.aero.lift_slopes import exposed_lift_slope, vlm_surfaces  # noqa: E402
@@ -49,39 +48,21 @@ def options_turn_hold() -> str:
             f"{h.v_over_r_rad_s:.6f} rad/s")
 
 
-@functools.cache
-def _margin_against_t2() -> dict:
-    """The default GTM's CG and neutral point (cruise trim at 9144 m, M 0.78) and the T2's, in T2 c-bar fractions."""
+def options_t2() -> str:
+    """The T2's pitch derivatives, neutral point and margin against the default GTM's CG and neutral point (cruise
+    trim at 9144 m, M 0.78), in T2 c-bar fractions."""
     from flexsim.aircraft.t2_data import CBAR_M, T2_CG_CBAR, cbar_fraction, t2_pitch
 
-    gtm = load_aircraft("gtm")
+    gtm, t2 = load_aircraft("gtm"), t2_pitch()
     _, margin = _cruise_trim(9144.0, 0.78)
     (fuselage,) = [c for c in gtm.components if c.name == "fuselage"]
     x_cg = fuselage.length_m - AircraftModel(gtm, aero="quasi-steady").structure.mass_properties.cg_m[0]  # aft of the nose
-    return {"t2": t2_pitch(), "cbar_m": CBAR_M, "t2_cg": T2_CG_CBAR, "cg": cbar_fraction(x_cg),
-            "np": cbar_fraction(x_cg + margin.neutral_point_aft_of_cg_m), "margin": margin}
-
-
-def options_t2() -> str:
-    """The T2's pitch derivatives, neutral point and margin against the model's CG and neutral point."""
-    f = _margin_against_t2()
-    t2 = f["t2"]
+    cg, neutral = cbar_fraction(x_cg), cbar_fraction(x_cg + margin.neutral_point_aft_of_cg_m)
     return (f"has Cm_α = {num(t2.cm_alpha_per_rad, '.3f')} and CN_α = {t2.cn_alpha_per_rad:.3f} per radian (α = 0-6°) "
-            f"about 25 % of its reference chord c̄ ({f['cbar_m']:.3f} m at full scale), a neutral point at "
-            f"{100 * t2.neutral_point_cbar:.1f} % c̄ and a margin of {100 * (t2.neutral_point_cbar - f['t2_cg']):.0f} % at its "
-            f"own CG ({100 * f['t2_cg']:.2f} % c̄). The model's CG is at {100 * f['cg']:.1f} % c̄ and its neutral point at "
-            f"{100 * f['np']:.1f} % c̄: {100 * (t2.neutral_point_cbar - f['np']):.1f} % c̄ ahead of the T2's")
-
-
-def options_cg_shift() -> str:
-    """How far aft the CG would move for a 25 % margin (same neutral point; margin on the exposed wing's chord)."""
-    m = _margin_against_t2()["margin"]
-    return f"{m.neutral_point_aft_of_cg_m - 0.25 * m.mean_chord_m:.2f} m"
-
-
-def options_mean_chord() -> str:
-    """Mean aerodynamic chord of the exposed right wing's strips (``flexsim/trim/margin.py``)."""
-    return f"{_margin_against_t2()['margin'].mean_chord_m:.2f} m"
+            f"about 25 % of its reference chord c̄ ({CBAR_M:.3f} m at full scale), a neutral point at "
+            f"{100 * t2.neutral_point_cbar:.1f} % c̄ and a margin of {100 * (t2.neutral_point_cbar - T2_CG_CBAR):.0f} % at its "
+            f"own CG ({100 * T2_CG_CBAR:.2f} % c̄). The model's CG is at {100 * cg:.1f} % c̄ and its neutral point at "
+            f"{100 * neutral:.1f} % c̄: {100 * (t2.neutral_point_cbar - neutral):.1f} % c̄ ahead of the T2's")
 
 
 #: Wing reference area of the GTM [m^2] (the paper's; ``tools/make_gtm_toml.py``), for C_D0 and C_L.
@@ -106,20 +87,6 @@ def options_openap() -> str:
     cl = 1e3 * s["lift_kN"] / (0.5 * float(isa_density(9144.0)) * v * v * GTM_WING_AREA_M2)
     return (f"C_D0 = {OPENAP_B752_CD0}, k = {OPENAP_B752_K}) gives L/D = "
             f"{cl / (OPENAP_B752_CD0 + OPENAP_B752_K * cl * cl):.1f} at the GTM's cruise C_L = {cl:.2f} (9144 m, M 0.78)")
-
-
-def options_strips_only() -> str:
-    """The cruise trim and glide at 9144 m, M 0.78 without the parasite drag items (the strips' induced drag only)."""
-    bare, _ = _cruise_trim(9144.0, 0.78, parasite_drag=False)
-    glide, _ = _cruise_trim(9144.0, 0.78, glide=True, parasite_drag=False)
-    return (f"L/D {bare['lift_to_drag']:.1f} with {bare['thrust_kN']:.1f} kN of thrust at 9144 m, M 0.78 and a glide of "
-            f"{num(glide['gamma_deg'], '.2f')}°")
-
-
-def options_aileron_washin() -> str:
-    """The change of the aileron's rolling moment with flexibility, bending incidence off (the paper)."""
-    e = _static_figures(False).aileron_effectiveness
-    return f"{'raises' if e > 1 else 'lowers'} the aileron's rolling moment by {100 * abs(e - 1):.0f} %"
 
 
 def options_drag_flutter() -> str:
@@ -158,17 +125,6 @@ def options_munk_items() -> str:
             f"Ø {nac.diameter_m:g} m, {nac.volume_m3:.1f} m³ each (k₂ − k₁ = {dk(nac):.3f})")
 
 
-def options_downwash_gradient() -> str:
-    """The bundled gtm's downwash gradient (``[aero] downwash_gradient``)."""
-    return f"{load_aircraft('gtm').aero_settings.downwash_gradient:.3f}"
-
-
-def options_downwash_mach() -> str:
-    """Its value with the Prandtl-Glauert factor at M 0.78."""
-    g = load_aircraft("gtm").aero_settings.downwash_gradient
-    return f"{g:.3f}/β = {g / math.sqrt(1 - 0.78 ** 2):.2f}"
-
-
 # --- docs/logs.md ------------------------------------------------------------------------------------------------------
 
 def logs_damaged_chunk() -> str:
@@ -205,7 +161,6 @@ def logs_damaged_chunk() -> str:
 # --- docs/design.md ------------------------------------------------------------------------------------------------
 
 _SPEED = 70.0  # [m/s] sea level, M 0.21 (tests/model/test_gtm_aero.py)
-_S_REF = 181.25  # [m^2] GTM reference area (flexsim/aircraft/data/sources/gtm-notional.md 2a)
 _ALPHA, _DALPHA = 0.03, 0.02  # [rad] central difference of the lift about this incidence
 
 
@@ -220,36 +175,30 @@ def _strip_lift_slope(downwash: bool) -> float:
         _, f = model.generalized_forces(model.pack(position_m=[0.0, 0.0, 0.0], velocity=vel), np.zeros(4))
         lift.append(-f[2] * np.cos(alpha) + f[0] * np.sin(alpha))
     q_dyn = 0.5 * isa_density(0.0) * _SPEED**2
-    return (lift[1] - lift[0]) / (2 * _DALPHA) / (q_dyn * _S_REF)
+    return (lift[1] - lift[0]) / (2 * _DALPHA) / (q_dyn * GTM_WING_AREA_M2)
 
 
 @functools.cache
-def _lift_slopes() -> tuple[float, float, float, float]:
-    """(strips without the tail downwash, strips with the file's, lattice on the exposed surfaces, whole lattice),
-    dCL/dalpha [1/rad] on S_ref at 70 m/s, sea level; Prandtl-Glauert on the lattice as on the strips."""
+def _lift_slopes() -> tuple[float, float, float]:
+    """(strips without the tail downwash, strips with the file's, lattice on the exposed surfaces), dCL/dalpha
+    [1/rad] on S_ref at 70 m/s, sea level; Prandtl-Glauert on the lattice as on the strips."""
     aircraft = load_aircraft("gtm")
     beta = np.sqrt(1.0 - (_SPEED / speed_of_sound(0.0)) ** 2)
-    vlm = solve_vlm(vlm_surfaces(aircraft), mach=0.0, s_ref_m2=_S_REF)
-    return (_strip_lift_slope(False), _strip_lift_slope(True), exposed_lift_slope(aircraft, vlm) / beta,
-            vlm.lift_slope_per_rad / beta)
+    vlm = solve_vlm(vlm_surfaces(aircraft), mach=0.0, s_ref_m2=GTM_WING_AREA_M2)
+    return _strip_lift_slope(False), _strip_lift_slope(True), exposed_lift_slope(aircraft, vlm) / beta
 
 
 def design_lift_slope() -> str:
     """The strips' lift slope against the lattice's on the same exposed surfaces."""
-    strips, with_downwash, exposed, _ = _lift_slopes()
+    strips, with_downwash, exposed = _lift_slopes()
     return (f"{abs(strips / exposed - 1.0) * 100:.2f} % ({strips:.3f} vs {exposed:.3f} /rad on S_ref at M "
             f"{_SPEED / speed_of_sound(0.0):.2f}, sea level, without the file's tail downwash, which the lattice "
             f"holds already; with it the strips' is {with_downwash:.3f} /rad)")
 
 
-def design_lift_slope_total() -> str:
-    """The whole lattice's lift slope, carry-over across the fuselage included."""
-    return f"{_lift_slopes()[3]:.2f} /rad"
-
-
 def design_cla_peak() -> str:
     """Where the right wing's sectional lift slope (incompressible lattice, ``flexsim aero gtm``) peaks."""
-    vlm = solve_vlm(vlm_surfaces(load_aircraft("gtm")), mach=0.0, s_ref_m2=_S_REF)
+    vlm = solve_vlm(vlm_surfaces(load_aircraft("gtm")), mach=0.0, s_ref_m2=GTM_WING_AREA_M2)
     wing = vlm.surface("right_wing")
     outboard = wing.eta > 0.0
     eta = wing.eta[outboard][np.argmax(wing.cl_alpha_per_rad[outboard])]
