@@ -88,29 +88,46 @@ def _draw_study_figures(kinds) -> list[Path]:
 
 # --- the figures ----------------------------------------------------------------------------------------------
 
+def _level_rows(*cells: str) -> list[list[str]]:
+    """Rows of a level-flight table at the paper's altitudes: each cell a template of the fields below (``pm_``,
+    ``pw_``: M_F, omega_F of Tables 3 and 2; ``dm_``, ``dw_``: flexsim's differences from them)."""
+    from flexsim.linear.paper_data import TABLE_QS, TABLE_US
+
+    def diff(a: float, b: float) -> str:
+        return f"{num(100 * (a / b - 1), '+.1f')} %"
+
+    rows = []
+    for (h, m_us, w_us, _, _, _, tip, twist), (_, m_qs, w_qs, *_) in zip(TABLE_US, TABLE_QS):
+        us, fs, qs = (_level(model)[h] for model in ("US", "FS", "QS"))
+        fields = {"h": f"{h:g}", "pm_us": f"{m_us:.4f}", "pw_us": f"{w_us:.3f}", "pm_qs": f"{m_qs:.4f}",
+                  "pw_qs": f"{w_qs:.3f}", "us_m": f"{us['mach']:.4f}", "us_w": f"{us['omega_rad_s']:.2f}",
+                  "qs_m": f"{qs['mach']:.4f}", "qs_w": f"{qs['omega_rad_s']:.2f}", "fs_m": f"{fs['mach']:.4f}",
+                  "dm_us": diff(us["mach"], m_us), "dw_us": diff(us["omega_rad_s"], w_us), "dm_qs": diff(qs["mach"], m_qs),
+                  "tip": f"{num(us['tip_deflection_m'], '.3f')} / {num(tip, '.4f')}",
+                  "twist": f"{us['tip_twist_deg']:.2f} / {twist:.4f}", "mode": qs["mode"]}
+        rows.append([cell.format(**fields) for cell in cells])
+    return rows
+
+
 def readme_calibration() -> str:
     """US M_F of the bundled gtm against paper Table 3, e.g. ``+0.1 %, +1.2 %, +11.6 % and +17.1 % at 0, ...``."""
     from flexsim.linear.paper_data import TABLE_US
 
-    level = _level("US")
-    altitudes = [row[0] for row in TABLE_US]
-    diffs = [f"{100 * (level[h]['mach'] / ref[1] - 1):+.1f} %" for h, ref in zip(altitudes, TABLE_US)]
-    return (f"US M_F {', '.join(diffs[:-1])} and {diffs[-1]} against the paper at "
-            f"{', '.join(f'{h:g}' for h in altitudes[:-1])} and {altitudes[-1]:g} m")
+    diffs = [f"{100 * (_level('US')[h]['mach'] / mach - 1):+.1f} %" for h, mach, *_ in TABLE_US]
+    heights = [f"{row[0]:g}" for row in TABLE_US]
+    return (f"US M_F {', '.join(diffs[:-1])} and {diffs[-1]} against the paper at {', '.join(heights[:-1])} and "
+            f"{heights[-1]} m")
 
 
 @figure(fast=False)
 def flutter_level_table() -> str:
     """Level flight against the paper's Tables 2-3: US (p-k) with its difference, FS, and QS, at 4 altitudes."""
-    from flexsim.linear.paper_data import TABLE_QS, TABLE_US
-
-    us, fs, qs = _level("US"), _level("FS"), _level("QS")
-    rows = [[f"{h:g}", f"{pu[1]:.4f} / {pu[2]:.3f}", f"{us[h]['mach']:.4f} / {us[h]['omega_rad_s']:.2f} "
-             f"({100 * (us[h]['mach'] / pu[1] - 1):+.1f} %)", f"{fs[h]['mach']:.4f}", f"{pq[1]:.4f} / {pq[2]:.3f}",
-             f"{qs[h]['mach']:.4f} / {qs[h]['omega_rad_s']:.2f}"] for pu, pq in zip(TABLE_US, TABLE_QS) for h in pu[:1]]
+    us, fs = _level("US"), _level("FS")
     worst = max(abs(fs[h]["mach"] / us[h]["mach"] - 1) for h in us)
     modes = sorted({r["mode"] for r in (*us.values(), *fs.values())})
-    return (table("| h [m] | paper US M_F / ω_F | flexsim US (p-k) | FS | paper QS | flexsim QS |", rows)
+    return (table("| h [m] | paper US M_F / ω_F | flexsim US (p-k) | FS | paper QS | flexsim QS |",
+                  _level_rows("{h}", "{pm_us} / {pw_us}", "{us_m} / {us_w} ({dm_us})", "{fs_m}", "{pm_qs} / {pw_qs}",
+                              "{qs_m} / {qs_w}"))
             + f"\nTheodorsen p-k and finite state agree within {100 * worst:.1f} % in M_F "
             f"(acceptance: 2 %); dominant coordinate of the critical mode (US, FS): {', '.join(modes)}.\n")
 
@@ -118,27 +135,16 @@ def flutter_level_table() -> str:
 @figure(fast=False)
 def calibration_level_us() -> str:
     """docs/calibration.md §4: US and FS level flight with frequency, tip deflection and twist against Table 3."""
-    from flexsim.linear.paper_data import TABLE_US
-
-    us, fs = _level("US"), _level("FS")
-    rows = [[f"{h:g}", f"{mach:.4f}", f"{r['mach']:.4f}", f"{100 * (r['mach'] / mach - 1):+.1f} %", f"{fs[h]['mach']:.4f}",
-             f"{omega:.3f}", f"{r['omega_rad_s']:.2f}", f"{100 * (r['omega_rad_s'] / omega - 1):+.1f} %",
-             f"{num(r['tip_deflection_m'], '.3f')} / {num(tip, '.4f')}", f"{r['tip_twist_deg']:.2f} / {twist:.4f}"]
-            for h, mach, omega, _, _, _, tip, twist in TABLE_US for r in [us[h]]]
     return table("| h [m] | paper US M_F | flexsim US (p-k) | ΔM | FS | paper ω_F | flexsim ω_F | Δω | "
-                 "tip w [m] ours / paper | twist [°] ours / paper |", rows)
+                 "tip w [m] ours / paper | twist [°] ours / paper |",
+                 _level_rows("{h}", "{pm_us}", "{us_m}", "{dm_us}", "{fs_m}", "{pw_us}", "{us_w}", "{dw_us}", "{tip}", "{twist}"))
 
 
 @figure(fast=False)
 def calibration_level_qs() -> str:
     """docs/calibration.md §4: QS level flight against Table 2, with the critical mode."""
-    from flexsim.linear.paper_data import TABLE_QS
-
-    qs = _level("QS")
     return table("| h [m] | paper QS M_F / ω_F (Table 2) | flexsim QS | ΔM | critical mode (largest coordinate) |",
-                 [[f"{h:g}", f"{mach:.4f} / {omega:.3f}", f"{r['mach']:.4f} / {r['omega_rad_s']:.2f}",
-                   f"{num(100 * (r['mach'] / mach - 1), '+.1f')} %", r["mode"]]
-                  for h, mach, omega, *_ in TABLE_QS for r in [qs[h]]])
+                 _level_rows("{h}", "{pm_qs} / {pw_qs}", "{qs_m} / {qs_w}", "{dm_qs}", "{mode}"))
 
 
 def flutter_level() -> str:
