@@ -8,7 +8,7 @@ import functools
 import math
 from pathlib import Path
 
-from figure_text import ROOT, figure, num, span, table
+from figure_text import ROOT, figure, num, table
 
 FIGURE_DIR = ROOT / "docs" / "figures"
 #: Altitudes of the study tables quoted in docs/flutter.md [m].

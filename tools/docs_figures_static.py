@@ -150,9 +150,13 @@ def options_paper_turn() -> str:
 def options_bending_incidence() -> str:
     """Static aeroelastic figures at 9144 m, M 0.78 with the swept-wing bending incidence off and on
     (``python studies/options_effects.py --skip-flutter``; its ``static_figures`` computes them)."""
+    import options_effects
+
+    from flexsim.aircraft.toml_loader import load_aircraft
+
     cols = []
     for bending in (False, True):
-        f = _static_figures(bending)
+        f = options_effects.static_figures(load_aircraft("gtm"), bending)
         pitch = math.degrees(f.tip_strip_pitch_rad)
         cols.append([f"{math.degrees(f.theta_rad):.3f}° / {num(math.degrees(f.elevator_rad), '.3f')}°",
                      f"{num(f.tip_deflection_m, '.3f')} m / {num(math.degrees(f.tip_twist_rad), '+.3f')}°",
@@ -166,21 +170,9 @@ def options_bending_incidence() -> str:
     return table("| | off (paper) | on |", zip(labels, *cols))
 
 
-@functools.cache
-def _static_figures(bending: bool):
-    """``python studies/options_effects.py``'s static aeroelastic figures of the bundled gtm (9144 m, M 0.78)."""
-    import options_effects
-
-    from flexsim.aircraft.toml_loader import load_aircraft
-
-    return options_effects.static_figures(load_aircraft("gtm"), bending)
-
-
-@functools.cache
-def _options_effects_points() -> tuple:
-    """Sea-level finite-state flutter points of the bundled gtm with each body option switched, the cases and
-    search of ``python studies/options_effects.py``: ``((label, FlutterPoint), ...)``, the bundled gtm first and the
-    parasite drag off second."""
+def options_effects_flutter() -> str:
+    """Sea-level finite-state flutter of the bundled gtm with each body option switched (docs/flutter.md),
+    the cases and search of ``python studies/options_effects.py``."""
     import options_effects as study
 
     from flexsim.aircraft.toml_loader import load_aircraft
@@ -196,13 +188,7 @@ def _options_effects_points() -> tuple:
              ("level flight, bending incidence on", study._with(gtm, bending_incidence=True), level),
              ("turn R = 5 km, the paper's (heading on track)", gtm, SteadyManoeuvre.turn(0.0, 5000.0, mach=0.65)),
              ("turn R = 5 km, coordinated", gtm, SteadyManoeuvre.turn(0.0, 5000.0, mach=0.65, coordinated=True))]
-    return tuple((label, FlutterAnalysis(aircraft, "unsteady").search(manoeuvre, mach_range=(0.6, 0.8), mach_step=0.05))
-                 for label, aircraft, manoeuvre in cases)
 
-
-def options_effects_flutter() -> str:
-    """Sea-level finite-state flutter of the bundled gtm with each body option switched (docs/flutter.md),
-    the cases and search of ``python studies/options_effects.py``."""
     def small(x: float, unit: str = "°") -> str:
         return "0" if abs(x) < 0.005 else f"{num(x, '+.2f')}{unit}"
 
@@ -210,7 +196,8 @@ def options_effects_flutter() -> str:
         return f" (< {exponent(floor)})" if abs(x - ref) < floor else f" ({num(100 * (x / ref - 1), '+.2g')} %)"
 
     rows, ref = [], None
-    for label, fp in _options_effects_points():
+    for label, aircraft, manoeuvre in cases:
+        fp = FlutterAnalysis(aircraft, "unsteady").search(manoeuvre, mach_range=(0.6, 0.8), mach_step=0.05)
         t = fp.trim
         mach_text, omega_text = f"{fp.mach:.4f}", f"{fp.frequency_rad_s:.3f}"
         if ref is None:
@@ -326,33 +313,15 @@ def simulation_eigenvalues() -> str:
             f"up to {abs(big):.0f} s^-1 ({big.real:.0f} +- {abs(big.imag):.0f}j)")
 
 
-@functools.cache
-def _flutter_onset(limit_m: float | None, t_end_s: float | None, method: str | None = None, rtol: float | None = None):
-    from flexsim.sim.manoeuvres import build_manoeuvre
-
-    setup = build_manoeuvre("flutter-onset")
-    options = {} if t_end_s is None else {"t_end_s": t_end_s}
-    if method is not None:
-        options.update(method=method, rtol=rtol)
-    return setup.simulate(structural_limit_m=limit_m, **options)
-
-
-def simulation_flutter_onset_stop() -> str:
-    """When the default integrator's ``flutter-onset`` run stops (the structural-limit event)."""
-    r = _flutter_onset(None, None)
-    if r.status != "structural_limit":
-        raise RuntimeError(f"simulation-flutter-onset-stop: the run ended with {r.status}")
-    return f"{r.t[-1]:.1f} s with the default integrator"
-
-
 def simulation_flutter_onset_growth() -> str:
     """The tip amplitude of the growing Goland oscillation over the accuracy comparison's window (no structural
     limit, ``flexsim.sim.accuracy.RUN_OPTIONS``)."""
     import numpy as np
 
     from flexsim.sim.accuracy import RUN_OPTIONS
+    from flexsim.sim.manoeuvres import build_manoeuvre
 
     opts = RUN_OPTIONS["flutter-onset"]
-    r = _flutter_onset(opts["structural_limit_m"], opts["t_end_s"])
+    r = build_manoeuvre("flutter-onset").simulate(structural_limit_m=opts["structural_limit_m"], t_end_s=opts["t_end_s"])
     tip = np.abs(r.tip_deflection_m("right_wing"))
     return f"grows to {tip.max():.2f} m in {opts['t_end_s']:g} s"

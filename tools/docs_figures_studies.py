@@ -20,16 +20,6 @@ def _minus(text: str) -> str:
     return re.sub(r"(?<![\w.])-(?=\d)", "−", text)
 
 
-def calibration_uncalibrated() -> str:
-    """The finite-state sea-level flutter point of ``gtm_uncalibrated`` (elastic axis at 0.375 c, every factor 1)."""
-    from flexsim.linear.study import StudyCase, run_case
-
-    r = run_case(StudyCase("gtm_uncalibrated", "FS", 0.0))
-    if r.get("error"):
-        raise RuntimeError(f"calibration-uncalibrated: {r['error']}")
-    return f"M {r['mach']:.3f} at sea level, {r['omega_rad_s']:.0f} rad/s in {r['mode']}"
-
-
 def calibration_structure() -> str:
     """The fitted factors (``tools/gtm_calibration.toml``), the resulting stiffness of the bundled gtm and its
     in-vacuo frequencies (``flexsim modes gtm``)."""
@@ -88,16 +78,12 @@ def typical_section_kf() -> str:
             f"{num(100 * (p.flutter_speed / t.flutter_speed - 1), '+.2f')} %")
 
 
-@functools.cache
-def _phugoid(altitude_m: float = 6000.0, mach: float = 0.6, **switches):
+def validation_phugoid() -> str:
+    """The ``phugoid-lanchester`` case's aircraft (6000 m, M 0.6) with the body moments and tail downwash on, against
+    Lanchester."""
     from flexsim.sim.validation import phugoid_point
 
-    return phugoid_point(altitude_m, mach, **switches)
-
-
-def validation_phugoid() -> str:
-    """The ``phugoid-lanchester`` case's aircraft with the body moments and tail downwash on, against Lanchester."""
-    p = _phugoid(body_moments=True, downwash=True)
+    p = phugoid_point(6000.0, 0.6, body_moments=True, downwash=True)
     return (f"With them (static margin {100 * p.static_margin:.1f} % at this point) the frequency is "
             f"{100 * (1 - p.omega_rad_s / p.lanchester_omega_rad_s):.1f} % and the damping "
             f"{100 * (1 - p.damping_ratio / p.lanchester_damping_ratio):.0f} % below Lanchester's ({p.omega_rad_s:.5f} rad/s, "
@@ -117,35 +103,6 @@ def goland_lift_slope_085() -> str:
     u_f, _ = wind_tunnel_flutter(wing, aero_model="theodorsen", density_kg_m3=1.02, compressibility="prandtl-glauert",
                                  speed_range=(100.0, 250.0), speed_step=10.0, tol_m_s=1e-2)
     return f"{u_f:.0f} m/s (Theodorsen)"
-
-
-def validation_phugoid_case() -> str:
-    """L/D and static margin of the ``phugoid-lanchester`` case's trim (6000 m, M 0.6, strips only)."""
-    p = _phugoid()
-    return f"L/D = {p.lift_to_drag:.1f}; neutral point {100 * p.static_margin:.0f} % of the mean chord behind the CG"
-
-
-def _fit_summary(text: str) -> tuple[dict[str, float], str]:
-    """Factors and ``wing GJ × 0.399, ... (M_F ... %, ω_F ... %)`` of a ``calibrate_gtm.py --out`` file."""
-    import json
-
-    from flexsim.linear.paper_data import TABLE_US
-
-    factors = {k: float(v) for k, v in re.findall(r"(?m)^(\w+) = ([\d.]+)$", text) if k != "structural_damping_ratio"}
-    rows = [json.loads(line[2:]) for line in text.splitlines() if line.startswith("# {")]
-    paper = {h: (m, w) for h, m, w, *_ in TABLE_US}
-    dm = " / ".join(f"{100 * (r['mach'] / paper[r['altitude_m']][0] - 1):+.1f}" for r in rows)
-    dw = [100 * (r["omega_rad_s"] / paper[r["altitude_m"]][1] - 1) for r in rows if r["altitude_m"] > 0]
-    return factors, _minus(f"wing GJ × {factors['wing_gj']:.3f}, EI × {factors['wing_ei']:.3f}, fuselage EI × "
-                           f"{factors['fuselage_ei']:.3f} (M_F {dm} % at 0-9144 m, ω_F {min(dw):+.1f} to {max(dw):+.1f} % "
-                           f"at 3048-9144 m)")
-
-
-def calibration_robust_fit() -> str:
-    """§3: the fit that made gtm.toml, read from its output ``tools/gtm_calibration.toml`` (``python
-    studies/calibrate_gtm.py --out tools/gtm_calibration.toml``; gtm.toml = gtm_uncalibrated × its factors is tested in
-    tests/aircraft/test_calibration.py)."""
-    return _fit_summary((ROOT / "tools" / "gtm_calibration.toml").read_text(encoding="utf-8"))[1]
 
 
 @functools.cache

@@ -1,12 +1,10 @@
-"""Figures of docs/options.md, docs/logs.md and docs/design.md, for ``regenerate_docs_figures.py``."""
+"""Figures of docs/options.md and docs/design.md, for ``regenerate_docs_figures.py``."""
 
 from __future__ import annotations
 
-import functools
-from pathlib import Path
 
 import numpy as np
-from docs_figures_static import _cruise_trim, _options_effects_points, _turn_trim
+from docs_figures_static import _cruise_trim, _turn_trim
 from figure_text import exponent, figure, num
 
 from flexsim.aero.lift_slopes import exposed_lift_slope, vlm_surfaces  # noqa: E402
@@ -89,26 +87,6 @@ def options_openap() -> str:
             f"{cl / (OPENAP_B752_CD0 + OPENAP_B752_K * cl * cl):.1f} at the GTM's cruise C_L = {cl:.2f} (9144 m, M 0.78)")
 
 
-def options_drag_flutter() -> str:
-    """Sea-level finite-state level flutter with and without the parasite drag items (``studies/options_effects.py``)."""
-    (_, with_drag), (_, without) = _options_effects_points()[:2]
-    d = abs(with_drag.mach - without.mach)
-    diff = "less than 1e-4 (the search's Mach tolerance)" if d < 1e-4 else exponent(d, ".1e")
-    return (f"M_F {with_drag.mach:.4f} against {without.mach:.4f} without the items, a difference of {diff}, "
-            f"although the trim thrust is "
-            f"{with_drag.trim.thrust_n / without.trim.thrust_n:.0f} times larger")
-
-
-def options_goland_divergence() -> str:
-    """Divergence speed of the Goland wing (quasi-steady strips, its file's settings) at 1.225 and 1.02 kg/m^3."""
-    from flexsim.linear.flutter import wind_tunnel
-
-    goland = load_aircraft("goland_wing")
-    speeds = [wind_tunnel(goland, aero_model="quasi-steady", speed_range=(200.0, 320.0), speed_step=20.0,
-                          density_kg_m3=rho, tol_m_s=1e-6, flutter=False).divergence_speed_m_s for rho in (1.225, 1.02)]
-    return f"U_D = {speeds[0]:.2f} m/s at 1.225 kg/m³ and {speeds[1]:.2f} m/s at 1.02 kg/m³"
-
-
 def options_munk_items() -> str:
     """Volumes and k2 - k1 of the bundled gtm's Munk bodies (``flexsim.model.bodies.spheroid_apparent_mass``)."""
     from flexsim.model.bodies import spheroid_apparent_mass
@@ -123,39 +101,6 @@ def options_munk_items() -> str:
     return (f"fuselage {fus.length_m:g} m × Ø {fus.diameter_m:g} m, Vol = 0.8 × π D² L / 4 = {fus.volume_m3:.1f} m³ "
             f"(prismatic coefficient 0.8, an estimate), k₂ − k₁ = {dk(fus):.3f}; nacelles {nac.length_m:g} m × "
             f"Ø {nac.diameter_m:g} m, {nac.volume_m3:.1f} m³ each (k₂ − k₁ = {dk(nac):.3f})")
-
-
-# --- docs/logs.md ------------------------------------------------------------------------------------------------------
-
-def logs_damaged_chunk() -> str:
-    """The recovery warning of a damaged log: a 3 s log of 301 seeded samples (chunks every 0.25 s of simulated
-    time) with one bit flipped at 30 % of the file, read back by ``read_flight_log``."""
-    import tempfile
-    import warnings
-
-    from flexsim.io.flight_log import FlightLogRecoveryWarning, FlightLogWriter, read_flight_log
-
-    topology = {"right_wing": 4, "fuselage": 3}
-    rng = np.random.default_rng(0)
-    with tempfile.TemporaryDirectory() as tmp:
-        path = Path(tmp) / "run.mcap"
-        with FlightLogWriter(path, state_names=["v_x_m_s", "q_right_wing_1_m", "xi_right_wing_1_rad"],
-                             control_names=["thrust_N", "aileron_rad", "elevator_rad", "rudder_rad"],
-                             signal_names=["airspeed_m_s"], structure_topology=topology, flush_interval_s=0.25) as w:
-            for k in range(301):
-                w.write(k * 0.01, position_m=rng.normal(size=3), euler_rad=rng.normal(size=3), state=rng.normal(size=3),
-                        controls=rng.normal(size=4), signals=rng.normal(size=1),
-                        structure={n: rng.normal(size=(m, 3)) for n, m in topology.items()})
-        data = bytearray(path.read_bytes())
-        data[int(0.3 * len(data))] ^= 1
-        path.write_bytes(bytes(data))
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            log = read_flight_log(path)
-    (message,) = [str(c.message) for c in caught if issubclass(c.category, FlightLogRecoveryWarning)]
-    if log.complete:
-        raise RuntimeError("logs-damaged-chunk: the damaged log was read as complete")
-    return message.removeprefix(f"{path}: ")
 
 
 # --- docs/design.md ------------------------------------------------------------------------------------------------
@@ -178,19 +123,13 @@ def _strip_lift_slope(downwash: bool) -> float:
     return (lift[1] - lift[0]) / (2 * _DALPHA) / (q_dyn * GTM_WING_AREA_M2)
 
 
-@functools.cache
-def _lift_slopes() -> tuple[float, float, float]:
-    """(strips without the tail downwash, strips with the file's, lattice on the exposed surfaces), dCL/dalpha
-    [1/rad] on S_ref at 70 m/s, sea level; Prandtl-Glauert on the lattice as on the strips."""
+def design_lift_slope() -> str:
+    """The strips' lift slope (without and with the file's tail downwash) against the lattice's on the same exposed
+    surfaces, dCL/dalpha [1/rad] on S_ref at 70 m/s, sea level; Prandtl-Glauert on the lattice as on the strips."""
     aircraft = load_aircraft("gtm")
     beta = np.sqrt(1.0 - (_SPEED / speed_of_sound(0.0)) ** 2)
-    vlm = solve_vlm(vlm_surfaces(aircraft), mach=0.0, s_ref_m2=GTM_WING_AREA_M2)
-    return _strip_lift_slope(False), _strip_lift_slope(True), exposed_lift_slope(aircraft, vlm) / beta
-
-
-def design_lift_slope() -> str:
-    """The strips' lift slope against the lattice's on the same exposed surfaces."""
-    strips, with_downwash, exposed = _lift_slopes()
+    exposed = exposed_lift_slope(aircraft, solve_vlm(vlm_surfaces(aircraft), mach=0.0, s_ref_m2=GTM_WING_AREA_M2)) / beta
+    strips, with_downwash = _strip_lift_slope(False), _strip_lift_slope(True)
     return (f"{abs(strips / exposed - 1.0) * 100:.2f} % ({strips:.3f} vs {exposed:.3f} /rad on S_ref at M "
             f"{_SPEED / speed_of_sound(0.0):.2f}, sea level, without the file's tail downwash, which the lattice "
             f"holds already; with it the strips' is {with_downwash:.3f} /rad)")
