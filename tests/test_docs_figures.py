@@ -4,7 +4,7 @@ the precision the docs print them.
 Default suite: every ``<!-- figures:NAME -->`` region names a registered figure, is closed, and each figure has a
 region; the comparison at printed precision (``difference``) behaves as documented; no region prints a round-off
 residual; ``regenerate_docs_figures.py --check --fast`` recomputes the fast figures and must find no stale region.
-Slow (``pytest -m slow``, about 15 minutes): ``--check`` recomputes every figure.
+Slow (``pytest -m slow``, about 3 minutes): ``--check`` recomputes every figure.
 """
 
 import importlib.util
