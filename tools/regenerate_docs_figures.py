@@ -12,7 +12,8 @@ Round-off residuals are never printed: a figure prints the bound it checks. The 
 
 ``fast`` figures (well under a minute together) are checked by the default test suite
 (``tests/test_docs_figures.py``); the others (the turn and climb studies, the environments, the simulation
-accuracy table: about 3 minutes on a 2-core machine) under ``pytest -m slow``. From the repository root::
+accuracy table: about 3 minutes on a 2-core machine with the numba kernels cached) under ``pytest -m slow``. From
+the repository root::
 
     python tools/regenerate_docs_figures.py                 # rewrite every stale region, redraw docs/figures
     python tools/regenerate_docs_figures.py --check         # exit 1 if a region is stale
