@@ -24,20 +24,6 @@ def _flutter_env(version: int):
     return env, policy
 
 
-def _flutter_point(version: int):
-    """The env's flutter search repeated for its ``FlutterPoint`` (mode shape, symmetry): the same call as
-    ``flexsim.envs.flutter_margin`` makes, checked against the env's condition."""
-    from flexsim.linear.flutter import FlutterAnalysis
-    from flexsim.trim import SteadyManoeuvre
-
-    u = _flutter_env(version)[0].unwrapped
-    fp = FlutterAnalysis(u.aircraft, u.dynamics.aero).search(SteadyManoeuvre.level(u.task.altitude_m, mach=0.6),
-                                                              mach_range=u.task.flutter_mach_range, mach_step=0.02)
-    if abs(fp.mach - u.flutter.mach) > 1e-9:
-        raise RuntimeError(f"flutter point M {fp.mach} differs from the env's M {u.flutter.mach}")
-    return fp
-
-
 def _condition_text(version: int) -> str:
     f = _flutter_env(version)[0].unwrapped.flutter
     return (f"M {f.mach:.4f} ({f.speed_m_s:.1f} m/s, {f.frequency_rad_s:.{1 if version == 0 else 2}f} rad/s = "
@@ -50,32 +36,20 @@ def env_flutter_v0_point() -> str:
     return f"{_condition_text(0)}, dominant DOF {_flutter_env(0)[0].unwrapped.flutter.mode}"
 
 
-def _trim_hold(version: int, seed: int) -> dict:
-    """One episode with the trim action held: return, end time, reason and the final wing/fin tip figures."""
-    env = _flutter_env(version)[0]
-    _, info = env.reset(seed=seed)
-    action, total = info["trim_action"], 0.0
-    while True:
-        obs, reward, terminated, truncated, info = env.step(action)
-        total += reward
-        if terminated or truncated:
-            break
-    names = env.unwrapped.observation_names
-    tip = {n: abs(float(obs[names.index(n)])) for n in names if n.startswith(("tip_twist_", "tip_deflection_"))
-           and "rate" not in n}
-    return {"return": total, "time_s": info["time_s"], "reason": info["termination_reason"], "tip": tip}
-
-
 @figure(fast=False)
 def env_flutter_v0_growth() -> str:
-    """FlutterMargin-v0 at M_f + 0.01: open-loop growth of the fast modes and the trim hold of seed 0."""
+    """FlutterMargin-v0 at M_f + 0.01: open-loop growth of the fast modes and an episode (seed 0) holding the trim
+    action: its end, and the fin tip twist there."""
     env, policy = _flutter_env(0)
-    hold = _trim_hold(0, 0)
-    limit = env.unwrapped.limits
+    _, info = env.reset(seed=0)
+    action, terminated, truncated = info["trim_action"], False, False
+    while not (terminated or truncated):
+        obs, _, terminated, truncated, info = env.step(action)
+    fin_twist = abs(float(obs[env.unwrapped.observation_names.index("tip_twist_vtail_rad")]))
     return (f"its fastest-growing mode faster than 25 rad/s grows at {num(policy.open_loop_growth, '+.2f')} 1/s (full "
             f"linearisation sampled at 50 Hz, open loop); holding the trim controls (seed 0), the episode ends by "
-            f"{hold['reason'].replace('_', ' ')} after {hold['time_s']:.1f} s (fin tip twist {hold['tip']['tip_twist_vtail_rad']:.3f} "
-            f"rad against the {limit.fin_tip_twist_rad:g} rad limit)")
+            f"{info['termination_reason'].replace('_', ' ')} after {info['time_s']:.1f} s (fin tip twist {fin_twist:.3f} "
+            f"rad against the {env.unwrapped.limits.fin_tip_twist_rad:g} rad limit)")
 
 
 @figure(fast=False)
@@ -87,8 +61,16 @@ def env_flutter_v0_damper() -> str:
 
 @figure(fast=False)
 def env_flutter_v1_point() -> str:
-    """FlutterMargin-v1's flutter point and the wing coordinates of its mode shape."""
-    fp = _flutter_point(1)
+    """FlutterMargin-v1's flutter point and the wing coordinates of its mode shape: the env's flutter search repeated
+    for its ``FlutterPoint`` (the same call as ``flexsim.envs.flutter_margin`` makes), checked against the env's."""
+    from flexsim.linear.flutter import FlutterAnalysis
+    from flexsim.trim import SteadyManoeuvre
+
+    u = _flutter_env(1)[0].unwrapped
+    fp = FlutterAnalysis(u.aircraft, u.dynamics.aero).search(SteadyManoeuvre.level(u.task.altitude_m, mach=0.6),
+                                                              mach_range=u.task.flutter_mach_range, mach_step=0.02)
+    if abs(fp.mach - u.flutter.mach) > 1e-9:
+        raise RuntimeError(f"flutter point M {fp.mach} differs from the env's M {u.flutter.mach}")
     labels, shape = list(fp.labels), fp.mode_shape
 
     def coord(c: str, kind: str) -> complex:
@@ -106,6 +88,18 @@ def env_flutter_v1_point() -> str:
             f"wings' first bending coordinates are {bend_phase:.0f} deg apart in phase and their first torsion "
             f"coordinates are equal ({equal}; torsion {ratio:.2f} rad per m of bending, "
             f"{abs(phase):.0f} deg phase)")
+
+
+@figure(fast=False)
+def env_flutter_v0_target() -> str:
+    """FlutterMargin-v0's target Mach (M_f + 0.01)."""
+    return f"M {_flutter_env(0)[0].unwrapped.target.mach:.4f}"
+
+
+@figure(fast=False)
+def env_flutter_v1_target() -> str:
+    """FlutterMargin-v1's target Mach (M_f + 0.01)."""
+    return f"M {_flutter_env(1)[0].unwrapped.target.mach:.4f}"
 
 
 def _make(env_id: str, **kwargs):

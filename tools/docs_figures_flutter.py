@@ -198,6 +198,14 @@ def flutter_turn_trend() -> str:
                    "; the sign changes between these altitudes (a critical altitude)")
 
 
+@figure(fast=False, study="turn")
+def flutter_turn_12km() -> str:
+    """Largest |M_F(R = 12 km) / M_F(level) - 1| of the US turn study over its altitudes."""
+    level = _level("US")
+    worst = max(abs(_turn(h, 12000.0)["mach"] / level[h]["mach"] - 1) for h in _altitudes("turn"))
+    return f"within {100 * worst:.2f} %"
+
+
 @figure(fast=False, study="climb")
 def flutter_climb() -> str:
     """The US climb at 9144 m from gamma = -15 to +15 deg: flutter point and trim."""

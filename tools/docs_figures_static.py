@@ -235,6 +235,12 @@ def goland_compressible() -> str:
             f"{num(100 * (u_p / GOLAND_U_F_M_S - 1), '+.1f')} % against Goland's {GOLAND_U_F_M_S} m/s")
 
 
+def goland_pk_fs() -> str:
+    """Peters N = 6 against Theodorsen p-k on the Goland wing (1.225 kg/m^3, its file's incompressible strips)."""
+    (u_t, _), (u_p, _) = _goland("theodorsen", "none"), _goland("unsteady", "none")
+    return f"{100 * abs(u_p / u_t - 1):.1f} %"
+
+
 def goland_incompressible_102() -> str:
     """The Goland wing at 1.02 kg/m^3 without the Prandtl-Glauert factor."""
     (u_t, _), (u_p, _) = _goland("theodorsen", "none", 1.02), _goland("unsteady", "none", 1.02)
@@ -276,6 +282,16 @@ def simulation_accuracy() -> str:
                  f"{PREVIOUS_CHOICE.name}: altitude / tip | {RADAU_CHOICE.name}: altitude / airspeed / bank / tip |", rows)
 
 
+def simulation_structural_limits() -> str:
+    """The default structural limit (``STRUCTURAL_LIMIT_FRACTION`` x the wing's length) of the GTM and the Goland wing."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.sim.simulate import STRUCTURAL_LIMIT_FRACTION
+
+    gtm, goland = (STRUCTURAL_LIMIT_FRACTION * load_aircraft(name).component("right_wing").length_m
+                   for name in ("gtm", "goland_wing"))
+    return f"{STRUCTURAL_LIMIT_FRACTION:g} x the wing's length: {gtm:.2f} m on the GTM, {goland:.2f} m on the Goland wing"
+
+
 def simulation_goland_flutter() -> str:
     """The clamped Goland wing's flutter speed and frequency with this model (``wind_tunnel_flutter``, Peters N = 6
     inflow and quasi-steady) and the tunnel speed of ``flutter-onset`` (its setup's metadata)."""
@@ -292,22 +308,16 @@ def simulation_goland_flutter() -> str:
             f"flies at {tunnel / flutter:.2f} x {flutter:.1f} = {tunnel:.1f} m/s for either aerodynamic model")
 
 
-@functools.cache
-def _gtm_trim_jacobian():
-    """The Jacobian of the unsteady GTM (m = n = 2, N = 6) at the named manoeuvres' level trim (9144 m, M 0.75)."""
+def simulation_eigenvalues() -> str:
+    """The stiff end of the spectrum of the unsteady GTM (m = n = 2, N = 6) linearised at the named manoeuvres' level
+    trim (9144 m, M 0.75): the most negative real part and the largest |lambda|."""
+    import numpy as np
+
     from flexsim.model.jacobian import jacobian
     from flexsim.sim.manoeuvres import build_manoeuvre
 
     setup = build_manoeuvre("elevator-doublet")
-    return jacobian(setup.model, setup.initial.x, setup.initial.u)[0]
-
-
-def simulation_eigenvalues() -> str:
-    """The stiff end of the linearised unsteady GTM's spectrum at the level trim: the most negative real part and
-    the largest |lambda|."""
-    import numpy as np
-
-    lam = np.linalg.eigvals(_gtm_trim_jacobian())
+    lam = np.linalg.eigvals(jacobian(setup.model, setup.initial.x, setup.initial.u)[0])
     big = lam[np.argmax(np.abs(lam))]
     return (f"{lam.size} states) has well-damped aero-lag eigenvalues down to {lam.real.min():.0f} s^-1 and |lambda| "
             f"up to {abs(big):.0f} s^-1 ({big.real:.0f} +- {abs(big.imag):.0f}j)")

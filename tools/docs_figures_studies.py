@@ -15,9 +15,14 @@ from figure_text import ROOT, figure, num, span
 PAPER_ALTITUDES_M = (0.0, 3048.0, 6096.0, 9144.0)
 
 
-def _minus(text: str) -> str:
-    """A study's markdown with a typographic minus before numbers (as the docs write them)."""
-    return re.sub(r"(?<![\w.])-(?=\d)", "−", text)
+def calibration_uncalibrated() -> str:
+    """The finite-state sea-level flutter point of ``gtm_uncalibrated`` (elastic axis at 0.375 c, every factor 1)."""
+    from flexsim.linear.study import StudyCase, run_case
+
+    r = run_case(StudyCase("gtm_uncalibrated", "FS", 0.0))
+    if r.get("error"):
+        raise RuntimeError(f"calibration-uncalibrated: {r['error']}")
+    return f"M {r['mach']:.3f} at sea level, {r['omega_rad_s']:.0f} rad/s in {r['mode']}"
 
 
 def calibration_structure() -> str:
@@ -166,7 +171,8 @@ def decomposition_gtm() -> str:
     small = [s for s in ("rotation", "static_deformation", "thrust", "gravity")
              if abs(rows[s]["turn_dM"] - ref["turn_dM"]) <= 1.5e-4]
     climbs = [r["climb_dM"] for s, r in rows.items() if s != "damping"]
-    return ("\n" + _minus(md.table(list(rows.values()))) + "\n\n"
+    study_table = re.sub(r"(?<![\w.])-(?=\d)", "−", md.table(list(rows.values())))  # typographic minus, as the docs
+    return ("\n" + study_table + "\n\n"
             f"The turn effect is {num(ref['turn_dM'], '+.4f')}; {', '.join(small)} each change it by 0.0001 or less. "
             f"Without structural damping (`damping`) the critical mode is another one, at {damp['w_level']:.1f} rad/s "
             f"(M {damp['M_level']:.4f}), and the turn row compares different modes. With the linearised aerodynamics at "

@@ -63,6 +63,17 @@ def options_t2() -> str:
             f"{100 * neutral:.1f} % c̄: {100 * (t2.neutral_point_cbar - neutral):.1f} % c̄ ahead of the T2's")
 
 
+def options_mean_chord() -> str:
+    """Mean aerodynamic chord of the exposed right wing's strips (``flexsim/trim/margin.py``), cruise trim."""
+    return f"{_cruise_trim(9144.0, 0.78)[1].mean_chord_m:.2f} m"
+
+
+def options_cg_shift() -> str:
+    """How far aft the CG would move for a 25 % margin at the cruise trim (same neutral point and mean chord)."""
+    margin = _cruise_trim(9144.0, 0.78)[1]
+    return f"{margin.neutral_point_aft_of_cg_m - 0.25 * margin.mean_chord_m:.2f} m"
+
+
 #: Wing reference area of the GTM [m^2] (the paper's; ``tools/make_gtm_toml.py``), for C_D0 and C_L.
 GTM_WING_AREA_M2 = 181.25
 #: OpenAP's drag polar of the 757-200, C_D = C_D0 + k C_L^2 (Sun, Hoekstra & Ellerbroek 2020;
