@@ -1,52 +1,27 @@
 """Figures of docs/environments.md (the flutter tasks and the integration), computed from the environments and
-``examples/agents/baselines.py`` / ``lqr_design.py``; registered in ``regenerate_docs_figures.py``."""
+``examples/agents/baselines.py`` / ``lqr_design.py`` / ``evaluate_baselines.py``; none is fast."""
 
 from __future__ import annotations
 
 import functools
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
-
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from docs_figures_static import _num  # noqa: E402
+from figure_text import exponent, figure, num, table
 
 FLUTTER_IDS = {0: "FlexSim/GTM-FlutterMargin-v0", 1: "FlexSim/GTM-FlutterMargin-v1"}
-
-
-def _agents_module(name: str):
-    """``examples/agents/<name>.py`` (baselines, lqr_design) as a module."""
-    sys.path.insert(0, str(ROOT / "examples" / "agents"))
-    import importlib
-
-    return importlib.import_module(name)
 
 
 @functools.cache
 def _flutter_env(version: int):
     """The FlutterMargin env (unwrapped, default settings) with its baseline policy reset on seed 0."""
+    import baselines
+
     env = _make(FLUTTER_IDS[version])
-    policy = _agents_module("baselines").make_baseline(FLUTTER_IDS[version], env.unwrapped)
+    policy = baselines.make_baseline(FLUTTER_IDS[version], env.unwrapped)
     _, info = env.reset(seed=0)
     policy.reset(info)  # designs / checks the feedback on the env's linearisation at the trim
     return env, policy
-
-
-def _flutter_point(version: int):
-    """The env's flutter search repeated for its ``FlutterPoint`` (mode shape, symmetry): the same call as
-    ``flexsim.envs.flutter_margin`` makes, checked against the env's condition."""
-    from flexsim.linear.flutter import FlutterAnalysis
-    from flexsim.trim import SteadyManoeuvre
-
-    u = _flutter_env(version)[0].unwrapped
-    fp = FlutterAnalysis(u.aircraft, u.dynamics.aero).search(SteadyManoeuvre.level(u.task.altitude_m, mach=0.6),
-                                                              mach_range=u.task.flutter_mach_range, mach_step=0.02)
-    if abs(fp.mach - u.flutter.mach) > 1e-9:
-        raise RuntimeError(f"flutter point M {fp.mach} differs from the env's M {u.flutter.mach}")
-    return fp
 
 
 def _condition_text(version: int) -> str:
@@ -55,55 +30,47 @@ def _condition_text(version: int) -> str:
             f"{f.frequency_rad_s / (2 * math.pi):.{1 if version == 0 else 2}f} Hz)")
 
 
+@figure(fast=False)
 def env_flutter_v0_point() -> str:
     """FlutterMargin-v0's open-loop flutter point (gtm_uncalibrated, finite state, 300 m) and its dominant DOF."""
     return f"{_condition_text(0)}, dominant DOF {_flutter_env(0)[0].unwrapped.flutter.mode}"
 
 
-def _hz(version: int) -> str:
-    return f"{_flutter_env(version)[0].unwrapped.flutter.frequency_rad_s / (2 * math.pi):.1f} Hz"
-
-
-def _target(version: int) -> str:
-    return f"M {_flutter_env(version)[0].unwrapped.target.mach:.4f}"
-
-
-def _trim_hold(version: int, seed: int) -> dict:
-    """One episode with the trim action held: return, end time, reason and the final wing/fin tip figures."""
-    env = _flutter_env(version)[0]
-    _, info = env.reset(seed=seed)
-    action, total = info["trim_action"], 0.0
-    while True:
-        obs, reward, terminated, truncated, info = env.step(action)
-        total += reward
-        if terminated or truncated:
-            break
-    names = env.unwrapped.observation_names
-    tip = {n: abs(float(obs[names.index(n)])) for n in names if n.startswith(("tip_twist_", "tip_deflection_"))
-           and "rate" not in n}
-    return {"return": total, "time_s": info["time_s"], "reason": info["termination_reason"], "tip": tip}
-
-
+@figure(fast=False)
 def env_flutter_v0_growth() -> str:
-    """FlutterMargin-v0 at M_f + 0.01: open-loop growth of the fast modes and the trim hold of seed 0."""
+    """FlutterMargin-v0 at M_f + 0.01: open-loop growth of the fast modes and an episode (seed 0) holding the trim
+    action: its end, and the fin tip twist there."""
     env, policy = _flutter_env(0)
-    hold = _trim_hold(0, 0)
-    limit = env.unwrapped.limits
-    return (f"its fastest-growing mode faster than 25 rad/s grows at {_num(policy.open_loop_growth, '+.2f')} 1/s (full "
+    _, info = env.reset(seed=0)
+    action, terminated, truncated = info["trim_action"], False, False
+    while not (terminated or truncated):
+        obs, _, terminated, truncated, info = env.step(action)
+    fin_twist = abs(float(obs[env.unwrapped.observation_names.index("tip_twist_vtail_rad")]))
+    return (f"its fastest-growing mode faster than 25 rad/s grows at {num(policy.open_loop_growth, '+.2f')} 1/s (full "
             f"linearisation sampled at 50 Hz, open loop); holding the trim controls (seed 0), the episode ends by "
-            f"{hold['reason'].replace('_', ' ')} after {hold['time_s']:.1f} s (fin tip twist {hold['tip']['tip_twist_vtail_rad']:.3f} "
-            f"rad against the {limit.fin_tip_twist_rad:g} rad limit)")
+            f"{info['termination_reason'].replace('_', ' ')} after {info['time_s']:.1f} s (fin tip twist {fin_twist:.3f} "
+            f"rad against the {env.unwrapped.limits.fin_tip_twist_rad:g} rad limit)")
 
 
+@figure(fast=False)
 def env_flutter_v0_damper() -> str:
     """The best four-sensor fin damper of FlutterMargin-v0's baseline (``lqr_design.design_fin_damper``)."""
     policy = _flutter_env(0)[1]
-    return f"reaches a growth rate of {_num(policy.closed_loop_growth, '+.2f')} 1/s"
+    return f"reaches a growth rate of {num(policy.closed_loop_growth, '+.2f')} 1/s"
 
 
+@figure(fast=False)
 def env_flutter_v1_point() -> str:
-    """FlutterMargin-v1's flutter point and the wing coordinates of its mode shape."""
-    fp = _flutter_point(1)
+    """FlutterMargin-v1's flutter point and the wing coordinates of its mode shape: the env's flutter search repeated
+    for its ``FlutterPoint`` (the same call as ``flexsim.envs.flutter_margin`` makes), checked against the env's."""
+    from flexsim.linear.flutter import FlutterAnalysis
+    from flexsim.trim import SteadyManoeuvre
+
+    u = _flutter_env(1)[0].unwrapped
+    fp = FlutterAnalysis(u.aircraft, u.dynamics.aero).search(SteadyManoeuvre.level(u.task.altitude_m, mach=0.6),
+                                                              mach_range=u.task.flutter_mach_range, mach_step=0.02)
+    if abs(fp.mach - u.flutter.mach) > 1e-9:
+        raise RuntimeError(f"flutter point M {fp.mach} differs from the env's M {u.flutter.mach}")
     labels, shape = list(fp.labels), fp.mode_shape
 
     def coord(c: str, kind: str) -> complex:
@@ -116,11 +83,23 @@ def env_flutter_v1_point() -> str:
     ratio = abs(tors["right"] / bend["right"])
     phase = math.degrees(np.angle(tors["left"] / bend["left"]))
     diff = abs(tors_ratio - 1)
-    equal = "to round-off" if diff < 1e-6 else f"within {diff:.0e}".replace("e-0", "e-")
+    equal = "to round-off" if diff < 1e-6 else f"within {exponent(diff)}"
     return (f"{_condition_text(1)}, dominant DOF {fp.mode.dominant_dof}, {fp.mode_symmetry}: in the mode shape the two "
             f"wings' first bending coordinates are {bend_phase:.0f} deg apart in phase and their first torsion "
             f"coordinates are equal ({equal}; torsion {ratio:.2f} rad per m of bending, "
             f"{abs(phase):.0f} deg phase)")
+
+
+@figure(fast=False)
+def env_flutter_v0_target() -> str:
+    """FlutterMargin-v0's target Mach (M_f + 0.01)."""
+    return f"M {_flutter_env(0)[0].unwrapped.target.mach:.4f}"
+
+
+@figure(fast=False)
+def env_flutter_v1_target() -> str:
+    """FlutterMargin-v1's target Mach (M_f + 0.01)."""
+    return f"M {_flutter_env(1)[0].unwrapped.target.mach:.4f}"
 
 
 def _make(env_id: str, **kwargs):
@@ -135,6 +114,7 @@ def _make(env_id: str, **kwargs):
         return gym.make(env_id, **kwargs)
 
 
+@figure(fast=False)
 def env_stiffness() -> str:
     """Eigenvalues of the Jacobian ETD2RK uses at LevelHold-v0's trim (9144 m, M 0.75, finite state)."""
     from flexsim.model.jacobian import jacobian
@@ -145,14 +125,30 @@ def env_stiffness() -> str:
     lay = u.dynamics.model.layout
     x = point.x if point.x.size == lay.n_states else np.concatenate([point.x, np.zeros(lay.n_inflow)])
     ev = np.linalg.eigvals(jacobian(u.dynamics.model, x, point.u, controls=False)[0])
-    return (f"eigenvalues down to {_num(ev.real.min(), '.0f')} 1/s, |λ| up to {np.abs(ev).max():.0f} 1/s at "
+    return (f"eigenvalues down to {num(ev.real.min(), '.0f')} 1/s, |λ| up to {np.abs(ev).max():.0f} 1/s at "
             f"{manoeuvre.altitude_m:g} m, M {u.task.mach:g}")
 
 
-#: The figures of this module: name -> (function, fast).
-ENV_FIGURES = {name: (compute, False) for name, compute in {
-    **{f"env-flutter-v{v}-hz": functools.partial(_hz, v) for v in (0, 1)},
-    **{f"env-flutter-v{v}-target": functools.partial(_target, v) for v in (0, 1)},
-    "env-flutter-v0-point": env_flutter_v0_point, "env-flutter-v0-growth": env_flutter_v0_growth,
-    "env-flutter-v0-damper": env_flutter_v0_damper, "env-flutter-v1-point": env_flutter_v1_point,
-    "env-stiffness": env_stiffness}.items()}
+# FlutterMargin-v0's episodes fly just past its flutter point: its baseline return is 989.3-989.7 on two builds
+@figure(fast=False, rtol=1e-3)
+def env_baselines() -> str:
+    """The markdown table of baseline and random returns (seeds 0-9, full episodes, default settings)."""
+    import gymnasium as gym
+    from baselines import BASELINES
+    from evaluate_baselines import evaluate
+
+    rows = []
+    for env_id in BASELINES:
+        limit = gym.spec(env_id).max_episode_steps
+        result = evaluate(env_id, 10)
+        base, rand = result["baseline"], result["random"]
+        reasons = [r for r in rand["reasons"] if r]
+        if not reasons:
+            ending = "time limit"
+        else:
+            common = max(set(reasons), key=reasons.count)
+            ending = f"{common.replace('_', ' ')} ({reasons.count(common)}/10), {rand['lengths'].mean():.0f} steps on average"
+        label = env_id.removeprefix("FlexSim/GTM-").removesuffix("-v0")
+        rows.append([f"{label} (max {limit})", f"{base['returns'].mean():.1f} +- {base['returns'].std():.1f}",
+                     f"{rand['returns'].mean():.1f} +- {rand['returns'].std():.1f}", ending])
+    return table("| id | baseline return | random return | random episodes end by |", rows)

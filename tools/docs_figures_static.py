@@ -1,27 +1,12 @@
-"""Figures of docs/options.md, docs/validation.md and the Goland figures (trims, ``flexsim validate``, single
-flutter searches: seconds each), for ``regenerate_docs_figures.py``."""
+"""Figures of docs/options.md, docs/validation.md, docs/simulation.md and the Goland figures (trims, ``flexsim
+validate``, single flutter searches and simulations: seconds each; speeds are measured by ``benchmarks/``)."""
 
 from __future__ import annotations
 
 import functools
 import math
-import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-
-
-def _num(x: float, fmt: str) -> str:
-    """``format(x, fmt)`` with a typographic minus (as the docs write negative numbers)."""
-    return format(x, fmt).replace("-", "−")
-
-
-def bound(x: float, limit: float, what: str) -> str:
-    """``limit`` as the docs print it (``1e-12``) once ``|x| < limit`` is checked: a round-off residual is stated as
-    the bound it meets, never by its digits, which differ between machines and BLAS builds."""
-    if not abs(x) < limit:
-        raise RuntimeError(f"{what}: {x:.3g} is not below {limit:g}")
-    return f"{limit:.0e}".replace("e-0", "e-")
+from figure_text import exponent, figure, num, table
 
 
 @functools.cache
@@ -51,16 +36,16 @@ MARGIN_ROWS = (("strips only (the paper's aircraft)", {"body_moments": False, "d
 
 def options_static_margin() -> str:
     """Static margin, neutral point, trim elevator and L/D at 9144 m, M 0.78 with the body options on and off."""
-    lines = ["", "| bundled GTM, 9144 m, M 0.78 | neutral point behind the CG | static margin | trim elevator | L/D |",
-             "|---|---|---|---|---|"]
+    rows = []
     for label, switches in MARGIN_ROWS:
         s, m = _cruise_trim(9144.0, 0.78, **switches)
         bold = "**" if not switches else ""
-        lines.append(f"| {label} | {bold}{m.neutral_point_aft_of_cg_m:.2f} m{bold} | {bold}{100 * m.fraction_of_mac:.1f} %{bold} | "
-                     f"{_num(s['elevator_deg'], '.2f')}° | {s['lift_to_drag']:.1f} |")
+        rows.append([label, f"{bold}{m.neutral_point_aft_of_cg_m:.2f} m{bold}", f"{bold}{100 * m.fraction_of_mac:.1f} %{bold}",
+                     f"{num(s['elevator_deg'], '.2f')}°", f"{s['lift_to_drag']:.1f}"])
     others = "; ".join(f"{'sea level' if h == 0 else f'{h:g} m'} M {mach:g}: {100 * _cruise_trim(h, mach)[1].fraction_of_mac:.1f} %"
                        for h, mach in ((0.0, 0.5), (6000.0, 0.6)))
-    return "\n".join(lines) + f"\n\nDefault aircraft at other conditions: {others}.\n"
+    return (table("| bundled GTM, 9144 m, M 0.78 | neutral point behind the CG | static margin | trim elevator | L/D |", rows)
+            + f"\nDefault aircraft at other conditions: {others}.\n")
 
 
 def options_lift_drag() -> str:
@@ -75,15 +60,15 @@ def options_glide() -> str:
     """The glide trim at 9144 m, M 0.78, with and without the parasite drag."""
     s, _ = _cruise_trim(9144.0, 0.78, glide=True)
     bare, _ = _cruise_trim(9144.0, 0.78, glide=True, parasite_drag=False)
-    return (f"γ = {_num(s['gamma_deg'], '.3f')}° = −atan(D/L) with L/D = {s['lift_to_drag']:.2f} (without the parasite "
-            f"drag {_num(bare['gamma_deg'], '.2f')}°)")
+    return (f"γ = {num(s['gamma_deg'], '.3f')}° = −atan(D/L) with L/D = {s['lift_to_drag']:.2f} (without the parasite "
+            f"drag {num(bare['gamma_deg'], '.2f')}°)")
 
 
 def _validate_value(x: float, floor: float, fmt: str = ".5g", exact_zero: bool = True) -> str:
     """A value of the validation table (``fmt``), ``0`` (``exact_zero``), or ``< floor`` for round-off-sized magnitudes."""
     if x == 0.0 and exact_zero:
         return "0"
-    return f"< {floor:.0e}".replace("e-0", "e-") if abs(x) < floor else _num(x, fmt)
+    return f"< {exponent(floor)}" if abs(x) < floor else num(x, fmt)
 
 
 def validation_table() -> str:
@@ -98,8 +83,7 @@ def validation_table() -> str:
     with contextlib.redirect_stdout(out):
         code = flexsim_main(["validate", "--json"])
     doc = json.loads(out.getvalue())
-    lines = ["", "| case | quantity | reference | flexsim | error | tol. | source of the reference |",
-             "|---|---|---|---|---|---|---|"]
+    rows = []
     for case in doc["cases"]:
         if case["error"]:
             raise RuntimeError(f"validation-table: case {case['case']} failed to run: {case['error']}")
@@ -111,12 +95,12 @@ def validation_table() -> str:
             tol = f"{100 * c['tolerance']:g} %" if relative else f"{c['tolerance']:g}{unit.strip(' []') and ' ' + c['unit']}"
             source = c["source"] if i == 0 or c["source"] != case["checks"][i - 1]["source"] else "as above"
             mark = "" if c["pass"] else " ✘"
-            lines.append(f"| {case['case'] if i == 0 else ''} | {c['quantity'].replace('|', chr(92) + '|')}{unit} | "
-                         f"{_validate_value(c['reference'], 1e-12)} | {_validate_value(c['flexsim'], 1e-12)} | "
-                         f"{error}{mark} | {tol} | {source.replace('|', chr(92) + '|')} |")
+            rows.append([case["case"] if i == 0 else "", c["quantity"].replace("|", "\\|") + unit,
+                         _validate_value(c["reference"], 1e-12), _validate_value(c["flexsim"], 1e-12), error + mark, tol,
+                         source.replace("|", "\\|")])
     passed = sum(case["passed"] for case in doc["cases"])
-    return "\n".join(lines) + (f"\n\n{passed}/{len(doc['cases'])} cases pass "
-                               f"(`flexsim validate` exits with status {code}).\n")
+    return (table("| case | quantity | reference | flexsim | error | tol. | source of the reference |", rows)
+            + f"\n{passed}/{len(doc['cases'])} cases pass (`flexsim validate` exits with status {code}).\n")
 
 
 @functools.cache
@@ -137,15 +121,15 @@ def options_coordinated_turn() -> str:
     """The coordinated turn at 9144 m, M 0.78, R = 5 km against its closed forms."""
     p, ratio = _turn_trim(True)
     beta = math.degrees(p.sideslip_cg)
-    beta_text = "below 1e-10°" if abs(beta) < 1e-10 else f"{_num(beta, '.2e')}°"
+    beta_text = "below 1e-10°" if abs(beta) < 1e-10 else f"{num(beta, '.2e')}°"
     mu, closed = p.bank_wind, math.hypot(1.0, ratio)
-    return (f"sideslip at the CG {beta_text} (at o {_num(math.degrees(p.beta), '.3f')}°), φ = {math.degrees(p.phi):.3f}°, "
-            f"heading {math.degrees(p.heading_offset):.2f}° ahead of the track, rudder {_num(math.degrees(p.u[3]), '.2f')}°, "
-            f"aileron {_num(math.degrees(p.u[1]), '.2f')}°, elevator {_num(math.degrees(p.u[2]), '.2f')}°, thrust "
+    return (f"sideslip at the CG {beta_text} (at o {num(math.degrees(p.beta), '.3f')}°), φ = {math.degrees(p.phi):.3f}°, "
+            f"heading {math.degrees(p.heading_offset):.2f}° ahead of the track, rudder {num(math.degrees(p.u[3]), '.2f')}°, "
+            f"aileron {num(math.degrees(p.u[1]), '.2f')}°, elevator {num(math.degrees(p.u[2]), '.2f')}°, thrust "
             f"{p.u[0] / 1e3:.1f} kN; μ = {math.degrees(mu):.3f}° with tan μ / (V²/gR) = {math.tan(mu) / ratio:.5f}; "
             f"|F|/W = {p.load_factor_total:.5f} against 1/cos μ = {1 / math.cos(mu):.5f} "
-            f"({_num(100 * (p.load_factor_total * math.cos(mu) - 1), '+.3f')} %) and the closed form √(1 + (V²/gR)²) = "
-            f"{closed:.5f} ({_num(100 * (p.load_factor_total / closed - 1), '+.2f')} %); n_z = {p.load_factor:.5f}")
+            f"({num(100 * (p.load_factor_total * math.cos(mu) - 1), '+.3f')} %) and the closed form √(1 + (V²/gR)²) = "
+            f"{closed:.5f} ({num(100 * (p.load_factor_total / closed - 1), '+.2f')} %); n_z = {p.load_factor:.5f}")
 
 
 def options_which_bank() -> str:
@@ -159,56 +143,43 @@ def options_which_bank() -> str:
 def options_paper_turn() -> str:
     """The paper's turn (heading on the track) at 9144 m, M 0.78, R = 5 km: its sideslip and cross controls."""
     p, _ = _turn_trim(False)
-    return (f"{_num(math.degrees(p.beta), '.1f')}° with {_num(math.degrees(p.u[3]), '.1f')}° of rudder and "
-            f"{_num(math.degrees(p.u[1]), '.1f')}° of aileron")
+    return (f"{num(math.degrees(p.beta), '.1f')}° with {num(math.degrees(p.u[3]), '.1f')}° of rudder and "
+            f"{num(math.degrees(p.u[1]), '.1f')}° of aileron")
 
 
 def options_bending_incidence() -> str:
     """Static aeroelastic figures at 9144 m, M 0.78 with the swept-wing bending incidence off and on
     (``python studies/options_effects.py --skip-flutter``; its ``static_figures`` computes them)."""
+    import options_effects
+
     from flexsim.aircraft.toml_loader import load_aircraft
 
-    study = _options_study()
-    gtm = load_aircraft("gtm")
     cols = []
     for bending in (False, True):
-        f = study.static_figures(gtm, bending)
+        f = options_effects.static_figures(load_aircraft("gtm"), bending)
         pitch = math.degrees(f.tip_strip_pitch_rad)
-        cols.append([f"{math.degrees(f.theta_rad):.3f}° / {_num(math.degrees(f.elevator_rad), '.3f')}°",
-                     f"{_num(f.tip_deflection_m, '.3f')} m / {_num(math.degrees(f.tip_twist_rad), '+.3f')}°",
-                     f"{_num(pitch, '+.3f')}° ({'wash-in' if pitch > 0 else 'wash-out'})",
-                     f"{_num(f.roll_subsidence_1_s, '.3f')} 1/s",
+        cols.append([f"{math.degrees(f.theta_rad):.3f}° / {num(math.degrees(f.elevator_rad), '.3f')}°",
+                     f"{num(f.tip_deflection_m, '.3f')} m / {num(math.degrees(f.tip_twist_rad), '+.3f')}°",
+                     f"{num(pitch, '+.3f')}° ({'wash-in' if pitch > 0 else 'wash-out'})",
+                     f"{num(f.roll_subsidence_1_s, '.3f')} 1/s",
                      f"{f.aileron_effectiveness:.3f}"])
     labels = ["trim pitch θ / elevator", "tip deflection / tip torsion",
               "pitch of the tip strip (torsion + bending slope + rigging)", "roll-subsidence root (free aircraft)",
               "aileron effectiveness: rolling moment flexible / rigid (restrained at the cruise trim's α, static "
               "elastic equilibrium)"]
-    lines = ["", "| | off (paper) | on |", "|---|---|---|"]
-    lines += [f"| {label} | {off} | {on} |" for label, off, on in zip(labels, *cols)]
-    return "\n".join(lines) + "\n"
+    return table("| | off (paper) | on |", zip(labels, *cols))
 
 
-def _options_study():
-    """``studies/options_effects.py`` as a module (its ``_with`` builds the option variants of the aircraft)."""
-    import importlib.util
+def options_effects_flutter() -> str:
+    """Sea-level finite-state flutter of the bundled gtm with each body option switched (docs/flutter.md),
+    the cases and search of ``python studies/options_effects.py``."""
+    import options_effects as study
 
-    spec = importlib.util.spec_from_file_location("options_effects", ROOT / "studies" / "options_effects.py")
-    study = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = study  # its dataclasses resolve their module by name while the module executes
-    spec.loader.exec_module(study)
-    return study
-
-
-@functools.cache
-def options_effects_points() -> tuple:
-    """Sea-level finite-state flutter points of the bundled gtm with each body option switched, the cases and
-    search of ``python studies/options_effects.py``: ``((label, FlutterPoint), ...)``, the bundled gtm first and the
-    parasite drag off second."""
     from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.linear.flutter import FlutterAnalysis
     from flexsim.trim import SteadyManoeuvre
 
-    study, gtm = _options_study(), load_aircraft("gtm")
+    gtm = load_aircraft("gtm")
     level = SteadyManoeuvre.level(0.0, mach=0.65)
     cases = [("level flight, bundled `gtm`", gtm, level),
              ("level flight, parasite drag off (the paper's induced drag only)", study._with(gtm, drag=()), level),
@@ -217,23 +188,16 @@ def options_effects_points() -> tuple:
              ("level flight, bending incidence on", study._with(gtm, bending_incidence=True), level),
              ("turn R = 5 km, the paper's (heading on track)", gtm, SteadyManoeuvre.turn(0.0, 5000.0, mach=0.65)),
              ("turn R = 5 km, coordinated", gtm, SteadyManoeuvre.turn(0.0, 5000.0, mach=0.65, coordinated=True))]
-    return tuple((label, FlutterAnalysis(aircraft, "unsteady").search(manoeuvre, mach_range=(0.6, 0.8), mach_step=0.05))
-                 for label, aircraft, manoeuvre in cases)
 
-
-def options_effects_flutter() -> str:
-    """Sea-level finite-state flutter of the bundled gtm with each body option switched (docs/flutter.md),
-    the cases and search of ``python studies/options_effects.py``."""
     def small(x: float, unit: str = "°") -> str:
-        return "0" if abs(x) < 0.005 else f"{_num(x, '+.2f')}{unit}"
+        return "0" if abs(x) < 0.005 else f"{num(x, '+.2f')}{unit}"
 
     def change(x: float, ref: float, floor: float) -> str:
-        return f" (< {floor:.0e})".replace("e-0", "e-") if abs(x - ref) < floor else f" ({_num(100 * (x / ref - 1), '+.2g')} %)"
+        return f" (< {exponent(floor)})" if abs(x - ref) < floor else f" ({num(100 * (x / ref - 1), '+.2g')} %)"
 
-    lines = ["", "| case | M_F | ω_F [rad/s] | trim thrust | tip deflection | sideslip at the CG / rudder |",
-             "|---|---|---|---|---|---|"]
-    ref = None
-    for label, fp in options_effects_points():
+    rows, ref = [], None
+    for label, aircraft, manoeuvre in cases:
+        fp = FlutterAnalysis(aircraft, "unsteady").search(manoeuvre, mach_range=(0.6, 0.8), mach_step=0.05)
         t = fp.trim
         mach_text, omega_text = f"{fp.mach:.4f}", f"{fp.frequency_rad_s:.3f}"
         if ref is None:
@@ -242,9 +206,9 @@ def options_effects_flutter() -> str:
             mach_text += change(fp.mach, ref.mach, 1e-4)
             if abs(fp.frequency_rad_s / ref.frequency_rad_s - 1) >= 0.01:
                 omega_text += change(fp.frequency_rad_s, ref.frequency_rad_s, 1e-3)
-        lines.append(f"| {label} | {mach_text} | {omega_text} | {t.thrust_n / 1e3:.1f} kN | {_num(t.tip_deflection_m, '.3f')} m | "
-                     f"{small(math.degrees(t.sideslip_cg))} / {small(math.degrees(t.u[3]))} |")
-    return "\n".join(lines) + "\n"
+        rows.append([label, mach_text, omega_text, f"{t.thrust_n / 1e3:.1f} kN", f"{num(t.tip_deflection_m, '.3f')} m",
+                     f"{small(math.degrees(t.sideslip_cg))} / {small(math.degrees(t.u[3]))}"])
+    return table("| case | M_F | ω_F [rad/s] | trim thrust | tip deflection | sideslip at the CG / rudder |", rows)
 
 
 #: Goland's flutter speed at 1.225 kg/m^3 [m/s] (Goland 1945; the validation case's reference).
@@ -267,11 +231,107 @@ def goland_compressible() -> str:
 
     (u_t, w_t), (u_p, _) = _goland("theodorsen", "prandtl-glauert"), _goland("unsteady", "prandtl-glauert")
     return (f"{u_t:.2f} m/s (Theodorsen) and {u_p:.2f} m/s (Peters N = 6) at {w_t:.2f} rad/s, "
-            f"M = {u_t / float(speed_of_sound(0.0)):.2f}: {_num(100 * (u_t / GOLAND_U_F_M_S - 1), '+.1f')} % and "
-            f"{_num(100 * (u_p / GOLAND_U_F_M_S - 1), '+.1f')} % against Goland's {GOLAND_U_F_M_S} m/s")
+            f"M = {u_t / float(speed_of_sound(0.0)):.2f}: {num(100 * (u_t / GOLAND_U_F_M_S - 1), '+.1f')} % and "
+            f"{num(100 * (u_p / GOLAND_U_F_M_S - 1), '+.1f')} % against Goland's {GOLAND_U_F_M_S} m/s")
+
+
+def goland_pk_fs() -> str:
+    """Peters N = 6 against Theodorsen p-k on the Goland wing (1.225 kg/m^3, its file's incompressible strips)."""
+    (u_t, _), (u_p, _) = _goland("theodorsen", "none"), _goland("unsteady", "none")
+    return f"{100 * abs(u_p / u_t - 1):.1f} %"
 
 
 def goland_incompressible_102() -> str:
     """The Goland wing at 1.02 kg/m^3 without the Prandtl-Glauert factor."""
     (u_t, _), (u_p, _) = _goland("theodorsen", "none", 1.02), _goland("unsteady", "none", 1.02)
     return f"{u_t:.1f} m/s (Theodorsen) and {u_p:.1f} m/s (Peters)"
+
+
+# --- docs/simulation.md ------------------------------------------------------------------------------------------
+
+#: Errors below this are printed as the bound: the reference itself (DOP853 at rtol 1e-9) does not resolve them,
+#: and their digits are round-off (a symmetric manoeuvre's bank).
+ERROR_FLOOR = 1e-6
+
+
+def _e(x: float) -> str:
+    return f"{x:.1e}" if abs(x) >= ERROR_FLOOR else f"< {exponent(ERROR_FLOOR)}"
+
+
+def _cell(e, rigid_parts: bool) -> str:
+    tip = f"tip {_e(e.tip_m)} m ({_e(e.tip_relative)})"
+    if e.altitude_m is None or not rigid_parts:
+        return tip if e.altitude_m is None else f"{_e(e.altitude_m)} m / {tip}"
+    return f"{_e(e.altitude_m)} m / {_e(e.airspeed_m_s)} m/s / {_e(e.bank_deg)} deg / {tip}"
+
+
+# the accuracy table's errors of adaptive runs within a factor of 2 (their step sequences follow error estimates that
+# round-off moves)
+@figure(fast=False, rtol=0.5)
+def simulation_accuracy() -> str:
+    """The table of the default, the previous default and Radau against DOP853 (rtol 1e-9) on every named manoeuvre."""
+    from flexsim.sim.accuracy import DEFAULT_CHOICE, PREVIOUS_CHOICE, RADAU_CHOICE, RUN_OPTIONS, manoeuvre_errors
+    from flexsim.sim.manoeuvres import manoeuvre_names
+
+    rows = []
+    for name in manoeuvre_names():
+        default, previous, radau = manoeuvre_errors(name, (DEFAULT_CHOICE, PREVIOUS_CHOICE, RADAU_CHOICE))
+        label = f"`{name}` ({RUN_OPTIONS.get(name, {}).get('t_end_s', default.duration_s):g} s)"
+        rows.append([label, _cell(default, True), _cell(previous, False), _cell(radau, True)])
+    return table(f"| manoeuvre | default, {DEFAULT_CHOICE.name}: altitude / airspeed / bank / tip | previous default, "
+                 f"{PREVIOUS_CHOICE.name}: altitude / tip | {RADAU_CHOICE.name}: altitude / airspeed / bank / tip |", rows)
+
+
+def simulation_structural_limits() -> str:
+    """The default structural limit (``STRUCTURAL_LIMIT_FRACTION`` x the wing's length) of the GTM and the Goland wing."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.sim.simulate import STRUCTURAL_LIMIT_FRACTION
+
+    gtm, goland = (STRUCTURAL_LIMIT_FRACTION * load_aircraft(name).component("right_wing").length_m
+                   for name in ("gtm", "goland_wing"))
+    return f"{STRUCTURAL_LIMIT_FRACTION:g} x the wing's length: {gtm:.2f} m on the GTM, {goland:.2f} m on the Goland wing"
+
+
+def simulation_goland_flutter() -> str:
+    """The clamped Goland wing's flutter speed and frequency with this model (``wind_tunnel_flutter``, Peters N = 6
+    inflow and quasi-steady) and the tunnel speed of ``flutter-onset`` (its setup's metadata)."""
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.linear.flutter import wind_tunnel_flutter
+    from flexsim.sim.manoeuvres import build_manoeuvre
+
+    goland = load_aircraft("goland_wing")
+    v, w = wind_tunnel_flutter(goland, aero_model="unsteady")
+    v_qs, _ = wind_tunnel_flutter(goland, aero_model="quasi-steady")
+    meta = build_manoeuvre("flutter-onset").metadata
+    tunnel, flutter = float(meta["tunnel_speed_m_s"]), float(meta["flutter_speed_m_s"])
+    return (f"{v:.1f} m/s at {w:.1f} rad/s with Peters N = 6 inflow, {v_qs:.1f} m/s quasi-steady; `flutter-onset` "
+            f"flies at {tunnel / flutter:.2f} x {flutter:.1f} = {tunnel:.1f} m/s for either aerodynamic model")
+
+
+def simulation_eigenvalues() -> str:
+    """The stiff end of the spectrum of the unsteady GTM (m = n = 2, N = 6) linearised at the named manoeuvres' level
+    trim (9144 m, M 0.75): the most negative real part and the largest |lambda|."""
+    import numpy as np
+
+    from flexsim.model.jacobian import jacobian
+    from flexsim.sim.manoeuvres import build_manoeuvre
+
+    setup = build_manoeuvre("elevator-doublet")
+    lam = np.linalg.eigvals(jacobian(setup.model, setup.initial.x, setup.initial.u)[0])
+    big = lam[np.argmax(np.abs(lam))]
+    return (f"{lam.size} states) has well-damped aero-lag eigenvalues down to {lam.real.min():.0f} s^-1 and |lambda| "
+            f"up to {abs(big):.0f} s^-1 ({big.real:.0f} +- {abs(big.imag):.0f}j)")
+
+
+def simulation_flutter_onset_growth() -> str:
+    """The tip amplitude of the growing Goland oscillation over the accuracy comparison's window (no structural
+    limit, ``flexsim.sim.accuracy.RUN_OPTIONS``)."""
+    import numpy as np
+
+    from flexsim.sim.accuracy import RUN_OPTIONS
+    from flexsim.sim.manoeuvres import build_manoeuvre
+
+    opts = RUN_OPTIONS["flutter-onset"]
+    r = build_manoeuvre("flutter-onset").simulate(structural_limit_m=opts["structural_limit_m"], t_end_s=opts["t_end_s"])
+    tip = np.abs(r.tip_deflection_m("right_wing"))
+    return f"grows to {tip.max():.2f} m in {opts['t_end_s']:g} s"

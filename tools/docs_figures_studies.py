@@ -7,21 +7,12 @@ from __future__ import annotations
 import functools
 import math
 import re
-import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "studies"))
-sys.path.insert(0, str(ROOT / "tools"))
-from docs_figures_static import _num  # noqa: E402
+from docs_figures_flutter import _level
+from figure_text import ROOT, figure, num, span
 
 #: Altitudes of Tables 2-3 [m].
 PAPER_ALTITUDES_M = (0.0, 3048.0, 6096.0, 9144.0)
-
-
-def _minus(text: str) -> str:
-    """A study's markdown with a typographic minus before numbers (as the docs write them)."""
-    return re.sub(r"(?<![\w.])-(?=\d)", "−", text)
 
 
 def calibration_uncalibrated() -> str:
@@ -40,20 +31,14 @@ def calibration_structure() -> str:
     import tomllib
 
     from flexsim.aircraft.toml_loader import load_aircraft
-    from flexsim.linear.modes import in_vacuo_modes
-    from flexsim.model.aircraft_model import AircraftModel
 
     factors = tomllib.loads((ROOT / "tools" / "gtm_calibration.toml").read_text(encoding="utf-8"))["scaling"]
     gtm = load_aircraft("gtm")
     sections = {c.name: c.sections for c in gtm.components}
     wing, fuselage = sections["right_wing"], sections["fuselage"]
-    modes = in_vacuo_modes(AircraftModel(gtm, gravity_m_s2=0.0)).modes
 
     def freq(label: str) -> str:
-        hits = [m.frequency_rad_s for m in modes if m.dominant_dof == label]
-        if not hits:
-            raise RuntimeError(f"calibration-structure: no in-vacuo mode {label!r}")
-        return f"{hits[0]:.1f}"
+        return f"{_vacuo('gtm', label):.1f}"
 
     return (f"wing GJ × {factors['wing_gj']:.3f}, wing EI × {factors['wing_ei']:.3f}, fuselage EI × "
             f"{factors['fuselage_ei']:.2f}; wing root EI {wing.ei_nm2[0] / 1e9:.2f} GN m², GJ {wing.gj_nm2[0] / 1e9:.3f} GN m², "
@@ -63,19 +48,12 @@ def calibration_structure() -> str:
             f"{freq('wings torsion 1 (symmetric)')} (sym.) and {freq('wings torsion 1 (antisymmetric)')} (antisym.) rad/s")
 
 
-def goland_pk_fs() -> str:
-    """Peters N = 6 against Theodorsen p-k on the Goland wing (1.225 kg/m^3, its file's incompressible strips)."""
-    from docs_figures_static import _goland
-
-    (u_t, _), (u_p, _) = _goland("theodorsen", "none"), _goland("unsteady", "none")
-    return f"{100 * abs(u_p / u_t - 1):.1f} %"
-
-
-def calibration_summary(level) -> str:
-    """What the calibration meets, from the level-flight rows ``level(model)`` of the docs tool (US, FS, QS)."""
+@figure(fast=False)
+def calibration_summary() -> str:
+    """What the calibration meets, from the level-flight rows of the bundled gtm (US, FS, QS)."""
     from flexsim.linear.paper_data import TABLE_US
 
-    us, fs, qs = level("US"), level("FS"), level("QS")
+    us, fs = _level("US"), _level("FS")
     paper = {row[0]: row for row in TABLE_US}
     dm = {h: 100 * (us[h]["mach"] / paper[h][1] - 1) for h in PAPER_ALTITUDES_M}
     dw = [100 * (us[h]["omega_rad_s"] / paper[h][2] - 1) for h in PAPER_ALTITUDES_M[1:]]
@@ -84,16 +62,15 @@ def calibration_summary(level) -> str:
     pkfs = max(abs(fs[h]["mach"] / us[h]["mach"] - 1) for h in PAPER_ALTITUDES_M)
 
     def at(hs) -> str:
-        return ", ".join(f"{_num(dm[h], '+.2f')} % at {h:g} m" for h in hs) or "none"
+        return ", ".join(f"{num(dm[h], '+.2f')} % at {h:g} m" for h in hs) or "none"
 
-    def span(key: str, fmt: str) -> str:
-        lo, hi = (_num(f([us[h][key] for h in PAPER_ALTITUDES_M]), fmt) for f in (min, max))
-        return lo if lo == hi else f"{lo} to {hi}"
+    def trim(key: str, fmt: str) -> str:
+        return span([us[h][key] for h in PAPER_ALTITUDES_M], fmt, " to ")
 
-    return (f"US M_F within 3 %: {at(met)}; outside: {at(missed)}. US ω_F {_num(min(dw), '+.1f')} to "
-            f"{_num(max(dw), '+.1f')} % at 3048-9144 m (target 10 %). p-k and finite state within {100 * pkfs:.1f} % in M_F at "
-            f"all four altitudes. Trim at the US flutter points: θ {span('theta_deg', '.1f')}°, thrust "
-            f"{span('thrust_kN', '.0f')} kN, elevator {span('elevator_deg', '+.1f')}°")
+    return (f"US M_F within 3 %: {at(met)}; outside: {at(missed)}. US ω_F {num(min(dw), '+.1f')} to "
+            f"{num(max(dw), '+.1f')} % at 3048-9144 m (target 10 %). p-k and finite state within {100 * pkfs:.1f} % in M_F at "
+            f"all four altitudes. Trim at the US flutter points: θ {trim('theta_deg', '.1f')}°, thrust "
+            f"{trim('thrust_kN', '.0f')} kN, elevator {trim('elevator_deg', '+.1f')}°")
 
 
 def typical_section_kf() -> str:
@@ -103,19 +80,15 @@ def typical_section_kf() -> str:
     section = TypicalSection(a=-0.2, e=-0.1, mu=20.0, r2=0.24, sigma=0.4)  # docs/validation.md, the case's section
     t, p = flutter_analysis(section, "theodorsen"), flutter_analysis(section, "peters", 6)
     return (f"k_F = {t.flutter_frequency / t.flutter_speed:.4f}; Peters' N = 6 approximation changes U_F by "
-            f"{_num(100 * (p.flutter_speed / t.flutter_speed - 1), '+.2f')} %")
-
-
-@functools.cache
-def _phugoid(altitude_m: float = 6000.0, mach: float = 0.6, **switches):
-    from flexsim.sim.validation import phugoid_point
-
-    return phugoid_point(altitude_m, mach, **switches)
+            f"{num(100 * (p.flutter_speed / t.flutter_speed - 1), '+.2f')} %")
 
 
 def validation_phugoid() -> str:
-    """The ``phugoid-lanchester`` case's aircraft with the body moments and tail downwash on, against Lanchester."""
-    p = _phugoid(body_moments=True, downwash=True)
+    """The ``phugoid-lanchester`` case's aircraft (6000 m, M 0.6) with the body moments and tail downwash on, against
+    Lanchester."""
+    from flexsim.sim.validation import phugoid_point
+
+    p = phugoid_point(6000.0, 0.6, body_moments=True, downwash=True)
     return (f"With them (static margin {100 * p.static_margin:.1f} % at this point) the frequency is "
             f"{100 * (1 - p.omega_rad_s / p.lanchester_omega_rad_s):.1f} % and the damping "
             f"{100 * (1 - p.damping_ratio / p.lanchester_damping_ratio):.0f} % below Lanchester's ({p.omega_rad_s:.5f} rad/s, "
@@ -135,40 +108,6 @@ def goland_lift_slope_085() -> str:
     u_f, _ = wind_tunnel_flutter(wing, aero_model="theodorsen", density_kg_m3=1.02, compressibility="prandtl-glauert",
                                  speed_range=(100.0, 250.0), speed_step=10.0, tol_m_s=1e-2)
     return f"{u_f:.0f} m/s (Theodorsen)"
-
-
-def validation_phugoid_case() -> str:
-    """L/D and static margin of the ``phugoid-lanchester`` case's trim (6000 m, M 0.6, strips only)."""
-    p = _phugoid()
-    return f"L/D = {p.lift_to_drag:.1f}; neutral point {100 * p.static_margin:.0f} % of the mean chord behind the CG"
-
-
-def _fit_summary(text: str) -> tuple[dict[str, float], str]:
-    """Factors and ``wing GJ × 0.399, ... (M_F ... %, ω_F ... %)`` of a ``calibrate_gtm.py --out`` file."""
-    import json
-
-    from flexsim.linear.paper_data import TABLE_US
-
-    factors = {k: float(v) for k, v in re.findall(r"(?m)^(\w+) = ([\d.]+)$", text) if k != "structural_damping_ratio"}
-    rows = [json.loads(line[2:]) for line in text.splitlines() if line.startswith("# {")]
-    paper = {h: (m, w) for h, m, w, *_ in TABLE_US}
-    dm = " / ".join(f"{100 * (r['mach'] / paper[r['altitude_m']][0] - 1):+.1f}" for r in rows)
-    dw = [100 * (r["omega_rad_s"] / paper[r["altitude_m"]][1] - 1) for r in rows if r["altitude_m"] > 0]
-    return factors, _minus(f"wing GJ × {factors['wing_gj']:.3f}, EI × {factors['wing_ei']:.3f}, fuselage EI × "
-                           f"{factors['fuselage_ei']:.3f} (M_F {dm} % at 0-9144 m, ω_F {min(dw):+.1f} to {max(dw):+.1f} % "
-                           f"at 3048-9144 m)")
-
-
-def calibration_robust_fit() -> str:
-    """§3: the fit that made gtm.toml, read from its output ``tools/gtm_calibration.toml`` (``python
-    studies/calibrate_gtm.py --out tools/gtm_calibration.toml``; gtm.toml = gtm_uncalibrated × its factors is tested in
-    tests/aircraft/test_calibration.py)."""
-    return _fit_summary((ROOT / "tools" / "gtm_calibration.toml").read_text(encoding="utf-8"))[1]
-
-
-def _span(values, fmt: str, sep: str = "-") -> str:
-    lo, hi = _num(min(values), fmt), _num(max(values), fmt)
-    return lo if lo == hi else f"{lo}{sep}{hi}"
 
 
 @functools.cache
@@ -191,16 +130,15 @@ def _vacuo(aircraft: str, label: str) -> float:
     return f[label]
 
 
-def flutter_mode_frequencies(level) -> str:
-    """The US flutter frequencies of the bundled gtm (``level("US")``, the docs tool's rows) against its in-vacuo
-    fuselage bending 1 and wing torsion 1."""
-    w = [r["omega_rad_s"] for r in level("US").values()]
+def flutter_mode_frequencies() -> str:
+    """The US flutter frequencies of the bundled gtm against its in-vacuo fuselage bending 1 and wing torsion 1."""
+    w = [r["omega_rad_s"] for r in _level("US").values()]
     fus, t_s, t_a = (_vacuo("gtm", k) for k in ("fuselage bending 1", "wings torsion 1 (symmetric)",
                                                 "wings torsion 1 (antisymmetric)"))
     if not fus < min(w) <= max(w) < min(t_s, t_a):
         raise RuntimeError("flutter-mode-frequencies: the flutter frequency is no longer between the fuselage's first "
                            "bending and the wings' first torsion")
-    return (f"{_span(w, '.1f')} rad/s (US), between the fuselage's first bending ({fus:.1f} rad/s in vacuo) and the "
+    return (f"{span(w, '.1f')} rad/s (US), between the fuselage's first bending ({fus:.1f} rad/s in vacuo) and the "
             f"wings' first torsion ({t_s:.1f}/{t_a:.1f} rad/s, symmetric/antisymmetric)")
 
 
@@ -223,6 +161,7 @@ def _decomposition_gtm() -> tuple[dict, ...]:
     return tuple(md.run(ac, "gtm", 9144.0, tuple(md.SWITCHES), 3048.0, 0.91))
 
 
+@figure(fast=False)
 def decomposition_gtm() -> str:
     """The decomposition table of the bundled gtm at 9144 m and its summary."""
     import manoeuvre_decomposition as md
@@ -232,14 +171,15 @@ def decomposition_gtm() -> str:
     small = [s for s in ("rotation", "static_deformation", "thrust", "gravity")
              if abs(rows[s]["turn_dM"] - ref["turn_dM"]) <= 1.5e-4]
     climbs = [r["climb_dM"] for s, r in rows.items() if s != "damping"]
-    return ("\n" + _minus(md.table(list(rows.values()))) + "\n\n"
-            f"The turn effect is {_num(ref['turn_dM'], '+.4f')}; {', '.join(small)} each change it by 0.0001 or less. "
+    study_table = re.sub(r"(?<![\w.])-(?=\d)", "−", md.table(list(rows.values())))  # typographic minus, as the docs
+    return ("\n" + study_table + "\n\n"
+            f"The turn effect is {num(ref['turn_dM'], '+.4f')}; {', '.join(small)} each change it by 0.0001 or less. "
             f"Without structural damping (`damping`) the critical mode is another one, at {damp['w_level']:.1f} rad/s "
             f"(M {damp['M_level']:.4f}), and the turn row compares different modes. With the linearised aerodynamics at "
             f"ρ(3048 m) (`density`) flutter moves to M {dens['M_level']:.2f} and the turn effect becomes "
-            f"{_num(dens['turn_dM'], '+.4f')} ({_num(100 * (dens['turn_dM'] / ref['turn_dM'] - 1), '+.0f')} %). "
-            f"M_F(+15°) − M_F(−15°) stays between {_num(min(climbs), '+.5f')} and {_num(max(climbs), '+.5f')} in every "
-            f"row but `damping` ({_num(damp['climb_dM'], '+.5f')}, another mode).\n")
+            f"{num(dens['turn_dM'], '+.4f')} ({num(100 * (dens['turn_dM'] / ref['turn_dM'] - 1), '+.0f')} %). "
+            f"M_F(+15°) − M_F(−15°) stays between {num(min(climbs), '+.5f')} and {num(max(climbs), '+.5f')} in every "
+            f"row but `damping` ({num(damp['climb_dM'], '+.5f')}, another mode).\n")
 
 
 def _pg_slope(mach: float) -> float:
@@ -247,6 +187,7 @@ def _pg_slope(mach: float) -> float:
     return mach / (1.0 - mach * mach) ** 1.5
 
 
+@figure(fast=False)
 def decomposition_reading() -> str:
     """The reading of the decomposition table; raises when the rows no longer support it."""
     rows = {r["switch"]: r for r in _decomposition_gtm()}
@@ -258,11 +199,11 @@ def decomposition_reading() -> str:
                            f"compresses it, or M(q) / the force resolution move it: { {s: r['turn_dM'] for s, r in rows.items()} }")
     carried = "**entirely**" if abs(aa["turn_dM"]) <= 1.5e-4 else f"**{100 * (1 - aa['turn_dM'] / t0):.0f} %**"
     return (f"Reading: the turn effect is carried {carried} by the aerodynamics linearised about the turn's larger angle "
-            f"of attack and its sideslip (`aero_alpha`: {_num(t0, '+.4f')} → {_num(aa['turn_dM'], '+.4f')}); "
+            f"of attack and its sideslip (`aero_alpha`: {num(t0, '+.4f')} → {num(aa['turn_dM'], '+.4f')}); "
             "rotation rates, the whole static deformation, thrust, gravity, the static deflection's effect on M(q) and "
             f"the force resolution's trim-α terms each change it by {small:.4f} or less. "
             f"The **Prandtl–Glauert factor compresses it** (frozen at the level flutter Mach the turn effect is "
-            f"{_num(pg['turn_dM'], '+.4f')}, {pg['turn_dM'] / t0:.1f}× larger) — at M {ref['M_level']:.2f} the P-G "
+            f"{num(pg['turn_dM'], '+.4f')}, {pg['turn_dM'] / t0:.1f}× larger) — at M {ref['M_level']:.2f} the P-G "
             f"factor's slope (d[1/√(1−M²)]/dM = M/(1−M²)^1.5 = {_pg_slope(ref['M_level']):.1f}) makes the aerodynamic "
             "stiffness rise so fast with Mach that any destabilising change is met within a few thousandths in Mach. "
             f"The **density** of the linearised aerodynamics raises it (row `density`: flutter moves to M "
@@ -277,8 +218,8 @@ def calibration_paper_qs_us() -> str:
     from flexsim.linear.paper_data import TABLE_QS, TABLE_US
 
     d = [100.0 * (qs[1] / us[1] - 1.0) for qs, us in zip(TABLE_QS, TABLE_US)]
-    return (f"within {max(abs(d[0]), abs(d[1])):.1f} % of the US ones at 0 and 3048 m; {_num(d[2], '.1f')} % and "
-            f"{_num(d[3], '.1f')} % at 6096 and 9144 m")
+    return (f"within {max(abs(d[0]), abs(d[1])):.1f} % of the US ones at 0 and 3048 m; {num(d[2], '.1f')} % and "
+            f"{num(d[3], '.1f')} % at 6096 and 9144 m")
 
 
 def calibration_paper_thrust() -> str:
@@ -297,36 +238,17 @@ def calibration_paper_thrust() -> str:
             f"no body-x component and its aircraft weighs {mean_w:.1f} kN ({1e3 * mean_w / 9.80665 / 1e3:.1f} t)")
 
 
-def calibration_speeds(level) -> str:
-    """The paper's US flutter speeds (Table 3) and the dynamic pressure at them, beside flexsim's US speeds
-    (``level(model)``: the level-flight rows of the docs tool)."""
+def calibration_speeds() -> str:
+    """The paper's US flutter speeds (Table 3) and the dynamic pressure at them, beside flexsim's US speeds."""
     from flexsim.atmosphere import isa_density, mach_to_true_airspeed
     from flexsim.linear.paper_data import TABLE_US
 
     v = [float(mach_to_true_airspeed(r[1], r[0])) for r in TABLE_US]
     q = [0.5 * float(isa_density(r[0])) * x * x / 1e3 for r, x in zip(TABLE_US, v)]
-    us = level("US")
+    us = _level("US")
     ours = [float(mach_to_true_airspeed(us[r[0]]["mach"], r[0])) for r in TABLE_US]
     m = [r[1] for r in TABLE_US]
     return (f"{', '.join(f'{x:.0f}' for x in v)} m/s at 0-9144 m (M_F(9144)/M_F(0) = {m[3] / m[0]:.3f}; "
             f"{m[3] / m[1]:.3f} from 3048 to 9144 m), while the dynamic pressure at flutter falls from {q[0]:.1f} to "
             f"{q[3]:.1f} kPa. On the notional aircraft the flutter point follows the dynamic pressure more closely "
             f"({', '.join(f'{x:.0f}' for x in ours)} m/s, US)")
-
-
-#: The figures of this module: name -> (function, fast).
-STUDY_FIGURES = {
-    "typical-section-kf": (typical_section_kf, True),
-    "validation-phugoid-case": (validation_phugoid_case, True),
-    "validation-phugoid": (validation_phugoid, True),
-    "goland-lift-slope-085": (goland_lift_slope_085, True),
-    "calibration-structure": (calibration_structure, True),
-    "calibration-uncalibrated": (calibration_uncalibrated, True),
-    "calibration-robust-fit": (calibration_robust_fit, True),
-    "goland-pk-fs": (goland_pk_fs, True),
-    "density-paper": (density_paper, True),
-    "calibration-paper-qs-us": (calibration_paper_qs_us, True),
-    "calibration-paper-thrust": (calibration_paper_thrust, True),
-    "decomposition-gtm": (decomposition_gtm, False),
-    "decomposition-reading": (decomposition_reading, False),
-}

@@ -1,20 +1,12 @@
-"""Figures of docs/options.md, docs/logs.md and docs/design.md (and, through ``USAGE_FIGURES``, of
-docs/environments.md: ``docs_figures_envs.py``), for ``regenerate_docs_figures.py``."""
+"""Figures of docs/options.md and docs/design.md, for ``regenerate_docs_figures.py``."""
 
 from __future__ import annotations
 
-import functools
-import math
-import sys
-from pathlib import Path
 
 import numpy as np
+from docs_figures_static import _cruise_trim, _turn_trim
+from figure_text import exponent, figure, num
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(0, str(ROOT))
-from docs_figures_envs import ENV_FIGURES  # noqa: E402
-from docs_figures_static import _num  # noqa: E402
 from flexsim.aero.lift_slopes import exposed_lift_slope, vlm_surfaces  # noqa: E402
 from flexsim.aero.vlm import solve_vlm  # noqa: E402
 from flexsim.aircraft.toml_loader import load_aircraft  # noqa: E402
@@ -25,37 +17,27 @@ from flexsim.model.coupling import AeroOptions  # noqa: E402
 
 # --- docs/options.md ---------------------------------------------------------------------------------------------
 
-def _study(name: str):
-    """``studies/<name>.py`` as a module."""
-    import importlib.util
-
-    spec = importlib.util.spec_from_file_location(name, ROOT / "studies" / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # its dataclasses / NamedTuples resolve their module by name
-    spec.loader.exec_module(module)
-    return module
-
-
 def _small(x: float, unit: str, floor: float = 1e-9) -> str:
     """A drift: ``0``, ``below 1e-9`` (round-off, whose digits vary with the platform) or ``2.5e-6`` with ``unit``."""
     sep = "" if unit == "°" else " "
     if x == 0.0:
         return f"0{sep}{unit}"
     if abs(x) < floor:
-        return f"below {floor:.0e}{sep}{unit}".replace("e-0", "e-")
-    return f"{x:.1e}{sep}{unit}".replace("e-0", "e-")
+        return f"below {exponent(floor)}{sep}{unit}"
+    return f"{exponent(x, '.1e')}{sep}{unit}"
 
 
+@figure(fast=False)
 def options_turn_hold() -> str:
     """``python studies/coordinated_turn.py``'s 30 s hold of the coordinated turn's trim controls (unsteady)."""
-    from docs_figures_static import _turn_trim
+    import coordinated_turn
 
     from flexsim.trim import SteadyManoeuvre
 
     point, _ = _turn_trim(True)
     man = SteadyManoeuvre.turn(9144.0, 5000.0, mach=0.78, coordinated=True)
     duration = 30.0
-    h = _study("coordinated_turn").hold_trim(load_aircraft("gtm"), point, man, duration, "unsteady")
+    h = coordinated_turn.hold_trim(load_aircraft("gtm"), point, man, duration, "unsteady")
     if h.status != "completed":
         raise RuntimeError(f"options-turn-hold: the hold ended {h.status}")
     return (f"holds the trim's controls for {duration:g} s with the nonlinear model and unsteady aerodynamics "
@@ -64,41 +46,32 @@ def options_turn_hold() -> str:
             f"{h.v_over_r_rad_s:.6f} rad/s")
 
 
-@functools.cache
-def _margin_against_t2() -> dict:
-    """The default GTM's CG and neutral point (cruise trim at 9144 m, M 0.78) and the T2's, in T2 c-bar fractions."""
-    from docs_figures_static import _cruise_trim
-
+def options_t2() -> str:
+    """The T2's pitch derivatives, neutral point and margin against the default GTM's CG and neutral point (cruise
+    trim at 9144 m, M 0.78), in T2 c-bar fractions."""
     from flexsim.aircraft.t2_data import CBAR_M, T2_CG_CBAR, cbar_fraction, t2_pitch
 
-    gtm = load_aircraft("gtm")
+    gtm, t2 = load_aircraft("gtm"), t2_pitch()
     _, margin = _cruise_trim(9144.0, 0.78)
     (fuselage,) = [c for c in gtm.components if c.name == "fuselage"]
     x_cg = fuselage.length_m - AircraftModel(gtm, aero="quasi-steady").structure.mass_properties.cg_m[0]  # aft of the nose
-    return {"t2": t2_pitch(), "cbar_m": CBAR_M, "t2_cg": T2_CG_CBAR, "cg": cbar_fraction(x_cg),
-            "np": cbar_fraction(x_cg + margin.neutral_point_aft_of_cg_m), "margin": margin}
-
-
-def options_t2() -> str:
-    """The T2's pitch derivatives, neutral point and margin against the model's CG and neutral point."""
-    f = _margin_against_t2()
-    t2 = f["t2"]
-    return (f"has Cm_α = {_num(t2.cm_alpha_per_rad, '.3f')} and CN_α = {t2.cn_alpha_per_rad:.3f} per radian (α = 0-6°) "
-            f"about 25 % of its reference chord c̄ ({f['cbar_m']:.3f} m at full scale), a neutral point at "
-            f"{100 * t2.neutral_point_cbar:.1f} % c̄ and a margin of {100 * (t2.neutral_point_cbar - f['t2_cg']):.0f} % at its "
-            f"own CG ({100 * f['t2_cg']:.2f} % c̄). The model's CG is at {100 * f['cg']:.1f} % c̄ and its neutral point at "
-            f"{100 * f['np']:.1f} % c̄: {100 * (t2.neutral_point_cbar - f['np']):.1f} % c̄ ahead of the T2's")
-
-
-def options_cg_shift() -> str:
-    """How far aft the CG would move for a 25 % margin (same neutral point; margin on the exposed wing's chord)."""
-    m = _margin_against_t2()["margin"]
-    return f"{m.neutral_point_aft_of_cg_m - 0.25 * m.mean_chord_m:.2f} m"
+    cg, neutral = cbar_fraction(x_cg), cbar_fraction(x_cg + margin.neutral_point_aft_of_cg_m)
+    return (f"has Cm_α = {num(t2.cm_alpha_per_rad, '.3f')} and CN_α = {t2.cn_alpha_per_rad:.3f} per radian (α = 0-6°) "
+            f"about 25 % of its reference chord c̄ ({CBAR_M:.3f} m at full scale), a neutral point at "
+            f"{100 * t2.neutral_point_cbar:.1f} % c̄ and a margin of {100 * (t2.neutral_point_cbar - T2_CG_CBAR):.0f} % at its "
+            f"own CG ({100 * T2_CG_CBAR:.2f} % c̄). The model's CG is at {100 * cg:.1f} % c̄ and its neutral point at "
+            f"{100 * neutral:.1f} % c̄: {100 * (t2.neutral_point_cbar - neutral):.1f} % c̄ ahead of the T2's")
 
 
 def options_mean_chord() -> str:
-    """Mean aerodynamic chord of the exposed right wing's strips (``flexsim/trim/margin.py``)."""
-    return f"{_margin_against_t2()['margin'].mean_chord_m:.2f} m"
+    """Mean aerodynamic chord of the exposed right wing's strips (``flexsim/trim/margin.py``), cruise trim."""
+    return f"{_cruise_trim(9144.0, 0.78)[1].mean_chord_m:.2f} m"
+
+
+def options_cg_shift() -> str:
+    """How far aft the CG would move for a 25 % margin at the cruise trim (same neutral point and mean chord)."""
+    margin = _cruise_trim(9144.0, 0.78)[1]
+    return f"{margin.neutral_point_aft_of_cg_m - 0.25 * margin.mean_chord_m:.2f} m"
 
 
 #: Wing reference area of the GTM [m^2] (the paper's; ``tools/make_gtm_toml.py``), for C_D0 and C_L.
@@ -116,8 +89,6 @@ def options_gtm_polar() -> str:
 
 def options_openap() -> str:
     """OpenAP's 757-200 polar at the cruise trim's lift coefficient (9144 m, M 0.78)."""
-    from docs_figures_static import _cruise_trim
-
     from flexsim.atmosphere import isa_density, mach_to_true_airspeed
 
     s, _ = _cruise_trim(9144.0, 0.78)
@@ -125,52 +96,6 @@ def options_openap() -> str:
     cl = 1e3 * s["lift_kN"] / (0.5 * float(isa_density(9144.0)) * v * v * GTM_WING_AREA_M2)
     return (f"C_D0 = {OPENAP_B752_CD0}, k = {OPENAP_B752_K}) gives L/D = "
             f"{cl / (OPENAP_B752_CD0 + OPENAP_B752_K * cl * cl):.1f} at the GTM's cruise C_L = {cl:.2f} (9144 m, M 0.78)")
-
-
-def options_strips_only() -> str:
-    """The cruise trim and glide at 9144 m, M 0.78 without the parasite drag items (the strips' induced drag only)."""
-    from docs_figures_static import _cruise_trim
-
-    bare, _ = _cruise_trim(9144.0, 0.78, parasite_drag=False)
-    glide, _ = _cruise_trim(9144.0, 0.78, glide=True, parasite_drag=False)
-    return (f"L/D {bare['lift_to_drag']:.1f} with {bare['thrust_kN']:.1f} kN of thrust at 9144 m, M 0.78 and a glide of "
-            f"{_num(glide['gamma_deg'], '.2f')}°")
-
-
-@functools.cache
-def _static_figures(bending: bool):
-    from docs_figures_static import _options_study
-
-
-    return _options_study().static_figures(load_aircraft("gtm"), bending)
-
-
-def options_aileron_washin() -> str:
-    """The change of the aileron's rolling moment with flexibility, bending incidence off (the paper)."""
-    e = _static_figures(False).aileron_effectiveness
-    return f"{'raises' if e > 1 else 'lowers'} the aileron's rolling moment by {100 * abs(e - 1):.0f} %"
-
-
-def options_drag_flutter() -> str:
-    """Sea-level finite-state level flutter with and without the parasite drag items (``studies/options_effects.py``)."""
-    from docs_figures_static import options_effects_points
-
-    (_, with_drag), (_, without) = options_effects_points()[:2]
-    d = abs(with_drag.mach - without.mach)
-    diff = "less than 1e-4 (the search's Mach tolerance)" if d < 1e-4 else f"{d:.1e}".replace("e-0", "e-")
-    return (f"M_F {with_drag.mach:.4f} against {without.mach:.4f} without the items, a difference of {diff}, "
-            f"although the trim thrust is "
-            f"{with_drag.trim.thrust_n / without.trim.thrust_n:.0f} times larger")
-
-
-def options_goland_divergence() -> str:
-    """Divergence speed of the Goland wing (quasi-steady strips, its file's settings) at 1.225 and 1.02 kg/m^3."""
-    from flexsim.linear.flutter import wind_tunnel
-
-    goland = load_aircraft("goland_wing")
-    speeds = [wind_tunnel(goland, aero_model="quasi-steady", speed_range=(200.0, 320.0), speed_step=20.0,
-                          density_kg_m3=rho, tol_m_s=1e-6, flutter=False).divergence_speed_m_s for rho in (1.225, 1.02)]
-    return f"U_D = {speeds[0]:.2f} m/s at 1.225 kg/m³ and {speeds[1]:.2f} m/s at 1.02 kg/m³"
 
 
 def options_munk_items() -> str:
@@ -189,59 +114,9 @@ def options_munk_items() -> str:
             f"Ø {nac.diameter_m:g} m, {nac.volume_m3:.1f} m³ each (k₂ − k₁ = {dk(nac):.3f})")
 
 
-def options_downwash() -> str:
-    """The bundled gtm's downwash gradient and its Prandtl-Glauert value at M 0.78."""
-    g = load_aircraft("gtm").aero_settings.downwash_gradient
-    return f"{g:.3f}", f"{g:.3f}/β = {g / math.sqrt(1 - 0.78 ** 2):.2f}"
-
-
-def options_downwash_gradient() -> str:
-    """The bundled gtm's downwash gradient (``[aero] downwash_gradient``)."""
-    return options_downwash()[0]
-
-
-def options_downwash_mach() -> str:
-    """Its value with the Prandtl-Glauert factor at M 0.78."""
-    return options_downwash()[1]
-
-
-# --- docs/logs.md ------------------------------------------------------------------------------------------------------
-
-def logs_damaged_chunk() -> str:
-    """The recovery warning of a damaged log: a 3 s log of 301 seeded samples (chunks every 0.25 s of simulated
-    time) with one bit flipped at 30 % of the file, read back by ``read_flight_log``."""
-    import tempfile
-    import warnings
-
-    from flexsim.io.flight_log import FlightLogRecoveryWarning, FlightLogWriter, read_flight_log
-
-    topology = {"right_wing": 4, "fuselage": 3}
-    rng = np.random.default_rng(0)
-    with tempfile.TemporaryDirectory() as tmp:
-        path = Path(tmp) / "run.mcap"
-        with FlightLogWriter(path, state_names=["v_x_m_s", "q_right_wing_1_m", "xi_right_wing_1_rad"],
-                             control_names=["thrust_N", "aileron_rad", "elevator_rad", "rudder_rad"],
-                             signal_names=["airspeed_m_s"], structure_topology=topology, flush_interval_s=0.25) as w:
-            for k in range(301):
-                w.write(k * 0.01, position_m=rng.normal(size=3), euler_rad=rng.normal(size=3), state=rng.normal(size=3),
-                        controls=rng.normal(size=4), signals=rng.normal(size=1),
-                        structure={n: rng.normal(size=(m, 3)) for n, m in topology.items()})
-        data = bytearray(path.read_bytes())
-        data[int(0.3 * len(data))] ^= 1
-        path.write_bytes(bytes(data))
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            log = read_flight_log(path)
-    (message,) = [str(c.message) for c in caught if issubclass(c.category, FlightLogRecoveryWarning)]
-    if log.complete:
-        raise RuntimeError("logs-damaged-chunk: the damaged log was read as complete")
-    return message.removeprefix(f"{path}: ")
-
-
 # --- docs/design.md ------------------------------------------------------------------------------------------------
 
 _SPEED = 70.0  # [m/s] sea level, M 0.21 (tests/model/test_gtm_aero.py)
-_S_REF = 181.25  # [m^2] GTM reference area (flexsim/aircraft/data/sources/gtm-notional.md 2a)
 _ALPHA, _DALPHA = 0.03, 0.02  # [rad] central difference of the lift about this incidence
 
 
@@ -256,36 +131,24 @@ def _strip_lift_slope(downwash: bool) -> float:
         _, f = model.generalized_forces(model.pack(position_m=[0.0, 0.0, 0.0], velocity=vel), np.zeros(4))
         lift.append(-f[2] * np.cos(alpha) + f[0] * np.sin(alpha))
     q_dyn = 0.5 * isa_density(0.0) * _SPEED**2
-    return (lift[1] - lift[0]) / (2 * _DALPHA) / (q_dyn * _S_REF)
-
-
-@functools.cache
-def _lift_slopes() -> tuple[float, float, float, float]:
-    """(strips without the tail downwash, strips with the file's, lattice on the exposed surfaces, whole lattice),
-    dCL/dalpha [1/rad] on S_ref at 70 m/s, sea level; Prandtl-Glauert on the lattice as on the strips."""
-    aircraft = load_aircraft("gtm")
-    beta = np.sqrt(1.0 - (_SPEED / speed_of_sound(0.0)) ** 2)
-    vlm = solve_vlm(vlm_surfaces(aircraft), mach=0.0, s_ref_m2=_S_REF)
-    return (_strip_lift_slope(False), _strip_lift_slope(True), exposed_lift_slope(aircraft, vlm) / beta,
-            vlm.lift_slope_per_rad / beta)
+    return (lift[1] - lift[0]) / (2 * _DALPHA) / (q_dyn * GTM_WING_AREA_M2)
 
 
 def design_lift_slope() -> str:
-    """The strips' lift slope against the lattice's on the same exposed surfaces."""
-    strips, with_downwash, exposed, _ = _lift_slopes()
+    """The strips' lift slope (without and with the file's tail downwash) against the lattice's on the same exposed
+    surfaces, dCL/dalpha [1/rad] on S_ref at 70 m/s, sea level; Prandtl-Glauert on the lattice as on the strips."""
+    aircraft = load_aircraft("gtm")
+    beta = np.sqrt(1.0 - (_SPEED / speed_of_sound(0.0)) ** 2)
+    exposed = exposed_lift_slope(aircraft, solve_vlm(vlm_surfaces(aircraft), mach=0.0, s_ref_m2=GTM_WING_AREA_M2)) / beta
+    strips, with_downwash = _strip_lift_slope(False), _strip_lift_slope(True)
     return (f"{abs(strips / exposed - 1.0) * 100:.2f} % ({strips:.3f} vs {exposed:.3f} /rad on S_ref at M "
             f"{_SPEED / speed_of_sound(0.0):.2f}, sea level, without the file's tail downwash, which the lattice "
             f"holds already; with it the strips' is {with_downwash:.3f} /rad)")
 
 
-def design_lift_slope_total() -> str:
-    """The whole lattice's lift slope, carry-over across the fuselage included."""
-    return f"{_lift_slopes()[3]:.2f} /rad"
-
-
 def design_cla_peak() -> str:
     """Where the right wing's sectional lift slope (incompressible lattice, ``flexsim aero gtm``) peaks."""
-    vlm = solve_vlm(vlm_surfaces(load_aircraft("gtm")), mach=0.0, s_ref_m2=_S_REF)
+    vlm = solve_vlm(vlm_surfaces(load_aircraft("gtm")), mach=0.0, s_ref_m2=GTM_WING_AREA_M2)
     wing = vlm.surface("right_wing")
     outboard = wing.eta > 0.0
     eta = wing.eta[outboard][np.argmax(wing.cl_alpha_per_rad[outboard])]
@@ -293,26 +156,3 @@ def design_cla_peak() -> str:
         raise RuntimeError(f"design-cla-peak: the sectional lift slope peaks at {eta:.2f} of the semispan, not "
                            f"outboard; rewrite the sentence of docs/design.md")
     return f"near {100 * eta:.0f} % of the semispan"
-
-
-#: The figures of this module and of docs_figures_envs.py: region name -> (function, fast).
-USAGE_FIGURES = {
-    "design-lift-slope": (design_lift_slope, True),
-    "design-lift-slope-total": (design_lift_slope_total, True),
-    "design-cla-peak": (design_cla_peak, True),
-    **ENV_FIGURES,
-    "options-turn-hold": (options_turn_hold, False),
-    "options-t2": (options_t2, True),
-    "options-cg-shift": (options_cg_shift, True),
-    "options-mean-chord": (options_mean_chord, True),
-    "options-gtm-polar": (options_gtm_polar, True),
-    "options-openap": (options_openap, True),
-    "options-strips-only": (options_strips_only, True),
-    "options-aileron-washin": (options_aileron_washin, True),
-    "options-drag-flutter": (options_drag_flutter, True),
-    "options-goland-divergence": (options_goland_divergence, True),
-    "options-munk-items": (options_munk_items, True),
-    "options-downwash-gradient": (options_downwash_gradient, True),
-    "options-downwash-mach": (options_downwash_mach, True),
-    "logs-damaged-chunk": (logs_damaged_chunk, True),
-}

@@ -57,12 +57,53 @@ OPTION_A_MASS_KG = 100014.44
 CENTRE_FUEL_KG = 10800.0 - (OPTION_A_MASS_KG - PAPER_WEIGHT_N / 9.80665) if args.paper else 10800.0
 
 
+out = []
+w = out.append
+
+
 def fmt(values, digits=6):
     return "[" + ", ".join(f"{v:.{digits}g}" for v in values) + "]"
 
 
-out = []
-w = out.append
+def beam(key, root, euler, length):
+    """The head of the beam component [components.KEY] (root and Euler angles as TOML text), 2 + 2 modes."""
+    w(f'[components.{key}]')
+    w(f'root_m = {root}')
+    w(f'euler_deg = {euler}')
+    w(f'length_m = {length}')
+    w('bending_modes = 2')
+    w('torsion_modes = 2')
+
+
+def lifting(key, strips, lift_slope, kind, hinge_fraction, start_m, end_m):
+    """The strips of the beam KEY (``lift_slope`` as TOML text) and its control surface."""
+    w(f'[components.{key}.aero]')
+    w(f'strips = {strips}')
+    w(f'lift_slope = {lift_slope}')
+    w(f'[components.{key}.control_surface]')
+    w(f'kind = "{kind}"')
+    w(f'hinge_fraction = {hinge_fraction}')
+    w(f'start_m = {start_m}')
+    w(f'end_m = {end_m}')
+
+
+def item(table, name, component, position, **fields):
+    """An entry of the array of tables [[TABLE]] on COMPONENT at POSITION (design frame), ``fields`` as TOML text."""
+    w(f'[[{table}]]')
+    w(f'name = "{name}"')
+    w(f'component = "{component}"')
+    w(f'position_m = [{position[0]}, {position[1]}, {position[2]}]')
+    for key, value in fields.items():
+        w(f'{key} = {value}')
+    w('')
+
+
+def distribute(total, raw, stations):
+    """``raw`` scaled so that its trapezoidal integral over ``stations`` is ``total``."""
+    integral = sum((raw[k] + raw[k + 1]) / 2 * (stations[k + 1] - stations[k]) for k in range(len(stations) - 1))
+    return [total * r / integral for r in raw]
+
+
 w('# Notional full-scale NASA Generic Transport Model (GTM), '
   + ('the paper\'s weight (889.4 kN: option A less 9.3 t of centre-tank fuel), the paper\'s force resolution'
      if args.paper else 'option A (100 t, mid-cruise)')
@@ -102,12 +143,7 @@ def ei_f(x):
 st = [L_F - x for x in reversed(xd)]
 mf = [m_f(L_F - s) for s in st]
 eif = [ei_f(L_F - s) for s in st]
-w('[components.fuselage]')
-w(f'root_m = [{L_F}, 0.0, 0.0]')
-w('euler_deg = [0.0, 0.0, 0.0]        # paper Table 1: x_f along body x (forward from the tail)')
-w(f'length_m = {L_F}')
-w('bending_modes = 2')
-w('torsion_modes = 2')
+beam('fuselage', f'[{L_F}, 0.0, 0.0]', '[0.0, 0.0, 0.0]        # paper Table 1: x_f along body x (forward from the tail)', L_F)
 w('section_inertia = "axisymmetric"')
 w('[components.fuselage.sections]')
 w(f'station_m = {fmt(st)}')
@@ -139,32 +175,18 @@ s = [(y - 1.88) * DS_DY for y in ys]
 s[-1] = 18.25
 c_st = [chord_w(y) for y in ys]
 cn = [c * COS_W for c in c_st]
-def integrate(vals):
-    return sum((vals[k] + vals[k + 1]) / 2 * (s[k + 1] - s[k]) for k in range(len(s) - 1))
-raw_s = [c**1.6 for c in c_st]
-raw_f = [c**2 if y <= Y_FUEL else 0.0 for c, y in zip(c_st, ys)]
-ms = [5500.0 * r / integrate(raw_s) for r in raw_s]
-mfu = [6600.0 * r / integrate(raw_f) for r in raw_f]
+ms = distribute(5500.0, [c**1.6 for c in c_st], s)
+mfu = distribute(6600.0, [c**2 if y <= Y_FUEL else 0.0 for c, y in zip(c_st, ys)], s)
 mt = [a + b for a, b in zip(ms, mfu)]
 iea = [a * (0.25 * c) ** 2 + b * (0.15 * c) ** 2 + (a + b) * ((0.5 - EA) * c) ** 2 for a, b, c in zip(ms, mfu, cn)]
 ei = [7.76e8 * (c / 7.738) ** 4 for c in c_st]
 gj = [1.385e9 * (c / 7.738) ** 4 for c in c_st]
 x_ea_root = 18.49 + EA * 7.738
 for side, sign in (("right", 1.0), ("left", -1.0)):
-    w(f'[components.{side}_wing]')
-    w(f'root_m = [{x_ea_root:.4f}, {sign * 1.88}, -1.6]     # side of body, elastic axis at {EA} c, low wing')
-    w(f'euler_deg = [0.0, 5.16, {sign * 110.55}]     # paper Table 1')
-    w('length_m = 18.25')
-    w('bending_modes = 2')
-    w('torsion_modes = 2')
-    w(f'[components.{side}_wing.aero]')
-    w('strips = 10')
-    w('lift_slope = "vlm"              # paper: vortex lattice of wing + stabilizer, Prandtl-Glauert on top')
-    w('[components.%s_wing.control_surface]' % side)
-    w('kind = "aileron"')
-    w('hinge_fraction = 0.8')
-    w('start_m = 11.0')
-    w('end_m = 16.4')
+    beam(f'{side}_wing', f'[{x_ea_root:.4f}, {sign * 1.88}, -1.6]     # side of body, elastic axis at {EA} c, low wing',
+         f'[0.0, 5.16, {sign * 110.55}]     # paper Table 1', 18.25)
+    lifting(f'{side}_wing', 10, '"vlm"              # paper: vortex lattice of wing + stabilizer, Prandtl-Glauert on top',
+            'aileron', 0.8, 11.0, 16.4)
     w(f'[components.{side}_wing.sections]')
     w(f'station_m = {fmt(s)}')
     w(f'mass_kg_per_m = {fmt([K * m for m in mt])}')
@@ -184,25 +206,12 @@ n = 6
 sh = lin(0.0, 7.03, n)
 ch = lin(4.5, 1.55, n)
 cos_h = math.cos(math.radians(25.51))
-raw = [c**1.5 for c in ch]
-integral = sum((raw[k] + raw[k + 1]) / 2 * (sh[k + 1] - sh[k]) for k in range(n - 1))
-mh = [650.0 * r / integral for r in raw]
+mh = distribute(650.0, [c**1.5 for c in ch], sh)
 ih = [max(m * (0.28 * c * cos_h) ** 2, m * ((0.5 - EA) * c * cos_h) ** 2) for m, c in zip(mh, ch)]
 for side, sign in (("right", 1.0), ("left", -1.0)):
-    w(f'[components.{side}_htail]')
-    w(f'root_m = [{40.18 + (EA - 0.5) * 4.5:.4f}, {sign * 1.30}, 0.7]')
-    w(f'euler_deg = [0.0, 6.39, {sign * 115.51}]     # paper Table 1')
-    w('length_m = 7.03')
-    w('bending_modes = 2')
-    w('torsion_modes = 2')
-    w(f'[components.{side}_htail.aero]')
-    w('strips = 6')
-    w('lift_slope = "vlm"')
-    w(f'[components.{side}_htail.control_surface]')
-    w('kind = "elevator"')
-    w('hinge_fraction = 0.7')
-    w('start_m = 0.0')
-    w('end_m = 7.03')
+    beam(f'{side}_htail', f'[{40.18 + (EA - 0.5) * 4.5:.4f}, {sign * 1.30}, 0.7]',
+         f'[0.0, 6.39, {sign * 115.51}]     # paper Table 1', 7.03)
+    lifting(f'{side}_htail', 6, '"vlm"', 'elevator', 0.7, 0.0, 7.03)
     w(f'[components.{side}_htail.sections]')
     w(f'station_m = {fmt(sh)}')
     w(f'mass_kg_per_m = {fmt([K * m for m in mh])}')
@@ -219,23 +228,10 @@ for side, sign in (("right", 1.0), ("left", -1.0)):
 sv = lin(0.0, 8.97, n)
 cv = lin(7.0, 2.4, n)
 cos_v = math.cos(math.radians(35.53))
-raw = [c**1.5 for c in cv]
-integral = sum((raw[k] + raw[k + 1]) / 2 * (sv[k + 1] - sv[k]) for k in range(n - 1))
-mv = [1000.0 * r / integral for r in raw]
-w('[components.vtail]')
-w('root_m = [38.29, 0.0, 1.85]')
-w('euler_deg = [90.0, 125.53, 0.0]     # paper Table 1')
-w('length_m = 8.97')
-w('bending_modes = 2')
-w('torsion_modes = 2')
-w('[components.vtail.aero]')
-w('strips = 5')
-w('lift_slope = 2.94   # Helmbold, effective aspect ratio 1.55 x 1.55 (geometric x end-plate factor, DATCOM)')
-w('[components.vtail.control_surface]')
-w('kind = "rudder"')
-w('hinge_fraction = 0.7')
-w('start_m = 0.0')
-w('end_m = 8.0')
+mv = distribute(1000.0, [c**1.5 for c in cv], sv)
+beam('vtail', '[38.29, 0.0, 1.85]', '[90.0, 125.53, 0.0]     # paper Table 1', 8.97)
+lifting('vtail', 5, '2.94   # Helmbold, effective aspect ratio 1.55 x 1.55 (geometric x end-plate factor, DATCOM)', 'rudder',
+        0.7, 0.0, 8.0)
 w('[components.vtail.sections]')
 w(f'station_m = {fmt(sv)}')
 w(f'mass_kg_per_m = {fmt([K * m for m in mv])}')
@@ -252,21 +248,10 @@ for name, comp, pos, mass in (
     ("main_gear", "fuselage", (23.6, 0.0, -1.0), 3700.0),
     ("nose_gear", "fuselage", (4.5, 0.0, -1.2), 600.0),
 ):
-    w('[[lumped_masses]]')
-    w(f'name = "{name}"')
-    w(f'component = "{comp}"')
-    w(f'position_m = [{pos[0]}, {pos[1]}, {pos[2]}]')
-    w(f'mass_kg = {K * mass:.6g}')
-    w('')
+    item('lumped_masses', name, comp, pos, mass_kg=f'{K * mass:.6g}')
 for side, sign in (("right", 1.0), ("left", -1.0)):
-    w('[[engines]]')
-    w(f'name = "{side}_engine"')
-    w(f'component = "{side}_wing"')
-    w(f'position_m = [19.93, {sign * 6.56}, -2.2]')
-    w(f'mass_kg = {K * 4400.0:.6g}')
-    w(f'inertia_kg_m2 = {fmt([K * 2200.0, K * 9900.0, K * 9900.0])}')
-    w('max_thrust_n = 178000.0')
-    w('')
+    item('engines', f'{side}_engine', f'{side}_wing', (19.93, sign * 6.56, -2.2), mass_kg=f'{K * 4400.0:.6g}',
+         inertia_kg_m2=fmt([K * 2200.0, K * 9900.0, K * 9900.0]), max_thrust_n=178000.0)
 # Parasite (zero-lift) drag of the calibrated default (not in the paper; docs/options.md "Drag"): drag areas
 # f = C_fe S_wet with Raymer's equivalent skin-friction coefficient C_fe = 0.0026 for civil transports
 # (Raymer, Aircraft Design: A Conceptual Approach, 6th ed., 2018, sec. 12.5). Wetted areas: fuselage
@@ -305,12 +290,7 @@ if args.calibration and not args.paper:  # the paper-replication file keeps the 
         ("left_htail_profile", "left_htail", (40.821, -3.822, 1.013), 0.1187),
         ("fin_profile", "vtail", (40.375, 0.0, 4.77), 0.181),
     ):
-        w('[[aero.drag]]')
-        w(f'name = "{name}"')
-        w(f'component = "{comp}"')
-        w(f'position_m = [{pos[0]}, {pos[1]}, {pos[2]}]')
-        w(f'drag_area_m2 = {area}')
-        w('')
+        item('aero.drag', name, comp, pos, drag_area_m2=area)
 # Slender bodies carrying Munk's moment (not in the paper; flexsim/model/bodies.py, docs/options.md "Fuselage and
 # nacelle moments"): the fuselage, L = 44.35 m, D = 3.76 m (the drag build-up's), and each nacelle, 6.0 m x 2.5 m
 # (RB211-535 class, as above), with volume C_p pi D^2 L / 4 for a prismatic coefficient C_p = 0.8 [E] (a
@@ -322,14 +302,8 @@ if args.calibration and not args.paper:  # the paper-replication file keeps the 
         ("right_nacelle", "right_wing", (19.93, 6.56, -2.2), 6.0, 2.5),
         ("left_nacelle", "left_wing", (19.93, -6.56, -2.2), 6.0, 2.5),
     ):
-        w('[[aero.body]]')
-        w(f'name = "{name}"')
-        w(f'component = "{comp}"')
-        w(f'position_m = [{pos[0]}, {pos[1]}, {pos[2]}]')
-        w(f'length_m = {length}')
-        w(f'diameter_m = {diameter}')
-        w(f'volume_m3 = {0.8 * math.pi * diameter**2 * length / 4.0:.4f}')
-        w('')
+        item('aero.body', name, comp, pos, length_m=length, diameter_m=diameter,
+             volume_m3=f'{0.8 * math.pi * diameter**2 * length / 4.0:.4f}')
 # Flutter search range (docs/aircraft-format.md, [envelope]): the paper's, Mach 0.5-0.95 at every altitude (its
 # Tables 2-3 find M_F = 0.67-0.78), so that `flexsim flutter` searches this aircraft where the paper did. Not a
 # certified envelope: the notional GTM has none.

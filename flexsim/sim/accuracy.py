@@ -7,7 +7,7 @@ and bank angle [deg] for an aircraft with rigid-body states, and the right-wing 
 fraction of the tip excursion of the reference (the largest |tip(t) - tip(0)|). The Goland flutter onset runs to
 3.1 s with the structural limit moved to 100 m, so that every run covers the same growing oscillation (about 300x).
 
-Used by ``benchmarks/bench_simulate.py --manoeuvres``, ``tools/docs_figures_simulation.py`` (the table of
+Used by ``benchmarks/bench_simulate.py --manoeuvres``, ``tools/docs_figures_static.py`` (the table of
 ``docs/simulation.md``) and ``tests/sim/test_accuracy.py``.
 """
 
