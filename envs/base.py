@@ -22,7 +22,6 @@ from gymnasium import spaces
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
-from flexsim.io.vocabulary import CONTROL_NAMES as VOCABULARY_CONTROL_NAMES
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.sim.measurements import MeasurementBatch, Measurements
 from flexsim.threads import limit_blas_threads
@@ -49,8 +48,6 @@ _REASON_DOCS = dict(zip(TERMINATION_REASONS, (
     "Mach >= {max_mach:g}, |alpha| >= {alpha_deg:g}\xa0deg or airspeed <= {min_airspeed_m_s:g}\xa0m/s")))
 #: ``info["termination_reason"]`` of each termination code (:func:`flexsim.envs.row_kernels.termination_rows`; 0: flying).
 TERMINATION_CODES = ("", *TERMINATION_REASONS)
-#: Physical control names of the flight logs (the output vocabulary's, :mod:`flexsim.io.vocabulary`).
-LOG_CONTROL_NAMES = VOCABULARY_CONTROL_NAMES
 
 
 #: Action Space section shared by every FlexSim env docstring (gymnasium's template), see :func:`shared_docs`.
@@ -433,28 +430,22 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
                                                                                       self._act_high_list)]
                 return np.array(clipped), clipped != values
         what = "must be 4 real numbers [thrust, aileron, elevator, rudder]"
+        # Only real numbers: numeric strings, booleans and complex values would otherwise be converted silently by
+        # numpy (a string '0.5' parsed, True read as 1, an imaginary part dropped): the items of anything but a
+        # numeric array are checked one by one, a numeric array by its dtype.
         try:
             raw = np.asarray(action)
+            items = () if isinstance(action, np.ndarray) and raw.dtype.kind != "O" else np.asarray(action, dtype=object).ravel()
         except (TypeError, ValueError):
             raise ValueError(f"action = {action!r}: {what}") from None
-        # Only real numbers: numeric strings, booleans and complex values would otherwise be
-        # converted silently by numpy (a string '0.5' parsed, True read as 1, an imaginary part dropped).
-        if raw.dtype.kind == "O" or not isinstance(action, np.ndarray):
-            try:
-                items = np.asarray(action, dtype=object).ravel()
-            except (TypeError, ValueError):
-                raise ValueError(f"action = {action!r}: {what}") from None
-            bad = [v for v in items if isinstance(v, (bool, np.bool_, str, bytes, complex, np.complexfloating))
-                   or not isinstance(v, (int, float, np.integer, np.floating))]
-            if bad:
-                raise ValueError(f"action = {action!r}: {what}, got {type(bad[0]).__name__} {bad[0]!r}")
-        elif raw.dtype.kind not in "iuf":
+        bad = [v for v in items if isinstance(v, (bool, np.bool_, str, bytes, complex, np.complexfloating))
+               or not isinstance(v, (int, float, np.integer, np.floating))]
+        if bad:
+            raise ValueError(f"action = {action!r}: {what}, got {type(bad[0]).__name__} {bad[0]!r}")
+        if raw.dtype.kind not in "iufO":
             kind = {"b": "booleans", "c": "complex numbers", "U": "strings", "S": "bytes"}.get(raw.dtype.kind, f"dtype {raw.dtype}")
             raise ValueError(f"action = {action!r}: {what}, got {kind}")
-        try:
-            a = np.asarray(raw, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ValueError(f"action = {action!r}: {what}") from None
+        a = np.asarray(raw, dtype=np.float64)
         if a.shape != (4,):
             raise ValueError(f"action: expected shape (4,) [thrust, aileron, elevator, rudder], got shape {a.shape}")
         if not np.isfinite(a).all():
@@ -489,10 +480,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         return obs, info
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict]:
-        if not self._batch.started[self._row]:
-            raise RuntimeError("step() called before reset()")
-        if self._batch.ended[self._row]:
-            raise RuntimeError("step() called after the episode terminated; call reset()")
+        self._check_steppable(self._batch, self._row)
         a, clipped = self._check_action(action)
         out = self._step_rows(self._batch, slice(self._row, self._row + 1), a[None, :], np.array([clipped]))
         info = self._step_info(out, 0)

@@ -19,7 +19,7 @@ from flexsim.trim import SteadyManoeuvre
 from flexsim.envs.base import TERMINATION_CODES, Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import FLUTTER_MAX_STEP_S, RewardTerm, TrackingReward
 from flexsim.sim.measurements import MeasurementBatch
-from flexsim.envs.episodes import perturbed_state, turbulence_field
+from flexsim.sim.initial_states import perturbed_state, turbulence_field
 
 __all__ = ["FlutterMarginTask", "WingFlutterMarginTask", "FlutterMarginEnv", "WingFlutterMarginEnv", "FlutterCondition",
            "flutter_condition", "SUBJECTS"]

@@ -12,8 +12,9 @@ from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import InitialPerturbation, RewardTerm, TrackingReward
+from flexsim.envs.row_kernels import wrap_rows
 from flexsim.sim.measurements import MeasurementBatch
-from flexsim.envs.episodes import perturbed_state, turbulence_field, wrap_angle
+from flexsim.sim.initial_states import perturbed_state, turbulence_field
 
 __all__ = ["LevelHoldTask", "LevelHoldEnv", "LevelHoldCaptureEnv", "CAPTURE_REWARD", "CAPTURE_PERTURBATION"]
 
@@ -110,7 +111,7 @@ class LevelHoldEnv(FlexSimEnv):
     def _task_errors(self, meas: MeasurementBatch, ref: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         return {"altitude_error_m": meas.altitude_m - ref["altitude_m"],
                 "airspeed_error_m_s": meas.airspeed_m_s - ref["airspeed_m_s"],
-                "heading_error_rad": wrap_angle(meas.euler_rad[:, 2] - ref["heading_rad"])}
+                "heading_error_rad": wrap_rows(meas.euler_rad[:, 2] - ref["heading_rad"])}
 
     def task_label(self) -> str:
         return "GTM level hold"

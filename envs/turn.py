@@ -12,7 +12,7 @@ from flexsim.trim import SteadyManoeuvre
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import RewardTerm, TrackingReward
 from flexsim.sim.measurements import MeasurementBatch
-from flexsim.envs.episodes import perturbed_state, turbulence_field
+from flexsim.sim.initial_states import perturbed_state, turbulence_field
 
 __all__ = ["TurnTask", "TurnEnv"]
 
