@@ -21,6 +21,7 @@ from gymnasium import spaces
 
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.io.env_log import LogSample, flight_sample
 from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.sim.measurements import MeasurementBatch, Measurements
@@ -229,19 +230,6 @@ class RowsStep:
     errors: dict
     outcome: BatchOutcome
     clipped: np.ndarray
-
-
-@dataclass(frozen=True)
-class LogSample:
-    """One flight-log sample of the current state (see :class:`flexsim.io.env_log.FlightLogRecorder`)."""
-
-    time_s: float
-    position_ned_m: np.ndarray
-    euler_rad: np.ndarray
-    state: np.ndarray
-    controls: np.ndarray
-    signals: np.ndarray
-    structure: dict
 
 
 class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
@@ -651,18 +639,10 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         return self.dynamics.outputs.signal_names + tuple(f"error_{name}" for name in self._error_names) + ("reward",)
 
     def log_sample(self) -> LogSample:
-        """The current sample in flight-log form (names: :meth:`signal_names`, ``dynamics.state_names()``), computed by
-        the one output layer (:meth:`flexsim.sim.outputs.OutputMaps.signals`) in the episode's wind."""
-        x, out = self._x, self.dynamics.outputs
-        with np.errstate(all="ignore"):
-            try:
-                flight = out.signals(self._time, x, self._u, self._wind)
-            except (ValueError, ArithmeticError, np.linalg.LinAlgError):  # a failed state: logged as far as it goes
-                flight = np.full(len(out.signal_names), np.nan)
-        signals = np.concatenate([flight, np.array([*self._errors.values(), self._last_reward], float)])
-        lay = self.dynamics.layout
-        return LogSample(self._time, x[lay.position].copy(), x[lay.euler].copy(), x.copy(), self._u.copy(),
-                         np.nan_to_num(signals, nan=0.0, posinf=0.0, neginf=0.0), out.structure(x))
+        """The current sample in flight-log form (:func:`flexsim.io.env_log.flight_sample`; names:
+        :meth:`signal_names`, ``dynamics.state_names()``): the flight signals, the task errors and the last reward."""
+        task_values = [*self._errors.values(), self._last_reward]
+        return flight_sample(self.dynamics, self._time, self._x, self._u, self._wind, task_values)
 
     def render(self) -> np.ndarray | None:
         if self.render_mode is None:
