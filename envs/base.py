@@ -590,24 +590,12 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._batch.invalidate_winds()
 
     @property
-    def _time(self) -> float:
-        return float(self._batch.time_s[self._row])
-
-    @property
     def _errors(self) -> dict[str, float]:
         return {name: float(v) for name, v in zip(self._error_names, self._batch.errors[self._row])}
 
     @property
-    def _last_reward(self) -> float:
-        return float(self._batch.last_reward[self._row])
-
-    @property
     def _reference(self) -> dict:
         return self._batch.reference_dicts[self._row]
-
-    @property
-    def _path(self) -> np.ndarray:
-        return self._batch.path(self._row)
 
     @property
     def state(self) -> np.ndarray:
@@ -627,11 +615,11 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     @property
     def time_s(self) -> float:
         """Simulation time [s]."""
-        return self._time
+        return float(self._batch.time_s[self._row])
 
     def measurements(self) -> Measurements:
         """Outputs of the current state."""
-        return self.dynamics.measure(self._x, self._time, self._wind)
+        return self.dynamics.measure(self._x, self.time_s, self._wind)
 
     def signal_names(self) -> tuple[str, ...]:
         """Names of the flight-log signals (:meth:`log_sample`): the simulator's flight signals
@@ -641,8 +629,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     def log_sample(self) -> LogSample:
         """The current sample in flight-log form (:func:`flexsim.io.env_log.flight_sample`; names:
         :meth:`signal_names`, ``dynamics.state_names()``): the flight signals, the task errors and the last reward."""
-        task_values = [*self._errors.values(), self._last_reward]
-        return flight_sample(self.dynamics, self._time, self._x, self._u, self._wind, task_values)
+        task_values = [*self._errors.values(), float(self._batch.last_reward[self._row])]
+        return flight_sample(self.dynamics, self.time_s, self._x, self._u, self._wind, task_values)
 
     def render(self) -> np.ndarray | None:
         if self.render_mode is None:
@@ -656,7 +644,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             self._renderer = RgbRenderer() if self.render_mode == "rgb_array" else RerunStreamer()
         nodes = self.dynamics.structure_nodes(self._x)
         m = self.measurements()
-        return self._renderer.draw(m, nodes, np.array(self._path), self._u, self.task_label(), self._errors)
+        return self._renderer.draw(m, nodes, self._batch.path(self._row), self._u, self.task_label(), self._errors)
 
     def task_label(self) -> str:
         """Short title for renderings."""
