@@ -34,8 +34,8 @@ from flexsim.envs.config import (AERO_MODELS, DEFAULT_MAX_STEP_S, TURBULENCE_LEV
 from flexsim.envs import row_kernels as _rk
 from flexsim.envs.batch import EpisodeBatch
 
-__all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC",
-           "shared_docs"]
+__all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS",
+           "ACTION_SPACE_DOC", "shared_docs"]
 
 #: dtypes of the actions checked on the fast path of :meth:`FlexSimEnv._check_action` (others: the general path).
 _FLOAT_ACTIONS = (np.dtype(np.float32), np.dtype(np.float64))
@@ -121,7 +121,8 @@ def _reward_doc(cls) -> str:
     parts = [f"``alive`` +{r.alive:g}",
              *(f"``{t.error}`` -{t.weight:g} min((e\xa0/\xa0{_scale(t.error, t.scale)})^2,\xa01)" for t in r.terms),
              f"``control_rate`` -{r.control_rate_weight:g} min(mean((da\xa0/\xa0{r.control_rate_scale:g})^2),\xa01) "
-             "with da the change of the normalised action", f"``termination`` -{r.termination_penalty:g} on a terminating step"]
+             "with da the change of the normalised action",
+             f"``termination`` -{r.termination_penalty:g} on a terminating step"]
     low = r.alive - sum(t.weight for t in r.terms) - r.control_rate_weight - r.termination_penalty
     return _paragraph('Per step (``TrackingReward``; the parts are in ``info["reward_parts"]`` and sum exactly to the '
                       f"reward): {'; '.join(parts)}. Per-step reward in [{round(low, 9):g}, {r.alive:g}].")
@@ -366,7 +367,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         ("attitude", "roll_rad", -math.pi, math.pi, "roll phi"),
         ("attitude", "pitch_rad", -math.pi / 2, math.pi / 2, "pitch theta"),
         ("attitude", "heading_rad", -math.pi, math.pi, "heading psi (wrapped)"),
-        *(("body_rates", f"{n}_rate_rad_s", -10.0, 10.0, f"body rate {s}") for n, s in zip(("roll", "pitch", "yaw"), "pqr")),
+        *(("body_rates", f"{n}_rate_rad_s", -10.0, 10.0, f"body rate {s}")
+          for n, s in zip(("roll", "pitch", "yaw"), "pqr")),
         ("air_data", "airspeed_m_s", 0.0, 600.0, "airspeed (relative to the air at the body origin)"),
         ("air_data", "alpha_rad", -math.pi, math.pi, "angle of attack alpha"),
         ("air_data", "beta_rad", -math.pi / 2, math.pi / 2, "sideslip beta"),
@@ -423,7 +425,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         # numeric array are checked one by one, a numeric array by its dtype.
         try:
             raw = np.asarray(action)
-            items = () if isinstance(action, np.ndarray) and raw.dtype.kind != "O" else np.asarray(action, dtype=object).ravel()
+            numeric = isinstance(action, np.ndarray) and raw.dtype.kind != "O"
+            items = () if numeric else np.asarray(action, dtype=object).ravel()
         except (TypeError, ValueError):
             raise ValueError(f"action = {action!r}: {what}") from None
         bad = [v for v in items if isinstance(v, (bool, np.bool_, str, bytes, complex, np.complexfloating))

@@ -102,7 +102,8 @@ class RewardTerm:
     scale: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "weight", positive_number(f"RewardTerm({self.error}).weight", self.weight, allow_zero=True))
+        object.__setattr__(self, "weight", positive_number(f"RewardTerm({self.error}).weight", self.weight,
+                                                           allow_zero=True))
         object.__setattr__(self, "scale", positive_number(f"RewardTerm({self.error}).scale", self.scale))
 
 

@@ -53,8 +53,8 @@ from flexsim.trim import SteadyManoeuvre, TrimError, TrimPoint, trim
 
 __all__ = ["IntegratorSettings", "ActuatorRates", "FlightDynamics", "StepOutcome", "BatchOutcome", "PeriodResult", "advance_rows",
            "advance_period", "SENSOR_COMPONENTS", "INTEGRATOR_METHODS", "FIXED_STEP_METHODS", "DEFAULT_MAX_STEP_S",
-           "MAX_STEP_RANGE_S", "COMPILED_ROWS_BELOW", "TRIM_CACHE", "period_atol", "check_period_settings", "pack_period_winds",
-           "select_packed_rows"]
+           "MAX_STEP_RANGE_S", "COMPILED_ROWS_BELOW", "TRIM_CACHE", "period_atol", "check_period_settings",
+           "pack_period_winds", "select_packed_rows"]
 
 #: Components carrying the structural sensors (tip deflection, twist and their rates), in order.
 SENSOR_COMPONENTS = ("right_wing", "left_wing", "vtail")

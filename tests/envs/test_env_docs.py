@@ -43,7 +43,8 @@ def test_the_template_sections_are_there_in_order(made):
 
 def test_observation_table_equals_the_space(made):
     _, env = made
-    rows = re.findall(r"^\s*\| (\d+)\s+\| ``(\w+)``\s+\| (\S+)\s+\| (\S+)\s+\| (\S+)\s+\|", type(env).__doc__, re.MULTILINE)
+    row = r"^\s*\| (\d+)\s+\| ``(\w+)``\s+\| (\S+)\s+\| (\S+)\s+\| (\S+)\s+\|"
+    rows = re.findall(row, type(env).__doc__, re.MULTILINE)
     space = env.observation_space
     assert [int(r[0]) for r in rows] == list(range(space.shape[0]))
     assert tuple(r[1] for r in rows) == env.observation_names
