@@ -31,26 +31,15 @@ __all__ = [
     "InitialPerturbation", "IntegratorSettings", "RewardTerm", "TrackingReward", "FlightLogRecorder",
 ]
 
+#: The task classes, one per registered id (their ``env_id`` and ``max_episode_steps``).
+_ENV_CLASSES = (LevelHoldEnv, LevelHoldCaptureEnv, TurnEnv, GustAlleviationEnv, FlutterMarginEnv, WingFlutterMarginEnv)
 #: Registered id -> (entry point, max_episode_steps; 50 steps = 1 s at the default 50 Hz).
 ENV_IDS: dict[str, tuple[str, int]] = {
-    "FlexSim/GTM-LevelHold-v0": ("flexsim.envs.level_hold:LevelHoldEnv", 1000),
-    "FlexSim/GTM-LevelHold-v1": ("flexsim.envs.level_hold:LevelHoldCaptureEnv", 1000),
-    "FlexSim/GTM-Turn-v0": ("flexsim.envs.turn:TurnEnv", 1000),
-    "FlexSim/GTM-GustAlleviation-v0": ("flexsim.envs.gust_alleviation:GustAlleviationEnv", 500),
-    "FlexSim/GTM-FlutterMargin-v0": ("flexsim.envs.flutter_margin:FlutterMarginEnv", 1000),
-    "FlexSim/GTM-FlutterMargin-v1": ("flexsim.envs.flutter_margin:WingFlutterMarginEnv", 1000),
-}
-
+    c.env_id: (f"{c.__module__}:{c.__name__}", c.max_episode_steps) for c in _ENV_CLASSES}
 #: Registered id -> vector entry point: ``gym.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")``
 #: steps N aircraft in one call (:mod:`flexsim.envs.vector`).
 VECTOR_ENTRY_POINTS: dict[str, str] = {
-    "FlexSim/GTM-LevelHold-v0": "flexsim.envs.vector:LevelHoldVectorEnv",
-    "FlexSim/GTM-LevelHold-v1": "flexsim.envs.vector:LevelHoldCaptureVectorEnv",
-    "FlexSim/GTM-Turn-v0": "flexsim.envs.vector:TurnVectorEnv",
-    "FlexSim/GTM-GustAlleviation-v0": "flexsim.envs.vector:GustAlleviationVectorEnv",
-    "FlexSim/GTM-FlutterMargin-v0": "flexsim.envs.vector:FlutterMarginVectorEnv",
-    "FlexSim/GTM-FlutterMargin-v1": "flexsim.envs.vector:WingFlutterMarginVectorEnv",
-}
+    c.env_id: f"flexsim.envs.vector:{c.__name__.removesuffix('Env')}VectorEnv" for c in _ENV_CLASSES}
 
 
 def register_envs() -> None:

@@ -7,9 +7,11 @@ rewarded (:class:`~flexsim.envs.config.TrackingReward`).
 
 from __future__ import annotations
 
+import inspect
 import math
 import multiprocessing
-from dataclasses import dataclass
+import textwrap
+from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -19,8 +21,8 @@ from gymnasium import spaces
 
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.io.env_log import LogSample, flight_sample
 from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
-from flexsim.io.vocabulary import CONTROL_NAMES as VOCABULARY_CONTROL_NAMES
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.sim.measurements import MeasurementBatch, Measurements
 from flexsim.threads import limit_blas_threads
@@ -32,16 +34,21 @@ from flexsim.envs.config import (AERO_MODELS, DEFAULT_MAX_STEP_S, TURBULENCE_LEV
 from flexsim.envs import row_kernels as _rk
 from flexsim.envs.batch import EpisodeBatch
 
-__all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS", "ACTION_SPACE_DOC", "OBSERVATION_BASE_ROWS_DOC", "shared_docs"]
+__all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS",
+           "ACTION_SPACE_DOC", "shared_docs"]
 
 #: dtypes of the actions checked on the fast path of :meth:`FlexSimEnv._check_action` (others: the general path).
 _FLOAT_ACTIONS = (np.dtype(np.float32), np.dtype(np.float64))
 #: Values of ``info["termination_reason"]`` ("" while flying).
 TERMINATION_REASONS = ("non_finite", "crash", "structural_limit", "gimbal_lock", "envelope")
+#: What each termination reason tests, with the :class:`FlightLimits` fields (the docstrings' Episode End).
+_REASON_DOCS = dict(zip(TERMINATION_REASONS, (
+    "non-finite state or solver failure, e.g. a flutter blow-up", "altitude <= 0",
+    "|wing tip deflection| > {wing_tip_deflection_m:g}\xa0m or |fin tip twist| > {fin_tip_twist_rad:g}\xa0rad",
+    "|theta| >= {pitch_deg:g}\xa0deg",
+    "Mach >= {max_mach:g}, |alpha| >= {alpha_deg:g}\xa0deg or airspeed <= {min_airspeed_m_s:g}\xa0m/s")))
 #: ``info["termination_reason"]`` of each termination code (:func:`flexsim.envs.row_kernels.termination_rows`; 0: flying).
 TERMINATION_CODES = ("", *TERMINATION_REASONS)
-#: Physical control names of the flight logs (the output vocabulary's, :mod:`flexsim.io.vocabulary`).
-LOG_CONTROL_NAMES = VOCABULARY_CONTROL_NAMES
 
 
 #: Action Space section shared by every FlexSim env docstring (gymnasium's template), see :func:`shared_docs`.
@@ -58,17 +65,6 @@ ACTION_SPACE_DOC = """    ``Box(low=[0, -1, -1, -1], high=[1, 1, 1, 1], dtype=fl
     | 3   | rudder   | -1  | 1   | -25 to 25 deg (TE left > 0) | 60 deg/s        |
 """
 
-#: Observation table header and the rows 0-9 common to every FlexSim env.
-OBSERVATION_BASE_ROWS_DOC = """    | Num   | Observation                                        | Min    | Max   | Unit   |
-    |-------|----------------------------------------------------|--------|-------|--------|
-    | 0-2   | roll phi, pitch theta, heading psi (wrapped)       | -pi    | pi    | rad    |
-    | 3-5   | body rates p, q, r                                 | -10    | 10    | rad/s  |
-    | 6     | airspeed (relative to the air at the body origin)  | 0      | 600   | m/s    |
-    | 7-8   | angle of attack alpha, sideslip beta               | -pi    | pi    | rad    |
-    | 9     | altitude                                           | -1000  | 25000 | m      |
-"""
-
-
 #: The v0 entry of the Version History of the tasks whose default integrator moved from Radau to ETD2RK.
 V0_HISTORY_DOC = """\
     * v0: initial version; default integrator ETD2RK instead of Radau for the finite-state model (the same
@@ -79,18 +75,108 @@ V0_HISTORY_DOC = """\
 """
 
 
-def shared_docs(cls):
-    """Class decorator: fill the shared lines of ``cls.__doc__``.
+def _unit(name: str) -> str:
+    """The unit of an observation entry or task error from the SI suffix of its name ("-": none)."""
+    return next((unit for suffix, unit in (("_rad_s", "rad/s"), ("_m_s", "m/s"), ("_rad", "rad"), ("_m", "m"))
+                 if name.endswith(suffix)), "-")
 
-    ``<action space>`` and ``<observation rows 0-9>`` are required; ``<v0 history>`` (the Version History
-    entry :data:`V0_HISTORY_DOC`) is filled where present.
-    """
+
+def _bound(value: float) -> str:
+    """An observation bound as the docstring table writes it (pi and pi/2 by name)."""
+    text = {math.pi: "pi", math.pi / 2: "pi/2"}.get(abs(value), f"{abs(value):g}")
+    return f"-{text}" if value < 0 else text
+
+
+def _scale(name: str, value: float) -> str:
+    """A reward scale with the unit of its error (whole degrees in deg)."""
+    unit, deg = _unit(name), math.degrees(value)
+    if unit == "rad" and abs(deg - round(deg)) < 1e-9:
+        return f"{round(deg)}\xa0deg"
+    return f"{value:g}" if unit == "-" else f"{value:g}\xa0{unit}"
+
+
+def _paragraph(text: str) -> str:
+    """``text`` wrapped to the docstrings' width and indented, not at a no-break space (then written as a space)."""
+    lines = textwrap.fill(text, 116, initial_indent="    ", subsequent_indent="    ", break_on_hyphens=False)
+    return lines.replace("\xa0", " ")
+
+
+def _observation_doc(cls) -> str:
+    """The Observation Space section: the Box, then a table row per entry (:meth:`FlexSimEnv._observation_entries`)."""
+    rows = [("Num", "Name", "Min", "Max", "Unit", "Observation"), *(
+        (str(i), f"``{name}``", _bound(lo), _bound(hi), _unit(name), what)
+        for i, (_, name, lo, hi, what) in enumerate(cls._observation_entries()))]
+    widths = [max(len(r[j]) for r in rows) for j in range(6)]
+    lines = ["    | " + " | ".join(c.ljust(w) for c, w in zip(r, widths)) + " |" for r in rows]
+    lines.insert(1, "    |" + "|".join("-" * (w + 2) for w in widths) + "|")
+    return "\n".join([_paragraph(
+        f"``Box({len(rows) - 1},)`` float32 with finite bounds; values are clipped to them (and NaN replaced by 0), so "
+        "observations stay finite even at termination. ``env.observation_structure`` maps block names to slices, "
+        "``env.observation_names`` names every entry."), "", *lines])
+
+
+def _reward_doc(cls) -> str:
+    """The Rewards section, from the default task's :class:`TrackingReward`."""
+    r = (cls.default_task or cls.task_type()).reward
+    parts = [f"``alive`` +{r.alive:g}",
+             *(f"``{t.error}`` -{t.weight:g} min((e\xa0/\xa0{_scale(t.error, t.scale)})^2,\xa01)" for t in r.terms),
+             f"``control_rate`` -{r.control_rate_weight:g} min(mean((da\xa0/\xa0{r.control_rate_scale:g})^2),\xa01) "
+             "with da the change of the normalised action",
+             f"``termination`` -{r.termination_penalty:g} on a terminating step"]
+    low = r.alive - sum(t.weight for t in r.terms) - r.control_rate_weight - r.termination_penalty
+    return _paragraph('Per step (``TrackingReward``; the parts are in ``info["reward_parts"]`` and sum exactly to the '
+                      f"reward): {'; '.join(parts)}. Per-step reward in [{round(low, 9):g}, {r.alive:g}].")
+
+
+def _termination_doc(cls) -> str:
+    """The Termination part of Episode End: the common terminations with the :class:`FlightLimits` defaults."""
+    lim = FlightLimits()
+    values = {**{f.name: getattr(lim, f.name) for f in fields(lim)}, "pitch_deg": math.degrees(lim.max_abs_pitch_rad),
+              "alpha_deg": math.degrees(lim.max_abs_alpha_rad)}
+    reasons = ", ".join(f'``"{k}"`` ({v.format(**values)})' for k, v in _REASON_DOCS.items())
+    return "    ### Termination\n" + _paragraph(f'``info["termination_reason"]``: {reasons}. Bounds: ``FlightLimits``.')
+
+
+def _truncation_doc(cls) -> str:
+    """The Truncation part of Episode End: the time limit of the id."""
+    steps = cls.max_episode_steps
+    return f"    ### Truncation\n    ``TimeLimit`` at ``max_episode_steps`` = {steps} ({steps / 50:g} s at 50 Hz)."
+
+
+def _arguments_doc(cls) -> str:
+    """The Arguments section: the ``gymnasium.make`` call with this task's defaults, and the choices."""
+    defaults = {}
+    for klass in reversed(cls.__mro__[:cls.__mro__.index(FlexSimEnv) + 1]):
+        defaults.update((k, p.default) for k, p in inspect.signature(klass.__init__).parameters.items())
+    return _paragraph(
+        f'``gymnasium.make("{cls.env_id}", aircraft="{defaults["aircraft"]}", aero="{defaults["aero"]}", '
+        f'control_rate_hz={defaults["control_rate_hz"]}, turbulence="{cls.default_turbulence}", render_mode=None, '
+        f"task={cls.task_type.__name__}(), integrator=IntegratorSettings(max_step_s={cls.default_max_step_s:g}), "
+        "actuator_rates=ActuatorRates(), limits=FlightLimits(), perturbation=InitialPerturbation())``. ``turbulence`` "
+        f"is one of {', '.join(map(repr, TURBULENCE_LEVELS))}; ``aero`` one of {', '.join(map(repr, AERO_MODELS))}; "
+        "``control_rate_hz`` 5 to 1000 Hz; ``render_mode`` 'rgb_array' (matplotlib image) or 'human' (Rerun viewer, "
+        "spawned on the first frame).")
+
+
+#: The generated parts of the env docstrings (:func:`shared_docs`): marker -> the section text of a class.
+_DOC_PARTS = {"<action space>": lambda cls: ACTION_SPACE_DOC.rstrip("\n"), "<observation>": _observation_doc,
+              "<rewards>": _reward_doc, "<termination>": _termination_doc, "<truncation>": _truncation_doc,
+              "<arguments>": _arguments_doc, "<v0 history>": lambda cls: V0_HISTORY_DOC.rstrip("\n")}
+
+
+def shared_docs(cls):
+    """Class decorator: fill the generated lines of ``cls.__doc__`` (gymnasium's template) from the objects that define
+    them: ``<observation>`` the table of the class's observation entries, ``<rewards>`` its default reward,
+    ``<termination>`` the termination reasons with the ``FlightLimits`` defaults, ``<truncation>`` its time limit,
+    ``<arguments>`` the ``gymnasium.make`` call with its defaults; ``<action space>`` and ``<v0 history>`` the shared
+    texts. ``<action space>`` and ``<observation>`` are required."""
     doc = cls.__doc__ or ""
-    for marker, text in (("    <action space>\n", ACTION_SPACE_DOC), ("    <observation rows 0-9>\n", OBSERVATION_BASE_ROWS_DOC)):
-        if marker not in doc:
-            raise RuntimeError(f"{cls.__name__} docstring lacks the {marker.strip()} line")
-        doc = doc.replace(marker, text)
-    cls.__doc__ = doc.replace("    <v0 history>\n", V0_HISTORY_DOC)
+    for marker in ("<action space>", "<observation>"):
+        if f"    {marker}\n" not in doc:
+            raise RuntimeError(f"{cls.__name__} docstring lacks the {marker} line")
+    for marker, part in _DOC_PARTS.items():
+        doc = doc.replace(f"    {marker}\n", part(cls) + "\n")
+    cls.__doc__ = doc
     return cls
 
 
@@ -147,19 +233,6 @@ class RowsStep:
     clipped: np.ndarray
 
 
-@dataclass(frozen=True)
-class LogSample:
-    """One flight-log sample of the current state (see :class:`flexsim.io.env_log.FlightLogRecorder`)."""
-
-    time_s: float
-    position_ned_m: np.ndarray
-    euler_rad: np.ndarray
-    state: np.ndarray
-    controls: np.ndarray
-    signals: np.ndarray
-    structure: dict
-
-
 class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     """Base class of the flexsim tasks (not registered itself; see the task classes for the docs).
 
@@ -191,8 +264,14 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     #: ETD2RK step [s] of the task's default integrator (``IntegratorSettings(max_step_s=...)`` when ``integrator``
     #: is None): :data:`~flexsim.envs.config.DEFAULT_MAX_STEP_S`, finer for the tasks whose subject is the structure.
     default_max_step_s: ClassVar[float] = DEFAULT_MAX_STEP_S
-    #: (name, bound) of the task errors in the observation, in order; set by each task class.
-    task_errors_spec: ClassVar[tuple[tuple[str, float], ...]] = ()
+    #: (name, bound, meaning) of the task errors in the observation, in order; set by each task class.
+    task_errors_spec: ClassVar[tuple[tuple[str, float, str], ...]] = ()
+    #: The registered id and its ``max_episode_steps`` (50 steps = 1 s at the default 50 Hz); set by each task class.
+    env_id: ClassVar[str]
+    max_episode_steps: ClassVar[int]
+    #: Defaults of ``task`` (None: ``task_type()``) and ``perturbation`` when the argument is None.
+    default_task: ClassVar[Any] = None
+    default_perturbation: ClassVar[InitialPerturbation] = InitialPerturbation()
 
     def __init__(self, *, aircraft: str | Path | Aircraft = "gtm", aero: str = "unsteady", control_rate_hz: float = 50.0,
                  turbulence: str | None = None, render_mode: str | None = None, task: Any = None,
@@ -219,7 +298,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ViewerUnavailableError(f"render_mode = 'human': cannot open a Rerun viewer: {no_viewer}; use "
                                          "render_mode='rgb_array' here, or record episodes with FlightLogRecorder and "
                                          "save them with `flexsim view LOG --save run.rrd`")
-        task = self.task_type() if task is None else task
+        task = (self.default_task or self.task_type()) if task is None else task
         if not isinstance(task, self.task_type):
             raise ValueError(f"task = {task!r}: must be a {self.task_type.__name__}")
         for name, value, kind in (("integrator", integrator, IntegratorSettings), ("actuator_rates", actuator_rates, ActuatorRates),
@@ -233,7 +312,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self.control_rate_hz = rate
         self.dt = 1.0 / rate
         self.limits = limits or FlightLimits()
-        self.perturbation = perturbation or InitialPerturbation()
+        self.perturbation = perturbation or self.default_perturbation
         self.render_mode = render_mode
         # The modes this instance offers: without a display "human" cannot work, so gymnasium's check_env (which
         # makes every listed mode) checks "rgb_array" only there; the class metadata lists both.
@@ -264,7 +343,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         #: batch of one, or the shared batch of a FlexSimVectorEnv (:meth:`_attach`).
         self._batch = EpisodeBatch(1, self.dynamics.layout.n_states, len(self.task_errors_spec))
         self._row = 0
-        self._error_names = tuple(name for name, _ in self.task_errors_spec)
+        self._error_names = tuple(spec[0] for spec in self.task_errors_spec)
         self._renderer = None
         self._constants: tuple | None = None  # the arguments of the compiled outputs from limits and reward (_kernel_constants)
         self._act_low, self._act_high = self.action_space.low.astype(np.float64), self.action_space.high.astype(np.float64)
@@ -283,27 +362,41 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         raise NotImplementedError(f"{type(self).__name__} must implement _task_errors")
 
     # ------------------------------------------------------------------ spaces
-    def _observation_layout(self) -> tuple[dict[str, slice], np.ndarray, np.ndarray, tuple[str, ...]]:
-        blocks: list[tuple[str, list[tuple[str, float, float]]]] = [
-            ("attitude", [("roll_rad", -math.pi, math.pi), ("pitch_rad", -math.pi / 2, math.pi / 2), ("heading_rad", -math.pi, math.pi)]),
-            ("body_rates", [(f"{n}_rad_s", -10.0, 10.0) for n in ("roll_rate", "pitch_rate", "yaw_rate")]),
-            ("air_data", [("airspeed_m_s", 0.0, 600.0), ("alpha_rad", -math.pi, math.pi), ("beta_rad", -math.pi / 2, math.pi / 2)]),
-            ("altitude", [("altitude_m", -1000.0, 25000.0)]),
-            ("task_errors", [(name, -bound, bound) for name, bound in self.task_errors_spec]),
-            ("structure", [item for c in SENSOR_COMPONENTS for item in (
-                (f"tip_deflection_{c}_m", -50.0, 50.0), (f"tip_deflection_rate_{c}_m_s", -500.0, 500.0),
-                (f"tip_twist_{c}_rad", -math.pi, math.pi), (f"tip_twist_rate_{c}_rad_s", -1000.0, 1000.0))]),
-            ("controls", [("thrust_fraction", 0.0, 1.0), ("aileron_fraction", -1.0, 1.0), ("elevator_fraction", -1.0, 1.0),
-                          ("rudder_fraction", -1.0, 1.0)]),
-        ]
-        structure, names, low, high = {}, [], [], []
-        for block, items in blocks:
-            structure[block] = slice(len(names), len(names) + len(items))
-            for name, lo, hi in items:
-                names.append(name)
-                low.append(lo)
-                high.append(hi)
-        return structure, np.array(low, np.float32), np.array(high, np.float32), tuple(names)
+    #: Observation entries before and after the task errors: (block, name, low, high, meaning).
+    _OBSERVATION_HEAD = (
+        ("attitude", "roll_rad", -math.pi, math.pi, "roll phi"),
+        ("attitude", "pitch_rad", -math.pi / 2, math.pi / 2, "pitch theta"),
+        ("attitude", "heading_rad", -math.pi, math.pi, "heading psi (wrapped)"),
+        *(("body_rates", f"{n}_rate_rad_s", -10.0, 10.0, f"body rate {s}")
+          for n, s in zip(("roll", "pitch", "yaw"), "pqr")),
+        ("air_data", "airspeed_m_s", 0.0, 600.0, "airspeed (relative to the air at the body origin)"),
+        ("air_data", "alpha_rad", -math.pi, math.pi, "angle of attack alpha"),
+        ("air_data", "beta_rad", -math.pi / 2, math.pi / 2, "sideslip beta"),
+        ("altitude", "altitude_m", -1000.0, 25000.0, "altitude"))
+    _OBSERVATION_TAIL = (
+        *(item for c in SENSOR_COMPONENTS for item in (
+            ("structure", f"tip_deflection_{c}_m", -50.0, 50.0, f"{c} tip deflection"),
+            ("structure", f"tip_deflection_rate_{c}_m_s", -500.0, 500.0, f"{c} tip deflection rate"),
+            ("structure", f"tip_twist_{c}_rad", -math.pi, math.pi, f"{c} tip twist"),
+            ("structure", f"tip_twist_rate_{c}_rad_s", -1000.0, 1000.0, f"{c} tip twist rate"))),
+        *(("controls", f"{n}_fraction", lo, 1.0, f"applied {n}, normalised like the action")
+          for n, lo in zip(CONTROL_NAMES, (0.0, -1.0, -1.0, -1.0))))
+
+    @classmethod
+    def _observation_entries(cls) -> tuple[tuple[str, str, float, float, str], ...]:
+        """(block, name, low, high, meaning) of each observation entry in order: the common head, the task errors
+        (``task_errors_spec``, bounds +-bound), the structure and the applied controls."""
+        errors = tuple(("task_errors", name, -bound, bound, what) for name, bound, what in cls.task_errors_spec)
+        return cls._OBSERVATION_HEAD + errors + cls._OBSERVATION_TAIL
+
+    @classmethod
+    def _observation_layout(cls) -> tuple[dict[str, slice], np.ndarray, np.ndarray, tuple[str, ...]]:
+        """(block -> slice, low, high, names) of the observation (:meth:`_observation_entries`)."""
+        entries = cls._observation_entries()
+        blocks = [e[0] for e in entries]
+        structure = {b: slice(blocks.index(b), len(blocks) - blocks[::-1].index(b)) for b in dict.fromkeys(blocks)}
+        return (structure, np.array([e[2] for e in entries], np.float32), np.array([e[3] for e in entries], np.float32),
+                tuple(e[1] for e in entries))
 
     # ------------------------------------------------------------------ action mapping
     def action_to_controls(self, action: np.ndarray) -> np.ndarray:
@@ -327,28 +420,23 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
                                                                                       self._act_high_list)]
                 return np.array(clipped), clipped != values
         what = "must be 4 real numbers [thrust, aileron, elevator, rudder]"
+        # Only real numbers: numeric strings, booleans and complex values would otherwise be converted silently by
+        # numpy (a string '0.5' parsed, True read as 1, an imaginary part dropped): the items of anything but a
+        # numeric array are checked one by one, a numeric array by its dtype.
         try:
             raw = np.asarray(action)
+            numeric = isinstance(action, np.ndarray) and raw.dtype.kind != "O"
+            items = () if numeric else np.asarray(action, dtype=object).ravel()
         except (TypeError, ValueError):
             raise ValueError(f"action = {action!r}: {what}") from None
-        # Only real numbers: numeric strings, booleans and complex values would otherwise be
-        # converted silently by numpy (a string '0.5' parsed, True read as 1, an imaginary part dropped).
-        if raw.dtype.kind == "O" or not isinstance(action, np.ndarray):
-            try:
-                items = np.asarray(action, dtype=object).ravel()
-            except (TypeError, ValueError):
-                raise ValueError(f"action = {action!r}: {what}") from None
-            bad = [v for v in items if isinstance(v, (bool, np.bool_, str, bytes, complex, np.complexfloating))
-                   or not isinstance(v, (int, float, np.integer, np.floating))]
-            if bad:
-                raise ValueError(f"action = {action!r}: {what}, got {type(bad[0]).__name__} {bad[0]!r}")
-        elif raw.dtype.kind not in "iuf":
+        bad = [v for v in items if isinstance(v, (bool, np.bool_, str, bytes, complex, np.complexfloating))
+               or not isinstance(v, (int, float, np.integer, np.floating))]
+        if bad:
+            raise ValueError(f"action = {action!r}: {what}, got {type(bad[0]).__name__} {bad[0]!r}")
+        if raw.dtype.kind not in "iufO":
             kind = {"b": "booleans", "c": "complex numbers", "U": "strings", "S": "bytes"}.get(raw.dtype.kind, f"dtype {raw.dtype}")
             raise ValueError(f"action = {action!r}: {what}, got {kind}")
-        try:
-            a = np.asarray(raw, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ValueError(f"action = {action!r}: {what}") from None
+        a = np.asarray(raw, dtype=np.float64)
         if a.shape != (4,):
             raise ValueError(f"action: expected shape (4,) [thrust, aileron, elevator, rudder], got shape {a.shape}")
         if not np.isfinite(a).all():
@@ -383,7 +471,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         return obs, info
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict]:
-        if not self._batch.started[self._row]:
+        if not self._batch.started[self._row]:  # as _check_steppable, on the row's scalars (4 us less per step)
             raise RuntimeError("step() called before reset()")
         if self._batch.ended[self._row]:
             raise RuntimeError("step() called after the episode terminated; call reset()")
@@ -508,24 +596,12 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._batch.invalidate_winds()
 
     @property
-    def _time(self) -> float:
-        return float(self._batch.time_s[self._row])
-
-    @property
     def _errors(self) -> dict[str, float]:
         return {name: float(v) for name, v in zip(self._error_names, self._batch.errors[self._row])}
 
     @property
-    def _last_reward(self) -> float:
-        return float(self._batch.last_reward[self._row])
-
-    @property
     def _reference(self) -> dict:
         return self._batch.reference_dicts[self._row]
-
-    @property
-    def _path(self) -> np.ndarray:
-        return self._batch.path(self._row)
 
     @property
     def state(self) -> np.ndarray:
@@ -545,30 +621,22 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     @property
     def time_s(self) -> float:
         """Simulation time [s]."""
-        return self._time
+        return float(self._batch.time_s[self._row])
 
     def measurements(self) -> Measurements:
         """Outputs of the current state."""
-        return self.dynamics.measure(self._x, self._time, self._wind)
+        return self.dynamics.measure(self._x, self.time_s, self._wind)
 
     def signal_names(self) -> tuple[str, ...]:
         """Names of the flight-log signals (:meth:`log_sample`): the simulator's flight signals
         (:attr:`flexsim.sim.outputs.OutputMaps.signal_names`), then ``error_<task error>`` and ``reward``."""
-        return self.dynamics.outputs.signal_names + tuple(f"error_{name}" for name, _ in self.task_errors_spec) + ("reward",)
+        return self.dynamics.outputs.signal_names + tuple(f"error_{name}" for name in self._error_names) + ("reward",)
 
     def log_sample(self) -> LogSample:
-        """The current sample in flight-log form (names: :meth:`signal_names`, ``dynamics.state_names()``), computed by
-        the one output layer (:meth:`flexsim.sim.outputs.OutputMaps.signals`) in the episode's wind."""
-        x, out = self._x, self.dynamics.outputs
-        with np.errstate(all="ignore"):
-            try:
-                flight = out.signals(self._time, x, self._u, self._wind)
-            except (ValueError, ArithmeticError, np.linalg.LinAlgError):  # a failed state: logged as far as it goes
-                flight = np.full(len(out.signal_names), np.nan)
-        signals = np.concatenate([flight, np.array([*self._errors.values(), self._last_reward], float)])
-        lay = self.dynamics.layout
-        return LogSample(self._time, x[lay.position].copy(), x[lay.euler].copy(), x.copy(), self._u.copy(),
-                         np.nan_to_num(signals, nan=0.0, posinf=0.0, neginf=0.0), out.structure(x))
+        """The current sample in flight-log form (:func:`flexsim.io.env_log.flight_sample`; names:
+        :meth:`signal_names`, ``dynamics.state_names()``): the flight signals, the task errors and the last reward."""
+        task_values = [*self._errors.values(), float(self._batch.last_reward[self._row])]
+        return flight_sample(self.dynamics, self.time_s, self._x, self._u, self._wind, task_values)
 
     def render(self) -> np.ndarray | None:
         if self.render_mode is None:
@@ -582,7 +650,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             self._renderer = RgbRenderer() if self.render_mode == "rgb_array" else RerunStreamer()
         nodes = self.dynamics.structure_nodes(self._x)
         m = self.measurements()
-        return self._renderer.draw(m, nodes, np.array(self._path), self._u, self.task_label(), self._errors)
+        return self._renderer.draw(m, nodes, self._batch.path(self._row), self._u, self.task_label(), self._errors)
 
     def task_label(self) -> str:
         """Short title for renderings."""

@@ -13,6 +13,8 @@ from typing import Any
 
 import numpy as np
 
+from flexsim.sim.periods import pack_period_winds, select_packed_rows
+
 __all__ = ["EpisodeBatch", "PATH_HISTORY"]
 
 #: Samples of the flight path kept per aircraft for rendering.
@@ -102,17 +104,11 @@ class EpisodeBatch:
 
     # ------------------------------------------------------------------ winds
     def packed_winds(self) -> Any:
-        """The winds of all rows packed once per reset by the model's ``pack_winds`` (a compiled model), or
-        None where the model has none or a wind cannot be packed (then evaluated per row)."""
+        """The winds of all rows packed once per reset (:func:`flexsim.sim.periods.pack_period_winds`; None: not
+        packed, evaluated per row)."""
         if self._packed is None:
-            self._packed = False
-            model = self.dynamics[0].model if self.dynamics[0] is not None else None
-            pack = getattr(model, "pack_winds", None)
-            if pack is not None and all(d is not None and d.model is model for d in self.dynamics):
-                try:
-                    self._packed = pack(self.winds)
-                except ValueError:
-                    pass
+            packed = pack_period_winds(self.dynamics, self.winds)
+            self._packed = False if packed is None else packed
         return self._packed or None
 
     def invalidate_winds(self) -> None:
@@ -125,7 +121,7 @@ class EpisodeBatch:
         if packed is None or (rows == slice(0, self.n) if isinstance(rows, slice) else
                               (len(rows) == self.n and np.array_equal(rows, np.arange(self.n)))):
             return packed
-        return packed._replace(rows=packed.rows[rows if isinstance(rows, slice) else np.asarray(rows, dtype=np.int64)])
+        return select_packed_rows(packed, rows if isinstance(rows, slice) else np.asarray(rows, dtype=np.int64))
 
     # ------------------------------------------------------------------ flight path
     def record_path(self, rows: np.ndarray | slice, positions: np.ndarray) -> None:

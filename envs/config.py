@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from flexsim.errors import positive_number
 from flexsim.sim import IntegratorSettings
 from flexsim.sim.initial_states import InitialPerturbation
 from flexsim.sim.periods import DEFAULT_MAX_STEP_S, FIXED_STEP_METHODS, INTEGRATOR_METHODS, ActuatorRates
@@ -46,16 +47,6 @@ FLUTTER_MAX_STEP_S = 0.005
 AERO_MODELS = ("unsteady", "quasi-steady")
 
 
-def _positive(name: str, value: float, *, allow_zero: bool = False) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} = {value!r}: must be a finite number {'>= 0' if allow_zero else '> 0'}") from None
-    if not math.isfinite(v) or v < 0.0 or (v == 0.0 and not allow_zero):
-        raise ValueError(f"{name} = {value!r}: must be a finite number {'>= 0' if allow_zero else '> 0'}")
-    return v
-
-
 @dataclass(frozen=True)
 class FlightLimits:
     """Termination bounds (an episode ends with ``terminated = True`` when one is crossed).
@@ -87,7 +78,7 @@ class FlightLimits:
     def __post_init__(self) -> None:
         for name in ("wing_tip_deflection_m", "fin_tip_twist_rad", "max_abs_pitch_rad", "max_mach",
                      "max_abs_alpha_rad", "min_airspeed_m_s"):
-            object.__setattr__(self, name, _positive(name, getattr(self, name)))
+            object.__setattr__(self, name, positive_number(name, getattr(self, name)))
         if not self.max_abs_pitch_rad < math.pi / 2:
             raise ValueError(f"max_abs_pitch_rad = {self.max_abs_pitch_rad!r}: must be in (0, pi/2)")
 
@@ -111,8 +102,9 @@ class RewardTerm:
     scale: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "weight", _positive(f"RewardTerm({self.error}).weight", self.weight, allow_zero=True))
-        object.__setattr__(self, "scale", _positive(f"RewardTerm({self.error}).scale", self.scale))
+        object.__setattr__(self, "weight", positive_number(f"RewardTerm({self.error}).weight", self.weight,
+                                                           allow_zero=True))
+        object.__setattr__(self, "scale", positive_number(f"RewardTerm({self.error}).scale", self.scale))
 
 
 @dataclass(frozen=True)
@@ -152,8 +144,8 @@ class TrackingReward:
         if len(set(names)) != len(names) or reserved & set(names):
             raise ValueError(f"terms: error names must be unique and not one of {sorted(reserved)}, got {names}")
         for name in ("alive", "control_rate_weight", "termination_penalty"):
-            object.__setattr__(self, name, _positive(name, getattr(self, name), allow_zero=True))
-        object.__setattr__(self, "control_rate_scale", _positive("control_rate_scale", self.control_rate_scale))
+            object.__setattr__(self, name, positive_number(name, getattr(self, name), allow_zero=True))
+        object.__setattr__(self, "control_rate_scale", positive_number("control_rate_scale", self.control_rate_scale))
         object.__setattr__(self, "_names", ("alive", *names, "control_rate", "termination"))
 
     @property

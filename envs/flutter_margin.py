@@ -19,30 +19,13 @@ from flexsim.trim import SteadyManoeuvre
 from flexsim.envs.base import TERMINATION_CODES, Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import FLUTTER_MAX_STEP_S, RewardTerm, TrackingReward
 from flexsim.sim.measurements import MeasurementBatch
-from flexsim.envs.episodes import perturbed_state, turbulence_field
+from flexsim.sim.initial_states import perturbed_state, turbulence_field
 
 __all__ = ["FlutterMarginTask", "WingFlutterMarginTask", "FlutterMarginEnv", "WingFlutterMarginEnv", "FlutterCondition",
            "flutter_condition", "SUBJECTS"]
 
 #: Structural subjects of the task: the rewarded tip twist rate and the seeded first-torsion rate.
 SUBJECTS = ("fin", "wing_antisymmetric")
-
-
-#: Observation rows 11-30 of both flutter-margin versions (docstring tables).
-_OBSERVATION_ROWS_11_30_DOC = """\
-    | 11    | flutter-speed deficit max(0, V_f - V)              | -600   | 600   | m/s    |
-    | 12    | airspeed error V - V_target                        | -300   | 300   | m/s    |
-    | 13    | altitude error                                     | -5000  | 5000  | m      |
-    | 14    | flutter margin V - V_f                             | -600   | 600   | m/s    |
-    | 15-26 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
-    | 27-30 | applied controls, normalised                       | 0/-1   | 1     | -      |
-"""
-
-
-def _flutter_docs(cls):
-    """Class decorator: fill ``<observation rows 11-30>``, then the shared lines (:func:`shared_docs`)."""
-    cls.__doc__ = (cls.__doc__ or "").replace("    <observation rows 11-30>\n", _OBSERVATION_ROWS_11_30_DOC)
-    return shared_docs(cls)
 
 
 def _flutter_reward(rate_error: str, rate_scale: float) -> TrackingReward:
@@ -140,7 +123,7 @@ class WingFlutterMarginTask(FlutterMarginTask):
     wing_tip_twist_limit_rad: float = 0.1
 
 
-@_flutter_docs
+@shared_docs
 class FlutterMarginEnv(FlexSimEnv):
     """
     ## Description
@@ -162,17 +145,11 @@ class FlutterMarginEnv(FlexSimEnv):
     <action space>
 
     ## Observation Space
-    ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
-
-    <observation rows 0-9>
-    | 10    | fin tip twist rate (the rewarded structural error) | -1000  | 1000  | rad/s  |
-    <observation rows 11-30>
+    <observation>
 
     ## Rewards
-    ``alive`` +1; ``fin_twist_rate_rad_s`` -0.3 min((e/0.5 rad/s)^2, 1); ``flutter_speed_deficit_m_s``
-    -0.2 min((e/1 m/s)^2, 1); ``airspeed_error_m_s`` -0.15 min((e/3 m/s)^2, 1); ``altitude_error_m``
-    -0.15 min((e/15 m)^2, 1); ``control_rate`` -0.1 min(mean((da/0.1)^2), 1); ``termination`` -100 (a
-    fin tip twist beyond 0.1 rad is a structural failure). Parts in ``info["reward_parts"]``.
+    <rewards>
+    A fin tip twist beyond 0.1 rad is a structural failure.
 
     ## Starting State
     Trim at the target Mach number, perturbed (``InitialPerturbation``) and with a fin first-torsion rate
@@ -180,14 +157,12 @@ class FlutterMarginEnv(FlexSimEnv):
     ``info["reference"]`` at reset reports the flutter point and the target.
 
     ## Episode End
-    ### Termination
-    As ``FlexSim/GTM-LevelHold-v0`` (crash, structural limit — here mostly the fin twist —, non-finite
-    state, gimbal lock, envelope).
-    ### Truncation
-    ``max_episode_steps`` = 1000 (20 s at 50 Hz).
+    <termination>
+    The structural limit reached here is mostly the fin twist.
+    <truncation>
 
     ## Arguments
-    As ``FlexSim/GTM-LevelHold-v0`` with ``task=FlutterMarginTask(...)``; ``turbulence`` default "none".
+    <arguments>
     The flutter search (about 2 s) runs once per process and aircraft file. With ``aero="quasi-steady"``
     the GTM is already unstable at M 0.8 at 300 m, and construction raises ``ValueError``. The default
     integrator, ETD2RK with 5 ms steps (``IntegratorSettings(max_step_s=FLUTTER_MAX_STEP_S)``, where LevelHold and
@@ -204,8 +179,12 @@ class FlutterMarginEnv(FlexSimEnv):
 
     task_type = FlutterMarginTask
     default_turbulence = "none"
-    task_errors_spec = (("fin_twist_rate_rad_s", 1000.0), ("flutter_speed_deficit_m_s", 600.0), ("airspeed_error_m_s", 300.0),
-                        ("altitude_error_m", 5000.0), ("flutter_margin_m_s", 600.0))
+    env_id, max_episode_steps = "FlexSim/GTM-FlutterMargin-v0", 1000
+    task_errors_spec = (("fin_twist_rate_rad_s", 1000.0, "fin tip twist rate (the rewarded structural error)"),
+                        ("flutter_speed_deficit_m_s", 600.0, "flutter-speed deficit max(0, V_f - V)"),
+                        ("airspeed_error_m_s", 300.0, "airspeed error V - V_target"),
+                        ("altitude_error_m", 5000.0, "altitude error"),
+                        ("flutter_margin_m_s", 600.0, "flutter margin V - V_f"))
 
     default_max_step_s = FLUTTER_MAX_STEP_S  # the flutter mode's growth within about 1 % after 5 s
 
@@ -261,7 +240,7 @@ class FlutterMarginEnv(FlexSimEnv):
         return f"GTM flutter margin M {self.target.mach:.3f} (M_f {self.flutter.mach:.3f})"
 
 
-@_flutter_docs
+@shared_docs
 class WingFlutterMarginEnv(FlutterMarginEnv):
     """
     ## Description
@@ -282,20 +261,13 @@ class WingFlutterMarginEnv(FlutterMarginEnv):
     <action space>
 
     ## Observation Space
-    ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
-
-    <observation rows 0-9>
-    | 10    | antisymmetric wing tip twist rate 0.5 (psi_R' + psi_L') (the rewarded structural error) | -1000 | 1000 | rad/s |
-    <observation rows 11-30>
+    <observation>
 
     Twists are torsion coordinates (``docs/conventions.md``): positive is nose-up on the right wing and
     nose-down on the left one, so equal right and left values are an antisymmetric twist.
 
     ## Rewards
-    ``alive`` +1; ``wing_twist_rate_rad_s`` -0.3 min((e/0.2 rad/s)^2, 1); ``flutter_speed_deficit_m_s``
-    -0.2 min((e/1 m/s)^2, 1); ``airspeed_error_m_s`` -0.15 min((e/3 m/s)^2, 1); ``altitude_error_m``
-    -0.15 min((e/15 m)^2, 1); ``control_rate`` -0.1 min(mean((da/0.1)^2), 1); ``termination`` -100.
-    Parts in ``info["reward_parts"]``.
+    <rewards>
 
     ## Starting State
     Trim at the target Mach number (M 0.7004), perturbed (``InitialPerturbation``) and with the same
@@ -304,18 +276,16 @@ class WingFlutterMarginEnv(FlutterMarginEnv):
     reset reports the flutter point and the target.
 
     ## Episode End
-    ### Termination
-    As ``FlexSim/GTM-LevelHold-v0`` (crash, structural limit, non-finite state, gimbal lock, envelope),
-    plus a wing structural limit: |tip twist| of either wing half beyond ``task.wing_tip_twist_limit_rad``
+    <termination>
+    Also a wing structural limit: |tip twist| of either wing half beyond ``task.wing_tip_twist_limit_rad``
     (0.1 rad, 5.7 deg; the trim twist is 0.023 rad) is ``"structural_limit"`` — the limit that ends the
     open-loop episodes (the 5.5 m wing tip deflection and 0.1 rad fin twist limits are not reached).
-    ### Truncation
-    ``max_episode_steps`` = 1000 (20 s at 50 Hz).
+    <truncation>
 
     ## Arguments
-    As ``FlexSim/GTM-LevelHold-v0`` with ``task=WingFlutterMarginTask(...)`` (a ``FlutterMarginTask`` with
-    ``subject="wing_antisymmetric"``); ``turbulence`` default "none", ``aircraft`` default ``"gtm"``. The
-    flutter search (about 3 s) runs once per process and aircraft file.
+    <arguments>
+    ``task`` is a ``FlutterMarginTask`` with ``subject="wing_antisymmetric"``. The flutter search (about 3 s)
+    runs once per process and aircraft file.
 
     ## Version History
     * v1: the flutter task on the calibrated default ``gtm`` (antisymmetric wing flutter, ailerons); v0
@@ -324,7 +294,9 @@ class WingFlutterMarginEnv(FlutterMarginEnv):
     """
 
     task_type = WingFlutterMarginTask
-    task_errors_spec = (("wing_twist_rate_rad_s", 1000.0),) + FlutterMarginEnv.task_errors_spec[1:]
+    env_id = "FlexSim/GTM-FlutterMargin-v1"
+    task_errors_spec = ((("wing_twist_rate_rad_s", 1000.0, "antisymmetric wing tip twist rate 0.5 (psi_R' + psi_L') "
+                          "(the rewarded structural error)"),) + FlutterMarginEnv.task_errors_spec[1:])
 
     def __init__(self, *, aircraft: str | Path | Aircraft = "gtm", **kwargs) -> None:
         super().__init__(aircraft=aircraft, **kwargs)

@@ -14,7 +14,7 @@ from flexsim.trim import SteadyManoeuvre
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import GUST_MAX_STEP_S, RewardTerm, TrackingReward
 from flexsim.sim.measurements import MeasurementBatch
-from flexsim.envs.episodes import perturbed_state, turbulence_field
+from flexsim.sim.initial_states import perturbed_state, turbulence_field
 
 __all__ = ["GustAlleviationTask", "GustAlleviationEnv"]
 
@@ -89,37 +89,23 @@ class GustAlleviationEnv(FlexSimEnv):
     <action space>
 
     ## Observation Space
-    ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
-
-    <observation rows 0-9>
-    | 10    | mean wing-tip deflection minus its trim value      | -50    | 50    | m      |
-    | 11    | mean wing-root bending moment increment / |1-g value| | -50  | 50    | -      |
-    | 12    | pitch error theta - theta_trim                     | -pi    | pi    | rad    |
-    | 13    | roll error phi                                     | -pi    | pi    | rad    |
-    | 14    | altitude error                                     | -5000  | 5000  | m      |
-    | 15-26 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
-    | 27-30 | applied controls, normalised                       | 0/-1   | 1     | -      |
+    <observation>
 
     The root bending moment is the modal-curvature estimate EI(0) w''(0) of the beam model.
 
     ## Rewards
-    ``alive`` +1; ``tip_deflection_increment_m`` -0.25 min((e/0.3 m)^2, 1); ``root_moment_increment``
-    -0.2 min((e/0.3)^2, 1); ``pitch_error_rad`` -0.2 min((e/2 deg)^2, 1); ``roll_error_rad`` -0.1 min((e/2 deg)^2, 1);
-    ``altitude_error_m`` -0.1 min((e/20 m)^2, 1); ``control_rate`` -0.15 min(mean((da/0.1)^2), 1);
-    ``termination`` -100. Parts in ``info["reward_parts"]``.
+    <rewards>
 
     ## Starting State
     Perturbed level trim (``InitialPerturbation``); gust amplitude, sign, gradient distance and encounter
     time drawn from ``self.np_random`` (``info["reference"]`` at reset reports them).
 
     ## Episode End
-    ### Termination
-    As ``FlexSim/GTM-LevelHold-v0`` (crash, structural limit, non-finite state, gimbal lock, envelope).
-    ### Truncation
-    ``max_episode_steps`` = 500 (10 s at 50 Hz).
+    <termination>
+    <truncation>
 
     ## Arguments
-    As ``FlexSim/GTM-LevelHold-v0`` with ``task=GustAlleviationTask(...)``; ``turbulence`` default "none".
+    <arguments>
 
     ## Version History
     <v0 history>
@@ -128,8 +114,12 @@ class GustAlleviationEnv(FlexSimEnv):
     task_type = GustAlleviationTask
     default_max_step_s = GUST_MAX_STEP_S  # the structural response is the task's subject
     default_turbulence = "none"
-    task_errors_spec = (("tip_deflection_increment_m", 50.0), ("root_moment_increment", 50.0), ("pitch_error_rad", math.pi),
-                        ("roll_error_rad", math.pi), ("altitude_error_m", 5000.0))
+    env_id, max_episode_steps = "FlexSim/GTM-GustAlleviation-v0", 500
+    task_errors_spec = (("tip_deflection_increment_m", 50.0, "mean wing-tip deflection minus its trim value"),
+                        ("root_moment_increment", 50.0, "mean wing-root bending moment increment / |1-g value|"),
+                        ("pitch_error_rad", math.pi, "pitch error theta - theta_trim"),
+                        ("roll_error_rad", math.pi, "roll error phi"),
+                        ("altitude_error_m", 5000.0, "altitude error"))
 
     def _new_episode(self, rng: np.random.Generator) -> Episode:
         task = self.task

@@ -12,8 +12,9 @@ from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import InitialPerturbation, RewardTerm, TrackingReward
+from flexsim.envs.row_kernels import wrap_rows
 from flexsim.sim.measurements import MeasurementBatch
-from flexsim.envs.episodes import perturbed_state, turbulence_field, wrap_angle
+from flexsim.sim.initial_states import perturbed_state, turbulence_field
 
 __all__ = ["LevelHoldTask", "LevelHoldEnv", "LevelHoldCaptureEnv", "CAPTURE_REWARD", "CAPTURE_PERTURBATION"]
 
@@ -66,22 +67,10 @@ class LevelHoldEnv(FlexSimEnv):
     <action space>
 
     ## Observation Space
-    ``Box(29,)`` float32 with finite bounds; values are clipped to them (and NaN replaced by 0), so
-    observations stay finite even at termination. ``env.observation_structure`` maps block names to
-    slices, ``env.observation_names`` names every entry.
-
-    <observation rows 0-9>
-    | 10    | altitude error h - h_ref                           | -5000  | 5000  | m      |
-    | 11    | airspeed error V - V_ref                           | -300   | 300   | m/s    |
-    | 12    | heading error psi - psi_ref (wrapped)              | -pi    | pi    | rad    |
-    | 13-24 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
-    | 25-28 | applied controls, normalised like the action       | 0/-1   | 1     | -      |
+    <observation>
 
     ## Rewards
-    Per step (``TrackingReward``; the parts are in ``info["reward_parts"]`` and sum exactly to the reward):
-    ``alive`` +1; ``altitude_error_m`` -0.35 min((e/30 m)^2, 1); ``airspeed_error_m_s`` -0.25 min((e/5 m/s)^2, 1);
-    ``heading_error_rad`` -0.25 min((e/5 deg)^2, 1); ``control_rate`` -0.15 min(mean((da/0.1)^2), 1) with da the
-    change of the normalised action; ``termination`` -100 on a terminating step. Per-step reward in [-100.15, 1].
+    <rewards>
 
     ## Starting State
     The trim of level flight at (``task.altitude_m``, ``task.mach``) plus uniform perturbations
@@ -90,21 +79,13 @@ class LevelHoldEnv(FlexSimEnv):
     ``self.np_random`` (seeded by ``reset(seed=...)``).
 
     ## Episode End
-    ### Termination
-    ``info["termination_reason"]``: ``"crash"`` (altitude <= 0), ``"structural_limit"`` (|wing tip
-    deflection| > 5.5 m or |fin tip twist| > 0.1 rad), ``"non_finite"`` (non-finite state or solver
-    failure, e.g. a flutter blow-up), ``"gimbal_lock"`` (|theta| >= 85 deg), ``"envelope"`` (Mach >= 0.95,
-    |alpha| >= 25 deg or airspeed <= 60 m/s). Bounds: ``FlightLimits``.
-    ### Truncation
-    ``TimeLimit`` at ``max_episode_steps`` = 1000 (20 s at 50 Hz).
+    <termination>
+    <truncation>
 
     ## Arguments
-    ``gymnasium.make("FlexSim/GTM-LevelHold-v0", aircraft="gtm", aero="unsteady", control_rate_hz=50.0,
-    turbulence="light", render_mode=None, task=LevelHoldTask(), integrator=IntegratorSettings(),
-    actuator_rates=ActuatorRates(), limits=FlightLimits(), perturbation=InitialPerturbation())``.
-    ``turbulence`` is one of "none", "light", "moderate", "severe"; ``aero="quasi-steady"`` is cheaper but
-    the quasi-steady GTM flutters at this condition (wing torsion, growth about 0.2 1/s); ``render_mode``
-    "rgb_array" (matplotlib image) or "human" (Rerun viewer, spawned on the first frame).
+    <arguments>
+    ``aero="quasi-steady"`` is cheaper but the quasi-steady GTM flutters at this condition (wing torsion, growth
+    about 0.2 1/s).
 
     ## Version History
     * v1: ``FlexSim/GTM-LevelHold-v1`` (:class:`LevelHoldCaptureEnv`): starts up to 30 m and 3 deg off the
@@ -114,7 +95,10 @@ class LevelHoldEnv(FlexSimEnv):
 
     task_type = LevelHoldTask
     default_turbulence = "light"
-    task_errors_spec = (("altitude_error_m", 5000.0), ("airspeed_error_m_s", 300.0), ("heading_error_rad", math.pi))
+    env_id, max_episode_steps = "FlexSim/GTM-LevelHold-v0", 1000
+    task_errors_spec = (("altitude_error_m", 5000.0, "altitude error h - h_ref"),
+                        ("airspeed_error_m_s", 300.0, "airspeed error V - V_ref"),
+                        ("heading_error_rad", math.pi, "heading error psi - psi_ref (wrapped)"))
 
     def _new_episode(self, rng: np.random.Generator) -> Episode:
         manoeuvre = self.task.manoeuvre
@@ -127,7 +111,7 @@ class LevelHoldEnv(FlexSimEnv):
     def _task_errors(self, meas: MeasurementBatch, ref: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         return {"altitude_error_m": meas.altitude_m - ref["altitude_m"],
                 "airspeed_error_m_s": meas.airspeed_m_s - ref["airspeed_m_s"],
-                "heading_error_rad": wrap_angle(meas.euler_rad[:, 2] - ref["heading_rad"])}
+                "heading_error_rad": wrap_rows(meas.euler_rad[:, 2] - ref["heading_rad"])}
 
     def task_label(self) -> str:
         return "GTM level hold"
@@ -167,19 +151,10 @@ class LevelHoldCaptureEnv(LevelHoldEnv):
     <action space>
 
     ## Observation Space
-    As ``FlexSim/GTM-LevelHold-v0``: ``Box(29,)`` float32:
-
-    <observation rows 0-9>
-    | 10    | altitude error h - h_ref                           | -5000  | 5000  | m      |
-    | 11    | airspeed error V - V_ref                           | -300   | 300   | m/s    |
-    | 12    | heading error psi - psi_ref (wrapped)              | -pi    | pi    | rad    |
-    | 13-24 | right wing, left wing, fin tips: deflection, its rate, twist, its rate | | | m, m/s, rad, rad/s |
-    | 25-28 | applied controls, normalised like the action       | 0/-1   | 1     | -      |
+    <observation>
 
     ## Rewards
-    Per step (``TrackingReward``, parts in ``info["reward_parts"]``): ``alive`` +1; ``altitude_error_m``
-    -0.4 min((e/10 m)^2, 1); ``airspeed_error_m_s`` -0.1 min((e/5 m/s)^2, 1); ``heading_error_rad``
-    -0.35 min((e/2 deg)^2, 1); ``control_rate`` -0.15 min(mean((da/0.1)^2), 1); ``termination`` -100.
+    <rewards>
 
     ## Starting State
     The trim of level flight at (``task.altitude_m``, ``task.mach``) plus uniform perturbations
@@ -187,7 +162,8 @@ class LevelHoldCaptureEnv(LevelHoldEnv):
     +-0.005 rad/s, speed +-1 m/s); the references are the trim's altitude and airspeed and heading 0.
 
     ## Episode End
-    As ``FlexSim/GTM-LevelHold-v0``.
+    <termination>
+    <truncation>
 
     ## Arguments
     As ``FlexSim/GTM-LevelHold-v0``; ``task`` defaults to ``LevelHoldTask(reward=CAPTURE_REWARD)`` and
@@ -198,9 +174,9 @@ class LevelHoldCaptureEnv(LevelHoldEnv):
     * v0: see ``FlexSim/GTM-LevelHold-v0`` (:class:`LevelHoldEnv`).
     """
 
-    def __init__(self, *, task: LevelHoldTask | None = None, perturbation: InitialPerturbation | None = None, **kwargs) -> None:
-        super().__init__(task=LevelHoldTask(reward=CAPTURE_REWARD) if task is None else task,
-                         perturbation=CAPTURE_PERTURBATION if perturbation is None else perturbation, **kwargs)
+    env_id = "FlexSim/GTM-LevelHold-v1"
+    default_task = LevelHoldTask(reward=CAPTURE_REWARD)
+    default_perturbation = CAPTURE_PERTURBATION
 
     def task_label(self) -> str:
         return "GTM level capture and hold"

@@ -29,8 +29,8 @@ _TWO_PI = 2.0 * math.pi
 
 @_jit
 def wrap(angle):
-    """``angle`` [rad] wrapped to [-pi, pi] as :func:`flexsim.envs.episodes.wrap_angle` (fmod by 2 pi plus one
-    exact correction; NaN stays NaN, an infinity gives NaN)."""
+    """``angle`` [rad] wrapped to [-pi, pi]: the exact ``fmod`` by 2 pi plus one exact (Sterbenz) correction by 2 pi
+    (the IEEE remainder; NaN stays NaN, an infinity gives NaN)."""
     if not math.isfinite(angle):
         return math.nan
     r = np.fmod(angle, _TWO_PI)
@@ -42,10 +42,12 @@ def wrap(angle):
 
 
 @_jit
-def wrap_rows(angles, out):
-    """:func:`wrap` of every entry of ``angles`` (k,) into ``out`` (k,)."""
+def wrap_rows(angles):
+    """:func:`wrap` of every entry of ``angles`` (k,) [rad], a new array (k,)."""
+    out = np.empty(angles.shape[0])
     for i in range(angles.shape[0]):
         out[i] = wrap(angles[i])
+    return out
 
 
 @_jit

@@ -12,7 +12,7 @@ from flexsim.trim import SteadyManoeuvre
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import RewardTerm, TrackingReward
 from flexsim.sim.measurements import MeasurementBatch
-from flexsim.envs.episodes import perturbed_state, turbulence_field
+from flexsim.sim.initial_states import perturbed_state, turbulence_field
 
 __all__ = ["TurnTask", "TurnEnv"]
 
@@ -80,21 +80,10 @@ class TurnEnv(FlexSimEnv):
     <action space>
 
     ## Observation Space
-    ``Box(31,)`` float32 with finite bounds (clipped, NaN replaced by 0).
-
-    <observation rows 0-9>
-    | 10    | turn-rate error psi_dot - V_ref / R                | -1     | 1     | rad/s  |
-    | 11    | commanded turn rate V_ref / R (> 0 right)          | -1     | 1     | rad/s  |
-    | 12    | altitude error                                     | -5000  | 5000  | m      |
-    | 13    | airspeed error                                     | -300   | 300   | m/s    |
-    | 14    | sideslip error beta - beta_turn_trim               | -pi/2  | pi/2  | rad    |
-    | 15-26 | right wing, left wing, fin tips: deflection [m], deflection rate [m/s], twist [rad], twist rate [rad/s] | +-50, +-500, +-pi, +-1000 | | |
-    | 27-30 | applied controls, normalised                       | 0/-1   | 1     | -      |
+    <observation>
 
     ## Rewards
-    ``alive`` +1; ``turn_rate_error_rad_s`` -0.4 min((e/0.005 rad/s)^2, 1); ``altitude_error_m`` -0.2 min((e/30 m)^2, 1);
-    ``airspeed_error_m_s`` -0.15 min((e/5 m/s)^2, 1); ``sideslip_error_rad`` -0.1 min((e/0.02 rad)^2, 1);
-    ``control_rate`` -0.15 min(mean((da/0.1)^2), 1); ``termination`` -100. Parts in ``info["reward_parts"]``.
+    <rewards>
 
     ## Starting State
     Perturbed level trim (``InitialPerturbation``); the commanded radius |R| ~ U(``task.radius_range_m``)
@@ -102,13 +91,11 @@ class TurnEnv(FlexSimEnv):
     turn rate and the trim of the steady turn (bank, pitch, sideslip, normalised controls).
 
     ## Episode End
-    ### Termination
-    As ``FlexSim/GTM-LevelHold-v0`` (crash, structural limit, non-finite state, gimbal lock, envelope).
-    ### Truncation
-    ``max_episode_steps`` = 1000 (20 s at 50 Hz).
+    <termination>
+    <truncation>
 
     ## Arguments
-    As ``FlexSim/GTM-LevelHold-v0`` with ``task=TurnTask(...)``; ``turbulence`` default "none".
+    <arguments>
 
     ## Version History
     <v0 history>
@@ -116,8 +103,11 @@ class TurnEnv(FlexSimEnv):
 
     task_type = TurnTask
     default_turbulence = "none"
-    task_errors_spec = (("turn_rate_error_rad_s", 1.0), ("turn_rate_command_rad_s", 1.0), ("altitude_error_m", 5000.0),
-                        ("airspeed_error_m_s", 300.0), ("sideslip_error_rad", math.pi / 2))
+    env_id, max_episode_steps = "FlexSim/GTM-Turn-v0", 1000
+    task_errors_spec = (("turn_rate_error_rad_s", 1.0, "turn-rate error psi_dot - V_ref / R"),
+                        ("turn_rate_command_rad_s", 1.0, "commanded turn rate V_ref / R (> 0 right)"),
+                        ("altitude_error_m", 5000.0, "altitude error"), ("airspeed_error_m_s", 300.0, "airspeed error"),
+                        ("sideslip_error_rad", math.pi / 2, "sideslip error beta - beta_turn_trim"))
 
     def _new_episode(self, rng: np.random.Generator) -> Episode:
         manoeuvre = self.task.manoeuvre

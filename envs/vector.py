@@ -277,37 +277,16 @@ class FlexSimVectorEnv(VectorEnv):
             setattr(env, name, value)
 
 
-class LevelHoldVectorEnv(FlexSimVectorEnv):
-    """``FlexSim/GTM-LevelHold-v0`` batched (:class:`FlexSimVectorEnv`)."""
-
-    env_class = LevelHoldEnv
-
-
-class LevelHoldCaptureVectorEnv(FlexSimVectorEnv):
-    """``FlexSim/GTM-LevelHold-v1`` batched (:class:`FlexSimVectorEnv`)."""
-
-    env_class = LevelHoldCaptureEnv
+def _vector_class(env_class: type[FlexSimEnv]) -> type[FlexSimVectorEnv]:
+    """The batched class of a task class: ``LevelHoldEnv`` -> ``LevelHoldVectorEnv`` (its vector entry point)."""
+    name = env_class.__name__.removesuffix("Env") + "VectorEnv"
+    return type(name, (FlexSimVectorEnv,), {"env_class": env_class, "__module__": __name__, "__qualname__": name,
+                                            "__doc__": f"``{env_class.env_id}`` batched (:class:`FlexSimVectorEnv`)."})
 
 
-class TurnVectorEnv(FlexSimVectorEnv):
-    """``FlexSim/GTM-Turn-v0`` batched (:class:`FlexSimVectorEnv`)."""
-
-    env_class = TurnEnv
-
-
-class GustAlleviationVectorEnv(FlexSimVectorEnv):
-    """``FlexSim/GTM-GustAlleviation-v0`` batched (:class:`FlexSimVectorEnv`)."""
-
-    env_class = GustAlleviationEnv
-
-
-class FlutterMarginVectorEnv(FlexSimVectorEnv):
-    """``FlexSim/GTM-FlutterMargin-v0`` batched (:class:`FlexSimVectorEnv`)."""
-
-    env_class = FlutterMarginEnv
-
-
-class WingFlutterMarginVectorEnv(FlexSimVectorEnv):
-    """``FlexSim/GTM-FlutterMargin-v1`` batched (:class:`FlexSimVectorEnv`)."""
-
-    env_class = WingFlutterMarginEnv
+LevelHoldVectorEnv = _vector_class(LevelHoldEnv)
+LevelHoldCaptureVectorEnv = _vector_class(LevelHoldCaptureEnv)
+TurnVectorEnv = _vector_class(TurnEnv)
+GustAlleviationVectorEnv = _vector_class(GustAlleviationEnv)
+FlutterMarginVectorEnv = _vector_class(FlutterMarginEnv)
+WingFlutterMarginVectorEnv = _vector_class(WingFlutterMarginEnv)

@@ -16,16 +16,16 @@ class AircraftDefinitionError(FlexsimError, ValueError):
     """
 
 
-def positive_number(name: str, value, unit: str = "") -> float:
-    """``value`` as a float when it is a finite number > 0, else a ValueError naming ``name``, the value and the range
-    (``unit``, e.g. ``"s"``, is written as ``[s]``)."""
+def positive_number(name: str, value, unit: str = "", *, allow_zero: bool = False) -> float:
+    """``value`` as a float when it is a finite number > 0 (>= 0 with ``allow_zero``), else a ValueError naming
+    ``name``, the value and the range (``unit``, e.g. ``"s"``, is written as ``[s]``)."""
     import math
 
-    where = f"must be a finite number > 0{f' [{unit}]' if unit else ''}"
+    where = f"must be a finite number {'>=' if allow_zero else '>'} 0{f' [{unit}]' if unit else ''}"
     try:
         v = float(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name} = {value!r}: {where}") from None
-    if not (math.isfinite(v) and v > 0.0):
+    if not (math.isfinite(v) and (v > 0.0 or (allow_zero and v == 0.0))):
         raise ValueError(f"{name} = {value!r}: {where}")
     return v

@@ -3,15 +3,47 @@
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import gymnasium as gym
+import numpy as np
 
 from flexsim.io.flight_log import FlightLogWriter
 from flexsim.io.vocabulary import CONTROL_NAMES as LOG_CONTROL_NAMES
 
-__all__ = ["FlightLogRecorder"]
+__all__ = ["FlightLogRecorder", "LogSample", "flight_sample"]
+
+
+@dataclass(frozen=True)
+class LogSample:
+    """One flight-log sample of an environment's current state (the arguments of :meth:`FlightLogWriter.write`)."""
+
+    time_s: float
+    position_ned_m: np.ndarray
+    euler_rad: np.ndarray
+    state: np.ndarray
+    controls: np.ndarray
+    signals: np.ndarray
+    structure: dict
+
+
+def flight_sample(dynamics, time_s: float, x: np.ndarray, u: np.ndarray, wind, task_values) -> LogSample:
+    """The flight-log sample of state ``x`` at ``time_s`` [s] with the applied controls ``u`` [N, rad] in ``wind`` on
+    ``dynamics`` (:class:`flexsim.sim.periods.FlightDynamics`): the simulator's flight signals by the one output layer
+    (:meth:`flexsim.sim.outputs.OutputMaps.signals`; NaN where a failed state cannot be evaluated), then
+    ``task_values`` (an env's task errors and reward); non-finite signals are written as 0."""
+    out = dynamics.outputs
+    with np.errstate(all="ignore"):
+        try:
+            flight = out.signals(time_s, x, u, wind)
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError):  # a failed state: logged as far as it goes
+            flight = np.full(len(out.signal_names), np.nan)
+    signals = np.concatenate([flight, np.asarray(task_values, float)])
+    lay = dynamics.layout
+    return LogSample(time_s, x[lay.position].copy(), x[lay.euler].copy(), x.copy(), u.copy(),
+                     np.nan_to_num(signals, nan=0.0, posinf=0.0, neginf=0.0), out.structure(x))
 
 
 class FlightLogRecorder(gym.Wrapper):

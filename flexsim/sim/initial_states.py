@@ -5,11 +5,11 @@ All quantities SI and radians; the state layout is :class:`~flexsim.model.layout
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from flexsim.errors import positive_number
 from flexsim.model.layout import StateLayout
 from flexsim.sim.disturbances import DrydenTurbulence
 
@@ -46,14 +46,7 @@ class InitialPerturbation:
 
     def __post_init__(self) -> None:
         for name in ("attitude_rad", "heading_rad", "body_rate_rad_s", "airspeed_m_s", "altitude_m"):
-            value = getattr(self, name)
-            try:
-                v = float(value)
-            except (TypeError, ValueError):
-                v = math.nan
-            if not (math.isfinite(v) and v >= 0.0):
-                raise ValueError(f"{name} = {value!r}: must be a finite number >= 0")
-            object.__setattr__(self, name, v)
+            object.__setattr__(self, name, positive_number(name, getattr(self, name), allow_zero=True))
 
 
 def perturbed_state(x_trim: np.ndarray, layout: StateLayout, rng: np.random.Generator, pert: InitialPerturbation) -> np.ndarray:

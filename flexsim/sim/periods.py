@@ -53,7 +53,8 @@ from flexsim.trim import SteadyManoeuvre, TrimError, TrimPoint, trim
 
 __all__ = ["IntegratorSettings", "ActuatorRates", "FlightDynamics", "StepOutcome", "BatchOutcome", "PeriodResult", "advance_rows",
            "advance_period", "SENSOR_COMPONENTS", "INTEGRATOR_METHODS", "FIXED_STEP_METHODS", "DEFAULT_MAX_STEP_S",
-           "MAX_STEP_RANGE_S", "COMPILED_ROWS_BELOW", "TRIM_CACHE", "period_atol", "check_period_settings"]
+           "MAX_STEP_RANGE_S", "COMPILED_ROWS_BELOW", "TRIM_CACHE", "period_atol", "check_period_settings",
+           "pack_period_winds", "select_packed_rows"]
 
 #: Components carrying the structural sensors (tip deflection, twist and their rates), in order.
 SENSOR_COMPONENTS = ("right_wing", "left_wing", "vtail")
@@ -583,3 +584,21 @@ def advance_period(dynamics: Sequence[FlightDynamics], x: np.ndarray, applied: n
     u = first.rate_limit(applied, command)
     outcome = advance_rows(dynamics, x, u, t0, t1, winds, packed=packed)
     return PeriodResult(outcome, u, first.measure_batch(outcome.x, outcome.time_s, winds, packed))
+
+
+def pack_period_winds(dynamics: Sequence[FlightDynamics | None], winds) -> _k.BatchWind | None:
+    """The ``packed`` argument of :func:`advance_period` for rows flown on ``dynamics`` in ``winds``: the winds packed
+    once (e.g. per reset) by the model's ``pack_winds``, or None where the rows are not all on one compiled model or a
+    wind cannot be packed (then evaluated per row)."""
+    model = dynamics[0].model if len(dynamics) and dynamics[0] is not None else None
+    if getattr(model, "pack_winds", None) is None or not all(d is not None and d.model is model for d in dynamics):
+        return None
+    try:
+        return model.pack_winds(winds)
+    except ValueError:
+        return None
+
+
+def select_packed_rows(packed: _k.BatchWind | None, rows: np.ndarray | slice) -> _k.BatchWind | None:
+    """The winds ``packed`` by :func:`pack_period_winds` of ``rows`` only (int indices or a slice; None stays None)."""
+    return None if packed is None else packed._replace(rows=packed.rows[rows])

@@ -66,6 +66,13 @@ def test_invalid_arguments_name_field_and_range():
         envs.FlutterMarginTask(subject="tail")
     with pytest.raises(ValueError, match="FlutterMarginEnv observes fin_twist_rate_rad_s, not wing_twist_rate_rad_s"):
         envs.FlutterMarginEnv(task=envs.WingFlutterMarginTask())
+    assert envs.RewardTerm("e", 0, 1.0).weight == 0.0 and envs.InitialPerturbation(altitude_m=0).altitude_m == 0.0
+    with pytest.raises(ValueError, match=r"RewardTerm\(e\).weight = -1: must be a finite number >= 0"):
+        envs.RewardTerm("e", -1, 1.0)
+    with pytest.raises(ValueError, match=r"RewardTerm\(e\).scale = 0: must be a finite number > 0"):
+        envs.RewardTerm("e", 1, 0)
+    with pytest.raises(ValueError, match=r"altitude_m = nan: must be a finite number >= 0"):
+        envs.InitialPerturbation(altitude_m=float("nan"))
 
 
 def test_flutter_margin_v1_seeds_antisymmetric_wing_torsion():

@@ -55,7 +55,8 @@ def test_flight_log_recorder_round_trip(tmp_path):
     # same model does; the env adds its task errors and the reward after the simulator's signals
     out = base.dynamics.outputs
     assert log.signal_names[: len(out.signal_names)] == out.signal_names and log.format_version == "2"
-    assert log.signal_names[len(out.signal_names):] == tuple(f"error_{n}" for n, _ in base.task_errors_spec) + ("reward",)
+    errors = tuple(f"error_{spec[0]}" for spec in base.task_errors_spec)
+    assert log.signal_names[len(out.signal_names):] == errors + ("reward",)
     np.testing.assert_array_equal(log.signals[-1, : len(out.signal_names)], out.signals(log.t[-1], state, log.controls[-1]))
     assert set(log.structure) == set(base.aircraft.component_names)
     np.testing.assert_array_equal(log.state[-1], state)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from flexsim.envs.config import RewardTerm, TrackingReward
-from flexsim.envs.episodes import wrap_angle
+from flexsim.envs.row_kernels import wrap, wrap_rows
 
 
 def _close(a, b, rtol=1e-12):
@@ -34,11 +34,11 @@ def test_reward_parts_closed_form():
     _close(parts["alive"], [1.0, 1.0, 1.0])
 
 
-def test_wrap_angle_is_the_ieee_remainder():
+def test_wrap_is_the_ieee_remainder():
     angles = np.random.default_rng(1).uniform(-50.0, 50.0, 1000)
-    _close(wrap_angle(angles), [math.remainder(a, 2 * math.pi) for a in angles], rtol=1e-15)
-    assert wrap_angle(3.0 * math.pi / 2) == pytest.approx(-math.pi / 2, rel=1e-15)
-    assert np.isnan(wrap_angle(np.array([np.nan, np.inf, -np.inf]))).all() and math.isnan(wrap_angle(math.inf))
+    _close(wrap_rows(angles), [math.remainder(a, 2 * math.pi) for a in angles], rtol=1e-15)
+    assert wrap(3.0 * math.pi / 2) == pytest.approx(-math.pi / 2, rel=1e-15)
+    assert np.isnan(wrap_rows(np.array([np.nan, np.inf, -np.inf]))).all() and math.isnan(wrap(math.inf))
 
 
 def test_replaced_limits_take_effect_and_vector_env_shares_them():
