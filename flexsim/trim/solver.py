@@ -28,6 +28,7 @@ from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel, Variant
 from flexsim.kinematics import dcm_321
 from flexsim.model.sensors import structural_sensors
+from flexsim.structure.mirror import TIE_RTOL
 from flexsim.trim.equilibrium import EquilibriumStability, equilibrium_stability
 from flexsim.trim.manoeuvre import SteadyManoeuvre
 
@@ -77,7 +78,7 @@ class StripAngle:
     station_m: float
 
     def describe(self) -> str:
-        """E.g. "-17.09 deg at left_wing strip 10 (station 17.1 m from its root)"."""
+        """E.g. "-17.09 deg at right_wing strip 10 (station 17.3 m from its root)"."""
         return (f"{math.degrees(self.alpha_rad):.4g} deg at {self.component} strip {self.number} (station "
                 f"{self.station_m:.3g} m from its root)")
 
@@ -618,8 +619,14 @@ def _max_local_alpha(model: AircraftModel, x: np.ndarray, u: np.ndarray) -> Stri
     mach = float(np.linalg.norm(vel[0:3])) / speed_of_sound(float(-x[model.layout.position][2]))
     loads = model.aero.strip_loads(q, xi, vel, x[model.layout.inflow], u, model.air_density(x), mach)
     alpha = np.arctan2(loads.w_ea_m_s, loads.u0_m_s)
-    j = int(np.argmax(np.abs(alpha)))
+    size = np.abs(alpha)
+    j = int(np.argmax(size))
     strips = model.aero.strips
+    # A round-off tie between mirror strips (same station, in symmetric flight) goes to the one listed first, the
+    # right half, as the mode labels' ties do (TIE_RTOL), so the strip named does not change between machines.
+    station = np.asarray(strips.station_m)
+    tie = (np.abs(station - station[j]) <= 1e-9) & (size >= size[j] * (1.0 - TIE_RTOL))
+    j = int(np.flatnonzero(tie)[0])
     name = strips.component[j]
     number = sum(1 for c in strips.component[:j] if c == name) + 1
     return StripAngle(float(alpha[j]), j, name, number, float(strips.station_m[j]))

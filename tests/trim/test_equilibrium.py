@@ -128,7 +128,7 @@ def test_wing_gj_002_is_statically_divergent_and_refused_by_the_local_angle(mode
     lam = _unstable_eigenvalues(models["wing_gj"], point)
     divergent = sorted(r.eigenvalue.real for r in st.unstable if r.verdict == "statically divergent")
     assert divergent == pytest.approx(sorted(lam[(lam.imag == 0.0) & (lam.real > 10.0)].real), rel=1e-9)
-    with pytest.raises(TrimError, match=r"local angle of attack -17\.09 deg at left_wing strip 10 \(station 17\.3 m from "
+    with pytest.raises(TrimError, match=r"local angle of attack -17\.09 deg at right_wing strip 10 \(station 17\.3 m from "
                                         r"its root\) beyond the range of the linear \(no-stall\) aerodynamics, \+-11 deg"):
         trim(models["wing_gj"], CRUISE)
 
@@ -204,7 +204,7 @@ def test_classify_false_leaves_it_to_the_caller(models):
 def test_cli_divergent_trim_is_refused_then_named_with_no_limits(files, capsys):
     assert main(["trim", str(files["wing_gj"]), *CRUISE_ARGS]) == 2
     err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and "local angle of attack -17.09 deg at left_wing strip 10" in err
+    assert len(err.splitlines()) == 1 and "local angle of attack -17.09 deg at right_wing strip 10" in err
     assert main(["trim", str(files["wing_gj"]), *CRUISE_ARGS, "--no-limits"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
     assert lines[-1].startswith("statically divergent: right_wing bending 1 (real root +37.9 1/s")
@@ -214,7 +214,7 @@ def test_cli_divergent_trim_is_refused_then_named_with_no_limits(files, capsys):
     doc = json.loads(capsys.readouterr().out)
     assert doc["stability"]["verdict"] == "statically divergent"
     assert doc["stability"]["message"] == lines[-1]
-    assert doc["max_local_alpha"]["component"] == "left_wing" and doc["max_local_alpha"]["alpha_deg"] == pytest.approx(-17.09, abs=0.01)
+    assert doc["max_local_alpha"]["component"] == "right_wing" and doc["max_local_alpha"]["alpha_deg"] == pytest.approx(-17.09, abs=0.01)
 
 
 def test_cli_statically_unstable_line(files, capsys):
