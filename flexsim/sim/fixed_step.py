@@ -411,9 +411,10 @@ class ETD2RK:
         m = xs.shape[0]
         if xs.ndim != 2 or xs.shape[1] != self.n:
             raise ValueError(f"x: expected shape (N, {self.n}) to match jac, got shape {np.shape(x)}")
-        us = np.ascontiguousarray(np.broadcast_to(np.asarray(u, dtype=float), (m, 4)))
-        t0s = np.ascontiguousarray(np.broadcast_to(np.asarray(t0, dtype=float), (m,)))
-        t1s = np.ascontiguousarray(np.broadcast_to(np.asarray(t1, dtype=float), (m,)))
+        # kernel_arg: writable (a read-only broadcast view is another numba type: a second compile of the kernel)
+        us = kernel_arg(np.broadcast_to(np.asarray(u, dtype=float), (m, 4)))
+        t0s = kernel_arg(np.broadcast_to(np.asarray(t0, dtype=float), (m,)))
+        t1s = kernel_arg(np.broadcast_to(np.asarray(t1, dtype=float), (m,)))
         step = self.step_data(model, n_steps)
         if wind is None:
             wind = model.pack_winds([None] * m)

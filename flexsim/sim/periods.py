@@ -36,6 +36,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from flexsim import _kernels as _k
+from flexsim._arrays import frozen_array, kernel_arg
 from flexsim._threads import single_blas_thread
 from flexsim.aircraft.definition import Aircraft
 from flexsim.errors import positive_number
@@ -259,7 +260,7 @@ class FlightDynamics:
         self.measure_data = _ms.measure_data(self.layout, bank.matrix, len(SENSOR_COMPONENTS))
         #: Columns of a measurement row.
         self.n_measurements = _ms.SENSORS_AT + bank.matrix.shape[1]
-        self._still = self.model.pack_winds([None])._replace(rows=np.zeros((0, 4), np.int64))
+        self._still = self.model.pack_winds([None])._replace(rows=frozen_array(np.zeros((0, 4)), np.int64))
         resolved = check_period_settings(integrator).resolve(self.model, None, rtol=1e-3, atol=period_atol(self.layout))
         self.method, self.rtol, self.atol = resolved.method, resolved.rtol, resolved.atol
         self.dt = float(control_dt_s)
@@ -472,7 +473,7 @@ class FlightDynamics:
         :func:`flexsim.sim.measurements.measure_rows` too), or None (then each wind is asked in Python,
         :meth:`OutputMaps.air_velocity_body`). A wind field that cannot answer at a position gives still-air data.
         """
-        x = np.ascontiguousarray(x, dtype=float)
+        x = kernel_arg(x)  # writable, as the compiled period passes it (one specialisation of measure_rows)
         n = x.shape[0]
         t = np.array(t, dtype=float) if np.shape(t) == (n,) else np.full(n, float(t))
         out = np.empty((n, self.n_measurements))
@@ -601,4 +602,5 @@ def pack_period_winds(dynamics: Sequence[FlightDynamics | None], winds) -> _k.Ba
 
 def select_packed_rows(packed: _k.BatchWind | None, rows: np.ndarray | slice) -> _k.BatchWind | None:
     """The winds ``packed`` by :func:`pack_period_winds` of ``rows`` only (int indices or a slice; None stays None)."""
-    return None if packed is None else packed._replace(rows=packed.rows[rows])
+    # read-only like the rows pack_winds makes (a writable copy of them is another numba type: one more compile)
+    return None if packed is None else packed._replace(rows=frozen_array(packed.rows[rows], np.int64))
