@@ -15,6 +15,7 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.cli.validation import CliError, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
 from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, flutter_table, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
+from flexsim.linear.study import PAPER_ALTITUDES_M
 from flexsim.linear.study import StudyCase, StudyRecord, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
@@ -104,6 +105,9 @@ def _flutter(args: argparse.Namespace) -> int:
     for k in keys:
         if k not in _MODELS:
             raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
+    if args.wind_tunnel:
+        return _wind_tunnel(args, keys)
+    args.altitudes = list(PAPER_ALTITUDES_M) if args.altitudes is None else args.altitudes
     if args.mach_min is not None and args.mach_max is not None:
         check_mach_range(args.mach_min, args.mach_max)
     check_altitudes(args.altitudes)
@@ -122,7 +126,10 @@ def _flutter(args: argparse.Namespace) -> int:
     settings = _settings(args)
     shape = _manoeuvre(args, args.altitudes[0], 0.5)  # the kind of manoeuvre (its speed is searched)
     # the aircraft file's [envelope] sets the search range (the aircraft itself is loaded where it is searched)
-    ranges = {(s.label, h): _search_range(s.aircraft, h, shape, args) for s in settings for h in args.altitudes}
+    try:
+        ranges = {(s.label, h): _search_range(s.aircraft, h, shape, args) for s in settings for h in args.altitudes}
+    except ValueError as exc:
+        raise CliError(f"{exc}; for a structure clamped in an airflow (e.g. goland_wing) give --wind-tunnel") from None
     labelled = [(s.label, StudyCase(s.aircraft, k, h, mach_min=ranges[s.label, h].mach_min,
                                     mach_max=ranges[s.label, h].mach_max, turn_radius_m=shape.turn_radius_m,
                                     climb_angle_deg=None if shape.is_glide else math.degrees(shape.climb_angle_rad),
@@ -157,6 +164,53 @@ def _flutter(args: argparse.Namespace) -> int:
         print(json_text(doc))
         return 0
     print("\n".join(lines))
+    return 0
+
+
+#: The options of a flight that a wind-tunnel run (``--wind-tunnel``) has no use for: (attribute, flag).
+_FLIGHT_ONLY = (("turn_radius_m", "--turn-radius-m"), ("climb_deg", "--climb-deg"), ("glide", "--glide"),
+                ("coordinated", "--coordinated"), ("mach_min", "--mach-min"), ("mach_max", "--mach-max"), ("vg", "--vg"),
+                ("mode", "--mode"), ("structural_damping", "--structural-damping"), ("formulation", "--formulation"),
+                ("linear_density_altitude_m", "--linear-density-altitude-m"), ("paper_replication", "--paper-replication"))
+
+
+def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
+    """``flexsim flutter --wind-tunnel``: flutter and divergence speeds of the aircraft clamped at its body origin in an
+    airflow (:func:`flexsim.linear.flutter.wind_tunnel`), per model and altitude (default sea level)."""
+    from flexsim.linear.flutter import wind_tunnel
+
+    given = [flag for name, flag in _FLIGHT_ONLY if getattr(args, name, None) not in (None, False)]
+    if given:
+        raise CliError(f"--wind-tunnel: {', '.join(given)} describe a flight; a wind tunnel holds the structure still "
+                       "(give --altitudes, --models, --speed-range-m-s)")
+    lo, hi = args.speed_range_m_s
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
+        raise CliError(f"--speed-range-m-s {lo:g} {hi:g}: must satisfy 0 < LO < HI [m/s]")
+    altitudes = [0.0] if args.altitudes is None else args.altitudes
+    check_altitudes(altitudes)
+    aircraft = load_aircraft(args.aircraft)
+    rows = []
+    for h in altitudes:
+        for k in keys:
+            r = wind_tunnel(aircraft, aero_model=_MODELS[k], speed_range=(lo, hi), altitude_m=h)
+            rows.append({"model": k, "aero_model": r.aero_model, "altitude_m": h, "density_kg_m3": r.density_kg_m3,
+                         "compressibility": r.compressibility, "flutter_speed_m_s": r.flutter_speed_m_s,
+                         "flutter_frequency_rad_s": r.flutter_frequency_rad_s, "divergence_speed_m_s": r.divergence_speed_m_s,
+                         "first_instability": r.first_instability, "speed_range_m_s": [lo, hi]})
+    if args.json:
+        print(json_text({"aircraft": aircraft.name, "wind_tunnel": rows}))
+        return 0
+
+    def speed(v):
+        return f"{v:10.2f}" if v is not None else f"{'none':>10}"
+
+    print(f"{aircraft.name} in a wind tunnel: clamped at the body origin, air along body -x at zero angle of attack, no "
+          f"gravity; searched {lo:g}-{hi:g} m/s")
+    print(f"{'model':<6}{'h [m]':>7}{'rho [kg/m^3]':>14}{'U_F [m/s]':>11}{'w_F [rad/s]':>13}{'U_D [m/s]':>11}  first")
+    for r in rows:
+        w = f"{r['flutter_frequency_rad_s']:13.3f}" if r["flutter_frequency_rad_s"] is not None else f"{'':>13}"
+        print(f"{r['model']:<6}{r['altitude_m']:7.0f}{r['density_kg_m3']:14.4f}{speed(r['flutter_speed_m_s'])}{w}"
+              f"{speed(r['divergence_speed_m_s'])}  {r['first_instability']}")
     return 0
 
 
@@ -326,7 +380,8 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
 
     p_fl = sub.add_parser("flutter", help="flutter Mach and frequency of a steady manoeuvre (level flight: paper Tables 2-3)")
     add_aircraft(p_fl)
-    p_fl.add_argument("--altitudes", type=float, nargs="+", default=[0.0, 3048.0, 6096.0, 9144.0], metavar="H")
+    p_fl.add_argument("--altitudes", type=float, nargs="+", default=None, metavar="H",
+                      help="altitudes [m] [0 3048 6096 9144; with --wind-tunnel: 0]")
     p_fl.add_argument("--models", default="QS,US", help="comma list of QS (quasi-steady), US (Theodorsen p-k), FS (finite-state)")
     p_fl.add_argument("--mach-min", type=float, default=None,
                       help="lower end of the search [the aircraft file's [envelope], else the estimated stall speed]")
@@ -342,6 +397,11 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
                            "aircraft as given, one file per altitude (FILE_<H>m.png for several); --json carries the tracks")
     p_fl.add_argument("--vg-points", type=int, default=25, metavar="N", help="speeds of the V-g diagram [25]")
     p_fl.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="local processes [all cores]")
+    p_fl.add_argument("--wind-tunnel", action="store_true",
+                      help="instead of a flight: the structure clamped at its body origin in an airflow (a wing alone, "
+                           "e.g. goland_wing): flutter and divergence speeds")
+    p_fl.add_argument("--speed-range-m-s", type=float, nargs=2, default=(10.0, 300.0), metavar=("LO", "HI"),
+                      help="with --wind-tunnel: the speeds searched [10 300]")
     p_fl.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
                       help="modal damping ratio of the elastic modes [the aircraft file's; 0 = the paper's undamped structure]")
     _add_formulation(p_fl, replication=True)

@@ -85,3 +85,28 @@ def test_sweep_one_altitude_two_climb_angles(capsys, tmp_path, level_qs):
     assert [float(r["mach"]) for r in table] == pytest.approx([r["mach"] for r in rows], rel=1e-12)
     for png in ("flutter_climb.png", f"flutter_climb_trim_{H:.0f}m.png"):
         assert (out / png).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_wind_tunnel_gives_the_goland_wings_flutter_and_divergence(capsys):
+    """``flexsim flutter goland_wing --wind-tunnel``: the clamped Goland wing flutters at Goland's 137.2 m/s
+    (Goland 1945, J. Appl. Mech. 12; 2 % as docs/validation.md's goland-flutter-theodorsen-1.225) and diverges at
+    the strip-theory closed form (Hodges & Pierce 2011, ch. 4; 1e-4); the JSON row is what
+    ``flexsim.linear.flutter.wind_tunnel`` computes (1e-12). Without the option the flight search's error names it,
+    and a flight option with it is refused, both exit 2."""
+    from flexsim.linear.flutter import wind_tunnel
+    from flexsim.sim.validation import goland_divergence_closed_form
+
+    doc = _json(capsys, "flutter", "goland_wing", "--wind-tunnel", "--models", "US", "--json")
+    (row,) = doc["wind_tunnel"]
+    assert row["model"] == "US" and row["altitude_m"] == 0.0 and row["first_instability"] == "flutter"
+    assert row["flutter_speed_m_s"] == pytest.approx(137.2, rel=0.02)
+    assert row["divergence_speed_m_s"] == pytest.approx(goland_divergence_closed_form(row["density_kg_m3"]), rel=1e-4)
+    direct = wind_tunnel(load_aircraft("goland_wing"), aero_model="theodorsen")
+    assert row["flutter_speed_m_s"] == pytest.approx(direct.flutter_speed_m_s, rel=1e-12)
+    assert row["flutter_frequency_rad_s"] == pytest.approx(direct.flutter_frequency_rad_s, rel=1e-12)
+    assert main(["flutter", "goland_wing", "--models", "QS", "--workers", "1"]) == 2
+    assert "--wind-tunnel" in capsys.readouterr().err
+    assert main(["flutter", "goland_wing", "--wind-tunnel", "--glide"]) == 2
+    assert "--wind-tunnel: --glide describe a flight" in capsys.readouterr().err
+    assert main(["flutter", "goland_wing", "--wind-tunnel", "--speed-range-m-s", "300", "10"]) == 2
+    assert "--speed-range-m-s 300 10: must satisfy 0 < LO < HI [m/s]" in capsys.readouterr().err
