@@ -145,8 +145,8 @@ def _stall_mach(model: AircraftModel, manoeuvre) -> tuple[float, str]:
 
     qs = model
     if model.aero.options.model != "quasi-steady":
-        qs = AircraftModel(model.aircraft, aero=replace(model.aero.options, model="quasi-steady"),
-                           structural_damping=model.structural_damping, gravity_m_s2=model.gravity_m_s2)
+        # the model's own terms (gravity, damping, density, compressibility, ...) with quasi-steady strips
+        qs = AircraftModel(model.aircraft, terms=replace(model.terms, aero=replace(model.terms.aero, model="quasi-steady")))
     h = float(manoeuvre.altitude_m)
     a = speed_of_sound(h)
     rho = float(isa_density(h))
