@@ -156,14 +156,16 @@ class _SourceTreeEnvsFinder(importlib.abc.MetaPathFinder):
 
 
 def _source_tree_envs() -> None:
-    """Append :class:`_SourceTreeEnvsFinder` to ``sys.meta_path`` when this ``flexsim`` is a source checkout.
+    """Put :class:`_SourceTreeEnvsFinder` first on ``sys.meta_path`` when this ``flexsim`` is a source checkout.
 
-    Appended last, so a regular finder that knows ``flexsim.envs`` (an installed or editable flexsim) wins.
+    First, so that the checkout's own ``envs/`` wins over a finder that maps ``flexsim.envs`` elsewhere (the
+    editable install of another checkout, whose ``envs`` would otherwise be paired with this checkout's
+    ``flexsim``); for an installed flexsim it is not registered and finds nothing.
     """
     if _checkout_envs_dir(Path(__file__).resolve().parent) is None:
         return
     if not any(isinstance(finder, _SourceTreeEnvsFinder) for finder in sys.meta_path):
-        sys.meta_path.append(_SourceTreeEnvsFinder())
+        sys.meta_path.insert(0, _SourceTreeEnvsFinder())
 
 
 _source_tree_envs()

@@ -76,6 +76,31 @@ def test_source_checkout_maps_flexsim_envs_onto_the_envs_folder(tmp_path):
                                  "FlexSim/GTM-FlutterMargin-v0", "FlexSim/GTM-FlutterMargin-v1"]))
 
 
+def test_a_checkouts_flexsim_gets_its_own_envs_beside_another_checkouts_editable_install(tmp_path):
+    """A finder that maps ``flexsim.envs`` to another folder (what the editable install of another checkout
+    registers) does not pair that folder with this checkout's ``flexsim``."""
+    checkout, other = tmp_path / "checkout", tmp_path / "other"
+    (checkout / "flexsim").mkdir(parents=True)
+    (checkout / "flexsim" / "__init__.py").write_text((ROOT / "flexsim" / "__init__.py").read_text(encoding="utf-8"))
+    (checkout / "envs").mkdir()
+    (checkout / "envs" / "__init__.py").write_text("WHERE = 'checkout'\n")
+    (checkout / "pyproject.toml").write_text('[project]\nname = "flexsim"\n')
+    (other / "envs").mkdir(parents=True)
+    (other / "envs" / "__init__.py").write_text("WHERE = 'other'\n")
+    code = ("import sys, importlib.abc, importlib.util\n"
+            "class Editable(importlib.abc.MetaPathFinder):\n"
+            "    def find_spec(self, name, path=None, target=None):\n"
+            "        if name == 'flexsim.envs':\n"
+            f"            return importlib.util.spec_from_file_location(name, {str(other / 'envs' / '__init__.py')!r}, "
+            f"submodule_search_locations=[{str(other / 'envs')!r}])\n"
+            "sys.meta_path.insert(0, Editable())\n"
+            "import flexsim, flexsim.envs\n"
+            "print(flexsim.envs.WHERE)\n")
+    out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(checkout)},
+                         capture_output=True, text=True, check=True).stdout.split()
+    assert out == ["checkout"]
+
+
 def test_installed_layout_is_not_touched_by_the_source_finder(tmp_path):
     """An installed flexsim (``flexsim/envs`` present) never gets the checkout finder."""
     fake = tmp_path / "site" / "flexsim"
