@@ -602,5 +602,8 @@ def pack_period_winds(dynamics: Sequence[FlightDynamics | None], winds) -> _k.Ba
 
 def select_packed_rows(packed: _k.BatchWind | None, rows: np.ndarray | slice) -> _k.BatchWind | None:
     """The winds ``packed`` by :func:`pack_period_winds` of ``rows`` only (int indices or a slice; None stays None)."""
-    # read-only like the rows pack_winds makes (a writable copy of them is another numba type: one more compile)
-    return None if packed is None else packed._replace(rows=frozen_array(packed.rows[rows], np.int64))
+    if packed is None:
+        return None
+    selected = packed.rows[rows]  # a view of the read-only rows, or a copy (index array)
+    selected.flags.writeable = False  # read-only as pack_winds makes them (a writable array: one more compile)
+    return packed._replace(rows=selected)
