@@ -23,6 +23,7 @@ from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.io.env_log import LogSample, flight_sample
 from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
+from flexsim.io.vocabulary import suffix_unit
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.sim.measurements import MeasurementBatch, Measurements
 from flexsim.threads import limit_blas_threads
@@ -77,8 +78,7 @@ V0_HISTORY_DOC = """\
 
 def _unit(name: str) -> str:
     """The unit of an observation entry or task error from the SI suffix of its name ("-": none)."""
-    return next((unit for suffix, unit in (("_rad_s", "rad/s"), ("_m_s", "m/s"), ("_rad", "rad"), ("_m", "m"))
-                 if name.endswith(suffix)), "-")
+    return suffix_unit(name, "-")
 
 
 def _bound(value: float) -> str:

@@ -21,7 +21,7 @@ import re
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
-__all__ = ["Quantity", "QUANTITIES", "CONTROL_NAMES", "VOCABULARY_VERSION", "quantity", "unit", "check_names",
+__all__ = ["Quantity", "QUANTITIES", "CONTROL_NAMES", "VOCABULARY_VERSION", "quantity", "unit", "suffix_unit", "check_names",
            "V1Upgrade", "upgrade_v1"]
 
 #: Version of this vocabulary; equal to the flight-log format version that introduced it.
@@ -142,12 +142,18 @@ def quantity(name: str, kind: str | None = None, *, legacy: bool = True) -> Quan
 _SUFFIX_UNITS = (("_rad_s", "rad/s"), ("_m_s", "m/s"), ("_N_m", "N m"), ("_rad", "rad"), ("_N", "N"), ("_m", "m"))
 
 
+def suffix_unit(name: str, dimensionless: str = "1") -> str:
+    """The unit that the SI suffix of ``name`` states (``_rad_s``, ``_m_s``, ``_N_m``, ``_rad``, ``_N``, ``_m``), or
+    ``dimensionless`` when it has none."""
+    return next((u for suffix, u in _SUFFIX_UNITS if name.endswith(suffix)), dimensionless)
+
+
 def unit(name: str) -> str:
     """The unit of a vocabulary name (``"1"`` if dimensionless; a task error's from its name's suffix)."""
     q = quantity(name)
     if q.unit != "as named":
         return q.unit
-    return next((u for suffix, u in _SUFFIX_UNITS if name.endswith(suffix)), "1")
+    return suffix_unit(name)
 
 
 def check_names(kind: str, names) -> tuple[str, ...]:
