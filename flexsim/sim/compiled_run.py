@@ -17,7 +17,7 @@ from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.jacobian import jacobian
 from flexsim.sim import _dense_kernels as _dk
 from flexsim.sim.fixed_step import ETD2RK, step_accelerations
-from flexsim.sim.run_parts import RunEvent, RunOutcome, RunProblem, Sinks, margin_rows, segment_controls
+from flexsim.sim.run_parts import RunOutcome, RunProblem, Sinks, margin_rows, segment_controls
 
 if TYPE_CHECKING:
     from flexsim.sim.simulate import IntegratorSettings
