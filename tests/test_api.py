@@ -65,7 +65,7 @@ def test_flutter_analysis_of_a_model_uses_that_model_and_its_options(gtm):
     an = fs.FlutterAnalysis.from_model(qs, "theodorsen")
     assert an.qs is qs and an.qs_linear is qs
     assert an.fs.aircraft is gtm and an.fs.aero.options.model == "unsteady"
-    assert an.fs.formulation == "paper" and an.fs.structural_damping == 0.0
+    assert an.fs.formulation == "paper" and an.fs.terms.structural_damping == 0.0
     fs_model = fs.AircraftModel(gtm, aero=fs.AeroOptions("unsteady", n_inflow=4))
     an = fs.FlutterAnalysis.from_model(fs_model, "unsteady")
     assert an.fs is fs_model and an.qs.aero.options.model == "quasi-steady" and an.qs.aircraft is gtm

@@ -40,7 +40,7 @@ def _trim(args: argparse.Namespace) -> int:
     model = AircraftModel(aircraft, aero=AeroOptions("quasi-steady", formulation=args.formulation))
     point = trim(model, _manoeuvre(args, args.altitude_m, args.mach), check_limits=not args.no_limits)
     out = point.summary()
-    out["weight_kN"] = model.structure.mass_properties.mass_kg * model.gravity_m_s2 / 1e3
+    out["weight_kN"] = model.structure.mass_properties.mass_kg * model.terms.gravity_m_s2 / 1e3
     if model.aero is not None and "right_wing" in aircraft.component_names:
         from flexsim.trim.margin import static_margin
 

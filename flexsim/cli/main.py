@@ -92,7 +92,7 @@ def _modes(args: argparse.Namespace) -> int:
             json_text(
                 {
                     "aircraft": aircraft.name,
-                    "variant": model.variant.value,
+                    "variant": model.variant.kind.value,
                     "n_rigid": analysis.n_rigid,
                     "modes": [
                         {
@@ -108,7 +108,7 @@ def _modes(args: argparse.Namespace) -> int:
             )
         )
         return 0
-    print(f"In-vacuo modes of {aircraft.name} ({model.variant.value}; {analysis.n_rigid} rigid-body modes)")
+    print(f"In-vacuo modes of {aircraft.name} ({model.variant.kind.value}; {analysis.n_rigid} rigid-body modes)")
     print(f"{'#':>3} {'omega [rad/s]':>14} {'f [Hz]':>10}  {'dominant DOF':<34} {'KE share':>8}")
     for i, m in enumerate(modes, 1):
         print(f"{i:>3} {m.frequency_rad_s:14.4f} {m.frequency_hz:10.4f}  {m.dominant_dof:<34} {m.dominant_fraction:8.1%}")

@@ -27,6 +27,8 @@ from flexsim.linear.participation import Participation, describe_mode
 from flexsim.linear.stability import Mode, Spectrum, linear_spectrum, spectrum
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
+from flexsim.model.terms import Terms
+from flexsim.model.variant import VariantSettings
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 from flexsim.trim.equilibrium import with_stability
 
@@ -188,8 +190,9 @@ class FlutterAnalysis:
     model of the eigen-analysis (the same one unless the density of the linearised aerodynamics is fixed), and
     the finite-state model of the "unsteady" analysis and of the p-k method's input and output matrices. From a
     model they are that model itself where it is of the kind needed, otherwise its siblings: the same aircraft
-    object (not re-loaded), the same aerodynamic options (force resolution, compressibility, lift slopes, drag,
-    bodies, downwash), structural damping and gravity, only the aerodynamic model changed.
+    object (not re-loaded) and every term of the model (:meth:`AircraftModel.replace`: the aerodynamic options,
+    gravity, structural damping, force resolution, frozen compressibility Mach, thrust line, engine angular
+    momentum, offsets), only the aerodynamic model (and a fixed linearisation density) changed.
 
     Parameters
     ----------
@@ -242,9 +245,7 @@ class FlutterAnalysis:
         def sibling(name: str, n: int, density: float | None) -> AircraftModel:
             if options.model == name and (name != "unsteady" or options.n_inflow == n) and density is None:
                 return model
-            return AircraftModel(model.aircraft, aero=replace(options, model=name, n_inflow=n),
-                                 structural_damping=model.structural_damping, gravity_m_s2=model.gravity_m_s2,
-                                 aero_density_kg_m3=density)
+            return model.replace(aero=replace(options, model=name, n_inflow=n), aero_density_kg_m3=density)
 
         #: The quasi-steady model of every trim.
         self.qs = sibling("quasi-steady", options.n_inflow, None)
@@ -456,14 +457,14 @@ def _check_flutter_model(model: AircraftModel) -> None:
     """Refuse a model a flutter search of a manoeuvre cannot use, naming what is wrong."""
     if not isinstance(model, AircraftModel):
         raise TypeError(f"model: an AircraftModel, not {type(model).__name__}")
-    if model.variant.value != "free":
-        raise ValueError(f"model.variant = {model.variant.value!r}: a flutter search of a manoeuvre needs the free aircraft; "
+    if model.variant.kind.value != "free":
+        raise ValueError(f"model.variant = {model.variant.kind.value!r}: a flutter search of a manoeuvre needs the free aircraft; "
                          "a restrained structure in an airflow is flexsim.wind_tunnel(aircraft, ...)")
     if model.aero is None:
         raise ValueError("model.aero = None: a model without aerodynamics has no flutter; build it with aero=\"quasi-steady\" "
                          "or \"unsteady\"")
-    if model.aero_density_kg_m3 is not None:
-        raise ValueError(f"model.aero_density_kg_m3 = {model.aero_density_kg_m3!r}: trims need the true density; fix the "
+    if model.terms.aero_density_kg_m3 is not None:
+        raise ValueError(f"model.terms.aero_density_kg_m3 = {model.terms.aero_density_kg_m3!r}: trims need the true density; fix the "
                          "density of the linearised aerodynamics with linear_aero_density_kg_m3 of the analysis instead")
 
 
@@ -546,6 +547,8 @@ class WindTunnelResult:
         through zero); None when it lies outside the speed range or was not searched.
     speed_range_m_s : tuple of float
         The searched range [m/s].
+    terms : dict
+        The physical terms of the tunnel's model of ``aero_model`` (:meth:`flexsim.model.terms.Terms.record`).
     """
 
     aero_model: str
@@ -555,6 +558,7 @@ class WindTunnelResult:
     flutter_frequency_rad_s: float | None
     divergence_speed_m_s: float | None
     speed_range_m_s: tuple[float, float]
+    terms: dict = field(default_factory=dict)
 
     @property
     def first_instability(self) -> str:
@@ -584,7 +588,7 @@ def _growth(spec: Spectrum) -> float:
 
 
 @single_blas_thread
-def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range: tuple[float, float] = (10.0, 300.0),
+def wind_tunnel(aircraft: Aircraft | AircraftModel, *, aero_model: str = "unsteady", speed_range: tuple[float, float] = (10.0, 300.0),
                 speed_step: float = 5.0, density_kg_m3: float | None = None, altitude_m: float = 0.0,
                 compressibility: str = "file", tol_m_s: float = 1e-3, n_inflow: int = 6,
                 flutter: bool = True, divergence: bool = True) -> WindTunnelResult:
@@ -601,7 +605,10 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
 
     Parameters
     ----------
-    aircraft : Aircraft
+    aircraft : Aircraft or AircraftModel
+        An aircraft definition (its tunnel models have every term at its default but gravity, 0), or a model: the
+        tunnel evaluates that model's siblings (:meth:`AircraftModel.replace`: restrained at each speed, the
+        aerodynamic model ``aero_model``), with every term of the model as given, gravity included.
     aero_model : {"quasi-steady", "unsteady", "theodorsen"}
     speed_range : (float, float)
         Searched speeds [m/s], 0 < lo < hi.
@@ -613,7 +620,9 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
         ISA altitude [m] for the density (when not given) and the speed of sound (Mach for the
         compressibility correction).
     compressibility : {"file", "prandtl-glauert", "none"}
-        See :class:`~flexsim.model.coupling.AeroOptions`.
+        See :class:`~flexsim.model.coupling.AeroOptions` (for a model: ``"file"`` keeps the model's own setting).
+    n_inflow : int
+        Finite-state inflow states per strip of the "unsteady" models (for an "unsteady" model: its own).
     flutter, divergence : bool
         Search the flutter speed, the divergence speed (default both).
 
@@ -631,16 +640,30 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
         raise ValueError(f"speed_step = {speed_step!r}: must be in (0, {hi - lo:g}] m/s (the width of speed_range)")
     if not (np.isfinite(tol_m_s) and tol_m_s > 0.0):
         raise ValueError(f"tol_m_s = {tol_m_s!r}: must be > 0 [m/s]")
-    base = dict(variant="restrained", gravity_m_s2=0.0, altitude_m=altitude_m, air_density_kg_m3=density_kg_m3)
+    tunnel = VariantSettings("restrained", altitude_m=altitude_m, air_density_kg_m3=density_kg_m3)
+    if isinstance(aircraft, AircraftModel):
+        given = aircraft
+        if given.aero is None:
+            raise ValueError("aircraft: a model without aerodynamics (aero None) has nothing for a wind tunnel to act on")
+        options = given.terms.aero
+        if compressibility != "file":
+            options = replace(options, compressibility=compressibility)
+        if options.model == "unsteady":
+            n_inflow = options.n_inflow
+        aircraft = given.aircraft
+    else:
+        given = AircraftModel(aircraft, aero=AeroOptions("quasi-steady", compressibility=compressibility), gravity_m_s2=0.0,
+                              variant=replace(tunnel, restrained_velocity_m_s=(lo, 0.0, 0.0)))
+        options = given.terms.aero
 
     def model(speed: float, name: str) -> AircraftModel:
-        return AircraftModel(aircraft, aero=AeroOptions(name, n_inflow, compressibility=compressibility),
-                             restrained_velocity_m_s=[speed, 0.0, 0.0], **base)
+        return given.replace(aero=replace(options, model=name, n_inflow=n_inflow),
+                             variant=replace(tunnel, restrained_velocity_m_s=(speed, 0.0, 0.0)))
 
     probe = model(lo, "quasi-steady")
     if probe.aero is None or probe.aero.strips.n_strips == 0:
         raise ValueError(f"aircraft {aircraft.name!r} has no aerodynamic strips: a wind tunnel has nothing to act on")
-    rho = density_kg_m3 if density_kg_m3 is not None else isa_density(float(altitude_m))
+    rho = probe.air_density(probe.layout.zeros())  # the tunnel's, else the model's fixed aerodynamic density, else ISA
 
     def spec_at(speed: float) -> Spectrum:
         if aero_model == "theodorsen":
@@ -664,7 +687,8 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
         prev = float(speed)
     u_d = _divergence_speed(lambda sp: model(sp, "quasi-steady"), speeds, tol_m_s) if divergence else None
     comp = probe.aero.compressibility
-    return WindTunnelResult(aero_model, float(rho), comp, u_f, w_f, u_d, (lo, hi))
+    used = model(lo, "unsteady" if aero_model == "unsteady" else "quasi-steady")
+    return WindTunnelResult(aero_model, float(rho), comp, u_f, w_f, u_d, (lo, hi), used.terms.record())
 
 
 def _static_stiffness_sign(model: AircraftModel) -> float:
@@ -735,20 +759,28 @@ class FlutterCondition:
 
 
 @functools.lru_cache(maxsize=8)
-def _cached_condition(key: ContentKey, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
-    return _search(key.aircraft, aero, altitude_m, mach_range)
+def _cached_condition(key: ContentKey, terms: Terms | None, aero: str, altitude_m: float,
+                      mach_range: tuple[float, float]) -> FlutterCondition:
+    return _search(key.aircraft if terms is None else AircraftModel(key.aircraft, terms=terms), aero, altitude_m, mach_range)
 
 
-def _search(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+def _search(aircraft: Aircraft | AircraftModel, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+    analysis = FlutterAnalysis.from_model(aircraft, aero) if isinstance(aircraft, AircraftModel) else FlutterAnalysis(aircraft, aero)
+    aircraft = analysis.aircraft
     try:
-        point = FlutterAnalysis(aircraft, aero).search(SteadyManoeuvre.level(altitude_m, mach=0.6), mach_range=mach_range, mach_step=0.02)
+        point = analysis.search(SteadyManoeuvre.level(altitude_m, mach=0.6), mach_range=mach_range, mach_step=0.02)
     except FlutterNotFound as exc:
         raise ValueError(f"aero = {aero!r}: no usable open-loop flutter point of {aircraft.name} at {altitude_m:g} m for Mach in "
                          f"{mach_range} ({exc}); the GTM flutter points are those of the finite-state model, aero = 'unsteady'") from None
     return FlutterCondition(point.mach, point.speed_m_s, point.frequency_rad_s, point.mode.dominant_dof)
 
 
-def flutter_condition(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
-    """Flutter point of level flight of ``aircraft`` (cached by the aircraft's content, aerodynamic model,
-    altitude and range: a modified aircraft gets its own point)."""
-    return _cached_condition(aircraft.content_key(), aero, float(altitude_m), tuple(float(m) for m in mach_range))
+def flutter_condition(aircraft: Aircraft | AircraftModel, aero: str, altitude_m: float,
+                      mach_range: tuple[float, float]) -> FlutterCondition:
+    """Flutter point of level flight of ``aircraft``, or of a free model with all its terms (cached by the aircraft's
+    content, the model's terms, aerodynamic model, altitude and range: a modified aircraft or model gets its own point)."""
+    key = (float(altitude_m), tuple(float(m) for m in mach_range))
+    if isinstance(aircraft, AircraftModel):
+        _check_flutter_model(aircraft)
+        return _cached_condition(aircraft.aircraft.content_key(), aircraft.terms, aero, *key)
+    return _cached_condition(aircraft.content_key(), None, aero, *key)

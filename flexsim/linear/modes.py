@@ -90,7 +90,7 @@ def in_vacuo_modes(model: AircraftModel) -> ModalAnalysis:
     if active.size == 0:
         from flexsim.errors import FlexsimError
 
-        raise FlexsimError(f"aircraft {model.aircraft.name!r}, variant {model.variant.value!r}: no degree of freedom to "
+        raise FlexsimError(f"aircraft {model.aircraft.name!r}, variant {model.variant.kind.value!r}: no degree of freedom to "
                            f"analyse (the body is restrained and every component has bending_modes = torsion_modes = 0)")
     m = st.inertia.m0[np.ix_(active, active)]
     k = st.stiffness[np.ix_(active, active)]

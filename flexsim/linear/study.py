@@ -30,6 +30,7 @@ from typing import Callable, Iterable, Sequence
 import numpy as np
 
 from flexsim.atmosphere import isa_density
+from flexsim.model.terms import Terms
 
 __all__ = ["StudyCase", "StudyRecord", "case_key", "turn_cases", "climb_cases", "run_case", "run_chain", "run_point", "run_points", "run_study", "write_results", "plot_study", "plot_trim", "glide_from_climb"]
 
@@ -64,6 +65,11 @@ class StudyCase:
         at this altitude [m] (the trims keep the true one); None: the flight's true density.
     coordinated : bool
         Turns: coordinated (zero sideslip, heading free) instead of the paper's turn.
+    terms : Terms or None
+        The physical terms of the case's model (:class:`flexsim.model.terms.Terms`, with aerodynamics); the analysis
+        is that of ``AircraftModel(aircraft, terms=terms)`` with ``model``'s aerodynamic model
+        (:meth:`FlutterAnalysis.from_model`). None (default): the aircraft's, with ``structural_damping`` and
+        ``formulation`` (which must then be None when ``terms`` is given).
     """
 
     aircraft: str
@@ -77,10 +83,18 @@ class StudyCase:
     formulation: str | None = None
     linear_density_altitude_m: float | None = None
     coordinated: bool = False
+    terms: Terms | None = None
 
     def __post_init__(self) -> None:
         if self.model not in MODELS:
             raise ValueError(f"model = {self.model!r}: must be one of {', '.join(MODELS)}")
+        if self.terms is not None:
+            if not isinstance(self.terms, Terms) or self.terms.aero is None:
+                raise ValueError(f"terms = {self.terms!r}: must be a flexsim.model.terms.Terms with aerodynamics (or None)")
+            given = [k for k in ("structural_damping", "formulation") if getattr(self, k) is not None]
+            if given:
+                raise ValueError(f"terms and {', '.join(given)}: give {', '.join(given)} inside terms "
+                                 "(Terms.structural_damping, AeroOptions.formulation), not both")
         if self.coordinated and self.turn_radius_m == math.inf:
             raise ValueError("coordinated = True: applies to turns only (give turn_radius_m)")
         if self.formulation is not None and self.formulation not in ("physical", "paper"):
@@ -93,14 +107,20 @@ class StudyCase:
         from flexsim.aircraft.toml_loader import load_aircraft
         from flexsim.linear.flutter import FlutterAnalysis
 
+        from flexsim.model.aircraft_model import AircraftModel
+
         rho = None if self.linear_density_altitude_m is None else float(isa_density(self.linear_density_altitude_m))
+        if self.terms is not None:
+            return FlutterAnalysis.from_model(AircraftModel(load_aircraft(self.aircraft), terms=self.terms), MODELS[self.model],
+                                              linear_aero_density_kg_m3=rho)
         return FlutterAnalysis(load_aircraft(self.aircraft), MODELS[self.model], structural_damping=self.structural_damping,
                                formulation=self.formulation, linear_aero_density_kg_m3=rho)
 
     @property
     def chain_key(self) -> tuple:
         """Cases with equal keys share one analysis and are run in order (:func:`run_chain`)."""
-        return (self.aircraft, self.model, self.altitude_m, self.structural_damping, self.formulation, self.linear_density_altitude_m)
+        return (self.aircraft, self.model, self.altitude_m, self.structural_damping, self.formulation, self.linear_density_altitude_m,
+                self.terms)
 
 
 def turn_cases(aircraft: str, radii_m: Sequence[float] = tuple(range(5000, 12001, 1000)),
@@ -152,6 +172,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
         mode_symmetry=fp.mode_symmetry, symmetric_fraction=fp.symmetric_fraction, normalised_by=fp.normalised_by,
         participation=[p.as_dict() for p in fp.participation],
         formulation=fp.formulation, aero_density_kg_m3=fp.aero_density_kg_m3, aero_density_fixed=fp.aero_density_fixed,
+        model_terms=fp.terms,
     )
     return row
 
@@ -183,7 +204,7 @@ def _analysis(case: StudyCase):
     path = resolve_aircraft_path(case.aircraft)
     # what the analysis depends on: not the altitude, so that a worker reuses it over the points of all altitudes
     key = (hashlib.sha256(path.read_bytes()).hexdigest(), case.model, case.structural_damping, case.formulation,
-           case.linear_density_altitude_m)
+           case.linear_density_altitude_m, case.terms)
     if key in _ANALYSES:
         _ANALYSES.move_to_end(key)
         return _ANALYSES[key]
@@ -455,7 +476,7 @@ def _local_steps(cases: Sequence[StudyCase], todo: list[list[int]], chain_sizes:
     groups: dict[tuple, list[int]] = {}
     for g, size in zip(todo, chain_sizes):
         if len(g) == 1 and size == 1:
-            key = tuple((k, v) for k, v in asdict(cases[g[0]]).items() if k != "model")
+            key = json.dumps({k: v for k, v in asdict(cases[g[0]]).items() if k != "model"}, sort_keys=True, default=str)
             groups.setdefault(key, []).append(g[0])
         else:
             queues.append([(i,) for i in g])
@@ -472,7 +493,7 @@ def _in_worker(name: str, *args):
 def _analysis_of(cases: Sequence[StudyCase], step: tuple[int, ...]) -> tuple:
     """Which analysis a worker builds for ``step`` (:func:`_analysis`, :func:`run_points`): scheduling only."""
     case = min((cases[i] for i in step), key=lambda c: _COST_RANK[c.model])
-    return (case.aircraft, case.model, case.structural_damping, case.formulation, case.linear_density_altitude_m)
+    return (case.aircraft, case.model, case.structural_damping, case.formulation, case.linear_density_altitude_m, case.terms)
 
 
 def _run_pool(n, cases, queues, guess_for, finish, bar, attempts, max_attempts) -> None:

@@ -43,7 +43,7 @@ altitude of the model given.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Sequence
 
@@ -237,6 +237,9 @@ class VgDiagram:
         Every crossing of every branch, by model and speed.
     failed : tuple of (str, float, str)
         (aero model, speed [m/s], reason) of the speeds without roots (trim failed).
+    terms : dict
+        Aerodynamic model name -> the physical terms of the model whose roots were computed for it
+        (:meth:`flexsim.model.terms.Terms.record`).
     """
 
     aircraft: str
@@ -247,6 +250,7 @@ class VgDiagram:
     tracks: tuple[VgTrack, ...]
     crossings: tuple[VgCrossing, ...] = ()
     failed: tuple[tuple[str, float, str], ...] = ()
+    terms: dict = field(default_factory=dict)
 
     def flutter(self, aero_model: str) -> VgCrossing | None:
         """The lowest-speed crossing into instability of an elastic branch of ``aero_model``, or None."""
@@ -266,7 +270,8 @@ class VgDiagram:
                 "damping": "g = 2 Re(lambda)/|Im(lambda)|, positive = unstable; damping_ratio = -Re(lambda)/|lambda|",
                 "tracks": [t.as_dict() for t in self.tracks],
                 "crossings": [c.__dict__ for c in self.crossings],
-                "failed": [{"aero_model": m, "speed_m_s": v, "reason": r} for m, v, r in self.failed]}
+                "failed": [{"aero_model": m, "speed_m_s": v, "reason": r} for m, v, r in self.failed],
+                "terms": self.terms}
 
     def plot(self, path: str | Path, *, g_limits: tuple[float, float] = (-0.5, 0.2), max_elastic: int = 10) -> Path:
         """V-g (top) and V-f (bottom) panels, one column per aerodynamic model, crossings marked; written as PNG.
@@ -420,17 +425,19 @@ def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_
         raise ValueError(f"n_speeds = {n_speeds!r}: must be an integer >= 3")
     if model.aero is None:
         raise ValueError("model.aero = None: a model without aerodynamics has no V-g diagram")
-    restrained = model.variant.value == "restrained"
+    restrained = model.variant.kind.value == "restrained"
     names = [VG_MODELS[k] for k in keys]
+    terms: dict[str, dict] = {}
     if restrained:
         if speeds_m_s is None:
             raise ValueError("speeds_m_s: a restrained model (wind tunnel) has no flight envelope; give the speeds")
-        h = model.altitude_m
+        h = model.variant.altitude_m
         rho = model.air_density(model.layout.zeros())
         condition = f"restrained in a stream of density {rho:.4g} kg/m^3 at H = {h:.0f} m"
 
         def evaluate(name: str, speed: float, guess) -> tuple[Spectrum, AircraftModel, object]:
-            spec, used = _tunnel_spectrum(model, speed, name, rho)
+            spec, used = _tunnel_spectrum(model, speed, name)
+            terms.setdefault(name, used.terms.record())
             return spec, used, None
     else:
         _check_flutter_model(model)
@@ -447,6 +454,7 @@ def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_
         shared = SharedEvaluations(analysis)
 
         def evaluate(name: str, speed: float, guess) -> tuple[Spectrum, AircraftModel, object]:
+            terms.setdefault(name, (analysis.fs if name == "unsteady" else analysis.qs_linear).terms.record())
             point, spec = analysis.evaluate(manoeuvre.with_speed(speed), guess, aero_model=name, shared=shared)
             return spec, analysis.qs, point
     speeds = np.asarray(speeds_m_s, float)
@@ -490,7 +498,8 @@ def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_
                 crossings.append(_crossing(track, i, a_sound, (lambda v, g, n=name: evaluate(n, v, g)),
                                            trims[i], refine))
     crossings.sort(key=lambda c: (names.index(c.aero_model), c.speed_m_s))
-    return VgDiagram(model.aircraft.name, condition, h, float(a_sound), speeds, tuple(tracks), tuple(crossings), tuple(failed))
+    return VgDiagram(model.aircraft.name, condition, h, float(a_sound), speeds, tuple(tracks), tuple(crossings), tuple(failed),
+                     terms)
 
 
 def _crossing(track: VgTrack, i: int, a_sound: float, evaluate, guess, refine: bool) -> VgCrossing:
@@ -546,14 +555,14 @@ def _refine(track: VgTrack, i: int, evaluate, guess) -> tuple[float, float] | No
     return float(c), float(abs(lam.imag))
 
 
-def _tunnel_spectrum(model: AircraftModel, speed: float, name: str, rho: float) -> tuple[Spectrum, AircraftModel]:
-    """Spectrum of the restrained ``model`` in a stream of ``speed`` [m/s] (as :func:`flexsim.linear.flutter.wind_tunnel`)."""
-    options = model.aero.options
+def _tunnel_spectrum(model: AircraftModel, speed: float, name: str) -> tuple[Spectrum, AircraftModel]:
+    """Spectrum of the restrained ``model`` in a stream of ``speed`` [m/s] (as :func:`flexsim.linear.flutter.wind_tunnel`):
+    its siblings (:meth:`AircraftModel.replace`) with that stream and the aerodynamic model wanted, every other term
+    and the tunnel's attitude, altitude and density the model's."""
+    options = model.terms.aero
 
     def at(aero: str) -> AircraftModel:
-        return AircraftModel(model.aircraft, variant="restrained", aero=replace(options, model=aero),
-                             gravity_m_s2=model.gravity_m_s2, altitude_m=model.altitude_m, air_density_kg_m3=rho,
-                             restrained_velocity_m_s=[speed, 0.0, 0.0], structural_damping=model.structural_damping)
+        return model.replace(aero=replace(options, model=aero), restrained_velocity_m_s=(speed, 0.0, 0.0))
 
     qs = at("quasi-steady")
     x0, u0 = qs.layout.zeros(), np.zeros(4)

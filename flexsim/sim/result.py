@@ -122,7 +122,7 @@ class SimulationResult:
         """Inertial position of the body origin, NED [m], shape (N, 3) (restrained: [0, 0, -H])."""
         pos = self._unpacked[0].copy()
         if not self.model.layout.rigid:
-            pos[:, 2] = -self.model.altitude_m
+            pos[:, 2] = -self.model.variant.altitude_m
         return pos
 
     @property

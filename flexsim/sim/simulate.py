@@ -494,7 +494,7 @@ def simulate(
     sink = None
     if path is not None:
         meta = {"aircraft": model.aircraft.name, "aircraft_source": str(model.aircraft.source),
-                "variant": model.variant.value, "aero": "none" if model.aero is None else model.aero.options.model,
+                "variant": model.variant.kind.value, "aero": "none" if model.aero is None else model.aero.options.model,
                 "method": method, "rtol": f"{rtol:g}", "t_end_s": f"{t_end:g}", "run_id": uuid.uuid4().hex}
         meta.update({str(k): str(v) for k, v in (metadata or {}).items()})
         sink = LogSink(path, outputs, meta, wind=wind)
@@ -509,7 +509,7 @@ def simulate(
     results.add(0.0, x0, u0)
     try:
         if sink is not None:
-            sink.event(0.0, f"simulation start: {model.aircraft.name} ({model.variant.value}, aero "
+            sink.event(0.0, f"simulation start: {model.aircraft.name} ({model.variant.kind.value}, aero "
                             f"{meta['aero']}), method {method}, rtol {rtol:g}, t_end {t_end:g} s")
             for t_note, text in notes:
                 sink.schedule(float(t_note), str(text))

@@ -193,7 +193,7 @@ def test_non_finite_state_stops_the_run(vacuum):
 def test_user_events_are_located_on_the_dense_output(vacuum):
     # free fall from rest in vacuum: the body origin has dropped g t^2 / 2
     x0 = vacuum.pack(position_m=[0, 0, -H])
-    g = vacuum.gravity_m_s2
+    g = vacuum.terms.gravity_m_s2
     drop = SimEvent("dropped 1 m", lambda t, x: x[2] - (-H + 1.0), direction=1, terminal=False)
     stop = SimEvent("dropped 5 m", lambda t, x: (-H + 5.0) - x[2])
     result = simulate(vacuum, x0, 3.0, controls=np.zeros(4), events=["ground", drop, stop])
