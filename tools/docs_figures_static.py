@@ -332,6 +332,6 @@ def simulation_flutter_onset_growth() -> str:
     from flexsim.sim.manoeuvres import build_manoeuvre
 
     opts = RUN_OPTIONS["flutter-onset"]
-    r = build_manoeuvre("flutter-onset").simulate(structural_limit_m=opts["structural_limit_m"], t_end_s=opts["t_end_s"])
+    r = build_manoeuvre("flutter-onset").simulate(events=opts["events"], t_end_s=opts["t_end_s"])
     tip = np.abs(r.tip_deflection_m("right_wing"))
     return f"grows to {tip.max():.2f} m in {opts['t_end_s']:g} s"

@@ -10,6 +10,7 @@ default, reaches the result of trim, flutter, V-g, wind tunnel, linear system, s
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 
 import numpy as np
@@ -110,6 +111,11 @@ def test_linear_systems_of_different_terms_differ(gtm, tmp_path):
     back = LinearSystem.load(switched.save(tmp_path / "switched.npz"))
     assert back.model == switched.model
     assert ModelRecord.from_json(switched.model.as_json()) == switched.model
+    # a record of the earlier layout (variant name, aero, gravity and density only) reads as those terms
+    old = json.loads(plain.model.as_json())
+    old.update(variant="free", aero=old["terms"]["aero"], gravity_m_s2=9.80665, aero_density_kg_m3=None)
+    del old["terms"]
+    assert ModelRecord.from_json(json.dumps(old)) == plain.model
 
 
 # --------------------------------------------------------------------------- every field of Terms, every analysis

@@ -27,6 +27,7 @@ from flexsim.cli.main import main
 from flexsim.io.flight_log import FlightLogRecoveryWarning, read_flight_log
 from flexsim.sim.manoeuvres import build_manoeuvre
 from flexsim.sim.outputs import OutputMaps
+from flexsim.sim.run_settings import OutputSettings
 
 COMPONENTS = ("fuselage", "right_wing", "left_wing", "right_htail", "left_htail", "vtail")
 
@@ -35,7 +36,7 @@ COMPONENTS = ("fuselage", "right_wing", "left_wing", "right_htail", "left_htail"
 def logged_run(tmp_path_factory):
     path = tmp_path_factory.mktemp("log") / "doublet.mcap"
     setup = build_manoeuvre("elevator-doublet", aero="quasi-steady", duration_s=1.6)
-    result = setup.simulate(log_path=path, output_rate_hz=50.0, log_rate_hz=50.0)
+    result = setup.simulate(output=OutputSettings(rate_hz=50.0, log_path=path, log_rate_hz=50.0))
     return path, result
 
 
@@ -125,8 +126,9 @@ def test_flexsim_view_reports_bad_and_truncated_logs(logged_run, tmp_path, capsy
 _KILL_SCRIPT = textwrap.dedent("""
     import sys
     from flexsim.sim.manoeuvres import build_manoeuvre
+    from flexsim.sim.run_settings import OutputSettings
     setup = build_manoeuvre("elevator-doublet", aero="quasi-steady", duration_s=60.0)
-    setup.simulate(log_path=sys.argv[1], progress=lambda t: print(f"{t:.6f}", flush=True))
+    setup.simulate(output=OutputSettings(log_path=sys.argv[1], progress=lambda t: print(f"{t:.6f}", flush=True)))
 """)
 
 
