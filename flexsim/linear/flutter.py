@@ -607,8 +607,9 @@ def wind_tunnel(aircraft: Aircraft | AircraftModel, *, aero_model: str = "unstea
     ----------
     aircraft : Aircraft or AircraftModel
         An aircraft definition (its tunnel models have every term at its default but gravity, 0), or a model: the
-        tunnel evaluates that model's siblings (:meth:`AircraftModel.replace`: restrained at each speed, the
-        aerodynamic model ``aero_model``), with every term of the model as given, gravity included.
+        tunnel evaluates that model's siblings (:meth:`AircraftModel.replace`: its variant replaced by this tunnel's,
+        restrained at each speed at ``altitude_m`` and ``density_kg_m3``, and the aerodynamic model ``aero_model``),
+        with every term of the model as given, gravity included.
     aero_model : {"quasi-steady", "unsteady", "theodorsen"}
     speed_range : (float, float)
         Searched speeds [m/s], 0 < lo < hi.

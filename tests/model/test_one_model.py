@@ -27,7 +27,7 @@ from flexsim.model.terms import Terms
 from flexsim.model.variant import Variant, VariantSettings
 from flexsim.trim import SteadyManoeuvre, trim
 
-#: Fact 1 of the issue that motivated one model value: these switches on the finite-state model.
+#: Switches of terms that a flutter search must carry from the model it is given to the siblings it trims and solves.
 SWITCHES = dict(force_resolution="normal", thrust_follows_deflection=False, engine_angular_momentum=(2e5, 0.0, 0.0))
 CRUISE = SteadyManoeuvre.level(9144.0, mach=0.8)
 #: A range around the GTM's quasi-steady level-flight flutter Mach at 9144 m (about 0.815), scanned in two steps.
@@ -84,7 +84,7 @@ def test_variant_given_once(gtm):
 
 
 def test_flutter_evaluates_the_models_terms(gtm):
-    """Fact 1: the switched finite-state model's quasi-steady flutter point is that of its own quasi-steady sibling
+    """The switched finite-state model's quasi-steady flutter point is that of its own quasi-steady sibling
     (same trims, same roots: equal to the last bit) and differs from the default model's (the switches move it by
     about 1e-4 in Mach at 9144 m; Brent's tolerance here is 1e-7); its recorded terms carry the switches."""
     switched = AircraftModel(gtm, terms=Terms(aero=AeroOptions("unsteady"), **SWITCHES))
