@@ -61,8 +61,8 @@ class ManoeuvreSetup:
     controls : ControlSchedule, ndarray (4,) or callable(t, x) -> u
     duration_s : float
         Default run length [s].
-    control_period_s : float
-        Period of a feedback controller [s].
+    control_rate_hz : float
+        Rate of a feedback controller [Hz] (``simulate``'s and the environments' ``control_rate_hz``).
     wing_tip_deflection_m : float or None
         Bound of the structural-limit event [m] (None: simulate's default, 0.25 x wing length;
         :class:`~flexsim.sim.run_settings.EventSettings`).
@@ -80,7 +80,7 @@ class ManoeuvreSetup:
     initial: TrimPoint | np.ndarray
     controls: ControlSchedule | np.ndarray | Callable[[float, np.ndarray], np.ndarray]
     duration_s: float
-    control_period_s: float = 0.02
+    control_rate_hz: float = 50.0
     wing_tip_deflection_m: float | None = None
     notes: tuple[tuple[float, str], ...] = ()
     metadata: dict[str, str] = field(default_factory=dict)
@@ -97,7 +97,7 @@ class ManoeuvreSetup:
             events = EventSettings(wing_tip_deflection_m=self.wing_tip_deflection_m)
         meta = {"manoeuvre": self.name, "description": self.description, **self.metadata, **output.metadata}
         output = replace(output, notes=self.notes + output.notes, metadata=meta)
-        return simulate(self.model, self.initial, t_end, controls=self.controls, control_period_s=self.control_period_s,
+        return simulate(self.model, self.initial, t_end, controls=self.controls, control_rate_hz=self.control_rate_hz,
                         wind=self.wind, integrator=integrator, events=events, output=output)
 
 
@@ -194,7 +194,7 @@ def _level_turn_entry(aero: AeroOptions) -> ManoeuvreSetup:
     ctrl = BankController(level, turn, start_s=1.0, ramp_s=4.0, k_phi=0.8, k_p=0.0, lower=lo, upper=hi,
                           euler_index=lay.euler.start, omega_index=lay.omega.start)
     return ManoeuvreSetup("level-turn-entry", f"level flight into a level turn of R = 10 km (bank {math.degrees(turn.phi):.1f} deg)",
-                          model, level, ctrl, 10.0, control_period_s=0.05,
+                          model, level, ctrl, 10.0, control_rate_hz=20.0,
                           notes=((1.0, f"turn entry: bank command to {math.degrees(turn.phi):.1f} deg over 4 s"),))
 
 

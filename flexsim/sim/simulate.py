@@ -340,7 +340,7 @@ def simulate(
     t_end_s: float,
     *,
     controls: np.ndarray | ControlSchedule | Callable[[float, np.ndarray], np.ndarray] | None = None,
-    control_period_s: float = 0.02,
+    control_rate_hz: float = 50.0,
     wind: Wind | None = None,
     integrator: IntegratorSettings = IntegratorSettings(),
     events: EventSettings = EventSettings(),
@@ -358,11 +358,12 @@ def simulate(
         Duration [s] > 0 (the run starts at t = 0).
     controls : array (4,), ControlSchedule or callable, optional
         Constant controls [T_e (N), delta_a, delta_e, delta_r (rad)]; a piecewise-linear schedule; or a
-        feedback controller ``controls(t, x) -> u`` evaluated every ``control_period_s`` and held
+        feedback controller ``controls(t, x) -> u`` evaluated at ``control_rate_hz`` and held
         (zero-order hold). Default: the trim controls. Values beyond ``aircraft.control_limits()`` are
         rejected.
-    control_period_s : float
-        Period of a feedback controller [s] (default 0.02).
+    control_rate_hz : float
+        Rate of a feedback controller [Hz], finite and > 0 (default 50: every 0.02 s), the environments'
+        ``control_rate_hz``.
     wind : callable, optional
         Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)`` [m/s, NED] (gusts, turbulence:
         :mod:`flexsim.sim.disturbances`), passed to every ``model.rhs`` call; None (default): still air.
@@ -406,7 +407,10 @@ def simulate(
     if not (isinstance(t_end_s, (int, float)) and math.isfinite(t_end_s) and t_end_s > 0):
         raise ValueError(f"t_end_s = {t_end_s!r}: must be a finite number > 0 [s]")
     t_end = float(t_end_s)
-    ctrl = Controls(model, controls, u_trim, control_period_s)
+    rate = control_rate_hz
+    if isinstance(rate, bool) or not (isinstance(rate, (int, float)) and math.isfinite(rate) and rate > 0):
+        raise ValueError(f"control_rate_hz = {rate!r}: must be a finite number > 0 [Hz]")
+    ctrl = Controls(model, controls, u_trim, 1.0 / float(rate))
     settings = integrator.resolve(model, wind)
     method, rtol = settings.method, settings.rtol
     out_grid = _grid(output.rate_hz, t_end)

@@ -229,7 +229,7 @@ def test_simulate_compiled_equals_the_python_steps(gtm):
     up = SimEvent("climbing", lambda t, x: x[model.layout.v.start + 2], direction=0, terminal=False)
     etd = IntegratorSettings(method="ETD2RK")
     for kwargs in ({"wind": gust, "controls": sched, "events": EventSettings(("ground", up)), "integrator": etd},
-                   {"controls": lambda t, x: u0 + [0, 0, 0.002 * x[model.layout.euler.start], 0], "control_period_s": 0.05,
+                   {"controls": lambda t, x: u0 + [0, 0, 0.002 * x[model.layout.euler.start], 0], "control_rate_hz": 20.0,
                     "integrator": etd},
                    {"wind": gust, "integrator": IntegratorSettings(method="ETD2RK", max_step_s=0.02),
                     "output": OutputSettings(rate_hz=None, log_rate_hz=20.0)}):

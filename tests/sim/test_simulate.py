@@ -133,7 +133,7 @@ def test_feedback_controller_is_sampled_every_period_and_held(vacuum):
         calls.append(t)
         return np.array([1e4 * (1 + len(calls)), 0.0, 0.0, 0.0])
 
-    result = simulate(vacuum, x0, 0.1, controls=controller, control_period_s=0.025,
+    result = simulate(vacuum, x0, 0.1, controls=controller, control_rate_hz=40.0,
                       output=OutputSettings(rate_hz=200.0))
     np.testing.assert_allclose(calls, [0.0, 0.025, 0.05, 0.075], atol=1e-12)
     held = 1e4 * (2 + np.minimum(np.floor(result.t / 0.025 + 1e-9), 3))  # u(t) = controller(t_k) on [t_k, t_k+1)
@@ -253,6 +253,8 @@ def test_bad_arguments_are_rejected_with_clear_messages(quasi_steady, tmp_path):
     with pytest.raises(ValueError, match=r"elevator delta_e \[rad\] = 0.7 at t = 0.5 s is outside the aircraft's limits"):
         simulate(quasi_steady, point, 1.0,
                  controls=ControlSchedule([0.0, 0.5], [point.u, point.u + [0, 0, 0.7 - point.u[2], 0]]))
+    with pytest.raises(ValueError, match=r"control_rate_hz = 0.0: must be a finite number > 0 \[Hz\]"):
+        simulate(quasi_steady, point, 1.0, controls=lambda t, x: point.u, control_rate_hz=0.0)
     with pytest.raises(ValueError, match="initial state already stops the run: structural limit"):
         simulate(quasi_steady, point, 1.0, events=EventSettings(wing_tip_deflection_m=0.5))
     with pytest.raises(ValueError, match=r"names: unknown event 'stall'"):
