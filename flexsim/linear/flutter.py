@@ -688,8 +688,8 @@ def wind_tunnel(aircraft: Aircraft | AircraftModel, *, aero_model: str = "unstea
         prev = float(speed)
     u_d = _divergence_speed(lambda sp: model(sp, "quasi-steady"), speeds, tol_m_s) if divergence else None
     comp = probe.aero.compressibility
-    used = model(lo, "unsteady" if aero_model == "unsteady" else "quasi-steady")
-    return WindTunnelResult(aero_model, float(rho), comp, u_f, w_f, u_d, (lo, hi), used.terms.record())
+    used = replace(options, model="unsteady" if aero_model == "unsteady" else "quasi-steady", n_inflow=n_inflow)
+    return WindTunnelResult(aero_model, float(rho), comp, u_f, w_f, u_d, (lo, hi), replace(given.terms, aero=used).record())
 
 
 def _static_stiffness_sign(model: AircraftModel) -> float:
