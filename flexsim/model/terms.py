@@ -5,7 +5,9 @@ the model is built; the compiled right-hand side then evaluates exactly that mod
 and the environments alike). The switches serve studies of which term causes an effect (e.g.
 ``studies/manoeuvre_decomposition.py``: what makes flutter depend on the manoeuvre) and the paper-replication settings
 of docs/flutter.md. A model records its terms (:attr:`flexsim.model.aircraft_model.AircraftModel.terms`;
-:meth:`Terms.record` gives them as a JSON-ready dict for result rows and log headers).
+:meth:`Terms.record` gives them as a JSON-ready dict for result rows and log headers). A model that differs only in some
+terms is ``model.replace(field=value, ...)`` (:meth:`~flexsim.model.aircraft_model.AircraftModel.replace`), the way every
+analysis builds the siblings it needs, so that each evaluates the terms of the model it was given.
 
 Example::
 
