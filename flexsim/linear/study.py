@@ -152,6 +152,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
         mode_symmetry=fp.mode_symmetry, symmetric_fraction=fp.symmetric_fraction, normalised_by=fp.normalised_by,
         participation=[p.as_dict() for p in fp.participation],
         formulation=fp.formulation, aero_density_kg_m3=fp.aero_density_kg_m3, aero_density_fixed=fp.aero_density_fixed,
+        linear_range=fp.trim.linear_range,
     )
     return row
 

@@ -27,6 +27,7 @@ from flexsim.atmosphere import speed_of_sound
 from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel, Variant
 from flexsim.kinematics import dcm_321
+from flexsim.model.linear_range import linear_range_note
 from flexsim.model.sensors import structural_sensors
 from flexsim.structure.mirror import TIE_RTOL
 from flexsim.trim.equilibrium import EquilibriumStability, equilibrium_stability
@@ -128,6 +129,9 @@ class TrimPoint:
     stability : EquilibriumStability or None
         The classification of the equilibrium from the roots of its linearisation
         (:mod:`flexsim.trim.equilibrium`); None when the trim was asked not to classify (``classify=False``).
+    linear_range : str or None
+        One line when the trim bends or twists a beam beyond the linear structure's range
+        (:func:`flexsim.model.linear_range.linear_range_note`), None within it.
     """
 
     manoeuvre: SteadyManoeuvre
@@ -150,6 +154,7 @@ class TrimPoint:
     drag_n: float = 0.0
     max_local_alpha: StripAngle | None = None
     stability: EquilibriumStability | None = None
+    linear_range: str | None = None
 
     def __post_init__(self) -> None:
         # a frozen result: its arrays are read-only copies (the caller's arrays are not frozen)
@@ -606,6 +611,7 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
         lift_n=lift,
         drag_n=drag,
         max_local_alpha=_max_local_alpha(model, x, u),
+        linear_range=linear_range_note(model, x),
     )
 
 
