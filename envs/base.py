@@ -471,7 +471,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             info["linear_range"] = point.linear_range
             if not self._linear_range_said:
                 self._linear_range_said = True
-                gym.logger.warn(f"{self.spec.id if self.spec else type(self).__name__}: {point.linear_range}")
+                gym.logger.warn("%s: %s", self.spec.id if self.spec else type(self).__name__, point.linear_range)
         if self.render_mode == "human":
             self.render()
         return obs, info
