@@ -44,7 +44,7 @@ TWIST_LIMIT_RAD = 0.3475
 NONLINEAR_OPTION = "the geometrically nonlinear beam, docs/nonlinear-beams.md"
 
 
-def linear_range_note(model, x: np.ndarray, where: str = "") -> str | None:
+def linear_range_note(model, x: np.ndarray, where: str = "", sensors: dict | None = None) -> str | None:
     """One line when state(s) ``x`` bend or twist a beam of the linear structure beyond its range, else None.
 
     Parameters
@@ -56,6 +56,8 @@ def linear_range_note(model, x: np.ndarray, where: str = "") -> str | None:
         an unsteady model's state) are ignored, as the sensors read the structural block only.
     where : str
         Optional context for the line (e.g. ``"at the flutter point"``), placed after the quantity.
+    sensors : dict, optional
+        ``structural_sensors(model)`` when the caller has it already (it costs about 0.8 ms on the GTM, 8 % of a trim).
 
     Returns
     -------
@@ -65,7 +67,7 @@ def linear_range_note(model, x: np.ndarray, where: str = "") -> str | None:
         beam, docs/nonlinear-beams.md"`` for the worst beam (``... and N more beams`` when several are beyond).
     """
     worst, count = None, 0
-    for name, sensor in structural_sensors(model).items():
+    for name, sensor in (structural_sensors(model) if sensors is None else sensors).items():
         length = model.aircraft.component(name).length_m
         w = np.atleast_1d(np.asarray(sensor.tip_deflection_m(x), dtype=float))
         psi = np.atleast_1d(np.asarray(sensor.tip_twist_rad(x), dtype=float))

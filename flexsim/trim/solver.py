@@ -588,7 +588,8 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
     lift, drag = _lift_drag(aero_force, v_cg)
     weight = st.mass_properties.mass_kg * max(model.gravity_m_s2, 1e-9)
     tip_w = tip_t = 0.0
-    wing = structural_sensors(model).get("right_wing")  # the one implementation of the structural outputs
+    sensors = structural_sensors(model)  # the one implementation of the structural outputs
+    wing = sensors.get("right_wing")
     if wing is not None:
         tip_w, tip_t = float(wing.tip_deflection_m(x)), float(wing.tip_twist_rad(x))
     return TrimPoint(
@@ -611,7 +612,7 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
         lift_n=lift,
         drag_n=drag,
         max_local_alpha=_max_local_alpha(model, x, u),
-        linear_range=linear_range_note(model, x),
+        linear_range=linear_range_note(model, x, sensors=sensors),
     )
 
 
