@@ -18,6 +18,9 @@ from flexsim.errors import AircraftDefinitionError
 __all__ = ["vlm_surfaces", "strip_lift_slopes", "exposed_lift_slope"]
 
 _BODY_TO_VLM = np.array([-1.0, 1.0, -1.0])
+#: A half whose root leading edge is this close to y = 0 [m] is rooted on the centreline (rounding of the direction
+#: cosines of its axes: 1e-16 m for a 1 m chord; any real offset of a root from the centreline is millimetres or more).
+_ON_CENTRELINE_M = 1e-9
 
 
 def vlm_surfaces(aircraft: Aircraft) -> tuple[LiftingSurface, ...]:
@@ -39,7 +42,9 @@ def vlm_surfaces(aircraft: Aircraft) -> tuple[LiftingSurface, ...]:
         le = ea - (comp.sections.ea_fraction * comp.sections.chord_m)[:, None] * chord_b[None, :]
         le = le * _BODY_TO_VLM
         chord = comp.sections.chord_m.copy()
-        if le[0, 1] != 0.0:  # a half rooted on the centreline (a wing continuous through it) needs no extension
+        if abs(le[0, 1]) <= _ON_CENTRELINE_M:  # rooted on the centreline (a continuous wing): no extension
+            le[0, 1] = 0.0  # (the root's y is a round-off of the axes' cosines there)
+        else:
             root = le[0].copy()
             root[1] = 0.0
             le = np.vstack([root, le])
@@ -54,7 +59,13 @@ def vlm_surfaces(aircraft: Aircraft) -> tuple[LiftingSurface, ...]:
                 f"at y = 0)")
         n_seg = le.shape[0] - 1
         per_seg = max(1, int(np.ceil(36 / n_seg)))
-        out.append(LiftingSurface(comp.name, le, chord, n_chordwise=4, n_spanwise=per_seg))
+        try:
+            out.append(LiftingSurface(comp.name, le, chord, n_chordwise=4, n_spanwise=per_seg))
+        except ValueError as exc:  # a planform the lattice cannot take: name the component and the way out
+            raise AircraftDefinitionError(
+                f"components.{comp.name}: the vortex lattice of the lift slopes (lift_slope = \"vlm\" on a wing or "
+                f"stabilizer) cannot model its planform: {exc}; give every surface's aero.lift_slope as \"2pi\" or a "
+                f"number") from None
     return tuple(out)
 
 

@@ -4,7 +4,8 @@
   the lattice of one mirrored rectangular wing of the same planform and panels, so their lift slopes agree to
   round-off (1e-10 relative asserted; the influence sums run in a different order).
 * The aircraft loads, builds a model and gives left-right symmetric strip slopes and mode pairs.
-* A half whose planform crosses the centreline is refused with an error naming the component's ``root_m``.
+* A half whose planform crosses the centreline is refused with an error naming the component's ``root_m``; a
+  planform the lattice cannot take (a half at 60 deg dihedral) with one naming the component and the way out.
 """
 
 from __future__ import annotations
@@ -84,4 +85,21 @@ def test_the_continuous_wing_builds_a_model_with_symmetric_strips_and_clamped_mo
 def test_a_half_crossing_the_centreline_is_refused_naming_its_root():
     aircraft = parse_aircraft(wing_toml(y_left=0.5), source="crossing.toml")
     with pytest.raises(AircraftDefinitionError, match=r"components\.left_wing\.root_m .*one side of y = 0"):
+        AircraftModel(aircraft, aero="quasi-steady")
+
+
+def test_a_continuous_wing_with_dihedral_is_on_the_centreline_despite_rounding():
+    # with 10 deg dihedral the left half's root leading edge is at y ~ 1e-17 m (the axes' cosines), not exactly 0
+    dihedral = wing_toml().replace("euler_deg = [0.0, 0.0, 90.0]", "euler_deg = [0.0, -10.0, 90.0]").replace(
+        "euler_deg = [0.0, 0.0, -90.0]", "euler_deg = [0.0, 10.0, -90.0]")
+    halves = vlm_surfaces(parse_aircraft(dihedral, source="dihedral.toml"))
+    assert [s.le_m.shape[0] for s in halves] == [2, 2]  # root and tip: no inboard extension
+    assert halves[0].le_m[0, 1] == 0.0 and halves[1].le_m[-1, 1] == 0.0
+
+
+def test_a_planform_the_lattice_cannot_take_is_refused_naming_the_component():
+    steep = wing_toml().replace("euler_deg = [0.0, 0.0, -90.0]", "euler_deg = [0.0, 60.0, -90.0]")
+    aircraft = parse_aircraft(steep, source="steep.toml")
+    with pytest.raises(AircraftDefinitionError, match=r"components\.left_wing: the vortex lattice .* cannot model its "
+                                                      r"planform: segment dihedral must be within .*\"2pi\" or a number"):
         AircraftModel(aircraft, aero="quasi-steady")
