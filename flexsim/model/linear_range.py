@@ -67,11 +67,15 @@ def linear_range_note(model, x: np.ndarray, where: str = "", sensors: dict | Non
         beam, docs/nonlinear-beams.md"`` for the worst beam (``... and N more beams`` when several are beyond).
     """
     worst, count = None, 0
+    x = np.asarray(x, dtype=float)
     for name, sensor in (structural_sensors(model) if sensors is None else sensors).items():
         length = model.aircraft.component(name).length_m
-        w = np.atleast_1d(np.asarray(sensor.tip_deflection_m(x), dtype=float))
-        psi = np.atleast_1d(np.asarray(sensor.tip_twist_rad(x), dtype=float))
-        k_w, k_psi = int(np.argmax(np.abs(w))), int(np.argmax(np.abs(psi)))
+        if x.ndim == 1:  # one state (a trim): plain dot products, no temporaries (this runs in every trim)
+            w, psi = [float(x[sensor.q_idx] @ sensor.w_tip)], [float(x[sensor.xi_idx] @ sensor.psi_tip)]
+            k_w = k_psi = 0
+        else:
+            w, psi = sensor.tip_deflection_m(x), sensor.tip_twist_rad(x)
+            k_w, k_psi = int(np.argmax(np.abs(w))), int(np.argmax(np.abs(psi)))
         ratios = (abs(w[k_w]) / length / DEFLECTION_LIMIT_FRACTION, abs(psi[k_psi]) / TWIST_LIMIT_RAD)
         if max(ratios) <= 1.0:
             continue
