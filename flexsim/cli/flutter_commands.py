@@ -165,6 +165,8 @@ def _flutter(args: argparse.Namespace) -> int:
                 lines.append("    no branch crosses in the range")
     if args.mode:
         print(record_critical_mode([c for _, c in labelled], rows, args.mode), file=sys.stderr if args.json else sys.stdout)
+    unused = {n for n in (nonlinear_fields_note(load_aircraft(s.aircraft)) for s in settings) if n is not None}
+    lines += sorted(unused)
     beyond = [r for r in rows if r.get("linear_range")]
     if beyond:  # one line: the first flutter point beyond the linear structure's range, and how many more
         r = beyond[0]
@@ -221,6 +223,8 @@ def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
         w = f"{r['flutter_frequency_rad_s']:13.3f}" if r["flutter_frequency_rad_s"] is not None else f"{'':>13}"
         print(f"{r['model']:<6}{r['altitude_m']:7.0f}{r['density_kg_m3']:14.4f}{speed(r['flutter_speed_m_s'])}{w}"
               f"{speed(r['divergence_speed_m_s'])}  {r['first_instability']}")
+    if (note := nonlinear_fields_note(aircraft)) is not None:
+        print(note)
     return 0
 
 

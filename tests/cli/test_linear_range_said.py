@@ -5,6 +5,7 @@ tests/sim/test_linear_range_summary.py, tests/envs/test_linear_range_reset.py).
 * ``flexsim trim phc_hale`` at 20 km and 25 m/s: the tips deflect 7.49 m, 47 % of the 16 m semispan; the line is
   printed once, and the JSON carries it; ``flexsim trim gtm`` (4 %) prints none.
 * ``flexsim flutter phc_hale --altitudes 20000 --models FS``: one line, at the flutter point (tips 8.4 m, 52 %).
+* ``flexsim flutter phc_wing --wind-tunnel``: the fields only the nonlinear beam uses are named in one line.
 """
 
 from __future__ import annotations
@@ -33,3 +34,11 @@ def test_flexsim_flutter_says_it_in_one_line(capsys):
     lines = [ln for ln in capsys.readouterr().out.splitlines() if "linear structure beyond its range" in ln]
     assert len(lines) == 1 and lines[0].endswith("— at the flutter point of FS h = 20000 m")
     assert "right_wing tip deflection -8.3" in lines[0]
+
+
+def test_flexsim_flutter_names_the_fields_the_linear_structure_does_not_use(capsys):
+    assert main(["flutter", "phc_wing", "--wind-tunnel", "--altitudes", "20000", "--models", "FS"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[-1] == ("sections.ei_chord_nm2 of right_wing; sections.flap_inertia_kg_m of right_wing: used by the "
+                       "geometrically nonlinear beam only (docs/nonlinear-beams.md); the linear structure (the paper's) "
+                       "bends each beam in one plane and twists it")
