@@ -352,6 +352,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         #: batch of one, or the shared batch of a FlexSimVectorEnv (:meth:`_attach`).
         self._batch = EpisodeBatch(1, self.dynamics.layout.n_states, len(self.task_errors_spec))
         self._row = 0
+        self._linear_range_said = False  # the linear structure's range exceeded at a reset: said once (reset)
         self._error_names = tuple(spec[0] for spec in self.task_errors_spec)
         self._renderer = None
         self._constants: tuple | None = None  # the arguments of the compiled outputs from limits and reward (_kernel_constants)
@@ -475,6 +476,11 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             b.record_path(rows, meas.position_ned_m)
         obs = self._observe_rows(meas, b.errors[rows], b.u[rows])[0]
         info = {"time_s": 0.0, "trim_action": trim_action, "reference": dict(episode.reference)}
+        if point.linear_range is not None:  # the trim bends a beam beyond the linear structure's range: one line, once
+            info["linear_range"] = point.linear_range
+            if not self._linear_range_said:
+                self._linear_range_said = True
+                gym.logger.warn("%s: %s", self.spec.id if self.spec else type(self).__name__, point.linear_range)
         if self.render_mode == "human":
             self.render()
         return obs, info

@@ -19,6 +19,7 @@ from flexsim.linear.study import PAPER_ALTITUDES_M
 from flexsim.linear.study import StudyCase, StudyRecord, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
+from flexsim.model.linear_range import linear_range_note, nonlinear_fields_note
 from flexsim.atmosphere import mach_to_true_airspeed, speed_of_sound
 from flexsim.trim import SteadyManoeuvre, trim
 
@@ -48,11 +49,13 @@ def _trim(args: argparse.Namespace) -> int:
         out = {**out, "static_margin_mac": margin.fraction_of_mac, "neutral_point_aft_of_cg_m": margin.neutral_point_aft_of_cg_m}
     roots = _roots(aircraft, point, args.roots, args.formulation) if args.roots else None
     local = point.max_local_alpha
+    notes = [n for n in (nonlinear_fields_note(aircraft), point.linear_range) if n is not None]
     if args.json:
         extra = {"roots": roots} if roots is not None else {}
         print(json_text({**out, "formulation": model.formulation, "terms": model.terms.record(),
                          "stability": point.stability.as_dict(),
-                         "max_local_alpha": local.as_dict() if local is not None else None, **extra}))
+                         "max_local_alpha": local.as_dict() if local is not None else None,
+                         "linear_range": point.linear_range, **extra}))
         return 0
     print(f"Trim of {aircraft.name} ({model.formulation} force resolution): {point.manoeuvre.describe()}")
     for key, value in out.items():
@@ -60,6 +63,8 @@ def _trim(args: argparse.Namespace) -> int:
     if local is not None:
         print(f"  {'max_local_alpha':<18} {local.describe()}")
     print(f"  {'equilibrium':<18} {point.stability.verdict}")
+    for note in notes:
+        print(note)
     if roots is not None:
         counts = {k: sum(r["kind"] == k for r in roots["modes"]) for k in ("rigid", "elastic", "aerodynamic")}
         print(f"Roots of the linearised trim ({roots['aero_model']}): {counts['rigid']} rigid-body, {counts['elastic']} elastic, "
@@ -160,6 +165,13 @@ def _flutter(args: argparse.Namespace) -> int:
                 lines.append("    no branch crosses in the range")
     if args.mode:
         print(record_critical_mode([c for _, c in labelled], rows, args.mode), file=sys.stderr if args.json else sys.stdout)
+    unused = {n for n in (nonlinear_fields_note(load_aircraft(s.aircraft)) for s in settings) if n is not None}
+    lines += sorted(unused)
+    beyond = [r for r in rows if r.get("linear_range")]
+    if beyond:  # one line: the first flutter point beyond the linear structure's range, and how many more
+        r = beyond[0]
+        more = f" (and {len(beyond) - 1} more of the {len(rows)} flutter points)" if len(beyond) > 1 else ""
+        lines.append(f"{r['linear_range']} — at the flutter point of {r['model']} h = {r['altitude_m']:.0f} m{more}")
     if args.json:
         print(json_text(doc))
         return 0
@@ -211,6 +223,8 @@ def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
         w = f"{r['flutter_frequency_rad_s']:13.3f}" if r["flutter_frequency_rad_s"] is not None else f"{'':>13}"
         print(f"{r['model']:<6}{r['altitude_m']:7.0f}{r['density_kg_m3']:14.4f}{speed(r['flutter_speed_m_s'])}{w}"
               f"{speed(r['divergence_speed_m_s'])}  {r['first_instability']}")
+    if (note := nonlinear_fields_note(aircraft)) is not None:
+        print(note)
     return 0
 
 

@@ -173,6 +173,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
         participation=[p.as_dict() for p in fp.participation],
         formulation=fp.formulation, aero_density_kg_m3=fp.aero_density_kg_m3, aero_density_fixed=fp.aero_density_fixed,
         model_terms=fp.terms,
+        linear_range=fp.trim.linear_range,
     )
     return row
 

@@ -27,6 +27,7 @@ from flexsim.atmosphere import speed_of_sound
 from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel, Variant
 from flexsim.kinematics import dcm_321
+from flexsim.model.linear_range import linear_range_note
 from flexsim.model.sensors import structural_sensors
 from flexsim.structure.mirror import TIE_RTOL
 from flexsim.trim.equilibrium import EquilibriumStability, equilibrium_stability
@@ -130,6 +131,9 @@ class TrimPoint:
         (:mod:`flexsim.trim.equilibrium`); None when the trim was asked not to classify (``classify=False``).
     terms : dict
         The physical terms of the model trimmed (:meth:`flexsim.model.terms.Terms.record`).
+    linear_range : str or None
+        One line when the trim bends or twists a beam beyond the linear structure's range
+        (:func:`flexsim.model.linear_range.linear_range_note`), None within it.
     """
 
     manoeuvre: SteadyManoeuvre
@@ -153,6 +157,7 @@ class TrimPoint:
     max_local_alpha: StripAngle | None = None
     stability: EquilibriumStability | None = None
     terms: dict = field(default_factory=dict)
+    linear_range: str | None = None
 
     def __post_init__(self) -> None:
         # a frozen result: its arrays are read-only copies (the caller's arrays are not frozen)
@@ -586,7 +591,8 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
     lift, drag = _lift_drag(aero_force, v_cg)
     weight = st.mass_properties.mass_kg * max(model.terms.gravity_m_s2, 1e-9)
     tip_w = tip_t = 0.0
-    wing = structural_sensors(model).get("right_wing")  # the one implementation of the structural outputs
+    sensors = structural_sensors(model)  # the one implementation of the structural outputs
+    wing = sensors.get("right_wing")
     if wing is not None:
         tip_w, tip_t = float(wing.tip_deflection_m(x)), float(wing.tip_twist_rad(x))
     return TrimPoint(
@@ -610,6 +616,7 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
         drag_n=drag,
         max_local_alpha=_max_local_alpha(model, x, u),
         terms=model.terms.record(),
+        linear_range=linear_range_note(model, x, sensors=sensors),
     )
 
 
