@@ -38,6 +38,7 @@ from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.bodies import SlenderBodies
 from flexsim.model.drag import ParasiteDrag
 from flexsim.model.layout import StateLayout
+from flexsim.model.reference import ReferenceGeometry
 from flexsim.model.terms import Terms
 from flexsim.kinematics import dcm_321
 from flexsim.structure.model import StructuralModel, structural_model
@@ -137,6 +138,9 @@ class AircraftModel(Immutable):
     variant : Variant
     terms : Terms
     layout : StateLayout
+    reference_geometry : ReferenceGeometry or None
+        The wing's reference area S, span b, mean chord and mean aerodynamic chord
+        (:class:`flexsim.model.reference.ReferenceGeometry`); None without aerodynamics or without a wing.
     """
 
     def __init__(
@@ -198,6 +202,9 @@ class AircraftModel(Immutable):
                       and self.aero.formulation == "physical")
         #: Munk moments of the file's slender bodies (:mod:`flexsim.model.bodies`), or None.
         self.bodies = SlenderBodies(self.structure) if has_bodies else None
+        #: The wing's reference area, span and chords (:class:`flexsim.model.reference.ReferenceGeometry`), None
+        #: without aerodynamics or without a wing.
+        self.reference_geometry = None if self.aero is None else ReferenceGeometry.of_strips(self.aero.strips)
         n_inflow = 0 if self.aero is None else self.aero.n_inflow_states
         self.layout = StateLayout(rigid=rigid, nq=dofs.nq if elastic else 0, nxi=dofs.nxi if elastic else 0, n_inflow=n_inflow)
         self._active = np.concatenate(
