@@ -24,13 +24,15 @@ from __future__ import annotations
 
 import math
 import numbers
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 
 from flexsim.atmosphere import G0
 from flexsim.model.coupling import AeroOptions
 
 __all__ = ["Terms", "FORCE_RESOLUTIONS"]
 
+#: Metadata of a :class:`Terms` field that switches an aerodynamic term: with ``aero=None`` it must keep its default.
+_AERODYNAMIC = {"aerodynamic": True}
 #: Values of :attr:`Terms.force_resolution`.
 FORCE_RESOLUTIONS = ("full", "normal", "fin-normal")
 
@@ -109,14 +111,14 @@ class Terms:
     aero: AeroOptions | None = AeroOptions()
     gravity_m_s2: float = G0
     structural_damping: float | None = None
-    aero_density_kg_m3: float | None = None
-    compressibility_mach: float | None = None
-    force_resolution: str = "full"
-    fin_drag_per_lift: float | None = None
+    aero_density_kg_m3: float | None = field(default=None, metadata=_AERODYNAMIC)
+    compressibility_mach: float | None = field(default=None, metadata=_AERODYNAMIC)
+    force_resolution: str = field(default="full", metadata=_AERODYNAMIC)
+    fin_drag_per_lift: float | None = field(default=None, metadata=_AERODYNAMIC)
     thrust_follows_deflection: bool = True
     engine_angular_momentum: tuple[float, float, float] | None = None
     inertia_q_offset_m: tuple[float, ...] | None = None
-    aero_velocity_offset_m_s: tuple[float, float, float] | None = None
+    aero_velocity_offset_m_s: tuple[float, float, float] | None = field(default=None, metadata=_AERODYNAMIC)
 
     def __post_init__(self) -> None:
         if self.aero is not None and not isinstance(self.aero, AeroOptions):
@@ -155,13 +157,10 @@ class Terms:
         object.__setattr__(self, "aero_velocity_offset_m_s",
                            _finite_tuple("aero_velocity_offset_m_s", self.aero_velocity_offset_m_s, 3))
         if self.aero is None:
-            for name in ("aero_density_kg_m3", "compressibility_mach", "fin_drag_per_lift", "aero_velocity_offset_m_s"):
-                if getattr(self, name) is not None:
-                    raise ValueError(f"{name} = {getattr(self, name)!r}: a model without aerodynamics (aero None) has no "
-                                     "aerodynamic term to apply it to")
-            if self.force_resolution != "full":
-                raise ValueError(f"force_resolution = {self.force_resolution!r}: a model without aerodynamics (aero None) "
-                                 "has no strip force to resolve")
+            for f in fields(self):  # the aerodynamic terms' switches (metadata _AERODYNAMIC) keep their defaults
+                if f.metadata.get("aerodynamic") and getattr(self, f.name) != f.default:
+                    raise ValueError(f"{f.name} = {getattr(self, f.name)!r}: a model without aerodynamics (aero None) has "
+                                     "no aerodynamic term to apply it to")
 
     def record(self) -> dict:
         """The terms as a JSON-ready dict (for result rows and log headers): every field by name, ``aero`` as the
