@@ -19,6 +19,7 @@ import math
 import numpy as np
 
 from flexsim._kernels.bodies import HAS_BODIES, body_force
+from flexsim._kernels.downwash_lag import downwash_lag_mass
 from flexsim._kernels.drag import HAS_DRAG, parasite_drag
 from flexsim._kernels.elasticity import elastic_force
 from flexsim._kernels.gravity import gravity_force
@@ -61,7 +62,8 @@ def assemble(F, I, x, u, wind_c, has_wind):
 @inline
 def aerodynamic_terms(F, I, x, q, xi, vel, u, wind_c, has_wind, m, f):
     """The aerodynamic terms, the one list of them: m += M_a and f += Q_a + Q_D + Q_B (strip airloads with their
-    apparent mass, parasite drag, slender bodies) at the air state of state x (:func:`air_state`: density, Mach
+    apparent mass, parasite drag, slender bodies), m += the tail's downwash lag (:func:`downwash_lag_mass`, off by
+    default) at the air state of state x (:func:`air_state`: density, Mach
     number, speed of sound), which each term's kernel takes; returns the inflow's terms row0 (n_s, n_v), w_ea_x
     (n_s,), u0 (n_s,). :func:`assemble` and :func:`aerodynamic_force` both evaluate this list."""
     n_v = vel.shape[0]
@@ -84,6 +86,7 @@ def aerodynamic_terms(F, I, x, q, xi, vel, u, wind_c, has_wind, m, f):
         q_b = body_force(F, I, q, vel, rho)
         for i in range(n_v):
             f[i] += q_b[i]
+    downwash_lag_mass(F, I, air, m)
     return row0, w_ea_x, u0
 
 

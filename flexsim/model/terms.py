@@ -106,6 +106,11 @@ class Terms:
         apparent mass, inflow forcing and downwash; not the Mach number, the parasite drag or the bodies). E.g. the
         level flight's body velocity minus a manoeuvre's at the same speed: the aerodynamics at the level angle of
         attack and sideslip. None (default): dv = 0.
+    downwash_lag : bool
+        True: the horizontal tail's downwash lag, the tail's alpha-dot derivatives (C_L_alpha_dot, C_m_alpha_dot;
+        Etkin & Reid 1996 ch. 5, USAF DATCOM sec. 7.4.4), as an apparent mass of w_dot
+        (:mod:`flexsim._kernels.downwash_lag`); needs the wing's downwash at the tail (the file's
+        ``downwash_gradient``). False (default): the tail sees the downwash without lag (the paper has none).
     """
 
     aero: AeroOptions | None = AeroOptions()
@@ -119,6 +124,7 @@ class Terms:
     engine_angular_momentum: tuple[float, float, float] | None = None
     inertia_q_offset_m: tuple[float, ...] | None = None
     aero_velocity_offset_m_s: tuple[float, float, float] | None = field(default=None, metadata=_AERODYNAMIC)
+    downwash_lag: bool = field(default=False, metadata=_AERODYNAMIC)
 
     def __post_init__(self) -> None:
         if self.aero is not None and not isinstance(self.aero, AeroOptions):
@@ -151,6 +157,8 @@ class Terms:
             object.__setattr__(self, "fin_drag_per_lift", float(k))
         if not isinstance(self.thrust_follows_deflection, bool):
             raise ValueError(f"thrust_follows_deflection = {self.thrust_follows_deflection!r}: must be True or False")
+        if not isinstance(self.downwash_lag, bool):
+            raise ValueError(f"downwash_lag = {self.downwash_lag!r}: must be True or False")
         object.__setattr__(self, "engine_angular_momentum",
                            _finite_tuple("engine_angular_momentum", self.engine_angular_momentum, 3))
         object.__setattr__(self, "inertia_q_offset_m", _finite_tuple("inertia_q_offset_m", self.inertia_q_offset_m))
