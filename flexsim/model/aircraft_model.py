@@ -38,6 +38,7 @@ from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.bodies import SlenderBodies
 from flexsim.model.drag import ParasiteDrag
 from flexsim.model.layout import StateLayout
+from flexsim.model.reference import ReferenceGeometry
 from flexsim.model.terms import Terms
 from flexsim.model.variant import Variant, VariantSettings
 from flexsim.kinematics import dcm_321
@@ -120,6 +121,9 @@ class AircraftModel(Immutable):
     terms : Terms
     variant : VariantSettings
     layout : StateLayout
+    reference_geometry : ReferenceGeometry or None
+        The wing's reference area S, span b, mean chord and mean aerodynamic chord
+        (:class:`flexsim.model.reference.ReferenceGeometry`); None without aerodynamics or without a wing.
     """
 
     def __init__(self, aircraft: Aircraft, *, terms: Terms | None = None,
@@ -154,7 +158,6 @@ class AircraftModel(Immutable):
         if terms.inertia_q_offset_m is not None and len(terms.inertia_q_offset_m) != self.structure.dofs.nq:
             raise ValueError(f"inertia_q_offset_m: {len(terms.inertia_q_offset_m)} entries; {aircraft.name} has "
                              f"nq = {self.structure.dofs.nq} bending coordinates")
-        self._c_el = self.structure.damping(damping) if damping else None
         dofs = self.structure.dofs
         kind = variant.kind
         rigid = kind is not Variant.RESTRAINED
@@ -164,9 +167,7 @@ class AircraftModel(Immutable):
                 'aero model = "theodorsen": the Theodorsen function is a frequency-domain model for linear '
                 'flutter analysis (flexsim.linear); the time-domain model takes "unsteady" or "quasi-steady"'
             )
-        self.aero = None if aero is None else AeroCoupling(
-            self.structure, aero, compressibility_mach=terms.compressibility_mach, force_resolution=terms.force_resolution,
-            fin_drag_per_lift=terms.fin_drag_per_lift, velocity_offset_m_s=terms.aero_velocity_offset_m_s)
+        self.aero = None if aero is None else AeroCoupling(self.structure, terms)
         # parasite drag belongs to the physical force resolution; the paper's (eq. 28) has the strips' drag only
         has_drag = (aero is not None and aero.parasite_drag and bool(aircraft.aero_settings.drag)
                     and self.aero.formulation == "physical")
@@ -176,6 +177,9 @@ class AircraftModel(Immutable):
                       and self.aero.formulation == "physical")
         #: Munk moments of the file's slender bodies (:mod:`flexsim.model.bodies`), or None.
         self.bodies = SlenderBodies(self.structure) if has_bodies else None
+        #: The wing's reference area, span and chords (:class:`flexsim.model.reference.ReferenceGeometry`), None
+        #: without aerodynamics or without a wing.
+        self.reference_geometry = None if self.aero is None else ReferenceGeometry.of_strips(self.aero.strips)
         n_inflow = 0 if self.aero is None else self.aero.n_inflow_states
         self.layout = StateLayout(rigid=rigid, nq=dofs.nq if elastic else 0, nxi=dofs.nxi if elastic else 0, n_inflow=n_inflow)
         self._active = np.concatenate(
@@ -219,49 +223,9 @@ class AircraftModel(Immutable):
         return float(self.aircraft.structural_damping_ratio if z is None else z)
 
     def _build_kernel_data(self) -> _k.KernelData:
-        st, d, lay = self.structure, self.structure.dofs, self.layout
-        n_el = d.nq + d.nxi
-        nan = float("nan")
-        inertia = st.inertia
-        v, t = self.variant, self.terms
-        vector = lambda value, n: np.zeros(n) if value is None else np.asarray(value, float)
-        floats = dict(
-            g=[t.gravity_m_s2], air=[v.altitude_m, nan if v.air_density_kg_m3 is None else v.air_density_kg_m3,
-                                     nan if t.aero_density_kg_m3 is None else t.aero_density_kg_m3],
-            euler_fixed=vector(v.restrained_euler_rad, 3), v_fixed=vector(v.restrained_velocity_m_s, 3),
-            q_frozen=vector(v.frozen_q, d.nq), xi_frozen=vector(v.frozen_xi, d.nxi),
-            m0=inertia.m0, h=inertia.h, m2=inertia.m2, k_bending=st.k_bending, k_torsion=st.k_torsion,
-            c_el=np.zeros((n_el, n_el)) if self._c_el is None else self._c_el, thrust_t0=st.thrust.t0,
-            thrust_t1=st.thrust.t1 if self.terms.thrust_follows_deflection else np.zeros_like(st.thrust.t1),
-            inertia_dq=np.zeros(d.nq) if self.terms.inertia_q_offset_m is None else np.asarray(self.terms.inertia_q_offset_m),
-            proj_n0=np.zeros((0, d.n_v)), proj_d0=np.zeros((0, d.n_v)), proj_p=np.zeros((0, d.n_v)), rel=np.zeros((0, n_el)),
-            proj_n1=np.zeros((0, 3, d.nq)), proj_d1=np.zeros((0, 3, d.nq)), a_inv=np.zeros((1, 1)), a_inv_c=np.zeros(1),
-            b_vec=np.zeros(1), downwash_gradient=[0.0], strip_mach=[nan], drag_g0=np.zeros((0, 6, d.n_v)), drag_g1=np.zeros((0, 3, 3, d.nq)),
-            body_g0=np.zeros((0, 6, d.n_v)), body_g1=np.zeros((0, 3, 3, d.nq)))
-        flags = dict(n_v=d.n_v, nq=d.nq, nxi=d.nxi, rigid=lay.rigid, use_frozen=self.variant.kind is Variant.QUASI_RIGID,
-                     all_active=self._all_active, n_states=lay.n_states, vel_start=lay.velocity.start,
-                     inflow_start=lay.inflow.start, n_inflow=lay.n_inflow, has_aero=self.aero is not None,
-                     has_drag=self.parasite_drag is not None, has_bodies=self.bodies is not None,
-                     has_damping=self._c_el is not None, q_start=lay.q.start,
-                     has_inertia_offset=self.terms.inertia_q_offset_m is not None,
-                     xi_start=lay.xi.start, n_inflow_per_strip=1)
-        ints = dict(active=self._active)
-        if self.aero is not None:
-            floats.update(self.aero.kernel_fields[0])
-            flags.update(self.aero.kernel_fields[1]["ints"])
-            ints.update({k: v for k, v in self.aero.kernel_fields[1].items() if k != "ints"})
-        if self.parasite_drag is not None:
-            floats.update(self.parasite_drag.kernel_fields)
-        if self.bodies is not None:
-            floats.update(self.bodies.kernel_fields)
-        for term in _k.TERMS:  # terms that build their own data from the model (flexsim._kernels.layout.term_data)
-            build = getattr(term, "fields_of", None)
-            if build is not None:
-                term_floats, term_flags = build(self)
-                floats.update(term_floats)
-                flags.update(term_flags)
-        ints["ints"] = flags
-        return _k.pack(floats, ints)
+        """The packed data of the compiled right-hand side: every registered term's data class fills its own fields
+        from this model (``fields_of(model)``, :func:`flexsim._kernels.fields_of`), then :func:`flexsim._kernels.pack_fields`."""
+        return _k.pack_fields(_k.fields_of(self))
 
     @property
     def formulation(self) -> str | None:

@@ -133,6 +133,7 @@ NON_DEFAULT = {
     "engine_angular_momentum": (2e5, 0.0, 0.0),
     "inertia_q_offset_m": lambda nq: tuple(0.001 * (i + 1) for i in range(nq)),
     "aero_velocity_offset_m_s": (0.0, 0.0, 0.5),
+    "downwash_lag": True,
 }
 #: (field, analysis) pairs refused with a message naming the field instead of evaluated, and why: a flutter search
 #: trims at the true density (the fixed density of the linearised aerodynamics is the analysis's

@@ -17,7 +17,6 @@ import sys
 import textwrap
 import time
 from collections import Counter
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -28,6 +27,7 @@ from flexsim.io.flight_log import FlightLogRecoveryWarning, read_flight_log
 from flexsim.sim.manoeuvres import build_manoeuvre
 from flexsim.sim.outputs import OutputMaps
 from flexsim.sim.run_settings import OutputSettings
+from tests.installed import child_env
 
 COMPONENTS = ("fuselage", "right_wing", "left_wing", "right_htail", "left_htail", "vtail")
 
@@ -137,10 +137,7 @@ def test_sigkill_leaves_a_log_readable_up_to_about_one_second_before(tmp_path):
     path = tmp_path / "killed.mcap"
     script = tmp_path / "run.py"
     script.write_text(_KILL_SCRIPT)
-    # The child imports this checkout's flexsim, installed or not (helpers run tests without installing).
-    root = str(Path(__file__).resolve().parents[2])
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1",
-           "PYTHONPATH": os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH")) if p)}
+    env = child_env(base={**os.environ, "OPENBLAS_NUM_THREADS": "1"})  # the flexsim the tests import
     proc = subprocess.Popen([sys.executable, str(script), str(path)], stdout=subprocess.PIPE, text=True, env=env)
     reported = 0.0
     deadline = time.monotonic() + 60.0
