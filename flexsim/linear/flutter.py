@@ -30,7 +30,8 @@ from flexsim.model.coupling import AERO_MODELS, AeroOptions
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 from flexsim.trim.equilibrium import with_stability
 
-__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter",
+__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "anchored_grid", "hidden_crossing",
+           "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter",
            "FlutterCondition", "flutter_condition"]
 
 
@@ -355,11 +356,11 @@ class FlutterAnalysis:
                 below = [m for m in np.arange(lo, a, mach_step)]
                 if all(g(float(m)) <= 0 for m in below[-2:]):
                     return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state, name, shared, (lo, hi))
-        grid = np.arange(lo, hi + 1e-12, mach_step)
-        if grid[-1] < hi - 1e-9:  # the scan ends at the upper end of the range, not a step short of it
-            grid = np.append(grid, hi)
+        grid = anchored_grid(lo, hi, mach_step)  # the same points above lo whatever lo is; ends at hi
         prev_m, prev_g = None, None
         skipped: list[float] = []
+        points: list[tuple[float, float]] = []  # flyable, stable scan points since the last skipped one
+        min_step = mach_step / 2 ** REFINE_LEVELS
         _, surf_hi = self.aircraft.control_limits()
         for mach in grid:
             val = g(float(mach))
@@ -367,6 +368,7 @@ class FlutterAnalysis:
             if np.any(np.abs(trim_point.u[1:]) > surf_hi[1:] + 1e-12):
                 state.guess = None  # trim needs a surface beyond its limit: not flyable, skip this speed
                 skipped.append(float(mach))
+                points = []
                 continue
             if trim_point.stability.is_divergent:  # not an equilibrium the aircraft stays in: no flutter above it
                 where = "the lower end of the search" if prev_m is None else "below any flutter crossing"
@@ -385,11 +387,20 @@ class FlutterAnalysis:
                         f"{name}: already unstable at the lower end of the search, M = {mach:.4f} "
                         f"({manoeuvre.describe()}; searched {lo:.3f} <= M <= {hi:.3f}); lower mach_range[0]", (lo, hi)
                     )
-                return self._point(manoeuvre, brentq(g, prev_m, float(mach), xtol=tol), a_sound, state, name, shared, (lo, hi))
+                a, b = hidden_crossing(g, points, min_step) or (prev_m, float(mach))  # step control
+                return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state, name, shared, (lo, hi))
             prev_m, prev_g = float(mach), val
+            points.append((prev_m, val))
+        hidden = hidden_crossing(g, points, min_step)
+        if hidden is not None:
+            return self._point(manoeuvre, brentq(g, *hidden, xtol=tol), a_sound, state, name, shared, (lo, hi))
         if prev_m is None:
             raise FlutterNotFound(f"{name}: no flyable trim (surfaces within limits) for {lo:.3f} <= M <= {hi:.3f} "
                                   f"({manoeuvre.describe()})", (lo, hi))
+        if not math.isfinite(prev_g):
+            raise FlutterNotFound(f"{name}: {self.aircraft.name} has no oscillatory elastic mode at M = {prev_m:.3f} "
+                                  f"({manoeuvre.describe()}), so no flutter to find (rigid components only, or every "
+                                  "elastic root real)", (lo, hi))
         raise FlutterNotFound(
             f"{name}: no elastic mode crosses the imaginary axis for {lo:.3f} <= M <= {hi:.3f} "
             f"({manoeuvre.describe()}); largest elastic real part {prev_g:.4g} 1/s at M = {prev_m:.3f}", (lo, hi)
@@ -480,6 +491,75 @@ def scan_step(mach_range: tuple[float, float]) -> float:
     """
     lo, hi = mach_range
     return min(MAX_MACH_STEP, (hi - lo) / MIN_SCAN_STEPS)
+
+
+#: Halvings of the scan step the step control may make: the smallest interval it looks into is step / 2**4 [-].
+REFINE_LEVELS = 4
+#: Safety factor on the interpolation-error bound of the step control (:func:`hidden_crossing`) [-].
+CURVATURE_SAFETY = 2.0
+
+
+def anchored_grid(lo: float, hi: float, step: float) -> np.ndarray:
+    """The scan points of [lo, hi]: lo, every multiple of ``step`` strictly inside, and hi.
+
+    Anchored at the multiples of the step rather than at ``lo``, so that searches of ranges that start at different
+    speeds (or Mach numbers) evaluate the same points above their lower ends, and give the same answer there.
+    """
+    inner = np.arange(math.floor(lo / step) + 1, math.ceil(hi / step)) * step
+    inner = inner[(inner > lo + 1e-9 * step) & (inner < hi - 1e-9 * step)]
+    return np.concatenate([[lo], inner, [hi]])
+
+
+def _second_difference(p0, p1, p2) -> float:
+    """|g''| from three points (x, g(x)) of a parabola through them [1/unit^2]."""
+    (x0, g0), (x1, g1), (x2, g2) = p0, p1, p2
+    return abs(2.0 * ((g2 - g1) / (x2 - x1) - (g1 - g0) / (x1 - x0)) / (x2 - x0))
+
+
+def hidden_crossing(g: Callable[[float], float], points: list[tuple[float, float]],
+                    min_step: float) -> tuple[float, float] | None:
+    """The lowest bracket (a, b), g(a) <= 0 < g(b), inside scan points whose values are all <= 0, or None.
+
+    Step control of the flutter scans. Between two scan points a < b with g(a), g(b) <= 0 the linear interpolant of
+    the growth rate g (the largest real part of the oscillatory elastic roots, continuous in the speed as the
+    roots are) is below zero; g itself differs from it by at most max|g''| (b - a)^2 / 8 (the error of linear
+    interpolation: Dahlquist & Bjorck, *Numerical Methods in Scientific Computing*, 2008, eq. 4.2.11). With
+    |g''| estimated from the second differences of the neighbouring points (times :data:`CURVATURE_SAFETY`), an
+    interval where that bound could reach zero is halved, and its halves checked the same way with the second
+    difference of their own three points, down to ``min_step``. So an instability that rises above the axis and
+    falls back between two scan points is found whenever it is wider than ``min_step`` and its curvature shows at
+    the neighbouring points; it is not missed because of where the range starts.
+
+    Parameters
+    ----------
+    g : callable
+        The growth rate [1/s] at a speed or Mach number.
+    points : list of (float, float)
+        The scan points evaluated so far, increasing, every value <= 0.
+    min_step : float
+        The smallest interval halved [unit of the scan].
+    """
+    for i in range(len(points) - 1):
+        near = [_second_difference(*points[j : j + 3]) for j in (i - 1, i) if 0 <= j and j + 2 < len(points)]
+        found = _look_into(g, points[i], points[i + 1], CURVATURE_SAFETY * max(near, default=0.0), min_step)
+        if found is not None:
+            return found
+    return None
+
+
+def _look_into(g, left, right, curvature: float, min_step: float) -> tuple[float, float] | None:
+    (a, ga), (b, gb) = left, right
+    h = b - a
+    if not (math.isfinite(ga) and math.isfinite(gb) and math.isfinite(curvature)):
+        return None  # -inf: no oscillatory elastic root at one end, nothing whose damping could be interpolated
+    if h <= min_step * (1.0 + 1e-9) or max(ga, gb) + curvature * h * h / 8.0 <= 0.0:
+        return None
+    c = 0.5 * (a + b)
+    gc = g(c)
+    if gc > 0.0:
+        return _look_into(g, left, (c, gc), 0.0, min_step) or (a, c)
+    curvature = max(curvature, CURVATURE_SAFETY * _second_difference(left, (c, gc), right))
+    return _look_into(g, left, (c, gc), curvature, min_step) or _look_into(g, (c, gc), right, curvature, min_step)
 
 
 @single_blas_thread
@@ -649,19 +729,32 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
         m = model(speed, aero_model)
         return spectrum(m, m.layout.zeros(), np.zeros(4), aero_model=aero_model)
 
-    speeds = np.arange(lo, hi + 1e-9 * hi, speed_step)
+    speeds = anchored_grid(lo, hi, speed_step)
     u_f = w_f = None
-    g: Callable[[float], float] = lambda sp: _growth(spec_at(sp))
-    prev = None
+    done: dict[float, float] = {}
+
+    def g(sp: float) -> float:
+        sp = float(sp)
+        if sp not in done:
+            done[sp] = _growth(spec_at(sp))
+        return done[sp]
+
+    points: list[tuple[float, float]] = []
+    bracket = None
     for speed in speeds if flutter else ():
-        if g(float(speed)) > 0:
-            if prev is None:
+        val = g(float(speed))
+        if val > 0:
+            if not points:
                 raise FlutterNotFound(f"{aero_model}: an elastic mode is already unstable at the lowest speed "
-                                      f"{speed:g} m/s (growth rate {g(float(speed)):.3g} 1/s); lower speed_range[0]")
-            u_f = float(brentq(g, prev, float(speed), xtol=tol_m_s))
-            w_f = spec_at(u_f).critical("elastic").frequency_rad_s
+                                      f"{speed:g} m/s (growth rate {val:.3g} 1/s); lower speed_range[0]")
+            bracket = (points[-1][0], float(speed))
             break
-        prev = float(speed)
+        points.append((float(speed), val))
+    if flutter:  # step control: an instability between two stable scan points (hidden_crossing)
+        bracket = hidden_crossing(g, points, speed_step / 2 ** REFINE_LEVELS) or bracket
+    if bracket is not None:
+        u_f = float(brentq(g, *bracket, xtol=tol_m_s))
+        w_f = spec_at(u_f).critical("elastic").frequency_rad_s
     u_d = _divergence_speed(lambda sp: model(sp, "quasi-steady"), speeds, tol_m_s) if divergence else None
     comp = probe.aero.compressibility
     return WindTunnelResult(aero_model, float(rho), comp, u_f, w_f, u_d, (lo, hi))
