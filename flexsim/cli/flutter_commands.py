@@ -117,12 +117,11 @@ def _flutter(args: argparse.Namespace) -> int:
         from flexsim.linear.mode_animation import check_recording_path, record_critical_mode
 
         check_recording_path(args.mode, "--mode")
-    if args.vg is not None and not str(args.vg).lower().endswith(".png"):
-        raise CliError(f"--vg {args.vg!r}: must name a .png file")
-    if args.vg_points < 3:
-        raise CliError(f"--vg-points = {args.vg_points}: must be an integer >= 3")
+    _check_vg_options(args)
     if args.glide and args.climb_deg is not None:
         raise CliError("--glide, --climb-deg: a glide finds its own flight-path angle; give one of them")
+    if args.speed_step_m_s is not None:
+        raise CliError("--speed-step-m-s: the scan step of --wind-tunnel; a flight's search steps in Mach (--mach-step)")
     settings = _settings(args)
     shape = _manoeuvre(args, args.altitudes[0], 0.5)  # the kind of manoeuvre (its speed is searched)
     # the aircraft file's [envelope] sets the search range (the aircraft itself is loaded where it is searched)
@@ -134,7 +133,8 @@ def _flutter(args: argparse.Namespace) -> int:
                                     mach_max=ranges[s.label, h].mach_max, turn_radius_m=shape.turn_radius_m,
                                     climb_angle_deg=None if shape.is_glide else math.degrees(shape.climb_angle_rad),
                                     coordinated=shape.coordinated, structural_damping=args.structural_damping,
-                                    formulation=s.formulation, linear_density_altitude_m=s.linear_density_altitude_m))
+                                    formulation=s.formulation, linear_density_altitude_m=s.linear_density_altitude_m,
+                                    mach_step=args.mach_step))
                 for s in settings for k in keys for h in args.altitudes]
     rows = run_study([c for _, c in labelled], workers=args.workers, progress=not args.json)
     paper = _is_paper_aircraft(settings) and shape.turn_radius_m == math.inf and shape.climb_angle_rad == 0.0
@@ -145,19 +145,11 @@ def _flutter(args: argparse.Namespace) -> int:
             row["mode_matches_paper"] = mode_matches_paper(row)
     condition = shape.describe().split(" at M ")[0]
     lines, doc = flutter_report(rows, settings, keys) if paper else flutter_table(rows, settings, keys, condition)
+    lines += [f"warning: {r['model']} h={r['altitude_m']:.0f} m: {w}" for r in rows for w in r.get("warnings", ())]
     if args.vg is not None:
         diagrams = _vg(args, shape, keys)
         doc["vg"] = [d.as_dict() for d, _ in diagrams]
-        lines += ["", "V-g / V-f diagrams (damping g = 2 Re(lambda)/|Im(lambda)|, > 0 unstable; branches tracked by "
-                  "eigenvector correlation):"]
-        for d, path in diagrams:
-            lines.append(f"  {path}: {d.aircraft}, {d.condition}, {len(d.tracks)} branches, "
-                         f"{d.speeds_m_s[0]:.1f}-{d.speeds_m_s[-1]:.1f} m/s")
-            for c in d.crossings:
-                lines.append(f"    {_MODEL_KEY[c.aero_model]:<3} {c.label:<34} crosses {'into instability' if c.direction == 'unstable' else 'back to stability':<18} "
-                             f"at {c.speed_m_s:8.2f} m/s (M {c.mach:.4f}), {c.frequency_rad_s:8.3f} rad/s")
-            if not d.crossings:
-                lines.append("    no branch crosses in the range")
+        lines += _vg_lines(diagrams)
     if args.mode:
         print(record_critical_mode([c for _, c in labelled], rows, args.mode), file=sys.stderr if args.json else sys.stdout)
     if args.json:
@@ -167,9 +159,33 @@ def _flutter(args: argparse.Namespace) -> int:
     return 0
 
 
+def _vg_lines(diagrams: list) -> list[str]:
+    """The V-g summary printed under a flutter table: per diagram, its file and every crossing."""
+    lines = ["", "V-g / V-f diagrams (damping g = 2 Re(lambda)/|Im(lambda)|, > 0 unstable; branches tracked by "
+             "eigenvector correlation):"]
+    for d, path in diagrams:
+        lines.append(f"  {path}: {d.aircraft}, {d.condition}, {len(d.tracks)} branches, "
+                     f"{d.speeds_m_s[0]:.1f}-{d.speeds_m_s[-1]:.1f} m/s")
+        for c in d.crossings:
+            lines.append(f"    {_MODEL_KEY[c.aero_model]:<3} {c.label:<34} crosses {'into instability' if c.direction == 'unstable' else 'back to stability':<18} "
+                         f"at {c.speed_m_s:8.2f} m/s (M {c.mach:.4f}), {c.frequency_rad_s:8.3f} rad/s")
+        if not d.crossings:
+            lines.append("    no branch crosses in the range")
+        lines += [f"    warning: {w}" for w in d.warnings]
+    return lines
+
+
+def _check_vg_options(args: argparse.Namespace) -> None:
+    if args.vg is not None and not str(args.vg).lower().endswith(".png"):
+        raise CliError(f"--vg {args.vg!r}: must name a .png file")
+    if args.vg_points < 3:
+        raise CliError(f"--vg-points = {args.vg_points}: must be an integer >= 3")
+
+
 #: The options of a flight that a wind-tunnel run (``--wind-tunnel``) has no use for: (attribute, flag).
 _FLIGHT_ONLY = (("turn_radius_m", "--turn-radius-m"), ("climb_deg", "--climb-deg"), ("glide", "--glide"),
-                ("coordinated", "--coordinated"), ("mach_min", "--mach-min"), ("mach_max", "--mach-max"), ("vg", "--vg"),
+                ("coordinated", "--coordinated"), ("mach_min", "--mach-min"), ("mach_max", "--mach-max"),
+                ("mach_step", "--mach-step"),
                 ("mode", "--mode"), ("structural_damping", "--structural-damping"), ("formulation", "--formulation"),
                 ("linear_density_altitude_m", "--linear-density-altitude-m"), ("paper_replication", "--paper-replication"))
 
@@ -186,19 +202,26 @@ def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
     lo, hi = args.speed_range_m_s
     if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
         raise CliError(f"--speed-range-m-s {lo:g} {hi:g}: must satisfy 0 < LO < HI [m/s]")
+    step = _TUNNEL_STEP_M_S if args.speed_step_m_s is None else args.speed_step_m_s
+    if not (math.isfinite(step) and 0.0 < step <= hi - lo):
+        raise CliError(f"--speed-step-m-s {step:g}: must be in (0, {hi - lo:g}] m/s (the width of --speed-range-m-s)")
+    _check_vg_options(args)
     altitudes = [0.0] if args.altitudes is None else args.altitudes
     check_altitudes(altitudes)
     aircraft = load_aircraft(args.aircraft)
     rows = []
     for h in altitudes:
         for k in keys:
-            r = wind_tunnel(aircraft, aero_model=_MODELS[k], speed_range=(lo, hi), altitude_m=h)
+            r = wind_tunnel(aircraft, aero_model=_MODELS[k], speed_range=(lo, hi), altitude_m=h, speed_step=step)
             rows.append({"model": k, "aero_model": r.aero_model, "altitude_m": h, "density_kg_m3": r.density_kg_m3,
                          "compressibility": r.compressibility, "flutter_speed_m_s": r.flutter_speed_m_s,
                          "flutter_frequency_rad_s": r.flutter_frequency_rad_s, "divergence_speed_m_s": r.divergence_speed_m_s,
-                         "first_instability": r.first_instability, "speed_range_m_s": [lo, hi]})
+                         "first_instability": r.first_instability, "speed_range_m_s": [lo, hi], "speed_step_m_s": step,
+                         "warnings": list(r.warnings)})
+    diagrams = _tunnel_vg(args, aircraft, altitudes, keys) if args.vg is not None else []
     if args.json:
-        print(json_text({"aircraft": aircraft.name, "wind_tunnel": rows}))
+        extra = {"vg": [d.as_dict() for d, _ in diagrams]} if diagrams else {}
+        print(json_text({"aircraft": aircraft.name, "wind_tunnel": rows, **extra}))
         return 0
 
     def speed(v):
@@ -211,7 +234,32 @@ def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
         w = f"{r['flutter_frequency_rad_s']:13.3f}" if r["flutter_frequency_rad_s"] is not None else f"{'':>13}"
         print(f"{r['model']:<6}{r['altitude_m']:7.0f}{r['density_kg_m3']:14.4f}{speed(r['flutter_speed_m_s'])}{w}"
               f"{speed(r['divergence_speed_m_s'])}  {r['first_instability']}")
+    for r in rows:
+        for w in r["warnings"]:
+            print(f"warning: {r['model']} h={r['altitude_m']:.0f} m: {w}")
+    if diagrams:
+        print("\n".join(_vg_lines(diagrams)))
     return 0
+
+
+#: Default scan step of ``--wind-tunnel`` [m/s] (:func:`flexsim.linear.flutter.wind_tunnel`'s).
+_TUNNEL_STEP_M_S = 5.0
+
+
+def _tunnel_vg(args: argparse.Namespace, aircraft, altitudes: list[float], keys: list[str]) -> list[tuple[object, Path]]:
+    """The V-g diagram of the clamped structure in the stream at every altitude, over --speed-range-m-s."""
+    from flexsim.linear.vg import vg_diagram
+
+    lo, hi = args.speed_range_m_s
+    target = Path(args.vg)
+    out = []
+    for h in altitudes:
+        model = AircraftModel(aircraft, variant="restrained", aero=AeroOptions("quasi-steady"), gravity_m_s2=0.0,
+                              altitude_m=h, restrained_velocity_m_s=[lo, 0.0, 0.0])
+        d = vg_diagram(model, speeds_m_s=_linspace(lo, hi, args.vg_points), models=keys)
+        path = target if len(altitudes) == 1 else target.with_name(f"{target.stem}_{h:.0f}m{target.suffix}")
+        out.append((d, d.plot(path)))
+    return out
 
 
 _MODEL_KEY = {v: k for k, v in _MODELS.items()}
@@ -394,7 +442,8 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
                       help="with --turn-radius-m: coordinated turn (zero sideslip, heading free)")
     p_fl.add_argument("--vg", default=None, metavar="FILE.png",
                       help="also draw the V-g / V-f diagram (damping and frequency of every branch against speed) of the "
-                           "aircraft as given, one file per altitude (FILE_<H>m.png for several); --json carries the tracks")
+                           "aircraft as given (with --wind-tunnel: of the clamped structure over --speed-range-m-s), one "
+                           "file per altitude (FILE_<H>m.png for several); --json carries the tracks")
     p_fl.add_argument("--vg-points", type=int, default=25, metavar="N", help="speeds of the V-g diagram [25]")
     p_fl.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="local processes [all cores]")
     p_fl.add_argument("--wind-tunnel", action="store_true",
@@ -402,6 +451,12 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
                            "e.g. goland_wing): flutter and divergence speeds")
     p_fl.add_argument("--speed-range-m-s", type=float, nargs=2, default=(10.0, 300.0), metavar=("LO", "HI"),
                       help="with --wind-tunnel: the speeds searched [10 300]")
+    p_fl.add_argument("--speed-step-m-s", type=float, default=None, metavar="DV",
+                      help="with --wind-tunnel: the scan step [m/s]; an interval whose damping curvature could hide an "
+                           "instability is halved down to DV/16 [5]")
+    p_fl.add_argument("--mach-step", type=float, default=None, metavar="DM",
+                      help="scan step of the flight search in Mach; an interval whose damping curvature could hide an "
+                           "instability is halved down to DM/16 [0.05, or an eighth of a narrower range]")
     p_fl.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
                       help="modal damping ratio of the elastic modes [the aircraft file's; 0 = the paper's undamped structure]")
     _add_formulation(p_fl, replication=True)

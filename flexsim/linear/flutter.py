@@ -25,9 +25,10 @@ from flexsim.errors import FlexsimError
 from flexsim.linear.linearize import LinearModel, jacobian, linearize
 from flexsim.linear.participation import Participation, describe_mode
 from flexsim.linear.stability import Mode, Spectrum, linear_spectrum, spectrum
+from flexsim.linear.validity import mach_note
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
-from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
+from flexsim.trim import SteadyManoeuvre, TrimError, TrimPoint, trim
 from flexsim.trim.equilibrium import with_stability
 
 __all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "anchored_grid", "hidden_crossing",
@@ -96,6 +97,10 @@ class FlutterPoint:
         Number of trims + eigen-analyses.
     mach_range : (float, float)
         The Mach range of the search [-].
+    warnings : tuple of str
+        What makes the result doubtful, in words: a flutter Mach outside the range of the aerodynamics
+        (:func:`flexsim.linear.validity.mach_note`), a trim at the flutter point that is itself unstable
+        (a rigid-body instability: the flight is not held open-loop). Empty when none.
     """
 
     aero_model: str
@@ -117,6 +122,7 @@ class FlutterPoint:
     aero_density_fixed: bool = False
     mach_range: tuple[float, float] = (math.nan, math.nan)
     terms: dict = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
 
 @dataclass
@@ -329,6 +335,8 @@ class FlutterAnalysis:
         lo, hi = mach_range
         if not 0.0 < lo < hi < 1.0:
             raise ValueError(f"mach_range = {mach_range!r}: must satisfy 0 < lo < hi < 1")
+        if isinstance(mach_step, bool) or not (isinstance(mach_step, (int, float)) and 0.0 < mach_step <= hi - lo):
+            raise ValueError(f"mach_step = {mach_step!r}: must be in (0, {hi - lo:g}] (the width of mach_range)")
         name = self._model_name(aero_model)
         a_sound = speed_of_sound(float(manoeuvre.altitude_m))
         state = _SearchState()
@@ -363,7 +371,17 @@ class FlutterAnalysis:
         min_step = mach_step / 2 ** REFINE_LEVELS
         _, surf_hi = self.aircraft.control_limits()
         for mach in grid:
-            val = g(float(mach))
+            if prev_m is None and mach * a_sound < MIN_TRIM_SPEED_M_S:
+                skipped.append(float(mach))  # below the slowest manoeuvre flexsim trims: not flyable
+                continue
+            try:
+                val = g(float(mach))
+            except TrimError:
+                if prev_m is not None:
+                    raise
+                state.guess = None  # no trim at the slow end of the range: not flyable, skip this speed
+                skipped.append(float(mach))
+                continue
             trim_point = state.last[0]
             if np.any(np.abs(trim_point.u[1:]) > surf_hi[1:] + 1e-12):
                 state.guess = None  # trim needs a surface beyond its limit: not flyable, skip this speed
@@ -379,8 +397,8 @@ class FlutterAnalysis:
                     if skipped:
                         raise FlutterNotFound(
                             f"{name}: unstable at M = {mach:.4f}, the first flyable Mach number of the search "
-                            f"({manoeuvre.describe()}); the lower Mach numbers {skipped[0]:.3f} to {skipped[-1]:.3f} need a "
-                            "control surface beyond its limit to trim, so the crossing cannot be bracketed there "
+                            f"({manoeuvre.describe()}); the lower Mach numbers {skipped[0]:.3f} to {skipped[-1]:.3f} cannot "
+                            "be flown (no trim, or a control surface beyond its limit), so the crossing cannot be bracketed there "
                             f"(a lower mach_range[0] would not help; searched {lo:.3f} <= M <= {hi:.3f})", (lo, hi)
                         )
                     raise FlutterNotFound(
@@ -439,7 +457,13 @@ class FlutterAnalysis:
         mode = spec.critical("elastic")
         point = with_stability(self.qs, point, spec, neutral=mode.eigenvalue)  # the crossing mode is neutral here
         desc = describe_mode(self.qs.structure, mode.shape, mode.eigenvalue)
+        notes = [mach_note("flutter", mach_f, self.qs.aero.compressibility)]
+        if point.stability is not None and point.stability.verdict not in ("stable", "slowly unstable"):
+            notes.append(f"the trim at the flutter point is not a stable equilibrium ({point.stability.aero_model} roots): "
+                         f"{point.stability.message}; the flutter Mach is that of a flight the aircraft does not hold "
+                         "without control")
         return FlutterPoint(
+            warnings=tuple(n for n in notes if n),
             aero_model=name,
             mach=float(mach_f),
             speed_m_s=float(mach_f * a_sound),
@@ -478,6 +502,8 @@ def _check_flutter_model(model: AircraftModel) -> None:
                          "density of the linearised aerodynamics with linear_aero_density_kg_m3 of the analysis instead")
 
 
+#: The slowest flight a scan point may ask for (:class:`flexsim.trim.SteadyManoeuvre`'s lower limit) [m/s].
+MIN_TRIM_SPEED_M_S = 1.0
 #: Largest Mach step of a flutter scan, and the fewest steps over the range (:func:`scan_step`).
 MAX_MACH_STEP = 0.05
 MIN_SCAN_STEPS = 8
@@ -626,6 +652,10 @@ class WindTunnelResult:
         through zero); None when it lies outside the speed range or was not searched.
     speed_range_m_s : tuple of float
         The searched range [m/s].
+    warnings : tuple of str
+        A flutter or divergence speed outside the range of the aerodynamics
+        (:func:`flexsim.linear.validity.mach_note`), or a structure without an oscillatory elastic mode; empty
+        when none.
     """
 
     aero_model: str
@@ -635,6 +665,7 @@ class WindTunnelResult:
     flutter_frequency_rad_s: float | None
     divergence_speed_m_s: float | None
     speed_range_m_s: tuple[float, float]
+    warnings: tuple[str, ...] = ()
 
     @property
     def first_instability(self) -> str:
@@ -721,6 +752,10 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
     if probe.aero is None or probe.aero.strips.n_strips == 0:
         raise ValueError(f"aircraft {aircraft.name!r} has no aerodynamic strips: a wind tunnel has nothing to act on")
     rho = density_kg_m3 if density_kg_m3 is not None else isa_density(float(altitude_m))
+    if probe.active_dofs.size == 0:  # clamped and rigid: nothing can move, so neither flutter nor divergence
+        return WindTunnelResult(aero_model, float(rho), probe.aero.compressibility, None, None, None, (lo, hi),
+                                (f"{aircraft.name} has no elastic degree of freedom (every component rigid, clamped at the "
+                                 "body origin): no flutter or divergence to find",))
 
     def spec_at(speed: float) -> Spectrum:
         if aero_model == "theodorsen":
@@ -757,7 +792,12 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
         w_f = spec_at(u_f).critical("elastic").frequency_rad_s
     u_d = _divergence_speed(lambda sp: model(sp, "quasi-steady"), speeds, tol_m_s) if divergence else None
     comp = probe.aero.compressibility
-    return WindTunnelResult(aero_model, float(rho), comp, u_f, w_f, u_d, (lo, hi))
+    a_sound = speed_of_sound(float(altitude_m))
+    notes = [mach_note(what, v / a_sound, comp) for what, v in (("flutter", u_f), ("divergence", u_d)) if v is not None]
+    if flutter and points and not any(math.isfinite(v) for _, v in points):
+        notes.append(f"{aircraft.name} has no oscillatory elastic mode in the stream (rigid components only, or every "
+                     "elastic root real): no flutter to find")
+    return WindTunnelResult(aero_model, float(rho), comp, u_f, w_f, u_d, (lo, hi), tuple(n for n in notes if n))
 
 
 def _static_stiffness_sign(model: AircraftModel) -> float:

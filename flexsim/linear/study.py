@@ -64,6 +64,9 @@ class StudyCase:
         at this altitude [m] (the trims keep the true one); None: the flight's true density.
     coordinated : bool
         Turns: coordinated (zero sideslip, heading free) instead of the paper's turn.
+    mach_step : float or None
+        Scan step of the search in Mach [-], in (0, mach_max - mach_min]; None:
+        :func:`flexsim.linear.flutter.scan_step` of the range.
     """
 
     aircraft: str
@@ -77,8 +80,13 @@ class StudyCase:
     formulation: str | None = None
     linear_density_altitude_m: float | None = None
     coordinated: bool = False
+    mach_step: float | None = None
 
     def __post_init__(self) -> None:
+        if self.mach_step is not None and not (isinstance(self.mach_step, (int, float)) and not isinstance(self.mach_step, bool)
+                                               and 0.0 < self.mach_step <= self.mach_max - self.mach_min):
+            raise ValueError(f"mach_step = {self.mach_step!r}: must be in (0, {self.mach_max - self.mach_min:g}] "
+                             "(the width of the Mach range)")
         if self.model not in MODELS:
             raise ValueError(f"model = {self.model!r}: must be one of {', '.join(MODELS)}")
         if self.coordinated and self.turn_radius_m == math.inf:
@@ -134,9 +142,10 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
     gamma = None if case.climb_angle_deg is None else math.radians(case.climb_angle_deg)
     try:
         analysis = analysis or case.analysis()
-        start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_min)
+        start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_max)  # its speed is replaced by the searched one
         man = SteadyManoeuvre(start.speed_m_s, case.altitude_m, case.turn_radius_m, gamma, case.coordinated)
-        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_step=scan_step((case.mach_min, case.mach_max)),
+        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_step=(scan_step((case.mach_min, case.mach_max))
+                                                                                    if case.mach_step is None else case.mach_step),
                              mach_guess=mach_guess, aero_model=MODELS[case.model], shared=shared)
     except (FlutterNotFound, TrimError, ValueError) as exc:
         row["error"] = str(exc)
@@ -152,6 +161,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
         mode_symmetry=fp.mode_symmetry, symmetric_fraction=fp.symmetric_fraction, normalised_by=fp.normalised_by,
         participation=[p.as_dict() for p in fp.participation],
         formulation=fp.formulation, aero_density_kg_m3=fp.aero_density_kg_m3, aero_density_fixed=fp.aero_density_fixed,
+        warnings=list(fp.warnings),
     )
     return row
 

@@ -52,6 +52,7 @@ from scipy.optimize import linear_sum_assignment
 
 from flexsim.atmosphere import speed_of_sound
 from flexsim.linear.stability import Mode, Spectrum, spectrum
+from flexsim.linear.validity import mach_note
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.trim import SteadyManoeuvre, TrimError
 
@@ -237,6 +238,8 @@ class VgDiagram:
         Every crossing of every branch, by model and speed.
     failed : tuple of (str, float, str)
         (aero model, speed [m/s], reason) of the speeds without roots (trim failed).
+    warnings : tuple of str
+        Crossings outside the range of the aerodynamics (:func:`flexsim.linear.validity.mach_note`); empty when none.
     """
 
     aircraft: str
@@ -247,6 +250,7 @@ class VgDiagram:
     tracks: tuple[VgTrack, ...]
     crossings: tuple[VgCrossing, ...] = ()
     failed: tuple[tuple[str, float, str], ...] = ()
+    warnings: tuple[str, ...] = ()
 
     def flutter(self, aero_model: str) -> VgCrossing | None:
         """The lowest-speed crossing into instability of an elastic branch of ``aero_model``, or None."""
@@ -266,7 +270,8 @@ class VgDiagram:
                 "damping": "g = 2 Re(lambda)/|Im(lambda)|, positive = unstable; damping_ratio = -Re(lambda)/|lambda|",
                 "tracks": [t.as_dict() for t in self.tracks],
                 "crossings": [c.__dict__ for c in self.crossings],
-                "failed": [{"aero_model": m, "speed_m_s": v, "reason": r} for m, v, r in self.failed]}
+                "failed": [{"aero_model": m, "speed_m_s": v, "reason": r} for m, v, r in self.failed],
+                "warnings": list(self.warnings)}
 
     def plot(self, path: str | Path, *, g_limits: tuple[float, float] = (-0.5, 0.2), max_elastic: int = 10) -> Path:
         """V-g (top) and V-f (bottom) panels, one column per aerodynamic model, crossings marked; written as PNG.
@@ -490,7 +495,10 @@ def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_
                 crossings.append(_crossing(track, i, a_sound, (lambda v, g, n=name: evaluate(n, v, g)),
                                            trims[i], refine))
     crossings.sort(key=lambda c: (names.index(c.aero_model), c.speed_m_s))
-    return VgDiagram(model.aircraft.name, condition, h, float(a_sound), speeds, tuple(tracks), tuple(crossings), tuple(failed))
+    notes = [mach_note(f"{c.aero_model} crossing of {c.label} into instability", c.mach, model.aero.compressibility)
+             for c in crossings if c.direction == "unstable"]
+    return VgDiagram(model.aircraft.name, condition, h, float(a_sound), speeds, tuple(tracks), tuple(crossings), tuple(failed),
+                     tuple(n for n in notes if n))
 
 
 def _crossing(track: VgTrack, i: int, a_sound: float, evaluate, guess, refine: bool) -> VgCrossing:

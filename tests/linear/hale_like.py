@@ -62,28 +62,30 @@ chord_m = [0.5, 0.5]
 """
 
 
-def hale_toml(envelope: bool = True) -> str:
-    """The aircraft file's text."""
+def hale_toml(envelope: bool = True, rigid_wings: bool = False, payload_x_m: float = 0.0) -> str:
+    """The aircraft file's text; ``rigid_wings``: the wings rigid too (no elastic mode at all); ``payload_x_m``: the
+    payload that far aft of the wing root [m] (3 m puts the CG behind the neutral point: pitch-unstable)."""
     parts = ['schema_version = 1\nname = "hale-test"\n\n[frame]\nkind = "design"\nbody_origin_m = [10.0, 0.0, 0.0]\n\n'
              "[aero]\nmax_alpha_deg = 12.0\n"]
     parts.append(_beam("fuselage", "[10.0, 0.0, 0.0]", "[0.0, 0.0, 0.0]", 10.0,
                        'rigid = true\nsection_inertia = "axisymmetric"\n[components.fuselage.sections]\n'
                        "station_m = [0.0, 10.0]\nmass_kg_per_m = [0.08, 0.08]\ntorsional_inertia_kg_m = [0.0001, 0.0001]\n"
                        "ei_nm2 = [1.0e8, 1.0e8]\ngj_nm2 = [1.0e8, 1.0e8]\n"))
-    parts.append(_beam("right_wing", "[0.0, 0.05, 0.0]", "[0.0, 0.0, 90.0]", 16.0, _WING.format(n="right_wing")))
-    parts.append(_beam("left_wing", "[0.0, -0.05, 0.0]", "[0.0, 0.0, -90.0]", 16.0, _WING.format(n="left_wing")))
+    wing = _WING.replace("bending_modes = 3\ntorsion_modes = 2\n", "rigid = true\n") if rigid_wings else _WING
+    parts.append(_beam("right_wing", "[0.0, 0.05, 0.0]", "[0.0, 0.0, 90.0]", 16.0, wing.format(n="right_wing")))
+    parts.append(_beam("left_wing", "[0.0, -0.05, 0.0]", "[0.0, 0.0, -90.0]", 16.0, wing.format(n="left_wing")))
     parts.append(_beam("right_htail", "[10.0, 0.02, 0.0]", "[0.0, 0.0, 90.0]", 2.5, _TAIL.format(n="right_htail", kind="elevator")))
     parts.append(_beam("left_htail", "[10.0, -0.02, 0.0]", "[0.0, 0.0, -90.0]", 2.5, _TAIL.format(n="left_htail", kind="elevator")))
     parts.append(_beam("vtail", "[10.0, 0.0, 0.0]", "[90.0, 90.0, 0.0]", 2.5, _TAIL.format(n="vtail", kind="rudder")))
-    parts.append('\n[[engines]]\nname = "payload"\ncomponent = "fuselage"\nposition_m = [0.0, 0.0, 0.0]\nmass_kg = 50.0\n'
+    parts.append(f'\n[[engines]]\nname = "payload"\ncomponent = "fuselage"\nposition_m = [{payload_x_m!r}, 0.0, 0.0]\nmass_kg = 50.0\n'
                  "inertia_kg_m2 = [200.0, 200.0, 200.0]\nmax_thrust_n = 200.0\n")
     if envelope:
         parts.append("\n[envelope]\nmin_speed_eas_m_s = 4.5\nmax_speed_eas_m_s = 13.5\n")
     return "".join(parts)
 
 
-def write_hale(folder: Path, envelope: bool = True) -> Path:
+def write_hale(folder: Path, envelope: bool = True, rigid_wings: bool = False, payload_x_m: float = 0.0) -> Path:
     """Write the aircraft file into ``folder`` (a test's ``tmp_path``) and return its path."""
-    path = Path(folder) / "hale.toml"
-    path.write_text(hale_toml(envelope), encoding="utf-8")
+    path = Path(folder) / f"hale{'_rigid' if rigid_wings else ''}{f'_{payload_x_m:g}' if payload_x_m else ''}.toml"
+    path.write_text(hale_toml(envelope, rigid_wings, payload_x_m), encoding="utf-8")
     return path
