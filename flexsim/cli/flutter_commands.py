@@ -46,7 +46,12 @@ def _trim(args: argparse.Namespace) -> int:
 
         margin = static_margin(model, point)
         out = {**out, "static_margin_mac": margin.fraction_of_mac, "neutral_point_aft_of_cg_m": margin.neutral_point_aft_of_cg_m}
-    roots = _roots(aircraft, point, args.roots, args.formulation) if args.roots else None
+    roots = None
+    if args.roots:  # the verdict then comes from the roots printed beside it (their aerodynamic model)
+        roots, spec = _roots(aircraft, point, args.roots, args.formulation)
+        from flexsim.trim.equilibrium import with_stability
+
+        point = with_stability(model, point, spec)
     local = point.max_local_alpha
     if args.json:
         extra = {"roots": roots} if roots is not None else {}
@@ -59,18 +64,18 @@ def _trim(args: argparse.Namespace) -> int:
         print(f"  {key:<18} {value: .6g}")
     if local is not None:
         print(f"  {'max_local_alpha':<18} {local.describe()}")
-    print(f"  {'equilibrium':<18} {point.stability.verdict}")
+    print(f"  {'equilibrium':<18} {point.stability.verdict} ({point.stability.aero_model} roots)")
     if roots is not None:
         counts = {k: sum(r["kind"] == k for r in roots["modes"]) for k in ("rigid", "elastic", "aerodynamic")}
         print(f"Roots of the linearised trim ({roots['aero_model']}): {counts['rigid']} rigid-body, {counts['elastic']} elastic, "
               f"{counts['aerodynamic']} aerodynamic-lag")
-        print(f"  {'kind':<12} {'real [1/s]':>11} {'imag [rad/s]':>12} {'zeta':>8}  dominant DOF")
+        print(f"  {'kind':<12} {'real [1/s]':>11} {'imag [rad/s]':>12} {'zeta':>8}  mode")
         for r in roots["modes"]:
             if r["kind"] != "aerodynamic" and r["imag"] >= 0.0:
-                print(f"  {r['kind']:<12} {r['real']:11.5f} {r['imag']:12.5f} {r['damping_ratio']:8.4f}  {r['dominant_dof']}")
+                print(f"  {r['kind']:<12} {r['real']:11.5f} {r['imag']:12.5f} {r['damping_ratio']:8.4f}  {r['name']}")
         print("  (aerodynamic-lag roots: --json lists them)")
     if not point.stability.is_stable:
-        print(point.stability.message)
+        print(f"{point.stability.message} ({point.stability.aero_model} roots)")
     return 0
 
 
@@ -84,8 +89,9 @@ def _settings(args: argparse.Namespace, default_aircraft: str = "gtm") -> list[R
     return [RunSettings("as given", args.aircraft, args.formulation, args.linear_density_altitude_m)]
 
 
-def _roots(aircraft, point, aero_model: str, formulation: str | None = None) -> dict:
-    """Eigenvalues of the linearised trim with their classification (rigid-body, elastic, aerodynamic-lag)."""
+def _roots(aircraft, point, aero_model: str, formulation: str | None = None) -> tuple[dict, object]:
+    """Eigenvalues of the linearised trim with their classification (rigid-body, elastic, aerodynamic-lag), and their
+    :class:`~flexsim.trim.roots.Spectrum` (the trim's verdict is then classified from it)."""
     import numpy as np
 
     from flexsim.linear.stability import spectrum
@@ -96,8 +102,8 @@ def _roots(aircraft, point, aero_model: str, formulation: str | None = None) -> 
     modes = sorted(spec.modes, key=lambda m: ({"rigid": 0, "elastic": 1, "aerodynamic": 2}[m.kind], abs(m.eigenvalue)))
     return {"aero_model": aero_model, "modes": [
         {"kind": m.kind, "real": m.eigenvalue.real, "imag": m.eigenvalue.imag, "damping_ratio": m.damping_ratio,
-         "dominant_dof": m.dominant_dof, "elastic_fraction": m.elastic_fraction,
-         "inflow_participation": m.inflow_participation} for m in modes]}
+         "name": m.name, "dominant_dof": m.dominant_dof, "elastic_fraction": m.elastic_fraction,
+         "inflow_participation": m.inflow_participation} for m in modes]}, spec
 
 
 def _flutter(args: argparse.Namespace) -> int:

@@ -152,7 +152,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
         return row
     s = fp.trim.summary()
     row.update(
-        mach=fp.mach, omega_rad_s=fp.frequency_rad_s, mode=fp.mode.dominant_dof,
+        mach=fp.mach, omega_rad_s=fp.frequency_rad_s, mode=fp.mode.name, mode_coordinate=fp.mode.dominant_dof,
         theta_deg=s["theta_deg"], phi_deg=s["phi_deg"], sideslip_deg=s["sideslip_deg"], gamma_deg=s["gamma_deg"], thrust_kN=s["thrust_kN"],
         aileron_deg=s["aileron_deg"], elevator_deg=s["elevator_deg"], rudder_deg=s["rudder_deg"],
         tip_deflection_m=s["tip_deflection_m"], tip_twist_deg=s["tip_twist_deg"], evaluations=fp.evaluations,

@@ -21,9 +21,9 @@ speed), less a small penalty on the distance of the eigenvalue from the branch's
 decides only when two candidates have nearly equal MAC, e.g. at a coalescence, where the two eigenvectors become
 alike). The pairing maximises the total score over all branches at once (the assignment problem,
 :func:`scipy.optimize.linear_sum_assignment`); a root with MAC below :data:`MIN_MAC` to every branch starts a new
-branch. A branch is labelled by its first root: the elastic coordinate with the largest kinetic-energy share
-Re(conj(phi_i) (M(0) phi)_i) and, for a mirror-symmetric aircraft, the root's symmetry
-(:func:`flexsim.structure.mirror.mode_symmetry`).
+branch. A branch is labelled by the name of its first root (:func:`flexsim.structure.mode_names.mode_name`, the
+name every output gives a mode, e.g. "wings torsion 1 (antisymmetric)"); a refined crossing by the name of the root
+at the crossing, the name the flutter search gives the same point.
 
 Crossings. Where Re(lambda) of a branch changes sign between two speeds, the crossing is refined by regula falsi
 (Illinois variant) on the speed, the root at each new speed being the one with the largest MAC to the branch's root
@@ -285,12 +285,11 @@ class VgDiagram:
         import matplotlib.pyplot as plt
 
         models = list(dict.fromkeys(t.aero_model for t in self.tracks))
-        crossing_labels = {(c.aero_model, c.label) for c in self.crossings}
         shown: dict[str, list[VgTrack]] = {}
         for name in models:
             elastic = sorted((t for t in self.tracks_of(name) if t.kind == "elastic"),
                              key=lambda t: float(np.nanmin(t.frequency_rad_s)))
-            keep = elastic[:max_elastic] + [t for t in elastic[max_elastic:] if (name, t.label) in crossing_labels]
+            keep = elastic[:max_elastic] + [t for t in elastic[max_elastic:] if t.brackets()]  # and every one that crosses
             shown[name] = [t for t in self.tracks_of(name) if t.kind != "elastic"] + keep
         labels = list(dict.fromkeys(t.label for name in models for t in shown[name]))
         palette = plt.cm.tab20(np.linspace(0, 1, 20))
@@ -343,24 +342,17 @@ class VgDiagram:
         return path
 
 
-_SYMMETRY_TAG = {"symmetric": " (sym.)", "antisymmetric": " (antisym.)", "mixed": " (mixed)", "n/a": ""}
-
-
 def _roots(spec: Spectrum, model: AircraftModel) -> list[tuple[Mode, str, str]]:
     """(mode, kind, label) of the roots a V-g diagram shows: oscillatory elastic, short period, Dutch roll."""
-    from flexsim.structure.mirror import mode_symmetry, ranked
+    from flexsim.structure.mode_names import mode_name
 
     st = model.structure
     mass = st.inertia.mass_matrix(np.zeros(st.dofs.nq))
-    labels = st.dofs.labels
     out = []
     for m in spec.of_kind("elastic"):
         if m.eigenvalue.imag < MIN_FREQUENCY_RAD_S:
             continue
-        share = np.real(np.conj(m.shape) * (mass @ m.shape))
-        dof = labels[ranked(share, st.mirror, candidates=range(6, share.size))[0]] if share.size > 6 else m.dominant_dof
-        sym = "n/a" if st.mirror is None else mode_symmetry(st.mirror.symmetric_fraction(m.shape, mass))
-        out.append((m, "elastic", dof + _SYMMETRY_TAG[sym]))
+        out.append((m, "elastic", mode_name(st, m.shape, mass, mass) or m.name))
     rigid = [m for m in spec.of_kind("rigid") if m.eigenvalue.imag >= 1e-3]
     if rigid:
         mp = st.mass_properties
@@ -510,17 +502,18 @@ def _crossing(track: VgTrack, i: int, a_sound: float, evaluate, guess, refine: b
     freq = float(abs(lam[i].imag) + t * (abs(lam[i + 1].imag) - abs(lam[i].imag)))
     if refine:
         found = _refine(track, i, evaluate, guess)
-        if found is not None:
-            return VgCrossing(track.aero_model, track.label, track.kind, found[0], found[0] / a_sound, found[1], direction, True)
+        if found is not None:  # named by the root at the crossing, as the flutter search names its critical mode
+            return VgCrossing(track.aero_model, found[2], track.kind, found[0], found[0] / a_sound, found[1], direction, True)
     return VgCrossing(track.aero_model, track.label, track.kind, speed, speed / a_sound, freq, direction, False)
 
 
-def _refine(track: VgTrack, i: int, evaluate, guess) -> tuple[float, float] | None:
-    """(speed [m/s], frequency [rad/s]) where the branch's Re(lambda) = 0 between speeds i and i + 1, or None."""
+def _refine(track: VgTrack, i: int, evaluate, guess) -> tuple[float, float, str] | None:
+    """(speed [m/s], frequency [rad/s], name of the root) where the branch's Re(lambda) = 0 between speeds i and i + 1,
+    or None."""
     (a, fa), (b, fb) = (track.speeds_m_s[i], track.eigenvalues[i].real), (track.speeds_m_s[i + 1], track.eigenvalues[i + 1].real)
     ref = [track.shapes[i], track.shapes[i + 1]]
     side = 0  # Illinois: which end was kept last time
-    lam = track.eigenvalues[i]
+    lam, label = track.eigenvalues[i], track.label
     for _ in range(CROSSING_ITERATIONS):
         c = (a * fb - b * fa) / (fb - fa)
         if not a < c < b:
@@ -537,7 +530,7 @@ def _refine(track: VgTrack, i: int, evaluate, guess) -> tuple[float, float] | No
         k = int(np.argmax(score))
         if score[k] < MIN_MAC:
             return None
-        lam = roots[k][0].eigenvalue
+        lam, label = roots[k][0].eigenvalue, roots[k][2]
         fc = lam.real
         if (fc <= 0) == (fa <= 0):
             a, fa, ref[0] = c, fc, roots[k][0].shape
@@ -551,7 +544,7 @@ def _refine(track: VgTrack, i: int, evaluate, guess) -> tuple[float, float] | No
             side = 1
         if b - a < CROSSING_TOL_M_S or fc == 0.0:
             break
-    return float(c), float(abs(lam.imag))
+    return float(c), float(abs(lam.imag)), label
 
 
 def _tunnel_spectrum(model: AircraftModel, speed: float, name: str, rho: float) -> tuple[Spectrum, AircraftModel]:

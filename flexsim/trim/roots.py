@@ -36,6 +36,7 @@ from flexsim.aircraft.definition import ContentKey
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.jacobian import jacobian
 from flexsim.structure.mirror import TIE_RTOL
+from flexsim.structure.mode_names import mode_name
 
 __all__ = ["Mode", "Spectrum", "ReducedJacobian", "reduced_jacobian"]
 
@@ -88,6 +89,10 @@ class Mode:
         shape / eigenvalue.
     inflow_participation : float
         Sum of the participation factors of the inflow states in this mode, in [0, 1] [-].
+    name : str
+        The mode's name in every output (:func:`flexsim.structure.mode_names.mode_name`, e.g.
+        "wings torsion 1 (antisymmetric)") for an elastic mode; ``dominant_dof`` for a rigid-body one, "inflow" for
+        an aerodynamic-lag root.
     """
 
     eigenvalue: complex
@@ -96,6 +101,7 @@ class Mode:
     dominant_dof: str
     shape: np.ndarray
     inflow_participation: float = 0.0
+    name: str = ""
 
     @property
     def frequency_rad_s(self) -> float:
@@ -175,15 +181,17 @@ def _classify(model: AircraftModel, lin, vals: np.ndarray, vecs: np.ndarray, aer
     shapes = np.zeros((n_v, vals.size), dtype=complex)
     shapes[active] = phi
     dominant = _dominant_dofs(share, active, n_v, mirror)
+    m0 = model.structure.inertia.mass_matrix(np.zeros(model.structure.dofs.nq))
     modes = []
     for k in range(vals.size):
         if lag[k] or no_energy[k]:
-            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", shapes[:, k].copy(), float(inflow_share[k])))
+            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", shapes[:, k].copy(), float(inflow_share[k]), "inflow"))
             continue
         frac_el = float(frac[k])
         rigid = frac_el < 0.5 and abs(vals[k]) < cut
+        name = None if rigid else mode_name(model.structure, shapes[:, k], m0, m0)  # M(0): the name every output gives
         modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, labels_full[dominant[k]],
-                          shapes[:, k].copy(), float(inflow_share[k])))
+                          shapes[:, k].copy(), float(inflow_share[k]), name or labels_full[dominant[k]]))
     modes.sort(key=lambda m: -m.eigenvalue.real)
     return Spectrum(tuple(modes), aero_model)
 
