@@ -263,7 +263,7 @@ def _tunnel_vg(args: argparse.Namespace, aircraft, altitudes: list[float], keys:
         model = AircraftModel(aircraft, variant="restrained", aero=AeroOptions("quasi-steady"), gravity_m_s2=0.0,
                               altitude_m=h, restrained_velocity_m_s=[lo, 0.0, 0.0])
         d = vg_diagram(model, speeds_m_s=_linspace(lo, hi, args.vg_points), models=keys)
-        path = target if len(altitudes) == 1 else target.with_name(f"{target.stem}_{h:.0f}m{target.suffix}")
+        path = _vg_path(target, h, altitudes)
         out.append((d, d.plot(path)))
     return out
 
@@ -307,9 +307,18 @@ def _vg(args: argparse.Namespace, shape: SteadyManoeuvre, keys: list[str]) -> li
         rng = _search_range(model, h, shape, args)
         speeds = [m * speed_of_sound(h) for m in _linspace(rng.mach_min, rng.mach_max, args.vg_points)]
         d = vg_diagram(model, manoeuvre=man, speeds_m_s=speeds, models=keys)
-        path = target if len(args.altitudes) == 1 else target.with_name(f"{target.stem}_{h:.0f}m{target.suffix}")
+        path = _vg_path(target, h, args.altitudes)
         out.append((d, d.plot(path)))
     return out
+
+
+def _vg_path(target: Path, altitude_m: float, altitudes: list[float]) -> Path:
+    """The V-g file of one altitude: ``target`` alone, else FILE_<H>m.png with H as precise as the altitudes need to
+    differ (9144 and 9144.4 m give two files, not one written twice)."""
+    if len(altitudes) == 1:
+        return target
+    digits = next((d for d in range(0, 7) if len({f"{h:.{d}f}" for h in altitudes}) == len(set(altitudes))), 6)
+    return target.with_name(f"{target.stem}_{altitude_m:.{digits}f}m{target.suffix}")
 
 
 def _linspace(lo: float, hi: float, n: int) -> list[float]:

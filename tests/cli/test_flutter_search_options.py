@@ -8,6 +8,7 @@
   default 5 m/s one, to twice the Brent tolerance) and refused outside (0, HI - LO] or without ``--wind-tunnel``.
 * ``--mach-step``: honoured by the flight search (the row carries it) and refused with ``--wind-tunnel``; the
   flight table prints the flutter point's warnings (a pitch-unstable trim, tests/linear/test_validity.py).
+* ``--vg`` with several altitudes writes one file per altitude, altitudes that round alike included.
 """
 
 import json
@@ -59,3 +60,13 @@ def test_flight_search_mach_step_is_honoured_and_warnings_printed(capsys, tmp_pa
     assert main(argv) == 0
     out = capsys.readouterr().out
     assert "warning: US h=20000 m: the trim at the flutter point is not a stable equilibrium" in out
+
+
+def test_vg_files_of_close_altitudes_are_distinct(tmp_path):
+    from flexsim.cli.flutter_commands import _vg_path
+
+    target = tmp_path / "vg.png"
+    names = {_vg_path(target, h, [9144.0, 9144.4]).name for h in (9144.0, 9144.4)}
+    assert names == {"vg_9144.0m.png", "vg_9144.4m.png"}
+    assert _vg_path(target, 3048.0, [0.0, 3048.0]).name == "vg_3048m.png"
+    assert _vg_path(target, 0.0, [0.0]) == target
