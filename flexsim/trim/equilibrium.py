@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from flexsim.trim.roots import Spectrum, _classify, _dominant_dofs, reduced_jacobian
+from flexsim.trim.roots import Spectrum, _classify, _dominant_dofs, reduced_jacobian, rigid_mode_name
 
 if TYPE_CHECKING:
     from flexsim.model.aircraft_model import AircraftModel
@@ -168,13 +168,12 @@ def _rigid_root(lam: complex, coordinate: str) -> tuple[str, str]:
     t2 = math.log(2.0) / lam.real
     real = lam.imag == 0.0
     fast = "statically unstable" if real else "dynamically unstable"
-    if coordinate == "u":
-        return "phugoid", ("slowly unstable" if t2 >= PHUGOID_MIN_DOUBLING_S else fast)
-    if coordinate in ("w", "q"):
-        return ("pitch divergence", "statically unstable") if real else ("short period", "dynamically unstable")
-    if real:
-        return "spiral", ("slowly unstable" if t2 >= SPIRAL_MIN_DOUBLING_S else fast)
-    return "Dutch roll", "dynamically unstable"
+    name = rigid_mode_name(lam, coordinate)  # the name the roots table gives the same root
+    if name == "phugoid":
+        return name, ("slowly unstable" if t2 >= PHUGOID_MIN_DOUBLING_S else fast)
+    if name == "spiral":
+        return name, ("slowly unstable" if t2 >= SPIRAL_MIN_DOUBLING_S else fast)
+    return name, fast
 
 
 def classify_equilibrium(model: "AircraftModel", x0: np.ndarray, spectrum: Spectrum,

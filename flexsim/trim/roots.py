@@ -38,7 +38,7 @@ from flexsim.model.jacobian import jacobian
 from flexsim.structure.mirror import TIE_RTOL
 from flexsim.structure.mode_names import mode_name
 
-__all__ = ["Mode", "Spectrum", "ReducedJacobian", "reduced_jacobian"]
+__all__ = ["Mode", "Spectrum", "ReducedJacobian", "reduced_jacobian", "rigid_mode_name"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -90,9 +90,9 @@ class Mode:
     inflow_participation : float
         Sum of the participation factors of the inflow states in this mode, in [0, 1] [-].
     name : str
-        The mode's name in every output (:func:`flexsim.structure.mode_names.mode_name`, e.g.
-        "wings torsion 1 (antisymmetric)") for an elastic mode; ``dominant_dof`` for a rigid-body one, "inflow" for
-        an aerodynamic-lag root.
+        The mode's name in every output: for an elastic mode :func:`flexsim.structure.mode_names.mode_name` (e.g.
+        "wings torsion 1 (antisymmetric)"); for a rigid-body one its flight-dynamics name and dominant DOF
+        (:func:`rigid_mode_name`, e.g. "spiral [v]"); "inflow" for an aerodynamic-lag root.
     """
 
     eigenvalue: complex
@@ -189,11 +189,28 @@ def _classify(model: AircraftModel, lin, vals: np.ndarray, vecs: np.ndarray, aer
             continue
         frac_el = float(frac[k])
         rigid = frac_el < 0.5 and abs(vals[k]) < cut
-        name = None if rigid else mode_name(model.structure, shapes[:, k], m0, m0)  # M(0): the name every output gives
-        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, labels_full[dominant[k]],
-                          shapes[:, k].copy(), float(inflow_share[k]), name or labels_full[dominant[k]]))
+        dof = labels_full[dominant[k]]
+        name = (f"{rigid_mode_name(vals[k], dof)} [{dof}]" if rigid
+                else mode_name(model.structure, shapes[:, k], m0, m0))  # M(0): the name every output gives
+        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, dof,
+                          shapes[:, k].copy(), float(inflow_share[k]), name or dof))
     modes.sort(key=lambda m: -m.eigenvalue.real)
     return Spectrum(tuple(modes), aero_model)
+
+
+def rigid_mode_name(eigenvalue: complex, coordinate: str) -> str:
+    """The flight-dynamics name of a rigid-body root from its dominant DOF (Etkin & Reid, *Dynamics of Flight*, 3rd
+    ed., 1996, ch. 6-7): u the phugoid; w or q the short period (complex) or a pitch divergence / subsidence (real);
+    v, p or r the Dutch roll (complex), the spiral (real; a stable real root in p is the roll subsidence)."""
+    lam = complex(eigenvalue)
+    real = lam.imag == 0.0
+    if coordinate == "u":
+        return "phugoid"
+    if coordinate in ("w", "q"):
+        return ("pitch divergence" if lam.real > 0.0 else "pitch subsidence") if real else "short period"
+    if not real:
+        return "Dutch roll"
+    return "roll subsidence" if coordinate == "p" and lam.real < 0.0 else "spiral"
 
 
 def _dominant_dofs(share: np.ndarray, active: np.ndarray, n_v: int, mirror) -> np.ndarray:

@@ -4,8 +4,9 @@
 * The HALE aircraft of tests/linear/hale_like.py (Patil, Hodges & Cesnik 2001 wing, left-right symmetric): its first
   in-vacuo elastic modes are the wings' first bending, symmetric then antisymmetric (a free-free beam pair: the
   symmetric mode is the lower, Meirovitch, *Fundamentals of Vibrations*, 2001, sec. 8.10), named so and never by one
-  side; the quasi-steady trim's verdict names the two first-torsion roots "(symmetric)" and "(antisymmetric)", each
-  the name its mode has in the roots; with ``--roots`` the verdict comes from the roots printed (their model named).
+  side; the quasi-steady trim's verdict names the two first-torsion roots "(symmetric)" and "(antisymmetric)"; with
+  ``--roots`` the verdict comes from the roots printed (their model named) and names every unstable root as the
+  table does, rigid-body roots by their flight-dynamics name (e.g. "spiral [v]").
 * A fast real rigid-body root is an aperiodic divergence: "statically unstable", never "dynamically" (Etkin & Reid,
   *Dynamics of Flight*, 1996, ch. 6: a real root is a non-oscillatory mode).
 * The flutter table, the V-g summary and the mode recording give the flutter point of the same flight one name
@@ -69,7 +70,8 @@ def test_trim_roots_verdict_comes_from_the_printed_roots(hale_path, capsys):
     assert doc["stability"]["aero_model"] == "unsteady"
     printed = {(round(m["real"], 6), round(abs(m["imag"]), 6)): m["name"] for m in doc["roots"]["modes"]}
     for r in doc["stability"]["unstable"]:
-        assert printed[(round(r["real"], 6), round(abs(r["imag"]), 6))] in (r["coordinate"], r["name"])
+        same = r["name"] if r["kind"] != "rigid" else f"{r['name']} [{r['coordinate']}]"  # as describe() prints it
+        assert printed[(round(r["real"], 6), round(abs(r["imag"]), 6))] == same
         if r["imag"] == 0.0:
             assert r["verdict"] != "dynamically unstable"
 
