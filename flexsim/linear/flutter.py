@@ -366,6 +366,8 @@ class FlutterAnalysis:
                 # the crossing near the guess is the lowest one if the coarse grid below it is stable
                 below = [m for m in np.arange(lo, a, mach_step)]
                 if all(g(float(m)) <= 0 for m in below[-2:]):
+                    near = [(float(m), g(float(m))) for m in below[-2:] if float(m) < a] + [(a, g(a))]
+                    a, b = hidden_crossing(g, near, mach_step / 2 ** REFINE_LEVELS) or (a, b)  # step control there too
                     return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state, name, shared, (lo, hi))
         grid = anchored_grid(lo, hi, mach_step)  # the same points above lo whatever lo is; ends at hi
         prev_m, prev_g = None, None
