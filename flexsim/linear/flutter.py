@@ -778,7 +778,8 @@ class FlutterCondition:
     mach, speed_m_s, frequency_rad_s : float
         Flutter Mach number, true airspeed [m/s] and frequency [rad/s].
     mode : str
-        Dominant DOF of the crossing mode (e.g. ``"vtail torsion 1"``).
+        Name of the crossing mode (:func:`flexsim.structure.mode_names.mode_name`, e.g.
+        ``"wings torsion 1 (antisymmetric)"``).
     """
 
     mach: float
@@ -798,7 +799,7 @@ def _search(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[
     except FlutterNotFound as exc:
         raise ValueError(f"aero = {aero!r}: no usable open-loop flutter point of {aircraft.name} at {altitude_m:g} m for Mach in "
                          f"{mach_range} ({exc}); the GTM flutter points are those of the finite-state model, aero = 'unsteady'") from None
-    return FlutterCondition(point.mach, point.speed_m_s, point.frequency_rad_s, point.mode.dominant_dof)
+    return FlutterCondition(point.mach, point.speed_m_s, point.frequency_rad_s, point.mode.name)
 
 
 def flutter_condition(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
