@@ -177,6 +177,11 @@ def _vg_lines(diagrams: list) -> list[str]:
                          f"at {c.speed_m_s:8.2f} m/s (M {c.mach:.4f}), {c.frequency_rad_s:8.3f} rad/s")
         if not d.crossings:
             lines.append("    no branch crosses in the range")
+        for model in dict.fromkeys(t.aero_model for t in d.tracks):
+            above = d.unstable_throughout(model)
+            if above:
+                lines.append(f"    {_MODEL_KEY[model]:<3} unstable throughout the range (below its lower end already): "
+                             f"{', '.join(above)}")
         lines += [f"    warning: {w}" for w in d.warnings]
     return lines
 

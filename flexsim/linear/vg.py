@@ -259,6 +259,17 @@ class VgDiagram:
                 return c
         return None
 
+    def unstable_throughout(self, aero_model: str) -> tuple[str, ...]:
+        """Labels of the elastic branches of ``aero_model`` unstable (Re(lambda) > 0) at every speed where they have a
+        root, from the first speed on: an instability below the range, which no crossing in it marks."""
+        out = []
+        for t in self.tracks_of(aero_model):
+            re = t.eigenvalues.real
+            ok = np.isfinite(re)
+            if t.kind == "elastic" and ok.any() and ok[0] and np.all(re[ok] > 0.0):
+                out.append(t.label)
+        return tuple(dict.fromkeys(out))
+
     def tracks_of(self, aero_model: str) -> tuple[VgTrack, ...]:
         """The branches of one aerodynamic model."""
         return tuple(t for t in self.tracks if t.aero_model == aero_model)
@@ -323,7 +334,11 @@ class VgDiagram:
                               fontsize=7, ha="right", arrowprops=dict(arrowstyle="-", lw=0.6))
             ax_g.axhline(0.0, color="k", lw=0.8)
             ax_g.set_ylim(*g_limits)
-            ax_g.set_title(f"{short.get(name, name)} ({name})" + ("" if first else ": no flutter in the range"), fontsize=10)
+            above = self.unstable_throughout(name)
+            more = f" and {len(above) - 1} more" if len(above) > 1 else ""
+            state = ("" if first else f":\nunstable over the whole range ({above[0]}{more})" if above
+                     else ": no flutter in the range")
+            ax_g.set_title(f"{short.get(name, name)} ({name}){state}", fontsize=9)
             ax_g.set_ylabel("damping g = 2 Re(λ)/|Im(λ)| [-] (> 0 unstable)")
             ax_f.set_ylabel("frequency |Im(λ)| [rad/s]")
             ax_f.set_xlabel("true airspeed [m/s]")
@@ -332,10 +347,10 @@ class VgDiagram:
         for ax in axes[1]:
             ax.set_ylim(0.0, 1.05 * f_top)
         fig.legend(list(drawn.values()), list(drawn), loc="lower center", ncol=min(5, len(drawn)), fontsize=7, frameon=False)
-        fig.suptitle(f"V-g / V-f: {self.aircraft}, {self.condition}; branches tracked by eigenvector MAC; circles: "
+        fig.suptitle(f"V-g / V-f: {self.aircraft}, {self.condition};\nbranches tracked by eigenvector MAC; circles: "
                      f"crossings into instability, squares: back; lowest {max_elastic} elastic branches shown", fontsize=9)
         rows = math.ceil(len(drawn) / 5)
-        fig.tight_layout(rect=(0, 0.025 * rows + 0.01, 1, 0.96))
+        fig.tight_layout(rect=(0, 0.025 * rows + 0.01, 1, 0.94))
         path = Path(path)
         fig.savefig(path, dpi=110)
         plt.close(fig)

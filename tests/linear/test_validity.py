@@ -9,8 +9,10 @@ no Mach dependence (Anderson, *Fundamentals of Aerodynamics*, 5th ed., 2011, sec
   295.07 m/s) carries a note naming the Mach number and "incompressible"; with the Prandtl-Glauert factor (a new
   case of the class) the note names the cap instead; a flutter speed at M 0.73 carries none;
 * the V-g diagram of the same wing at 20 km, p-k, 300-500 m/s: its crossing into instability (M > 1) is noted;
+* a V-g diagram whose branches are unstable from its first speed on names them (no crossing marks them);
 * an aircraft without an elastic mode: the wind tunnel says so instead of "none", the flight search's error says
-  so instead of "largest elastic real part -inf".
+  so instead of "largest elastic real part -inf";
+* a flutter point whose trim is pitch-unstable (static margin < 0) says so in its warnings.
 """
 
 import numpy as np
@@ -76,3 +78,21 @@ def test_a_flutter_point_of_a_pitch_unstable_trim_says_so(tmp_path):
     assert fp.trim.stability.static_margin_mac < 0.0
     (note,) = [w for w in fp.warnings if "not a stable equilibrium" in w]
     assert "statically unstable" in note and "static margin" in note
+
+
+def test_vg_names_branches_unstable_over_the_whole_range(tmp_path):
+    """The clamped HALE wing pair at 20 km, quasi-steady, 10-20 m/s: its first-torsion branches are unstable from
+    the first speed on (the quasi-steady model's low-speed instability), so no crossing marks them; the diagram and the
+    printed summary say so instead of "no flutter in the range", and the p-k ("US") branches are all stable there."""
+    from flexsim.cli.flutter_commands import _vg_lines
+
+    hale = load_aircraft(write_hale(tmp_path))
+    model = AircraftModel(hale, variant="restrained", aero=AeroOptions("quasi-steady"), gravity_m_s2=0.0, altitude_m=H,
+                          restrained_velocity_m_s=[10.0, 0.0, 0.0])
+    d = vg_diagram(model, speeds_m_s=np.linspace(10.0, 20.0, 5), models=["QS", "US"])
+    above = d.unstable_throughout("quasi-steady")
+    assert any("torsion 1" in label for label in above) and d.unstable_throughout("theodorsen") == ()
+    assert d.flutter("quasi-steady") is None
+    text = "\n".join(_vg_lines([(d, tmp_path / "vg.png")]))
+    assert "QS  unstable throughout the range" in text and above[0] in text
+    assert d.plot(tmp_path / "vg.png").read_bytes()[:4] == b"\x89PNG"
