@@ -322,8 +322,11 @@ class FlutterAnalysis:
         crossing that restabilises before it) is therefore not looked for with a guess; search without one to
         scan the whole grid.
 
-        Speeds whose trim needs a control surface beyond its limit (too slow to fly the manoeuvre) are
-        skipped; thrust limits are not enforced (the paper's descents need negative thrust).
+        The scan points are the multiples of ``mach_step`` inside the range (:func:`flexsim.linear.scan.anchored_grid`),
+        and between two stable ones the step control halves an interval whose growth-rate curvature could hide an
+        instability (:func:`flexsim.linear.scan.hidden_crossing`, down to ``mach_step / 16``). Speeds whose trim needs a
+        control surface beyond its limit, or below the first flyable one has no trim or is under 1 m/s (too slow to
+        fly the manoeuvre), are skipped; thrust limits are not enforced (the paper's descents need negative thrust).
 
         ``aero_model`` and ``shared`` as in :meth:`evaluate`: e.g. the "QS" and "US" searches of one manoeuvre on a
         "theodorsen" analysis, passed the same :class:`SharedEvaluations`, compute the trims and linearisations of
