@@ -26,8 +26,8 @@ from flexsim.errors import FlexsimError
 from flexsim.linear.linearize import LinearModel, jacobian, linearize
 from flexsim.linear.participation import Participation, describe_mode
 from flexsim.linear.stability import Mode, Spectrum, linear_spectrum, spectrum
-from flexsim.linear.scan import (CURVATURE_SAFETY, REFINE_LEVELS, UNSTABLE_DAMPING, _growth, anchored_grid,  # noqa: F401
-                                 hidden_crossing)
+from flexsim.linear.scan import (CURVATURE_SAFETY, MAX_MACH_STEP, MIN_SCAN_STEPS, MIN_TRIM_SPEED_M_S,  # noqa: F401
+                                 REFINE_LEVELS, UNSTABLE_DAMPING, _growth, anchored_grid, hidden_crossing, scan_step)
 from flexsim.linear.validity import mach_note
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
@@ -508,23 +508,6 @@ def _check_flutter_model(model: AircraftModel) -> None:
     if model.aero_density_kg_m3 is not None:
         raise ValueError(f"model.aero_density_kg_m3 = {model.aero_density_kg_m3!r}: trims need the true density; fix the "
                          "density of the linearised aerodynamics with linear_aero_density_kg_m3 of the analysis instead")
-
-
-#: The slowest flight a scan point may ask for (:class:`flexsim.trim.SteadyManoeuvre`'s lower limit) [m/s].
-MIN_TRIM_SPEED_M_S = 1.0
-#: Largest Mach step of a flutter scan, and the fewest steps over the range (:func:`scan_step`).
-MAX_MACH_STEP = 0.05
-MIN_SCAN_STEPS = 8
-
-
-def scan_step(mach_range: tuple[float, float]) -> float:
-    """The Mach step of a flutter scan over ``mach_range``: 0.05, or an eighth of a narrower range [-].
-
-    0.05 on the paper's M 0.5-0.95; a sailplane's envelope (M 0.07-0.24) is scanned at 9 points instead of 4, so a
-    crossing that goes unstable and back between two scan points is as unlikely as on the wide range.
-    """
-    lo, hi = mach_range
-    return min(MAX_MACH_STEP, (hi - lo) / MIN_SCAN_STEPS)
 
 
 @single_blas_thread

@@ -16,7 +16,25 @@ import numpy as np
 
 from flexsim.trim.roots import Spectrum
 
-__all__ = ["REFINE_LEVELS", "CURVATURE_SAFETY", "UNSTABLE_DAMPING", "anchored_grid", "hidden_crossing"]
+__all__ = ["REFINE_LEVELS", "CURVATURE_SAFETY", "UNSTABLE_DAMPING", "MIN_TRIM_SPEED_M_S", "MAX_MACH_STEP", "MIN_SCAN_STEPS",
+           "anchored_grid", "hidden_crossing", "scan_step"]
+
+#: The slowest flight a scan point may ask for (:class:`flexsim.trim.SteadyManoeuvre`'s lower limit) [m/s].
+MIN_TRIM_SPEED_M_S = 1.0
+#: Largest Mach step of a flutter scan, and the fewest steps over the range (:func:`scan_step`).
+MAX_MACH_STEP = 0.05
+MIN_SCAN_STEPS = 8
+
+
+def scan_step(mach_range: tuple[float, float]) -> float:
+    """The Mach step of a flutter scan over ``mach_range``: 0.05, or an eighth of a narrower range [-].
+
+    0.05 on the paper's M 0.5-0.95; a sailplane's envelope (M 0.07-0.24) is scanned at 9 points instead of 4, so a
+    crossing that goes unstable and back between two scan points is as unlikely as on the wide range.
+    """
+    lo, hi = mach_range
+    return min(MAX_MACH_STEP, (hi - lo) / MIN_SCAN_STEPS)
+
 
 #: Halvings of the scan step the step control may make: the smallest interval it looks into is step / 2**4 [-].
 REFINE_LEVELS = 4
