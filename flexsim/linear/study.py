@@ -70,6 +70,9 @@ class StudyCase:
         is that of ``AircraftModel(aircraft, terms=terms)`` with ``model``'s aerodynamic model
         (:meth:`FlutterAnalysis.from_model`). None (default): the aircraft's, with ``structural_damping`` and
         ``formulation`` (which must then be None when ``terms`` is given).
+    mach_step : float or None
+        Scan step of the search in Mach [-], in (0, mach_max - mach_min]; None:
+        :func:`flexsim.linear.flutter.scan_step` of the range.
     """
 
     aircraft: str
@@ -84,8 +87,13 @@ class StudyCase:
     linear_density_altitude_m: float | None = None
     coordinated: bool = False
     terms: Terms | None = None
+    mach_step: float | None = None
 
     def __post_init__(self) -> None:
+        if self.mach_step is not None and not (isinstance(self.mach_step, (int, float)) and not isinstance(self.mach_step, bool)
+                                               and 0.0 < self.mach_step <= self.mach_max - self.mach_min):
+            raise ValueError(f"mach_step = {self.mach_step!r}: must be in (0, {self.mach_max - self.mach_min:g}] "
+                             "(the width of the Mach range)")
         if self.model not in MODELS:
             raise ValueError(f"model = {self.model!r}: must be one of {', '.join(MODELS)}")
         if self.terms is not None:
@@ -154,16 +162,17 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
     gamma = None if case.climb_angle_deg is None else math.radians(case.climb_angle_deg)
     try:
         analysis = analysis or case.analysis()
-        start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_min)
+        start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_max)  # its speed is replaced by the searched one
         man = SteadyManoeuvre(start.speed_m_s, case.altitude_m, case.turn_radius_m, gamma, case.coordinated)
-        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_step=scan_step((case.mach_min, case.mach_max)),
+        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_step=(scan_step((case.mach_min, case.mach_max))
+                                                                                    if case.mach_step is None else case.mach_step),
                              mach_guess=mach_guess, aero_model=MODELS[case.model], shared=shared)
     except (FlutterNotFound, TrimError, ValueError) as exc:
         row["error"] = str(exc)
         return row
     s = fp.trim.summary()
     row.update(
-        mach=fp.mach, omega_rad_s=fp.frequency_rad_s, mode=fp.mode.dominant_dof,
+        mach=fp.mach, omega_rad_s=fp.frequency_rad_s, mode=fp.mode.name, mode_coordinate=fp.mode.dominant_dof,
         theta_deg=s["theta_deg"], phi_deg=s["phi_deg"], sideslip_deg=s["sideslip_deg"], gamma_deg=s["gamma_deg"], thrust_kN=s["thrust_kN"],
         aileron_deg=s["aileron_deg"], elevator_deg=s["elevator_deg"], rudder_deg=s["rudder_deg"],
         tip_deflection_m=s["tip_deflection_m"], tip_twist_deg=s["tip_twist_deg"], evaluations=fp.evaluations,
@@ -174,6 +183,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
         formulation=fp.formulation, aero_density_kg_m3=fp.aero_density_kg_m3, aero_density_fixed=fp.aero_density_fixed,
         model_terms=fp.terms,
         linear_range=fp.trim.linear_range,
+        warnings=list(fp.warnings),
     )
     return row
 
