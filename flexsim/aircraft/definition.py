@@ -74,7 +74,8 @@ class StripAero:
     lift_slope : str or float
         Sectional lift-curve slope Cl_alpha: ``"vlm"`` (vortex lattice of wing + horizontal stabilizer,
         the paper's choice; wings and stabilizers only), ``"2pi"`` (thin-airfoil value), or a number
-        [1/rad] in (0, 2 pi]. The Prandtl-Glauert factor 1/sqrt(1 - M^2) is applied on top.
+        [1/rad] in (0, 2 pi]. The Prandtl-Glauert factor 1/sqrt(1 - M^2) is applied on top. An aircraft file
+        that gives none sets ``"vlm"`` on wings and stabilizers and ``"2pi"`` on the fin.
     cd0 : float
         Section parasite-drag coefficient [-] (not in the paper; default 0).
     incidence_rad : float
@@ -486,18 +487,40 @@ class Envelope:
     min_speed_eas_m_s, max_speed_eas_m_s : float or None
         Equivalent-airspeed limits [m/s] (e.g. the stall speed and the dive speed with its flutter margin), in
         (0, 400] m/s.
+    cruise_altitude_m : float or None
+        Altitude of the cruise point [m], in [0, 20000] (the ISA range of :mod:`flexsim.atmosphere`): where ``flexsim
+        trim``, ``linearize``, ``simulate`` and the environments fly the aircraft when no altitude is given.
+    cruise_mach, cruise_speed_m_s : float or None
+        Speed of the cruise point, as a Mach number in (0, 0.99] or a true airspeed [m/s] in (0, 400] (at most one).
+    max_altitude_m : float or None
+        Highest altitude the aircraft flies [m], in (0, 20000]: ``flexsim flutter`` searches four altitudes from sea
+        level to it when none is given.
     """
 
     min_mach: float | None = None
     max_mach: float | None = None
     min_speed_eas_m_s: float | None = None
     max_speed_eas_m_s: float | None = None
+    cruise_altitude_m: float | None = None
+    cruise_mach: float | None = None
+    cruise_speed_m_s: float | None = None
+    max_altitude_m: float | None = None
 
     def __post_init__(self) -> None:
-        for name, hi in (("min_mach", 0.99), ("max_mach", 0.99), ("min_speed_eas_m_s", 400.0), ("max_speed_eas_m_s", 400.0)):
+        for name, lo, hi, lo_open in (("min_mach", 0.0, 0.99, True), ("max_mach", 0.0, 0.99, True),
+                                      ("min_speed_eas_m_s", 0.0, 400.0, True), ("max_speed_eas_m_s", 0.0, 400.0, True),
+                                      ("cruise_altitude_m", 0.0, 20000.0, False), ("cruise_mach", 0.0, 0.99, True),
+                                      ("cruise_speed_m_s", 0.0, 400.0, True), ("max_altitude_m", 0.0, 20000.0, True)):
             value = getattr(self, name)
             if value is not None:
-                object.__setattr__(self, name, _check_scalar(f"envelope.{name}", value, 0.0, hi, lo_open=True))
+                object.__setattr__(self, name, _check_scalar(f"envelope.{name}", value, lo, hi, lo_open=lo_open))
+        if self.cruise_mach is not None and self.cruise_speed_m_s is not None:
+            _fail("envelope.cruise_speed_m_s", self.cruise_speed_m_s,
+                  f"give the cruise speed once: envelope.cruise_mach = {self.cruise_mach!r} is given too")
+        if (self.cruise_altitude_m is not None and self.max_altitude_m is not None
+                and self.cruise_altitude_m > self.max_altitude_m):
+            _fail("envelope.cruise_altitude_m", self.cruise_altitude_m,
+                  f"must not exceed envelope.max_altitude_m = {self.max_altitude_m!r}")
         for lo, hi in (("min_mach", "max_mach"), ("min_speed_eas_m_s", "max_speed_eas_m_s")):
             a, b = getattr(self, lo), getattr(self, hi)
             if a is not None and b is not None and not a < b:
