@@ -27,7 +27,7 @@ from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.model.aircraft_model import AircraftModel
 
 __all__ = ["SearchRange", "search_range", "CruisePoint", "cruise_point", "flutter_altitudes", "MODEL_MAX_MACH", "RHO_0",
-           "CRUISE_SPEED_MARGIN", "FLUTTER_ALTITUDE_LEVELS"]
+           "CRUISE_SPEED_MARGIN", "DERIVED_CRUISE_ALTITUDE_M", "FLUTTER_ALTITUDE_LEVELS"]
 
 #: Largest Mach number the strip aerodynamics cover: the Prandtl-Glauert factor is capped there [-].
 MODEL_MAX_MACH = 0.95
@@ -37,6 +37,9 @@ RHO_0 = 1.225
 #: margin of 1.3 V_S of the reference approach speed (14 CFR 25.125 before amendment 25-108; Raymer, *Aircraft Design:
 #: A Conceptual Approach*, 6th ed., 2018, sec. 17.7) [-].
 CRUISE_SPEED_MARGIN = 1.3
+#: Altitude of a cruise point the file does not give [m]: low, but clear of the ground so that a simulation from it is not
+#: ended at once by ground contact (altitude <= 0).
+DERIVED_CRUISE_ALTITUDE_M = 1000.0
 #: Altitudes of a flutter search without given ones: this many, equally spaced from sea level to the file's
 #: ``envelope.max_altitude_m`` (four: the paper's 0, 3048, 6096, 9144 m for the GTM's 9144 m).
 FLUTTER_ALTITUDE_LEVELS = 4
@@ -230,7 +233,8 @@ def cruise_point(model: AircraftModel | Aircraft | str | Path, *, altitude_m: fl
                  mach: float | None = None, speed_m_s: float | None = None) -> CruisePoint:
     """The flight condition of a trim, linearisation or simulation: the given values, else the aircraft's own.
 
-    Altitude: ``altitude_m``, else the file's ``envelope.cruise_altitude_m``, else sea level (stated). Speed: ``mach``
+    Altitude: ``altitude_m``, else the file's ``envelope.cruise_altitude_m``, else :data:`DERIVED_CRUISE_ALTITUDE_M`
+    (stated). Speed: ``mach``
     or ``speed_m_s`` (true airspeed [m/s], at most one), else the file's ``envelope.cruise_mach`` or
     ``envelope.cruise_speed_m_s``, else :data:`CRUISE_SPEED_MARGIN` times the lower end of the envelope at that
     altitude (:func:`search_range` of level flight: the file's lower limits or the stall estimate), kept below the
@@ -269,7 +273,8 @@ def cruise_point(model: AircraftModel | Aircraft | str | Path, *, altitude_m: fl
     elif env is not None and env.cruise_altitude_m is not None:
         h, h_src = env.cruise_altitude_m, f"envelope.cruise_altitude_m = {env.cruise_altitude_m:g}"
     else:
-        h, h_src = 0.0, "sea level: the aircraft file gives no envelope.cruise_altitude_m"
+        h, h_src = DERIVED_CRUISE_ALTITUDE_M, (f"{DERIVED_CRUISE_ALTITUDE_M:g} m, clear of the ground: the aircraft file "
+                                               "gives no envelope.cruise_altitude_m")
     if isinstance(h, bool) or not isinstance(h, (int, float)) or not math.isfinite(h):
         raise ValueError(f"altitude_m = {h!r}: must be a finite number [m]")
     isa(float(h))  # the ISA range, named in its message
