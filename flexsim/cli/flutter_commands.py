@@ -323,7 +323,14 @@ def _sweep(args: argparse.Namespace) -> int:
         if k not in _MODELS:
             raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
     check_altitudes(args.altitudes)
+    if args.scheduler is not None and args.workers is not None:
+        raise CliError(f"--scheduler, --workers {args.workers}: the processes are the Dask cluster's at "
+                       f"{args.scheduler!r}; --workers sets local processes (give one of them)")
+    args.workers = _WORKERS if args.workers is None else args.workers
     check_workers(args.workers)
+    wrong = {"turn": ("--angles-deg", args.angles_deg, "--climb"), "climb": ("--radii-m", args.radii_m, "--turn")}[kind]
+    if wrong[1] is not None:
+        raise CliError(f"{wrong[0]}: applies to {wrong[2]} sweeps (this is a --{kind} sweep)")
     if args.chain_length is not None and args.chain_length < 1:
         raise CliError(f"--chain-length = {args.chain_length}: must be an integer >= 1 (points per chain)")
     check_damping(args.structural_damping)
@@ -487,7 +494,7 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
                       help="flight-path angles [deg] with --climb [the paper's -15..15 deg in 5 deg steps]")
     p_sw.add_argument("--scheduler", metavar="ADDRESS", help="Dask distributed scheduler (default: local processes); "
                       "tasks and results are exchanged pickled: give only the address of a cluster you trust")
-    p_sw.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    p_sw.add_argument("--workers", type=int, default=None, help="local processes [all cores]; not with --scheduler")
     p_sw.add_argument("--chain-length", type=int, default=None, metavar="K",
                       help="points per chain: each model/altitude chain (each point seeded with the previous flutter "
                       "Mach) is cut into runs of at most K points, 1 = every point its own task, so that more workers "

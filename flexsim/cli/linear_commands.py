@@ -18,6 +18,9 @@ from flexsim.cli.validation import CliError, check_trim_options, flight_conditio
 
 __all__ = ["add_linear_commands"]
 
+#: Inflow states per strip of ``--aero unsteady`` without ``--n-inflow`` (Peters' N = 6, as the flutter searches).
+N_INFLOW = 6
+
 
 def _check_out(path: str) -> Path:
     """``--out``: a new or existing ``.npz`` file in an existing, writable directory."""
@@ -34,6 +37,10 @@ def _linearize(args: argparse.Namespace) -> int:
     check_trim_options(args)
     if args.coordinated and args.turn_radius_m is None:
         raise CliError("--coordinated: applies to turns only; give --turn-radius-m")
+    if args.n_inflow is not None and args.aero != "unsteady":
+        raise CliError(f"--n-inflow {args.n_inflow}: applies to --aero unsteady (inflow states of the finite-state model); "
+                       f"the {args.aero} model has none")
+    args.n_inflow = N_INFLOW if args.n_inflow is None else args.n_inflow
     if not 1 <= args.n_inflow <= 10:
         raise CliError(f"--n-inflow = {args.n_inflow}: must be an integer in [1, 10] (inflow states per strip)")
     out = _check_out(args.out)
@@ -106,7 +113,7 @@ def add_linear_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p.add_argument("--aero", choices=("quasi-steady", "unsteady"), default="quasi-steady",
                    help="aerodynamics of the linear model: quasi-steady, or finite-state unsteady (its inflow states "
                         "become states of the model) [quasi-steady]")
-    p.add_argument("--n-inflow", type=int, default=6, metavar="N", help="inflow states per strip with --aero unsteady [6]")
+    p.add_argument("--n-inflow", type=int, default=None, metavar="N", help="inflow states per strip with --aero unsteady [6]")
     from flexsim.aircraft.definition import FORMULATIONS
 
     p.add_argument("--formulation", choices=FORMULATIONS, default=None,

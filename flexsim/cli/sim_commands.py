@@ -14,6 +14,7 @@ recording (``.rrd``) without a viewer.
 from __future__ import annotations
 
 import argparse
+import re
 import runpy
 import shutil
 import sys
@@ -26,6 +27,8 @@ from flexsim.aircraft.definition import FORMULATIONS
 __all__ = ["add_sim_commands", "script_arguments"]
 
 _AERO = ("unsteady", "quasi-steady")
+#: Port of the Rerun viewer that ``flexsim view`` starts without ``--port``.
+VIEWER_PORT = 9876
 #: What ``flexsim simulate AIRCRAFT`` flies.
 DEFAULT_MANOEUVRE = "elevator-doublet"
 
@@ -128,7 +131,20 @@ def _executable(text: str) -> str:
     return found
 
 
+#: The form of a ``--connect`` URL: a Rerun viewer's or server's gRPC proxy.
+_CONNECT_URL = re.compile(r"rerun\+https?://[^\s/:]+(:\d{1,5})?/proxy")
+
+
 def _view(args: argparse.Namespace) -> int:
+    if args.connect is not None and not _CONNECT_URL.fullmatch(args.connect):
+        raise ValueError(f"--connect = {args.connect!r}: must be the URL of a running Rerun viewer, "
+                         "rerun+http://HOST:PORT/proxy (e.g. rerun+http://127.0.0.1:9876/proxy)")
+    starts_viewer = args.connect is None and not args.save
+    unused = [flag for flag, given in (("--port", args.port is not None), ("--viewer", args.viewer is not None)) if given]
+    if unused and not starts_viewer:
+        raise ValueError(f"{', '.join(unused)}: apply to the viewer that flexsim view starts; with "
+                         f"{'--connect' if args.connect is not None else '--save alone'} none is started")
+    args.port = VIEWER_PORT if args.port is None else args.port
     if args.log.endswith(".rrd"):  # a Rerun recording (e.g. of a flutter mode): shown as it is
         from flexsim.io.mode_recording import open_recording
 
@@ -206,7 +222,7 @@ def add_sim_commands(subparsers: argparse._SubParsersAction) -> None:
     p_view.add_argument("--connect", metavar="URL",
                         help="stream to a Rerun viewer or server already running at URL (rerun+http://HOST:9876/proxy) "
                              "instead of starting one (with --save: both)")
-    p_view.add_argument("--port", type=_port, default=9876, metavar="N",
+    p_view.add_argument("--port", type=_port, default=None, metavar="N",
                         help="port of the viewer to start (a viewer already listening there is reused) [9876]")
     p_view.add_argument("--viewer", type=_executable, metavar="PATH",
                         help="the rerun executable to start [the one installed with rerun-sdk]")
