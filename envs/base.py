@@ -233,6 +233,23 @@ class RowsStep:
     clipped: np.ndarray
 
 
+#: The keys ``reset(options=...)`` of a single environment understands: none (the episode's start is the task's).
+RESET_OPTIONS: tuple[str, ...] = ()
+
+
+def check_reset_options(options: Any, allowed: tuple[str, ...]) -> None:
+    """``reset(options=...)``: None or a dict whose keys are in ``allowed``; anything else is refused (ValueError
+    naming the key and the allowed ones), never ignored."""
+    if options is None:
+        return
+    if not isinstance(options, dict):
+        raise ValueError(f"options = {options!r}: must be None or a dict (got {type(options).__name__})")
+    unknown = [k for k in options if k not in allowed]
+    if unknown:
+        raise ValueError(f"options[{unknown[0]!r}]: not an option of reset(); allowed: "
+                         f"{', '.join(map(repr, allowed)) if allowed else 'none (give options=None)'}")
+
+
 class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     """Base class of the flexsim tasks (not registered itself; see the task classes for the docs).
 
@@ -451,6 +468,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._batch, self._row = batch, int(row)
 
     def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple[np.ndarray, dict]:
+        check_reset_options(options, RESET_OPTIONS)
         super().reset(seed=seed)
         episode = self._new_episode(self.np_random)
         point = self.dynamics.trim(episode.manoeuvre)

@@ -472,6 +472,15 @@ class Engine(LumpedMass):
         object.__setattr__(self, "max_thrust_n", float(self.max_thrust_n))
 
 
+#: How far from the beam it rides on a component's root (from the fuselage's elastic axis) or a lumped mass (from its
+#: component's) may lie: this fraction of that beam's length plus :data:`ROOT_REACH_M`. The bundled and example aircraft
+#: stay within 0.18 of it (a T-tail's root on top of the sailplane's fin, 1.25 m on a 6.8 m fuselage; the GTM's engines
+#: 3.2 m from its 18.25 m wing); a root or mass further out is not carried by the beam the model clamps it to [-].
+ROOT_REACH_FRACTION = 0.2
+#: The constant part of the reach, for short beams (a 1 m model fuselage) [m].
+ROOT_REACH_M = 1.0
+
+
 @dataclass(frozen=True)
 class Envelope:
     """Where the aircraft flies, as far as a flutter search needs it (the file's ``[envelope]`` table).
@@ -607,6 +616,12 @@ class Aircraft:
                 s = fus.station_of(c.root_m)
                 if not -1e-9 <= s <= fus.length_m * (1 + 1e-9):
                     _fail(f"components.{c.name}.root_m", c.root_m.tolist(), f"root lies at fuselage station {s:.4g} m, off the fuselage (0 to {fus.length_m:.4g} m)")
+                side = float(np.linalg.norm(c.root_m - fus.root_m - s * fus.axes_in_body[:, 0]))
+                reach = ROOT_REACH_FRACTION * fus.length_m + ROOT_REACH_M
+                if side > reach:
+                    _fail(f"components.{c.name}.root_m", c.root_m.tolist(),
+                          f"root lies {side:.4g} m from the fuselage's elastic axis: a component is clamped to the "
+                          f"fuselage, at most {ROOT_REACH_FRACTION:g} x its length + {ROOT_REACH_M:g} m = {reach:.4g} m away")
         all_names = [m.name for m in self.lumped_masses] + [e.name for e in self.engines]
         if len(set(all_names)) != len(all_names):
             _fail("lumped_masses/engines names", all_names, "names must be unique")
@@ -618,11 +633,12 @@ class Aircraft:
             s = comp.station_of(item.position_m)
             if not -1e-9 * comp.length_m <= s <= comp.length_m * (1 + 1e-9):
                 _fail(f"{w}.position_m", item.position_m.tolist(), f"projects to station {s:.4g} m, off component {comp.name} (0 to {comp.length_m:.4g} m)")
-            off = item.position_m - comp.root_m - s * comp.axes_in_body[:, 0]
-            reach = max(10.0, comp.length_m)
-            if np.linalg.norm(off) > reach:
-                _fail(f"{w}.position_m", item.position_m.tolist(), f"lies {np.linalg.norm(off):.4g} m from the elastic axis of {comp.name}: "
-                      f"a lumped mass rides on its component, at most max(10 m, length) = {reach:.4g} m away")
+            off = float(np.linalg.norm(item.position_m - comp.root_m - s * comp.axes_in_body[:, 0]))
+            reach = ROOT_REACH_FRACTION * comp.length_m + ROOT_REACH_M
+            if off > reach:
+                _fail(f"{w}.position_m", item.position_m.tolist(), f"lies {off:.4g} m from the elastic axis of {comp.name}: "
+                      f"a lumped mass rides on its component, at most {ROOT_REACH_FRACTION:g} x its length + "
+                      f"{ROOT_REACH_M:g} m = {reach:.4g} m away")
         total = sum(float(np.trapezoid(c.sections.mass_kg_per_m, c.sections.station_m)) for c in comps)
         total += sum(m.mass_kg for m in (*self.lumped_masses, *self.engines))
         if not total > 0.0:

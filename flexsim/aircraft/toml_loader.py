@@ -359,7 +359,7 @@ def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:
             raise AircraftDefinitionError("not valid TOML for flexsim: arrays or tables nested too deeply") from None
         _check_keys("<top level>", doc, _TOP_KEYS)
         version = doc["schema_version"]
-        if version != SCHEMA_VERSION:
+        if isinstance(version, bool) or not isinstance(version, int) or version != SCHEMA_VERSION:
             raise AircraftDefinitionError(f"schema_version = {version!r}: this flexsim reads version {SCHEMA_VERSION}")
         frame = _Frame(doc.get("frame"))
         comps = doc["components"]

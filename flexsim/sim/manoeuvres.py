@@ -34,6 +34,7 @@ from functools import lru_cache
 import numpy as np
 
 from flexsim.aircraft.definition import Aircraft
+from flexsim.errors import positive_number
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.flutter import wind_tunnel_flutter
 from flexsim.model.aircraft_model import AircraftModel, Wind
@@ -377,7 +378,6 @@ def build_manoeuvre(name: str, *, aero: str = "unsteady", duration_s: float | No
                          f"level trim at {point.describe()}" if point else "")
     setup = _REGISTRY[name](AeroOptions(aero, formulation=formulation), flight)
     if duration_s is not None:
-        if not (isinstance(duration_s, (int, float)) and math.isfinite(duration_s) and duration_s > 0):
-            raise ValueError(f"duration_s = {duration_s!r}: must be a finite number > 0 [s]")
+        duration_s = positive_number("duration_s", duration_s, "s")
         setup = replace(setup, duration_s=float(duration_s))  # every other field kept (the gust of gust-encounter)
     return setup

@@ -37,6 +37,7 @@ from scipy.integrate import BDF, DOP853, LSODA, RK23, RK45, Radau
 from scipy.optimize import brentq
 
 from flexsim._threads import single_blas_thread
+from flexsim.errors import positive_number
 from flexsim.model.jacobian import jacobian
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.sim.controls import ControlSchedule, Controls
@@ -363,8 +364,7 @@ def _user_event(ev: SimEvent) -> RunEvent:
 def _grid(rate_hz: float | None, t_end: float, what: str) -> np.ndarray | None:
     if rate_hz is None:
         return None
-    if not (isinstance(rate_hz, (int, float)) and math.isfinite(rate_hz) and rate_hz > 0):
-        raise ValueError(f"{what} = {rate_hz!r}: must be a finite number > 0 [Hz]")
+    rate_hz = positive_number(what, rate_hz, "Hz")
     n = int(math.floor(t_end * rate_hz * (1 + 1e-12)))
     return np.arange(n + 1) / float(rate_hz)
 
@@ -461,9 +461,7 @@ def simulate(
         Bad arguments (the message names the argument, its value and what is allowed).
     """
     x0, u_trim = _initial(model, initial)
-    if not (isinstance(t_end_s, (int, float)) and math.isfinite(t_end_s) and t_end_s > 0):
-        raise ValueError(f"t_end_s = {t_end_s!r}: must be a finite number > 0 [s]")
-    t_end = float(t_end_s)
+    t_end = positive_number("t_end_s", t_end_s, "s")
     ctrl = Controls(model, controls, u_trim, control_period_s)
     try:
         settings = IntegratorSettings(method, rtol, atol, max_step).resolve(model, wind)
