@@ -33,6 +33,7 @@ from flexsim.trim import SteadyManoeuvre
 from flexsim.envs.config import (AERO_MODELS, DEFAULT_MAX_STEP_S, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
                          IntegratorSettings, TrackingReward)
 from flexsim.envs import row_kernels as _rk
+from flexsim.envs.aircraft_defaults import limits_for_aircraft, task_for_aircraft
 from flexsim.envs.batch import EpisodeBatch
 
 __all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS",
@@ -315,6 +316,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ViewerUnavailableError(f"render_mode = 'human': cannot open a Rerun viewer: {no_viewer}; use "
                                          "render_mode='rgb_array' here, or record episodes with FlightLogRecorder and "
                                          "save them with `flexsim view LOG --save run.rrd`")
+        derive = task is None  # the task's defaults are the GTM's: another aircraft's are derived (envs/aircraft_defaults.py)
         task = (self.default_task or self.task_type()) if task is None else task
         if not isinstance(task, self.task_type):
             raise ValueError(f"task = {task!r}: must be a {self.task_type.__name__}")
@@ -324,6 +326,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
                 raise ValueError(f"{name} = {value!r}: must be a {kind.__name__} or None")
         self.aircraft = aircraft if isinstance(aircraft, Aircraft) else load_aircraft(aircraft)
         self.aircraft_source = self.aircraft.source
+        task = task_for_aircraft(task, self.aircraft) if derive else task
         self.task = task
         self.turbulence = turbulence
         self.control_rate_hz = rate
@@ -349,6 +352,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
                     raise ValueError(f"dynamics: was built with {name} = {b!r}, this env has {name} = {a!r}; pass a FlightDynamics "
                                      "built with the same settings, or None")
         self.dynamics = dynamics
+        if limits is None:
+            self.limits = limits_for_aircraft(self.aircraft, dynamics, task)
         self.reward_definition: TrackingReward = task.reward
         lo, hi = self.dynamics.u_low, self.dynamics.u_high
         self._u_scale = hi.copy()  # 0 for a surface the aircraft does not have: its action has no effect

@@ -17,8 +17,9 @@ def _beam(name: str, root: str, euler: str, length: float, mass: float, ei: floa
             f"torsional_inertia_kg_m = [2e-4, 2e-4]\nei_nm2 = [{ei}, {ei}]\ngj_nm2 = [{gj}, {gj}]\n{chord_line}\n")
 
 
-def rc_glider_toml(envelope: str = "min_speed_eas_m_s = 6.0\nmax_speed_eas_m_s = 30.0") -> str:
-    """TOML text of the glider; ``envelope`` is the body of its ``[envelope]`` table ("" for none)."""
+def rc_glider_toml(envelope: str = "min_speed_eas_m_s = 6.0\nmax_speed_eas_m_s = 30.0", rigid_fin: bool = False) -> str:
+    """TOML text of the glider; ``envelope`` is the body of its ``[envelope]`` table ("" for none); ``rigid_fin``: a
+    rigid vertical tail (no elastic modes)."""
     head = ('schema_version = 1\nname = "rc-glider"\nstructural_damping_ratio = 0.02\n'
             '[frame]\nkind = "design"\nbody_origin_m = [1.0, 0.0, 0.0]\n[aero]\nmax_alpha_deg = 10.0\n')
     if envelope:
@@ -29,7 +30,7 @@ def rc_glider_toml(envelope: str = "min_speed_eas_m_s = 6.0\nmax_speed_eas_m_s =
             + _beam("left_wing", "[0.3, -0.02, 0.0]", "[0.0, 3.0, -90.0]", 1.0, 0.1, 50.0, 20.0, 0.2, 8, wing)
             + _beam("right_htail", "[0.95, 0.01, 0.0]", "[0.0, 0.0, 90.0]", 0.25, 0.03, 20.0, 10.0, 0.1, 3, rigid=True)
             + _beam("left_htail", "[0.95, -0.01, 0.0]", "[0.0, 0.0, -90.0]", 0.25, 0.03, 20.0, 10.0, 0.1, 3, rigid=True)
-            + _beam("vtail", "[0.95, 0.0, 0.0]", "[90.0, 100.0, 0.0]", 0.2, 0.04, 20.0, 10.0, 0.12, 3))
+            + _beam("vtail", "[0.95, 0.0, 0.0]", "[90.0, 100.0, 0.0]", 0.2, 0.04, 20.0, 10.0, 0.12, 3, rigid=rigid_fin))
     surfaces = "".join(
         f'[components.{c}.control_surface]\nkind = "{k}"\nhinge_fraction = 0.7\nstart_m = {s}\nend_m = {e}\n'
         for c, k, s, e in (("right_wing", "aileron", 0.5, 1.0), ("left_wing", "aileron", 0.5, 1.0),
