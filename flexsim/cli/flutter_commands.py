@@ -86,6 +86,19 @@ def _trim(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check_replication(args: argparse.Namespace, default_aircraft: str = "gtm") -> None:
+    """``--paper-replication`` fixes the aircraft, the formulation and the linearised density itself: giving any of
+    them beside it is refused (it would be ignored)."""
+    if not args.paper_replication:
+        return
+    given = [flag for flag, value in (("AIRCRAFT", args.aircraft not in (default_aircraft, PAPER_REPLICATION.aircraft)),
+                                      ("--formulation", args.formulation),
+                                      ("--linear-density-altitude-m", args.linear_density_altitude_m)) if value]
+    if given:
+        raise CliError(f"--paper-replication and {', '.join(given)}: the paper-replication settings fix the aircraft, "
+                       f"the formulation and the linearised density ({PAPER_REPLICATION.describe()}); give one or the other")
+
+
 def _settings(args: argparse.Namespace, default_aircraft: str = "gtm") -> list[RunSettings]:
     """The labelled settings of a run: the paper-replication and the physical ones on the default aircraft,
     or the aircraft and options as given (``--formulation``, ``--linear-density-altitude-m``)."""
@@ -143,6 +156,9 @@ def _flutter(args: argparse.Namespace) -> int:
         raise CliError(f"--vg {args.vg!r}: must name a .png file")
     if args.vg_points < 3:
         raise CliError(f"--vg-points = {args.vg_points}: must be an integer >= 3")
+    if args.vg is None and args.vg_points != _VG_POINTS:
+        raise CliError(f"--vg-points {args.vg_points}: applies to --vg (the speeds of the V-g diagram)")
+    _check_replication(args)
     if args.glide and args.climb_deg is not None:
         raise CliError("--glide, --climb-deg: a glide finds its own flight-path angle; give one of them")
     settings = _settings(args)
@@ -313,6 +329,7 @@ def _linspace(lo: float, hi: float, n: int) -> list[float]:
 
 def _sweep(args: argparse.Namespace) -> int:
     kind = "turn" if args.turn else "climb"
+    _check_replication(args)
     if args.components is not None:
         raise CliError("--components: a sweep flies the whole aircraft (a component alone: flexsim flutter --wind-tunnel "
                        "--components NAME ...)")

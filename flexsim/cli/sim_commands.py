@@ -79,6 +79,9 @@ def _simulate(args: argparse.Namespace) -> int:
                             aircraft=args.aircraft, altitude_m=args.altitude_m, mach=args.mach, speed_m_s=args.speed_m_s)
     log_path = None if args.no_log else (args.log or default_log_path(setup.name))
     options = {"log_path": log_path, "method": args.method}
+    if args.rtol is not None and args.method in ("auto", "ETD2RK"):  # every named manoeuvre flies with aerodynamics
+        raise ValueError(f"--rtol {args.rtol:g}: applies to the adaptive methods (--method DOP853, Radau, ...); ETD2RK, "
+                         "the method with aerodynamics by default, takes fixed steps and has no tolerance")
     if args.rtol is not None:
         options["rtol"] = args.rtol
     print(f"{setup.name}: {setup.description}; {setup.duration_s:g} s, aero {args.aero}")
