@@ -125,11 +125,19 @@ def _roots(aircraft, point, aero_model: str, formulation: str | None = None) -> 
          "inflow_participation": m.inflow_participation} for m in modes]}
 
 
-def _flutter(args: argparse.Namespace) -> int:
-    keys = [k.strip().upper() for k in args.models.split(",")]
+def _model_keys(text: str) -> list[str]:
+    """``--models``: a comma list of distinct model keys (QS, US, FS)."""
+    keys = [k.strip().upper() for k in text.split(",")]
     for k in keys:
         if k not in _MODELS:
-            raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
+            raise CliError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
+    if len(set(keys)) != len(keys):
+        raise CliError(f"--models {text!r}: names a model twice; give each once")
+    return keys
+
+
+def _flutter(args: argparse.Namespace) -> int:
+    keys = _model_keys(args.models)
     if args.wind_tunnel:
         return _wind_tunnel(args, keys)
     tunnel = [flag for flag, value in (("--speed-range-m-s", args.speed_range_m_s), ("--components", args.components))
@@ -333,12 +341,9 @@ def _sweep(args: argparse.Namespace) -> int:
     if args.components is not None:
         raise CliError("--components: a sweep flies the whole aircraft (a component alone: flexsim flutter --wind-tunnel "
                        "--components NAME ...)")
-    models = [k.strip().upper() for k in args.models.split(",")]
+    models = _model_keys(args.models)
     if args.coordinated and kind != "turn":
         raise ValueError("--coordinated: applies to --turn sweeps only")
-    for k in models:
-        if k not in _MODELS:
-            raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
     check_altitudes(args.altitudes)
     if args.scheduler is not None and args.workers is not None:
         raise CliError(f"--scheduler, --workers {args.workers}: the processes are the Dask cluster's at "

@@ -30,7 +30,7 @@ import numpy as np
 from flexsim._numba_cache import announce_compilation
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import bundled_aircraft_names, load_aircraft
-from flexsim.cli.validation import SanitisedStream, in_user_words, check_count, check_mach, check_plot_path, json_text, printable
+from flexsim.cli.validation import CliError, SanitisedStream, in_user_words, check_count, check_mach, check_plot_path, json_text, printable
 from flexsim.errors import FlexsimError
 from flexsim.linear.modes import in_vacuo_modes
 from flexsim.model.aircraft_model import AircraftModel, Variant
@@ -44,6 +44,9 @@ def _aircraft(args: argparse.Namespace) -> Aircraft:
     if getattr(args, "components", None):
         aircraft = aircraft.subset(args.components)
     m, n = getattr(args, "bending_modes", None), getattr(args, "torsion_modes", None)
+    for flag, value in (("--bending-modes", m), ("--torsion-modes", n)):
+        if value is not None and not 0 <= value <= 10:
+            raise CliError(f"{flag} = {value}: must be an integer in [0, 10] (shape functions per component)")
     if m is not None or n is not None:
         first = next(c for c in aircraft.components)
         aircraft = aircraft.with_modes(

@@ -43,6 +43,7 @@ API_TO_OPTION = {
     "structural_damping": "--structural-damping",
     "turn_radius_m": "--turn-radius-m",
     "altitude_m": "--altitude-m",
+    "duration_s": "--duration",
 }
 _API_NAME = re.compile(r"(?<![\w.\-])(?:" + "|".join(re.escape(k) for k in sorted(API_TO_OPTION, key=len, reverse=True)) + r")(?![\w\[])")
 
