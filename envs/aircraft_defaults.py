@@ -18,7 +18,6 @@ the environment derives them from that aircraft instead (docs/environments.md, "
 from __future__ import annotations
 
 import dataclasses
-import math
 from pathlib import Path
 
 from flexsim.aircraft.definition import Aircraft
