@@ -27,7 +27,7 @@ from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.model.aircraft_model import AircraftModel
 
 __all__ = ["SearchRange", "search_range", "CruisePoint", "cruise_point", "flutter_altitudes", "MODEL_MAX_MACH", "RHO_0",
-           "CRUISE_SPEED_MARGIN", "DERIVED_CRUISE_ALTITUDE_M", "FLUTTER_ALTITUDE_LEVELS"]
+           "CRUISE_SPEED_MARGIN", "DIVE_TO_CRUISE", "DERIVED_CRUISE_ALTITUDE_M", "FLUTTER_ALTITUDE_LEVELS"]
 
 #: Largest Mach number the strip aerodynamics cover: the Prandtl-Glauert factor is capped there [-].
 MODEL_MAX_MACH = 0.95
@@ -37,6 +37,9 @@ RHO_0 = 1.225
 #: margin of 1.3 V_S of the reference approach speed (14 CFR 25.125 before amendment 25-108; Raymer, *Aircraft Design:
 #: A Conceptual Approach*, 6th ed., 2018, sec. 17.7) [-].
 CRUISE_SPEED_MARGIN = 1.3
+#: A cruise speed derived from the upper end of the envelope the file gives (its dive speed) is that end divided by
+#: this: the design dive speed is at least 1.25 times the design cruise speed (CS-25.335(b)(1), 14 CFR 25.335) [-].
+DIVE_TO_CRUISE = 1.25
 #: Altitude of a cruise point the file does not give [m]: low, but clear of the ground so that a simulation from it is not
 #: ended at once by ground contact (altitude <= 0).
 DERIVED_CRUISE_ALTITUDE_M = 1000.0
@@ -236,9 +239,10 @@ def cruise_point(model: AircraftModel | Aircraft | str | Path, *, altitude_m: fl
     Altitude: ``altitude_m``, else the file's ``envelope.cruise_altitude_m``, else :data:`DERIVED_CRUISE_ALTITUDE_M`
     (stated). Speed: ``mach``
     or ``speed_m_s`` (true airspeed [m/s], at most one), else the file's ``envelope.cruise_mach`` or
-    ``envelope.cruise_speed_m_s``, else :data:`CRUISE_SPEED_MARGIN` times the lower end of the envelope at that
-    altitude (:func:`search_range` of level flight: the file's lower limits or the stall estimate), kept below the
-    middle of the envelope when that is lower (stated as derived).
+    ``envelope.cruise_speed_m_s``, else derived and stated: the upper end of the envelope the file gives (its dive
+    speed) divided by :data:`DIVE_TO_CRUISE`, or, without one or when that is slower, :data:`CRUISE_SPEED_MARGIN`
+    times the lower end (:func:`search_range` of level flight at that altitude: the file's lower limits or the stall
+    estimate); the middle of the envelope when that would reach its upper end.
 
     Parameters
     ----------
@@ -302,10 +306,17 @@ def cruise_point(model: AircraftModel | Aircraft | str | Path, *, altitude_m: fl
             raise ValueError(f"no cruise speed: the aircraft file gives no envelope.cruise_mach nor "
                              f"envelope.cruise_speed_m_s, and it cannot be derived from the envelope ({exc}); give one "
                              "of them, or the speed") from None
-        m = min(CRUISE_SPEED_MARGIN * rng.mach_min, 0.5 * (rng.mach_min + rng.mach_max))
-        m_src = (f"derived: {CRUISE_SPEED_MARGIN:g} x the envelope's lower end M {rng.mach_min:.4f} ({rng.lower_source}), "
-                 "the file gives no envelope.cruise_mach")
-        if m < CRUISE_SPEED_MARGIN * rng.mach_min:
+        stall = CRUISE_SPEED_MARGIN * rng.mach_min
+        if rng.upper_source.startswith("envelope.") and rng.mach_max / DIVE_TO_CRUISE > stall:
+            m = rng.mach_max / DIVE_TO_CRUISE
+            m_src = (f"derived: the envelope's upper end M {rng.mach_max:.4f} ({rng.upper_source}) / {DIVE_TO_CRUISE:g}, "
+                     "the file gives no envelope.cruise_mach")
+        else:
+            m = stall
+            m_src = (f"derived: {CRUISE_SPEED_MARGIN:g} x the envelope's lower end M {rng.mach_min:.4f} "
+                     f"({rng.lower_source}), the file gives no envelope.cruise_mach")
+        if not m < rng.mach_max:
+            m = 0.5 * (rng.mach_min + rng.mach_max)
             m_src = (f"derived: the middle of the envelope M {rng.mach_min:.4f}-{rng.mach_max:.4f}, the file gives no "
                      "envelope.cruise_mach")
     return CruisePoint(h, float(m), h_src, m_src)

@@ -12,7 +12,7 @@ import pytest
 from flexsim.aircraft.toml_loader import AircraftDefinitionError, parse_aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.cli.main import main
-from flexsim.linear.envelope import CRUISE_SPEED_MARGIN, DERIVED_CRUISE_ALTITUDE_M, cruise_point, flutter_altitudes
+from flexsim.linear.envelope import CRUISE_SPEED_MARGIN, DERIVED_CRUISE_ALTITUDE_M, DIVE_TO_CRUISE, cruise_point, flutter_altitudes
 from flexsim.linear.study import PAPER_ALTITUDES_M
 from tests.cli.small_aircraft import rc_glider_toml
 
@@ -29,15 +29,20 @@ def _json(capsys, argv):
 
 
 def test_trim_without_a_condition_flies_the_derived_cruise_point_and_says_so(tmp_path, capsys):
-    """No cruise point in the file: 1000 m, at 1.3 x envelope.min_speed_eas_m_s = 6 m/s EAS, i.e. TAS = 1.3 x 6 x
-    sqrt(1.225 / rho(1000 m)) (the EAS conversion of flexsim.linear.envelope, the same formula: to round-off)."""
+    """No cruise point in the file: 1000 m, at the envelope's upper end 30 m/s EAS / 1.25 (the dive speed over the
+    cruise speed, CS-25.335) = 24 m/s EAS, i.e. TAS = 24 sqrt(1.225 / rho(1000 m)) (the EAS conversion of
+    flexsim.linear.envelope, the same formula: to round-off); without an upper end, 1.3 x the lower end 6 m/s EAS."""
     path = _write(tmp_path, "min_speed_eas_m_s = 6.0\nmax_speed_eas_m_s = 30.0")
     out = _json(capsys, ["trim", path, "--json"])
-    tas = CRUISE_SPEED_MARGIN * 6.0 * math.sqrt(1.225 / float(isa_density(DERIVED_CRUISE_ALTITUDE_M)))
-    assert out["altitude_m"] == DERIVED_CRUISE_ALTITUDE_M and out["speed_m_s"] == pytest.approx(tas, rel=1e-12)
-    assert "derived: 1.3 x the envelope's lower end" in out["flight_condition"]
+    eas_to_tas = math.sqrt(1.225 / float(isa_density(DERIVED_CRUISE_ALTITUDE_M)))
+    assert out["altitude_m"] == DERIVED_CRUISE_ALTITUDE_M
+    assert out["speed_m_s"] == pytest.approx(30.0 / DIVE_TO_CRUISE * eas_to_tas, rel=1e-12)
+    assert "derived: the envelope's upper end" in out["flight_condition"]
     assert main(["trim", path]) == 0
     assert "flight condition : H = 1000 m (1000 m, clear of the ground: the aircraft file gives no" in capsys.readouterr().out
+    low = _json(capsys, ["trim", _write(tmp_path, "min_speed_eas_m_s = 6.0", "low.toml"), "--json"])
+    assert low["speed_m_s"] == pytest.approx(CRUISE_SPEED_MARGIN * 6.0 * eas_to_tas, rel=1e-12)
+    assert "derived: 1.3 x the envelope's lower end" in low["flight_condition"]
 
 
 def test_trim_at_the_file_cruise_point_and_speed_option(tmp_path, capsys):
