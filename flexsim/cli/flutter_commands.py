@@ -342,6 +342,10 @@ def _sweep(args: argparse.Namespace) -> int:
         raise CliError("--components: a sweep flies the whole aircraft (a component alone: flexsim flutter --wind-tunnel "
                        "--components NAME ...)")
     models = _model_keys(args.models)
+    if args.altitudes is None:  # the aircraft's, as flexsim flutter's
+        from flexsim.linear.envelope import flutter_altitudes
+
+        args.altitudes = flutter_altitudes(PAPER_REPLICATION.aircraft if args.paper_replication else args.aircraft)[0]
     if args.coordinated and kind != "turn":
         raise ValueError("--coordinated: applies to --turn sweeps only")
     check_altitudes(args.altitudes)
@@ -503,7 +507,9 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     group = p_sw.add_mutually_exclusive_group(required=True)
     group.add_argument("--turn", action="store_true", help="level turns, R = 5-12 km")
     group.add_argument("--climb", action="store_true", help="climbs and descents, gamma = -15..15 deg")
-    p_sw.add_argument("--altitudes", type=float, nargs="+", default=[0.0, 3048.0, 6096.0, 9144.0], metavar="H")
+    p_sw.add_argument("--altitudes", type=float, nargs="+", default=None, metavar="H",
+                      help="altitudes [m] [sea level to the aircraft file's envelope.max_altitude_m in 4 levels (the GTM: "
+                           "0 3048 6096 9144), else sea level]")
     p_sw.add_argument("--mach-min", type=float, default=None,
                       help="lower end of each search [the aircraft file's [envelope], else the estimated stall speed]")
     p_sw.add_argument("--mach-max", type=float, default=None,

@@ -101,3 +101,11 @@ def test_fin_takes_its_documented_default_lift_slope(tmp_path, capsys):
 def test_bad_cruise_point_is_refused_with_the_field(envelope, message):
     with pytest.raises(AircraftDefinitionError, match=message.replace("[", r"\[").replace("]", r"\]")):
         parse_aircraft(rc_glider_toml(envelope))
+
+
+def test_sweep_altitudes_from_the_file(tmp_path, capsys):
+    path = _write(tmp_path, "min_speed_eas_m_s = 6.0\nmax_speed_eas_m_s = 30.0\ncruise_altitude_m = 600.0")
+    assert main(["sweep", "--turn", path, "--models", "US", "--radii-m", "300", "--workers", "1",
+                 "--out", str(tmp_path / "s"), "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)["rows"]
+    assert sorted(r["altitude_m"] for r in rows) == [0.0, 200.0, 400.0, 600.0]
