@@ -213,6 +213,8 @@ class AircraftModel(Immutable):
         self._v_fixed = np.zeros(3) if restrained_velocity_m_s is None else np.asarray(restrained_velocity_m_s, float)
         if self._v_fixed.shape != (3,) or not np.all(np.isfinite(self._v_fixed)):
             raise ValueError(f"restrained_velocity_m_s = {restrained_velocity_m_s!r}: must be 3 finite numbers [m/s]")
+        if isinstance(altitude_m, (bool, str, bytes)):  # True is not 1 m
+            raise ValueError(f"altitude = {altitude_m!r}: must be a number [m], got {type(altitude_m).__name__}")
         self.altitude_m = float(altitude_m)
         speed_of_sound(self.altitude_m)  # validates the ISA range with a clear message
         if air_density_kg_m3 is not None:

@@ -32,3 +32,18 @@ def test_simulate_refuses_a_bool_duration_and_rate():
 def test_manoeuvre_refuses_a_bool_duration():
     with pytest.raises(ValueError, match=r"duration_s = True: must be a finite number > 0 \[s\]"):
         build_manoeuvre("climb", duration_s=True)
+
+
+def test_bools_are_not_altitudes_nor_speeds():
+    """New cases of the class where a flight condition enters: the ISA and a steady manoeuvre."""
+    from flexsim.atmosphere import isa
+    from flexsim.trim import SteadyManoeuvre
+
+    with pytest.raises(ValueError, match=r"altitude = True: must be a number \[m\], got bool"):
+        isa(True)
+    with pytest.raises(ValueError, match=r"speed_m_s = True: must be a number, got bool"):
+        SteadyManoeuvre(True, 1000.0)
+    with pytest.raises(ValueError, match=r"altitude_m = True: must be a number, got bool"):
+        SteadyManoeuvre(100.0, True)
+    with pytest.raises(ValueError, match=r"altitude = True"):
+        AircraftModel(load_aircraft("goland_wing"), variant="restrained", altitude_m=True)
