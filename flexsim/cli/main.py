@@ -233,7 +233,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"flexsim {args.command}: interrupted", file=sys.stderr)
         return 130
     except (FlexsimError, OSError, KeyError, ValueError, RuntimeError) as exc:
-        print(f"flexsim {args.command}: error: {printable(in_user_words(str(exc)))}", file=sys.stderr)
+        text = str(exc.args[0]) if isinstance(exc, KeyError) and exc.args else str(exc)  # a KeyError's str() is quoted
+        print(f"flexsim {args.command}: error: {printable(in_user_words(text))}", file=sys.stderr)
         return 2
     finally:
         sys.stdout = stdout

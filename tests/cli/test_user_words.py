@@ -19,3 +19,9 @@ def test_refusals_name_the_option(argv, message, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert message in err and "components." not in err and "duration_s" not in err
+
+
+def test_unknown_component_is_named_plainly(capsys):
+    assert main(["info", "gtm", "--components", "wing"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("flexsim info: error: component 'wing' not in aircraft") and '"' not in err
