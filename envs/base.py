@@ -156,7 +156,8 @@ def _arguments_doc(cls) -> str:
         "actuator_rates=ActuatorRates(), limits=FlightLimits(), perturbation=InitialPerturbation())``. ``turbulence`` "
         f"is one of {', '.join(map(repr, TURBULENCE_LEVELS))}; ``aero`` one of {', '.join(map(repr, AERO_MODELS))}; "
         "``control_rate_hz`` 5 to 1000 Hz; ``render_mode`` 'rgb_array' (matplotlib image) or 'human' (Rerun viewer, "
-        "spawned on the first frame).")
+        "spawned on the first frame). With another ``aircraft`` than the bundled GTM and ``task``/``limits`` None, the task "
+        "flies that aircraft's cruise point and the limits come from its envelope and trim (flexsim.envs.aircraft_defaults).")
 
 
 #: The generated parts of the env docstrings (:func:`shared_docs`): marker -> the section text of a class.
