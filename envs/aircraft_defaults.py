@@ -8,7 +8,8 @@ the environment derives them from that aircraft instead (docs/environments.md, "
   file's ``[envelope]`` ``cruise_altitude_m`` and ``cruise_mach``/``cruise_speed_m_s``, else derived from its envelope);
   a turn task's radii are those of the GTM task's bank angles at this speed (tan(mu) = V^2 / (g R), so R scales with
   V^2), from 100 m at least (the steady manoeuvres' tightest turn); a gust task's amplitudes are those of the GTM task's gust angles of attack (U_ds / V, so U_ds scales with V);
-  the flutter-margin tasks, built around the GTM's own flutter points, keep their defaults;
+  a flutter-margin task searches the aircraft's flutter point over its envelope at the task's altitude (its target is
+  that point plus the task's Mach margin);
 * the limits: the wing-tip deflection bound 0.3 x the wing's length (the GTM's 5.5 m of its 18.25 m wing) beyond the
   trim's own deflection (a flexible aircraft whose trim bends its wing further still flies); the lowest airspeed and the
   highest Mach number the ends of the aircraft's flight envelope at the task's altitude
@@ -52,7 +53,14 @@ def task_for_aircraft(task, aircraft: Aircraft):
     from flexsim.linear.envelope import cruise_point
 
     names = {f.name for f in dataclasses.fields(task)}
-    if is_bundled_gtm(aircraft) or not {"altitude_m", "mach"} <= names or "mach_margin" in names:
+    if is_bundled_gtm(aircraft):
+        return task
+    if "flutter_mach_range" in names:  # the flutter point searched over the aircraft's envelope at the task's altitude
+        from flexsim.linear.envelope import search_range
+
+        rng = search_range(aircraft, SteadyManoeuvre.level(task.altitude_m, mach=0.5))
+        return dataclasses.replace(task, flutter_mach_range=(rng.mach_min, rng.mach_max))
+    if not {"altitude_m", "mach"} <= names:
         return task
     point = cruise_point(aircraft)
     v_ref = task.mach * speed_of_sound(task.altitude_m)
@@ -72,12 +80,14 @@ def limits_for_aircraft(aircraft: Aircraft, dynamics, task) -> FlightLimits:
     """``FlightLimits()`` for the GTM; for another aircraft the bounds of the module docstring, about the trim of the
     task's level flight (``dynamics.trim``)."""
     names = {f.name for f in dataclasses.fields(task)}
-    if is_bundled_gtm(aircraft) or not {"altitude_m", "mach"} <= names:
+    if is_bundled_gtm(aircraft) or "altitude_m" not in names:
         return FlightLimits()
     from flexsim.linear.envelope import MODEL_MAX_MACH, search_range
     from flexsim.trim import TrimError
 
-    level = SteadyManoeuvre.level(task.altitude_m, mach=task.mach)
+    # the task's flight, or for a flutter-margin task the middle of its flutter search (its target is found later)
+    mach = task.mach if "mach" in names else 0.5 * sum(task.flutter_mach_range)
+    level = SteadyManoeuvre.level(task.altitude_m, mach=mach)
     changes: dict = {}
     try:
         point = dynamics.trim(level)
@@ -93,5 +103,6 @@ def limits_for_aircraft(aircraft: Aircraft, dynamics, task) -> FlightLimits:
     else:
         low, _ = rng.speeds_m_s
         changes["min_airspeed_m_s"] = min(low, 0.9 * level.speed_m_s)
-        changes["max_mach"] = min(MODEL_MAX_MACH, max(rng.mach_max, 1.1 * task.mach))
+        # the envelope's end, with room for a flutter-margin task's target just beyond its flutter point
+        changes["max_mach"] = min(MODEL_MAX_MACH, max(rng.mach_max, 1.1 * mach) + 0.05)
     return dataclasses.replace(FlightLimits(), **changes)
