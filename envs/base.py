@@ -35,6 +35,7 @@ from flexsim.trim import SteadyManoeuvre
 from flexsim.envs.config import (AERO_MODELS, DEFAULT_MAX_STEP_S, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
                          IntegratorSettings, TrackingReward)
 from flexsim.envs import row_kernels as _rk
+from flexsim.envs.aircraft_defaults import limits_for_aircraft, task_for_aircraft
 from flexsim.envs.batch import EpisodeBatch
 
 __all__ = ["FlexSimEnv", "Episode", "RowsStep", "TERMINATION_CODES", "LogSample", "TERMINATION_REASONS",
@@ -157,7 +158,8 @@ def _arguments_doc(cls) -> str:
         "actuator_rates=ActuatorRates(), limits=FlightLimits(), perturbation=InitialPerturbation())``. ``turbulence`` "
         f"is one of {', '.join(map(repr, TURBULENCE_LEVELS))}; ``aero`` one of {', '.join(map(repr, AERO_MODELS))}; "
         "``control_rate_hz`` 5 to 1000 Hz; ``render_mode`` 'rgb_array' (matplotlib image) or 'human' (Rerun viewer, "
-        "spawned on the first frame).")
+        "spawned on the first frame). With another ``aircraft`` than the bundled GTM and ``task``/``limits`` None, the task "
+        "flies that aircraft's cruise point and the limits come from its envelope and trim (flexsim.envs.aircraft_defaults).")
 
 
 #: The generated parts of the env docstrings (:func:`shared_docs`): marker -> the section text of a class.
@@ -235,6 +237,23 @@ class RowsStep:
     clipped: np.ndarray
 
 
+#: The keys ``reset(options=...)`` of a single environment understands: none (the episode's start is the task's).
+RESET_OPTIONS: tuple[str, ...] = ()
+
+
+def check_reset_options(options: Any, allowed: tuple[str, ...]) -> None:
+    """``reset(options=...)``: None or a dict whose keys are in ``allowed``; anything else is refused (ValueError
+    naming the key and the allowed ones), never ignored."""
+    if options is None:
+        return
+    if not isinstance(options, dict):
+        raise ValueError(f"options = {options!r}: must be None or a dict (got {type(options).__name__})")
+    unknown = [k for k in options if k not in allowed]
+    if unknown:
+        raise ValueError(f"options[{unknown[0]!r}]: not an option of reset(); allowed: "
+                         f"{', '.join(map(repr, allowed)) if allowed else 'none (give options=None)'}")
+
+
 class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     """Base class of the flexsim tasks (not registered itself; see the task classes for the docs).
 
@@ -306,6 +325,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ViewerUnavailableError(f"render_mode = 'human': cannot open a Rerun viewer: {no_viewer}; use "
                                          "render_mode='rgb_array' here, or record episodes with FlightLogRecorder and "
                                          "save them with `flexsim view LOG --save run.rrd`")
+        derive = task is None  # the task's defaults are the GTM's: another aircraft's are derived (envs/aircraft_defaults.py)
         task = (self.default_task or self.task_type()) if task is None else task
         if not isinstance(task, self.task_type):
             raise ValueError(f"task = {task!r}: must be a {self.task_type.__name__}")
@@ -315,6 +335,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
                 raise ValueError(f"{name} = {value!r}: must be a {kind.__name__} or None")
         self.aircraft = aircraft if isinstance(aircraft, Aircraft) else load_aircraft(aircraft)
         self.aircraft_source = self.aircraft.source
+        task = task_for_aircraft(task, self.aircraft) if derive else task
         self.task = task
         self.turbulence = turbulence
         self.control_rate_hz = rate
@@ -341,6 +362,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
                     raise ValueError(f"dynamics: was built with {name} = {b!r}, this env has {name} = {a!r}; pass a FlightDynamics "
                                      "built with the same settings, or None")
         self.dynamics = dynamics
+        if limits is None:
+            self.limits = limits_for_aircraft(self.aircraft, dynamics, task)
         self.reward_definition: TrackingReward = task.reward
         lo, hi = self.dynamics.u_low, self.dynamics.u_high
         self._u_scale = hi.copy()  # 0 for a surface the aircraft does not have: its action has no effect
@@ -461,6 +484,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._batch, self._row = batch, int(row)
 
     def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple[np.ndarray, dict]:
+        check_reset_options(options, RESET_OPTIONS)
         super().reset(seed=seed)
         episode = self._new_episode(self.np_random)
         point = self.dynamics.trim(episode.manoeuvre)

@@ -51,6 +51,9 @@ AERO_MODELS = ("unsteady", "quasi-steady")
 class FlightLimits:
     """Termination bounds (an episode ends with ``terminated = True`` when one is crossed).
 
+    The defaults are the notional GTM's; an environment flown with another aircraft and ``limits=None`` derives its
+    bounds from that aircraft (:func:`flexsim.envs.aircraft_defaults.limits_for_aircraft`).
+
     Attributes
     ----------
     wing_tip_deflection_m : float

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flexsim.model.aircraft_model import STANDARD_GRAVITY
 from flexsim.trim import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
@@ -15,6 +16,11 @@ from flexsim.sim.measurements import MeasurementBatch
 from flexsim.sim.initial_states import perturbed_state, turbulence_field
 
 __all__ = ["TurnTask", "TurnEnv"]
+
+
+#: Steepest bank of a commanded turn [rad]: 60 deg, load factor 2 (transport category manoeuvring load factors are
+#: 2.5 and above, 14 CFR 25.337, so a level turn of the task stays inside them).
+MAX_BANK_RAD = math.radians(60.0)
 
 
 @dataclass(frozen=True)
@@ -48,8 +54,11 @@ class TurnTask:
         if not self.altitude_m > 0.0:
             raise ValueError(f"altitude_m = {self.altitude_m!r}: must be > 0 m (altitude <= 0 is a crash)")
         lo, hi = (float(v) for v in self.radius_range_m)
-        if not 1000.0 <= lo <= hi < math.inf:
-            raise ValueError(f"radius_range_m = {self.radius_range_m!r}: must be (lo, hi) with 1000 m <= lo <= hi < inf")
+        speed = self.manoeuvre.speed_m_s
+        r_min = speed**2 / (STANDARD_GRAVITY * math.tan(MAX_BANK_RAD))  # tan(mu) = V^2 / (g R)
+        if not r_min <= lo <= hi < math.inf:
+            raise ValueError(f"radius_range_m = {self.radius_range_m!r}: must be (lo, hi) with {r_min:.4g} m <= lo <= hi < inf "
+                             f"(a level turn at V = {speed:.4g} m/s banks at most {math.degrees(MAX_BANK_RAD):g} deg)")
         object.__setattr__(self, "radius_range_m", (lo, hi))
 
     @property

@@ -34,7 +34,7 @@ from gymnasium.vector.utils import batch_space
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
 
-from flexsim.envs.base import TERMINATION_CODES, FlexSimEnv, RowsStep
+from flexsim.envs.base import TERMINATION_CODES, FlexSimEnv, RowsStep, check_reset_options
 from flexsim.envs.batch import EpisodeBatch
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.envs.flutter_margin import FlutterMarginEnv, WingFlutterMarginEnv
@@ -126,6 +126,7 @@ class FlexSimVectorEnv(VectorEnv):
             seeds = list(seed)
             if len(seeds) != n:
                 raise ValueError(f"seed: a list of seeds needs num_envs = {n} entries, got {len(seeds)}")
+        check_reset_options(options, ("reset_mask",))
         options = dict(options) if options else {}
         mask = options.pop("reset_mask", None)
         if mask is None:

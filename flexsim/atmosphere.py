@@ -139,6 +139,8 @@ def isa(altitude: ArrayLike, *, geopotential: bool = False) -> AtmosphereState:
     ValueError
         If any altitude is outside the supported range (see module docstring) or not finite.
     """
+    if isinstance(altitude, bool):  # True is not 1 m
+        raise ValueError(f"altitude = {altitude!r}: must be a number [m], got bool")
     if _is_scalar(altitude):
         density, pressure, temperature = _state_scalar(_geopotential_scalar(altitude, geopotential))
         return AtmosphereState(density, pressure, temperature, math.sqrt(GAMMA * GAS_CONSTANT * temperature))

@@ -22,6 +22,8 @@ def positive_number(name: str, value, unit: str = "", *, allow_zero: bool = Fals
     import math
 
     where = f"must be a finite number {'>=' if allow_zero else '>'} 0{f' [{unit}]' if unit else ''}"
+    if isinstance(value, (bool, str, bytes)) or type(value).__name__ in ("bool", "bool_"):  # True is not 1 s, "3" not 3 m
+        raise ValueError(f"{name} = {value!r}: {where}, got {type(value).__name__}")
     try:
         v = float(value)
     except (TypeError, ValueError):

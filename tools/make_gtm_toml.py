@@ -312,4 +312,10 @@ if out[-1] != '':
 w('[envelope]')
 w('min_mach = 0.5    # the paper\'s flutter search range (Tables 2-3), not a certified envelope')
 w('max_mach = 0.95')
+# Cruise point (where `flexsim trim`, `linearize` and `simulate` fly it when no condition is given): 9144 m (30 000 ft,
+# the paper's highest altitude) at M 0.78; the flutter altitudes without --altitudes: sea level to 9144 m in four
+# levels, the paper's 0, 3048, 6096, 9144 m.
+w('cruise_altitude_m = 9144.0')
+w('cruise_mach = 0.78')
+w('max_altitude_m = 9144.0')
 print("\n".join(out))

@@ -74,7 +74,8 @@ class StripAero:
     lift_slope : str or float
         Sectional lift-curve slope Cl_alpha: ``"vlm"`` (vortex lattice of wing + horizontal stabilizer,
         the paper's choice; wings and stabilizers only), ``"2pi"`` (thin-airfoil value), or a number
-        [1/rad] in (0, 2 pi]. The Prandtl-Glauert factor 1/sqrt(1 - M^2) is applied on top.
+        [1/rad] in (0, 2 pi]. The Prandtl-Glauert factor 1/sqrt(1 - M^2) is applied on top. An aircraft file
+        that gives none sets ``"vlm"`` on wings and stabilizers and ``"2pi"`` on the fin.
     cd0 : float
         Section parasite-drag coefficient [-] (not in the paper; default 0).
     incidence_rad : float
@@ -471,6 +472,15 @@ class Engine(LumpedMass):
         object.__setattr__(self, "max_thrust_n", float(self.max_thrust_n))
 
 
+#: How far from the beam it rides on a component's root (from the fuselage's elastic axis) or a lumped mass (from its
+#: component's) may lie: this fraction of that beam's length plus :data:`ROOT_REACH_M`. The bundled and example aircraft
+#: stay within 0.18 of it (a T-tail's root on top of the sailplane's fin, 1.25 m on a 6.8 m fuselage; the GTM's engines
+#: 3.2 m from its 18.25 m wing); a root or mass further out is not carried by the beam the model clamps it to [-].
+ROOT_REACH_FRACTION = 0.2
+#: The constant part of the reach, for short beams (a 1 m model fuselage) [m].
+ROOT_REACH_M = 1.0
+
+
 @dataclass(frozen=True)
 class Envelope:
     """Where the aircraft flies, as far as a flutter search needs it (the file's ``[envelope]`` table).
@@ -486,18 +496,40 @@ class Envelope:
     min_speed_eas_m_s, max_speed_eas_m_s : float or None
         Equivalent-airspeed limits [m/s] (e.g. the stall speed and the dive speed with its flutter margin), in
         (0, 400] m/s.
+    cruise_altitude_m : float or None
+        Altitude of the cruise point [m], in [0, 20000] (the ISA range of :mod:`flexsim.atmosphere`): where ``flexsim
+        trim``, ``linearize``, ``simulate`` and the environments fly the aircraft when no altitude is given.
+    cruise_mach, cruise_speed_m_s : float or None
+        Speed of the cruise point, as a Mach number in (0, 0.99] or a true airspeed [m/s] in (0, 400] (at most one).
+    max_altitude_m : float or None
+        Highest altitude the aircraft flies [m], in (0, 20000]: ``flexsim flutter`` searches four altitudes from sea
+        level to it when none is given.
     """
 
     min_mach: float | None = None
     max_mach: float | None = None
     min_speed_eas_m_s: float | None = None
     max_speed_eas_m_s: float | None = None
+    cruise_altitude_m: float | None = None
+    cruise_mach: float | None = None
+    cruise_speed_m_s: float | None = None
+    max_altitude_m: float | None = None
 
     def __post_init__(self) -> None:
-        for name, hi in (("min_mach", 0.99), ("max_mach", 0.99), ("min_speed_eas_m_s", 400.0), ("max_speed_eas_m_s", 400.0)):
+        for name, lo, hi, lo_open in (("min_mach", 0.0, 0.99, True), ("max_mach", 0.0, 0.99, True),
+                                      ("min_speed_eas_m_s", 0.0, 400.0, True), ("max_speed_eas_m_s", 0.0, 400.0, True),
+                                      ("cruise_altitude_m", 0.0, 20000.0, False), ("cruise_mach", 0.0, 0.99, True),
+                                      ("cruise_speed_m_s", 0.0, 400.0, True), ("max_altitude_m", 0.0, 20000.0, True)):
             value = getattr(self, name)
             if value is not None:
-                object.__setattr__(self, name, _check_scalar(f"envelope.{name}", value, 0.0, hi, lo_open=True))
+                object.__setattr__(self, name, _check_scalar(f"envelope.{name}", value, lo, hi, lo_open=lo_open))
+        if self.cruise_mach is not None and self.cruise_speed_m_s is not None:
+            _fail("envelope.cruise_speed_m_s", self.cruise_speed_m_s,
+                  f"give the cruise speed once: envelope.cruise_mach = {self.cruise_mach!r} is given too")
+        if (self.cruise_altitude_m is not None and self.max_altitude_m is not None
+                and self.cruise_altitude_m > self.max_altitude_m):
+            _fail("envelope.cruise_altitude_m", self.cruise_altitude_m,
+                  f"must not exceed envelope.max_altitude_m = {self.max_altitude_m!r}")
         for lo, hi in (("min_mach", "max_mach"), ("min_speed_eas_m_s", "max_speed_eas_m_s")):
             a, b = getattr(self, lo), getattr(self, hi)
             if a is not None and b is not None and not a < b:
@@ -584,6 +616,12 @@ class Aircraft:
                 s = fus.station_of(c.root_m)
                 if not -1e-9 <= s <= fus.length_m * (1 + 1e-9):
                     _fail(f"components.{c.name}.root_m", c.root_m.tolist(), f"root lies at fuselage station {s:.4g} m, off the fuselage (0 to {fus.length_m:.4g} m)")
+                side = float(np.linalg.norm(c.root_m - fus.root_m - s * fus.axes_in_body[:, 0]))
+                reach = ROOT_REACH_FRACTION * fus.length_m + ROOT_REACH_M
+                if side > reach:
+                    _fail(f"components.{c.name}.root_m", c.root_m.tolist(),
+                          f"root lies {side:.4g} m from the fuselage's elastic axis: a component is clamped to the "
+                          f"fuselage, at most {ROOT_REACH_FRACTION:g} x its length + {ROOT_REACH_M:g} m = {reach:.4g} m away")
         all_names = [m.name for m in self.lumped_masses] + [e.name for e in self.engines]
         if len(set(all_names)) != len(all_names):
             _fail("lumped_masses/engines names", all_names, "names must be unique")
@@ -595,11 +633,12 @@ class Aircraft:
             s = comp.station_of(item.position_m)
             if not -1e-9 * comp.length_m <= s <= comp.length_m * (1 + 1e-9):
                 _fail(f"{w}.position_m", item.position_m.tolist(), f"projects to station {s:.4g} m, off component {comp.name} (0 to {comp.length_m:.4g} m)")
-            off = item.position_m - comp.root_m - s * comp.axes_in_body[:, 0]
-            reach = max(10.0, comp.length_m)
-            if np.linalg.norm(off) > reach:
-                _fail(f"{w}.position_m", item.position_m.tolist(), f"lies {np.linalg.norm(off):.4g} m from the elastic axis of {comp.name}: "
-                      f"a lumped mass rides on its component, at most max(10 m, length) = {reach:.4g} m away")
+            off = float(np.linalg.norm(item.position_m - comp.root_m - s * comp.axes_in_body[:, 0]))
+            reach = ROOT_REACH_FRACTION * comp.length_m + ROOT_REACH_M
+            if off > reach:
+                _fail(f"{w}.position_m", item.position_m.tolist(), f"lies {off:.4g} m from the elastic axis of {comp.name}: "
+                      f"a lumped mass rides on its component, at most {ROOT_REACH_FRACTION:g} x its length + "
+                      f"{ROOT_REACH_M:g} m = {reach:.4g} m away")
         total = sum(float(np.trapezoid(c.sections.mass_kg_per_m, c.sections.station_m)) for c in comps)
         total += sum(m.mass_kg for m in (*self.lumped_masses, *self.engines))
         if not total > 0.0:

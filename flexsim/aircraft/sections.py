@@ -136,11 +136,16 @@ class SectionTable:
             i = int(bad[0])
             _fail(f"{w}.ea_fraction[{i}]", float(ea[i]), "must be in [0, 1]")
         m, e, ith = arrays["mass_kg_per_m"], arrays["cg_offset_m"], arrays["torsional_inertia_kg_m"]
-        bad = np.flatnonzero(np.abs(e) > arrays["chord_m"] + 1e-12)
-        bad = bad[arrays["chord_m"][bad] > 0.0]
+        # the section's centre of mass lies on its chord: ea_fraction c + cg_offset in [0, c] from the leading edge
+        c = arrays["chord_m"]
+        lo, hi = -ea * c, (1.0 - ea) * c
+        tol = 1e-12 * np.maximum(c, 1.0)
+        bad = np.flatnonzero(((e < lo - tol) | (e > hi + tol)) & (c > 0.0))
         if bad.size:
             i = int(bad[0])
-            _fail(f"{w}.cg_offset_m[{i}]", float(e[i]), f"must be within one chord of the elastic axis (|cg_offset_m| <= chord_m = {arrays['chord_m'][i]:g} m)")
+            _fail(f"{w}.cg_offset_m[{i}]", float(e[i]), f"must put the section's centre of mass on its chord, between the "
+                  f"leading and the trailing edge: in [{lo[i]:.6g}, {hi[i]:.6g}] m = [-ea_fraction, 1 - ea_fraction] x "
+                  f"chord_m ({ea[i]:g}, {c[i]:g} m)")
         chordless = arrays["chord_m"] == 0.0
         bad = np.flatnonzero(chordless & (e != 0.0))
         if bad.size:

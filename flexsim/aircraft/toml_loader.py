@@ -50,7 +50,11 @@ _DESIGN_TO_BODY = np.diag([-1.0, 1.0, -1.0])
 _TOP_KEYS = {"schema_version": True, "name": True, "description": False, "frame": False,
              "components": True, "lumped_masses": False, "engines": False, "structural_damping_ratio": False,
              "formulation": False, "aero": False, "envelope": False}
-_ENVELOPE_KEYS = {"min_mach": False, "max_mach": False, "min_speed_eas_m_s": False, "max_speed_eas_m_s": False}
+#: The lift-curve slope of a component whose ``[aero]`` table gives none: the vortex lattice on wings and stabilizers,
+#: thin-airfoil 2 pi on the fin (the lattice covers wing and stabilizer only, as in the paper).
+DEFAULT_LIFT_SLOPE = {"vtail": "2pi"}
+_ENVELOPE_KEYS = {"min_mach": False, "max_mach": False, "min_speed_eas_m_s": False, "max_speed_eas_m_s": False,
+                  "cruise_altitude_m": False, "cruise_mach": False, "cruise_speed_m_s": False, "max_altitude_m": False}
 _AIRCRAFT_AERO_KEYS = {"compressibility": False, "drag": False, "bending_incidence": False, "body": False,
                        "downwash_gradient": False, "max_alpha_deg": False}
 _DRAG_KEYS = {"name": True, "component": True, "position_m": True, "drag_area_m2": True}
@@ -213,7 +217,7 @@ def _component(name: str, table: Any, frame: _Frame) -> Component:
     if "aero" in table:
         at = table["aero"]
         _check_keys(f"{where}.aero", at, _AERO_KEYS)
-        slope = at.get("lift_slope", "vlm")
+        slope = at.get("lift_slope", DEFAULT_LIFT_SLOPE.get(name, "vlm"))
         if not isinstance(slope, str):
             slope = _number(f"{where}.aero.lift_slope", slope)
         aero = StripAero(
@@ -355,7 +359,7 @@ def parse_aircraft(text: str, source: str = "<string>") -> Aircraft:
             raise AircraftDefinitionError("not valid TOML for flexsim: arrays or tables nested too deeply") from None
         _check_keys("<top level>", doc, _TOP_KEYS)
         version = doc["schema_version"]
-        if version != SCHEMA_VERSION:
+        if isinstance(version, bool) or not isinstance(version, int) or version != SCHEMA_VERSION:
             raise AircraftDefinitionError(f"schema_version = {version!r}: this flexsim reads version {SCHEMA_VERSION}")
         frame = _Frame(doc.get("frame"))
         comps = doc["components"]

@@ -12,16 +12,16 @@ from dataclasses import replace
 
 from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.aircraft.toml_loader import load_aircraft
-from flexsim.cli.validation import CliError, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
+from flexsim.cli.validation import CliError, flight_condition, in_user_words, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
 from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, flutter_table, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
-from flexsim.linear.study import PAPER_ALTITUDES_M
 from flexsim.linear.study import StudyCase, StudyRecord, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
+from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.model.linear_range import linear_range_note, nonlinear_fields_note
 from flexsim.atmosphere import mach_to_true_airspeed, speed_of_sound
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trim import SteadyManoeuvre, TrimError, trim
 
 __all__ = ["add_flutter_commands"]
 
@@ -37,9 +37,18 @@ def _manoeuvre(args: argparse.Namespace, altitude: float, mach: float) -> Steady
 
 def _trim(args: argparse.Namespace) -> int:
     check_trim_options(args)
+    condition = flight_condition("trim", args)
     aircraft = load_aircraft(args.aircraft)
+    if args.components:
+        aircraft = aircraft.subset(args.components)
     model = AircraftModel(aircraft, aero=AeroOptions("quasi-steady", formulation=args.formulation))
-    point = trim(model, _manoeuvre(args, args.altitude_m, args.mach), check_limits=not args.no_limits)
+    try:
+        point = trim(model, _manoeuvre(args, condition.altitude_m, condition.mach), check_limits=not args.no_limits)
+    except TrimError as exc:
+        if not condition.derived:
+            raise
+        raise TrimError(f"{exc}; the flight condition was not given: {condition.describe()}; give --altitude-m and --mach "
+                        "or --speed-m-s, or the file's envelope.cruise_altitude_m and cruise_mach") from None
     out = point.summary()
     out["weight_kN"] = model.structure.mass_properties.mass_kg * model.terms.gravity_m_s2 / 1e3
     if model.aero is not None and "right_wing" in aircraft.component_names:
@@ -57,12 +66,15 @@ def _trim(args: argparse.Namespace) -> int:
     notes = [n for n in (nonlinear_fields_note(aircraft), point.linear_range) if n is not None]
     if args.json:
         extra = {"roots": roots} if roots is not None else {}
-        print(json_text({**out, "formulation": model.formulation, "terms": model.terms.record(),
+        print(json_text({**out, "flight_condition": condition.describe(), "formulation": model.formulation,
+                         "terms": model.terms.record(),
                          "stability": point.stability.as_dict(),
                          "max_local_alpha": local.as_dict() if local is not None else None,
                          "linear_range": point.linear_range, **extra}))
         return 0
     print(f"Trim of {aircraft.name} ({model.formulation} force resolution): {point.manoeuvre.describe()}")
+    if condition.derived:
+        print(f"  flight condition : {condition.describe()}")
     for key, value in out.items():
         print(f"  {key:<18} {value: .6g}")
     if local is not None:
@@ -82,6 +94,19 @@ def _trim(args: argparse.Namespace) -> int:
     if not point.stability.is_stable:
         print(f"{point.stability.message} ({point.stability.aero_model} roots)")
     return 0
+
+
+def _check_replication(args: argparse.Namespace, default_aircraft: str = "gtm") -> None:
+    """``--paper-replication`` fixes the aircraft, the formulation and the linearised density itself: giving any of
+    them beside it is refused (it would be ignored)."""
+    if not args.paper_replication:
+        return
+    given = [flag for flag, value in (("AIRCRAFT", args.aircraft not in (default_aircraft, PAPER_REPLICATION.aircraft)),
+                                      ("--formulation", args.formulation),
+                                      ("--linear-density-altitude-m", args.linear_density_altitude_m)) if value]
+    if given:
+        raise CliError(f"--paper-replication and {', '.join(given)}: the paper-replication settings fix the aircraft, "
+                       f"the formulation and the linearised density ({PAPER_REPLICATION.describe()}); give one or the other")
 
 
 def _settings(args: argparse.Namespace, default_aircraft: str = "gtm") -> list[RunSettings]:
@@ -111,17 +136,35 @@ def _roots(aircraft, point, aero_model: str, formulation: str | None = None) -> 
          "inflow_participation": m.inflow_participation} for m in modes]}, spec
 
 
-def _flutter(args: argparse.Namespace) -> int:
-    keys = [k.strip().upper() for k in args.models.split(",")]
+def _model_keys(text: str) -> list[str]:
+    """``--models``: a comma list of distinct model keys (QS, US, FS)."""
+    keys = [k.strip().upper() for k in text.split(",")]
     for k in keys:
         if k not in _MODELS:
-            raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
+            raise CliError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
+    if len(set(keys)) != len(keys):
+        raise CliError(f"--models {text!r}: names a model twice; give each once")
+    return keys
+
+
+def _flutter(args: argparse.Namespace) -> int:
+    keys = _model_keys(args.models)
     if args.wind_tunnel:
         return _wind_tunnel(args, keys)
-    args.altitudes = list(PAPER_ALTITUDES_M) if args.altitudes is None else args.altitudes
+    tunnel = [flag for flag, value in (("--speed-range-m-s", args.speed_range_m_s), ("--components", args.components))
+              if value is not None]
+    if tunnel:
+        raise CliError(f"{', '.join(tunnel)}: apply to --wind-tunnel (a structure clamped in an airflow); a flight "
+                       "searches the whole aircraft over its flight envelope (give --mach-min, --mach-max)")
+    altitude_source = "given"
+    if args.altitudes is None:  # the aircraft's: sea level to its ceiling (the paper's four for the GTM), else sea level
+        from flexsim.linear.envelope import flutter_altitudes
+
+        args.altitudes, altitude_source = flutter_altitudes(args.aircraft)
     if args.mach_min is not None and args.mach_max is not None:
         check_mach_range(args.mach_min, args.mach_max)
     check_altitudes(args.altitudes)
+    args.workers = _WORKERS if args.workers is None else args.workers
     check_workers(args.workers)
     check_damping(args.structural_damping)
     if args.mode:  # the critical mode's recording: its path checked before the search
@@ -129,6 +172,7 @@ def _flutter(args: argparse.Namespace) -> int:
 
         check_recording_path(args.mode, "--mode")
     _check_vg_options(args)
+    _check_replication(args)
     if args.glide and args.climb_deg is not None:
         raise CliError("--glide, --climb-deg: a glide finds its own flight-path angle; give one of them")
     if args.speed_step_m_s is not None:
@@ -150,6 +194,8 @@ def _flutter(args: argparse.Namespace) -> int:
     rows = run_study([c for _, c in labelled], workers=args.workers, progress=not args.json)
     paper = _is_paper_aircraft(settings) and shape.turn_radius_m == math.inf and shape.climb_angle_rad == 0.0
     for (label, _), row in zip(labelled, rows):
+        if "error" in row:
+            row["error"] = in_user_words(row["error"])
         row["settings"] = label
         row["search_range"] = ranges[label, row["altitude_m"]].describe()
         if "mach" in row and paper:
@@ -170,9 +216,12 @@ def _flutter(args: argparse.Namespace) -> int:
         r = beyond[0]
         more = f" (and {len(beyond) - 1} more of the {len(rows)} flutter points)" if len(beyond) > 1 else ""
         lines.append(f"{r['linear_range']} — at the flutter point of {r['model']} h = {r['altitude_m']:.0f} m{more}")
+    doc["altitudes_source"] = altitude_source
     if args.json:
         print(json_text(doc))
         return 0
+    if not altitude_source.startswith(("given", "sea level to envelope.")):
+        lines = [f"altitudes: {altitude_source}", *lines]
     print("\n".join(lines))
     return 0
 
@@ -203,7 +252,15 @@ def _check_vg_options(args: argparse.Namespace) -> None:
         raise CliError(f"--vg {args.vg!r}: must name a .png file")
     if args.vg_points < 3:
         raise CliError(f"--vg-points = {args.vg_points}: must be an integer >= 3")
+    if args.vg is None and args.vg_points != _VG_POINTS:
+        raise CliError(f"--vg-points {args.vg_points}: applies to --vg (the speeds of the V-g diagram)")
 
+#: Speeds a wind-tunnel run searches without --speed-range-m-s [m/s].
+WIND_TUNNEL_SPEEDS_M_S = (10.0, 300.0)
+#: Speeds of a V-g diagram without --vg-points.
+_VG_POINTS = 25
+#: Local processes of a flight search without --workers.
+_WORKERS = os.cpu_count() or 1
 
 #: The options of a flight that a wind-tunnel run (``--wind-tunnel``) has no use for: (attribute, flag).
 _FLIGHT_ONLY = (("turn_radius_m", "--turn-radius-m"), ("climb_deg", "--climb-deg"), ("glide", "--glide"),
@@ -214,15 +271,18 @@ _FLIGHT_ONLY = (("turn_radius_m", "--turn-radius-m"), ("climb_deg", "--climb-deg
 
 
 def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
-    """``flexsim flutter --wind-tunnel``: flutter and divergence speeds of the aircraft clamped at its body origin in an
-    airflow (:func:`flexsim.linear.flutter.wind_tunnel`), per model and altitude (default sea level)."""
+    """``flexsim flutter --wind-tunnel``: flutter and divergence speeds of the aircraft (or of the components asked with
+    ``--components``) clamped at its body origin in an airflow (:func:`flexsim.linear.flutter.wind_tunnel`), per model
+    and altitude (default sea level). A model that fails is reported in its own row; the others' results stand."""
     from flexsim.linear.flutter import wind_tunnel
 
     given = [flag for name, flag in _FLIGHT_ONLY if getattr(args, name, None) not in (None, False)]
+    if args.workers is not None:
+        given.append("--workers")
     if given:
         raise CliError(f"--wind-tunnel: {', '.join(given)} describe a flight; a wind tunnel holds the structure still "
-                       "(give --altitudes, --models, --speed-range-m-s)")
-    lo, hi = args.speed_range_m_s
+                       "(give --altitudes, --models, --components, --speed-range-m-s)")
+    lo, hi = args.speed_range_m_s if args.speed_range_m_s is not None else WIND_TUNNEL_SPEEDS_M_S
     if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
         raise CliError(f"--speed-range-m-s {lo:g} {hi:g}: must satisfy 0 < LO < HI [m/s]")
     step = _TUNNEL_STEP_M_S if args.speed_step_m_s is None else args.speed_step_m_s
@@ -232,19 +292,28 @@ def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
     altitudes = [0.0] if args.altitudes is None else args.altitudes
     check_altitudes(altitudes)
     aircraft = load_aircraft(args.aircraft)
+    if args.components:
+        aircraft = aircraft.subset(args.components)
     rows = []
     for h in altitudes:
         for k in keys:
-            r = wind_tunnel(aircraft, aero_model=_MODELS[k], speed_range=(lo, hi), altitude_m=h, speed_step=step)
-            rows.append({"model": k, "aero_model": r.aero_model, "altitude_m": h, "density_kg_m3": r.density_kg_m3,
-                         "compressibility": r.compressibility, "flutter_speed_m_s": r.flutter_speed_m_s,
-                         "flutter_frequency_rad_s": r.flutter_frequency_rad_s, "divergence_speed_m_s": r.divergence_speed_m_s,
-                         "first_instability": r.first_instability, "speed_range_m_s": [lo, hi], "speed_step_m_s": step,
-                         "warnings": list(r.warnings)})
+            row = {"model": k, "aero_model": _MODELS[k], "altitude_m": h, "speed_range_m_s": [lo, hi],
+                   "speed_step_m_s": step}
+            try:
+                r = wind_tunnel(aircraft, aero_model=_MODELS[k], speed_range=(lo, hi), altitude_m=h, speed_step=step)
+            except (FlexsimError, ValueError, ArithmeticError) as exc:  # this model's failure, in its own row
+                row["error"] = in_user_words(str(exc))
+            else:
+                row.update({"density_kg_m3": r.density_kg_m3, "compressibility": r.compressibility,
+                            "flutter_speed_m_s": r.flutter_speed_m_s, "flutter_frequency_rad_s": r.flutter_frequency_rad_s,
+                            "divergence_speed_m_s": r.divergence_speed_m_s, "first_instability": r.first_instability,
+                            "warnings": list(r.warnings)})
+            rows.append(row)
     diagrams = _tunnel_vg(args, aircraft, altitudes, keys) if args.vg is not None else []
     if args.json:
         extra = {"vg": [d.as_dict() for d, _ in diagrams]} if diagrams else {}
-        print(json_text({"aircraft": aircraft.name, "wind_tunnel": rows, **extra}))
+        print(json_text({"aircraft": aircraft.name, "components": list(aircraft.component_names), "wind_tunnel": rows,
+                         **extra}))
         return 0
 
     def speed(v):
@@ -254,13 +323,16 @@ def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
           f"gravity; searched {lo:g}-{hi:g} m/s")
     print(f"{'model':<6}{'h [m]':>7}{'rho [kg/m^3]':>14}{'U_F [m/s]':>11}{'w_F [rad/s]':>13}{'U_D [m/s]':>11}  first")
     for r in rows:
+        if "error" in r:
+            print(f"{r['model']:<6}{r['altitude_m']:7.0f}  no result: {r['error']}")
+            continue
         w = f"{r['flutter_frequency_rad_s']:13.3f}" if r["flutter_frequency_rad_s"] is not None else f"{'':>13}"
         print(f"{r['model']:<6}{r['altitude_m']:7.0f}{r['density_kg_m3']:14.4f}{speed(r['flutter_speed_m_s'])}{w}"
               f"{speed(r['divergence_speed_m_s'])}  {r['first_instability']}")
     if (note := nonlinear_fields_note(aircraft)) is not None:
         print(note)
     for r in rows:
-        for w in r["warnings"]:
+        for w in r.get("warnings", ()):
             print(f"warning: {r['model']} h={r['altitude_m']:.0f} m: {w}")
     if diagrams:
         print("\n".join(_vg_lines(diagrams)))
@@ -346,14 +418,26 @@ def _linspace(lo: float, hi: float, n: int) -> list[float]:
 
 def _sweep(args: argparse.Namespace) -> int:
     kind = "turn" if args.turn else "climb"
-    models = [k.strip().upper() for k in args.models.split(",")]
+    _check_replication(args)
+    if args.components is not None:
+        raise CliError("--components: a sweep flies the whole aircraft (a component alone: flexsim flutter --wind-tunnel "
+                       "--components NAME ...)")
+    models = _model_keys(args.models)
+    if args.altitudes is None:  # the aircraft's, as flexsim flutter's
+        from flexsim.linear.envelope import flutter_altitudes
+
+        args.altitudes = flutter_altitudes(PAPER_REPLICATION.aircraft if args.paper_replication else args.aircraft)[0]
     if args.coordinated and kind != "turn":
         raise ValueError("--coordinated: applies to --turn sweeps only")
-    for k in models:
-        if k not in _MODELS:
-            raise ValueError(f"--models entry {k!r}: must be one of {', '.join(_MODELS)}")
     check_altitudes(args.altitudes)
+    if args.scheduler is not None and args.workers is not None:
+        raise CliError(f"--scheduler, --workers {args.workers}: the processes are the Dask cluster's at "
+                       f"{args.scheduler!r}; --workers sets local processes (give one of them)")
+    args.workers = _WORKERS if args.workers is None else args.workers
     check_workers(args.workers)
+    wrong = {"turn": ("--angles-deg", args.angles_deg, "--climb"), "climb": ("--radii-m", args.radii_m, "--turn")}[kind]
+    if wrong[1] is not None:
+        raise CliError(f"{wrong[0]}: applies to {wrong[2]} sweeps (this is a --{kind} sweep)")
     if args.chain_length is not None and args.chain_length < 1:
         raise CliError(f"--chain-length = {args.chain_length}: must be an integer >= 1 (points per chain)")
     check_damping(args.structural_damping)
@@ -402,6 +486,8 @@ def _sweep(args: argparse.Namespace) -> int:
         raise
     record.close()
     for row, k in zip(rows, keys):
+        if "error" in row:
+            row["error"] = in_user_words(row["error"])
         row["settings"] = setting.label
         row["search_range"] = ranges[k].describe()
     csv_path, json_path = write_results(rows, out, stem)
@@ -444,8 +530,13 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     """Register ``trim`` and ``flutter`` on the CLI's subparsers."""
     p_trim = sub.add_parser("trim", help="trim the aircraft in a steady manoeuvre")
     add_aircraft(p_trim)
-    p_trim.add_argument("--altitude-m", type=float, default=9144.0)
-    p_trim.add_argument("--mach", type=float, default=0.78)
+    p_trim.add_argument("--altitude-m", type=float, default=None, metavar="H",
+                        help="altitude [m] [the aircraft file's envelope.cruise_altitude_m, else sea level]")
+    speed = p_trim.add_mutually_exclusive_group()
+    speed.add_argument("--mach", type=float, default=None, metavar="M",
+                       help="Mach number [the aircraft file's cruise speed, else 1.3 x its stall speed]")
+    speed.add_argument("--speed-m-s", type=float, default=None, metavar="V",
+                       help="true airspeed [m/s] instead of --mach")
     p_trim.add_argument("--turn-radius-m", type=float, default=None, help="steady turn of this radius [m]")
     p_trim.add_argument("--climb-deg", type=float, default=None, help="flight-path angle [deg] [0]")
     p_trim.add_argument("--glide", action="store_true", help="thrust zero, flight-path angle unknown")
@@ -463,7 +554,8 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_fl = sub.add_parser("flutter", help="flutter Mach and frequency of a steady manoeuvre (level flight: paper Tables 2-3)")
     add_aircraft(p_fl)
     p_fl.add_argument("--altitudes", type=float, nargs="+", default=None, metavar="H",
-                      help="altitudes [m] [0 3048 6096 9144; with --wind-tunnel: 0]")
+                      help="altitudes [m] [sea level to the aircraft file's envelope.max_altitude_m in 4 levels (the GTM: 0 "
+                           "3048 6096 9144), else sea level; with --wind-tunnel: 0]")
     p_fl.add_argument("--models", default="QS,US", help="comma list of QS (quasi-steady), US (Theodorsen p-k), FS (finite-state)")
     p_fl.add_argument("--mach-min", type=float, default=None,
                       help="lower end of the search [the aircraft file's [envelope], else the estimated stall speed]")
@@ -478,12 +570,12 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
                       help="also draw the V-g / V-f diagram (damping and frequency of every branch against speed) of the "
                            "aircraft as given (with --wind-tunnel: of the clamped structure over --speed-range-m-s), one "
                            "file per altitude (FILE_<H>m.png for several); --json carries the tracks")
-    p_fl.add_argument("--vg-points", type=int, default=25, metavar="N", help="speeds of the V-g diagram [25]")
-    p_fl.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="local processes [all cores]")
+    p_fl.add_argument("--vg-points", type=int, default=_VG_POINTS, metavar="N", help="speeds of the V-g diagram [25]")
+    p_fl.add_argument("--workers", type=int, default=None, help="local processes of a flight search [all cores]")
     p_fl.add_argument("--wind-tunnel", action="store_true",
                       help="instead of a flight: the structure clamped at its body origin in an airflow (a wing alone, "
                            "e.g. goland_wing): flutter and divergence speeds")
-    p_fl.add_argument("--speed-range-m-s", type=float, nargs=2, default=(10.0, 300.0), metavar=("LO", "HI"),
+    p_fl.add_argument("--speed-range-m-s", type=float, nargs=2, default=None, metavar=("LO", "HI"),
                       help="with --wind-tunnel: the speeds searched [10 300]")
     p_fl.add_argument("--speed-step-m-s", type=float, default=None, metavar="DV",
                       help="with --wind-tunnel: the scan step [m/s]; an interval whose damping curvature could hide an "
@@ -503,7 +595,9 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     group = p_sw.add_mutually_exclusive_group(required=True)
     group.add_argument("--turn", action="store_true", help="level turns, R = 5-12 km")
     group.add_argument("--climb", action="store_true", help="climbs and descents, gamma = -15..15 deg")
-    p_sw.add_argument("--altitudes", type=float, nargs="+", default=[0.0, 3048.0, 6096.0, 9144.0], metavar="H")
+    p_sw.add_argument("--altitudes", type=float, nargs="+", default=None, metavar="H",
+                      help="altitudes [m] [sea level to the aircraft file's envelope.max_altitude_m in 4 levels (the GTM: "
+                           "0 3048 6096 9144), else sea level]")
     p_sw.add_argument("--mach-min", type=float, default=None,
                       help="lower end of each search [the aircraft file's [envelope], else the estimated stall speed]")
     p_sw.add_argument("--mach-max", type=float, default=None,
@@ -516,7 +610,7 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
                       help="flight-path angles [deg] with --climb [the paper's -15..15 deg in 5 deg steps]")
     p_sw.add_argument("--scheduler", metavar="ADDRESS", help="Dask distributed scheduler (default: local processes); "
                       "tasks and results are exchanged pickled: give only the address of a cluster you trust")
-    p_sw.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    p_sw.add_argument("--workers", type=int, default=None, help="local processes [all cores]; not with --scheduler")
     p_sw.add_argument("--chain-length", type=int, default=None, metavar="K",
                       help="points per chain: each model/altitude chain (each point seeded with the previous flutter "
                       "Mach) is cut into runs of at most K points, 1 = every point its own task, so that more workers "

@@ -4,9 +4,9 @@
     flexsim modes [AIRCRAFT] [--variant free|restrained|quasi-rigid] [--components NAME ...]
                   [--bending-modes M] [--torsion-modes N] [--count K] [--json]
     flexsim aero  [AIRCRAFT] [--mach M] [--plot FILE.png] [--json]
-    flexsim trim  [AIRCRAFT] [--altitude-m H] [--mach M] [--turn-radius-m R] [--climb-deg G | --glide]
+    flexsim trim  [AIRCRAFT] [--altitude-m H] [--mach M | --speed-m-s V] [--turn-radius-m R] [--climb-deg G | --glide]
     flexsim flutter [AIRCRAFT] [--altitudes H ...] [--models QS,US] [--workers N] [--json]
-    flexsim linearize [AIRCRAFT] --altitude-m H --mach M [--turn-radius-m R | --climb-deg G] --out FILE.npz
+    flexsim linearize [AIRCRAFT] [--altitude-m H] [--mach M | --speed-m-s V] [--turn-radius-m R | --climb-deg G] --out FILE.npz
     flexsim validate [CASE ...] [--json]
     flexsim sweep (--turn | --climb) [AIRCRAFT] [--altitudes H ...] [--scheduler ADDRESS] [--out DIR]
 
@@ -30,7 +30,7 @@ import numpy as np
 from flexsim._numba_cache import announce_compilation
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import bundled_aircraft_names, load_aircraft
-from flexsim.cli.validation import SanitisedStream, check_count, check_mach, check_plot_path, json_text, printable
+from flexsim.cli.validation import CliError, SanitisedStream, in_user_words, check_count, check_mach, check_plot_path, json_text, printable
 from flexsim.errors import FlexsimError
 from flexsim.linear.modes import in_vacuo_modes
 from flexsim.model.aircraft_model import AircraftModel, Variant
@@ -45,6 +45,9 @@ def _aircraft(args: argparse.Namespace) -> Aircraft:
     if getattr(args, "components", None):
         aircraft = aircraft.subset(args.components)
     m, n = getattr(args, "bending_modes", None), getattr(args, "torsion_modes", None)
+    for flag, value in (("--bending-modes", m), ("--torsion-modes", n)):
+        if value is not None and not 0 <= value <= 10:
+            raise CliError(f"{flag} = {value}: must be an integer in [0, 10] (shape functions per component)")
     if m is not None or n is not None:
         first = next(c for c in aircraft.components)
         aircraft = aircraft.with_modes(
@@ -238,7 +241,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"flexsim {args.command}: interrupted", file=sys.stderr)
         return 130
     except (FlexsimError, OSError, KeyError, ValueError, RuntimeError) as exc:
-        print(f"flexsim {args.command}: error: {printable(str(exc))}", file=sys.stderr)
+        text = str(exc.args[0]) if isinstance(exc, KeyError) and exc.args else str(exc)  # a KeyError's str() is quoted
+        print(f"flexsim {args.command}: error: {printable(in_user_words(text))}", file=sys.stderr)
         return 2
     finally:
         sys.stdout = stdout

@@ -1,6 +1,7 @@
 """Command-line commands for simulation and log viewing (thin adapters over :mod:`flexsim.sim`).
 
-    flexsim simulate MANOEUVRE|SCRIPT.py [--duration S] [--log PATH | --no-log] [--aero unsteady|quasi-steady]
+    flexsim simulate MANOEUVRE|SCRIPT.py|AIRCRAFT [--aircraft AIRCRAFT] [--altitude-m H] [--mach M | --speed-m-s V]
+                     [--duration S] [--log PATH | --no-log] [--aero unsteady|quasi-steady]
                      [--method auto|Radau|DOP853|...] [--rtol R]
     flexsim view LOG.mcap [--save FILE.rrd] [--connect URL] [--port N]
 
@@ -13,6 +14,7 @@ recording (``.rrd``) without a viewer.
 from __future__ import annotations
 
 import argparse
+import re
 import runpy
 import shutil
 import sys
@@ -25,6 +27,10 @@ from flexsim.aircraft.definition import FORMULATIONS
 __all__ = ["add_sim_commands", "script_arguments"]
 
 _AERO = ("unsteady", "quasi-steady")
+#: Port of the Rerun viewer that ``flexsim view`` starts without ``--port``.
+VIEWER_PORT = 9876
+#: What ``flexsim simulate AIRCRAFT`` flies.
+DEFAULT_MANOEUVRE = "elevator-doublet"
 
 
 def script_arguments(description: str | None = None, argv: Sequence[str] | None = None) -> argparse.Namespace:
@@ -49,17 +55,34 @@ def _simulate(args: argparse.Namespace) -> int:
     from flexsim.sim.run_settings import OutputSettings
     from flexsim.sim.simulate import IntegratorSettings
 
+    from flexsim.sim.manoeuvres import manoeuvre_names
+
     target = args.manoeuvre
     if target.endswith(".py"):
         return _run_script(Path(target), args)
+    if target not in manoeuvre_names():  # an aircraft: its elevator doublet from level flight at its cruise point
+        from flexsim.aircraft.toml_loader import bundled_aircraft_names
+
+        if not (target in bundled_aircraft_names() or target.endswith(".toml")):
+            raise ValueError(f"{target!r}: unknown; valid manoeuvres: {', '.join(manoeuvre_names())}; or a script (.py), or "
+                             f"an aircraft ({', '.join(bundled_aircraft_names())} or a .toml file)")
+        if args.aircraft is not None:
+            raise ValueError(f"{target!r} and --aircraft {args.aircraft!r}: give the aircraft once")
+        target, args.aircraft = DEFAULT_MANOEUVRE, target
+    if args.mach is not None and args.speed_m_s is not None:
+        raise ValueError(f"--mach {args.mach:g} and --speed-m-s {args.speed_m_s:g}: give the speed once")
     if args.log is not None and args.no_log:
         raise ValueError("--log and --no-log: give at most one")
     if args.log is not None:
         from flexsim.cli.validation import check_log_path
 
         check_log_path("simulate", args.log)
-    setup = build_manoeuvre(target, aero=args.aero, duration_s=args.duration, formulation=args.formulation)
+    setup = build_manoeuvre(target, aero=args.aero, duration_s=args.duration, formulation=args.formulation,
+                            aircraft=args.aircraft, altitude_m=args.altitude_m, mach=args.mach, speed_m_s=args.speed_m_s)
     log_path = None if args.no_log else (args.log or default_log_path(setup.name))
+    if args.rtol is not None and args.method in ("auto", "ETD2RK"):  # every named manoeuvre flies with aerodynamics
+        raise ValueError(f"--rtol {args.rtol:g}: applies to the adaptive methods (--method DOP853, Radau, ...); ETD2RK, "
+                         "the method with aerodynamics by default, takes fixed steps and has no tolerance")
     integrator = IntegratorSettings(args.method, args.rtol)
     print(f"{setup.name}: {setup.description}; {setup.duration_s:g} s, aero {args.aero}")
     result = setup.simulate(integrator=integrator, output=OutputSettings(log_path=log_path))
@@ -70,8 +93,12 @@ def _simulate(args: argparse.Namespace) -> int:
 def _run_script(path: Path, args: argparse.Namespace) -> int:
     if not path.is_file():
         raise FileNotFoundError(f"script {str(path)!r} not found")
-    if args.no_log or args.method != "auto" or args.rtol is not None or args.formulation is not None:
-        raise ValueError("--no-log, --method, --rtol and --formulation apply to named manoeuvres; a script takes --duration, --log, --aero")
+    named = [flag for flag, given in (("--no-log", args.no_log), ("--method", args.method != "auto"),
+                                      ("--rtol", args.rtol is not None), ("--formulation", args.formulation is not None),
+                                      ("--aircraft", args.aircraft is not None), ("--altitude-m", args.altitude_m is not None),
+                                      ("--mach", args.mach is not None), ("--speed-m-s", args.speed_m_s is not None)) if given]
+    if named:
+        raise ValueError(f"{', '.join(named)}: apply to named manoeuvres and aircraft; a script takes --duration, --log, --aero")
     argv = [str(path), "--aero", args.aero]
     if args.duration is not None:
         argv += ["--duration", repr(args.duration)]
@@ -107,7 +134,20 @@ def _executable(text: str) -> str:
     return found
 
 
+#: The form of a ``--connect`` URL: a Rerun viewer's or server's gRPC proxy.
+_CONNECT_URL = re.compile(r"rerun\+https?://[^\s/:]+(:\d{1,5})?/proxy")
+
+
 def _view(args: argparse.Namespace) -> int:
+    if args.connect is not None and not _CONNECT_URL.fullmatch(args.connect):
+        raise ValueError(f"--connect = {args.connect!r}: must be the URL of a running Rerun viewer, "
+                         "rerun+http://HOST:PORT/proxy (e.g. rerun+http://127.0.0.1:9876/proxy)")
+    starts_viewer = args.connect is None and not args.save
+    unused = [flag for flag, given in (("--port", args.port is not None), ("--viewer", args.viewer is not None)) if given]
+    if unused and not starts_viewer:
+        raise ValueError(f"{', '.join(unused)}: apply to the viewer that flexsim view starts; with "
+                         f"{'--connect' if args.connect is not None else '--save alone'} none is started")
+    args.port = VIEWER_PORT if args.port is None else args.port
     if args.log.endswith(".rrd"):  # a Rerun recording (e.g. of a flutter mode): shown as it is
         from flexsim.io.mode_recording import open_recording
 
@@ -157,7 +197,18 @@ def add_sim_commands(subparsers: argparse._SubParsersAction) -> None:
                                   description=f"Simulate a named manoeuvre ({names}) or run a manoeuvre script (.py). "
                                               "A script is Python code and is executed with your rights, like "
                                               "'python SCRIPT.py': run only scripts you trust.")
-    p_sim.add_argument("manoeuvre", metavar="MANOEUVRE|SCRIPT.py", help=f"one of: {names}; or a Python script (executed as code)")
+    p_sim.add_argument("manoeuvre", metavar="MANOEUVRE|SCRIPT.py|AIRCRAFT",
+                       help=f"one of: {names}; or a Python script (executed as code); or an aircraft (bundled name or "
+                            f".toml): its {DEFAULT_MANOEUVRE} from level flight at its cruise point")
+    p_sim.add_argument("--aircraft", metavar="AIRCRAFT", default=None,
+                       help="fly the named manoeuvre with this aircraft (bundled name or .toml) from level flight at its "
+                            "cruise point [the GTM at 9144 m, M 0.75; flutter-onset: the Goland wing]")
+    p_sim.add_argument("--altitude-m", type=float, default=None, metavar="H",
+                       help="altitude of the starting level trim [m] [the aircraft file's envelope.cruise_altitude_m]")
+    p_sim.add_argument("--mach", type=float, default=None, metavar="M", help="Mach number of the starting level trim "
+                       "[the aircraft file's cruise speed]")
+    p_sim.add_argument("--speed-m-s", type=float, default=None, metavar="V",
+                       help="true airspeed of the starting level trim [m/s] instead of --mach")
     p_sim.add_argument("--duration", type=float, metavar="S", help="simulated time [s] (default: the manoeuvre's)")
     p_sim.add_argument("--log", metavar="PATH", help="flight log (.mcap) [logs/<manoeuvre>-<time>.mcap]")
     p_sim.add_argument("--no-log", action="store_true", help="do not write a flight log")
@@ -174,7 +225,7 @@ def add_sim_commands(subparsers: argparse._SubParsersAction) -> None:
     p_view.add_argument("--connect", metavar="URL",
                         help="stream to a Rerun viewer or server already running at URL (rerun+http://HOST:9876/proxy) "
                              "instead of starting one (with --save: both)")
-    p_view.add_argument("--port", type=_port, default=9876, metavar="N",
+    p_view.add_argument("--port", type=_port, default=None, metavar="N",
                         help="port of the viewer to start (a viewer already listening there is reused) [9876]")
     p_view.add_argument("--viewer", type=_executable, metavar="PATH",
                         help="the rerun executable to start [the one installed with rerun-sdk]")

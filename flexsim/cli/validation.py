@@ -20,9 +20,9 @@ from typing import Iterable, TextIO
 
 from flexsim.errors import FlexsimError
 
-__all__ = ["CliError", "printable", "json_text", "SanitisedStream", "warn", "check_mach", "check_altitudes", "check_workers",
+__all__ = ["CliError", "in_user_words", "printable", "json_text", "SanitisedStream", "warn", "check_mach", "check_altitudes", "check_workers",
            "check_count", "check_damping", "check_trim_options", "check_plot_path", "check_log_path", "check_out_dir",
-           "check_mach_range", "PRANDTL_GLAUERT_MACH_MAX"]
+           "check_mach_range", "flight_condition", "PRANDTL_GLAUERT_MACH_MAX"]
 
 #: Highest Mach number of the Prandtl-Glauert correction used by the model; above it the lift slopes
 #: are those of this Mach number (same value as ``flexsim.model.coupling._MACH_CAP``, tested).
@@ -31,6 +31,29 @@ PRANDTL_GLAUERT_MACH_MAX = 0.95
 
 class CliError(FlexsimError, ValueError):
     """A command-line option is invalid or conflicts with another one."""
+
+
+#: Parameters of the Python API that messages from it may name, and the command-line option a user gave instead.
+API_TO_OPTION = {
+    "mach_range[0]": "--mach-min",
+    "mach_range[1]": "--mach-max",
+    "speed_range[0]": "the lower speed of --speed-range-m-s",
+    "speed_range[1]": "the upper speed of --speed-range-m-s",
+    "speed_range": "--speed-range-m-s",
+    "structural_damping": "--structural-damping",
+    "turn_radius_m": "--turn-radius-m",
+    "altitude_m": "--altitude-m",
+    "duration_s": "--duration",
+    "mach_step": "--mach-step",
+    "speed_step": "--speed-step-m-s",
+}
+_API_NAME = re.compile(r"(?<![\w.\-])(?:" + "|".join(re.escape(k) for k in sorted(API_TO_OPTION, key=len, reverse=True)) + r")(?![\w\[])")
+
+
+def in_user_words(text: str) -> str:
+    """A message of the Python API in the command line's words: the parameters it names (``mach_range[0]``,
+    ``speed_range[0]`` ...) replaced by the options a user typed (:data:`API_TO_OPTION`)."""
+    return _API_NAME.sub(lambda m: API_TO_OPTION[m.group()], text)
 
 
 _CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
@@ -123,9 +146,17 @@ def check_damping(zeta: float | None) -> None:
 
 
 def check_trim_options(args) -> None:
-    """``trim``: Mach, altitude, turn radius and flight path checked and reconciled before trimming."""
-    check_mach("trim", args.mach)
-    check_altitudes([args.altitude_m], "--altitude-m")
+    """``trim``: Mach (or airspeed), altitude, turn radius and flight path checked and reconciled before trimming; an
+    altitude or speed not given is None here (the aircraft's cruise point, :func:`flight_condition`)."""
+    speed = getattr(args, "speed_m_s", None)
+    if args.mach is not None and speed is not None:
+        raise CliError(f"--mach {args.mach:g} and --speed-m-s {speed:g}: give the speed once (Mach or true airspeed)")
+    if args.mach is not None:
+        check_mach("trim", args.mach)
+    if speed is not None and not (math.isfinite(speed) and speed > 0.0):
+        raise CliError(f"--speed-m-s = {speed!r}: must be a true airspeed > 0 [m/s] (subsonic at the altitude)")
+    if args.altitude_m is not None:
+        check_altitudes([args.altitude_m], "--altitude-m")
     r = args.turn_radius_m
     if r is not None and not (r == math.inf or r == -math.inf or (math.isfinite(r) and abs(r) >= 100.0)):
         raise CliError(f"--turn-radius-m = {r!r}: must be |R| >= 100 m (a steady turn; negative turns left) or inf for "
@@ -136,6 +167,23 @@ def check_trim_options(args) -> None:
                        f"angle; give one of them")
     if climb is not None and not (math.isfinite(climb) and abs(climb) <= 30.0):
         raise CliError(f"--climb-deg = {climb!r}: must be within +-30 deg")
+
+
+def flight_condition(command: str, args):
+    """The altitude and speed of ``trim``, ``linearize`` or ``simulate``: ``--altitude-m`` and ``--mach`` or
+    ``--speed-m-s`` as given, else the aircraft's cruise point (:func:`flexsim.linear.envelope.cruise_point`: its file's
+    ``[envelope]``, or derived and said so). A speed beyond the Prandtl-Glauert range is warned about as ``--mach``."""
+    from flexsim.linear.envelope import cruise_point
+
+    try:
+        point = cruise_point(args.aircraft, altitude_m=args.altitude_m, mach=args.mach,
+                             speed_m_s=getattr(args, "speed_m_s", None))
+    except ValueError as exc:
+        raise CliError(str(exc).replace("speed_m_s = ", "--speed-m-s = ").replace("give one of them, or the speed",
+                                                                                 "give one of them, or --mach / --speed-m-s")) from None
+    if args.mach is None:
+        check_mach(command, point.mach, "the speed")
+    return point
 
 
 def check_plot_path(path: str) -> Path:

@@ -46,6 +46,7 @@ from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.model.terms import Terms
 from flexsim.model.variant import VariantSettings
+from flexsim.model.naming import state_names
 from flexsim.model.sensors import SENSOR_QUANTITIES, SensorBank, structural_sensors
 from flexsim.trim.manoeuvre import SteadyManoeuvre
 from flexsim.trim.solver import TrimPoint
@@ -331,6 +332,33 @@ def _sensor_rows(model: AircraftModel) -> tuple[np.ndarray, tuple[str, ...]]:
     return np.asarray(bank.matrix)[:, cols].T, check_names("signal", out)
 
 
+#: Largest scaled residual (accelerations in g, angular ones in g per 5 m, as the trim's) of a trim accepted as an
+#: equilibrium of the model it is linearised with: trims converge to 1e-8 (``flexsim.trim.solver``); a trim of another
+#: aircraft, variant or formulation leaves residuals of order 1 and more.
+EQUILIBRIUM_TOLERANCE = 1e-6
+
+
+def _check_operating_point(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, from_trim: bool) -> None:
+    """Refuse a non-finite state or controls and, for a trim, one that is not an equilibrium of ``model``."""
+    lay = model.layout
+    for name, arr in (("point", x0), ("u0", u0)):
+        bad = np.flatnonzero(~np.isfinite(arr))
+        if bad.size:
+            what = state_names(model)[bad[0]] if name == "point" else f"entry {bad[0]}"
+            raise ValueError(f"{name}: {bad.size} non-finite entries (first: {what} = {float(arr[bad[0]])!r}); the linear model "
+                             "of a state that is not finite would be NaN")
+    if not from_trim:
+        return
+    g = max(model.terms.gravity_m_s2, 1.0)
+    scale = np.full(lay.velocity.stop - lay.velocity.start, 1.0 / g)
+    scale[3:6] = 5.0 / g
+    residual = float(np.linalg.norm(model.rhs(0.0, x0, u0)[lay.velocity] * scale))
+    if not residual <= EQUILIBRIUM_TOLERANCE:
+        raise ValueError(f"point: the trim is not an equilibrium of this model of {model.aircraft.name} (scaled residual "
+                         f"{residual:.3g} > {EQUILIBRIUM_TOLERANCE:g}): a trim of another aircraft, variant or formulation; "
+                         "trim this model (flexsim.trim.trim(model, manoeuvre)) and linearise that")
+
+
 def linear_system(model: AircraftModel, point: TrimPoint | np.ndarray, u0: np.ndarray | None = None, *,
                   state_outputs: bool = False) -> LinearSystem:
     """The linear model of ``model`` about an operating point, with a gust input and the sensor outputs.
@@ -371,6 +399,7 @@ def linear_system(model: AircraftModel, point: TrimPoint | np.ndarray, u0: np.nd
     u0 = np.asarray(u0, float)
     if u0.shape != (4,):
         raise ValueError(f"u0 = {u0!r}: must be 4 numbers [T_e (N), delta_a, delta_e, delta_r (rad)]")
+    _check_operating_point(model, x0, u0, manoeuvre is not None)
     lin = linearize(model, x0, u0)
     b = np.column_stack([lin.b, _gust_column(model, lin.x0, lin.u0)[lin.keep]])
     rows, names = _sensor_rows(model)

@@ -26,12 +26,26 @@ from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.model.aircraft_model import AircraftModel
 
-__all__ = ["SearchRange", "search_range", "MODEL_MAX_MACH", "RHO_0"]
+__all__ = ["SearchRange", "search_range", "CruisePoint", "cruise_point", "flutter_altitudes", "MODEL_MAX_MACH", "RHO_0",
+           "CRUISE_SPEED_MARGIN", "DIVE_TO_CRUISE", "DERIVED_CRUISE_ALTITUDE_M", "FLUTTER_ALTITUDE_LEVELS"]
 
 #: Largest Mach number the strip aerodynamics cover: the Prandtl-Glauert factor is capped there [-].
 MODEL_MAX_MACH = 0.95
 #: ISA sea-level density [kg/m^3] (EAS to TAS).
 RHO_0 = 1.225
+#: A cruise speed derived from the lower end of the envelope (the stall speed) is this multiple of it: the classical
+#: margin of 1.3 V_S of the reference approach speed (14 CFR 25.125 before amendment 25-108; Raymer, *Aircraft Design:
+#: A Conceptual Approach*, 6th ed., 2018, sec. 17.7) [-].
+CRUISE_SPEED_MARGIN = 1.3
+#: A cruise speed derived from the upper end of the envelope the file gives (its dive speed) is that end divided by
+#: this: the design dive speed is at least 1.25 times the design cruise speed (CS-25.335(b)(1), 14 CFR 25.335) [-].
+DIVE_TO_CRUISE = 1.25
+#: Altitude of a cruise point the file does not give [m]: low, but clear of the ground so that a simulation from it is not
+#: ended at once by ground contact (altitude <= 0).
+DERIVED_CRUISE_ALTITUDE_M = 1000.0
+#: Altitudes of a flutter search without given ones: this many, equally spaced from sea level to the file's
+#: ``envelope.max_altitude_m`` (four: the paper's 0, 3048, 6096, 9144 m for the GTM's 9144 m).
+FLUTTER_ALTITUDE_LEVELS = 4
 #: Secant steps of the stall estimate at most (each one trim).
 _STALL_ITERATIONS = 6
 
@@ -181,3 +195,148 @@ def _stall_mach(model: AircraftModel, manoeuvre) -> tuple[float, str]:
         pts.append(alpha_at(mach))
     deg = math.degrees(alpha_max)
     return mach, f"stall estimate (alpha reaches [aero] max_alpha_deg = {deg:g} deg)"
+
+
+@dataclass(frozen=True)
+class CruisePoint:
+    """The flight condition a command flies when none is given: altitude and speed, and where each came from.
+
+    Attributes
+    ----------
+    altitude_m : float
+        Altitude [m].
+    mach : float
+        Mach number [-].
+    altitude_source, speed_source : str
+        E.g. ``"envelope.cruise_altitude_m = 20000"``, ``"given"``, or the derivation when the file gives none.
+    """
+
+    altitude_m: float
+    mach: float
+    altitude_source: str
+    speed_source: str
+
+    @property
+    def speed_m_s(self) -> float:
+        """True airspeed [m/s]."""
+        return self.mach * speed_of_sound(self.altitude_m)
+
+    @property
+    def derived(self) -> bool:
+        """True when the altitude or the speed was neither given nor read from the aircraft file."""
+        return not all(src == "given" or src.startswith("envelope.") for src in (self.altitude_source, self.speed_source))
+
+    def describe(self) -> str:
+        """One line, e.g. ``"H = 9144 m (envelope.cruise_altitude_m = 9144), M 0.7800 = 236.52 m/s TAS (given)"``."""
+        return (f"H = {self.altitude_m:.0f} m ({self.altitude_source}), M {self.mach:.4f} = {self.speed_m_s:.2f} m/s TAS "
+                f"({self.speed_source})")
+
+
+def cruise_point(model: AircraftModel | Aircraft | str | Path, *, altitude_m: float | None = None,
+                 mach: float | None = None, speed_m_s: float | None = None) -> CruisePoint:
+    """The flight condition of a trim, linearisation or simulation: the given values, else the aircraft's own.
+
+    Altitude: ``altitude_m``, else the file's ``envelope.cruise_altitude_m``, else :data:`DERIVED_CRUISE_ALTITUDE_M`
+    (stated). Speed: ``mach``
+    or ``speed_m_s`` (true airspeed [m/s], at most one), else the file's ``envelope.cruise_mach`` or
+    ``envelope.cruise_speed_m_s``, else derived and stated: the upper end of the envelope the file gives (its dive
+    speed) divided by :data:`DIVE_TO_CRUISE`, or, without one or when that is slower, :data:`CRUISE_SPEED_MARGIN`
+    times the lower end (:func:`search_range` of level flight at that altitude: the file's lower limits or the stall
+    estimate); the middle of the envelope when that would reach its upper end.
+
+    Parameters
+    ----------
+    model : AircraftModel, Aircraft, str or Path
+        As for :func:`search_range`.
+    altitude_m, mach, speed_m_s : float, optional
+        Given values [m], [-], [m/s]; they override the aircraft's.
+
+    Returns
+    -------
+    CruisePoint
+
+    Raises
+    ------
+    ValueError
+        For both ``mach`` and ``speed_m_s``, a value out of range (named, with the range), or an envelope from which
+        no speed can be derived (the message says which ``[envelope]`` key to give).
+    """
+    from flexsim.atmosphere import isa
+    from flexsim.trim import SteadyManoeuvre
+
+    if mach is not None and speed_m_s is not None:
+        raise ValueError(f"mach = {mach!r} and speed_m_s = {speed_m_s!r}: give the speed once")
+    if isinstance(model, (str, Path)):
+        from flexsim.aircraft.toml_loader import load_envelope
+
+        env = load_envelope(model)
+    else:
+        env = (model if isinstance(model, Aircraft) else model.aircraft).envelope
+    if altitude_m is not None:
+        h, h_src = altitude_m, "given"
+    elif env is not None and env.cruise_altitude_m is not None:
+        h, h_src = env.cruise_altitude_m, f"envelope.cruise_altitude_m = {env.cruise_altitude_m:g}"
+    else:
+        h, h_src = DERIVED_CRUISE_ALTITUDE_M, (f"{DERIVED_CRUISE_ALTITUDE_M:g} m, clear of the ground: the aircraft file "
+                                               "gives no envelope.cruise_altitude_m")
+    if isinstance(h, bool) or not isinstance(h, (int, float)) or not math.isfinite(h):
+        raise ValueError(f"altitude_m = {h!r}: must be a finite number [m]")
+    isa(float(h))  # the ISA range, named in its message
+    h = float(h)
+    a = speed_of_sound(h)
+    for name, value, hi in (("mach", mach, 1.0), ("speed_m_s", speed_m_s, a)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))
+                                  or not (math.isfinite(value) and 0.0 < value < hi)):
+            raise ValueError(f"{name} = {value!r}: must be in (0, {hi:.6g}) (subsonic at H = {h:.0f} m)")
+    if mach is not None:
+        m, m_src = float(mach), "given"
+    elif speed_m_s is not None:
+        m, m_src = float(speed_m_s) / a, "given"
+    elif env is not None and env.cruise_mach is not None:
+        m, m_src = env.cruise_mach, f"envelope.cruise_mach = {env.cruise_mach:g}"
+    elif env is not None and env.cruise_speed_m_s is not None:
+        if not env.cruise_speed_m_s < a:
+            raise ValueError(f"envelope.cruise_speed_m_s = {env.cruise_speed_m_s:g}: must be subsonic, below "
+                             f"{a:.2f} m/s at H = {h:.0f} m")
+        m, m_src = env.cruise_speed_m_s / a, f"envelope.cruise_speed_m_s = {env.cruise_speed_m_s:g}"
+    else:
+        try:
+            rng = search_range(model, SteadyManoeuvre(float(0.5 * a), h))
+        except ValueError as exc:
+            raise ValueError(f"no cruise speed: the aircraft file gives no envelope.cruise_mach nor "
+                             f"envelope.cruise_speed_m_s, and it cannot be derived from the envelope ({exc}); give one "
+                             "of them, or the speed") from None
+        stall = CRUISE_SPEED_MARGIN * rng.mach_min
+        if rng.upper_source.startswith("envelope.") and rng.mach_max / DIVE_TO_CRUISE > stall:
+            m = rng.mach_max / DIVE_TO_CRUISE
+            m_src = (f"derived: the envelope's upper end M {rng.mach_max:.4f} ({rng.upper_source}) / {DIVE_TO_CRUISE:g}, "
+                     "the file gives no envelope.cruise_mach")
+        else:
+            m = stall
+            m_src = (f"derived: {CRUISE_SPEED_MARGIN:g} x the envelope's lower end M {rng.mach_min:.4f} "
+                     f"({rng.lower_source}), the file gives no envelope.cruise_mach")
+        if not m < rng.mach_max:
+            m = 0.5 * (rng.mach_min + rng.mach_max)
+            m_src = (f"derived: the middle of the envelope M {rng.mach_min:.4f}-{rng.mach_max:.4f}, the file gives no "
+                     "envelope.cruise_mach")
+    return CruisePoint(h, float(m), h_src, m_src)
+
+
+def flutter_altitudes(model: AircraftModel | Aircraft | str | Path) -> tuple[list[float], str]:
+    """The altitudes of a flutter search when none is given [m], and where they came from.
+
+    :data:`FLUTTER_ALTITUDE_LEVELS` altitudes equally spaced from sea level to the file's ``envelope.max_altitude_m``
+    (else its ``envelope.cruise_altitude_m``); sea level alone when the file gives neither.
+    """
+    if isinstance(model, (str, Path)):
+        from flexsim.aircraft.toml_loader import load_envelope
+
+        env = load_envelope(model)
+    else:
+        env = (model if isinstance(model, Aircraft) else model.aircraft).envelope
+    for key in ("max_altitude_m", "cruise_altitude_m"):
+        top = getattr(env, key, None) if env is not None else None
+        if top:
+            n = FLUTTER_ALTITUDE_LEVELS
+            return [top * i / (n - 1) for i in range(n)], f"sea level to envelope.{key} = {top:g} in {n} levels"
+    return [0.0], "sea level: the aircraft file gives no envelope.max_altitude_m"

@@ -56,7 +56,8 @@ class IntegratorChoice:
     def __post_init__(self) -> None:
         if self.method not in METHODS:
             raise ValueError(f"method = {self.method!r}: must be one of {', '.join(METHODS)}")
-        if self.method == "ETD2RK" and not (isinstance(self.step_s, (int, float)) and math.isfinite(self.step_s)
+        if self.method == "ETD2RK" and not (isinstance(self.step_s, (int, float)) and not isinstance(self.step_s, bool)
+                                            and math.isfinite(self.step_s)
                                             and self.step_s > 0):
             raise ValueError(f"step_s = {self.step_s!r}: ETD2RK needs a finite fixed step > 0 [s]")
 

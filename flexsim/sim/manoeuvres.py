@@ -18,6 +18,10 @@ Registered names (:func:`manoeuvre_names`):
 
 The GTM runs are at 9144 m and M 0.75 (the paper's 30 000 ft cruise) with the notional GTM of
 ``flexsim/aircraft/data/gtm.md``.
+``build_manoeuvre(name, aircraft=...)`` flies another aircraft instead (``flexsim simulate AIRCRAFT``,
+``--aircraft``): the same inputs from its level trim at its cruise point
+(:func:`flexsim.linear.envelope.cruise_point`), or ``flutter-onset`` in a sea-level tunnel at 1.05 times its own
+flutter speed.
 """
 
 from __future__ import annotations
@@ -29,6 +33,8 @@ from functools import lru_cache
 
 import numpy as np
 
+from flexsim.aircraft.definition import Aircraft
+from flexsim.errors import positive_number
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.flutter import wind_tunnel_flutter
 from flexsim.model.aircraft_model import AircraftModel, Wind
@@ -176,64 +182,93 @@ class BankController:
         return np.clip(u, self.lower, self.upper)
 
 
-# ---------------------------------------------------------------------------------------------- GTM
-def _gtm(aero: AeroOptions) -> AircraftModel:
-    return AircraftModel(load_aircraft("gtm"), aero=aero)
+# ---------------------------------------------------------------------------------------------- flight
+@dataclass(frozen=True)
+class _Flight:
+    """The aircraft a manoeuvre flies and its level trim condition: the GTM at :data:`CRUISE_ALTITUDE_M`,
+    :data:`CRUISE_MACH` by default, else the given aircraft at its cruise point
+    (:func:`flexsim.linear.envelope.cruise_point`: the given altitude and speed, or the file's, or derived)."""
+
+    aircraft: Aircraft | None
+    altitude_m: float
+    mach: float
+    condition: str = ""
 
 
-def _cruise(model: AircraftModel) -> TrimPoint:
-    return trim(model, SteadyManoeuvre.level(CRUISE_ALTITUDE_M, mach=CRUISE_MACH))
+def _model(flight: _Flight, aero: AeroOptions) -> AircraftModel:
+    return AircraftModel(load_aircraft("gtm") if flight.aircraft is None else flight.aircraft, aero=aero)
 
 
-def _level_turn_entry(aero: AeroOptions) -> ManoeuvreSetup:
-    model = _gtm(aero)
-    level = _cruise(model)
-    turn = trim(model, SteadyManoeuvre.turn(CRUISE_ALTITUDE_M, 10_000.0, mach=CRUISE_MACH), guess=level)
+def _cruise(model: AircraftModel, flight: _Flight) -> TrimPoint:
+    return trim(model, SteadyManoeuvre.level(flight.altitude_m, mach=flight.mach))
+
+
+def _limit(model: AircraftModel, level: TrimPoint, flight: _Flight) -> float | None:
+    """Structural limit of a manoeuvre of a given aircraft [m]: its wing tip's deflection in the level trim plus a
+    quarter of the wing's length (simulate's default bound, 0.25 x wing length, measured from the trim: a flexible
+    aircraft whose trim bends its wing beyond that bound still flies); None for the default GTM (simulate's default)."""
+    if flight.aircraft is None or "right_wing" not in model.aircraft.component_names:
+        return None
+    tip = abs(float(level.summary().get("tip_deflection_m", 0.0)))
+    return tip + 0.25 * model.aircraft.component("right_wing").length_m
+
+
+def _setup(flight: _Flight, model: AircraftModel, level: TrimPoint, name: str, description: str, *args, **kw) -> ManoeuvreSetup:
+    if flight.aircraft is not None:
+        description = f"{model.aircraft.name}: {description}; {flight.condition}"
+    return ManoeuvreSetup(name, description, model, level, *args, wing_tip_deflection_m=_limit(model, level, flight), **kw)
+
+
+def _level_turn_entry(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
+    model = _model(flight, aero)
+    level = _cruise(model, flight)
+    turn = trim(model, SteadyManoeuvre.turn(flight.altitude_m, 10_000.0, mach=flight.mach), guess=level)
     lo, hi = model.aircraft.control_limits()
     lay = model.layout
     ctrl = BankController(level, turn, start_s=1.0, ramp_s=4.0, k_phi=0.8, k_p=0.0, lower=lo, upper=hi,
                           euler_index=lay.euler.start, omega_index=lay.omega.start)
-    return ManoeuvreSetup("level-turn-entry", f"level flight into a level turn of R = 10 km (bank {math.degrees(turn.phi):.1f} deg)",
-                          model, level, ctrl, 10.0, control_rate_hz=20.0,
-                          notes=((1.0, f"turn entry: bank command to {math.degrees(turn.phi):.1f} deg over 4 s"),))
+    return _setup(flight, model, level, "level-turn-entry",
+                  f"level flight into a level turn of R = 10 km (bank {math.degrees(turn.phi):.1f} deg)",
+                  ctrl, 10.0, control_rate_hz=20.0,
+                  notes=((1.0, f"turn entry: bank command to {math.degrees(turn.phi):.1f} deg over 4 s"),))
 
 
-def _climb(aero: AeroOptions) -> ManoeuvreSetup:
-    model = _gtm(aero)
-    level = _cruise(model)
-    climb = trim(model, SteadyManoeuvre.climb(CRUISE_ALTITUDE_M, math.radians(3.0), mach=CRUISE_MACH), guess=level)
+def _climb(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
+    model = _model(flight, aero)
+    level = _cruise(model, flight)
+    climb = trim(model, SteadyManoeuvre.climb(flight.altitude_m, math.radians(3.0), mach=flight.mach), guess=level)
     sched = ControlSchedule(np.array([0.0, 1.0, 3.0]), np.array([level.u, level.u, climb.u]))
-    return ManoeuvreSetup("climb", "level flight to the 3 deg climb trim's elevator and thrust (ramped over 2 s)",
-                          model, level, sched, 10.0, notes=((1.0, "controls ramp to the 3 deg climb trim"),))
+    return _setup(flight, model, level, "climb", "level flight to the 3 deg climb trim's elevator and thrust (ramped over 2 s)",
+                  sched, 10.0, notes=((1.0, "controls ramp to the 3 deg climb trim"),))
 
 
-def _elevator_doublet(aero: AeroOptions) -> ManoeuvreSetup:
-    model = _gtm(aero)
-    level = _cruise(model)
+def _elevator_doublet(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
+    model = _model(flight, aero)
+    level = _cruise(model, flight)
     d = math.radians(2.0)
     sched = pulse_schedule(level.u, [(2, 1.0, 1.5, d), (2, 1.5, 2.0, -d)])
-    return ManoeuvreSetup("elevator-doublet", "elevator doublet +-2 deg, 0.5 s each, from level trim",
-                          model, level, sched, 6.0, notes=((1.0, "elevator doublet"),))
+    return _setup(flight, model, level, "elevator-doublet", "elevator doublet +-2 deg, 0.5 s each, from level trim",
+                  sched, 6.0, notes=((1.0, "elevator doublet"),))
 
 
-def _aileron_roll(aero: AeroOptions) -> ManoeuvreSetup:
-    model = _gtm(aero)
-    level = _cruise(model)
+def _aileron_roll(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
+    model = _model(flight, aero)
+    level = _cruise(model, flight)
     sched = pulse_schedule(level.u, [(1, 1.0, 3.0, -math.radians(3.0))], ramp_s=0.1)
-    return ManoeuvreSetup("aileron-roll", "aileron -3 deg (roll right) for 2 s from level trim",
-                          model, level, sched, 6.0, notes=((1.0, "aileron input"),))
+    return _setup(flight, model, level, "aileron-roll", "aileron -3 deg (roll right) for 2 s from level trim",
+                  sched, 6.0, notes=((1.0, "aileron input"),))
 
 
-def _gust_encounter(aero: AeroOptions) -> ManoeuvreSetup:
-    model = _gtm(aero)
-    level = _cruise(model)
+def _gust_encounter(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
+    model = _model(flight, aero)
+    level = _cruise(model, flight)
     lay = model.layout
     velocity_ned = dcm_321(*level.x[lay.euler]).T @ level.x[lay.v]
     gust = OneMinusCosineGust.encounter(10.0, 60.0, position_ned_m=level.x[lay.position], velocity_ned_m_s=velocity_ned,
                                         start_time_s=1.0)
-    return ManoeuvreSetup("gust-encounter", "1-cos up-gust U_ds = 10 m/s, H = 60 m (CS-25.341) reached at t = 1 s",
-                          model, level, level.u, 5.0, notes=((1.0, "the body origin enters the 1-cos gust"),),
-                          metadata={"gust": "1-cos, U_ds 10 m/s, H 60 m"}, wind=gust)
+    return _setup(flight, model, level, "gust-encounter", "1-cos up-gust U_ds = 10 m/s, H = 60 m (CS-25.341) reached at t = 1 s",
+                  level.u, 5.0, notes=((1.0, "the body origin enters the 1-cos gust"),),
+                  metadata={"gust": "1-cos, U_ds 10 m/s, H 60 m"}, wind=gust)
 
 
 # ---------------------------------------------------------------------------------------------- Goland
@@ -256,7 +291,9 @@ def goland_flutter_speed(aero: str = "unsteady") -> float:
     return wind_tunnel_flutter(load_aircraft("goland_wing"), aero_model=aero)[0]
 
 
-def _flutter_onset(aero: AeroOptions) -> ManoeuvreSetup:
+def _flutter_onset(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
+    if flight.aircraft is not None:
+        return _tunnel_onset(aero, flight.aircraft)
     speed_f = goland_flutter_speed("unsteady")
     speed = 1.05 * speed_f
     model = _goland_model(speed, aero)
@@ -270,7 +307,20 @@ def _flutter_onset(aero: AeroOptions) -> ManoeuvreSetup:
                           metadata={"flutter_speed_m_s": f"{speed_f:.3f}", "tunnel_speed_m_s": f"{speed:.3f}"})
 
 
-_REGISTRY: dict[str, Callable[[str], ManoeuvreSetup]] = {
+def _tunnel_onset(aero: AeroOptions, aircraft: Aircraft) -> ManoeuvreSetup:
+    """flutter-onset of a given aircraft: clamped at its body origin in a sea-level tunnel at 1.05 x its flutter speed
+    (Peters' unsteady aerodynamics, :func:`~flexsim.linear.flutter.wind_tunnel_flutter`)."""
+    speed_f = wind_tunnel_flutter(aircraft, aero_model="unsteady")[0]
+    speed = 1.05 * speed_f
+    model = AircraftModel(aircraft, variant="restrained", restrained_velocity_m_s=[speed, 0.0, 0.0], altitude_m=0.0, aero=aero)
+    return ManoeuvreSetup("flutter-onset", f"{aircraft.name} clamped in a sea-level wind tunnel at {speed:.1f} m/s = 1.05 x "
+                          f"its flutter speed {speed_f:.1f} m/s (Peters unsteady aerodynamics); released undeformed under "
+                          "gravity", model, model.layout.zeros(), np.zeros(4), 10.0,
+                          notes=((0.0, f"tunnel speed {speed:.2f} m/s, flutter speed {speed_f:.2f} m/s"),),
+                          metadata={"flutter_speed_m_s": f"{speed_f:.3f}", "tunnel_speed_m_s": f"{speed:.3f}"})
+
+
+_REGISTRY: dict[str, Callable[[AeroOptions, _Flight], ManoeuvreSetup]] = {
     "level-turn-entry": _level_turn_entry,
     "climb": _climb,
     "elevator-doublet": _elevator_doublet,
@@ -286,7 +336,9 @@ def manoeuvre_names() -> tuple[str, ...]:
 
 
 def build_manoeuvre(name: str, *, aero: str = "unsteady", duration_s: float | None = None,
-                    formulation: str | None = None) -> ManoeuvreSetup:
+                    formulation: str | None = None, aircraft: Aircraft | str | None = None,
+                    altitude_m: float | None = None, mach: float | None = None,
+                    speed_m_s: float | None = None) -> ManoeuvreSetup:
     """Build a named manoeuvre (see the module docstring).
 
     Parameters
@@ -299,6 +351,14 @@ def build_manoeuvre(name: str, *, aero: str = "unsteady", duration_s: float | No
         Run length [s] > 0 instead of the manoeuvre's default.
     formulation : {"physical", "paper"}, optional
         Resolution of the strip airloads (docs/design.md); default None: the aircraft file's.
+    aircraft : Aircraft or str, optional
+        The aircraft (loaded, bundled name or TOML path) instead of the GTM (the Goland wing for
+        ``flutter-onset``); it flies from its level trim at its cruise point
+        (:func:`flexsim.linear.envelope.cruise_point`), with a structural limit measured from that trim's wing-tip
+        deflection (a quarter of the wing's length beyond it).
+    altitude_m, mach, speed_m_s : float, optional
+        The level trim's altitude [m] and Mach number or true airspeed [m/s] instead of the aircraft's cruise point
+        (the GTM's default: 9144 m, M 0.75); not for ``flutter-onset`` (a wind tunnel at sea level).
 
     Raises
     ------
@@ -309,9 +369,21 @@ def build_manoeuvre(name: str, *, aero: str = "unsteady", duration_s: float | No
         raise ValueError(f"manoeuvre = {name!r}: unknown; valid manoeuvres: {', '.join(_REGISTRY)}")
     if aero not in _AERO_CHOICES:
         raise ValueError(f"aero = {aero!r}: must be one of {', '.join(_AERO_CHOICES)}")
-    setup = _REGISTRY[name](AeroOptions(aero, formulation=formulation))
+    given = {k: v for k, v in (("altitude_m", altitude_m), ("mach", mach), ("speed_m_s", speed_m_s)) if v is not None}
+    if name == "flutter-onset" and given:
+        raise ValueError(f"{', '.join(given)}: flutter-onset is a wind tunnel at sea level at 1.05 x the flutter speed; "
+                         "it takes no flight condition")
+    if aircraft is None and not given:
+        flight = _Flight(None, CRUISE_ALTITUDE_M, CRUISE_MACH)
+    else:
+        from flexsim.linear.envelope import cruise_point
+
+        craft = load_aircraft("gtm" if aircraft is None else aircraft) if not isinstance(aircraft, Aircraft) else aircraft
+        point = cruise_point(craft, altitude_m=altitude_m, mach=mach, speed_m_s=speed_m_s) if name != "flutter-onset" else None
+        flight = _Flight(craft, point.altitude_m if point else 0.0, point.mach if point else 0.0,
+                         f"level trim at {point.describe()}" if point else "")
+    setup = _REGISTRY[name](AeroOptions(aero, formulation=formulation), flight)
     if duration_s is not None:
-        if not (isinstance(duration_s, (int, float)) and math.isfinite(duration_s) and duration_s > 0):
-            raise ValueError(f"duration_s = {duration_s!r}: must be a finite number > 0 [s]")
+        duration_s = positive_number("duration_s", duration_s, "s")
         setup = replace(setup, duration_s=float(duration_s))  # every other field kept (the gust of gust-encounter)
     return setup

@@ -136,7 +136,7 @@ class OutputMaps:
     def position_euler(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Inertial NED position of the body origin [m] and Euler angles [rad] of one state, shapes (3,), (3,).
 
-        A restrained model sits at altitude ``model.altitude_m`` with its fixed attitude.
+        A restrained model sits at altitude ``model.variant.altitude_m`` with its fixed attitude.
         """
         pos, eul, _, _, _ = self.model.unpack(x)
         if not self.model.layout.rigid:

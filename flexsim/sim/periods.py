@@ -42,7 +42,7 @@ from flexsim.errors import positive_number
 from flexsim.kinematics import euler_rate_matrix_inverse
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.jacobian import jacobian
-from flexsim.model.sensors import SensorBank
+from flexsim.model.sensors import ComponentSensor, SensorBank
 from flexsim.sim import _step_kernels as _sk
 from flexsim.sim import measurements as _ms
 from flexsim.sim.fixed_step import ETD2RK
@@ -250,14 +250,11 @@ class FlightDynamics:
         self.actuator_rates = rates
         self.model = model
         self.layout = self.model.layout
-        for name in SENSOR_COMPONENTS:
-            aircraft.component(name)  # KeyError naming the missing component
         self.outputs = OutputMaps(self.model)
-        missing = [name for name in SENSOR_COMPONENTS if name not in self.outputs.sensors]
-        if missing:
-            raise ValueError(f"aircraft {aircraft.name!r}: components {missing} have no elastic modes; the environments' "
-                             f"structural sensors need bending and torsion modes on {', '.join(SENSOR_COMPONENTS)}")
-        self.sensors = {name: self.outputs.sensors[name] for name in SENSOR_COMPONENTS}
+        # a rigid or absent component does not deform: its sensors read zero (no coordinates, empty shape rows)
+        still = lambda name: ComponentSensor(name, *(frozen_array(np.zeros(0), np.int64) for _ in range(4)),
+                                             *(frozen_array(np.zeros(0)) for _ in range(3)))
+        self.sensors = {name: self.outputs.sensors.get(name) or still(name) for name in SENSOR_COMPONENTS}
         bank = SensorBank.of(self.sensors, SENSOR_COMPONENTS, self.layout.n_states)
         #: What the compiled measurements need of the model (:class:`flexsim.sim.measurements.MeasureData`).
         self.measure_data = _ms.measure_data(self.layout, bank.matrix, len(SENSOR_COMPONENTS))

@@ -36,6 +36,7 @@ from scipy.integrate import BDF, DOP853, LSODA, RK23, RK45, Radau
 from scipy.optimize import brentq
 
 from flexsim._threads import single_blas_thread
+from flexsim.errors import positive_number
 from flexsim.model.jacobian import jacobian
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.sim.controls import ControlSchedule, Controls
@@ -404,9 +405,7 @@ def simulate(
         if not isinstance(value, kind):
             raise ValueError(f"{name} = {value!r}: must be a {kind.__name__} (flexsim.sim.{kind.__name__})")
     x0, u_trim = _initial(model, initial)
-    if not (isinstance(t_end_s, (int, float)) and math.isfinite(t_end_s) and t_end_s > 0):
-        raise ValueError(f"t_end_s = {t_end_s!r}: must be a finite number > 0 [s]")
-    t_end = float(t_end_s)
+    t_end = positive_number("t_end_s", t_end_s, "s")
     rate = control_rate_hz
     if isinstance(rate, bool) or not (isinstance(rate, (int, float)) and math.isfinite(rate) and rate > 0):
         raise ValueError(f"control_rate_hz = {rate!r}: must be a finite number > 0 [Hz]")

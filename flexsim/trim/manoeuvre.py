@@ -59,6 +59,10 @@ class SteadyManoeuvre:
     coordinated: bool = False
 
     def __post_init__(self) -> None:
+        for name in ("speed_m_s", "altitude_m", "turn_radius_m", "climb_angle_rad"):
+            value = getattr(self, name)
+            if isinstance(value, (bool, str, bytes)):  # True is not 1 m/s, "100" not 100 m
+                raise ValueError(f"{name} = {value!r}: must be a number, got {type(value).__name__}")
         if not (math.isfinite(self.speed_m_s) and 1.0 <= self.speed_m_s <= 400.0):
             raise ValueError(f"speed_m_s = {self.speed_m_s!r}: must be in [1, 400] m/s")
         speed_of_sound(float(self.altitude_m))  # ISA range check with a clear message

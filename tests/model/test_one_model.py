@@ -106,7 +106,8 @@ def test_linear_systems_of_different_terms_differ(gtm, tmp_path):
     the record survives a save and load."""
     point = trim(AircraftModel(gtm, aero="quasi-steady"), SteadyManoeuvre.level(3000.0, mach=0.6))
     plain = linear_system(AircraftModel(gtm, aero="quasi-steady"), point)
-    switched = linear_system(AircraftModel(gtm, terms=Terms(aero=AeroOptions("quasi-steady"), **SWITCHES)), point)
+    switched_model = AircraftModel(gtm, terms=Terms(aero=AeroOptions("quasi-steady"), **SWITCHES))
+    switched = linear_system(switched_model, trim(switched_model, SteadyManoeuvre.level(3000.0, mach=0.6)))
     assert plain.model != switched.model and switched.model.terms.force_resolution == "normal"
     back = LinearSystem.load(switched.save(tmp_path / "switched.npz"))
     assert back.model == switched.model

@@ -70,7 +70,8 @@ def test_simulation_carries_the_initial_trims_verdict(files):
 
 
 def test_env_refuses_an_episode_from_a_divergent_trim(files):
-    """The tail with 0.2 % of its GJ trims within every limit at 9144 m, M 0.75 (the LevelHold task), but diverges."""
+    """The tail with 0.2 % of its GJ trims within every limit at 9144 m, M 0.78 (the LevelHold task at the file's cruise
+    point), but diverges."""
     env = LevelHoldEnv(aircraft=str(files["tail_gj"]), aero="quasi-steady")
     with pytest.raises(TrimError, match=r"cannot start an episode from the trim of GTM-notional-A in level flight .* "
                                         r"H = 9144 m: it is not an equilibrium the aircraft stays in, statically "
