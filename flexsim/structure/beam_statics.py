@@ -287,6 +287,11 @@ def vibration_modes(beam: BeamProperties, loads: LoadModel | None = None, q0: Ar
     q0 = np.zeros(beam.n_coordinates) if q0 is None else np.asarray(q0, dtype=float)
     kin = beam_kinematics(beam, q0)
     m = mass_matrix(beam, kin)
+    try:
+        np.linalg.cholesky(m)
+    except np.linalg.LinAlgError:
+        raise ValueError("the beam's mass matrix is singular: a strain moves no mass (give torsion_inertia_kg_m > 0 "
+                         "for twist, or the section inertias); vibration frequencies are not defined") from None
     kt = tangent_stiffness(beam, loads, q0, step)
     if np.abs(kt - kt.T).max() <= 1e-8 * np.abs(kt).max():
         lam, vec = eigh(0.5 * (kt + kt.T), m)
