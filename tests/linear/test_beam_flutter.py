@@ -8,6 +8,10 @@ EI 2e4 / 4e6 N m²) at 20 km (ρ 0.0889 kg/m³), strip theory with Peters' finit
   PHC's figure as digitised in luizpancini/AeroBeams.jl test/referenceData/SMW/flutterSpeedVsTipDisp.txt and
   flutterFreqVsTipDisp.txt — within 10 % (acceptance; the digitised curve itself scatters by ~2 % around a smooth
   line, and PHC's and this beam's discretisations differ).
+* pitched at the root with weight (g = 9.80665 m/s²), so that the airloads and gravity bend the wing and the strips
+  follow it: flutter speed and frequency against root angle of attack, the reference curve of AeroBeams.jl for this
+  wing (test/referenceData/SMW/flutterSpeedVsRootAoA.txt, flutterFreqVsRootAoA.txt, the branch above 0.63°) —
+  within 10 % (measured at 4°: +0.4 % and −2.3 %; at 2°: −0.1 % and −1.6 %).
 16 elements, 2 Gauss points (strips) per element, 6 inflow states.
 """
 
@@ -59,6 +63,21 @@ def test_phc_flutter_against_tip_displacement_within_10_percent(tip_force_n, spe
           f"{fl.frequency_rad_s:.2f} rad/s (PHC {freq:.2f})")
     assert fl.speed_m_s == pytest.approx(speed, rel=0.10) and fl.frequency_rad_s == pytest.approx(freq, rel=0.10)
     assert fl.speed_m_s < 32.21  # the bent wing flutters earlier than the straight one (PHC's finding)
+
+
+#: AeroBeams.jl reference for the PHC wing with weight: root AoA [deg] -> U_F [m/s], and AoA -> ω_F [rad/s].
+AOA_SPEED = ([3.2613, 3.6248, 3.9489, 4.2043, 4.4794], [21.798, 21.179, 20.697, 20.354, 19.941])
+AOA_FREQ = ([3.2122, 3.6739, 4.0668, 4.4794], [17.259, 16.778, 16.640, 16.297])
+
+
+def test_phc_flutter_at_a_root_pitch_with_weight():
+    settings = WingTunnelSettings(RHO_20KM, (19.0, 23.0), root_pitch_deg=4.0, gravity_m_s2=9.80665)
+    fl = fs.nonlinear_wing_tunnel(_phc_wing(), WingAero(chord_m=1.0), settings).flutter
+    speed, freq = np.interp(4.0, *AOA_SPEED), np.interp(4.0, *AOA_FREQ)
+    print(f"root pitch 4 deg: tip {fl.tip_displacement_m[2]:.3f} m, flutter {fl.speed_m_s:.2f} m/s (reference "
+          f"{speed:.2f}), {fl.frequency_rad_s:.2f} rad/s (reference {freq:.2f})")
+    assert fl.speed_m_s == pytest.approx(speed, rel=0.10) and fl.frequency_rad_s == pytest.approx(freq, rel=0.10)
+    assert fl.tip_displacement_m[2] > 1.0  # the airloads lift the tip by metres at flutter
 
 
 @pytest.mark.parametrize(("field", "value", "match"), [
