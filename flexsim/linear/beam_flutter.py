@@ -176,7 +176,9 @@ class _Analysis:
         """(growth, frequency of the most unstable oscillatory root, least stiffness eigenvalue, equilibrium)."""
         sol = self.equilibrium(speed)
         flow = self.flow(speed)
-        stiffness = static_stiffness(self.beam, sol.q, self.other, self.aero, flow, self.settings.newton.difference_step)
+        loaded = np.any(self.settings.tip_force_n) or self.settings.gravity_m_s2 > 0
+        stiffness = static_stiffness(self.beam, sol.q, self.other if loaded else None, self.aero, flow,
+                                     self.settings.newton.difference_step)
         system = aeroelastic_system(self.beam, self.aero, flow, sol.q, stiffness)
         roots = np.linalg.eigvals(system.state_matrix)
         ratio = roots.real / np.maximum(np.abs(roots), 1e-300)
