@@ -1,0 +1,436 @@
+"""Geometrically exact strain-based beam: properties, kinematics from strains, mass and stiffness matrices.
+
+Formulation: Su & Cesnik, *Strain-based geometrically nonlinear beam formulation for modeling very flexible
+aircraft*, Int. J. Solids Struct. 48 (2011) 2349-2360 (eqs. 1-12), and Su & Cesnik, J. Aircraft 47(5) 2010; the
+exponential map of SE(3) and its left Jacobian as in Barfoot, *State Estimation for Robotics* (2017) §7.1.4
+(eqs. 7.80-7.86, 7.95). Design choice and alternatives: ``docs/design.md``, "Geometrically nonlinear beams".
+
+Coordinates and frames
+----------------------
+* The beam of length ``L`` is divided into ``N`` elements of constant strain. Element ``j`` has the strain
+  vector ``ε_j = [e, κ1, κ2, κ3]``: extension ``e`` [-], twist ``κ1``, flap (out-of-plane) curvature ``κ2`` and
+  chordwise (in-plane) curvature ``κ3`` [1/m] (Su & Cesnik eq. 2). The generalized coordinates ``q`` are the
+  free strains of all elements, element by element (``e`` is left out when the beam is inextensible).
+* Each cross-section carries an orthonormal frame ``R = [e1, e2, e3]`` (columns, components in the global frame
+  ``G``): ``e1`` along the reference (elastic) axis towards the tip, ``e2`` in the section plane towards the
+  leading edge, ``e3 = e1 × e2`` (up for a wing). Along the element, ``dR/ds = R κ^`` and ``dp/ds = (1 + e) R e1``
+  (Su & Cesnik eq. 1), so with constant strain the frame at arc length ``s`` from node ``j`` is
+  ``T(s) = T_j exp(s ξ_j^)``, ``ξ_j = [(1 + e) e1, κ]`` — exact for any strain (a tip couple gives an exact
+  circular arc with one element).
+* ``T_0`` is the clamp: root position ``p0`` [m] and root rotation ``R0`` (any orientation).
+
+Jacobians: the spatial twist of a variation, ``δT T⁻¹ = [[δθ^, δρ], [0, 0]]``, gives the virtual rotation
+``δθ`` [rad] and the virtual displacement ``δp = δρ + δθ × p`` of any point. For ``T = T_k exp(ξ_k^) ...``,
+``δT T⁻¹ = Σ_k Ad(T_k) 𝒥(ξ_k) δξ_k`` (𝒥: left Jacobian of SE(3)), so the point Jacobians ``J_p = ∂p/∂q``
+[m per unit q] and ``J_θ`` (virtual rotation per unit q) are sums over the elements between the root and the
+point. They map strain rates to the velocity of the point and the angular velocity of its section
+(``v = J_p q̇``, ``ω = J_θ q̇``): the beam's kinematic map, the counterpart of ``G(q)`` in
+:mod:`flexsim.structure.kinematic_map`, now nonlinear in ``q``.
+
+Energies: strain energy ``U = ½ qᵀ K q`` with constant ``K = blockdiag(ℓ_j diag(EA, GJ, EI_flap, EI_chord))``
+(Su & Cesnik eq. 6); kinetic energy ``T = ½ q̇ᵀ M(q) q̇``, ``M(q) = ∫ (m J_cᵀ J_c + J_θᵀ R I Rᵀ J_θ) ds``
+(eq. 10 in strain form) with ``J_c`` the Jacobian of the section's mass centre, integrated by Gauss-Legendre
+points along each element.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from flexsim._arrays import frozen_array
+
+__all__ = ["BeamProperties", "BeamKinematics", "beam_kinematics", "stiffness_matrix", "mass_matrix",
+           "se3_exp", "se3_left_jacobian", "STRAIN_NAMES"]
+
+#: Names of the four strains of an element, in order.
+STRAIN_NAMES = ("extension", "twist", "flap curvature", "chord curvature")
+_E1 = np.array([1.0, 0.0, 0.0])
+
+
+def _per_element(name: str, value, n: int, unit: str, *, allow_zero: bool = False) -> NDArray[np.float64]:
+    """``value`` (scalar or length ``n``) as a read-only array of ``n`` finite numbers > 0 (>= 0 with allow_zero)."""
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r}: must be a number or {n} numbers [{unit}]") from None
+    if arr.ndim == 0:
+        arr = np.full(n, float(arr))
+    if arr.shape != (n,):
+        raise ValueError(f"{name} has shape {arr.shape}: must be a number or one value per element ({n}) [{unit}]")
+    ok = np.isfinite(arr) & ((arr >= 0.0) if allow_zero else (arr > 0.0))
+    if not np.all(ok):
+        bad = float(arr[~ok][0])
+        raise ValueError(f"{name} = {bad!r}: must be a finite number {'>=' if allow_zero else '>'} 0 [{unit}]")
+    return frozen_array(arr)
+
+
+@dataclass(frozen=True)
+class BeamProperties:
+    """A uniform-by-element, clamped, strain-based beam (validated, frozen).
+
+    Parameters
+    ----------
+    length_m : float
+        Undeformed length ``L`` [m].
+    n_elements : int
+        Number of constant-strain elements ``N`` (equal lengths ``L/N``).
+    gj_nm2, ei_flap_nm2, ei_chord_nm2 : float or array of shape (N,)
+        Torsional, flapwise (about ``e2``) and chordwise (about ``e3``) stiffness [N m²].
+    mass_kg_per_m : float or array of shape (N,)
+        Mass per unit length ``m`` [kg/m].
+    ea_n : float or array of shape (N,) or None
+        Axial stiffness [N]; None: inextensible (``e`` is not a coordinate).
+    cg_offset_m : float or array of shape (N,)
+        Mass centre ahead of the reference axis along ``e2`` (towards the leading edge) [m].
+    torsion_inertia_kg_m, flap_inertia_kg_m, chord_inertia_kg_m : float or array of shape (N,)
+        Section mass moments of inertia per length about the mass centre [kg m], about ``e1`` (torsion), ``e2``
+        (rotary inertia of flapwise bending) and ``e3`` (of chordwise bending).
+    root_position_m : array_like, shape (3,)
+        Clamp position ``p0`` in the global frame [m].
+    root_rotation : array_like, shape (3, 3)
+        Clamp orientation ``R0`` (columns: ``e1, e2, e3`` of the root section in global components); orthonormal,
+        right-handed.
+    gauss_points : int
+        Gauss-Legendre points per element for the mass matrix and distributed loads (1-6).
+    """
+
+    length_m: float
+    n_elements: int
+    gj_nm2: ArrayLike
+    ei_flap_nm2: ArrayLike
+    ei_chord_nm2: ArrayLike
+    mass_kg_per_m: ArrayLike
+    ea_n: ArrayLike | None = None
+    cg_offset_m: ArrayLike = 0.0
+    torsion_inertia_kg_m: ArrayLike = 0.0
+    flap_inertia_kg_m: ArrayLike = 0.0
+    chord_inertia_kg_m: ArrayLike = 0.0
+    root_position_m: ArrayLike = field(default_factory=lambda: np.zeros(3))
+    root_rotation: ArrayLike = field(default_factory=lambda: np.eye(3))
+    gauss_points: int = 3
+
+    def __post_init__(self) -> None:
+        length = float(self.length_m) if isinstance(self.length_m, (int, float, np.floating)) else np.nan
+        if not (np.isfinite(length) and length > 0.0):
+            raise ValueError(f"length_m = {self.length_m!r}: must be a finite number > 0 [m]")
+        object.__setattr__(self, "length_m", length)
+        n = self.n_elements
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n <= 1000:
+            raise ValueError(f"n_elements = {n!r}: must be an integer in 1-1000")
+        object.__setattr__(self, "n_elements", int(n))
+        g = self.gauss_points
+        if isinstance(g, bool) or not isinstance(g, (int, np.integer)) or not 1 <= g <= 6:
+            raise ValueError(f"gauss_points = {g!r}: must be an integer in 1-6")
+        for name, unit in (("gj_nm2", "N m^2"), ("ei_flap_nm2", "N m^2"), ("ei_chord_nm2", "N m^2"),
+                           ("mass_kg_per_m", "kg/m")):
+            object.__setattr__(self, name, _per_element(name, getattr(self, name), n, unit))
+        if self.ea_n is not None:
+            object.__setattr__(self, "ea_n", _per_element("ea_n", self.ea_n, n, "N"))
+        for name in ("torsion_inertia_kg_m", "flap_inertia_kg_m", "chord_inertia_kg_m"):
+            object.__setattr__(self, name, _per_element(name, getattr(self, name), n, "kg m", allow_zero=True))
+        cg = np.array(self.cg_offset_m, dtype=float) * np.ones(n)
+        if cg.shape != (n,) or not np.all(np.isfinite(cg)):
+            raise ValueError(f"cg_offset_m = {self.cg_offset_m!r}: must be a finite number or {n} numbers [m]")
+        object.__setattr__(self, "cg_offset_m", frozen_array(cg))
+        p0 = np.array(self.root_position_m, dtype=float)
+        if p0.shape != (3,) or not np.all(np.isfinite(p0)):
+            raise ValueError(f"root_position_m = {self.root_position_m!r}: must be 3 finite numbers [m]")
+        object.__setattr__(self, "root_position_m", frozen_array(p0))
+        r0 = np.array(self.root_rotation, dtype=float)
+        if r0.shape != (3, 3) or not np.all(np.isfinite(r0)):
+            raise ValueError(f"root_rotation has shape {r0.shape}: must be a finite 3 x 3 rotation matrix")
+        orth = np.abs(r0.T @ r0 - np.eye(3)).max()
+        if orth > 1e-9 or np.linalg.det(r0) < 0.0:
+            raise ValueError(f"root_rotation must be orthonormal and right-handed (|R^T R - I| = {orth:.2e}, "
+                             f"det = {np.linalg.det(r0):.6f}; allowed: 1e-9 and +1)")
+        object.__setattr__(self, "root_rotation", frozen_array(r0))
+
+    @property
+    def extensible(self) -> bool:
+        """True when the extension ``e`` of each element is a coordinate."""
+        return self.ea_n is not None
+
+    @property
+    def strains_per_element(self) -> int:
+        """4 (extensible) or 3."""
+        return 4 if self.extensible else 3
+
+    @property
+    def n_coordinates(self) -> int:
+        """Number of generalized coordinates ``n = N × strains_per_element``."""
+        return self.n_elements * self.strains_per_element
+
+    @property
+    def element_length_m(self) -> float:
+        """``ℓ = L/N`` [m]."""
+        return self.length_m / self.n_elements
+
+    def full_strains(self, q: ArrayLike) -> NDArray[np.float64]:
+        """The strains ``[e, κ1, κ2, κ3]`` of every element, shape (N, 4), from ``q`` (``e = 0`` if inextensible)."""
+        q = np.asarray(q, dtype=float)
+        if q.shape != (self.n_coordinates,):
+            raise ValueError(f"q has shape {q.shape}: must be ({self.n_coordinates},) for {self.n_elements} "
+                             f"elements of {self.strains_per_element} strains")
+        out = np.zeros((self.n_elements, 4))
+        out[:, 4 - self.strains_per_element:] = q.reshape(self.n_elements, self.strains_per_element)
+        return out
+
+    def coordinate_name(self, index: int) -> str:
+        """``"element j <strain>"`` for coordinate ``index`` (elements counted from 1 at the root)."""
+        j, k = divmod(int(index), self.strains_per_element)
+        return f"element {j + 1} {STRAIN_NAMES[k + 4 - self.strains_per_element]}"
+
+
+def _hat(v: NDArray) -> NDArray:
+    """Skew-symmetric matrices ``v^`` (``v^ w = v × w``), shape (..., 3, 3)."""
+    out = np.zeros(v.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
+    out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
+    out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
+    return out
+
+
+def _coefficients(theta: NDArray) -> tuple[NDArray, ...]:
+    """sinθ/θ, (1-cosθ)/θ², (θ-sinθ)/θ³, (θ²+2cosθ-2)/(2θ⁴), (2θ-3sinθ+θcosθ)/(2θ⁵); Taylor series below 1e-2."""
+    small = theta < 1e-2
+    t = np.where(small, 1.0, theta)
+    t2, s2 = t * t, theta * theta
+    s, c = np.sin(t), np.cos(t)
+    exact = (s / t, (1 - c) / t2, (t - s) / (t2 * t), (t2 + 2 * c - 2) / (2 * t2 * t2),
+             (2 * t - 3 * s + t * c) / (2 * t2 * t2 * t))
+    series = (1 - s2 / 6 + s2 * s2 / 120, 0.5 - s2 / 24 + s2 * s2 / 720, 1 / 6 - s2 / 120 + s2 * s2 / 5040,
+              1 / 24 - s2 / 720 + s2 * s2 / 40320, 1 / 120 - s2 / 2520 + s2 * s2 / 120960)
+    return tuple(np.where(small, b, a) for a, b in zip(exact, series))
+
+
+def se3_exp(rho: ArrayLike, phi: ArrayLike) -> tuple[NDArray, NDArray]:
+    """The exponential map of SE(3): ``exp([[φ^, ρ], [0, 0]]) = [[R, J(φ) ρ], [0, 1]]``.
+
+    Source: Barfoot (2017) eqs. 7.80-7.83 (Rodrigues' formula and the SO(3) left Jacobian ``J``).
+
+    Parameters
+    ----------
+    rho, phi : array_like, shape (..., 3)
+        Translation part [m] and rotation vector [rad].
+
+    Returns
+    -------
+    R : ndarray, shape (..., 3, 3)
+    p : ndarray, shape (..., 3)
+        ``J(φ) ρ`` [m].
+    """
+    rho, phi = np.asarray(rho, dtype=float), np.asarray(phi, dtype=float)
+    theta = np.linalg.norm(phi, axis=-1)
+    sinc, a1, a2, _, _ = _coefficients(theta)
+    ph = _hat(phi)
+    ph2 = ph @ ph
+    eye = np.eye(3)
+    rot = eye + sinc[..., None, None] * ph + a1[..., None, None] * ph2
+    jac = eye + a1[..., None, None] * ph + a2[..., None, None] * ph2
+    return rot, np.einsum("...ij,...j->...i", jac, rho)
+
+
+def se3_left_jacobian(rho: ArrayLike, phi: ArrayLike) -> NDArray:
+    """Left Jacobian 𝒥 of SE(3): ``exp((ξ + δξ)^) ≈ exp((𝒥 δξ)^) exp(ξ^)``, ξ = (ρ, φ).
+
+    Source: Barfoot (2017) eqs. 7.85-7.86 (``𝒥 = [[J, Q], [0, J]]``; ``Q(ρ, φ)`` with the four θ-coefficients);
+    checked against the Fréchet derivative of the matrix exponential (scipy.linalg.expm_frechet) in the tests.
+
+    Parameters
+    ----------
+    rho, phi : array_like, shape (..., 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 6, 6)
+        Ordering (translation, rotation) in rows and columns.
+    """
+    rho, phi = np.asarray(rho, dtype=float), np.asarray(phi, dtype=float)
+    theta = np.linalg.norm(phi, axis=-1)
+    _, a1, a2, a3, a4 = _coefficients(theta)
+    ph, rh = _hat(phi), _hat(rho)
+    ph2 = ph @ ph
+    jac = np.eye(3) + a1[..., None, None] * ph + a2[..., None, None] * ph2
+    prp = ph @ rh @ ph
+    q = (0.5 * rh + a2[..., None, None] * (ph @ rh + rh @ ph + prp)
+         + a3[..., None, None] * (ph2 @ rh + rh @ ph2 - 3.0 * prp)
+         + a4[..., None, None] * (prp @ ph + ph @ prp))
+    out = np.zeros(rho.shape[:-1] + (6, 6))
+    out[..., :3, :3] = jac
+    out[..., 3:, 3:] = jac
+    out[..., :3, 3:] = q
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class BeamKinematics:
+    """Frames and Jacobians of a beam at one set of strains (arrays in the global frame, SI).
+
+    Attributes
+    ----------
+    q : ndarray, shape (n,)
+        The strains evaluated.
+    node_positions : ndarray, shape (N + 1, 3)
+        Reference-axis positions of the nodes (root first) [m].
+    node_rotations : ndarray, shape (N + 1, 3, 3)
+        Section frames ``R`` at the nodes.
+    points_s : ndarray, shape (P,)
+        Undeformed arc length of the quadrature points [m] (``gauss_points`` per element, root to tip).
+    points_weight : ndarray, shape (P,)
+        Quadrature weights [m] (sum ``L``).
+    points_element : ndarray of int, shape (P,)
+    positions, rotations : ndarray, shapes (P, 3), (P, 3, 3)
+        Reference-axis position [m] and section frame at the points.
+    jac_position, jac_rotation : ndarray, shape (P, 3, n)
+        ``∂p/∂q`` [m] and the virtual rotation per unit ``q`` at the points.
+    tip_jac_position, tip_jac_rotation : ndarray, shape (3, n)
+        The same at the tip node.
+    """
+
+    q: NDArray
+    node_positions: NDArray
+    node_rotations: NDArray
+    points_s: NDArray
+    points_weight: NDArray
+    points_element: NDArray
+    positions: NDArray
+    rotations: NDArray
+    jac_position: NDArray
+    jac_rotation: NDArray
+    tip_jac_position: NDArray
+    tip_jac_rotation: NDArray
+
+    @property
+    def tip_position(self) -> NDArray:
+        """Tip reference-axis position [m], shape (3,)."""
+        return self.node_positions[-1]
+
+    @property
+    def tip_rotation(self) -> NDArray:
+        """Tip section frame, shape (3, 3)."""
+        return self.node_rotations[-1]
+
+
+def _twist_basis(beam: BeamProperties) -> NDArray:
+    """``B = ∂ξ/∂ε_free`` per unit element length, shape (6, ns): extension moves along e1, curvatures rotate."""
+    full = np.zeros((6, 4))
+    full[:3, 0] = _E1
+    full[3:, 1:] = np.eye(3)
+    return full[:, 4 - beam.strains_per_element:]
+
+
+def _spatial_twists(beam, rot, pos, strains, fraction):
+    """Spatial-twist Jacobians ``Ad(T) 𝒥(σ ξ) σ ℓ B``, shape (..., 6, ns), of elements with start frames (rot, pos)
+    and strains ``[e, κ]`` (..., 4), over the fraction σ (...) of their length."""
+    ell = beam.element_length_m * fraction
+    rho = ell[..., None] * (1.0 + strains[..., :1]) * _E1
+    phi = ell[..., None] * strains[..., 1:]
+    jl = se3_left_jacobian(rho, phi) @ (ell[..., None, None] * _twist_basis(beam))
+    top = np.einsum("...ij,...jk->...ik", rot, jl[..., :3, :]) + np.einsum(
+        "...ij,...jk->...ik", _hat(pos) @ rot, jl[..., 3:, :])
+    bottom = np.einsum("...ij,...jk->...ik", rot, jl[..., 3:, :])
+    return np.concatenate([top, bottom], axis=-2)
+
+
+def _gauss(n: int) -> tuple[NDArray, NDArray]:
+    x, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (x + 1.0), 0.5 * w
+
+
+def beam_kinematics(beam: BeamProperties, q: ArrayLike) -> BeamKinematics:
+    """Positions, rotations and Jacobians of the beam at strains ``q`` (Su & Cesnik 2011 eqs. 1-5, exact map).
+
+    Parameters
+    ----------
+    beam : BeamProperties
+    q : array_like, shape (n,)
+        Element strains (``BeamProperties.full_strains`` order) [-, 1/m].
+
+    Returns
+    -------
+    BeamKinematics
+    """
+    strains = beam.full_strains(q)
+    n_el, ns, ell = beam.n_elements, beam.strains_per_element, beam.element_length_m
+    rho = ell * (1.0 + strains[:, :1]) * _E1
+    phi = ell * strains[:, 1:]
+    rot_e, pos_e = se3_exp(rho, phi)
+    rots = np.empty((n_el + 1, 3, 3))
+    poss = np.empty((n_el + 1, 3))
+    rots[0], poss[0] = beam.root_rotation, beam.root_position_m
+    for j in range(n_el):  # the chain of element transforms (N small products)
+        rots[j + 1] = rots[j] @ rot_e[j]
+        poss[j + 1] = poss[j] + rots[j] @ pos_e[j]
+    z_full = _spatial_twists(beam, rots[:-1], poss[:-1], strains, np.ones(n_el))  # (N, 6, ns)
+
+    sigma, weights = _gauss(beam.gauss_points)
+    elem = np.repeat(np.arange(n_el), sigma.size)
+    frac = np.tile(sigma, n_el)
+    r_loc, p_loc = se3_exp(frac[:, None] * rho[elem], frac[:, None] * phi[elem])
+    prot = rots[elem] @ r_loc
+    ppos = poss[elem] + np.einsum("pij,pj->pi", rots[elem], p_loc)
+    z_part = _spatial_twists(beam, rots[elem], poss[elem], strains[elem], frac)  # (P, 6, ns)
+
+    n_points = elem.size
+    twist = np.zeros((n_points, 6, n_el, ns))
+    before = np.arange(n_el)[None, :] < elem[:, None]  # (P, N)
+    twist += before[:, None, :, None] * np.transpose(z_full, (1, 0, 2))[None]
+    twist[np.arange(n_points), :, elem, :] = z_part
+    twist = twist.reshape(n_points, 6, n_el * ns)
+    jac_rot = twist[:, 3:]
+    jac_pos = twist[:, :3] - _hat(ppos) @ jac_rot
+
+    tip = np.transpose(z_full, (1, 0, 2)).reshape(6, n_el * ns)
+    tip_rot = tip[3:]
+    tip_pos = tip[:3] - _hat(poss[-1]) @ tip_rot
+    return BeamKinematics(
+        q=np.asarray(q, dtype=float).copy(), node_positions=poss, node_rotations=rots,
+        points_s=(elem + frac) * ell, points_weight=np.tile(weights, n_el) * ell, points_element=elem,
+        positions=ppos, rotations=prot, jac_position=jac_pos, jac_rotation=jac_rot,
+        tip_jac_position=tip_pos, tip_jac_rotation=tip_rot)
+
+
+def stiffness_matrix(beam: BeamProperties) -> NDArray[np.float64]:
+    """Constant stiffness ``K = blockdiag(ℓ diag(EA, GJ, EI_flap, EI_chord))`` [N, N m²] × [m] (Su & Cesnik eq. 6).
+
+    Returns
+    -------
+    ndarray, shape (n, n)
+        Conjugate to ``q``: ``U = ½ qᵀ K q`` [J].
+    """
+    cols = [beam.gj_nm2, beam.ei_flap_nm2, beam.ei_chord_nm2]
+    if beam.extensible:
+        cols.insert(0, beam.ea_n)
+    diag = np.stack(cols, axis=1).ravel() * beam.element_length_m
+    return np.diag(diag)
+
+
+def mass_centre_jacobian(beam: BeamProperties, kin: BeamKinematics) -> tuple[NDArray, NDArray]:
+    """Positions [m] (P, 3) and Jacobians (P, 3, n) of the sections' mass centres (offset ``cg_offset_m`` along e2)."""
+    offset = beam.cg_offset_m[kin.points_element][:, None] * kin.rotations[:, :, 1]
+    return kin.positions + offset, kin.jac_position - _hat(offset) @ kin.jac_rotation
+
+
+def mass_matrix(beam: BeamProperties, kin: BeamKinematics) -> NDArray[np.float64]:
+    """Mass matrix ``M(q) = ∫ (m J_cᵀ J_c + J_θᵀ R I Rᵀ J_θ) ds`` [kg, kg m, kg m²] (Su & Cesnik 2011 eq. 10).
+
+    Gauss-Legendre quadrature over each element (``beam.gauss_points`` points, exact kinematics at each).
+
+    Returns
+    -------
+    ndarray, shape (n, n)
+        Symmetric positive definite; ``T = ½ q̇ᵀ M q̇`` [J].
+    """
+    e = kin.points_element
+    _, jc = mass_centre_jacobian(beam, kin)
+    w = kin.points_weight
+    m = beam.mass_kg_per_m[e] * w
+    inertia = np.stack([beam.torsion_inertia_kg_m[e], beam.flap_inertia_kg_m[e], beam.chord_inertia_kg_m[e]], 1)
+    rt_j = np.einsum("pji,pjk->pik", kin.rotations, kin.jac_rotation)  # (P, 3, n): ω in section axes
+    trans = np.einsum("p,pji,pjk->ik", m, jc, jc)
+    rotary = np.einsum("p,pj,pji,pjk->ik", w, inertia, rt_j, rt_j)
+    out = trans + rotary
+    return 0.5 * (out + out.T)
