@@ -90,7 +90,13 @@ def main() -> None:
         method = os.environ.get("FLEXSIM_BENCH_METHOD", "auto")  # e.g. ETD2RK:0.01 (fixed step [s])
         kw = {"wind": gust} if gust is not None else {}
         if method.startswith("ETD2RK"):
-            kw.update(method="ETD2RK", max_step=float(method.split(":")[1]))
+            step = float(method.split(":")[1])
+            try:  # simulate takes an IntegratorSettings; the older trees measured side by side take loose keywords
+                from flexsim.sim.run_settings import OutputSettings  # noqa: F401  (present with the settings API)
+                from flexsim.sim.simulate import IntegratorSettings
+                kw.update(integrator=IntegratorSettings(method="ETD2RK", max_step_s=step))
+            except ImportError:
+                kw.update(method="ETD2RK", max_step=step)
         t, r = _timed(lambda: simulate(model, point, 60.0, **kw), inner)
         k = np.arange(0, r.t.size, 10)
         res.update(cpu_s=t, rtf=60.0 / t, nfev=int(r.nfev), altitude_m=r.altitude_m[k].tolist(),

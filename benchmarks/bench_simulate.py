@@ -60,7 +60,8 @@ import numpy as np  # noqa: E402
 
 from flexsim.sim.accuracy import manoeuvre_errors  # noqa: E402
 from flexsim.sim.manoeuvres import build_manoeuvre, manoeuvre_names  # noqa: E402
-from flexsim.sim.simulate import DEFAULT_MAX_STEP, simulate  # noqa: E402
+from flexsim.sim.simulate import DEFAULT_MAX_STEP, IntegratorSettings, simulate  # noqa: E402
+from flexsim.sim.run_settings import EventSettings, OutputSettings  # noqa: E402
 
 TARGET_RTF = 100.0
 #: (label, method, fixed step [s] for ETD2RK or rtol): the default first, then the previous default and Radau
@@ -220,7 +221,8 @@ def main() -> None:
           f"load average {os.getloadavg()[0]:.2f} at start")
     simulate(model, point, 0.1, wind=gust)  # load the compiled kernels (not timed)
     t0 = time.perf_counter()
-    reference = simulate(model, point, args.duration, method="DOP853", rtol=1e-9, wind=gust)
+    reference = simulate(model, point, args.duration, integrator=IntegratorSettings(method="DOP853", rtol=1e-9),
+                         wind=gust)
     print(f"reference DOP853 rtol 1e-9: {time.perf_counter() - t0:.1f} s wall, {reference.nfev} rhs evaluations")
     print(f"{'':<24} {'method':<8} {'h/rtol':>6} {'wall [s]':>9} {'cpu [s]':>8} {'RTF':>7} {'RTF cpu':>7} {'x default':>9} "
           f"{'nfev':>7} {'nlu':>5} {'njev':>4}   {'err alt [m]':>11} {'err V [m/s]':>11} {'err tip [m]':>11}")
@@ -233,9 +235,11 @@ def main() -> None:
         for _ in range(args.repeats):
             c0 = time.process_time()
             if method == "ETD2RK":
-                result = simulate(model, point, args.duration, method=method, max_step=rtol, wind=gust)
+                result = simulate(model, point, args.duration,
+                                  integrator=IntegratorSettings(method=method, max_step_s=rtol), wind=gust)
             else:
-                result = simulate(model, point, args.duration, method=method, rtol=rtol, wind=gust)
+                result = simulate(model, point, args.duration,
+                                  integrator=IntegratorSettings(method=method, rtol=rtol), wind=gust)
             cpus.append(time.process_time() - c0)
             walls.append(result.wall_time_s)
         wall, cpu = statistics.median(walls), statistics.median(cpus)
@@ -252,18 +256,23 @@ def main() -> None:
               f"{e[2]:11.2e}{flag}", flush=True)
     for method in ("ETD2RK", "Radau"):
         with tempfile.TemporaryDirectory() as tmp:
-            result = simulate(model, point, args.duration, log_path=os.path.join(tmp, "bench.mcap"), wind=gust, method=method)
+            result = simulate(model, point, args.duration,
+                              output=OutputSettings(log_path=os.path.join(tmp, "bench.mcap")), wind=gust,
+                              integrator=IntegratorSettings(method=method))
         print(f"{method} (default step/rtol) with a 50 Hz flight log: {result.wall_time_s:.2f} s wall, "
               f"RTF {result.real_time_factor:.1f}")
     print(f"target: the default >= {TARGET_RTF:g}x real time on one core; load average {os.getloadavg()[0]:.2f} at the end")
     flutter = build_manoeuvre("flutter-onset")
-    ref = flutter.simulate(method="DOP853", rtol=1e-9, structural_limit_m=100.0, t_end_s=3.1).tip_deflection_m()
+    ref = flutter.simulate(integrator=IntegratorSettings(method="DOP853", rtol=1e-9),
+                           events=EventSettings(wing_tip_deflection_m=100.0), t_end_s=3.1).tip_deflection_m()
     peak = np.abs(ref).max()
     print(f"accuracy on a growing oscillation: Goland flutter onset (1.05 x flutter speed) for 3.1 s (the tip "
           f"amplitude grows to {peak:.2f} m, DOP853 rtol 1e-9), largest tip-deflection error relative to that amplitude")
     for method, rtol in (("ETD2RK", DEFAULT[2]), ("ETD2RK", 0.01), ("Radau", 1e-3), ("Radau", 1e-4), ("DOP853", 1e-6)):
-        step = {"max_step": rtol} if method == "ETD2RK" else {"rtol": rtol}
-        r = flutter.simulate(method=method, structural_limit_m=100.0, t_end_s=3.1, **step)
+        step = {"max_step_s": rtol} if method == "ETD2RK" else {"rtol": rtol}
+        r = flutter.simulate(integrator=IntegratorSettings(method=method, **step),
+                             events=EventSettings(wing_tip_deflection_m=100.0),
+                             t_end_s=3.1)
         rel = np.abs(r.tip_deflection_m() - ref).max() / np.abs(ref).max()
         print(f"  {method} {'h' if method == 'ETD2RK' else 'rtol'} {rtol:.0e}: {rel:.1e}, {r.wall_time_s:.2f} s wall")
 

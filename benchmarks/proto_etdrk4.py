@@ -35,6 +35,8 @@ from scipy.linalg import expm  # noqa: E402
 
 from flexsim.model.jacobian import jacobian  # noqa: E402
 from flexsim.sim.manoeuvres import build_manoeuvre  # noqa: E402
+from flexsim.sim.simulate import IntegratorSettings  # noqa: E402
+from flexsim.sim.run_settings import OutputSettings  # noqa: E402
 
 
 def phis(z: np.ndarray, kmax: int) -> list[np.ndarray]:
@@ -95,7 +97,8 @@ def main() -> None:
 
     jac = jacobian(model, x0, u, controls=False, wind=wind)[0]
     c0 = time.process_time()
-    ref = setup.simulate(method="DOP853", rtol=1e-9, output_rate_hz=100.0)
+    ref = setup.simulate(integrator=IntegratorSettings(method="DOP853", rtol=1e-9),
+                         output=OutputSettings(rate_hz=100.0))
     print(f"{name}, {t_end:g} s; reference DOP853 rtol 1e-9: {time.process_time() - c0:.1f} s CPU; load average "
           f"{os.getloadavg()[0]:.1f}")
     iz, iu = lay.position.start + 2, lay.v.start

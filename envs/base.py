@@ -24,7 +24,9 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.io.env_log import LogSample, flight_sample
 from flexsim.io.viewer import ViewerUnavailableError, viewer_unavailable_reason
 from flexsim.io.vocabulary import suffix_unit
-from flexsim.model.aircraft_model import CONTROL_NAMES
+from flexsim.model.aircraft_model import CONTROL_NAMES, AircraftModel
+from flexsim.model.coupling import AeroOptions
+from flexsim.model.terms import Terms
 from flexsim.sim.measurements import MeasurementBatch, Measurements
 from flexsim.threads import limit_blas_threads
 from flexsim.sim.periods import SENSOR_COMPONENTS, BatchOutcome, FlightDynamics, advance_period
@@ -256,6 +258,9 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         Run on this :class:`FlightDynamics` (a :meth:`FlightDynamics.fork` of another env's, built from the
         same aircraft, aero, integrator, actuator rates and control rate; checked) instead of building one:
         how :class:`flexsim.envs.vector.FlexSimVectorEnv` shares one model between its sub-environments.
+    terms : Terms, optional
+        The physical terms of the model flown (:class:`flexsim.model.terms.Terms`; default every term on). Its
+        aerodynamic model must be ``aero`` (the one name of it; default "unsteady").
     """
 
     metadata: ClassVar[dict] = {"render_modes": ["human", "rgb_array"], "render_fps": 50}
@@ -277,11 +282,14 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
                  turbulence: str | None = None, render_mode: str | None = None, task: Any = None,
                  integrator: IntegratorSettings | None = None, actuator_rates: ActuatorRates | None = None,
                  limits: FlightLimits | None = None, perturbation: InitialPerturbation | None = None,
-                 dynamics: FlightDynamics | None = None) -> None:
+                 dynamics: FlightDynamics | None = None, terms: Terms | None = None) -> None:
         #: OpenBLAS thread counts set when built in a worker process (vector envs), else None.
         self.worker_blas_threads = limit_blas_threads(1) if multiprocessing.parent_process() is not None else None
         if aero not in AERO_MODELS:
             raise ValueError(f"aero = {aero!r}: must be one of {', '.join(AERO_MODELS)}")
+        terms = Terms(aero=AeroOptions(aero)) if terms is None else terms
+        if not isinstance(terms, Terms) or terms.aero is None or terms.aero.model != aero:
+            raise ValueError(f"terms = {terms!r}: must be a flexsim.model.terms.Terms whose aero model is aero = {aero!r}")
         try:
             rate = float(control_rate_hz)
         except (TypeError, ValueError):
@@ -321,13 +329,14 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         integrator = integrator or IntegratorSettings(max_step_s=self.default_max_step_s)
         actuator_rates = actuator_rates or ActuatorRates()
         if dynamics is None:
-            dynamics = FlightDynamics(self.aircraft, aero, integrator, actuator_rates, self.dt)
+            dynamics = FlightDynamics(AircraftModel(self.aircraft, terms=terms), integrator, actuator_rates, self.dt)
         elif not isinstance(dynamics, FlightDynamics):
             raise ValueError(f"dynamics = {dynamics!r}: must be a FlightDynamics or None")
         else:
-            mine = (self.aircraft.content_key(), aero, integrator, actuator_rates, self.dt)
-            theirs = (dynamics.aircraft.content_key(), dynamics.aero, dynamics.integrator_settings, dynamics.actuator_rates, dynamics.dt)
-            for name, a, b in zip(("aircraft", "aero", "integrator", "actuator_rates", "control period dt"), mine, theirs):
+            mine = (self.aircraft.content_key(), aero, terms, integrator, actuator_rates, self.dt)
+            theirs = (dynamics.aircraft.content_key(), dynamics.aero, dynamics.model.terms, dynamics.integrator_settings,
+                      dynamics.actuator_rates, dynamics.dt)
+            for name, a, b in zip(("aircraft", "aero", "terms", "integrator", "actuator_rates", "control period dt"), mine, theirs):
                 if a != b:
                     raise ValueError(f"dynamics: was built with {name} = {b!r}, this env has {name} = {a!r}; pass a FlightDynamics "
                                      "built with the same settings, or None")
@@ -343,6 +352,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         #: batch of one, or the shared batch of a FlexSimVectorEnv (:meth:`_attach`).
         self._batch = EpisodeBatch(1, self.dynamics.layout.n_states, len(self.task_errors_spec))
         self._row = 0
+        self._linear_range_said = False  # the linear structure's range exceeded at a reset: said once (reset)
         self._error_names = tuple(spec[0] for spec in self.task_errors_spec)
         self._renderer = None
         self._constants: tuple | None = None  # the arguments of the compiled outputs from limits and reward (_kernel_constants)
@@ -466,6 +476,11 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             b.record_path(rows, meas.position_ned_m)
         obs = self._observe_rows(meas, b.errors[rows], b.u[rows])[0]
         info = {"time_s": 0.0, "trim_action": trim_action, "reference": dict(episode.reference)}
+        if point.linear_range is not None:  # the trim bends a beam beyond the linear structure's range: one line, once
+            info["linear_range"] = point.linear_range
+            if not self._linear_range_said:
+                self._linear_range_said = True
+                gym.logger.warn("%s: %s", self.spec.id if self.spec else type(self).__name__, point.linear_range)
         if self.render_mode == "human":
             self.render()
         return obs, info

@@ -194,7 +194,7 @@ class FlutterMarginEnv(FlexSimEnv):
         if task.rate_error != self.task_errors_spec[0][0]:
             raise ValueError(f"task.subject = {task.subject!r}: {type(self).__name__} observes {self.task_errors_spec[0][0]}, "
                              f"not {task.rate_error} (use {'FlutterMarginEnv' if task.subject == 'fin' else 'WingFlutterMarginEnv'})")
-        self.flutter = flutter_condition(self.aircraft, self.dynamics.aero, task.altitude_m, task.flutter_mach_range)
+        self.flutter = flutter_condition(self.dynamics.model, self.dynamics.aero, task.altitude_m, task.flutter_mach_range)
         self.target = SteadyManoeuvre.level(task.altitude_m, mach=self.flutter.mach + task.mach_margin)
         names = ("vtail",) if task.subject == "fin" else ("right_wing", "left_wing")
         dofs, lay = self.dynamics.model.structure.dofs, self.dynamics.layout

@@ -18,13 +18,14 @@ import numpy as np  # noqa: E402
 from flexsim.cli.sim_commands import script_arguments  # noqa: E402
 from flexsim.sim.manoeuvres import build_manoeuvre  # noqa: E402
 from flexsim.sim.recording import default_log_path  # noqa: E402
+from flexsim.sim.run_settings import OutputSettings
 
 
 def main(argv=None) -> None:
     args = script_arguments(__doc__, argv)
     setup = build_manoeuvre("climb", aero=args.aero, duration_s=args.duration)
     print(f"{setup.name}: {setup.description}")
-    result = setup.simulate(log_path=args.log or default_log_path(setup.name))
+    result = setup.simulate(output=OutputSettings(log_path=args.log or default_log_path(setup.name)))
     print(result.summary())
     gamma = np.degrees(result.signal("theta_rad") - result.signal("alpha_rad"))
     print(f"altitude gained {result.altitude_m[-1] - result.altitude_m[0]:+.2f} m, "

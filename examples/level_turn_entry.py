@@ -18,13 +18,14 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # before numpy: BLAS threads
 from flexsim.cli.sim_commands import script_arguments  # noqa: E402
 from flexsim.sim.manoeuvres import build_manoeuvre  # noqa: E402
 from flexsim.sim.recording import default_log_path  # noqa: E402
+from flexsim.sim.run_settings import OutputSettings
 
 
 def main(argv=None) -> None:
     args = script_arguments(__doc__, argv)
     setup = build_manoeuvre("level-turn-entry", aero=args.aero, duration_s=args.duration)
     print(f"{setup.name}: {setup.description}")
-    result = setup.simulate(log_path=args.log or default_log_path(setup.name))
+    result = setup.simulate(output=OutputSettings(log_path=args.log or default_log_path(setup.name)))
     print(result.summary())
     k = result.t.size - 1
     print(f"bank angle {math.degrees(result.signal('phi_rad')[k]):.2f} deg (turn trim {setup.controls.turn.phi * 57.29578:.2f} deg), "

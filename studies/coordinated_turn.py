@@ -33,7 +33,7 @@ def main() -> None:
     qs = AircraftModel(gtm, aero="quasi-steady")
     man = SteadyManoeuvre.turn(9144.0, radius, mach=0.78, coordinated=True)
     point = trim(qs, man)
-    g = qs.gravity_m_s2
+    g = qs.terms.gravity_m_s2
     v = man.speed_m_s
     ratio = v * v / (g * radius)
     print(f"coordinated turn R = {radius:.0f} m, 9144 m, M 0.78: V^2/(gR) = {ratio:.5f}")

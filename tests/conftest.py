@@ -8,8 +8,23 @@ Python block of README.md and docs/*.md, the fast docs figures, the examples' ``
 
 import os
 import signal
+import sys
+from pathlib import Path
 
 import pytest
+
+# Test the installed flexsim (README: python3 -m pip install ".[test]" && python3 -m pytest; tests/installed.py):
+# ``python3 -m pytest`` from the checkout puts its root first on sys.path (the working directory, and pytest's rootdir
+# for the package ``tests``), where ``flexsim/`` is the source tree, without ``flexsim.envs``. Take the root off before
+# flexsim is first imported and import it now, so that every later ``import flexsim...`` finds the installed copy (an
+# editable install finds the checkout itself, through its own finder).
+_ROOT = Path(__file__).resolve().parents[1]
+sys.path[:] = [p for p in sys.path if Path(p or os.curdir).resolve() != _ROOT]
+try:
+    import flexsim  # noqa: E402,F401
+except ModuleNotFoundError:
+    raise pytest.UsageError('flexsim is not installed in this interpreter: python3 -m pip install ".[test]" '
+                            '(or -e ".[test]" for an editable install), then python3 -m pytest') from None
 
 # Small dense linear algebra does not benefit from BLAS threads and suffers from oversubscription
 # (see docs/performance.md, "BLAS threads"); pin before numpy is imported by the tests.

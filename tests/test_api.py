@@ -16,6 +16,7 @@ import flexsim as fs
 from flexsim.errors import AircraftDefinitionError
 from flexsim.aircraft.toml_loader import parse_aircraft
 from flexsim.atmosphere import isa_density, speed_of_sound
+from tests.installed import child_env
 
 ROOT = Path(__file__).resolve().parents[1]
 SAILPLANE = ROOT / "examples" / "aircraft" / "sailplane15.toml"
@@ -25,7 +26,7 @@ def test_import_flexsim_loads_no_numerical_library():
     """``import flexsim`` is cheap: numpy, scipy and numba are imported only when an API name is first used."""
     code = ("import sys, flexsim; heavy = [m for m in ('numpy', 'scipy', 'numba') if m in sys.modules]; print(heavy)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=120,
-                         env={"PYTHONPATH": str(ROOT), "PATH": ""})
+                         env=child_env(base={"PATH": ""}, safe_path=True))
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "[]"
 
@@ -45,7 +46,7 @@ def test_every_api_name_resolves_and_is_the_documented_object():
 
 
 def test_fs_trim_stays_the_function_after_the_subpackage_is_imported():
-    """``flexsim.trim`` is the function although ``flexsim.trim`` is also a subpackage (imported by the rest)."""
+    """``fs.trim`` is the function, whatever subpackage was imported before (the solver's, imported by the rest)."""
     import flexsim.trim.solver  # noqa: F401 - binds the subpackage on its parent, which must not win
     from flexsim.trim import TrimPoint
 
@@ -65,7 +66,7 @@ def test_flutter_analysis_of_a_model_uses_that_model_and_its_options(gtm):
     an = fs.FlutterAnalysis.from_model(qs, "theodorsen")
     assert an.qs is qs and an.qs_linear is qs
     assert an.fs.aircraft is gtm and an.fs.aero.options.model == "unsteady"
-    assert an.fs.formulation == "paper" and an.fs.structural_damping == 0.0
+    assert an.fs.formulation == "paper" and an.fs.terms.structural_damping == 0.0
     fs_model = fs.AircraftModel(gtm, aero=fs.AeroOptions("unsteady", n_inflow=4))
     an = fs.FlutterAnalysis.from_model(fs_model, "unsteady")
     assert an.fs is fs_model and an.qs.aero.options.model == "quasi-steady" and an.qs.aircraft is gtm

@@ -2,8 +2,8 @@
 
 Each fenced block opened with ```` ```python ```` is one test, named ``<file>:<line>``. It runs as a script in a fresh
 interpreter with the current directory an empty ``tmp_path`` (so a block must import what it uses and create
-what it reads: no block may rely on an earlier one or on files of the checkout), ``PYTHONPATH`` = this checkout
-and the matplotlib backend ``Agg``. A block fails the test if it exits non-zero or runs over
+what it reads: no block may rely on an earlier one or on files of the checkout), the flexsim the tests import (the
+installed package, :func:`tests.installed.child_env`) and the matplotlib backend ``Agg``. A block fails the test if it exits non-zero or runs over
 ``BLOCK_TIMEOUT_S``.
 
 Markers, an HTML comment on the line right above the fence (invisible on rendered pages):
@@ -23,6 +23,8 @@ import sys
 from pathlib import Path
 
 import pytest
+
+from tests.installed import child_env
 
 ROOT = Path(__file__).resolve().parents[1]
 DOC_FILES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
@@ -64,8 +66,7 @@ def test_the_docs_have_python_blocks():
 def test_python_block_runs_standalone(code, tmp_path):
     script = tmp_path / "block.py"
     script.write_text(code, encoding="utf-8")
-    env = {**os.environ, "MPLBACKEND": "Agg",
-           "PYTHONPATH": os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p)}
+    env = child_env(base={**os.environ, "MPLBACKEND": "Agg"})
     run = subprocess.run([sys.executable, str(script)], cwd=tmp_path, env=env, capture_output=True, text=True,
                          timeout=BLOCK_TIMEOUT_S)
     assert run.returncode == 0, f"the block failed (exit {run.returncode}):\n{code}\n--- stderr ---\n{run.stderr[-3000:]}"

@@ -8,14 +8,14 @@ the hazard the decorator exists for).
 
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+from tests.installed import child_env
+
 
 CALLER = """
 from numba import njit
@@ -32,7 +32,7 @@ print(g())
 
 
 def _run(tmp_path: Path) -> int:
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(tmp_path), str(ROOT)]))
+    env = child_env(tmp_path)
     env.pop("NUMBA_DISABLE_JIT", None)
     out = subprocess.run([sys.executable, str(tmp_path / "caller.py")], env=env, capture_output=True, text=True,
                          check=True, cwd=tmp_path)

@@ -1,23 +1,28 @@
-"""Install layout: the top-level folder ``envs/`` installs as ``flexsim.envs`` and as nothing else.
+"""Install layout: the top-level folder ``envs/`` installs as ``flexsim.envs`` and as nothing else, the tests run
+against the installed package, and ``flexsim`` is a plain package.
 
 ``envs`` is a generic name already taken on the public package index, so the distribution claims only the
-top-level import name ``flexsim``. A source checkout that is not installed finds ``flexsim.envs``
-through ``flexsim._SourceTreeEnvsFinder``; these tests check both routes lead to the checkout's ``envs/``.
+top-level import name ``flexsim``; ``pyproject.toml`` maps the folder onto ``flexsim.envs`` (for an editable install,
+setuptools' own finder does). There is no import machinery in ``flexsim/__init__.py``: a source tree that is not
+installed has no ``flexsim.envs``, so the tests import the installed package (tests/installed.py).
 """
 
 from __future__ import annotations
 
-import os
+import ast
+import importlib.metadata
+import json
 import re
 import subprocess
 import sys
 import tomllib
+import urllib.parse
 import zipfile
 from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+from tests.installed import ROOT, child_env
 
 
 def _setuptools_config() -> dict:
@@ -61,57 +66,62 @@ def test_no_code_imports_top_level_envs():
     assert not offenders, f"use flexsim.envs, not the top-level name envs: {offenders}"
 
 
-def test_source_checkout_maps_flexsim_envs_onto_the_envs_folder(tmp_path):
-    """Run as the helpers do: not installed, PYTHONPATH = checkout, from another directory."""
-    code = ("import gymnasium as gym, flexsim, flexsim.envs, flexsim.envs.base as b; "
-            "print(flexsim.__file__); print(flexsim.envs.__file__); print(b.__file__); "
-            "print(sorted(k for k in gym.registry if k.startswith('FlexSim/')))")
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env, capture_output=True, text=True,
+def _installed_source() -> tuple[Path, bool]:
+    """(where the installed distribution's ``flexsim`` package lives, whether it is an editable install)."""
+    # the first installed one on sys.path (pip records its files, RECORD); not a build's flexsim.egg-info in a checkout
+    dist = next(d for d in importlib.metadata.distributions(name="flexsim") if d.read_text("RECORD") is not None)
+    direct = dist.read_text("direct_url.json")
+    info = json.loads(direct) if direct else {}
+    if info.get("dir_info", {}).get("editable"):
+        return Path(urllib.parse.unquote(urllib.parse.urlparse(info["url"]).path)).resolve() / "flexsim", True
+    return Path(dist.locate_file("flexsim")).resolve(), False
+
+
+def test_the_tests_run_against_the_installed_flexsim():
+    """``python3 -m pytest`` from the checkout tests the installed package (tests/conftest.py), its ``flexsim.envs``
+    from the top-level ``envs/`` as pyproject.toml installs it; an editable install must be this checkout's."""
+    import flexsim
+    import flexsim.envs
+
+    package, editable = _installed_source()
+    assert Path(flexsim.__file__).resolve() == package / "__init__.py", (
+        f"the tests imported {flexsim.__file__}, not the installed flexsim ({package}): install this checkout "
+        '(python3 -m pip install ".[test]", or -e for an editable install)')
+    if editable:
+        assert package == ROOT / "flexsim", f"the editable install is of another checkout, {package.parent}"
+        assert Path(flexsim.envs.__file__).resolve() == ROOT / "envs" / "__init__.py"
+    else:
+        assert Path(flexsim.envs.__file__).resolve() == package / "envs" / "__init__.py"
+        assert ROOT not in Path(flexsim.__file__).resolve().parents
+
+
+def test_a_child_interpreter_imports_the_same_flexsim(tmp_path):
+    """A child started in the checkout's root (its working directory first on sys.path without PYTHONSAFEPATH) with
+    :func:`tests.installed.child_env` imports the flexsim and flexsim.envs the tests import."""
+    import flexsim
+    import flexsim.envs
+
+    code = "import flexsim, flexsim.envs; print(flexsim.__file__); print(flexsim.envs.__file__)"
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, env=child_env(safe_path=True), capture_output=True, text=True,
                          check=True).stdout.splitlines()
-    assert Path(out[0]) == ROOT / "flexsim" / "__init__.py"
-    assert Path(out[1]) == ROOT / "envs" / "__init__.py"
-    assert Path(out[2]) == ROOT / "envs" / "base.py"
-    assert out[3] == str(sorted(["FlexSim/GTM-LevelHold-v0", "FlexSim/GTM-LevelHold-v1", "FlexSim/GTM-Turn-v0", "FlexSim/GTM-GustAlleviation-v0",
-                                 "FlexSim/GTM-FlutterMargin-v0", "FlexSim/GTM-FlutterMargin-v1"]))
+    assert [Path(p).resolve() for p in out] == [Path(flexsim.__file__).resolve(), Path(flexsim.envs.__file__).resolve()]
 
 
-def test_a_checkouts_flexsim_gets_its_own_envs_beside_another_checkouts_editable_install(tmp_path):
-    """A finder that maps ``flexsim.envs`` to another folder (what the editable install of another checkout
-    registers) does not pair that folder with this checkout's ``flexsim``."""
-    checkout, other = tmp_path / "checkout", tmp_path / "other"
-    (checkout / "flexsim").mkdir(parents=True)
-    (checkout / "flexsim" / "__init__.py").write_text((ROOT / "flexsim" / "__init__.py").read_text(encoding="utf-8"))
-    (checkout / "envs").mkdir()
-    (checkout / "envs" / "__init__.py").write_text("WHERE = 'checkout'\n")
-    (checkout / "pyproject.toml").write_text('[project]\nname = "flexsim"\n')
-    (other / "envs").mkdir(parents=True)
-    (other / "envs" / "__init__.py").write_text("WHERE = 'other'\n")
-    code = ("import sys, importlib.abc, importlib.util\n"
-            "class Editable(importlib.abc.MetaPathFinder):\n"
-            "    def find_spec(self, name, path=None, target=None):\n"
-            "        if name == 'flexsim.envs':\n"
-            f"            return importlib.util.spec_from_file_location(name, {str(other / 'envs' / '__init__.py')!r}, "
-            f"submodule_search_locations=[{str(other / 'envs')!r}])\n"
-            "sys.meta_path.insert(0, Editable())\n"
-            "import flexsim, flexsim.envs\n"
-            "print(flexsim.envs.WHERE)\n")
-    out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(checkout)},
-                         capture_output=True, text=True, check=True).stdout.split()
-    assert out == ["checkout"]
+#: Markers of the one block of flexsim/__init__.py that keeps the function ``fs.trim`` beside a subpackage of the
+#: same name (it goes when the subpackage is renamed).
+_CLASH = re.compile(r"^# >>> the name clash.*?^# <<< the name clash[^\n]*$", re.DOTALL | re.MULTILINE)
 
 
-def test_installed_layout_is_not_touched_by_the_source_finder(tmp_path):
-    """An installed flexsim (``flexsim/envs`` present) never gets the checkout finder."""
-    fake = tmp_path / "site" / "flexsim"
-    (fake / "envs").mkdir(parents=True)
-    (fake / "__init__.py").write_text((ROOT / "flexsim" / "__init__.py").read_text(encoding="utf-8"))
-    (fake / "envs" / "__init__.py").write_text("WHERE = 'installed'\n")
-    code = ("import sys, flexsim, flexsim.envs; "
-            "print(flexsim.envs.WHERE, any(type(f).__name__ == '_SourceTreeEnvsFinder' for f in sys.meta_path))")
-    out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(fake.parent)},
-                         capture_output=True, text=True, check=True).stdout.split()
-    assert out == ["installed", "False"]
+def test_the_package_holds_no_import_machinery():
+    """``flexsim/__init__.py`` is a plain package: lazy names by module ``__getattr__`` (PEP 562), no meta-path finder,
+    no import specs, no module-class swap (but for the marked block of the name clash, until the subpackage is renamed)."""
+    source = _CLASH.sub("", (ROOT / "flexsim" / "__init__.py").read_text(encoding="utf-8"))
+    tree = ast.parse(source)
+    imported = {alias.name for node in ast.walk(tree) if isinstance(node, ast.Import) for alias in node.names}
+    imported |= {node.module for node in ast.walk(tree) if isinstance(node, ast.ImportFrom) and node.module}
+    assert not imported & {"importlib.abc", "importlib.util", "importlib.machinery", "sys", "types"}, imported
+    for word in ("meta_path", "path_hooks", "spec_from_file_location", "__class__", "__path__"):
+        assert word not in source, word
 
 
 @pytest.mark.slow

@@ -39,6 +39,10 @@ ALLOWED: dict[str, frozenset[str]] = {
     "flexsim/aircraft/data/maewing1.md": frozenset({"7683349c7711a14607347f8fc0b40095774cf549"}),
     "tools/make_maewing1_toml.py": frozenset({"7683349c7711a14607347f8fc0b40095774cf549"}),
     "tests/aircraft/test_maewing1.py": frozenset({"7683349c7711a14607347f8fc0b40095774cf549"}),
+    # the PHC and Pazy data are pinned to the commits of the public repositories they were read from:
+    "flexsim/aircraft/data/phc_wing.md": frozenset({"31776c20", "e7d3dfed", "399b9d6c"}),
+    "flexsim/aircraft/data/pazy_wing.md": frozenset({"396710a"}),
+    "flexsim/aircraft/data/pazy_wing.toml": frozenset({"396710a"}),
     # the derivation notes cite Aeroelasticity.jl's issue tracker and commits as sources:
     "docs/reference/aero-kinematics.md": frozenset({"issue #43", "#43", "d88b597", "1501a89", "6ca95da", "48483cf"}),
 }

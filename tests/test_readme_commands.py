@@ -2,8 +2,8 @@
 
 Every line of every ```` ```bash ```` block of README.md is run, in order, in one empty directory under
 ``tmp_path`` (so a command may use what an earlier one wrote, e.g. ``flexsim view`` the log that ``flexsim
-simulate`` wrote), with this checkout's ``flexsim`` (``PYTHONPATH``) and the ``examples/`` folder of the checkout
-beside it. Each must exit 0. Comments are dropped; ``a && b`` runs ``a`` then ``b``.
+simulate`` wrote), with the installed ``flexsim`` the tests import (:func:`tests.installed.child_env`) and the
+``examples/`` folder of the checkout beside it. Each must exit 0. Comments are dropped; ``a && b`` runs ``a`` then ``b``.
 
 What the test does not run as written, and why:
 
@@ -23,6 +23,8 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+
+from tests.installed import child_env
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
@@ -72,8 +74,7 @@ def test_the_readme_has_commands():
 
 def test_the_readme_commands_run_in_order(tmp_path):
     (tmp_path / "examples").symlink_to(ROOT / "examples", target_is_directory=True)
-    env = {**os.environ, "MPLBACKEND": "Agg", "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1",
-           "PYTHONPATH": os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p)}
+    env = child_env(base={**os.environ, "MPLBACKEND": "Agg", "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"})
     env.pop("DISPLAY", None)
     env.pop("WAYLAND_DISPLAY", None)
     # `flexsim` and `python` are this interpreter with this checkout, whatever else is on PATH

@@ -32,8 +32,8 @@ def _condition_text(version: int) -> str:
 
 @figure(fast=False)
 def env_flutter_v0_point() -> str:
-    """FlutterMargin-v0's open-loop flutter point (gtm_uncalibrated, finite state, 300 m) and its dominant DOF."""
-    return f"{_condition_text(0)}, dominant DOF {_flutter_env(0)[0].unwrapped.flutter.mode}"
+    """FlutterMargin-v0's open-loop flutter point (gtm_uncalibrated, finite state, 300 m) and its mode."""
+    return f"{_condition_text(0)}, mode {_flutter_env(0)[0].unwrapped.flutter.mode}"
 
 
 @figure(fast=False)
@@ -84,7 +84,7 @@ def env_flutter_v1_point() -> str:
     phase = math.degrees(np.angle(tors["left"] / bend["left"]))
     diff = abs(tors_ratio - 1)
     equal = "to round-off" if diff < 1e-6 else f"within {exponent(diff)}"
-    return (f"{_condition_text(1)}, dominant DOF {fp.mode.dominant_dof}, {fp.mode_symmetry}: in the mode shape the two "
+    return (f"{_condition_text(1)}, mode {fp.mode.name}: in the mode shape the two "
             f"wings' first bending coordinates are {bend_phase:.0f} deg apart in phase and their first torsion "
             f"coordinates are equal ({equal}; torsion {ratio:.2f} rad per m of bending, "
             f"{abs(phase):.0f} deg phase)")

@@ -114,7 +114,7 @@ def _turn_trim(coordinated: bool, altitude_m: float = 9144.0, mach: float = 0.78
     model = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
     man = SteadyManoeuvre.turn(altitude_m, radius_m, mach=mach, coordinated=coordinated)
     # the paper's (uncoordinated) 5 km turn puts the fin's tip strip beyond max_alpha_deg: compared as the paper flies it
-    return trim(model, man, check_limits=False), man.speed_m_s ** 2 / (model.gravity_m_s2 * radius_m)
+    return trim(model, man, check_limits=False), man.speed_m_s ** 2 / (model.terms.gravity_m_s2 * radius_m)
 
 
 def options_coordinated_turn() -> str:
@@ -332,6 +332,6 @@ def simulation_flutter_onset_growth() -> str:
     from flexsim.sim.manoeuvres import build_manoeuvre
 
     opts = RUN_OPTIONS["flutter-onset"]
-    r = build_manoeuvre("flutter-onset").simulate(structural_limit_m=opts["structural_limit_m"], t_end_s=opts["t_end_s"])
+    r = build_manoeuvre("flutter-onset").simulate(events=opts["events"], t_end_s=opts["t_end_s"])
     tip = np.abs(r.tip_deflection_m("right_wing"))
     return f"grows to {tip.max():.2f} m in {opts['t_end_s']:g} s"

@@ -44,7 +44,7 @@ def calibration_structure() -> str:
             f"{factors['fuselage_ei']:.2f}; wing root EI {wing.ei_nm2[0] / 1e9:.2f} GN m², GJ {wing.gj_nm2[0] / 1e9:.3f} GN m², "
             f"fuselage EI peak {max(fuselage.ei_nm2) / 1e9:.1f} GN m². In-vacuo frequencies (`flexsim modes`): wing "
             f"bending 1 {freq('wings bending 1 (symmetric)')} (sym.) and {freq('wings bending 1 (antisymmetric)')} "
-            f"(antisym.), fuselage bending 1 {freq('fuselage bending 1')}, wing torsion 1 "
+            f"(antisym.), fuselage bending 1 {freq('fuselage bending 1 (symmetric)')}, wing torsion 1 "
             f"{freq('wings torsion 1 (symmetric)')} (sym.) and {freq('wings torsion 1 (antisymmetric)')} (antisym.) rad/s")
 
 
@@ -133,7 +133,7 @@ def _vacuo(aircraft: str, label: str) -> float:
 def flutter_mode_frequencies() -> str:
     """The US flutter frequencies of the bundled gtm against its in-vacuo fuselage bending 1 and wing torsion 1."""
     w = [r["omega_rad_s"] for r in _level("US").values()]
-    fus, t_s, t_a = (_vacuo("gtm", k) for k in ("fuselage bending 1", "wings torsion 1 (symmetric)",
+    fus, t_s, t_a = (_vacuo("gtm", k) for k in ("fuselage bending 1 (symmetric)", "wings torsion 1 (symmetric)",
                                                 "wings torsion 1 (antisymmetric)"))
     if not fus < min(w) <= max(w) < min(t_s, t_a):
         raise RuntimeError("flutter-mode-frequencies: the flutter frequency is no longer between the fuselage's first "

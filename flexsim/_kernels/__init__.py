@@ -13,6 +13,8 @@ Modules (every public name is importable from ``flexsim._kernels`` itself):
   (:func:`~flexsim._kernels.layout.term_data`), field views, sparsity derived at pack time, and the compile
   decorator :func:`~flexsim._kernels.layout.kernel`;
 * :mod:`~flexsim._kernels.isa` -- ISA 1976 constants and scalar state, the 3-2-1 rotation;
+* :mod:`~flexsim._kernels.state` -- the model variant and its state vector (``unpack``) and the air state at a state
+  (``air``, ``air_state``: density, Mach number, speed of sound), below every term;
 * one module per term of eq. 33, each with its data class and kernel: :mod:`~flexsim._kernels.structure`
   (inertia: M(q), dT/dq, dM/dt V, eqs. 8-10, 33), :mod:`~flexsim._kernels.elasticity` (eqs. 14-16),
   :mod:`~flexsim._kernels.gravity` (eq. 32), :mod:`~flexsim._kernels.thrust` (eqs. 17-24),
@@ -49,18 +51,20 @@ axes x_i y_i z_i (paper Table 1), strip axes d (chord, to the trailing edge), n 
 
 from __future__ import annotations
 
-from flexsim._kernels.bodies import body_force, body_moments, munk_moments
-from flexsim._kernels.downwash import downwash_velocity
-from flexsim._kernels.drag import parasite_drag, point_velocity
-from flexsim._kernels.equations import (_rhs, _rhs_wind, aerodynamic_force, air, assemble, rhs, rhs_batch,
-                                        rhs_strip_wind, strip_wind_at, unpack)
+from flexsim._kernels.bodies import SlenderBodyData, body_force, body_moments, munk_moments
+from flexsim._kernels.downwash import DownwashData, downwash_velocity
+from flexsim._kernels.drag import ParasiteDragData, parasite_drag, point_velocity
+from flexsim._kernels.equations import (_rhs, _rhs_wind, aerodynamic_force, assemble, rhs, rhs_batch, rhs_strip_wind,
+                                        strip_wind_at)
 from flexsim._kernels.isa import (_EXPONENT, _SCALE, EARTH_RADIUS, G0, GAMMA, GAS_CONSTANT, H_TROPOPAUSE, LAPSE_RATE,
                                   P0, P_TROPOPAUSE, T0, T_TROPOPAUSE, _geopotential, _sound_speed, dcm_321, isa_scalar)
 from flexsim._kernels.layout import (SOLVE_PERM, SOLVE_PTR, TERMS, KernelData, _f1, _f2, _f3, _f4, _flag, _i1,
-                                     flag_names, float_fields, int_fields, pack, solve_structure, strip_columns)
-from flexsim._kernels.peters import inflow_derivative, inflow_lambda0
+                                     fields_of, flag_names, float_fields, int_fields, pack, pack_fields, solve_structure,
+                                     strip_columns)
+from flexsim._kernels.peters import PetersData, inflow_derivative, inflow_lambda0
 from flexsim._kernels.solve import _gauss, block_solve, blocks_decoupled, solve
-from flexsim._kernels.strips import (aero_evaluate, circulatory, compressibility_factor, downwash_shift, inflow_rate,
+from flexsim._kernels.state import air, air_state, unpack
+from flexsim._kernels.strips import (StripData, aero_evaluate, circulatory, compressibility_factor, downwash_shift, inflow_rate,
                                      strip_kinematics, tail_downwash)
 from flexsim._kernels.elasticity import elastic_force
 from flexsim._kernels.gravity import gravity_force
@@ -71,8 +75,9 @@ from flexsim._kernels.wind import (NO_WIND, BatchWind, WindData, air_velocity_ro
                                    gust_profile, gust_profiles, join_winds, pack_winds, strip_positions, strip_wind,
                                    wind_ned)
 
-__all__ = ["TERMS", "float_fields", "int_fields", "flag_names", "KernelData", "pack", "WindData", "NO_WIND", "BatchWind", "pack_winds",
-           "join_winds", "rhs", "rhs_batch", "air_velocity_rows", "rhs_strip_wind", "assemble", "aerodynamic_force", "unpack", "air", "inertia",
+__all__ = ["TERMS", "float_fields", "int_fields", "flag_names", "KernelData", "pack", "fields_of", "pack_fields",
+           "StripData", "PetersData", "DownwashData", "ParasiteDragData", "SlenderBodyData", "WindData", "NO_WIND", "BatchWind", "pack_winds",
+           "join_winds", "rhs", "rhs_batch", "air_velocity_rows", "rhs_strip_wind", "assemble", "aerodynamic_force", "unpack", "air", "air_state", "inertia",
            "strip_kinematics", "circulatory", "tail_downwash", "downwash_shift", "aero_evaluate", "inflow_rate",
            "point_velocity", "parasite_drag", "munk_moments", "body_moments", "body_force", "strip_positions", "strip_wind",
            "strip_wind_at", "wind_ned", "gust_profile", "gust_profiles", "dryden_along_track", "dryden_track", "isa_scalar",

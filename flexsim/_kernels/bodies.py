@@ -27,6 +27,16 @@ class SlenderBodyData:
     body_axis: np.ndarray = packed(2, "unit axis of each body (k_b, 3), component axes")
     has_bodies: int = packed(0, "1 with slender bodies", "flag")
 
+    @staticmethod
+    def fields_of(model) -> dict:
+        """The fields of a model (:class:`flexsim.model.aircraft_model.AircraftModel`): the bodies of its ``bodies``
+        (:class:`flexsim.model.bodies.SlenderBodies`), none without."""
+        b, d = model.bodies, model.structure.dofs
+        if b is None:
+            return dict(body_g0=np.zeros((0, 6, d.n_v)), body_g1=np.zeros((0, 3, 3, d.nq)), has_bodies=False)
+        return dict(body_vol_dk=b.vol_dk.reshape(b.n_items), body_g0=b.g0, body_g1=b.g1, body_offset=b.offset_m,
+                    body_axis=b.axis, has_bodies=True)
+
 
 BODY_VOL_DK = SlenderBodyData.index["body_vol_dk"]
 BODY_G0 = SlenderBodyData.index["body_g0"]

@@ -25,6 +25,15 @@ class DownwashData:
     dw_wing_weight: np.ndarray = packed(1, "Cl_a0 b w of each wing strip over their sum, 0 elsewhere (n_s,) [-]")
     dw_tail_nz: np.ndarray = packed(1, "n . z_body of the tail strips, 0 elsewhere (n_s,) [-]")
 
+    @staticmethod
+    def fields_of(model) -> dict:
+        """The fields of a model (:class:`flexsim.model.aircraft_model.AircraftModel`): the gradient and the wing's
+        and tail's strip weights of its strip coupling (``model.aero``); no downwash without aerodynamics."""
+        a = model.aero
+        if a is None:
+            return dict(downwash_gradient=[0.0])
+        return dict(downwash_gradient=[a.downwash_gradient], dw_wing_weight=a.dw_wing_weight, dw_tail_nz=a.dw_tail_nz)
+
 
 DOWNWASH_GRADIENT = DownwashData.index["downwash_gradient"]
 DW_WING_WEIGHT = DownwashData.index["dw_wing_weight"]

@@ -27,6 +27,16 @@ class ParasiteDragData:
     drag_offset: np.ndarray = packed(2, "offset of the point from its attachment (k, 3) [m], component axes")
     has_drag: int = packed(0, "1 with parasite-drag items", "flag")
 
+    @staticmethod
+    def fields_of(model) -> dict:
+        """The fields of a model (:class:`flexsim.model.aircraft_model.AircraftModel`): the items of its
+        ``parasite_drag`` (:class:`flexsim.model.drag.ParasiteDrag`), none without."""
+        p, d = model.parasite_drag, model.structure.dofs
+        if p is None:
+            return dict(drag_g0=np.zeros((0, 6, d.n_v)), drag_g1=np.zeros((0, 3, 3, d.nq)), has_drag=False)
+        return dict(drag_area=p.area_m2.reshape(p.n_items), drag_g0=p.g0, drag_g1=p.g1, drag_offset=p.offset_m,
+                    has_drag=True)
+
 
 DRAG_AREA = ParasiteDragData.index["drag_area"]
 DRAG_G0 = ParasiteDragData.index["drag_g0"]

@@ -25,6 +25,18 @@ class ElasticityData:
     c_el: np.ndarray = packed(2, "C_el (n_el, n_el): modal damping of the clamped elastic modes [N s/m, N m s/rad]")
     has_damping: int = packed(0, "1 with structural damping (C_el applied)", "flag")
 
+    @staticmethod
+    def fields_of(model) -> dict:
+        """The fields of a model (:class:`flexsim.model.aircraft_model.AircraftModel`): the stiffness of its structure
+        and C_el of its damping ratio (``terms.structural_damping``, else the aircraft's; 0: none)."""
+        st = model.structure
+        zeta = model.terms.structural_damping
+        if zeta is None:
+            zeta = model.aircraft.structural_damping_ratio
+        n_el = st.dofs.nq + st.dofs.nxi
+        return dict(k_bending=st.k_bending, k_torsion=st.k_torsion,
+                    c_el=st.damping(float(zeta)) if zeta else np.zeros((n_el, n_el)), has_damping=bool(zeta))
+
 
 K_BENDING, K_TORSION, C_EL = (ElasticityData.index[n] for n in ("k_bending", "k_torsion", "c_el"))
 HAS_DAMPING = ElasticityData.index["has_damping"]

@@ -14,118 +14,25 @@ SI units, radians.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
 
 from flexsim._kernels.bodies import HAS_BODIES, body_force
+from flexsim._kernels.downwash_lag import downwash_lag_mass
 from flexsim._kernels.drag import HAS_DRAG, parasite_drag
 from flexsim._kernels.elasticity import elastic_force
 from flexsim._kernels.gravity import gravity_force
 from flexsim._kernels.gyroscopic import gyroscopic_force
-from flexsim._kernels.isa import _geopotential, _sound_speed, dcm_321, isa_scalar
-from flexsim._kernels.layout import SOLVE_PERM, SOLVE_PTR, _f1, _flag, _i1, inline, kernel, packed, term_data
+from flexsim._kernels.isa import dcm_321
+from flexsim._kernels.layout import SOLVE_PERM, SOLVE_PTR, _f1, _flag, _i1, inline, kernel
 from flexsim._kernels.solve import block_solve
+from flexsim._kernels.state import (ACTIVE, HAS_AERO, INFLOW_START, N_INFLOW, NQ, NXI, Q_START, RIGID, USE_FROZEN,
+                                    VEL_START, air_state, unpack)
 from flexsim._kernels.strips import SEMICHORD, aero_evaluate, inflow_rate
 from flexsim._kernels.structure import inertia_term
 from flexsim._kernels.thrust import thrust_force
 from flexsim._kernels.wind import strip_positions, strip_wind, wind_ned
-
-
-@term_data
-@dataclasses.dataclass(frozen=True)
-class ModelData:
-    """The model variant and its state vector x (:class:`flexsim.model.aircraft_model.AircraftModel`,
-    :class:`flexsim.model.layout.StateLayout`): sizes, where each block of x starts, fixed and frozen blocks, air."""
-
-    air: np.ndarray = packed(1, "[altitude of a restrained model [m], tunnel density [kg/m^3] (nan: none), "
-                                "density of the aerodynamics [kg/m^3] (nan: ISA)] (3,)")
-    euler_fixed: np.ndarray = packed(1, "attitude of a restrained model (3,) [rad]")
-    v_fixed: np.ndarray = packed(1, "body velocity of a restrained model (3,) [m/s]")
-    q_frozen: np.ndarray = packed(1, "bending coordinates of a quasi-rigid model (nq,) [m]")
-    xi_frozen: np.ndarray = packed(1, "torsion coordinates of a quasi-rigid model (nxi,) [rad]")
-    active: np.ndarray = packed(1, "the entries of V that are degrees of freedom", "ints")
-    n_v: int = packed(0, "entries of V = [v, omega, s, eta]", "flag")
-    nq: int = packed(0, "bending coordinates", "flag")
-    nxi: int = packed(0, "torsion coordinates", "flag")
-    rigid: int = packed(0, "1: rigid-body motion free (free, quasi-rigid)", "flag")
-    use_frozen: int = packed(0, "1: elastic coordinates frozen (quasi-rigid)", "flag")
-    all_active: int = packed(0, "1: every entry of V is a degree of freedom", "flag")
-    n_states: int = packed(0, "entries of x", "flag")
-    vel_start: int = packed(0, "first entry of the velocities in x", "flag")
-    inflow_start: int = packed(0, "first inflow state in x", "flag")
-    n_inflow: int = packed(0, "inflow states", "flag")
-    q_start: int = packed(0, "first bending coordinate in x", "flag")
-    xi_start: int = packed(0, "first torsion coordinate in x", "flag")
-    has_aero: int = packed(0, "1: the model has aerodynamics", "flag")
-
-
-AIR = ModelData.index["air"]
-EULER_FIXED = ModelData.index["euler_fixed"]
-V_FIXED = ModelData.index["v_fixed"]
-Q_FROZEN = ModelData.index["q_frozen"]
-XI_FROZEN = ModelData.index["xi_frozen"]
-ACTIVE = ModelData.index["active"]
-N_V = ModelData.index["n_v"]
-NQ = ModelData.index["nq"]
-NXI = ModelData.index["nxi"]
-RIGID = ModelData.index["rigid"]
-USE_FROZEN = ModelData.index["use_frozen"]
-ALL_ACTIVE = ModelData.index["all_active"]
-N_STATES = ModelData.index["n_states"]
-VEL_START = ModelData.index["vel_start"]
-INFLOW_START = ModelData.index["inflow_start"]
-N_INFLOW = ModelData.index["n_inflow"]
-Q_START = ModelData.index["q_start"]
-XI_START = ModelData.index["xi_start"]
-HAS_AERO = ModelData.index["has_aero"]
-
-
-@kernel
-def unpack(F, I, x):
-    """Full-size (R, Theta, q, xi, V) from x, filling fixed or frozen blocks (AircraftModel.unpack)."""
-    n_v, nq, nxi = _flag(I, N_V), _flag(I, NQ), _flag(I, NXI)
-    vs = _flag(I, VEL_START)
-    rigid = _flag(I, RIGID)
-    if rigid:
-        pos = x[0:3].copy()
-        eul = x[3:6].copy()
-    else:
-        pos = np.zeros(3)
-        eul = _f1(F, I, EULER_FIXED).copy()
-    if _flag(I, USE_FROZEN):
-        q = _f1(F, I, Q_FROZEN).copy()
-        xi = _f1(F, I, XI_FROZEN).copy()
-    else:
-        q = x[_flag(I, Q_START):_flag(I, Q_START) + nq].copy()
-        xi = x[_flag(I, XI_START):_flag(I, XI_START) + nxi].copy()
-    if _flag(I, ALL_ACTIVE):
-        vel = x[vs:vs + n_v].copy()
-    else:
-        vel = np.zeros(n_v)
-        active = _i1(I, ACTIVE)
-        for i in range(active.shape[0]):
-            vel[active[i]] = x[vs + i]
-        if not rigid:
-            vel[0:3] = _f1(F, I, V_FIXED)
-    return pos, eul, q, xi, vel
-
-
-@kernel
-def air(F, I, x):
-    """(altitude [m] geometric, density of the aerodynamics [kg/m^3], speed of sound [m/s]) at state x:
-    the tunnel density, else the fixed aerodynamic density, else ISA at -Z (restrained: altitude_m)."""
-    fl = _f1(F, I, AIR)
-    altitude = -x[2] if _flag(I, RIGID) else fl[0]
-    hgp = _geopotential(altitude)
-    if not math.isnan(fl[1]):
-        rho = fl[1]
-    elif not math.isnan(fl[2]):
-        rho = fl[2]
-    else:
-        rho = isa_scalar(hgp)[0]
-    return altitude, rho, _sound_speed(hgp)
 
 
 @kernel
@@ -154,14 +61,17 @@ def assemble(F, I, x, u, wind_c, has_wind):
 
 @inline
 def aerodynamic_terms(F, I, x, q, xi, vel, u, wind_c, has_wind, m, f):
-    """m += M_a and f += Q_a + Q_D + Q_B (strip airloads, parasite drag, slender bodies) at the air density and Mach
-    number of state x (:func:`air`); returns the inflow's terms row0 (n_s, n_v), w_ea_x (n_s,), u0 (n_s,)."""
+    """The aerodynamic terms, the one list of them: m += M_a and f += Q_a + Q_D + Q_B (strip airloads with their
+    apparent mass, parasite drag, slender bodies), m += the tail's downwash lag (:func:`downwash_lag_mass`, off by
+    default) at the air state of state x (:func:`air_state`: density, Mach
+    number, speed of sound), which each term's kernel takes; returns the inflow's terms row0 (n_s, n_v), w_ea_x
+    (n_s,), u0 (n_s,). :func:`assemble` and :func:`aerodynamic_force` both evaluate this list."""
     n_v = vel.shape[0]
     if not _flag(I, HAS_AERO):
         n_s = _f1(F, I, SEMICHORD).shape[0]
         return np.zeros((n_s, n_v)), np.zeros(n_s), np.zeros(n_s)
-    _, rho, a_sound = air(F, I, x)
-    mach = math.sqrt(vel[0] * vel[0] + vel[1] * vel[1] + vel[2] * vel[2]) / a_sound
+    air = air_state(F, I, x, vel)
+    rho, mach = air[0], air[1]
     lam = x[_flag(I, INFLOW_START):_flag(I, INFLOW_START) + _flag(I, N_INFLOW)]
     m_a, q_a, row0, w_ea_x, u0 = aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind)
     for i in range(n_v):
@@ -176,26 +86,21 @@ def aerodynamic_terms(F, I, x, q, xi, vel, u, wind_c, has_wind, m, f):
         q_b = body_force(F, I, q, vel, rho)
         for i in range(n_v):
             f[i] += q_b[i]
+    downwash_lag_mass(F, I, air, m)
     return row0, w_ea_x, u0
 
 
 @kernel
 def aerodynamic_force(F, I, x, u, wind_c, has_wind):
-    """Generalized aerodynamic force without the apparent-mass terms (n_v,): strip airloads (explicit part of
-    :func:`aero_evaluate`) plus parasite drag and body moments; rows 0-2 force [N] (body), 3-5 moment about o [N m]."""
+    """Generalized aerodynamic force without the apparent-mass terms (n_v,): the f part of :func:`aerodynamic_terms`
+    (strip airloads, the explicit part of :func:`aero_evaluate`, plus parasite drag and body moments, and any other
+    aerodynamic term of that list; what a term adds to E is left out); rows 0-2 force [N] (body), 3-5 moment about o
+    [N m]."""
     pos, eul, q, xi, vel = unpack(F, I, x)
-    out = np.zeros(vel.shape[0])
-    if not _flag(I, HAS_AERO):
-        return out
-    _, rho, a_sound = air(F, I, x)
-    mach = math.sqrt(vel[0:3] @ vel[0:3]) / a_sound
-    lam = x[_flag(I, INFLOW_START):_flag(I, INFLOW_START) + _flag(I, N_INFLOW)]
-    _, q_a, _, _, _ = aero_evaluate(F, I, q, xi, vel, lam, u, rho, mach, wind_c, has_wind)
-    if _flag(I, HAS_DRAG):
-        q_a = q_a + parasite_drag(F, I, q, vel, rho)
-    if _flag(I, HAS_BODIES):
-        q_a = q_a + body_force(F, I, q, vel, rho)
-    return q_a
+    n_v = vel.shape[0]
+    out = np.zeros(n_v)
+    aerodynamic_terms(F, I, x, q, xi, vel, u, wind_c, has_wind, np.zeros((n_v, n_v)), out)
+    return out
 
 
 @kernel

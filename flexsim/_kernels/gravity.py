@@ -22,6 +22,11 @@ class GravityData:
 
     g: np.ndarray = packed(1, "[g] (1,): gravitational acceleration g [m/s^2] of eq. 32 (0: no gravity)")
 
+    @staticmethod
+    def fields_of(model) -> dict:
+        """The fields of a model (:class:`flexsim.model.aircraft_model.AircraftModel`): g from its terms."""
+        return dict(g=[model.terms.gravity_m_s2])
+
 
 G = GravityData.index["g"]
 

@@ -31,10 +31,10 @@ class GyroscopicData:
     has_gyroscopic: int = packed(0, "1 with a rotor angular momentum", "flag")
 
     @staticmethod
-    def fields_of(model) -> tuple[dict, dict]:
+    def fields_of(model) -> dict:
         """The fields of a model (:class:`flexsim.model.aircraft_model.AircraftModel`): h_e from its terms."""
         h = model.terms.engine_angular_momentum
-        return {"engine_h": np.zeros(3) if h is None else np.asarray(h, float)}, {"has_gyroscopic": h is not None}
+        return dict(engine_h=np.zeros(3) if h is None else np.asarray(h, float), has_gyroscopic=h is not None)
 
 
 ENGINE_H = GyroscopicData.index["engine_h"]

@@ -70,10 +70,11 @@ def term_data(cls):
     """Register a term's frozen data class (class decorator): each field gets the next index of its kind, read back
     with ``cls.index[name]`` (module-level constants of the kernels, frozen into their machine code).
 
-    A class may build its own fields from the model: a static method ``fields_of(model) -> (floats, flags)`` (dicts
-    by field name) is called by :class:`flexsim.model.aircraft_model.AircraftModel` when it packs its data (the
-    model's ``terms``, ``structure`` and ``layout`` are set by then); without it the model's builders fill the
-    fields."""
+    Every class builds its own fields from the model: a static method ``fields_of(model) -> dict`` (its fields by
+    name: float arrays, flags and int arrays alike) is called by :func:`fields_of` for
+    :class:`flexsim.model.aircraft_model.AircraftModel` when it packs its data (the model's ``terms``, ``structure``,
+    ``layout`` and parts ``aero``, ``parasite_drag``, ``bodies`` are set by then). Only :class:`SparsityData`, derived
+    by :func:`pack` from the other fields, has none."""
     if not (dataclasses.is_dataclass(cls) and cls.__dataclass_params__.frozen):
         raise TypeError(f"{cls.__name__}: a term's data must be a frozen dataclass")
     taken = {n for fields in _FIELDS.values() for n, _, _ in fields}
@@ -152,6 +153,35 @@ def pack(floats: dict, ints: dict) -> KernelData:
     f = frozen_array(np.concatenate(chunks) if off else np.zeros(0))
     i = frozen_array(np.concatenate([head] + int_chunks), np.int64)
     return KernelData(f, i)
+
+
+def fields_of(model, terms=None) -> dict:
+    """The kernel fields of a model by name: the union of ``fields_of(model)`` of every registered term data class
+    (or of ``terms``), each class filling its own fields only (a field of another class is refused, ValueError)."""
+    values = {}
+    for term in TERMS if terms is None else terms:
+        build = getattr(term, "fields_of", None)
+        if build is None:
+            continue
+        data = build(model)
+        alien = set(data) - set(term.index)
+        if alien:
+            raise ValueError(f"{term.__name__}.fields_of: {sorted(alien)} are not fields of {term.__name__}")
+        values.update(data)
+    return values
+
+
+def pack_fields(values: dict) -> KernelData:
+    """:func:`pack` of fields given by name in one dict (as :func:`fields_of` gives them), each sorted into the float
+    fields, the flags or the int arrays by the kind its class declared (an unknown name: ValueError)."""
+    kinds = {name: kind for kind, fields in _FIELDS.items() for name, _, _ in fields if name != "ints"}
+    floats, flags, ints = {}, {}, {}
+    for name, value in values.items():
+        kind = kinds.get(name)
+        if kind is None:
+            raise ValueError(f"kernel field {name!r}: not a field of any registered term data class")
+        {"float": floats, "flag": flags, "ints": ints}[kind][name] = value
+    return pack(floats, {**ints, "ints": flags})
 
 
 def _field(floats: dict, name: str, rank: int) -> np.ndarray:

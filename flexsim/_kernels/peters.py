@@ -29,6 +29,16 @@ class PetersData:
     finite_state: int = packed(0, "1: the unsteady model (inflow states)", "flag")
     n_inflow_per_strip: int = packed(0, "N, inflow states per unsteady strip", "flag")
 
+    @staticmethod
+    def fields_of(model) -> dict:
+        """The fields of a model (:class:`flexsim.model.aircraft_model.AircraftModel`): the inflow coefficients and
+        unsteady strips of its strip coupling (``model.aero``); none without aerodynamics."""
+        a = model.aero
+        if a is None:
+            return dict(a_inv=np.zeros((1, 1)), a_inv_c=np.zeros(1), b_vec=np.zeros(1), n_inflow_per_strip=1)
+        return dict(a_inv=a.inflow.A_inv, a_inv_c=a.inflow.A_inv_c, b_vec=a.inflow.b, inflow_idx=a.inflow_idx,
+                    finite_state=a.finite_state, n_inflow_per_strip=a.options.n_inflow)
+
 
 A_INV = PetersData.index["a_inv"]
 A_INV_C = PetersData.index["a_inv_c"]

@@ -25,6 +25,15 @@ class InertiaData:
     inertia_dq: np.ndarray = packed(1, "dq (nq,) [m]: the inertia at q + dq (Terms.inertia_q_offset_m)")
     has_inertia_offset: int = packed(0, "1 when dq is applied", "flag")
 
+    @staticmethod
+    def fields_of(model) -> dict:
+        """The fields of a model (:class:`flexsim.model.aircraft_model.AircraftModel`): the polynomial of its structure
+        (:class:`flexsim.structure.inertia.InertiaPolynomial`), dq from its terms."""
+        inertia, dq = model.structure.inertia, model.terms.inertia_q_offset_m
+        return dict(m0=inertia.m0, h=inertia.h, m2=inertia.m2,
+                    inertia_dq=np.zeros(model.structure.dofs.nq) if dq is None else np.asarray(dq),
+                    has_inertia_offset=dq is not None)
+
 
 M0, H, M2, INERTIA_DQ = (InertiaData.index[n] for n in ("m0", "h", "m2", "inertia_dq"))
 HAS_INERTIA_OFFSET = InertiaData.index["has_inertia_offset"]

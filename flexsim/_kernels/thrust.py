@@ -23,6 +23,14 @@ class ThrustData:
     thrust_t0: np.ndarray = packed(1, "t0 (n_v,): generalized force per newton of T_e at q = 0 [-, m]")
     thrust_t1: np.ndarray = packed(2, "t1 (n_v, nq): its change with the bending coordinates [1/m, -]")
 
+    @staticmethod
+    def fields_of(model) -> dict:
+        """The fields of a model (:class:`flexsim.model.aircraft_model.AircraftModel`): its structure's thrust map,
+        t1 = 0 unless ``terms.thrust_follows_deflection``."""
+        thrust = model.structure.thrust
+        return dict(thrust_t0=thrust.t0,
+                    thrust_t1=thrust.t1 if model.terms.thrust_follows_deflection else np.zeros_like(thrust.t1))
+
 
 THRUST_T0, THRUST_T1 = ThrustData.index["thrust_t0"], ThrustData.index["thrust_t1"]
 

@@ -13,10 +13,14 @@ import numpy as np
 
 from flexsim.aero.vlm import LiftingSurface, VlmResult, solve_vlm
 from flexsim.aircraft.definition import Aircraft, ContentKey
+from flexsim.errors import AircraftDefinitionError
 
 __all__ = ["vlm_surfaces", "strip_lift_slopes", "exposed_lift_slope"]
 
 _BODY_TO_VLM = np.array([-1.0, 1.0, -1.0])
+#: A half whose root leading edge is this close to y = 0 [m] is rooted on the centreline (rounding of the direction
+#: cosines of its axes: 1e-16 m for a 1 m chord; any real offset of a root from the centreline is millimetres or more).
+_ON_CENTRELINE_M = 1e-9
 
 
 def vlm_surfaces(aircraft: Aircraft) -> tuple[LiftingSurface, ...]:
@@ -24,7 +28,8 @@ def vlm_surfaces(aircraft: Aircraft) -> tuple[LiftingSurface, ...]:
 
     Each half follows its elastic axis and streamwise chords (leading edge at ea_fraction * chord ahead of
     the axis) at the section-table stations, and is extended inboard to the centreline with its root
-    chord to carry the lift across the fuselage. Coordinates: VLM frame (x aft, y right, z up).
+    chord to carry the lift across the fuselage; a half rooted on the centreline (y = 0, a wing continuous
+    through it, as the PHC HALE's) is not extended. Coordinates: VLM frame (x aft, y right, z up).
     """
     out = []
     for comp in aircraft.components:
@@ -37,15 +42,30 @@ def vlm_surfaces(aircraft: Aircraft) -> tuple[LiftingSurface, ...]:
         le = ea - (comp.sections.ea_fraction * comp.sections.chord_m)[:, None] * chord_b[None, :]
         le = le * _BODY_TO_VLM
         chord = comp.sections.chord_m.copy()
-        root = le[0].copy()
-        root[1] = 0.0
-        le = np.vstack([root, le])
-        chord = np.concatenate([[chord[0]], chord])
+        if abs(le[0, 1]) <= _ON_CENTRELINE_M:  # rooted on the centreline (a continuous wing): no extension
+            le[0, 1] = 0.0  # (the root's y is a round-off of the axes' cosines there)
+        else:
+            root = le[0].copy()
+            root[1] = 0.0
+            le = np.vstack([root, le])
+            chord = np.concatenate([[chord[0]], chord])
         if le[-1, 1] < 0:  # left half: sections must run with increasing y
             le, chord = le[::-1], chord[::-1]
+        if np.any(np.diff(le[:, 1]) <= 0.0):
+            raise AircraftDefinitionError(
+                f"components.{comp.name}.root_m = {comp.root_m.tolist()} (body axes): the half's leading edge runs "
+                f"from y = {le[0, 1]:.6g} m to {le[-1, 1]:.6g} m but not monotonically away from the centreline; "
+                f"a wing or stabilizer half must lie on one side of y = 0 (a continuous wing is two halves rooted "
+                f"at y = 0)")
         n_seg = le.shape[0] - 1
         per_seg = max(1, int(np.ceil(36 / n_seg)))
-        out.append(LiftingSurface(comp.name, le, chord, n_chordwise=4, n_spanwise=per_seg))
+        try:
+            out.append(LiftingSurface(comp.name, le, chord, n_chordwise=4, n_spanwise=per_seg))
+        except ValueError as exc:  # a planform the lattice cannot take: name the component and the way out
+            raise AircraftDefinitionError(
+                f"components.{comp.name}: the vortex lattice of the lift slopes (lift_slope = \"vlm\" on a wing or "
+                f"stabilizer) cannot model its planform: {exc}; give every surface's aero.lift_slope as \"2pi\" or a "
+                f"number") from None
     return tuple(out)
 
 

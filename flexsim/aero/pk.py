@@ -24,7 +24,11 @@ round-off (measured in ``benchmarks/bench_compare.py``).
 Roots are distinct: two starts that converge to the same fixed point (near-degenerate pairs, e.g. the
 symmetric and antisymmetric modes of the two wing halves, whose eigenvectors mix) would hide one root. The
 later start is then tracked again with full ``eig`` steps that exclude the eigenvalues nearest the roots
-already found, which leads it to the other member of the pair.
+already found, which leads it to the other member of the pair. Two exceptions keep the root as found: starts
+that are themselves equal with independent eigenvectors (MAC < 0.99: a double root, the two uncoupled halves of a
+clamped wing pair), and a retrack that
+does not converge (its last iterate is no root of the problem; before this rule such an iterate appeared as a
+spurious, strongly unstable root at isolated speeds of the clamped HALE wing pair).
 """
 
 from __future__ import annotations
@@ -367,6 +371,15 @@ def pk_track(
     return PkRoot(p, vec / np.linalg.norm(vec), max_iter, full, False)
 
 
+def _double_start(starts: np.ndarray, vectors: np.ndarray, j: int, k: int, separation: float) -> bool:
+    """Whether starts j and k are one double eigenvalue with two independent eigenvectors (MAC < 0.99)."""
+    if abs(starts[j] - starts[k]) >= separation * max(1.0, abs(starts[k])):
+        return False
+    a, b = vectors[:, j], vectors[:, k]
+    mac = abs(np.vdot(a, b)) ** 2 / max(float(np.real(np.vdot(a, a) * np.vdot(b, b))), 1e-300)
+    return mac < 0.99
+
+
 def pk_roots(
     a_of: Callable[[float], np.ndarray],
     starts: np.ndarray,
@@ -402,11 +415,16 @@ def pk_roots(
         root = pk_track(a_of, starts[k], start_vectors[:, k], rtol=rtol, max_iter=max_iter,
                         inverse_iteration=inverse_iteration)
         for _ in range(3):
-            clash = [r.eigenvalue for r in roots if abs(r.eigenvalue - root.eigenvalue) < separation * max(1.0, abs(root.eigenvalue))]
-            if not clash:
+            near = separation * max(1.0, abs(root.eigenvalue))
+            clash = [j for j, r in enumerate(roots) if abs(r.eigenvalue - root.eigenvalue) < near]
+            # a clash with a root followed from an equal start with another eigenvector is a double root (two equal,
+            # uncoupled halves of a clamped structure): both are kept, as the start matrix has both
+            if not clash or all(_double_start(starts, start_vectors, j, k, separation) for j in clash):
                 break
             found = tuple(r.eigenvalue for r in roots)
             retry = pk_track(a_of, starts[k], start_vectors[:, k], rtol=rtol, max_iter=max_iter, exclude=found)
+            if not retry.converged:  # no other fixed point reached: keep the root found rather than a stray iterate
+                break
             root = PkRoot(retry.eigenvalue, retry.vector, root.iterations + retry.iterations,
                           root.full_eigs + retry.full_eigs, retry.converged)
         roots.append(root)

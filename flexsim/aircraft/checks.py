@@ -23,6 +23,8 @@ PLAUSIBLE = {
     "torsional_inertia_kg_m": (0.0, 1.0e5, "kg m^2/m"),
     "ei_nm2": (1.0, 1.0e12, "N m^2"),
     "gj_nm2": (1.0, 1.0e12, "N m^2"),
+    "ei_chord_nm2": (1.0, 1.0e13, "N m^2"),
+    "ea_n": (1.0, 1.0e13, "N"),
     "chord_m": (0.0, 50.0, "m"),
     "position_m": (-500.0, 500.0, "m"),
     "euler_rad": (-2.0 * np.pi, 2.0 * np.pi, "rad (+-360 deg)"),

@@ -672,6 +672,14 @@ class Aircraft:
         return lo, hi
 
     @property
+    def nonlinear_beam_fields(self) -> tuple[str, ...]:
+        """Section fields given in the file that only the geometrically nonlinear beam uses, as
+        ``components.<name>.sections.<field>`` (:data:`flexsim.aircraft.sections.NONLINEAR_BEAM_FIELDS`); the
+        linear structure (the paper's) has no use for them. Empty for a file of the paper's fields only."""
+        return tuple(f"components.{c.name}.sections.{name}" for c in self.components
+                     for name in c.sections.nonlinear_beam_fields)
+
+    @property
     def component_names(self) -> tuple[str, ...]:
         """Names of the components present, in the order of the global velocity vector (eq. 9)."""
         return tuple(c.name for c in self.components)

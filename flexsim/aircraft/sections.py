@@ -11,8 +11,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from flexsim.aircraft.checks import MAX_STATIONS, _fail, _frozen_array, _in_plausible
+from flexsim.errors import AircraftDefinitionError
 
-__all__ = ["SectionTable"]
+__all__ = ["SectionTable", "NONLINEAR_BEAM_FIELDS"]
+
+#: Optional section fields that only the geometrically nonlinear beam uses (docs/nonlinear-beams.md): the
+#: linear structure (the paper's, eq. 14) bends each beam in one plane and twists it, so it has no use for them.
+#: Name -> what it is.
+NONLINEAR_BEAM_FIELDS = {
+    "ei_chord_nm2": "chordwise (in-plane, edgewise) bending stiffness",
+    "ea_n": "extension stiffness",
+    "flap_inertia_kg_m": "rotary inertia about the chordwise axis",
+}
 
 
 @dataclass(frozen=True, eq=False)
@@ -41,6 +51,20 @@ class SectionTable:
         Elastic-axis position aft of the leading edge as a fraction of the chord [-]; Theodorsen's
         a = 2 ea_fraction - 1 (bundled GTM wing and stabilizer: ea_fraction = 0.375, a = -0.25; see
         ``docs/calibration.md`` section 1).
+    ei_chord_nm2 : ndarray, shape (k,), or None
+        Chordwise (in-plane, edgewise) bending rigidity EI_chord, for bending in the plane of the chord
+        (about the section's normal axis) [N m^2], > 0. Optional (None: not given); used by the geometrically
+        nonlinear beam only (:data:`NONLINEAR_BEAM_FIELDS`).
+    ea_n : ndarray, shape (k,), or None
+        Extension rigidity EA [N], > 0. Optional (None: not given, an inextensible beam); used by the
+        geometrically nonlinear beam only.
+    flap_inertia_kg_m : ndarray, shape (k,), or None
+        Mass moment of inertia per unit length about the chordwise axis through the elastic axis [kg m^2/m]
+        (the rotary inertia of flapwise bending). Optional (None: not given); used by the geometrically
+        nonlinear beam only. The section is thin in span, so by the perpendicular-axis theorem the inertia about
+        its normal axis is ``torsional_inertia_kg_m - flap_inertia_kg_m``; hence 0 <= flap_inertia_kg_m <=
+        torsional_inertia_kg_m - mass_kg_per_m * cg_offset_m^2 (the normal-axis inertia about the centre of mass
+        is not negative).
     """
 
     station_m: np.ndarray
@@ -51,6 +75,9 @@ class SectionTable:
     gj_nm2: np.ndarray
     chord_m: np.ndarray
     ea_fraction: np.ndarray
+    ei_chord_nm2: np.ndarray | None = None
+    ea_n: np.ndarray | None = None
+    flap_inertia_kg_m: np.ndarray | None = None
     where: str = field(default="sections", repr=False)
 
     def __post_init__(self) -> None:
@@ -66,6 +93,7 @@ class SectionTable:
             "ea_fraction",
         )
         arrays = {}
+        names = names + tuple(name for name in NONLINEAR_BEAM_FIELDS if getattr(self, name) is not None)
         for name in names:
             arr = _frozen_array(f"{w}.{name}", getattr(self, name))
             if arr.ndim != 1:
@@ -91,13 +119,16 @@ class SectionTable:
             if bad.size:
                 i = int(bad[0])
                 _fail(f"{w}.{name}[{i}]", float(arrays[name][i]), f"must be >= {lo}")
-        for name in ("ei_nm2", "gj_nm2"):
+        for name in ("ei_nm2", "gj_nm2", "ei_chord_nm2", "ea_n"):
+            if name not in arrays:
+                continue
             bad = np.flatnonzero(arrays[name] <= 0.0)
             if bad.size:
                 i = int(bad[0])
                 _fail(f"{w}.{name}[{i}]", float(arrays[name][i]), "must be > 0")
-        for name in ("mass_kg_per_m", "torsional_inertia_kg_m", "ei_nm2", "gj_nm2", "chord_m"):
-            _in_plausible(f"{w}.{name}", arrays[name], name)
+        for name in ("mass_kg_per_m", "torsional_inertia_kg_m", "ei_nm2", "gj_nm2", "chord_m", "ei_chord_nm2", "ea_n"):
+            if name in arrays:
+                _in_plausible(f"{w}.{name}", arrays[name], name)
         _in_plausible(f"{w}.station_m[-1] (length)", st[-1], "length_m")
         ea = arrays["ea_fraction"]
         bad = np.flatnonzero((ea < 0.0) | (ea > 1.0))
@@ -124,8 +155,28 @@ class SectionTable:
                 float(ith[i]),
                 f"must be >= mass_kg_per_m * cg_offset_m^2 = {need[i]:.6g} (inertia about the elastic axis)",
             )
+        if "flap_inertia_kg_m" in arrays:
+            flap = arrays["flap_inertia_kg_m"]
+            bad = np.flatnonzero(flap < 0.0)
+            if bad.size:
+                i = int(bad[0])
+                _fail(f"{w}.flap_inertia_kg_m[{i}]", float(flap[i]), "must be >= 0")
+            room = ith - need
+            bad = np.flatnonzero(flap > room + 1e-9 * np.maximum(ith, 1e-300))
+            if bad.size:
+                i = int(bad[0])
+                _fail(f"{w}.flap_inertia_kg_m[{i}]", float(flap[i]),
+                      f"must be <= torsional_inertia_kg_m - mass_kg_per_m * cg_offset_m^2 = {room[i]:.6g} (the rest, "
+                      f"torsional_inertia_kg_m - flap_inertia_kg_m, is the inertia about the section's normal axis, "
+                      f"perpendicular-axis theorem)")
         for name, arr in arrays.items():
             object.__setattr__(self, name, arr)
+
+    @property
+    def nonlinear_beam_fields(self) -> tuple[str, ...]:
+        """Names of the optional fields given (:data:`NONLINEAR_BEAM_FIELDS`) that only the geometrically
+        nonlinear beam uses; empty for a table of the paper's fields only."""
+        return tuple(name for name in NONLINEAR_BEAM_FIELDS if getattr(self, name) is not None)
 
     @property
     def length_m(self) -> float:

@@ -61,7 +61,7 @@ _COMPONENT_KEYS = {"root_m": True, "euler_deg": True, "length_m": True, "bending
 _AERO_KEYS = {"strips": False, "lift_slope": False, "cd0": False, "incidence_deg": False}
 _SECTION_KEYS = {"station_m": True, "mass_kg_per_m": True, "cg_offset_m": False,
                  "torsional_inertia_kg_m": True, "ei_nm2": True, "gj_nm2": True, "chord_m": False,
-                 "ea_fraction": False}
+                 "ea_fraction": False, "ei_chord_nm2": False, "ea_n": False, "flap_inertia_kg_m": False}
 _SURFACE_KEYS = {"kind": True, "hinge_fraction": True, "start_m": True, "end_m": True, "max_deflection_deg": False}
 _MASS_KEYS = {"name": True, "component": True, "position_m": True, "mass_kg": True, "inertia_kg_m2": False}
 _ENGINE_KEYS = dict(_MASS_KEYS, max_thrust_n=True)

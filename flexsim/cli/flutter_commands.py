@@ -19,6 +19,7 @@ from flexsim.linear.study import PAPER_ALTITUDES_M
 from flexsim.linear.study import StudyCase, StudyRecord, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
+from flexsim.model.linear_range import linear_range_note, nonlinear_fields_note
 from flexsim.atmosphere import mach_to_true_airspeed, speed_of_sound
 from flexsim.trim import SteadyManoeuvre, trim
 
@@ -40,37 +41,46 @@ def _trim(args: argparse.Namespace) -> int:
     model = AircraftModel(aircraft, aero=AeroOptions("quasi-steady", formulation=args.formulation))
     point = trim(model, _manoeuvre(args, args.altitude_m, args.mach), check_limits=not args.no_limits)
     out = point.summary()
-    out["weight_kN"] = model.structure.mass_properties.mass_kg * model.gravity_m_s2 / 1e3
+    out["weight_kN"] = model.structure.mass_properties.mass_kg * model.terms.gravity_m_s2 / 1e3
     if model.aero is not None and "right_wing" in aircraft.component_names:
         from flexsim.trim.margin import static_margin
 
         margin = static_margin(model, point)
         out = {**out, "static_margin_mac": margin.fraction_of_mac, "neutral_point_aft_of_cg_m": margin.neutral_point_aft_of_cg_m}
-    roots = _roots(aircraft, point, args.roots, args.formulation) if args.roots else None
+    roots = None
+    if args.roots:  # the verdict then comes from the roots printed beside it (their aerodynamic model)
+        roots, spec = _roots(aircraft, point, args.roots, args.formulation)
+        from flexsim.trim.equilibrium import with_stability
+
+        point = with_stability(model, point, spec)
     local = point.max_local_alpha
+    notes = [n for n in (nonlinear_fields_note(aircraft), point.linear_range) if n is not None]
     if args.json:
         extra = {"roots": roots} if roots is not None else {}
         print(json_text({**out, "formulation": model.formulation, "terms": model.terms.record(),
                          "stability": point.stability.as_dict(),
-                         "max_local_alpha": local.as_dict() if local is not None else None, **extra}))
+                         "max_local_alpha": local.as_dict() if local is not None else None,
+                         "linear_range": point.linear_range, **extra}))
         return 0
     print(f"Trim of {aircraft.name} ({model.formulation} force resolution): {point.manoeuvre.describe()}")
     for key, value in out.items():
         print(f"  {key:<18} {value: .6g}")
     if local is not None:
         print(f"  {'max_local_alpha':<18} {local.describe()}")
-    print(f"  {'equilibrium':<18} {point.stability.verdict}")
+    print(f"  {'equilibrium':<18} {point.stability.verdict} ({point.stability.aero_model} roots)")
+    for note in notes:
+        print(note)
     if roots is not None:
         counts = {k: sum(r["kind"] == k for r in roots["modes"]) for k in ("rigid", "elastic", "aerodynamic")}
         print(f"Roots of the linearised trim ({roots['aero_model']}): {counts['rigid']} rigid-body, {counts['elastic']} elastic, "
               f"{counts['aerodynamic']} aerodynamic-lag")
-        print(f"  {'kind':<12} {'real [1/s]':>11} {'imag [rad/s]':>12} {'zeta':>8}  dominant DOF")
+        print(f"  {'kind':<12} {'real [1/s]':>11} {'imag [rad/s]':>12} {'zeta':>8}  mode")
         for r in roots["modes"]:
             if r["kind"] != "aerodynamic" and r["imag"] >= 0.0:
-                print(f"  {r['kind']:<12} {r['real']:11.5f} {r['imag']:12.5f} {r['damping_ratio']:8.4f}  {r['dominant_dof']}")
+                print(f"  {r['kind']:<12} {r['real']:11.5f} {r['imag']:12.5f} {r['damping_ratio']:8.4f}  {r['name']}")
         print("  (aerodynamic-lag roots: --json lists them)")
     if not point.stability.is_stable:
-        print(point.stability.message)
+        print(f"{point.stability.message} ({point.stability.aero_model} roots)")
     return 0
 
 
@@ -84,8 +94,9 @@ def _settings(args: argparse.Namespace, default_aircraft: str = "gtm") -> list[R
     return [RunSettings("as given", args.aircraft, args.formulation, args.linear_density_altitude_m)]
 
 
-def _roots(aircraft, point, aero_model: str, formulation: str | None = None) -> dict:
-    """Eigenvalues of the linearised trim with their classification (rigid-body, elastic, aerodynamic-lag)."""
+def _roots(aircraft, point, aero_model: str, formulation: str | None = None) -> tuple[dict, object]:
+    """Eigenvalues of the linearised trim with their classification (rigid-body, elastic, aerodynamic-lag), and their
+    :class:`~flexsim.trim.roots.Spectrum` (the trim's verdict is then classified from it)."""
     import numpy as np
 
     from flexsim.linear.stability import spectrum
@@ -96,8 +107,8 @@ def _roots(aircraft, point, aero_model: str, formulation: str | None = None) -> 
     modes = sorted(spec.modes, key=lambda m: ({"rigid": 0, "elastic": 1, "aerodynamic": 2}[m.kind], abs(m.eigenvalue)))
     return {"aero_model": aero_model, "modes": [
         {"kind": m.kind, "real": m.eigenvalue.real, "imag": m.eigenvalue.imag, "damping_ratio": m.damping_ratio,
-         "dominant_dof": m.dominant_dof, "elastic_fraction": m.elastic_fraction,
-         "inflow_participation": m.inflow_participation} for m in modes]}
+         "name": m.name, "dominant_dof": m.dominant_dof, "elastic_fraction": m.elastic_fraction,
+         "inflow_participation": m.inflow_participation} for m in modes]}, spec
 
 
 def _flutter(args: argparse.Namespace) -> int:
@@ -117,12 +128,11 @@ def _flutter(args: argparse.Namespace) -> int:
         from flexsim.linear.mode_animation import check_recording_path, record_critical_mode
 
         check_recording_path(args.mode, "--mode")
-    if args.vg is not None and not str(args.vg).lower().endswith(".png"):
-        raise CliError(f"--vg {args.vg!r}: must name a .png file")
-    if args.vg_points < 3:
-        raise CliError(f"--vg-points = {args.vg_points}: must be an integer >= 3")
+    _check_vg_options(args)
     if args.glide and args.climb_deg is not None:
         raise CliError("--glide, --climb-deg: a glide finds its own flight-path angle; give one of them")
+    if args.speed_step_m_s is not None:
+        raise CliError("--speed-step-m-s: the scan step of --wind-tunnel; a flight's search steps in Mach (--mach-step)")
     settings = _settings(args)
     shape = _manoeuvre(args, args.altitudes[0], 0.5)  # the kind of manoeuvre (its speed is searched)
     # the aircraft file's [envelope] sets the search range (the aircraft itself is loaded where it is searched)
@@ -134,7 +144,8 @@ def _flutter(args: argparse.Namespace) -> int:
                                     mach_max=ranges[s.label, h].mach_max, turn_radius_m=shape.turn_radius_m,
                                     climb_angle_deg=None if shape.is_glide else math.degrees(shape.climb_angle_rad),
                                     coordinated=shape.coordinated, structural_damping=args.structural_damping,
-                                    formulation=s.formulation, linear_density_altitude_m=s.linear_density_altitude_m))
+                                    formulation=s.formulation, linear_density_altitude_m=s.linear_density_altitude_m,
+                                    mach_step=args.mach_step))
                 for s in settings for k in keys for h in args.altitudes]
     rows = run_study([c for _, c in labelled], workers=args.workers, progress=not args.json)
     paper = _is_paper_aircraft(settings) and shape.turn_radius_m == math.inf and shape.climb_angle_rad == 0.0
@@ -145,21 +156,20 @@ def _flutter(args: argparse.Namespace) -> int:
             row["mode_matches_paper"] = mode_matches_paper(row)
     condition = shape.describe().split(" at M ")[0]
     lines, doc = flutter_report(rows, settings, keys) if paper else flutter_table(rows, settings, keys, condition)
+    lines += [f"warning: {r['model']} h={r['altitude_m']:.0f} m: {w}" for r in rows for w in r.get("warnings", ())]
     if args.vg is not None:
         diagrams = _vg(args, shape, keys)
         doc["vg"] = [d.as_dict() for d, _ in diagrams]
-        lines += ["", "V-g / V-f diagrams (damping g = 2 Re(lambda)/|Im(lambda)|, > 0 unstable; branches tracked by "
-                  "eigenvector correlation):"]
-        for d, path in diagrams:
-            lines.append(f"  {path}: {d.aircraft}, {d.condition}, {len(d.tracks)} branches, "
-                         f"{d.speeds_m_s[0]:.1f}-{d.speeds_m_s[-1]:.1f} m/s")
-            for c in d.crossings:
-                lines.append(f"    {_MODEL_KEY[c.aero_model]:<3} {c.label:<34} crosses {'into instability' if c.direction == 'unstable' else 'back to stability':<18} "
-                             f"at {c.speed_m_s:8.2f} m/s (M {c.mach:.4f}), {c.frequency_rad_s:8.3f} rad/s")
-            if not d.crossings:
-                lines.append("    no branch crosses in the range")
+        lines += _vg_lines(diagrams)
     if args.mode:
         print(record_critical_mode([c for _, c in labelled], rows, args.mode), file=sys.stderr if args.json else sys.stdout)
+    unused = {n for n in (nonlinear_fields_note(load_aircraft(s.aircraft)) for s in settings) if n is not None}
+    lines += sorted(unused)
+    beyond = [r for r in rows if r.get("linear_range")]
+    if beyond:  # one line: the first flutter point beyond the linear structure's range, and how many more
+        r = beyond[0]
+        more = f" (and {len(beyond) - 1} more of the {len(rows)} flutter points)" if len(beyond) > 1 else ""
+        lines.append(f"{r['linear_range']} — at the flutter point of {r['model']} h = {r['altitude_m']:.0f} m{more}")
     if args.json:
         print(json_text(doc))
         return 0
@@ -167,9 +177,38 @@ def _flutter(args: argparse.Namespace) -> int:
     return 0
 
 
+def _vg_lines(diagrams: list) -> list[str]:
+    """The V-g summary printed under a flutter table: per diagram, its file and every crossing."""
+    lines = ["", "V-g / V-f diagrams (damping g = 2 Re(lambda)/|Im(lambda)|, > 0 unstable; branches tracked by "
+             "eigenvector correlation):"]
+    for d, path in diagrams:
+        lines.append(f"  {path}: {d.aircraft}, {d.condition}, {len(d.tracks)} branches, "
+                     f"{d.speeds_m_s[0]:.1f}-{d.speeds_m_s[-1]:.1f} m/s")
+        for c in d.crossings:
+            lines.append(f"    {_MODEL_KEY[c.aero_model]:<3} {c.label:<34} crosses {'into instability' if c.direction == 'unstable' else 'back to stability':<18} "
+                         f"at {c.speed_m_s:8.2f} m/s (M {c.mach:.4f}), {c.frequency_rad_s:8.3f} rad/s")
+        if not d.crossings:
+            lines.append("    no branch crosses in the range")
+        for model in dict.fromkeys(t.aero_model for t in d.tracks):
+            above = d.unstable_throughout(model)
+            if above:
+                lines.append(f"    {_MODEL_KEY[model]:<3} unstable throughout the range (below its lower end already): "
+                             f"{', '.join(above)}")
+        lines += [f"    warning: {w}" for w in d.warnings]
+    return lines
+
+
+def _check_vg_options(args: argparse.Namespace) -> None:
+    if args.vg is not None and not str(args.vg).lower().endswith(".png"):
+        raise CliError(f"--vg {args.vg!r}: must name a .png file")
+    if args.vg_points < 3:
+        raise CliError(f"--vg-points = {args.vg_points}: must be an integer >= 3")
+
+
 #: The options of a flight that a wind-tunnel run (``--wind-tunnel``) has no use for: (attribute, flag).
 _FLIGHT_ONLY = (("turn_radius_m", "--turn-radius-m"), ("climb_deg", "--climb-deg"), ("glide", "--glide"),
-                ("coordinated", "--coordinated"), ("mach_min", "--mach-min"), ("mach_max", "--mach-max"), ("vg", "--vg"),
+                ("coordinated", "--coordinated"), ("mach_min", "--mach-min"), ("mach_max", "--mach-max"),
+                ("mach_step", "--mach-step"),
                 ("mode", "--mode"), ("structural_damping", "--structural-damping"), ("formulation", "--formulation"),
                 ("linear_density_altitude_m", "--linear-density-altitude-m"), ("paper_replication", "--paper-replication"))
 
@@ -186,19 +225,26 @@ def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
     lo, hi = args.speed_range_m_s
     if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
         raise CliError(f"--speed-range-m-s {lo:g} {hi:g}: must satisfy 0 < LO < HI [m/s]")
+    step = _TUNNEL_STEP_M_S if args.speed_step_m_s is None else args.speed_step_m_s
+    if not (math.isfinite(step) and 0.0 < step <= hi - lo):
+        raise CliError(f"--speed-step-m-s {step:g}: must be in (0, {hi - lo:g}] m/s (the width of --speed-range-m-s)")
+    _check_vg_options(args)
     altitudes = [0.0] if args.altitudes is None else args.altitudes
     check_altitudes(altitudes)
     aircraft = load_aircraft(args.aircraft)
     rows = []
     for h in altitudes:
         for k in keys:
-            r = wind_tunnel(aircraft, aero_model=_MODELS[k], speed_range=(lo, hi), altitude_m=h)
+            r = wind_tunnel(aircraft, aero_model=_MODELS[k], speed_range=(lo, hi), altitude_m=h, speed_step=step)
             rows.append({"model": k, "aero_model": r.aero_model, "altitude_m": h, "density_kg_m3": r.density_kg_m3,
                          "compressibility": r.compressibility, "flutter_speed_m_s": r.flutter_speed_m_s,
                          "flutter_frequency_rad_s": r.flutter_frequency_rad_s, "divergence_speed_m_s": r.divergence_speed_m_s,
-                         "first_instability": r.first_instability, "speed_range_m_s": [lo, hi]})
+                         "first_instability": r.first_instability, "speed_range_m_s": [lo, hi], "speed_step_m_s": step,
+                         "warnings": list(r.warnings)})
+    diagrams = _tunnel_vg(args, aircraft, altitudes, keys) if args.vg is not None else []
     if args.json:
-        print(json_text({"aircraft": aircraft.name, "wind_tunnel": rows}))
+        extra = {"vg": [d.as_dict() for d, _ in diagrams]} if diagrams else {}
+        print(json_text({"aircraft": aircraft.name, "wind_tunnel": rows, **extra}))
         return 0
 
     def speed(v):
@@ -211,7 +257,34 @@ def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
         w = f"{r['flutter_frequency_rad_s']:13.3f}" if r["flutter_frequency_rad_s"] is not None else f"{'':>13}"
         print(f"{r['model']:<6}{r['altitude_m']:7.0f}{r['density_kg_m3']:14.4f}{speed(r['flutter_speed_m_s'])}{w}"
               f"{speed(r['divergence_speed_m_s'])}  {r['first_instability']}")
+    if (note := nonlinear_fields_note(aircraft)) is not None:
+        print(note)
+    for r in rows:
+        for w in r["warnings"]:
+            print(f"warning: {r['model']} h={r['altitude_m']:.0f} m: {w}")
+    if diagrams:
+        print("\n".join(_vg_lines(diagrams)))
     return 0
+
+
+#: Default scan step of ``--wind-tunnel`` [m/s] (:func:`flexsim.linear.flutter.wind_tunnel`'s).
+_TUNNEL_STEP_M_S = 5.0
+
+
+def _tunnel_vg(args: argparse.Namespace, aircraft, altitudes: list[float], keys: list[str]) -> list[tuple[object, Path]]:
+    """The V-g diagram of the clamped structure in the stream at every altitude, over --speed-range-m-s."""
+    from flexsim.linear.vg import vg_diagram
+
+    lo, hi = args.speed_range_m_s
+    target = Path(args.vg)
+    out = []
+    for h in altitudes:
+        model = AircraftModel(aircraft, variant="restrained", aero=AeroOptions("quasi-steady"), gravity_m_s2=0.0,
+                              altitude_m=h, restrained_velocity_m_s=[lo, 0.0, 0.0])
+        d = vg_diagram(model, speeds_m_s=_linspace(lo, hi, args.vg_points), models=keys)
+        path = _vg_path(target, h, altitudes)
+        out.append((d, d.plot(path)))
+    return out
 
 
 _MODEL_KEY = {v: k for k, v in _MODELS.items()}
@@ -253,9 +326,18 @@ def _vg(args: argparse.Namespace, shape: SteadyManoeuvre, keys: list[str]) -> li
         rng = _search_range(model, h, shape, args)
         speeds = [m * speed_of_sound(h) for m in _linspace(rng.mach_min, rng.mach_max, args.vg_points)]
         d = vg_diagram(model, manoeuvre=man, speeds_m_s=speeds, models=keys)
-        path = target if len(args.altitudes) == 1 else target.with_name(f"{target.stem}_{h:.0f}m{target.suffix}")
+        path = _vg_path(target, h, args.altitudes)
         out.append((d, d.plot(path)))
     return out
+
+
+def _vg_path(target: Path, altitude_m: float, altitudes: list[float]) -> Path:
+    """The V-g file of one altitude: ``target`` alone, else FILE_<H>m.png with H as precise as the altitudes need to
+    differ (9144 and 9144.4 m give two files, not one written twice)."""
+    if len(altitudes) == 1:
+        return target
+    digits = next((d for d in range(0, 7) if len({f"{h:.{d}f}" for h in altitudes}) == len(set(altitudes))), 6)
+    return target.with_name(f"{target.stem}_{altitude_m:.{digits}f}m{target.suffix}")
 
 
 def _linspace(lo: float, hi: float, n: int) -> list[float]:
@@ -394,7 +476,8 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
                       help="with --turn-radius-m: coordinated turn (zero sideslip, heading free)")
     p_fl.add_argument("--vg", default=None, metavar="FILE.png",
                       help="also draw the V-g / V-f diagram (damping and frequency of every branch against speed) of the "
-                           "aircraft as given, one file per altitude (FILE_<H>m.png for several); --json carries the tracks")
+                           "aircraft as given (with --wind-tunnel: of the clamped structure over --speed-range-m-s), one "
+                           "file per altitude (FILE_<H>m.png for several); --json carries the tracks")
     p_fl.add_argument("--vg-points", type=int, default=25, metavar="N", help="speeds of the V-g diagram [25]")
     p_fl.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="local processes [all cores]")
     p_fl.add_argument("--wind-tunnel", action="store_true",
@@ -402,6 +485,12 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
                            "e.g. goland_wing): flutter and divergence speeds")
     p_fl.add_argument("--speed-range-m-s", type=float, nargs=2, default=(10.0, 300.0), metavar=("LO", "HI"),
                       help="with --wind-tunnel: the speeds searched [10 300]")
+    p_fl.add_argument("--speed-step-m-s", type=float, default=None, metavar="DV",
+                      help="with --wind-tunnel: the scan step [m/s]; an interval whose damping curvature could hide an "
+                           "instability is halved down to DV/16 [5]")
+    p_fl.add_argument("--mach-step", type=float, default=None, metavar="DM",
+                      help="scan step of the flight search in Mach; an interval whose damping curvature could hide an "
+                           "instability is halved down to DM/16 [0.05, or an eighth of a narrower range]")
     p_fl.add_argument("--structural-damping", type=float, default=None, metavar="ZETA",
                       help="modal damping ratio of the elastic modes [the aircraft file's; 0 = the paper's undamped structure]")
     _add_formulation(p_fl, replication=True)

@@ -34,6 +34,7 @@ from flexsim.cli.validation import SanitisedStream, check_count, check_mach, che
 from flexsim.errors import FlexsimError
 from flexsim.linear.modes import in_vacuo_modes
 from flexsim.model.aircraft_model import AircraftModel, Variant
+from flexsim.model.linear_range import nonlinear_fields_note
 from flexsim.structure.model import StructuralModel
 
 __all__ = ["main"]
@@ -64,6 +65,7 @@ def _info(args: argparse.Namespace) -> int:
         "cg_body_m": mp.cg_m.tolist(),
         "inertia_cg_body_kg_m2": mp.inertia_cg_kg_m2.tolist(),
         "ixx_iyy_izz_ixz_kg_m2": [ixx, iyy, izz, ixz],
+        "nonlinear_beam_fields": list(aircraft.nonlinear_beam_fields),
     }
     if aircraft.design_origin_m is not None:
         out["cg_design_m"] = aircraft.to_design_frame(mp.cg_m).tolist()
@@ -78,6 +80,9 @@ def _info(args: argparse.Namespace) -> int:
         print("  CG (design axes) : x = {:.4f} m, y = {:.4f} m, z = {:.4f} m  (x aft, z up)".format(*out["cg_design_m"]))
     print("  inertia about CG (body axes) [kg m^2]:")
     print(f"    Ixx = {ixx:12.5e}   Iyy = {iyy:12.5e}   Izz = {izz:12.5e}   Ixz = {ixz:12.5e}")
+    note = nonlinear_fields_note(aircraft)
+    if note is not None:
+        print(note)
     return 0
 
 
@@ -92,7 +97,7 @@ def _modes(args: argparse.Namespace) -> int:
             json_text(
                 {
                     "aircraft": aircraft.name,
-                    "variant": model.variant.value,
+                    "variant": model.variant.kind.value,
                     "n_rigid": analysis.n_rigid,
                     "modes": [
                         {
@@ -108,10 +113,13 @@ def _modes(args: argparse.Namespace) -> int:
             )
         )
         return 0
-    print(f"In-vacuo modes of {aircraft.name} ({model.variant.value}; {analysis.n_rigid} rigid-body modes)")
+    print(f"In-vacuo modes of {aircraft.name} ({model.variant.kind.value}; {analysis.n_rigid} rigid-body modes)")
     print(f"{'#':>3} {'omega [rad/s]':>14} {'f [Hz]':>10}  {'dominant DOF':<34} {'KE share':>8}")
     for i, m in enumerate(modes, 1):
         print(f"{i:>3} {m.frequency_rad_s:14.4f} {m.frequency_hz:10.4f}  {m.dominant_dof:<34} {m.dominant_fraction:8.1%}")
+    note = nonlinear_fields_note(aircraft)
+    if note is not None:
+        print(note)
     return 0
 
 

@@ -69,7 +69,7 @@ def _mode_text(row: dict) -> str:
     linear = [p for p in row.get("participation", []) if p["kind"] == "linear"]
     lead = f", largest linear {linear[0]['label']}" if linear else ""
     flag = "" if mode_matches_paper(row) else "  [differs from the paper's]"
-    return f"{row['mode_symmetry']}: {row['mode']}{lead}{flag}"
+    return f"{row['mode']}{lead}{flag}"  # the mode's name carries its symmetry
 
 
 _HEADER = (f"{'settings':<18} {'h [m]':>6} {'M_F [-]':>8} {'w_F [rad/s]':>11} {'theta [deg]':>11} {'T_e [kN]':>9} "
@@ -164,7 +164,7 @@ def flutter_table(rows: list[dict], settings: list[RunSettings], models: list[st
                 continue
             lines.append(f"{r['settings']:<18} {h:6.0f} {r['mach']:8.4f} {r['mach'] * speed_of_sound(h):9.2f} {r['omega_rad_s']:11.3f} "
                          f"{r['theta_deg']:11.3f} {r['phi_deg']:9.3f} {r['gamma_deg']:11.3f} {r['thrust_kN']:9.3f} "
-                         f"{r['elevator_deg']:9.3f} {r['tip_deflection_m']:9.4f}  {r['mode_symmetry']}: {r['mode']}")
+                         f"{r['elevator_deg']:9.3f} {r['tip_deflection_m']:9.4f}  {r['mode']}")
     doc = {"rows": rows, "settings": [s.__dict__ for s in settings], "condition": condition}
     return lines, doc
 

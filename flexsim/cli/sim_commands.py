@@ -46,6 +46,8 @@ def script_arguments(description: str | None = None, argv: Sequence[str] | None 
 def _simulate(args: argparse.Namespace) -> int:
     from flexsim.sim.manoeuvres import build_manoeuvre
     from flexsim.sim.recording import default_log_path
+    from flexsim.sim.run_settings import OutputSettings
+    from flexsim.sim.simulate import IntegratorSettings
 
     target = args.manoeuvre
     if target.endswith(".py"):
@@ -58,11 +60,9 @@ def _simulate(args: argparse.Namespace) -> int:
         check_log_path("simulate", args.log)
     setup = build_manoeuvre(target, aero=args.aero, duration_s=args.duration, formulation=args.formulation)
     log_path = None if args.no_log else (args.log or default_log_path(setup.name))
-    options = {"log_path": log_path, "method": args.method}
-    if args.rtol is not None:
-        options["rtol"] = args.rtol
+    integrator = IntegratorSettings(args.method, args.rtol)
     print(f"{setup.name}: {setup.description}; {setup.duration_s:g} s, aero {args.aero}")
-    result = setup.simulate(**options)
+    result = setup.simulate(integrator=integrator, output=OutputSettings(log_path=log_path))
     print(result.summary())
     return 1 if result.status in ("non_finite", "solver_failure") else 0
 

@@ -38,11 +38,14 @@ from pathlib import Path
 import numpy as np
 
 from flexsim._arrays import readonly
+from flexsim.aircraft.definition import Aircraft
 from flexsim.errors import FlexsimError
 from flexsim.io.vocabulary import CONTROL_NAMES, check_names
 from flexsim.linear.linearize import linearize
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
+from flexsim.model.terms import Terms
+from flexsim.model.variant import VariantSettings
 from flexsim.model.sensors import SENSOR_QUANTITIES, SensorBank, structural_sensors
 from flexsim.trim.manoeuvre import SteadyManoeuvre
 from flexsim.trim.solver import TrimPoint
@@ -83,7 +86,9 @@ def _control():
 
 @dataclass(frozen=True)
 class ModelRecord:
-    """The options of the model a linear system was made from (enough to build it again).
+    """The model a linear system was made from: its aircraft, physical terms and variant (enough to build it again).
+
+    Two records are equal only when every term and the variant are (so are two systems of different models).
 
     Attributes
     ----------
@@ -93,52 +98,60 @@ class ModelRecord:
         Where the definition came from (a file path or a bundled name).
     aircraft_digest : str
         :meth:`flexsim.aircraft.definition.Aircraft.content_digest` of the definition.
-    variant : str
-        ``"free"``, ``"restrained"`` or ``"quasi-rigid"``.
-    aero : AeroOptions or None
-        The aerodynamic options (None: no aerodynamics).
+    terms : Terms
+        The physical terms of the model (:class:`flexsim.model.terms.Terms`).
+    variant : VariantSettings
+        The variant of the model (:class:`flexsim.model.variant.VariantSettings`).
     formulation : str
         Resolution of the strip airloads in use (``"physical"`` or ``"paper"``; ``""`` without aerodynamics).
     structural_damping : float
-        Modal damping ratio of the elastic modes [-].
-    gravity_m_s2 : float
-        Gravitational acceleration [m/s^2].
-    aero_density_kg_m3 : float
-        Fixed density of the aerodynamics [kg/m^3], NaN when the aerodynamics use the ISA density of the altitude.
+        Modal damping ratio of the elastic modes in use [-] (``terms.structural_damping``, else the aircraft's).
     """
 
     aircraft: str
     aircraft_source: str
     aircraft_digest: str
-    variant: str
-    aero: AeroOptions | None
+    terms: Terms
+    variant: VariantSettings
     formulation: str
     structural_damping: float
-    gravity_m_s2: float
-    aero_density_kg_m3: float = math.nan
+
+    @property
+    def aero(self) -> AeroOptions | None:
+        """The aerodynamic options (``terms.aero``; None: no aerodynamics)."""
+        return self.terms.aero
 
     @classmethod
     def of(cls, model: AircraftModel) -> ModelRecord:
         """The record of ``model``."""
         ac = model.aircraft
-        return cls(ac.name, str(ac.source), ac.content_digest(), model.variant.value,
-                   None if model.aero is None else model.aero.options, model.formulation or "",
-                   float(model.structural_damping), float(model.gravity_m_s2),
-                   math.nan if model.aero_density_kg_m3 is None else float(model.aero_density_kg_m3))
+        return cls(ac.name, str(ac.source), ac.content_digest(), model.terms, model.variant, model.formulation or "",
+                   model.structural_damping_ratio)
+
+    def build(self, aircraft: Aircraft) -> AircraftModel:
+        """The model of this record for ``aircraft`` (which must have the recorded content digest)."""
+        if aircraft.content_digest() != self.aircraft_digest:
+            raise ValueError(f"aircraft {aircraft.name!r}: its content differs from the recorded {self.aircraft!r} "
+                             f"(digest {self.aircraft_digest[:12]}...)")
+        return AircraftModel(aircraft, terms=self.terms, variant=self.variant)
 
     def as_json(self) -> str:
-        """The record as a JSON object (``aero``: the :class:`AeroOptions` fields, or null)."""
+        """The record as a JSON object (``terms`` and ``variant`` as their ``record()`` dicts)."""
         out = {f.name: getattr(self, f.name) for f in fields(self)}
-        out["aero"] = None if self.aero is None else {f.name: getattr(self.aero, f.name) for f in fields(self.aero)}
-        out["aero_density_kg_m3"] = None if math.isnan(self.aero_density_kg_m3) else self.aero_density_kg_m3
+        out["terms"], out["variant"] = self.terms.record(), self.variant.record()
         return json.dumps(out, sort_keys=True)
 
     @classmethod
     def from_json(cls, text: str) -> ModelRecord:
-        """Inverse of :meth:`as_json`."""
+        """Inverse of :meth:`as_json` (also reads the records of earlier files: variant name, aero, gravity and density)."""
         d = json.loads(text)
-        d["aero"] = None if d["aero"] is None else AeroOptions(**d["aero"])
-        d["aero_density_kg_m3"] = math.nan if d["aero_density_kg_m3"] is None else float(d["aero_density_kg_m3"])
+        if "terms" not in d:  # an earlier record: the variant's kind and three of the terms
+            rho = d.pop("aero_density_kg_m3", None)
+            d["terms"] = {"aero": d.pop("aero"), "gravity_m_s2": d.pop("gravity_m_s2"), "aero_density_kg_m3": rho}
+            d["variant"] = {"kind": d["variant"]}
+        t = dict(d["terms"])
+        t["aero"] = None if t["aero"] is None else AeroOptions(**t["aero"])
+        d["terms"], d["variant"] = Terms(**t), VariantSettings(**d["variant"])
         return cls(**d)
 
 
@@ -354,7 +367,7 @@ def linear_system(model: AircraftModel, point: TrimPoint | np.ndarray, u0: np.nd
         x0 = np.concatenate([x0, np.zeros(lay.n_inflow)])
     if x0.shape != (lay.n_states,):
         raise ValueError(f"point: a state of {x0.size} entries for a model of {lay.n_states} states "
-                         f"({model.variant.value}, {lay.n_inflow} inflow states)")
+                         f"({model.variant.kind.value}, {lay.n_inflow} inflow states)")
     u0 = np.asarray(u0, float)
     if u0.shape != (4,):
         raise ValueError(f"u0 = {u0!r}: must be 4 numbers [T_e (N), delta_a, delta_e, delta_r (rad)]")

@@ -146,7 +146,7 @@ def _stall_mach(model: AircraftModel, manoeuvre) -> tuple[float, str]:
     qs = model
     if model.aero.options.model != "quasi-steady":
         # the model's own terms (gravity, damping, density, compressibility, ...) with quasi-steady strips
-        qs = AircraftModel(model.aircraft, terms=replace(model.terms, aero=replace(model.terms.aero, model="quasi-steady")))
+        qs = model.replace(aero=replace(model.terms.aero, model="quasi-steady"))
     h = float(manoeuvre.altitude_m)
     a = speed_of_sound(h)
     rho = float(isa_density(h))

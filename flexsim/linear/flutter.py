@@ -4,7 +4,8 @@ Source: Tuzcu & Nguyen (2014), "Numerical Model": the flutter speed is the lowes
 (steady) flight at which an eigenvalue of the linearised equations crosses the imaginary axis. Here the
 crossing must be made by an elastic-dominated mode (:mod:`flexsim.linear.stability`); rigid-body
 instabilities (spiral, phugoid) met on the way are reported separately, never as flutter. The aircraft is
-re-trimmed at every Mach number; the crossing is bracketed on a Mach grid and refined with Brent's
+re-trimmed at every Mach number; the crossing is bracketed on a Mach grid anchored at the multiples of its step,
+with a step control that looks between stable grid points (:mod:`flexsim.linear.scan`), and refined with Brent's
 method to 1e-4 in Mach.
 """
 
@@ -25,12 +26,18 @@ from flexsim.errors import FlexsimError
 from flexsim.linear.linearize import LinearModel, jacobian, linearize
 from flexsim.linear.participation import Participation, describe_mode
 from flexsim.linear.stability import Mode, Spectrum, linear_spectrum, spectrum
+from flexsim.linear.scan import (CURVATURE_SAFETY, MAX_MACH_STEP, MIN_SCAN_STEPS, MIN_TRIM_SPEED_M_S,  # noqa: F401
+                                 REFINE_LEVELS, UNSTABLE_DAMPING, _growth, anchored_grid, hidden_crossing, scan_step)
+from flexsim.linear.validity import mach_note
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
-from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
+from flexsim.model.terms import Terms
+from flexsim.model.variant import VariantSettings
+from flexsim.trim import SteadyManoeuvre, TrimError, TrimPoint, trim
 from flexsim.trim.equilibrium import with_stability
 
-__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter",
+__all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "anchored_grid", "hidden_crossing",
+           "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter",
            "FlutterCondition", "flutter_condition"]
 
 
@@ -95,6 +102,10 @@ class FlutterPoint:
         Number of trims + eigen-analyses.
     mach_range : (float, float)
         The Mach range of the search [-].
+    warnings : tuple of str
+        What makes the result doubtful, in words: a flutter Mach outside the range of the aerodynamics
+        (:func:`flexsim.linear.validity.mach_note`), a trim at the flutter point that is itself unstable
+        (a rigid-body instability: the flight is not held open-loop). Empty when none.
     """
 
     aero_model: str
@@ -116,6 +127,7 @@ class FlutterPoint:
     aero_density_fixed: bool = False
     mach_range: tuple[float, float] = (math.nan, math.nan)
     terms: dict = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
 
 @dataclass
@@ -188,8 +200,9 @@ class FlutterAnalysis:
     model of the eigen-analysis (the same one unless the density of the linearised aerodynamics is fixed), and
     the finite-state model of the "unsteady" analysis and of the p-k method's input and output matrices. From a
     model they are that model itself where it is of the kind needed, otherwise its siblings: the same aircraft
-    object (not re-loaded), the same aerodynamic options (force resolution, compressibility, lift slopes, drag,
-    bodies, downwash), structural damping and gravity, only the aerodynamic model changed.
+    object (not re-loaded) and every term of the model (:meth:`AircraftModel.replace`: the aerodynamic options,
+    gravity, structural damping, force resolution, frozen compressibility Mach, thrust line, engine angular
+    momentum, offsets), only the aerodynamic model (and a fixed linearisation density) changed.
 
     Parameters
     ----------
@@ -242,9 +255,7 @@ class FlutterAnalysis:
         def sibling(name: str, n: int, density: float | None) -> AircraftModel:
             if options.model == name and (name != "unsteady" or options.n_inflow == n) and density is None:
                 return model
-            return AircraftModel(model.aircraft, aero=replace(options, model=name, n_inflow=n),
-                                 structural_damping=model.structural_damping, gravity_m_s2=model.gravity_m_s2,
-                                 aero_density_kg_m3=density)
+            return model.replace(aero=replace(options, model=name, n_inflow=n), aero_density_kg_m3=density)
 
         #: The quasi-steady model of every trim.
         self.qs = sibling("quasi-steady", options.n_inflow, None)
@@ -312,8 +323,11 @@ class FlutterAnalysis:
         crossing that restabilises before it) is therefore not looked for with a guess; search without one to
         scan the whole grid.
 
-        Speeds whose trim needs a control surface beyond its limit (too slow to fly the manoeuvre) are
-        skipped; thrust limits are not enforced (the paper's descents need negative thrust).
+        The scan points are the multiples of ``mach_step`` inside the range (:func:`flexsim.linear.scan.anchored_grid`),
+        and between two stable ones the step control halves an interval whose growth-rate curvature could hide an
+        instability (:func:`flexsim.linear.scan.hidden_crossing`, down to ``mach_step / 16``). Speeds whose trim needs a
+        control surface beyond its limit, or below the first flyable one has no trim or is under 1 m/s (too slow to
+        fly the manoeuvre), are skipped; thrust limits are not enforced (the paper's descents need negative thrust).
 
         ``aero_model`` and ``shared`` as in :meth:`evaluate`: e.g. the "QS" and "US" searches of one manoeuvre on a
         "theodorsen" analysis, passed the same :class:`SharedEvaluations`, compute the trims and linearisations of
@@ -328,6 +342,8 @@ class FlutterAnalysis:
         lo, hi = mach_range
         if not 0.0 < lo < hi < 1.0:
             raise ValueError(f"mach_range = {mach_range!r}: must satisfy 0 < lo < hi < 1")
+        if isinstance(mach_step, bool) or not (isinstance(mach_step, (int, float)) and 0.0 < mach_step <= hi - lo):
+            raise ValueError(f"mach_step = {mach_step!r}: must be in (0, {hi - lo:g}] (the width of mach_range)")
         name = self._model_name(aero_model)
         a_sound = speed_of_sound(float(manoeuvre.altitude_m))
         state = _SearchState()
@@ -354,19 +370,32 @@ class FlutterAnalysis:
                 # the crossing near the guess is the lowest one if the coarse grid below it is stable
                 below = [m for m in np.arange(lo, a, mach_step)]
                 if all(g(float(m)) <= 0 for m in below[-2:]):
+                    near = [(float(m), g(float(m))) for m in below[-2:] if float(m) < a] + [(a, g(a))]
+                    a, b = hidden_crossing(g, near, mach_step / 2 ** REFINE_LEVELS) or (a, b)  # step control there too
                     return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state, name, shared, (lo, hi))
-        grid = np.arange(lo, hi + 1e-12, mach_step)
-        if grid[-1] < hi - 1e-9:  # the scan ends at the upper end of the range, not a step short of it
-            grid = np.append(grid, hi)
+        grid = anchored_grid(lo, hi, mach_step)  # the same points above lo whatever lo is; ends at hi
         prev_m, prev_g = None, None
         skipped: list[float] = []
+        points: list[tuple[float, float]] = []  # flyable, stable scan points since the last skipped one
+        min_step = mach_step / 2 ** REFINE_LEVELS
         _, surf_hi = self.aircraft.control_limits()
         for mach in grid:
-            val = g(float(mach))
+            if prev_m is None and mach * a_sound < MIN_TRIM_SPEED_M_S:
+                skipped.append(float(mach))  # below the slowest manoeuvre flexsim trims: not flyable
+                continue
+            try:
+                val = g(float(mach))
+            except TrimError:
+                if prev_m is not None:
+                    raise
+                state.guess = None  # no trim at the slow end of the range: not flyable, skip this speed
+                skipped.append(float(mach))
+                continue
             trim_point = state.last[0]
             if np.any(np.abs(trim_point.u[1:]) > surf_hi[1:] + 1e-12):
                 state.guess = None  # trim needs a surface beyond its limit: not flyable, skip this speed
                 skipped.append(float(mach))
+                points = []
                 continue
             if trim_point.stability.is_divergent:  # not an equilibrium the aircraft stays in: no flutter above it
                 where = "the lower end of the search" if prev_m is None else "below any flutter crossing"
@@ -377,19 +406,28 @@ class FlutterAnalysis:
                     if skipped:
                         raise FlutterNotFound(
                             f"{name}: unstable at M = {mach:.4f}, the first flyable Mach number of the search "
-                            f"({manoeuvre.describe()}); the lower Mach numbers {skipped[0]:.3f} to {skipped[-1]:.3f} need a "
-                            "control surface beyond its limit to trim, so the crossing cannot be bracketed there "
+                            f"({manoeuvre.describe()}); the lower Mach numbers {skipped[0]:.3f} to {skipped[-1]:.3f} cannot "
+                            "be flown (no trim, or a control surface beyond its limit), so the crossing cannot be bracketed there "
                             f"(a lower mach_range[0] would not help; searched {lo:.3f} <= M <= {hi:.3f})", (lo, hi)
                         )
                     raise FlutterNotFound(
                         f"{name}: already unstable at the lower end of the search, M = {mach:.4f} "
                         f"({manoeuvre.describe()}; searched {lo:.3f} <= M <= {hi:.3f}); lower mach_range[0]", (lo, hi)
                     )
-                return self._point(manoeuvre, brentq(g, prev_m, float(mach), xtol=tol), a_sound, state, name, shared, (lo, hi))
+                a, b = hidden_crossing(g, points, min_step) or (prev_m, float(mach))  # step control
+                return self._point(manoeuvre, brentq(g, a, b, xtol=tol), a_sound, state, name, shared, (lo, hi))
             prev_m, prev_g = float(mach), val
+            points.append((prev_m, val))
+        hidden = hidden_crossing(g, points, min_step)
+        if hidden is not None:
+            return self._point(manoeuvre, brentq(g, *hidden, xtol=tol), a_sound, state, name, shared, (lo, hi))
         if prev_m is None:
             raise FlutterNotFound(f"{name}: no flyable trim (surfaces within limits) for {lo:.3f} <= M <= {hi:.3f} "
                                   f"({manoeuvre.describe()})", (lo, hi))
+        if not math.isfinite(prev_g):
+            raise FlutterNotFound(f"{name}: {self.aircraft.name} has no oscillatory elastic mode at M = {prev_m:.3f} "
+                                  f"({manoeuvre.describe()}), so no flutter to find (rigid components only, or every "
+                                  "elastic root real)", (lo, hi))
         raise FlutterNotFound(
             f"{name}: no elastic mode crosses the imaginary axis for {lo:.3f} <= M <= {hi:.3f} "
             f"({manoeuvre.describe()}); largest elastic real part {prev_g:.4g} 1/s at M = {prev_m:.3f}", (lo, hi)
@@ -428,7 +466,13 @@ class FlutterAnalysis:
         mode = spec.critical("elastic")
         point = with_stability(self.qs, point, spec, neutral=mode.eigenvalue)  # the crossing mode is neutral here
         desc = describe_mode(self.qs.structure, mode.shape, mode.eigenvalue)
+        notes = [mach_note("flutter", mach_f, self.qs.aero.compressibility)]
+        if point.stability is not None and point.stability.verdict not in ("stable", "slowly unstable"):
+            notes.append(f"the trim at the flutter point is not a stable equilibrium ({point.stability.aero_model} roots): "
+                         f"{point.stability.message}; the flutter Mach is that of a flight the aircraft does not hold "
+                         "without control")
         return FlutterPoint(
+            warnings=tuple(n for n in notes if n),
             aero_model=name,
             mach=float(mach_f),
             speed_m_s=float(mach_f * a_sound),
@@ -456,30 +500,15 @@ def _check_flutter_model(model: AircraftModel) -> None:
     """Refuse a model a flutter search of a manoeuvre cannot use, naming what is wrong."""
     if not isinstance(model, AircraftModel):
         raise TypeError(f"model: an AircraftModel, not {type(model).__name__}")
-    if model.variant.value != "free":
-        raise ValueError(f"model.variant = {model.variant.value!r}: a flutter search of a manoeuvre needs the free aircraft; "
+    if model.variant.kind.value != "free":
+        raise ValueError(f"model.variant = {model.variant.kind.value!r}: a flutter search of a manoeuvre needs the free aircraft; "
                          "a restrained structure in an airflow is flexsim.wind_tunnel(aircraft, ...)")
     if model.aero is None:
         raise ValueError("model.aero = None: a model without aerodynamics has no flutter; build it with aero=\"quasi-steady\" "
                          "or \"unsteady\"")
-    if model.aero_density_kg_m3 is not None:
-        raise ValueError(f"model.aero_density_kg_m3 = {model.aero_density_kg_m3!r}: trims need the true density; fix the "
+    if model.terms.aero_density_kg_m3 is not None:
+        raise ValueError(f"model.terms.aero_density_kg_m3 = {model.terms.aero_density_kg_m3!r}: trims need the true density; fix the "
                          "density of the linearised aerodynamics with linear_aero_density_kg_m3 of the analysis instead")
-
-
-#: Largest Mach step of a flutter scan, and the fewest steps over the range (:func:`scan_step`).
-MAX_MACH_STEP = 0.05
-MIN_SCAN_STEPS = 8
-
-
-def scan_step(mach_range: tuple[float, float]) -> float:
-    """The Mach step of a flutter scan over ``mach_range``: 0.05, or an eighth of a narrower range [-].
-
-    0.05 on the paper's M 0.5-0.95; a sailplane's envelope (M 0.07-0.24) is scanned at 9 points instead of 4, so a
-    crossing that goes unstable and back between two scan points is as unlikely as on the wide range.
-    """
-    lo, hi = mach_range
-    return min(MAX_MACH_STEP, (hi - lo) / MIN_SCAN_STEPS)
 
 
 @single_blas_thread
@@ -546,6 +575,12 @@ class WindTunnelResult:
         through zero); None when it lies outside the speed range or was not searched.
     speed_range_m_s : tuple of float
         The searched range [m/s].
+    terms : dict
+        The physical terms of the tunnel's model of ``aero_model`` (:meth:`flexsim.model.terms.Terms.record`).
+    warnings : tuple of str
+        A flutter or divergence speed outside the range of the aerodynamics
+        (:func:`flexsim.linear.validity.mach_note`), or a structure without an oscillatory elastic mode; empty
+        when none.
     """
 
     aero_model: str
@@ -555,6 +590,8 @@ class WindTunnelResult:
     flutter_frequency_rad_s: float | None
     divergence_speed_m_s: float | None
     speed_range_m_s: tuple[float, float]
+    terms: dict = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
     @property
     def first_instability(self) -> str:
@@ -567,24 +604,8 @@ class WindTunnelResult:
         return "divergence"
 
 
-#: Relative tolerance on "unstable": a real part counts as positive only above this fraction of the
-#: mode's |eigenvalue| (damping ratio below -1e-9). Round-off on a neutrally stable mode (e.g. +1e-14 1/s
-#: on an undamped structure without aerodynamics) is not an instability.
-UNSTABLE_DAMPING = 1e-9
-
-
-def _growth(spec: Spectrum) -> float:
-    """Largest real part of the oscillatory elastic modes, zeroed within round-off of neutral [1/s]."""
-    cands = [m for m in spec.of_kind("elastic") if m.frequency_rad_s >= 0.5]
-    if not cands:
-        return -np.inf
-    worst = max(cands, key=lambda m: m.eigenvalue.real)
-    re = worst.eigenvalue.real
-    return re if abs(re) > UNSTABLE_DAMPING * abs(worst.eigenvalue) else 0.0
-
-
 @single_blas_thread
-def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range: tuple[float, float] = (10.0, 300.0),
+def wind_tunnel(aircraft: Aircraft | AircraftModel, *, aero_model: str = "unsteady", speed_range: tuple[float, float] = (10.0, 300.0),
                 speed_step: float = 5.0, density_kg_m3: float | None = None, altitude_m: float = 0.0,
                 compressibility: str = "file", tol_m_s: float = 1e-3, n_inflow: int = 6,
                 flutter: bool = True, divergence: bool = True) -> WindTunnelResult:
@@ -601,7 +622,11 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
 
     Parameters
     ----------
-    aircraft : Aircraft
+    aircraft : Aircraft or AircraftModel
+        An aircraft definition (its tunnel models have every term at its default but gravity, 0), or a model: the
+        tunnel evaluates that model's siblings (:meth:`AircraftModel.replace`: its variant replaced by this tunnel's,
+        restrained at each speed at ``altitude_m`` and ``density_kg_m3``, and the aerodynamic model ``aero_model``),
+        with every term of the model as given, gravity included.
     aero_model : {"quasi-steady", "unsteady", "theodorsen"}
     speed_range : (float, float)
         Searched speeds [m/s], 0 < lo < hi.
@@ -613,7 +638,9 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
         ISA altitude [m] for the density (when not given) and the speed of sound (Mach for the
         compressibility correction).
     compressibility : {"file", "prandtl-glauert", "none"}
-        See :class:`~flexsim.model.coupling.AeroOptions`.
+        See :class:`~flexsim.model.coupling.AeroOptions` (for a model: ``"file"`` keeps the model's own setting).
+    n_inflow : int
+        Finite-state inflow states per strip of the "unsteady" models (for an "unsteady" model: its own).
     flutter, divergence : bool
         Search the flutter speed, the divergence speed (default both).
 
@@ -631,16 +658,36 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
         raise ValueError(f"speed_step = {speed_step!r}: must be in (0, {hi - lo:g}] m/s (the width of speed_range)")
     if not (np.isfinite(tol_m_s) and tol_m_s > 0.0):
         raise ValueError(f"tol_m_s = {tol_m_s!r}: must be > 0 [m/s]")
-    base = dict(variant="restrained", gravity_m_s2=0.0, altitude_m=altitude_m, air_density_kg_m3=density_kg_m3)
+    tunnel = VariantSettings("restrained", altitude_m=altitude_m, air_density_kg_m3=density_kg_m3)
+    if isinstance(aircraft, AircraftModel):
+        given = aircraft
+        if given.aero is None:
+            raise ValueError("aircraft: a model without aerodynamics (aero None) has nothing for a wind tunnel to act on")
+        options = given.terms.aero
+        if compressibility != "file":
+            options = replace(options, compressibility=compressibility)
+        if options.model == "unsteady":
+            n_inflow = options.n_inflow
+        aircraft = given.aircraft
+    else:
+        given = AircraftModel(aircraft, aero=AeroOptions("quasi-steady", compressibility=compressibility), gravity_m_s2=0.0,
+                              variant=replace(tunnel, restrained_velocity_m_s=(lo, 0.0, 0.0)))
+        options = given.terms.aero
 
     def model(speed: float, name: str) -> AircraftModel:
-        return AircraftModel(aircraft, aero=AeroOptions(name, n_inflow, compressibility=compressibility),
-                             restrained_velocity_m_s=[speed, 0.0, 0.0], **base)
+        return given.replace(aero=replace(options, model=name, n_inflow=n_inflow),
+                             variant=replace(tunnel, restrained_velocity_m_s=(speed, 0.0, 0.0)))
 
     probe = model(lo, "quasi-steady")
     if probe.aero is None or probe.aero.strips.n_strips == 0:
         raise ValueError(f"aircraft {aircraft.name!r} has no aerodynamic strips: a wind tunnel has nothing to act on")
-    rho = density_kg_m3 if density_kg_m3 is not None else isa_density(float(altitude_m))
+    rho = probe.air_density(probe.layout.zeros())  # the tunnel's, else the model's fixed aerodynamic density, else ISA
+    if probe.active_dofs.size == 0:  # clamped and rigid: nothing can move, so neither flutter nor divergence
+        used = replace(options, model="unsteady" if aero_model == "unsteady" else "quasi-steady", n_inflow=n_inflow)
+        return WindTunnelResult(aero_model, float(rho), probe.aero.compressibility, None, None, None, (lo, hi),
+                                replace(given.terms, aero=used).record(),
+                                (f"{aircraft.name} has no elastic degree of freedom (every component rigid, clamped at the "
+                                 "body origin): no flutter or divergence to find",))
 
     def spec_at(speed: float) -> Spectrum:
         if aero_model == "theodorsen":
@@ -649,22 +696,42 @@ def wind_tunnel(aircraft: Aircraft, *, aero_model: str = "unsteady", speed_range
         m = model(speed, aero_model)
         return spectrum(m, m.layout.zeros(), np.zeros(4), aero_model=aero_model)
 
-    speeds = np.arange(lo, hi + 1e-9 * hi, speed_step)
+    speeds = anchored_grid(lo, hi, speed_step)
     u_f = w_f = None
-    g: Callable[[float], float] = lambda sp: _growth(spec_at(sp))
-    prev = None
+    done: dict[float, float] = {}
+
+    def g(sp: float) -> float:
+        sp = float(sp)
+        if sp not in done:
+            done[sp] = _growth(spec_at(sp))
+        return done[sp]
+
+    points: list[tuple[float, float]] = []
+    bracket = None
     for speed in speeds if flutter else ():
-        if g(float(speed)) > 0:
-            if prev is None:
+        val = g(float(speed))
+        if val > 0:
+            if not points:
                 raise FlutterNotFound(f"{aero_model}: an elastic mode is already unstable at the lowest speed "
-                                      f"{speed:g} m/s (growth rate {g(float(speed)):.3g} 1/s); lower speed_range[0]")
-            u_f = float(brentq(g, prev, float(speed), xtol=tol_m_s))
-            w_f = spec_at(u_f).critical("elastic").frequency_rad_s
+                                      f"{speed:g} m/s (growth rate {val:.3g} 1/s); lower speed_range[0]")
+            bracket = (points[-1][0], float(speed))
             break
-        prev = float(speed)
+        points.append((float(speed), val))
+    if flutter:  # step control: an instability between two stable scan points (hidden_crossing)
+        bracket = hidden_crossing(g, points, speed_step / 2 ** REFINE_LEVELS) or bracket
+    if bracket is not None:
+        u_f = float(brentq(g, *bracket, xtol=tol_m_s))
+        w_f = spec_at(u_f).critical("elastic").frequency_rad_s
     u_d = _divergence_speed(lambda sp: model(sp, "quasi-steady"), speeds, tol_m_s) if divergence else None
     comp = probe.aero.compressibility
-    return WindTunnelResult(aero_model, float(rho), comp, u_f, w_f, u_d, (lo, hi))
+    used = replace(options, model="unsteady" if aero_model == "unsteady" else "quasi-steady", n_inflow=n_inflow)
+    a_sound = speed_of_sound(float(altitude_m))
+    notes = [mach_note(what, v / a_sound, comp) for what, v in (("flutter", u_f), ("divergence", u_d)) if v is not None]
+    if flutter and points and not any(math.isfinite(v) for _, v in points):
+        notes.append(f"{aircraft.name} has no oscillatory elastic mode in the stream (rigid components only, or every "
+                     "elastic root real): no flutter to find")
+    return WindTunnelResult(aero_model, float(rho), comp, u_f, w_f, u_d, (lo, hi), replace(given.terms, aero=used).record(),
+                            tuple(n for n in notes if n))
 
 
 def _static_stiffness_sign(model: AircraftModel) -> float:
@@ -725,7 +792,8 @@ class FlutterCondition:
     mach, speed_m_s, frequency_rad_s : float
         Flutter Mach number, true airspeed [m/s] and frequency [rad/s].
     mode : str
-        Dominant DOF of the crossing mode (e.g. ``"vtail torsion 1"``).
+        Name of the crossing mode (:func:`flexsim.structure.mode_names.mode_name`, e.g.
+        ``"wings torsion 1 (antisymmetric)"``).
     """
 
     mach: float
@@ -735,20 +803,28 @@ class FlutterCondition:
 
 
 @functools.lru_cache(maxsize=8)
-def _cached_condition(key: ContentKey, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
-    return _search(key.aircraft, aero, altitude_m, mach_range)
+def _cached_condition(key: ContentKey, terms: Terms | None, aero: str, altitude_m: float,
+                      mach_range: tuple[float, float]) -> FlutterCondition:
+    return _search(key.aircraft if terms is None else AircraftModel(key.aircraft, terms=terms), aero, altitude_m, mach_range)
 
 
-def _search(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+def _search(aircraft: Aircraft | AircraftModel, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
+    analysis = FlutterAnalysis.from_model(aircraft, aero) if isinstance(aircraft, AircraftModel) else FlutterAnalysis(aircraft, aero)
+    aircraft = analysis.aircraft
     try:
-        point = FlutterAnalysis(aircraft, aero).search(SteadyManoeuvre.level(altitude_m, mach=0.6), mach_range=mach_range, mach_step=0.02)
+        point = analysis.search(SteadyManoeuvre.level(altitude_m, mach=0.6), mach_range=mach_range, mach_step=0.02)
     except FlutterNotFound as exc:
         raise ValueError(f"aero = {aero!r}: no usable open-loop flutter point of {aircraft.name} at {altitude_m:g} m for Mach in "
                          f"{mach_range} ({exc}); the GTM flutter points are those of the finite-state model, aero = 'unsteady'") from None
-    return FlutterCondition(point.mach, point.speed_m_s, point.frequency_rad_s, point.mode.dominant_dof)
+    return FlutterCondition(point.mach, point.speed_m_s, point.frequency_rad_s, point.mode.name)
 
 
-def flutter_condition(aircraft: Aircraft, aero: str, altitude_m: float, mach_range: tuple[float, float]) -> FlutterCondition:
-    """Flutter point of level flight of ``aircraft`` (cached by the aircraft's content, aerodynamic model,
-    altitude and range: a modified aircraft gets its own point)."""
-    return _cached_condition(aircraft.content_key(), aero, float(altitude_m), tuple(float(m) for m in mach_range))
+def flutter_condition(aircraft: Aircraft | AircraftModel, aero: str, altitude_m: float,
+                      mach_range: tuple[float, float]) -> FlutterCondition:
+    """Flutter point of level flight of ``aircraft``, or of a free model with all its terms (cached by the aircraft's
+    content, the model's terms, aerodynamic model, altitude and range: a modified aircraft or model gets its own point)."""
+    key = (float(altitude_m), tuple(float(m) for m in mach_range))
+    if isinstance(aircraft, AircraftModel):
+        _check_flutter_model(aircraft)
+        return _cached_condition(aircraft.aircraft.content_key(), aircraft.terms, aero, *key)
+    return _cached_condition(aircraft.content_key(), None, aero, *key)

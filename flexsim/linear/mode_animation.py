@@ -153,7 +153,7 @@ def record_flutter_mode(model: AircraftModel, point, path: str | os.PathLike, *,
     description = "\n".join([
         f"* flight: {flight}",
         f"* eigenvalue: {lam.real:.5g} {'+' if lam.imag >= 0 else '-'} {abs(lam.imag):.5g}j 1/s "
-        f"(damping ratio {mode.damping_ratio:.3g}), dominant DOF {mode.dominant_dof}",
+        f"(damping ratio {mode.damping_ratio:.3g}), {mode.name}",
         f"* symmetry: {point.mode_symmetry}; bars normalised by {point.normalised_by} = 1 (phase 0)",
         f"* amplitude: scaled for display, the largest elastic node displacement is {peak:.3g} m "
         f"(a linear mode has a shape, not an amplitude); growth or decay left out",
@@ -203,5 +203,5 @@ def record_critical_mode(cases, rows, path: str | os.PathLike) -> str:
     point = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_guess=mach, aero_model=MODELS[case.model])
     out = record_flutter_mode(analysis.qs, point, path)
     return (f"flutter mode of {case.model} at H = {case.altitude_m:g} m (M {point.mach:.4f}, "
-            f"{point.frequency_rad_s:.4g} rad/s, {point.mode.dominant_dof}) recorded to {out} "
+            f"{point.frequency_rad_s:.4g} rad/s, {point.mode.name}) recorded to {out} "
             f"({out.stat().st_size} bytes; flexsim view {out})")

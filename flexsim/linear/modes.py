@@ -16,6 +16,7 @@ import numpy as np
 from scipy.linalg import eigh
 
 from flexsim.model.aircraft_model import AircraftModel
+from flexsim.structure.mode_names import mode_name
 
 __all__ = ["Mode", "ModalAnalysis", "in_vacuo_modes"]
 
@@ -31,7 +32,8 @@ class Mode:
     shape : ndarray, shape (n_v,)
         Mass-normalised mode shape over V = [v, omega, s, eta] (zeros on fixed DOFs).
     dominant_dof : str
-        Label of the DOF with the largest kinetic-energy fraction, e.g. "right_wing torsion 1".
+        The mode's name (:func:`flexsim.structure.mode_names.mode_name`, e.g. "wings torsion 1 (symmetric)"), the
+        name every output gives it; a rigid-body mode's DOF with the largest kinetic-energy fraction.
     dominant_fraction : float
         That fraction [-].
     """
@@ -90,7 +92,7 @@ def in_vacuo_modes(model: AircraftModel) -> ModalAnalysis:
     if active.size == 0:
         from flexsim.errors import FlexsimError
 
-        raise FlexsimError(f"aircraft {model.aircraft.name!r}, variant {model.variant.value!r}: no degree of freedom to "
+        raise FlexsimError(f"aircraft {model.aircraft.name!r}, variant {model.variant.kind.value!r}: no degree of freedom to "
                            f"analyse (the body is restrained and every component has bending_modes = torsion_modes = 0)")
     m = st.inertia.m0[np.ix_(active, active)]
     k = st.stiffness[np.ix_(active, active)]
@@ -101,13 +103,15 @@ def in_vacuo_modes(model: AircraftModel) -> ModalAnalysis:
     mirror = st.mirror  # mirror pairs and their signs from the geometry (flexsim.structure.mirror)
     twins = {} if mirror is None else {st.dofs.labels[i]: (st.dofs.labels[mirror.partner[i]], mirror.sign[i])
                                        for i in active if mirror.partner[i] not in (-1, int(i))}
+    m0 = st.inertia.mass_matrix(np.zeros(st.dofs.nq))
     modes = []
     for i in range(lam.size):
         phi = vec[:, i]
         full = np.zeros(st.dofs.n_v)
         full[active] = phi
         label, share = _dominant(labels, phi, phi * (m @ phi), twins)
-        modes.append(Mode(float(np.sqrt(max(lam[i], 0.0))), full, label, share))
+        name = mode_name(st, full, m0, m0) if i >= n_rigid else None  # the name every output gives the mode
+        modes.append(Mode(float(np.sqrt(max(lam[i], 0.0))), full, name or label, share))
     return ModalAnalysis(tuple(modes), n_rigid)
 
 

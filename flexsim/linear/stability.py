@@ -25,7 +25,7 @@ from flexsim.linear.symmetry import decoupled, mirror_bases
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.trim.roots import Mode, Spectrum, _classify, _dominant_dofs  # noqa: F401 (_dominant_dofs: the name tests and benchmarks use)
 
-__all__ = ["Mode", "Spectrum", "spectrum", "linear_spectrum", "PkStateMatrix", "pk_state_matrix", "PK_METHODS"]
+__all__ = ["Mode", "Spectrum", "spectrum", "linear_spectrum", "PkStateMatrix", "pk_state_matrix", "PK_METHODS", "conjugate_slots"]
 
 #: Ways of continuing a p-k root from one iteration to the next (see :mod:`flexsim.aero.pk`).
 PK_METHODS = ("inverse-iteration", "eig")
@@ -126,6 +126,42 @@ def pk_state_matrix(qs_model: AircraftModel, fs_model: AircraftModel, lin: Linea
     return PkStateMatrix(lin.a, b_k, c_k, b_over_u)
 
 
+def conjugate_slots(vals: np.ndarray, track: np.ndarray) -> np.ndarray:
+    """Index of the complex-conjugate partner of every root ``vals[track]`` (Im > 0), each partner used once.
+
+    The eigenvalues of a real matrix come in conjugate pairs; the p-k root followed from ``vals[k]`` replaces both
+    ``vals[k]`` and its partner. Nearly equal pairs (the two halves of a clamped wing pair, equal to round-off) make
+    the nearest conjugate ambiguous: two tracked roots taking the same partner would leave the other partner's
+    quasi-steady value, with its own real part, in the p-k spectrum. So the partners are a one-to-one assignment of
+    the untracked roots minimising the total distance |vals[j] - conj(vals[k])|
+    (:func:`scipy.optimize.linear_sum_assignment`).
+
+    Parameters
+    ----------
+    vals : ndarray (complex), shape (n,)
+        Eigenvalues of a real matrix [1/s].
+    track : ndarray of int, shape (k,)
+        Indices of the tracked roots, Im > 0.
+
+    Returns
+    -------
+    ndarray of int, shape (k,)
+    """
+    from scipy.optimize import linear_sum_assignment
+
+    track = np.asarray(track, dtype=int)
+    rest = np.setdiff1d(np.arange(vals.size), track)
+    if track.size == 0:
+        return track.copy()
+    if rest.size < track.size:
+        raise ValueError(f"track: {track.size} roots with Im > 0 but only {rest.size} other roots to be their conjugates")
+    cost = np.abs(vals[rest][None, :] - np.conj(vals[track])[:, None])
+    rows, cols = linear_sum_assignment(cost)
+    out = np.empty(track.size, dtype=int)
+    out[rows] = rest[cols]
+    return out
+
+
 def _pk(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel, method: str, mirror_split: bool = True) -> Spectrum:
     """p-k iteration with Theodorsen's C(k) at every strip (paper eq. 27, the "US" model).
 
@@ -148,11 +184,9 @@ def _pk(qs_model: AircraftModel, fs_model: AircraftModel, lin: LinearModel, meth
         out_vals, out_vecs = vals0.astype(complex).copy(), vecs0.astype(complex).copy()
         track = np.flatnonzero((vals0.imag > 0.5) & (vals0.real >= -20.0))
         roots = pk_roots(part, vals0[track], vecs0[:, track], inverse_iteration=inverse)
-        for k, root in zip(track, roots):
+        for k, conj, root in zip(track, conjugate_slots(vals0, track), roots):
             out_vals[k], out_vecs[:, k] = root.eigenvalue, root.vector
-            conj = np.argmin(np.abs(vals0 - np.conj(vals0[k])))
-            if conj != k:
-                out_vals[conj], out_vecs[:, conj] = np.conj(root.eigenvalue), np.conj(root.vector)
+            out_vals[conj], out_vecs[:, conj] = np.conj(root.eigenvalue), np.conj(root.vector)
         all_vals.append(out_vals)
         all_vecs.append(out_vecs if basis is None else basis @ out_vecs)
     vals = np.concatenate(all_vals)

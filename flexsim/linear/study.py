@@ -30,6 +30,7 @@ from typing import Callable, Iterable, Sequence
 import numpy as np
 
 from flexsim.atmosphere import isa_density
+from flexsim.model.terms import Terms
 
 __all__ = ["StudyCase", "StudyRecord", "case_key", "turn_cases", "climb_cases", "run_case", "run_chain", "run_point", "run_points", "run_study", "write_results", "plot_study", "plot_trim", "glide_from_climb"]
 
@@ -64,6 +65,14 @@ class StudyCase:
         at this altitude [m] (the trims keep the true one); None: the flight's true density.
     coordinated : bool
         Turns: coordinated (zero sideslip, heading free) instead of the paper's turn.
+    terms : Terms or None
+        The physical terms of the case's model (:class:`flexsim.model.terms.Terms`, with aerodynamics); the analysis
+        is that of ``AircraftModel(aircraft, terms=terms)`` with ``model``'s aerodynamic model
+        (:meth:`FlutterAnalysis.from_model`). None (default): the aircraft's, with ``structural_damping`` and
+        ``formulation`` (which must then be None when ``terms`` is given).
+    mach_step : float or None
+        Scan step of the search in Mach [-], in (0, mach_max - mach_min]; None:
+        :func:`flexsim.linear.flutter.scan_step` of the range.
     """
 
     aircraft: str
@@ -77,10 +86,23 @@ class StudyCase:
     formulation: str | None = None
     linear_density_altitude_m: float | None = None
     coordinated: bool = False
+    terms: Terms | None = None
+    mach_step: float | None = None
 
     def __post_init__(self) -> None:
+        if self.mach_step is not None and not (isinstance(self.mach_step, (int, float)) and not isinstance(self.mach_step, bool)
+                                               and 0.0 < self.mach_step <= self.mach_max - self.mach_min):
+            raise ValueError(f"mach_step = {self.mach_step!r}: must be in (0, {self.mach_max - self.mach_min:g}] "
+                             "(the width of the Mach range)")
         if self.model not in MODELS:
             raise ValueError(f"model = {self.model!r}: must be one of {', '.join(MODELS)}")
+        if self.terms is not None:
+            if not isinstance(self.terms, Terms) or self.terms.aero is None:
+                raise ValueError(f"terms = {self.terms!r}: must be a flexsim.model.terms.Terms with aerodynamics (or None)")
+            given = [k for k in ("structural_damping", "formulation") if getattr(self, k) is not None]
+            if given:
+                raise ValueError(f"terms and {', '.join(given)}: give {', '.join(given)} inside terms "
+                                 "(Terms.structural_damping, AeroOptions.formulation), not both")
         if self.coordinated and self.turn_radius_m == math.inf:
             raise ValueError("coordinated = True: applies to turns only (give turn_radius_m)")
         if self.formulation is not None and self.formulation not in ("physical", "paper"):
@@ -93,14 +115,20 @@ class StudyCase:
         from flexsim.aircraft.toml_loader import load_aircraft
         from flexsim.linear.flutter import FlutterAnalysis
 
+        from flexsim.model.aircraft_model import AircraftModel
+
         rho = None if self.linear_density_altitude_m is None else float(isa_density(self.linear_density_altitude_m))
+        if self.terms is not None:
+            return FlutterAnalysis.from_model(AircraftModel(load_aircraft(self.aircraft), terms=self.terms), MODELS[self.model],
+                                              linear_aero_density_kg_m3=rho)
         return FlutterAnalysis(load_aircraft(self.aircraft), MODELS[self.model], structural_damping=self.structural_damping,
                                formulation=self.formulation, linear_aero_density_kg_m3=rho)
 
     @property
     def chain_key(self) -> tuple:
         """Cases with equal keys share one analysis and are run in order (:func:`run_chain`)."""
-        return (self.aircraft, self.model, self.altitude_m, self.structural_damping, self.formulation, self.linear_density_altitude_m)
+        return (self.aircraft, self.model, self.altitude_m, self.structural_damping, self.formulation, self.linear_density_altitude_m,
+                self.terms)
 
 
 def turn_cases(aircraft: str, radii_m: Sequence[float] = tuple(range(5000, 12001, 1000)),
@@ -134,16 +162,17 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
     gamma = None if case.climb_angle_deg is None else math.radians(case.climb_angle_deg)
     try:
         analysis = analysis or case.analysis()
-        start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_min)
+        start = SteadyManoeuvre.level(case.altitude_m, mach=case.mach_max)  # its speed is replaced by the searched one
         man = SteadyManoeuvre(start.speed_m_s, case.altitude_m, case.turn_radius_m, gamma, case.coordinated)
-        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_step=scan_step((case.mach_min, case.mach_max)),
+        fp = analysis.search(man, mach_range=(case.mach_min, case.mach_max), mach_step=(scan_step((case.mach_min, case.mach_max))
+                                                                                    if case.mach_step is None else case.mach_step),
                              mach_guess=mach_guess, aero_model=MODELS[case.model], shared=shared)
     except (FlutterNotFound, TrimError, ValueError) as exc:
         row["error"] = str(exc)
         return row
     s = fp.trim.summary()
     row.update(
-        mach=fp.mach, omega_rad_s=fp.frequency_rad_s, mode=fp.mode.dominant_dof,
+        mach=fp.mach, omega_rad_s=fp.frequency_rad_s, mode=fp.mode.name, mode_coordinate=fp.mode.dominant_dof,
         theta_deg=s["theta_deg"], phi_deg=s["phi_deg"], sideslip_deg=s["sideslip_deg"], gamma_deg=s["gamma_deg"], thrust_kN=s["thrust_kN"],
         aileron_deg=s["aileron_deg"], elevator_deg=s["elevator_deg"], rudder_deg=s["rudder_deg"],
         tip_deflection_m=s["tip_deflection_m"], tip_twist_deg=s["tip_twist_deg"], evaluations=fp.evaluations,
@@ -152,6 +181,9 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
         mode_symmetry=fp.mode_symmetry, symmetric_fraction=fp.symmetric_fraction, normalised_by=fp.normalised_by,
         participation=[p.as_dict() for p in fp.participation],
         formulation=fp.formulation, aero_density_kg_m3=fp.aero_density_kg_m3, aero_density_fixed=fp.aero_density_fixed,
+        model_terms=fp.terms,
+        linear_range=fp.trim.linear_range,
+        warnings=list(fp.warnings),
     )
     return row
 
@@ -183,7 +215,7 @@ def _analysis(case: StudyCase):
     path = resolve_aircraft_path(case.aircraft)
     # what the analysis depends on: not the altitude, so that a worker reuses it over the points of all altitudes
     key = (hashlib.sha256(path.read_bytes()).hexdigest(), case.model, case.structural_damping, case.formulation,
-           case.linear_density_altitude_m)
+           case.linear_density_altitude_m, case.terms)
     if key in _ANALYSES:
         _ANALYSES.move_to_end(key)
         return _ANALYSES[key]
@@ -455,7 +487,7 @@ def _local_steps(cases: Sequence[StudyCase], todo: list[list[int]], chain_sizes:
     groups: dict[tuple, list[int]] = {}
     for g, size in zip(todo, chain_sizes):
         if len(g) == 1 and size == 1:
-            key = tuple((k, v) for k, v in asdict(cases[g[0]]).items() if k != "model")
+            key = json.dumps({k: v for k, v in asdict(cases[g[0]]).items() if k != "model"}, sort_keys=True, default=str)
             groups.setdefault(key, []).append(g[0])
         else:
             queues.append([(i,) for i in g])
@@ -472,7 +504,7 @@ def _in_worker(name: str, *args):
 def _analysis_of(cases: Sequence[StudyCase], step: tuple[int, ...]) -> tuple:
     """Which analysis a worker builds for ``step`` (:func:`_analysis`, :func:`run_points`): scheduling only."""
     case = min((cases[i] for i in step), key=lambda c: _COST_RANK[c.model])
-    return (case.aircraft, case.model, case.structural_damping, case.formulation, case.linear_density_altitude_m)
+    return (case.aircraft, case.model, case.structural_damping, case.formulation, case.linear_density_altitude_m, case.terms)
 
 
 def _run_pool(n, cases, queues, guess_for, finish, bar, attempts, max_attempts) -> None:

@@ -21,9 +21,9 @@ speed), less a small penalty on the distance of the eigenvalue from the branch's
 decides only when two candidates have nearly equal MAC, e.g. at a coalescence, where the two eigenvectors become
 alike). The pairing maximises the total score over all branches at once (the assignment problem,
 :func:`scipy.optimize.linear_sum_assignment`); a root with MAC below :data:`MIN_MAC` to every branch starts a new
-branch. A branch is labelled by its first root: the elastic coordinate with the largest kinetic-energy share
-Re(conj(phi_i) (M(0) phi)_i) and, for a mirror-symmetric aircraft, the root's symmetry
-(:func:`flexsim.structure.mirror.mode_symmetry`).
+branch. A branch is labelled by the name of its first root (:func:`flexsim.structure.mode_names.mode_name`, the
+name every output gives a mode, e.g. "wings torsion 1 (antisymmetric)"); a refined crossing by the name of the root
+at the crossing, the name the flutter search gives the same point.
 
 Crossings. Where Re(lambda) of a branch changes sign between two speeds, the crossing is refined by regula falsi
 (Illinois variant) on the speed, the root at each new speed being the one with the largest MAC to the branch's root
@@ -43,7 +43,7 @@ altitude of the model given.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Sequence
 
@@ -52,6 +52,7 @@ from scipy.optimize import linear_sum_assignment
 
 from flexsim.atmosphere import speed_of_sound
 from flexsim.linear.stability import Mode, Spectrum, spectrum
+from flexsim.linear.validity import mach_note
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.trim import SteadyManoeuvre, TrimError
 
@@ -237,6 +238,11 @@ class VgDiagram:
         Every crossing of every branch, by model and speed.
     failed : tuple of (str, float, str)
         (aero model, speed [m/s], reason) of the speeds without roots (trim failed).
+    terms : dict
+        Aerodynamic model name -> the physical terms of the model whose roots were computed for it
+        (:meth:`flexsim.model.terms.Terms.record`).
+    warnings : tuple of str
+        Crossings outside the range of the aerodynamics (:func:`flexsim.linear.validity.mach_note`); empty when none.
     """
 
     aircraft: str
@@ -247,6 +253,8 @@ class VgDiagram:
     tracks: tuple[VgTrack, ...]
     crossings: tuple[VgCrossing, ...] = ()
     failed: tuple[tuple[str, float, str], ...] = ()
+    terms: dict = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
     def flutter(self, aero_model: str) -> VgCrossing | None:
         """The lowest-speed crossing into instability of an elastic branch of ``aero_model``, or None."""
@@ -254,6 +262,17 @@ class VgDiagram:
             if c.aero_model == aero_model and c.kind == "elastic" and c.direction == "unstable":
                 return c
         return None
+
+    def unstable_throughout(self, aero_model: str) -> tuple[str, ...]:
+        """Labels of the elastic branches of ``aero_model`` unstable (Re(lambda) > 0) at every speed where they have a
+        root, from the first speed on: an instability below the range, which no crossing in it marks."""
+        out = []
+        for t in self.tracks_of(aero_model):
+            re = t.eigenvalues.real
+            ok = np.isfinite(re)
+            if t.kind == "elastic" and ok.any() and ok[0] and np.all(re[ok] > 0.0):
+                out.append(t.label)
+        return tuple(dict.fromkeys(out))
 
     def tracks_of(self, aero_model: str) -> tuple[VgTrack, ...]:
         """The branches of one aerodynamic model."""
@@ -266,7 +285,9 @@ class VgDiagram:
                 "damping": "g = 2 Re(lambda)/|Im(lambda)|, positive = unstable; damping_ratio = -Re(lambda)/|lambda|",
                 "tracks": [t.as_dict() for t in self.tracks],
                 "crossings": [c.__dict__ for c in self.crossings],
-                "failed": [{"aero_model": m, "speed_m_s": v, "reason": r} for m, v, r in self.failed]}
+                "failed": [{"aero_model": m, "speed_m_s": v, "reason": r} for m, v, r in self.failed],
+                "terms": self.terms,
+                "warnings": list(self.warnings)}
 
     def plot(self, path: str | Path, *, g_limits: tuple[float, float] = (-0.5, 0.2), max_elastic: int = 10) -> Path:
         """V-g (top) and V-f (bottom) panels, one column per aerodynamic model, crossings marked; written as PNG.
@@ -280,12 +301,11 @@ class VgDiagram:
         import matplotlib.pyplot as plt
 
         models = list(dict.fromkeys(t.aero_model for t in self.tracks))
-        crossing_labels = {(c.aero_model, c.label) for c in self.crossings}
         shown: dict[str, list[VgTrack]] = {}
         for name in models:
             elastic = sorted((t for t in self.tracks_of(name) if t.kind == "elastic"),
                              key=lambda t: float(np.nanmin(t.frequency_rad_s)))
-            keep = elastic[:max_elastic] + [t for t in elastic[max_elastic:] if (name, t.label) in crossing_labels]
+            keep = elastic[:max_elastic] + [t for t in elastic[max_elastic:] if t.brackets()]  # and every one that crosses
             shown[name] = [t for t in self.tracks_of(name) if t.kind != "elastic"] + keep
         labels = list(dict.fromkeys(t.label for name in models for t in shown[name]))
         palette = plt.cm.tab20(np.linspace(0, 1, 20))
@@ -319,7 +339,11 @@ class VgDiagram:
                               fontsize=7, ha="right", arrowprops=dict(arrowstyle="-", lw=0.6))
             ax_g.axhline(0.0, color="k", lw=0.8)
             ax_g.set_ylim(*g_limits)
-            ax_g.set_title(f"{short.get(name, name)} ({name})" + ("" if first else ": no flutter in the range"), fontsize=10)
+            above = self.unstable_throughout(name)
+            more = f" and {len(above) - 1} more" if len(above) > 1 else ""
+            state = ("" if first else f":\nunstable over the whole range ({above[0]}{more})" if above
+                     else ": no flutter in the range")
+            ax_g.set_title(f"{short.get(name, name)} ({name}){state}", fontsize=9)
             ax_g.set_ylabel("damping g = 2 Re(λ)/|Im(λ)| [-] (> 0 unstable)")
             ax_f.set_ylabel("frequency |Im(λ)| [rad/s]")
             ax_f.set_xlabel("true airspeed [m/s]")
@@ -328,34 +352,27 @@ class VgDiagram:
         for ax in axes[1]:
             ax.set_ylim(0.0, 1.05 * f_top)
         fig.legend(list(drawn.values()), list(drawn), loc="lower center", ncol=min(5, len(drawn)), fontsize=7, frameon=False)
-        fig.suptitle(f"V-g / V-f: {self.aircraft}, {self.condition}; branches tracked by eigenvector MAC; circles: "
+        fig.suptitle(f"V-g / V-f: {self.aircraft}, {self.condition};\nbranches tracked by eigenvector MAC; circles: "
                      f"crossings into instability, squares: back; lowest {max_elastic} elastic branches shown", fontsize=9)
         rows = math.ceil(len(drawn) / 5)
-        fig.tight_layout(rect=(0, 0.025 * rows + 0.01, 1, 0.96))
+        fig.tight_layout(rect=(0, 0.025 * rows + 0.01, 1, 0.94))
         path = Path(path)
         fig.savefig(path, dpi=110)
         plt.close(fig)
         return path
 
 
-_SYMMETRY_TAG = {"symmetric": " (sym.)", "antisymmetric": " (antisym.)", "mixed": " (mixed)", "n/a": ""}
-
-
 def _roots(spec: Spectrum, model: AircraftModel) -> list[tuple[Mode, str, str]]:
     """(mode, kind, label) of the roots a V-g diagram shows: oscillatory elastic, short period, Dutch roll."""
-    from flexsim.structure.mirror import mode_symmetry, ranked
+    from flexsim.structure.mode_names import mode_name
 
     st = model.structure
     mass = st.inertia.mass_matrix(np.zeros(st.dofs.nq))
-    labels = st.dofs.labels
     out = []
     for m in spec.of_kind("elastic"):
         if m.eigenvalue.imag < MIN_FREQUENCY_RAD_S:
             continue
-        share = np.real(np.conj(m.shape) * (mass @ m.shape))
-        dof = labels[ranked(share, st.mirror, candidates=range(6, share.size))[0]] if share.size > 6 else m.dominant_dof
-        sym = "n/a" if st.mirror is None else mode_symmetry(st.mirror.symmetric_fraction(m.shape, mass))
-        out.append((m, "elastic", dof + _SYMMETRY_TAG[sym]))
+        out.append((m, "elastic", mode_name(st, m.shape, mass, mass) or m.name))
     rigid = [m for m in spec.of_kind("rigid") if m.eigenvalue.imag >= 1e-3]
     if rigid:
         mp = st.mass_properties
@@ -420,17 +437,19 @@ def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_
         raise ValueError(f"n_speeds = {n_speeds!r}: must be an integer >= 3")
     if model.aero is None:
         raise ValueError("model.aero = None: a model without aerodynamics has no V-g diagram")
-    restrained = model.variant.value == "restrained"
+    restrained = model.variant.kind.value == "restrained"
     names = [VG_MODELS[k] for k in keys]
+    terms: dict[str, dict] = {}
     if restrained:
         if speeds_m_s is None:
             raise ValueError("speeds_m_s: a restrained model (wind tunnel) has no flight envelope; give the speeds")
-        h = model.altitude_m
+        h = model.variant.altitude_m
         rho = model.air_density(model.layout.zeros())
         condition = f"restrained in a stream of density {rho:.4g} kg/m^3 at H = {h:.0f} m"
 
         def evaluate(name: str, speed: float, guess) -> tuple[Spectrum, AircraftModel, object]:
-            spec, used = _tunnel_spectrum(model, speed, name, rho)
+            spec, used = _tunnel_spectrum(model, speed, name)
+            terms.setdefault(name, used.terms.record())
             return spec, used, None
     else:
         _check_flutter_model(model)
@@ -447,6 +466,7 @@ def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_
         shared = SharedEvaluations(analysis)
 
         def evaluate(name: str, speed: float, guess) -> tuple[Spectrum, AircraftModel, object]:
+            terms.setdefault(name, (analysis.fs if name == "unsteady" else analysis.qs_linear).terms.record())
             point, spec = analysis.evaluate(manoeuvre.with_speed(speed), guess, aero_model=name, shared=shared)
             return spec, analysis.qs, point
     speeds = np.asarray(speeds_m_s, float)
@@ -490,7 +510,10 @@ def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_
                 crossings.append(_crossing(track, i, a_sound, (lambda v, g, n=name: evaluate(n, v, g)),
                                            trims[i], refine))
     crossings.sort(key=lambda c: (names.index(c.aero_model), c.speed_m_s))
-    return VgDiagram(model.aircraft.name, condition, h, float(a_sound), speeds, tuple(tracks), tuple(crossings), tuple(failed))
+    notes = [mach_note(f"{c.aero_model} crossing of {c.label} into instability", c.mach, model.aero.compressibility)
+             for c in crossings if c.direction == "unstable"]
+    return VgDiagram(model.aircraft.name, condition, h, float(a_sound), speeds, tuple(tracks), tuple(crossings), tuple(failed),
+                     terms, tuple(n for n in notes if n))
 
 
 def _crossing(track: VgTrack, i: int, a_sound: float, evaluate, guess, refine: bool) -> VgCrossing:
@@ -502,17 +525,18 @@ def _crossing(track: VgTrack, i: int, a_sound: float, evaluate, guess, refine: b
     freq = float(abs(lam[i].imag) + t * (abs(lam[i + 1].imag) - abs(lam[i].imag)))
     if refine:
         found = _refine(track, i, evaluate, guess)
-        if found is not None:
-            return VgCrossing(track.aero_model, track.label, track.kind, found[0], found[0] / a_sound, found[1], direction, True)
+        if found is not None:  # named by the root at the crossing, as the flutter search names its critical mode
+            return VgCrossing(track.aero_model, found[2], track.kind, found[0], found[0] / a_sound, found[1], direction, True)
     return VgCrossing(track.aero_model, track.label, track.kind, speed, speed / a_sound, freq, direction, False)
 
 
-def _refine(track: VgTrack, i: int, evaluate, guess) -> tuple[float, float] | None:
-    """(speed [m/s], frequency [rad/s]) where the branch's Re(lambda) = 0 between speeds i and i + 1, or None."""
+def _refine(track: VgTrack, i: int, evaluate, guess) -> tuple[float, float, str] | None:
+    """(speed [m/s], frequency [rad/s], name of the root) where the branch's Re(lambda) = 0 between speeds i and i + 1,
+    or None."""
     (a, fa), (b, fb) = (track.speeds_m_s[i], track.eigenvalues[i].real), (track.speeds_m_s[i + 1], track.eigenvalues[i + 1].real)
     ref = [track.shapes[i], track.shapes[i + 1]]
     side = 0  # Illinois: which end was kept last time
-    lam = track.eigenvalues[i]
+    lam, label = track.eigenvalues[i], track.label
     for _ in range(CROSSING_ITERATIONS):
         c = (a * fb - b * fa) / (fb - fa)
         if not a < c < b:
@@ -529,7 +553,7 @@ def _refine(track: VgTrack, i: int, evaluate, guess) -> tuple[float, float] | No
         k = int(np.argmax(score))
         if score[k] < MIN_MAC:
             return None
-        lam = roots[k][0].eigenvalue
+        lam, label = roots[k][0].eigenvalue, roots[k][2]
         fc = lam.real
         if (fc <= 0) == (fa <= 0):
             a, fa, ref[0] = c, fc, roots[k][0].shape
@@ -543,17 +567,17 @@ def _refine(track: VgTrack, i: int, evaluate, guess) -> tuple[float, float] | No
             side = 1
         if b - a < CROSSING_TOL_M_S or fc == 0.0:
             break
-    return float(c), float(abs(lam.imag))
+    return float(c), float(abs(lam.imag)), label
 
 
-def _tunnel_spectrum(model: AircraftModel, speed: float, name: str, rho: float) -> tuple[Spectrum, AircraftModel]:
-    """Spectrum of the restrained ``model`` in a stream of ``speed`` [m/s] (as :func:`flexsim.linear.flutter.wind_tunnel`)."""
-    options = model.aero.options
+def _tunnel_spectrum(model: AircraftModel, speed: float, name: str) -> tuple[Spectrum, AircraftModel]:
+    """Spectrum of the restrained ``model`` in a stream of ``speed`` [m/s] (as :func:`flexsim.linear.flutter.wind_tunnel`):
+    its siblings (:meth:`AircraftModel.replace`) with that stream and the aerodynamic model wanted, every other term
+    and the tunnel's attitude, altitude and density the model's."""
+    options = model.terms.aero
 
     def at(aero: str) -> AircraftModel:
-        return AircraftModel(model.aircraft, variant="restrained", aero=replace(options, model=aero),
-                             gravity_m_s2=model.gravity_m_s2, altitude_m=model.altitude_m, air_density_kg_m3=rho,
-                             restrained_velocity_m_s=[speed, 0.0, 0.0], structural_damping=model.structural_damping)
+        return model.replace(aero=replace(options, model=aero), restrained_velocity_m_s=(speed, 0.0, 0.0))
 
     qs = at("quasi-steady")
     x0, u0 = qs.layout.zeros(), np.zeros(4)

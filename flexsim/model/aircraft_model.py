@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from enum import Enum
+import dataclasses
 
 import numpy as np
 
@@ -33,16 +33,18 @@ from flexsim import _kernels as _k
 from flexsim._arrays import kernel_arg as _arg
 from flexsim.aircraft.definition import Aircraft
 from flexsim._immutable import Immutable
-from flexsim.atmosphere import G0, Z_MAX, Z_MIN, _range_error, speed_of_sound
+from flexsim.atmosphere import G0, Z_MAX, Z_MIN, _range_error
 from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.bodies import SlenderBodies
 from flexsim.model.drag import ParasiteDrag
 from flexsim.model.layout import StateLayout
+from flexsim.model.reference import ReferenceGeometry
 from flexsim.model.terms import Terms
+from flexsim.model.variant import Variant, VariantSettings
 from flexsim.kinematics import dcm_321
 from flexsim.structure.model import StructuralModel, structural_model
 
-__all__ = ["Variant", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES", "Wind"]
+__all__ = ["Variant", "VariantSettings", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES", "Wind"]
 
 #: Standard gravitational acceleration [m/s^2] (paper eq. 32's g): the atmosphere module's one definition.
 STANDARD_GRAVITY = G0
@@ -52,146 +54,120 @@ Wind = Callable[[float, np.ndarray], np.ndarray]
 CONTROL_NAMES = ("thrust", "aileron", "elevator", "rudder")
 
 
-_UNSET = object()  # a keyword argument not given (the terms then come from ``terms`` or Terms' defaults)
+def _split(changes: dict, terms: Terms, variant: VariantSettings) -> tuple[Terms, VariantSettings]:
+    """``terms`` and ``variant`` with the named fields of ``changes`` replaced (:meth:`AircraftModel.replace`).
 
-
-def _terms(terms: "Terms | None", **legacy) -> "Terms":
-    """The model's :class:`Terms`: ``terms``, or the keyword arguments that map onto it (``aero`` may be a model name)."""
-    given = {k: v for k, v in legacy.items() if v is not _UNSET}
-    if terms is not None:
-        if not isinstance(terms, Terms):
-            raise ValueError(f"terms = {terms!r}: must be a flexsim.model.terms.Terms (or None)")
-        if given:
-            raise ValueError(f"terms and {', '.join(given)}: give the physical terms either as terms=Terms(...) or as "
-                             "these keyword arguments, not both")
-        return terms
-    if isinstance(given.get("aero"), str):
-        given["aero"] = AeroOptions(model=given["aero"])
-    return Terms(**given)
-
-
-class Variant(str, Enum):
-    """Model variants built from one definition (docs/design.md, "Model variants").
-
-    FREE: free-flying flexible aircraft (6 rigid-body + all elastic DOFs).
-    RESTRAINED: rigid-body motion fixed, the aircraft clamped at its body origin o (ground vibration
-    test; with a single-component aircraft, a clamped wing).
-    QUASI_RIGID: elastic coordinates frozen at given values, rigid-body DOFs free.
+    A name is a field of :class:`Terms` or of :class:`VariantSettings`; ``terms`` and ``variant`` replace the whole
+    object (``variant`` may also be a :class:`Variant` or its name: the kind); ``aero`` may be a model name
+    (``AeroOptions(model=name)``).
     """
-
-    FREE = "free"
-    RESTRAINED = "restrained"
-    QUASI_RIGID = "quasi-rigid"
+    changes = dict(changes)
+    if "terms" in changes:
+        terms = changes.pop("terms")
+        if not isinstance(terms, Terms):
+            raise ValueError(f"terms = {terms!r}: must be a flexsim.model.terms.Terms")
+    if "variant" in changes:
+        v = changes.pop("variant")
+        variant = v if isinstance(v, VariantSettings) else dataclasses.replace(variant, kind=v)
+    if isinstance(changes.get("aero"), str):
+        changes["aero"] = AeroOptions(model=changes["aero"])
+    term_names = {f.name for f in dataclasses.fields(Terms)}
+    variant_names = {f.name for f in dataclasses.fields(VariantSettings)} - {"kind"}
+    unknown = sorted(set(changes) - term_names - variant_names)
+    if unknown:
+        raise ValueError(f"{', '.join(unknown)}: not a field of the model's terms (flexsim.model.terms.Terms: "
+                         f"{', '.join(sorted(term_names))}) or variant (flexsim.model.variant.VariantSettings: "
+                         f"{', '.join(sorted(variant_names))})")
+    for_terms = {k: v for k, v in changes.items() if k in term_names}
+    for_variant = {k: v for k, v in changes.items() if k in variant_names}
+    if for_terms:
+        terms = dataclasses.replace(terms, **for_terms)
+    if for_variant:
+        variant = dataclasses.replace(variant, **for_variant)
+    return terms, variant
 
 
 class AircraftModel(Immutable):
     """Equations of motion of the whole flexible aircraft (eq. 33) in first-order form.
 
-    Immutable after construction (:class:`flexsim._arrays.Immutable`): attributes cannot be set or deleted and
+    One immutable value: the aircraft, its physical terms (:class:`Terms`) and its variant (:class:`VariantSettings`).
+    Immutable after construction (:class:`flexsim._immutable.Immutable`): attributes cannot be set or deleted and
     every array it holds — its own, the structure's and the aerodynamic coupling's — is read-only; disturbances
-    are an argument of :meth:`rhs`. To change an input, build a new model.
+    are an argument of :meth:`rhs`. A model that differs in some terms or in its variant is made by
+    :meth:`replace` (a sibling of the same aircraft object); analyses that need another aerodynamic model or
+    variant of the model they are given build it so, and so evaluate every other term as given.
 
     Parameters
     ----------
     aircraft : Aircraft
         The definition (use :meth:`Aircraft.subset` for a subset of components).
-    variant : Variant or str, optional
-        ``"free"`` (default), ``"restrained"`` or ``"quasi-rigid"``.
-    gravity_m_s2 : float, optional
-        Gravitational acceleration g [m/s^2] of eq. (32); 0 for vacuum-and-no-gravity studies.
     terms : Terms, optional
         The physical terms of the model (:class:`flexsim.model.terms.Terms`: aerodynamics, gravity, structural
         damping, the density of the aerodynamics, a frozen compressibility Mach number, the force resolution's
-        flow-angle terms, the thrust line, the inertia's and the strips' offsets). Default: every term on. The
-        keyword arguments ``aero``, ``gravity_m_s2``, ``structural_damping`` and ``aero_density_kg_m3`` are the
-        same fields of :class:`Terms` given loose (either ``terms`` or those, not both).
-    aero : AeroOptions, str or None, optional
-        Aerodynamic model: an :class:`AeroOptions`, a model name (``"unsteady"`` default,
-        ``"quasi-steady"``), or None for no aerodynamics (vacuum) (``Terms.aero``).
-    restrained_euler_rad : array_like, shape (3,), optional
-        Attitude [phi, theta, psi] of a restrained aircraft [rad] (sets the direction of gravity).
-    restrained_velocity_m_s : array_like, shape (3,), optional
-        Body-axes velocity [m/s] of a restrained aircraft: the air flows past the clamped structure at
-        minus this velocity (a wind tunnel). Default zero (still air).
-    altitude_m : float, optional
-        Altitude of a restrained aircraft [m] (air density and speed of sound; ISA). A free aircraft
-        uses its own altitude -Z.
-    air_density_kg_m3 : float, optional
-        Air density of a restrained aircraft [kg/m^3], in (0, 10], instead of the ISA density at
-        ``altitude_m`` (a wind tunnel at a given density; the speed of sound stays ISA's at ``altitude_m``).
-    frozen_q, frozen_xi : array_like, optional
-        Values of the elastic coordinates of a quasi-rigid model [m], [rad] (default zero).
-    structural_damping : float, optional
-        Modal damping ratio zeta of every clamped elastic mode, 0 <= zeta < 1 (default None: the
-        aircraft's ``structural_damping_ratio``, 0 unless its file sets it; the paper's structure is undamped).
-    aero_density_kg_m3 : float, optional
-        Air density the aerodynamics use [kg/m^3], instead of the ISA density at the current altitude
-        (default None: the true density). A paper-replication setting for the *linearised* aerodynamics of
-        a flutter search (:class:`flexsim.linear.flutter.FlutterAnalysis`, docs/flutter.md); Mach number
-        and compressibility keep the true altitude.
+        flow-angle terms, the thrust line, the inertia's and the strips' offsets). Default ``Terms()``: every term on.
+    variant : VariantSettings, Variant or str, optional
+        The variant (:class:`flexsim.model.variant.VariantSettings`: free, restrained in a wind tunnel, quasi-rigid,
+        with their options), or only its kind (``"free"`` default, ``"restrained"``, ``"quasi-rigid"``).
+    **fields
+        Shorthand: any field of :class:`Terms` (``aero`` may be a model name, ``"unsteady"`` or ``"quasi-steady"``,
+        or None for vacuum) or of :class:`VariantSettings` (``restrained_velocity_m_s``, ``altitude_m``, ...) given by
+        name, e.g. ``AircraftModel(aircraft, aero="unsteady", gravity_m_s2=0.0)``. A field may not be given both
+        this way and inside a ``terms`` or ``variant`` object.
 
     Attributes
     ----------
     aircraft : Aircraft
     structure : StructuralModel
-    variant : Variant
     terms : Terms
+    variant : VariantSettings
     layout : StateLayout
+    reference_geometry : ReferenceGeometry or None
+        The wing's reference area S, span b, mean chord and mean aerodynamic chord
+        (:class:`flexsim.model.reference.ReferenceGeometry`); None without aerodynamics or without a wing.
     """
 
-    def __init__(
-        self,
-        aircraft: Aircraft,
-        *,
-        variant: Variant | str = Variant.FREE,
-        terms: Terms | None = None,
-        gravity_m_s2: float = _UNSET,
-        aero: AeroOptions | str | None = _UNSET,
-        restrained_euler_rad: np.ndarray | None = None,
-        restrained_velocity_m_s: np.ndarray | None = None,
-        altitude_m: float = 0.0,
-        air_density_kg_m3: float | None = None,
-        frozen_q: np.ndarray | None = None,
-        frozen_xi: np.ndarray | None = None,
-        structural_damping: float | None = _UNSET,
-        aero_density_kg_m3: float | None = _UNSET,
-    ) -> None:
-        try:
-            self.variant = Variant(variant)
-        except ValueError:
-            raise ValueError(
-                f"variant = {variant!r}: must be one of {', '.join(v.value for v in Variant)}"
-            ) from None
-        terms = _terms(terms, gravity_m_s2=gravity_m_s2, aero=aero, structural_damping=structural_damping,
-                       aero_density_kg_m3=aero_density_kg_m3)
+    def __init__(self, aircraft: Aircraft, *, terms: Terms | None = None,
+                 variant: VariantSettings | Variant | str | None = None, **fields) -> None:
+        if not isinstance(aircraft, Aircraft):
+            raise ValueError(f"aircraft = {aircraft!r}: must be an Aircraft (flexsim.load_aircraft(name or path) gives one)")
+        if terms is not None:
+            if not isinstance(terms, Terms):
+                raise ValueError(f"terms = {terms!r}: must be a flexsim.model.terms.Terms (or None)")
+            given = [k for k in fields if k in Terms.__dataclass_fields__]
+            if given:
+                raise ValueError(f"terms and {', '.join(given)}: give the physical terms either as terms=Terms(...) or "
+                                 "as these keyword arguments, not both")
+        if isinstance(variant, VariantSettings):
+            given = [k for k in fields if k in VariantSettings.__dataclass_fields__]
+            if given:
+                raise ValueError(f"variant and {', '.join(given)}: give the variant either as "
+                                 "variant=VariantSettings(...) or as these keyword arguments, not both")
+        base = VariantSettings() if variant is None else (variant if isinstance(variant, VariantSettings)
+                                                          else VariantSettings(variant))
+        terms, variant = _split(fields, Terms() if terms is None else terms, base)
+        #: The physical terms of this model (:class:`flexsim.model.terms.Terms`; ``terms.record()`` for logs and rows).
+        self.terms = terms
+        #: The variant of this model (:class:`flexsim.model.variant.VariantSettings`).
+        self.variant = variant
         aero = terms.aero
         self.aircraft = aircraft
         self.structure = structural_model(aircraft)  # one per aircraft content: immutable, shared
-        structural_damping = terms.structural_damping
-        if structural_damping is None:
-            structural_damping = aircraft.structural_damping_ratio
-        if not (np.isfinite(structural_damping) and 0.0 <= structural_damping < 1.0):
-            raise ValueError(f"structural_damping = {structural_damping!r}: must be a damping ratio in [0, 1)")
+        damping = self.structural_damping_ratio
+        if not (np.isfinite(damping) and 0.0 <= damping < 1.0):
+            raise ValueError(f"structural_damping = {damping!r}: must be a damping ratio in [0, 1)")
         if terms.inertia_q_offset_m is not None and len(terms.inertia_q_offset_m) != self.structure.dofs.nq:
             raise ValueError(f"inertia_q_offset_m: {len(terms.inertia_q_offset_m)} entries; {aircraft.name} has "
                              f"nq = {self.structure.dofs.nq} bending coordinates")
-        #: The physical terms of this model (:class:`flexsim.model.terms.Terms`; ``terms.record()`` for logs and rows).
-        self.terms = terms
-        self.structural_damping = float(structural_damping)
-        self._c_el = self.structure.damping(self.structural_damping) if structural_damping else None
-        self.gravity_m_s2 = terms.gravity_m_s2
         dofs = self.structure.dofs
-        rigid = self.variant is not Variant.RESTRAINED
-        elastic = self.variant is not Variant.QUASI_RIGID
+        kind = variant.kind
+        rigid = kind is not Variant.RESTRAINED
+        elastic = kind is not Variant.QUASI_RIGID
         if aero is not None and aero.model == "theodorsen":
             raise ValueError(
                 'aero model = "theodorsen": the Theodorsen function is a frequency-domain model for linear '
                 'flutter analysis (flexsim.linear); the time-domain model takes "unsteady" or "quasi-steady"'
             )
-        self.aero = None if aero is None else AeroCoupling(
-            self.structure, aero, compressibility_mach=terms.compressibility_mach, force_resolution=terms.force_resolution,
-            fin_drag_per_lift=terms.fin_drag_per_lift, velocity_offset_m_s=terms.aero_velocity_offset_m_s)
-        self.aero_density_kg_m3 = terms.aero_density_kg_m3
+        self.aero = None if aero is None else AeroCoupling(self.structure, terms)
         # parasite drag belongs to the physical force resolution; the paper's (eq. 28) has the strips' drag only
         has_drag = (aero is not None and aero.parasite_drag and bool(aircraft.aero_settings.drag)
                     and self.aero.formulation == "physical")
@@ -201,79 +177,55 @@ class AircraftModel(Immutable):
                       and self.aero.formulation == "physical")
         #: Munk moments of the file's slender bodies (:mod:`flexsim.model.bodies`), or None.
         self.bodies = SlenderBodies(self.structure) if has_bodies else None
+        #: The wing's reference area, span and chords (:class:`flexsim.model.reference.ReferenceGeometry`), None
+        #: without aerodynamics or without a wing.
+        self.reference_geometry = None if self.aero is None else ReferenceGeometry.of_strips(self.aero.strips)
         n_inflow = 0 if self.aero is None else self.aero.n_inflow_states
         self.layout = StateLayout(rigid=rigid, nq=dofs.nq if elastic else 0, nxi=dofs.nxi if elastic else 0, n_inflow=n_inflow)
         self._active = np.concatenate(
             [np.arange(6) if rigid else np.zeros(0, int), np.arange(6, dofs.n_v) if elastic else np.zeros(0, int)]
         ).astype(int)
         self._all_active = self._active.size == dofs.n_v
-        self._euler_fixed = np.zeros(3) if restrained_euler_rad is None else np.asarray(restrained_euler_rad, float)
-        if self._euler_fixed.shape != (3,):
-            raise ValueError(f"restrained_euler_rad = {restrained_euler_rad!r}: must have 3 entries [rad]")
-        self._v_fixed = np.zeros(3) if restrained_velocity_m_s is None else np.asarray(restrained_velocity_m_s, float)
-        if self._v_fixed.shape != (3,) or not np.all(np.isfinite(self._v_fixed)):
-            raise ValueError(f"restrained_velocity_m_s = {restrained_velocity_m_s!r}: must be 3 finite numbers [m/s]")
-        self.altitude_m = float(altitude_m)
-        speed_of_sound(self.altitude_m)  # validates the ISA range with a clear message
-        if air_density_kg_m3 is not None:
-            if self.variant is not Variant.RESTRAINED:
-                raise ValueError(f"air_density_kg_m3 = {air_density_kg_m3!r}: only for the restrained variant (a wind tunnel); "
-                                 "a free or quasi-rigid aircraft takes the ISA density at its own altitude")
-            if not (isinstance(air_density_kg_m3, (int, float)) and np.isfinite(air_density_kg_m3) and 0.0 < air_density_kg_m3 <= 10.0):
-                raise ValueError(f"air_density_kg_m3 = {air_density_kg_m3!r}: must be a density in (0, 10] kg/m^3")
-            air_density_kg_m3 = float(air_density_kg_m3)
-        self._rho_fixed = air_density_kg_m3
-        self._q_frozen = np.zeros(dofs.nq) if frozen_q is None else np.asarray(frozen_q, float)
-        self._xi_frozen = np.zeros(dofs.nxi) if frozen_xi is None else np.asarray(frozen_xi, float)
-        if self._q_frozen.shape != (dofs.nq,) or self._xi_frozen.shape != (dofs.nxi,):
-            raise ValueError(f"frozen_q/frozen_xi: must have {dofs.nq} and {dofs.nxi} entries")
+        for name, n in (("frozen_q", dofs.nq), ("frozen_xi", dofs.nxi)):
+            value = getattr(variant, name)
+            if value is not None and len(value) != n:
+                raise ValueError(f"frozen_q/frozen_xi: must have {dofs.nq} and {dofs.nxi} entries ({name} has {len(value)})")
         #: Frozen arrays of the compiled right-hand side (:class:`flexsim._kernels.KernelData`).
         self.kernel_data = self._build_kernel_data()
         self._packed_parts = (self.aero, self.structure.inertia, self.parasite_drag, self.bodies)
         self._n_strips = 0 if self.aero is None else self.aero.strips.n_strips
-        self._check_air = self.aero is not None and rigid and self._rho_fixed is None and self.aero_density_kg_m3 is None
+        self._check_air = (self.aero is not None and rigid and variant.air_density_kg_m3 is None
+                           and terms.aero_density_kg_m3 is None)
+
+    def replace(self, **changes) -> "AircraftModel":
+        """A sibling of this model: the same aircraft object, these terms and variant with the named fields replaced.
+
+        Every name is a field of :class:`Terms` or of :class:`VariantSettings` (``aero`` may be a model name: then
+        ``AeroOptions(model=name)``, other aerodynamic options at their defaults; give an ``AeroOptions`` built with
+        ``dataclasses.replace(model.terms.aero, ...)`` to keep them), or ``terms``/``variant`` for the whole object
+        (``variant`` may be only the kind). Every field not named is this model's, so an analysis that needs another
+        aerodynamic model or variant evaluates every other term as the model it was given (e.g.
+        ``model.replace(aero=dataclasses.replace(model.terms.aero, model="quasi-steady"))``).
+
+        Raises
+        ------
+        ValueError
+            A name that is no such field, or a value the field refuses (named, with the allowed range).
+        """
+        terms, variant = _split(changes, self.terms, self.variant)
+        return AircraftModel(self.aircraft, terms=terms, variant=variant)
+
+    @property
+    def structural_damping_ratio(self) -> float:
+        """Modal damping ratio zeta in use [-]: ``terms.structural_damping``, else the aircraft's
+        ``structural_damping_ratio`` (derived on each call, not stored)."""
+        z = self.terms.structural_damping
+        return float(self.aircraft.structural_damping_ratio if z is None else z)
 
     def _build_kernel_data(self) -> _k.KernelData:
-        st, d, lay = self.structure, self.structure.dofs, self.layout
-        n_el = d.nq + d.nxi
-        nan = float("nan")
-        inertia = st.inertia
-        floats = dict(
-            g=[self.gravity_m_s2], air=[self.altitude_m, nan if self._rho_fixed is None else self._rho_fixed,
-                                        nan if self.aero_density_kg_m3 is None else self.aero_density_kg_m3],
-            euler_fixed=self._euler_fixed, v_fixed=self._v_fixed, q_frozen=self._q_frozen, xi_frozen=self._xi_frozen,
-            m0=inertia.m0, h=inertia.h, m2=inertia.m2, k_bending=st.k_bending, k_torsion=st.k_torsion,
-            c_el=np.zeros((n_el, n_el)) if self._c_el is None else self._c_el, thrust_t0=st.thrust.t0,
-            thrust_t1=st.thrust.t1 if self.terms.thrust_follows_deflection else np.zeros_like(st.thrust.t1),
-            inertia_dq=np.zeros(d.nq) if self.terms.inertia_q_offset_m is None else np.asarray(self.terms.inertia_q_offset_m),
-            proj_n0=np.zeros((0, d.n_v)), proj_d0=np.zeros((0, d.n_v)), proj_p=np.zeros((0, d.n_v)), rel=np.zeros((0, n_el)),
-            proj_n1=np.zeros((0, 3, d.nq)), proj_d1=np.zeros((0, 3, d.nq)), a_inv=np.zeros((1, 1)), a_inv_c=np.zeros(1),
-            b_vec=np.zeros(1), downwash_gradient=[0.0], strip_mach=[nan], drag_g0=np.zeros((0, 6, d.n_v)), drag_g1=np.zeros((0, 3, 3, d.nq)),
-            body_g0=np.zeros((0, 6, d.n_v)), body_g1=np.zeros((0, 3, 3, d.nq)))
-        flags = dict(n_v=d.n_v, nq=d.nq, nxi=d.nxi, rigid=lay.rigid, use_frozen=self.variant is Variant.QUASI_RIGID,
-                     all_active=self._all_active, n_states=lay.n_states, vel_start=lay.velocity.start,
-                     inflow_start=lay.inflow.start, n_inflow=lay.n_inflow, has_aero=self.aero is not None,
-                     has_drag=self.parasite_drag is not None, has_bodies=self.bodies is not None,
-                     has_damping=self._c_el is not None, q_start=lay.q.start,
-                     has_inertia_offset=self.terms.inertia_q_offset_m is not None,
-                     xi_start=lay.xi.start, n_inflow_per_strip=1)
-        ints = dict(active=self._active)
-        if self.aero is not None:
-            floats.update(self.aero.kernel_fields[0])
-            flags.update(self.aero.kernel_fields[1]["ints"])
-            ints.update({k: v for k, v in self.aero.kernel_fields[1].items() if k != "ints"})
-        if self.parasite_drag is not None:
-            floats.update(self.parasite_drag.kernel_fields)
-        if self.bodies is not None:
-            floats.update(self.bodies.kernel_fields)
-        for term in _k.TERMS:  # terms that build their own data from the model (flexsim._kernels.layout.term_data)
-            build = getattr(term, "fields_of", None)
-            if build is not None:
-                term_floats, term_flags = build(self)
-                floats.update(term_floats)
-                flags.update(term_flags)
-        ints["ints"] = flags
-        return _k.pack(floats, ints)
+        """The packed data of the compiled right-hand side: every registered term's data class fills its own fields
+        from this model (``fields_of(model)``, :func:`flexsim._kernels.fields_of`), then :func:`flexsim._kernels.pack_fields`."""
+        return _k.pack_fields(_k.fields_of(self))
 
     @property
     def formulation(self) -> str | None:
@@ -304,7 +256,7 @@ class AircraftModel(Immutable):
                 x[lay.position] = position_m
             if euler_rad is not None:
                 x[lay.euler] = euler_rad
-        if self.variant is not Variant.QUASI_RIGID:
+        if self.variant.kind is not Variant.QUASI_RIGID:
             if q is not None:
                 x[lay.q] = q
             if xi is not None:
@@ -395,10 +347,10 @@ class AircraftModel(Immutable):
     def air_density(self, x: np.ndarray) -> float:
         """Air density of the aerodynamics at state x [kg/m^3]: the restrained model's tunnel density, else the
         fixed ``aero_density_kg_m3`` if given, else ISA at the altitude -Z (restrained: ``altitude_m``)."""
-        if self._rho_fixed is not None:
-            return self._rho_fixed
-        if self.aero_density_kg_m3 is not None:
-            return self.aero_density_kg_m3
+        if self.variant.air_density_kg_m3 is not None:
+            return self.variant.air_density_kg_m3
+        if self.terms.aero_density_kg_m3 is not None:
+            return self.terms.aero_density_kg_m3
         x = _arg(x)
         if self.layout.rigid and not Z_MIN <= -x[2] <= Z_MAX:
             raise _range_error(float(-x[2]), False)

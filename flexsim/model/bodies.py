@@ -41,6 +41,8 @@ still air (a gust's change of the body moment is neglected; the strips do see th
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from flexsim import _kernels as _k
@@ -86,6 +88,13 @@ def munk_moment(v_p: np.ndarray, axis: np.ndarray, coeff: np.ndarray) -> np.ndar
     return _k.munk_moments(kernel_arg(v_p), kernel_arg(axis), kernel_arg(coeff))
 
 
+class _BodiesOf(NamedTuple):
+    """What :class:`flexsim._kernels.SlenderBodyData` reads of a model: its slender bodies and structure."""
+
+    bodies: "SlenderBodies"
+    structure: StructuralModel
+
+
 class SlenderBodies(Immutable):
     """Slender bodies of an aircraft with their kinematic maps (built once; :meth:`generalized_force` per call).
 
@@ -109,15 +118,16 @@ class SlenderBodies(Immutable):
         self.volume_m3 = np.array([b.volume_m3 for b in items], dtype=float)
         self.k1, self.k2 = spheroid_apparent_mass(np.array([b.length_m / b.diameter_m for b in items], dtype=float))
         k = len(items)
-        self._g0, self._g1, self._offset = attached_items_maps(structure, items)
+        #: The bodies' maps (:func:`flexsim.model.drag.attached_items_maps`): g0, g1, offsets (k, 3) [m].
+        self.g0, self.g1, self.offset_m = attached_items_maps(structure, items)
         self.axis = np.zeros((k, 3))
         for j, b in enumerate(items):
             self.axis[j] = structure.aircraft.component(b.component).dcm[:, 0]  # body x in component axes
-        self._vol_dk = self.volume_m3 * (self.k2 - self.k1)
-        #: Fields of the compiled kernels :func:`flexsim._kernels.body_moments` and ``body_force`` (floats by name).
-        self.kernel_fields = dict(body_vol_dk=self._vol_dk.reshape(k), body_g0=self._g0, body_g1=self._g1,
-                                  body_offset=self._offset, body_axis=self.axis)
-        self.kernel_data = _k.pack(self.kernel_fields, {})
+        #: Vol (k2 - k1) of each body (k,) [m^3]: Munk's moment per unit density and dynamic pressure.
+        self.vol_dk = self.volume_m3 * (self.k2 - self.k1)
+        #: The bodies' packed data (:class:`flexsim._kernels.KernelData`), filled by their term data class as for the
+        #: model (:meth:`flexsim._kernels.SlenderBodyData.fields_of`).
+        self.kernel_data = _k.pack_fields(_k.fields_of(_BodiesOf(self, structure), (_k.SlenderBodyData,)))
 
     @property
     def n_items(self) -> int:

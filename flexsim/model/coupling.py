@@ -49,7 +49,7 @@ Simplifications (documented in docs/design.md): control-surface rates and the u0
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -60,6 +60,9 @@ from flexsim.aero.inflow import inflow_coefficients
 from flexsim.aircraft.definition import COMPRESSIBILITY, FORMULATIONS
 from flexsim.model.strips import StripSet
 from flexsim.structure.model import StructuralModel
+
+if TYPE_CHECKING:
+    from flexsim.model.terms import Terms
 
 __all__ = ["AeroOptions", "AeroCoupling", "AERO_MODELS", "StripLoads", "StripKinematics", "tail_downwash"]
 
@@ -225,25 +228,50 @@ class StripLoads:
     alpha0_rad: np.ndarray
 
 
+class _StripsOf(NamedTuple):
+    """What the strips' term data classes read of a model (their ``fields_of``): its coupling and structure."""
+
+    aero: "AeroCoupling"
+    structure: StructuralModel
+
+
+#: The term data classes of the strips' own packed data (:attr:`AeroCoupling.kernel_data`).
+_STRIP_TERMS = (_k.StripData, _k.PetersData, _k.DownwashData)
+
+
 class AeroCoupling(Immutable):
     """Strip aerodynamics of a structural model (built once; :meth:`evaluate` per right-hand side).
 
     Parameters
     ----------
     structure : StructuralModel
+    terms : Terms
+        The model's terms (:class:`flexsim.model.terms.Terms`, validated there) with aerodynamics (``terms.aero`` an
+        :class:`AeroOptions`); the strips use its aerodynamic switches: ``compressibility_mach`` (the Mach number of a
+        frozen compressibility factor, None: the flight's), ``force_resolution`` (which strips lose the flow-angle
+        terms of the force resolution: "full" none, "normal" all, "fin-normal" the fin's), ``fin_drag_per_lift``
+        (kappa of the paper's fin drag law, eq. 30; None: the fin's own drag) and ``aero_velocity_offset_m_s`` (the
+        body velocity offset the strips see [m/s]).
+
+    Attributes
+    ----------
     options : AeroOptions
-    compressibility_mach, force_resolution, fin_drag_per_lift, velocity_offset_m_s : optional
-        The aerodynamic terms' switches of :class:`flexsim.model.terms.Terms` (``compressibility_mach``,
-        ``force_resolution``, ``fin_drag_per_lift``, ``aero_velocity_offset_m_s``; validated there): the Mach number
-        of a frozen compressibility factor (None: the flight's), which strips lose the flow-angle terms of the force
-        resolution ("full": none, "normal": all, "fin-normal": the fin's), kappa of the paper's fin drag law (eq. 30;
-        None: the fin's own drag), the body velocity offset the strips see [m/s].
+    terms : Terms
+    strips : StripSet
+    tilt_scale, drag_scale, drag_per_lift : ndarray, shape (n_s,)
+        Per strip: the scale of the lift's tilt by the flow angle and of the drag, and the drag per unit lift kappa
+        (``force_resolution``, ``fin_drag_per_lift``).
+    velocity_offset_m_s : ndarray, shape (3,)
+        The body velocity offset the strips see [m/s] (zero unless ``aero_velocity_offset_m_s``).
     """
 
-    def __init__(self, structure: StructuralModel, options: AeroOptions, *, compressibility_mach: float | None = None,
-                 force_resolution: str = "full", fin_drag_per_lift: float | None = None,
-                 velocity_offset_m_s=None) -> None:
+    def __init__(self, structure: StructuralModel, terms: "Terms") -> None:
+        options = terms.aero
+        if not isinstance(options, AeroOptions):
+            raise ValueError(f"terms.aero = {options!r}: the strip aerodynamics need an AeroOptions")
         self.options = options
+        #: The model's terms (:class:`flexsim.model.terms.Terms`) the strips were built with.
+        self.terms = terms
         comp = options.compressibility
         #: The compressibility correction in force ("prandtl-glauert" or "none"), resolved from the file.
         self.compressibility = structure.aircraft.aero_settings.compressibility if comp == "file" else comp
@@ -251,26 +279,26 @@ class AeroCoupling(Immutable):
         self._nq = structure.dofs.nq
         self._ext_u = np.zeros(4)
         self._b = s.semichord_m
-        self._ab = s.a * s.semichord_m
-        self._k0 = s.lift_slope0 / (2 * np.pi)
-        self._pr_w = np.pi * s.semichord_m**2 * s.width_m  # apparent mass per rho, all strips
+        self.ab = s.a * s.semichord_m
+        self.k0 = s.lift_slope0 / (2 * np.pi)
+        self.pr_w = np.pi * s.semichord_m**2 * s.width_m  # apparent mass per rho, all strips
         bend = options.bending_incidence
         #: Swept-wing bending-incidence coupling in force (the strips' pitch includes the bending slope).
         self.bending_incidence = structure.aircraft.aero_settings.bending_incidence if bend is None else bend
-        self._proj_p = s.proj_p + (_bending_slope_pitch(structure, s) if self.bending_incidence else 0.0)
-        self._rel = self._proj_p[:, 6:]  # elastic pitch per unit [q; xi] (B constant: angles = rates map)
-        self._finite_state = options.model == "unsteady"
-        self._inflow_idx = np.flatnonzero(s.unsteady) if self._finite_state else np.zeros(0, int)
+        self.proj_p = s.proj_p + (_bending_slope_pitch(structure, s) if self.bending_incidence else 0.0)
+        self.rel = self.proj_p[:, 6:]  # elastic pitch per unit [q; xi] (B constant: angles = rates map)
+        self.finite_state = options.model == "unsteady"
+        self.inflow_idx = np.flatnonzero(s.unsteady) if self.finite_state else np.zeros(0, int)
         self.inflow = inflow_coefficients(options.n_inflow)
-        self.n_inflow_states = self._inflow_idx.size * options.n_inflow
+        self.n_inflow_states = self.inflow_idx.size * options.n_inflow
         #: Resolution of the strip force in use ("physical" or "paper"; module docstring).
         self.formulation = options.formulation or structure.aircraft.formulation
         # "paper": on the wing and stabilizer strips (those with inflow, i.e. not the fin) the force has no
         # body-x component: c_d = -c_n (n . x_b) / (d . x_b) with x_b the body x axis in component axes.
         x_b = (np.array([structure.aircraft.component(c).dcm[:, 0] for c in s.component]) if s.n_strips else np.zeros((0, 3)))
-        self._paper_strips = s.unsteady.copy() if self.formulation == "paper" else np.zeros(s.n_strips, bool)
+        self.paper_strips = s.unsteady.copy() if self.formulation == "paper" else np.zeros(s.n_strips, bool)
         d_x = np.einsum("sk,sk->s", s.d, x_b)
-        if np.any(self._paper_strips & (np.abs(d_x) < 1e-3)):
+        if np.any(self.paper_strips & (np.abs(d_x) < 1e-3)):
             raise ValueError('formulation = "paper": a wing/stabilizer strip chord is normal to body x; the force cannot be resolved without a body-x component')
         # downwash of the wings at the horizontal tail (physical formulation; tail_downwash)
         gradient = structure.aircraft.aero_settings.downwash_gradient if (options.downwash and self.formulation == "physical") else 0.0
@@ -280,49 +308,30 @@ class AeroCoupling(Immutable):
         #: d(epsilon)/d(alpha) at M -> 0 in force (0: the tail sees the free stream, as in the paper).
         self.downwash_gradient = float(gradient) if wing.any() and tail.any() else 0.0
         weight = np.where(wing, s.lift_slope0 * s.semichord_m * s.width_m, 0.0)
-        self._dw_wing_weight = weight / weight.sum() if wing.any() else weight
+        self.dw_wing_weight = weight / weight.sum() if wing.any() else weight
         z_b = np.array([structure.aircraft.component(c).dcm[:, 2] for c in s.component]) if s.n_strips else np.zeros((0, 3))
-        self._dw_tail_nz = np.where(tail, np.einsum("sk,sk->s", s.n, z_b), 0.0)  # n . z_body of the tail strips
-        self._n_over_d_x = np.where(self._paper_strips, np.einsum("sk,sk->s", s.n, x_b) / np.where(np.abs(d_x) < 1e-3, 1.0, d_x), 0.0)
+        self.dw_tail_nz = np.where(tail, np.einsum("sk,sk->s", s.n, z_b), 0.0)  # n . z_body of the tail strips
+        self.n_over_d_x = np.where(self.paper_strips, np.einsum("sk,sk->s", s.n, x_b) / np.where(np.abs(d_x) < 1e-3, 1.0, d_x), 0.0)
         # the terms' switches (flexsim.model.terms.Terms): flow-angle terms of the resolution per strip, velocity offset
         fin = ~s.unsteady  # the fin's strips: those without inflow states (quasi-steady, eqs. 29-31)
-        if force_resolution == "full":
-            scale = np.ones(s.n_strips)
-        elif force_resolution == "normal":
-            scale = np.zeros(s.n_strips)
-        elif force_resolution == "fin-normal":
-            scale = np.where(fin, 0.0, 1.0)
-        else:
-            raise ValueError(f"force_resolution = {force_resolution!r}: must be full, normal or fin-normal")
-        drag_scale, drag_per_lift = scale.copy(), np.zeros(s.n_strips)
-        if fin_drag_per_lift is not None:  # the paper's fin drag, eq. 30: d_v = q c C_Dav a_v = kappa l_v
-            drag_scale[fin] = 0.0
-            drag_per_lift[fin] = float(fin_drag_per_lift)
-        dv = np.zeros(3) if velocity_offset_m_s is None else np.asarray(velocity_offset_m_s, float)
-        if dv.shape != (3,) or not np.all(np.isfinite(dv)):
-            raise ValueError(f"velocity_offset_m_s = {velocity_offset_m_s!r}: must be 3 finite numbers [m/s]")
+        self.tilt_scale = {"full": np.ones(s.n_strips), "normal": np.zeros(s.n_strips),
+                           "fin-normal": np.where(fin, 0.0, 1.0)}[terms.force_resolution]
+        self.drag_scale, self.drag_per_lift = self.tilt_scale.copy(), np.zeros(s.n_strips)
+        if terms.fin_drag_per_lift is not None:  # the paper's fin drag, eq. 30: d_v = q c C_Dav a_v = kappa l_v
+            self.drag_scale[fin] = 0.0
+            self.drag_per_lift[fin] = terms.fin_drag_per_lift
+        dv = terms.aero_velocity_offset_m_s
+        self.velocity_offset_m_s = np.zeros(3) if dv is None else np.asarray(dv, float)
         #: Mach number of the frozen compressibility factor (None: the flight's at every state).
-        self.compressibility_mach = None if compressibility_mach is None else float(compressibility_mach)
-        comp_dcm = (np.stack([structure.aircraft.component(c).dcm for c in s.component]) if s.n_strips else np.zeros((0, 3, 3)))
-        coef = self.inflow
-        #: Fields of the compiled kernels (:func:`flexsim._kernels.pack`): floats and ints by name.
-        self.kernel_fields = (
-            dict(proj_n0=s.proj_n0, proj_d0=s.proj_d0, proj_n1=s.proj_n1, proj_d1=s.proj_d1, proj_p=self._proj_p, rel=self._rel,
-                 incidence=s.incidence_rad, semichord=self._b, ab=self._ab, k0=self._k0, pr_w=self._pr_w, width=s.width_m,
-                 cd0=s.cd0, flap_sign=s.flap_sign, paper_strips=self._paper_strips.astype(float), n_over_d_x=self._n_over_d_x,
-                 flap_w=s.flap_w, d=s.d, n=s.n, strip_dcm=comp_dcm, strip_pos=s.position_body_m, a_inv=coef.A_inv,
-                 a_inv_c=coef.A_inv_c, b_vec=coef.b,
-                 downwash_gradient=[self.downwash_gradient],
-                 strip_mach=[np.nan if compressibility_mach is None else float(compressibility_mach)],
-                 tilt_scale=scale, drag_scale=drag_scale, drag_per_lift=drag_per_lift, aero_dv=dv,
-                 dw_wing_weight=self._dw_wing_weight, dw_tail_nz=self._dw_tail_nz,
-                 apparent_pitch=np.einsum("s,si,sk->ik", self._pr_w * self._b**2 / 8.0, self._proj_p, self._proj_p)),
-            dict(ints=dict(finite_state=self._finite_state, n_inflow_per_strip=options.n_inflow,
-                           prandtl_glauert=self.compressibility == "prandtl-glauert", paper=self.formulation == "paper",
-                           has_aero_dv=velocity_offset_m_s is not None),
-                 flap_index=s.flap_index, inflow_idx=self._inflow_idx))
-        #: The strips' packed data (:class:`flexsim._kernels.KernelData`).
-        self.kernel_data = _k.pack(*self.kernel_fields)
+        self.compressibility_mach = terms.compressibility_mach
+        #: Component-to-body rotation of each strip (n_s, 3, 3).
+        self.strip_dcm = (np.stack([structure.aircraft.component(c).dcm for c in s.component]) if s.n_strips
+                          else np.zeros((0, 3, 3)))
+        #: sum_j pi b^4 w / 8 (p^T B)^T (p^T B) (n_v, n_v) [m^4]: the apparent mass of the strips' pitch.
+        self.apparent_pitch = np.einsum("s,si,sk->ik", self.pr_w * self._b**2 / 8.0, self.proj_p, self.proj_p)
+        #: The strips' packed data (:class:`flexsim._kernels.KernelData`): the fields of their term data classes
+        #: (strips, inflow, downwash), filled by those classes as for the model (:func:`flexsim._kernels.fields_of`).
+        self.kernel_data = _k.pack_fields(_k.fields_of(_StripsOf(self, structure), _STRIP_TERMS))
 
     def kinematics(self, q, xi, vel, lam, u, wind_c=None) -> StripKinematics:
         """Strip velocities and Chebyshev downwash coefficients at a state (module docstring).
@@ -411,7 +420,7 @@ class AeroCoupling(Immutable):
 
         lambda_dot = A^-1 [c (w0_dot + w1_dot/2) - (u0/b) lambda] for every wing/stabilizer strip.
         """
-        if not self._finite_state:
+        if not self.finite_state:
             return np.zeros(0)
         row0, w_ea_x, u0, lam = terms
         return _k.inflow_rate(*self.kernel_data, row0, w_ea_x, u0, lam, _arr(vdot))

@@ -19,6 +19,8 @@ the wind field (a gust's change of the parasite drag is neglected; the strips do
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from flexsim._immutable import Immutable
@@ -53,6 +55,13 @@ def attached_items_maps(structure: StructuralModel, items) -> tuple[np.ndarray, 
         g0[j], g1[j], offset[j] = attached_point_maps(structure, item.component, item.position_m)
     return g0, g1, offset
 
+class _DragOf(NamedTuple):
+    """What :class:`flexsim._kernels.ParasiteDragData` reads of a model: its drag items and structure."""
+
+    parasite_drag: "ParasiteDrag"
+    structure: StructuralModel
+
+
 class ParasiteDrag(Immutable):
     """Drag items of an aircraft, with their kinematic maps (built once; :meth:`generalized_force` per call).
 
@@ -72,11 +81,11 @@ class ParasiteDrag(Immutable):
         items = structure.aircraft.aero_settings.drag
         self.names = tuple(d.name for d in items)
         self.area_m2 = np.array([d.drag_area_m2 for d in items], dtype=float)
-        k = len(items)
-        self._g0, self._g1, self._offset = attached_items_maps(structure, items)
-        #: Fields of the compiled kernel :func:`flexsim._kernels.parasite_drag` (floats by name).
-        self.kernel_fields = dict(drag_area=self.area_m2.reshape(k), drag_g0=self._g0, drag_g1=self._g1, drag_offset=self._offset)
-        self.kernel_data = _k.pack(self.kernel_fields, {})
+        #: The items' maps (:func:`attached_items_maps`): g0 (k, 6, n_v), g1 (k, 3, 3, nq), offsets (k, 3) [m].
+        self.g0, self.g1, self.offset_m = attached_items_maps(structure, items)
+        #: The items' packed data (:class:`flexsim._kernels.KernelData`), filled by their term data class as for the
+        #: model (:meth:`flexsim._kernels.ParasiteDragData.fields_of`).
+        self.kernel_data = _k.pack_fields(_k.fields_of(_DragOf(self, structure), (_k.ParasiteDragData,)))
 
     @property
     def n_items(self) -> int:

@@ -5,7 +5,9 @@ the model is built; the compiled right-hand side then evaluates exactly that mod
 and the environments alike). The switches serve studies of which term causes an effect (e.g.
 ``studies/manoeuvre_decomposition.py``: what makes flutter depend on the manoeuvre) and the paper-replication settings
 of docs/flutter.md. A model records its terms (:attr:`flexsim.model.aircraft_model.AircraftModel.terms`;
-:meth:`Terms.record` gives them as a JSON-ready dict for result rows and log headers).
+:meth:`Terms.record` gives them as a JSON-ready dict for result rows and log headers). A model that differs only in some
+terms is ``model.replace(field=value, ...)`` (:meth:`~flexsim.model.aircraft_model.AircraftModel.replace`), the way every
+analysis builds the siblings it needs, so that each evaluates the terms of the model it was given.
 
 Example::
 
@@ -24,13 +26,15 @@ from __future__ import annotations
 
 import math
 import numbers
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 
 from flexsim.atmosphere import G0
 from flexsim.model.coupling import AeroOptions
 
 __all__ = ["Terms", "FORCE_RESOLUTIONS"]
 
+#: Metadata of a :class:`Terms` field that switches an aerodynamic term: with ``aero=None`` it must keep its default.
+_AERODYNAMIC = {"aerodynamic": True}
 #: Values of :attr:`Terms.force_resolution`.
 FORCE_RESOLUTIONS = ("full", "normal", "fin-normal")
 
@@ -104,19 +108,25 @@ class Terms:
         apparent mass, inflow forcing and downwash; not the Mach number, the parasite drag or the bodies). E.g. the
         level flight's body velocity minus a manoeuvre's at the same speed: the aerodynamics at the level angle of
         attack and sideslip. None (default): dv = 0.
+    downwash_lag : bool
+        True: the horizontal tail's downwash lag, the tail's alpha-dot derivatives (C_L_alpha_dot, C_m_alpha_dot;
+        Etkin & Reid 1996 ch. 5, USAF DATCOM sec. 7.4.4), as an apparent mass of w_dot
+        (:mod:`flexsim._kernels.downwash_lag`); needs the wing's downwash at the tail (the file's
+        ``downwash_gradient``). False (default): the tail sees the downwash without lag (the paper has none).
     """
 
     aero: AeroOptions | None = AeroOptions()
     gravity_m_s2: float = G0
     structural_damping: float | None = None
-    aero_density_kg_m3: float | None = None
-    compressibility_mach: float | None = None
-    force_resolution: str = "full"
-    fin_drag_per_lift: float | None = None
+    aero_density_kg_m3: float | None = field(default=None, metadata=_AERODYNAMIC)
+    compressibility_mach: float | None = field(default=None, metadata=_AERODYNAMIC)
+    force_resolution: str = field(default="full", metadata=_AERODYNAMIC)
+    fin_drag_per_lift: float | None = field(default=None, metadata=_AERODYNAMIC)
     thrust_follows_deflection: bool = True
     engine_angular_momentum: tuple[float, float, float] | None = None
     inertia_q_offset_m: tuple[float, ...] | None = None
-    aero_velocity_offset_m_s: tuple[float, float, float] | None = None
+    aero_velocity_offset_m_s: tuple[float, float, float] | None = field(default=None, metadata=_AERODYNAMIC)
+    downwash_lag: bool = field(default=False, metadata=_AERODYNAMIC)
 
     def __post_init__(self) -> None:
         if self.aero is not None and not isinstance(self.aero, AeroOptions):
@@ -149,19 +159,18 @@ class Terms:
             object.__setattr__(self, "fin_drag_per_lift", float(k))
         if not isinstance(self.thrust_follows_deflection, bool):
             raise ValueError(f"thrust_follows_deflection = {self.thrust_follows_deflection!r}: must be True or False")
+        if not isinstance(self.downwash_lag, bool):
+            raise ValueError(f"downwash_lag = {self.downwash_lag!r}: must be True or False")
         object.__setattr__(self, "engine_angular_momentum",
                            _finite_tuple("engine_angular_momentum", self.engine_angular_momentum, 3))
         object.__setattr__(self, "inertia_q_offset_m", _finite_tuple("inertia_q_offset_m", self.inertia_q_offset_m))
         object.__setattr__(self, "aero_velocity_offset_m_s",
                            _finite_tuple("aero_velocity_offset_m_s", self.aero_velocity_offset_m_s, 3))
         if self.aero is None:
-            for name in ("aero_density_kg_m3", "compressibility_mach", "fin_drag_per_lift", "aero_velocity_offset_m_s"):
-                if getattr(self, name) is not None:
-                    raise ValueError(f"{name} = {getattr(self, name)!r}: a model without aerodynamics (aero None) has no "
-                                     "aerodynamic term to apply it to")
-            if self.force_resolution != "full":
-                raise ValueError(f"force_resolution = {self.force_resolution!r}: a model without aerodynamics (aero None) "
-                                 "has no strip force to resolve")
+            for f in fields(self):  # the aerodynamic terms' switches (metadata _AERODYNAMIC) keep their defaults
+                if f.metadata.get("aerodynamic") and getattr(self, f.name) != f.default:
+                    raise ValueError(f"{f.name} = {getattr(self, f.name)!r}: a model without aerodynamics (aero None) has "
+                                     "no aerodynamic term to apply it to")
 
     def record(self) -> dict:
         """The terms as a JSON-ready dict (for result rows and log headers): every field by name, ``aero`` as the

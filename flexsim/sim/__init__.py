@@ -1,7 +1,8 @@
 """Time-domain simulation: events, flight logs, disturbances and named manoeuvres (``docs/simulation.md``).
 
-Modules: :mod:`flexsim.sim.simulate` (``simulate``, ``SimEvent``, ``HoldingRadau``, ``IntegratorSettings``: the one
-settings class of ``simulate`` and of the control periods),
+Modules: :mod:`flexsim.sim.simulate` (``simulate``, ``HoldingRadau``, ``IntegratorSettings``: the one
+settings class of the integration of ``simulate`` and of the control periods), :mod:`flexsim.sim.run_settings`
+(``EventSettings``, ``OutputSettings``, ``SimEvent``: the other settings of ``simulate``),
 :mod:`flexsim.sim.controls` (``ControlSchedule``), :mod:`flexsim.sim.result` (``SimulationResult``),
 :mod:`flexsim.sim.outputs` (names and output maps shared by results and logs),
 :mod:`flexsim.sim.recording` (log paths, the log sink), :mod:`flexsim.sim.disturbances`
@@ -15,6 +16,8 @@ does not re-export it, so that ``flexsim.sim.simulate`` always names the module.
 
 from flexsim.sim.disturbances import DrydenTurbulence, OneMinusCosineGust, combine
 from flexsim.sim.result import SimulationResult
+from flexsim.sim.run_settings import EventSettings, OutputSettings
 from flexsim.sim.simulate import ControlSchedule, IntegratorSettings, SimEvent
 
-__all__ = ["ControlSchedule", "IntegratorSettings", "SimEvent", "SimulationResult", "OneMinusCosineGust", "DrydenTurbulence", "combine"]
+__all__ = ["ControlSchedule", "IntegratorSettings", "EventSettings", "OutputSettings", "SimEvent", "SimulationResult",
+           "OneMinusCosineGust", "DrydenTurbulence", "combine"]

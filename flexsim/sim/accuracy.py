@@ -20,7 +20,8 @@ import numpy as np
 
 from flexsim.sim.manoeuvres import build_manoeuvre
 from flexsim.sim.result import SimulationResult
-from flexsim.sim.simulate import DEFAULT_MAX_STEP, METHODS
+from flexsim.sim.run_settings import EventSettings
+from flexsim.sim.simulate import DEFAULT_MAX_STEP, METHODS, IntegratorSettings
 
 __all__ = ["IntegratorChoice", "ManoeuvreErrors", "manoeuvre_errors", "DEFAULT_CHOICE", "PREVIOUS_CHOICE",
            "RADAU_CHOICE", "REFERENCE_RTOL", "RUN_OPTIONS"]
@@ -28,7 +29,7 @@ __all__ = ["IntegratorChoice", "ManoeuvreErrors", "manoeuvre_errors", "DEFAULT_C
 #: Relative tolerance of the DOP853 reference.
 REFERENCE_RTOL = 1e-9
 #: Options of the runs of a manoeuvre beyond its defaults (all integrators and the reference).
-RUN_OPTIONS = {"flutter-onset": {"structural_limit_m": 100.0, "t_end_s": 3.1}}
+RUN_OPTIONS = {"flutter-onset": {"events": EventSettings(wing_tip_deflection_m=100.0), "t_end_s": 3.1}}
 
 
 @dataclass(frozen=True)
@@ -59,14 +60,10 @@ class IntegratorChoice:
                                             and self.step_s > 0):
             raise ValueError(f"step_s = {self.step_s!r}: ETD2RK needs a finite fixed step > 0 [s]")
 
-    def options(self) -> dict:
-        """Keyword arguments of :func:`flexsim.sim.simulate.simulate`."""
-        out: dict = {"method": self.method}
-        if self.step_s is not None:
-            out["max_step"] = float(self.step_s)
-        if self.rtol is not None:
-            out["rtol"] = float(self.rtol)
-        return out
+    def settings(self) -> IntegratorSettings:
+        """The :class:`~flexsim.sim.simulate.IntegratorSettings` of this choice (``integrator`` of ``simulate``)."""
+        return IntegratorSettings(self.method, None if self.rtol is None else float(self.rtol), None,
+                                  None if self.step_s is None else float(self.step_s))
 
     @property
     def name(self) -> str:
@@ -166,5 +163,5 @@ def manoeuvre_errors(name: str, choices: tuple[IntegratorChoice, ...] = (DEFAULT
     options = dict(RUN_OPTIONS.get(name, {}))
     if duration_s is not None:
         options.pop("t_end_s", None)
-    ref = setup.simulate(method="DOP853", rtol=REFERENCE_RTOL, **options)
-    return tuple(_errors(name, c, setup.simulate(**c.options(), **options), ref) for c in choices)
+    ref = setup.simulate(integrator=IntegratorSettings(method="DOP853", rtol=REFERENCE_RTOL), **options)
+    return tuple(_errors(name, c, setup.simulate(integrator=c.settings(), **options), ref) for c in choices)

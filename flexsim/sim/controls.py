@@ -127,7 +127,7 @@ class Controls:
         elif callable(controls):
             self.controller = controls
             if not (isinstance(period_s, (int, float)) and math.isfinite(period_s) and period_s > 0):
-                raise ValueError(f"control_period_s = {period_s!r}: must be a finite number > 0 [s]")
+                raise ValueError(f"period_s = {period_s!r}: the control period must be a finite number > 0 [s]")
         else:
             raise ValueError(f"controls = {controls!r}: must be an array of 4, a ControlSchedule or a callable(t, x) -> u")
         if self.schedule is not None:

@@ -1,8 +1,8 @@
 """Named manoeuvres: each builds a model, an initial state, a control schedule and a duration.
 
 ``build_manoeuvre(name, aero=..., duration_s=...)`` returns a :class:`ManoeuvreSetup`;
-``setup.simulate(log_path=...)`` runs it with :func:`flexsim.sim.simulate.simulate`. Registered names
-(:func:`manoeuvre_names`):
+``setup.simulate(output=OutputSettings(log_path=...))`` runs it with :func:`flexsim.sim.simulate.simulate`.
+Registered names (:func:`manoeuvre_names`):
 
 * ``level-turn-entry`` — GTM from level flight into a steady level turn of radius 10 km: a bank-angle
   feedback on the aileron (20 Hz, zero-order hold) follows a smooth bank command to the turn trim's bank
@@ -35,7 +35,8 @@ from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.coupling import AeroOptions
 from flexsim.sim.disturbances import OneMinusCosineGust
 from flexsim.sim.result import SimulationResult
-from flexsim.sim.simulate import ControlSchedule, simulate
+from flexsim.sim.run_settings import EventSettings, OutputSettings
+from flexsim.sim.simulate import ControlSchedule, IntegratorSettings, simulate
 from flexsim.kinematics import dcm_321
 from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
 
@@ -60,10 +61,11 @@ class ManoeuvreSetup:
     controls : ControlSchedule, ndarray (4,) or callable(t, x) -> u
     duration_s : float
         Default run length [s].
-    control_period_s : float
-        Period of a feedback controller [s].
-    structural_limit_m : float or None
-        Bound for the structural-limit event (None: simulate's default, 0.25 x wing length).
+    control_rate_hz : float
+        Rate of a feedback controller [Hz] (``simulate``'s and the environments' ``control_rate_hz``).
+    wing_tip_deflection_m : float or None
+        Bound of the structural-limit event [m] (None: simulate's default, 0.25 x wing length;
+        :class:`~flexsim.sim.run_settings.EventSettings`).
     notes : tuple of (t [s], text)
         Informational events for the flight log.
     wind : callable or None
@@ -78,21 +80,25 @@ class ManoeuvreSetup:
     initial: TrimPoint | np.ndarray
     controls: ControlSchedule | np.ndarray | Callable[[float, np.ndarray], np.ndarray]
     duration_s: float
-    control_period_s: float = 0.02
-    structural_limit_m: float | None = None
+    control_rate_hz: float = 50.0
+    wing_tip_deflection_m: float | None = None
     notes: tuple[tuple[float, str], ...] = ()
     metadata: dict[str, str] = field(default_factory=dict)
     wind: Wind | None = None
 
-    def simulate(self, **options) -> SimulationResult:
-        """Run the manoeuvre; ``options`` go to :func:`~flexsim.sim.simulate.simulate` (e.g. ``log_path``,
-        ``method``, ``rtol``, ``t_end_s`` to override the duration)."""
-        t_end = options.pop("t_end_s", self.duration_s)
-        meta = {"manoeuvre": self.name, "description": self.description, **self.metadata, **options.pop("metadata", {})}
-        kwargs = {"controls": self.controls, "control_period_s": self.control_period_s, "wind": self.wind,
-                  "structural_limit_m": self.structural_limit_m, "notes": self.notes, "metadata": meta}
-        kwargs.update(options)
-        return simulate(self.model, self.initial, t_end, **kwargs)
+    def simulate(self, t_end_s: float | None = None, *, integrator: IntegratorSettings = IntegratorSettings(),
+                 events: EventSettings | None = None, output: OutputSettings = OutputSettings()) -> SimulationResult:
+        """Run the manoeuvre with :func:`~flexsim.sim.simulate.simulate`: its controls, wind and control period, for
+        ``t_end_s`` [s] (default its duration). ``integrator`` and ``output`` as simulate's (the output's notes and
+        metadata are added to the manoeuvre's); ``events`` default: the built-in events with the manoeuvre's
+        ``wing_tip_deflection_m``."""
+        t_end = self.duration_s if t_end_s is None else t_end_s
+        if events is None:
+            events = EventSettings(wing_tip_deflection_m=self.wing_tip_deflection_m)
+        meta = {"manoeuvre": self.name, "description": self.description, **self.metadata, **output.metadata}
+        output = replace(output, notes=self.notes + output.notes, metadata=meta)
+        return simulate(self.model, self.initial, t_end, controls=self.controls, control_rate_hz=self.control_rate_hz,
+                        wind=self.wind, integrator=integrator, events=events, output=output)
 
 
 def pulse_schedule(base_u: np.ndarray, pulses: list[tuple[int, float, float, float]], ramp_s: float = 0.05) -> ControlSchedule:
@@ -188,7 +194,7 @@ def _level_turn_entry(aero: AeroOptions) -> ManoeuvreSetup:
     ctrl = BankController(level, turn, start_s=1.0, ramp_s=4.0, k_phi=0.8, k_p=0.0, lower=lo, upper=hi,
                           euler_index=lay.euler.start, omega_index=lay.omega.start)
     return ManoeuvreSetup("level-turn-entry", f"level flight into a level turn of R = 10 km (bank {math.degrees(turn.phi):.1f} deg)",
-                          model, level, ctrl, 10.0, control_period_s=0.05,
+                          model, level, ctrl, 10.0, control_rate_hz=20.0,
                           notes=((1.0, f"turn entry: bank command to {math.degrees(turn.phi):.1f} deg over 4 s"),))
 
 

@@ -140,14 +140,14 @@ class OutputMaps:
         """
         pos, eul, _, _, _ = self.model.unpack(x)
         if not self.model.layout.rigid:
-            pos = np.array([0.0, 0.0, -self.model.altitude_m])
+            pos = np.array([0.0, 0.0, -self.model.variant.altitude_m])
         return np.array(pos, float), np.array(eul, float)
 
     def altitude_m(self, x: np.ndarray) -> np.ndarray:
         """Altitude -Z of the body origin [m] of state(s) x, (n,) -> scalar array or (N, n) -> (N,)."""
         x = np.asarray(x)
         if self._rigid_z is None:
-            return np.full(x.shape[:-1], self.model.altitude_m)
+            return np.full(x.shape[:-1], self.model.variant.altitude_m)
         return -x[..., self._rigid_z]
 
     def air_velocity_body(self, t: float, x: np.ndarray, wind: Wind | None = None) -> np.ndarray:
@@ -219,7 +219,7 @@ class OutputMaps:
                                            model.strip_wind(t, x, wind))
             w = self._wing_strips
             lift = float(loads.lift_n_m[w] @ model.aero.strips.width_m[w])
-        weight = st.mass_properties.mass_kg * model.gravity_m_s2
+        weight = st.mass_properties.mass_kg * model.terms.gravity_m_s2
         return (float(-force[2] / weight) if weight > 0 else math.nan), lift
 
     # ------------------------------------------------------------------ signals

@@ -38,7 +38,6 @@ from scipy.integrate import solve_ivp
 from flexsim import _kernels as _k
 from flexsim._arrays import frozen_array, kernel_arg
 from flexsim._threads import single_blas_thread
-from flexsim.aircraft.definition import Aircraft
 from flexsim.errors import positive_number
 from flexsim.kinematics import euler_rate_matrix_inverse
 from flexsim.model.aircraft_model import AircraftModel, Wind
@@ -219,8 +218,8 @@ class FlightDynamics:
 
     Parameters
     ----------
-    aircraft : Aircraft
-    aero : {"unsteady", "quasi-steady"}
+    model : AircraftModel
+        The free-flying model flown (its aircraft, terms and variant), with aerodynamics.
     integrator : IntegratorSettings
         Method and tolerances or step (checked by :func:`check_period_settings`, resolved for the model).
     rates : ActuatorRates
@@ -239,13 +238,17 @@ class FlightDynamics:
         The output layer of the model (names, air data, structural outputs, deformed beams, flight signals).
     """
 
-    def __init__(self, aircraft: Aircraft, aero: str, integrator: IntegratorSettings, rates: ActuatorRates,
+    def __init__(self, model: AircraftModel, integrator: IntegratorSettings, rates: ActuatorRates,
                  control_dt_s: float) -> None:
+        if not isinstance(model, AircraftModel) or model.aero is None or model.variant.kind.value != "free":
+            raise ValueError(f"model = {model!r}: must be a free-flying AircraftModel with aerodynamics")
+        aircraft = model.aircraft
         self.aircraft = aircraft
-        self.aero = aero
+        #: The aerodynamic model's name ("unsteady" or "quasi-steady").
+        self.aero = model.terms.aero.model
         self.integrator_settings = integrator
         self.actuator_rates = rates
-        self.model = AircraftModel(aircraft, aero=aero)
+        self.model = model
         self.layout = self.model.layout
         for name in SENSOR_COMPONENTS:
             aircraft.component(name)  # KeyError naming the missing component

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from flexsim.model.aircraft_model import AircraftModel, Wind
+from flexsim.model.linear_range import linear_range_note
 from flexsim.sim.outputs import OutputMaps
 from flexsim.trim.equilibrium import EquilibriumStability
 
@@ -103,6 +104,12 @@ class SimulationResult:
         """Names and output maps of the model (the run's wind is passed to them per call)."""
         return OutputMaps(self.model)
 
+    @cached_property
+    def linear_range(self) -> str | None:
+        """One line when the run bends or twists a beam beyond the linear structure's range at any sample
+        (:func:`flexsim.model.linear_range.linear_range_note`, the largest excursion), None within it."""
+        return linear_range_note(self.model, self.x, " (largest of the run)") if self.t.size else None
+
     @property
     def terms(self) -> dict:
         """The physical terms of the simulated model as a JSON-ready dict (:meth:`flexsim.model.terms.Terms.record`,
@@ -122,7 +129,7 @@ class SimulationResult:
         """Inertial position of the body origin, NED [m], shape (N, 3) (restrained: [0, 0, -H])."""
         pos = self._unpacked[0].copy()
         if not self.model.layout.rigid:
-            pos[:, 2] = -self.model.altitude_m
+            pos[:, 2] = -self.model.variant.altitude_m
         return pos
 
     @property
@@ -243,7 +250,8 @@ class SimulationResult:
                        f"({out.state_names[0]}, ...) and the controls {list(out.control_names)}")
 
     def summary(self) -> str:
-        """A few lines: status, reason, cost and the final flight condition."""
+        """A few lines: status, reason, cost, the final flight condition and, when the run bends or twists a beam
+        beyond the linear structure's range, one line saying so (:attr:`linear_range`)."""
         lines = [f"status: {self.status} — {self.reason}",
                  f"simulated {self.duration_s:.3f} s in {self.wall_time_s:.2f} s wall ({self.real_time_factor:.2f}x real time), "
                  f"method {self.method} (rtol {self.rtol:g}), {self.nfev} rhs evaluations, {self.nlu} LU decompositions"]
@@ -255,6 +263,8 @@ class SimulationResult:
                 parts.append(f"phi/theta/psi {phi:.2f}/{theta:.2f}/{psi:.2f} deg")
             parts += [f"{w} tip {self.outputs.tip_deflection_m(w, self.x[k]):+.3f} m" for w in self.outputs.wings]
             lines.append(f"at t = {self.t[k]:.3f} s: " + ", ".join(parts))
+        if self.linear_range is not None:
+            lines.append(self.linear_range)
         if self.log_path is not None:
             lines.append(f"flight log: {self.log_path}")
         return "\n".join(lines)

@@ -26,10 +26,9 @@ Module layout: this module holds the settings, the events, the scipy stepping lo
 from __future__ import annotations
 
 import math
-import os
 import time
 import uuid
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -46,17 +45,17 @@ from flexsim.sim.outputs import OutputMaps
 from flexsim.sim.recording import LogSink, resolve_log_path
 from flexsim.sim.run_parts import RunEvent, RunOutcome, RunProblem, Sampler, Sinks, emit_step, segment_controls
 from flexsim.sim.result import SimulationResult
+from flexsim.sim.run_settings import DEFAULT_EVENTS, EventSettings, OutputSettings, SimEvent
 from flexsim.trim.solver import TrimPoint
 
-__all__ = ["ControlSchedule", "IntegratorSettings", "SimEvent", "simulate", "state_scales", "METHODS", "DEFAULT_EVENTS", "default_method",
+__all__ = ["ControlSchedule", "IntegratorSettings", "EventSettings", "OutputSettings", "SimEvent", "simulate", "state_scales",
+           "METHODS", "DEFAULT_EVENTS", "default_method",
            "DEFAULT_MAX_STEP", "RELINEARISE_DRIFT", "COMPILED_CHUNK_S"]
 
 #: Integration methods by name (scipy.integrate OdeSolver classes).
 METHODS = {"Radau": Radau, "DOP853": DOP853, "LSODA": LSODA, "BDF": BDF, "RK45": RK45, "RK23": RK23,
            "ETD2RK": ETD2RKSolver}
 _IMPLICIT = ("Radau", "BDF", "LSODA")
-#: Built-in terminal events (the non-finite check is always on).
-DEFAULT_EVENTS = ("ground", "structural_limit", "gimbal_lock")
 #: Default relative tolerance per method family (accuracy checks in docs/simulation.md).
 DEFAULT_RTOL = {"implicit": 1e-3, "explicit": 1e-6}
 #: Allowed range of :attr:`IntegratorSettings.rtol`.
@@ -68,34 +67,6 @@ GIMBAL_LIMIT_DEG = 89.0
 #: Default structural limit: |tip deflection| of a wing beyond this fraction of its length.
 STRUCTURAL_LIMIT_FRACTION = 0.25
 _EPS = np.finfo(float).eps
-
-
-@dataclass(frozen=True)
-class SimEvent:
-    """A user event: the run stops (``terminal``) or logs a note when ``function(t, x)`` crosses zero.
-
-    Attributes
-    ----------
-    name : str
-        Short name, used in the reason and the log.
-    function : callable
-        ``function(t [s], x (n_states,)) -> float``, continuous in t along the trajectory.
-    direction : int
-        -1: only crossings from positive to negative count (default); +1 the reverse; 0 both.
-    terminal : bool
-        Stop the run (status ``event``) or only log the crossing.
-    """
-
-    name: str
-    function: Callable[[float, np.ndarray], float]
-    direction: int = -1
-    terminal: bool = True
-
-    def __post_init__(self) -> None:
-        if not callable(self.function):
-            raise ValueError(f"SimEvent {self.name!r}: function = {self.function!r} must be callable function(t, x) -> float")
-        if self.direction not in (-1, 0, 1):
-            raise ValueError(f"SimEvent {self.name!r}: direction = {self.direction!r}: must be -1, 0 or +1")
 
 
 @dataclass(frozen=True, eq=False)
@@ -305,9 +276,6 @@ def _initial(model: AircraftModel, initial: TrimPoint | np.ndarray) -> tuple[np.
 
 def _builtin_events(model: AircraftModel, outputs: OutputMaps, names: Sequence[str], limit_m) -> list[RunEvent]:
     lay = model.layout
-    unknown = [n for n in names if n not in DEFAULT_EVENTS]
-    if unknown:
-        raise ValueError(f"events: unknown event(s) {unknown}; built-in events are {', '.join(DEFAULT_EVENTS)} (or SimEvent objects)")
     events: list[RunEvent] = []
     if "ground" in names and lay.rigid:
         iz = lay.position.start + 2
@@ -327,10 +295,7 @@ def _builtin_events(model: AircraftModel, outputs: OutputMaps, names: Sequence[s
             if limit_m is None:
                 bound = STRUCTURAL_LIMIT_FRACTION * length
             else:
-                bound = float(limit_m)
-                if not (math.isfinite(bound) and bound > 0):
-                    raise ValueError(f"structural_limit_m = {limit_m!r}: must be a finite number > 0 [m] (or None: "
-                                     f"{STRUCTURAL_LIMIT_FRACTION:g} x wing length)")
+                bound = float(limit_m)  # validated by EventSettings
 
             def margin(t, x, wing=wing, bound=bound):
                 return bound - abs(float(outputs.tip_deflection_m(wing, x)))
@@ -360,11 +325,10 @@ def _user_event(ev: SimEvent) -> RunEvent:
                   lambda t, x: f"event {ev.name!r} at t = {t:.4f} s")
 
 
-def _grid(rate_hz: float | None, t_end: float, what: str) -> np.ndarray | None:
+def _grid(rate_hz: float | None, t_end: float) -> np.ndarray | None:
+    """Sample times 0, 1/rate, ... <= t_end [s] (rate validated by :class:`OutputSettings`); None: every step."""
     if rate_hz is None:
         return None
-    if not (isinstance(rate_hz, (int, float)) and math.isfinite(rate_hz) and rate_hz > 0):
-        raise ValueError(f"{what} = {rate_hz!r}: must be a finite number > 0 [Hz]")
     n = int(math.floor(t_end * rate_hz * (1 + 1e-12)))
     return np.arange(n + 1) / float(rate_hz)
 
@@ -376,20 +340,11 @@ def simulate(
     t_end_s: float,
     *,
     controls: np.ndarray | ControlSchedule | Callable[[float, np.ndarray], np.ndarray] | None = None,
+    control_rate_hz: float = 50.0,
     wind: Wind | None = None,
-    method: str = "auto",
-    rtol: float | None = None,
-    atol: float | np.ndarray | None = None,
-    max_step: float | None = None,
-    control_period_s: float = 0.02,
-    events: Sequence[str | SimEvent] = DEFAULT_EVENTS,
-    structural_limit_m: float | None = None,
-    output_rate_hz: float | None = 100.0,
-    log_path: str | os.PathLike | bool | None = None,
-    log_rate_hz: float = 50.0,
-    metadata: Mapping[str, str] | None = None,
-    notes: Sequence[tuple[float, str]] = (),
-    progress: bool | Callable[[float], None] = False,
+    integrator: IntegratorSettings = IntegratorSettings(),
+    events: EventSettings = EventSettings(),
+    output: OutputSettings = OutputSettings(),
 ) -> SimulationResult:
     """Simulate the model from an initial state (or a trim) for ``t_end_s`` seconds.
 
@@ -403,52 +358,36 @@ def simulate(
         Duration [s] > 0 (the run starts at t = 0).
     controls : array (4,), ControlSchedule or callable, optional
         Constant controls [T_e (N), delta_a, delta_e, delta_r (rad)]; a piecewise-linear schedule; or a
-        feedback controller ``controls(t, x) -> u`` evaluated every ``control_period_s`` and held
+        feedback controller ``controls(t, x) -> u`` evaluated at ``control_rate_hz`` and held
         (zero-order hold). Default: the trim controls. Values beyond ``aircraft.control_limits()`` are
         rejected.
+    control_rate_hz : float
+        Rate of a feedback controller [Hz], finite and > 0 (default 50: every 0.02 s), the environments'
+        ``control_rate_hz``.
     wind : callable, optional
         Atmospheric disturbance ``wind(t, positions_ned_m) -> (k, 3)`` [m/s, NED] (gusts, turbulence:
         :mod:`flexsim.sim.disturbances`), passed to every ``model.rhs`` call; None (default): still air.
-    method : str
-        ``"auto"`` (:func:`default_method`: ETD2RK with aerodynamics in still air or a wind field of
-        :mod:`flexsim.sim.disturbances`, Radau with any other wind callable, DOP853 without aerodynamics), or
-        one of :data:`METHODS`. Implicit methods (Radau, BDF, LSODA) use a constant Jacobian from
+    integrator : IntegratorSettings
+        Method, tolerances and step (the settings of the environments' control periods too). ``method="auto"``
+        (default; :func:`default_method`: ETD2RK with aerodynamics in still air or a wind field of
+        :mod:`flexsim.sim.disturbances`, Radau with any other wind callable, DOP853 without aerodynamics), or one of
+        :data:`METHODS`. Implicit methods (Radau, BDF, LSODA) use a constant Jacobian from
         :func:`~flexsim.model.jacobian.jacobian` at the initial state. ``"ETD2RK"``: the exponential integrator
-        with that Jacobian as its linear part and fixed steps of ``max_step``, by the compiled steps
+        with that Jacobian as its linear part and fixed steps of ``max_step_s``, by the compiled steps
         (:meth:`~flexsim.sim.fixed_step.ETD2RK.run`; re-linearised when the flight speed or air density has changed
         by more than :data:`RELINEARISE_DRIFT`) or, with a wind callable that is not a field of
         :mod:`flexsim.sim.disturbances`, by :class:`~flexsim.sim.fixed_step.ETD2RKSolver` from Python (no
         re-linearisation); errors against DOP853 in ``docs/simulation.md``; ``rtol`` and ``atol`` do not apply.
-    rtol : float, optional
-        Relative tolerance; default 1e-3 for implicit and 1e-6 for explicit methods (accuracy checks in
-        ``docs/simulation.md``).
-    atol : float or ndarray (n_states,), optional
-        Absolute tolerance; default ``rtol * state_scales(model)``.
-    max_step : float, optional
-        Largest step [s] (default 0.05), so that no gust or event falls between two steps; the fixed step
-        of ETD2RK (default 0.02) (:data:`DEFAULT_MAX_STEP`). ``method``, ``rtol``, ``atol`` and ``max_step`` are the
-        fields of an :class:`IntegratorSettings` (``max_step_s``), validated and resolved by it.
-    control_period_s : float
-        Period of a feedback controller [s] (default 0.02).
-    events : sequence of str or SimEvent
-        Built-in terminal events among ``"ground"`` (altitude of the body origin <= 0), ``"structural_limit"``
-        (|tip deflection| of a wing >= the bound: the signature of flutter or overload), ``"gimbal_lock"``
-        (|theta| >= 89 deg), plus user :class:`SimEvent` objects. A non-finite state always stops the run.
-    structural_limit_m : float, optional
-        Bound on |tip deflection| [m]; default 0.25 x each wing's length.
-    output_rate_hz : float or None
-        Rate of the result's samples [Hz] (default 100); None: every accepted step.
-    log_path : str, Path, True or None
-        Write a flight log (MCAP) there as the run proceeds; True: ``logs/simulation-<time>.mcap``.
-    log_rate_hz : float
-        Rate of the logged samples [Hz] (default 50).
-    metadata : mapping of str to str, optional
-        Extra run metadata for the log.
-    notes : sequence of (t [s], text)
-        Informational events for the log (e.g. when a gust arrives).
-    progress : bool or callable
-        True: a tqdm progress bar; a callable is called with the sim time [s] after every accepted step (the
-        compiled ETD2RK: after every chunk of :data:`COMPILED_CHUNK_S` of steps).
+        Defaults: ``rtol`` 1e-3 for implicit and 1e-6 for explicit methods, ``atol`` ``rtol * state_scales(model)``,
+        ``max_step_s`` 0.05 s (0.02 s, the fixed step, for ETD2RK) (:data:`DEFAULT_MAX_STEP`), so that no gust or
+        event falls between two steps.
+    events : EventSettings
+        The built-in terminal events and user :class:`SimEvent` objects, and the structural limit
+        (:class:`flexsim.sim.run_settings.EventSettings`; default :data:`DEFAULT_EVENTS`, each wing's bound 0.25 x
+        its length). A non-finite state always stops the run.
+    output : OutputSettings
+        The result's sample rate, the flight log (path, rate, metadata, notes) and progress reporting
+        (:class:`flexsim.sim.run_settings.OutputSettings`; default 100 Hz samples, no log).
 
     Returns
     -------
@@ -460,32 +399,32 @@ def simulate(
     ValueError, FileNotFoundError
         Bad arguments (the message names the argument, its value and what is allowed).
     """
+    for name, value, kind in (("integrator", integrator, IntegratorSettings), ("events", events, EventSettings),
+                              ("output", output, OutputSettings)):
+        if not isinstance(value, kind):
+            raise ValueError(f"{name} = {value!r}: must be a {kind.__name__} (flexsim.sim.{kind.__name__})")
     x0, u_trim = _initial(model, initial)
     if not (isinstance(t_end_s, (int, float)) and math.isfinite(t_end_s) and t_end_s > 0):
         raise ValueError(f"t_end_s = {t_end_s!r}: must be a finite number > 0 [s]")
     t_end = float(t_end_s)
-    ctrl = Controls(model, controls, u_trim, control_period_s)
-    try:
-        settings = IntegratorSettings(method, rtol, atol, max_step).resolve(model, wind)
-    except ValueError as exc:  # name the argument of simulate: max_step is the settings' max_step_s
-        raise ValueError(str(exc).replace("max_step_s", "max_step")) from None
+    rate = control_rate_hz
+    if isinstance(rate, bool) or not (isinstance(rate, (int, float)) and math.isfinite(rate) and rate > 0):
+        raise ValueError(f"control_rate_hz = {rate!r}: must be a finite number > 0 [Hz]")
+    ctrl = Controls(model, controls, u_trim, 1.0 / float(rate))
+    settings = integrator.resolve(model, wind)
     method, rtol = settings.method, settings.rtol
-    out_grid = _grid(output_rate_hz, t_end, "output_rate_hz")
-    log_grid = _grid(log_rate_hz, t_end, "log_rate_hz")
+    out_grid = _grid(output.rate_hz, t_end)
+    log_grid = _grid(output.log_rate_hz, t_end)
     if wind is not None and not callable(wind):
         raise ValueError(f"wind = {wind!r}: must be None or a callable wind(t, positions_ned_m) -> (k, 3) array [m/s]")
     outputs = OutputMaps(model)
-    limit_names = [e for e in events if isinstance(e, str)]
-    evs = _builtin_events(model, outputs, limit_names, structural_limit_m)
-    for e in events:
-        if isinstance(e, SimEvent):
-            evs.append(_user_event(e))
-        elif not isinstance(e, str):
-            raise ValueError(f"events: {e!r} is neither a built-in event name nor a SimEvent")
+    limit_names = [e for e in events.names if isinstance(e, str)]
+    evs = _builtin_events(model, outputs, limit_names, events.wing_tip_deflection_m)
+    evs += [_user_event(e) for e in events.names if isinstance(e, SimEvent)]
     for ev in evs:
         if ev.status != "event" and not ev.function(0.0, x0) > 0:  # built-in limits: positive margins
             raise ValueError(f"initial state already stops the run: {ev.describe(0.0, x0)}")
-    path = resolve_log_path(log_path)
+    path = resolve_log_path(output.log_path)
 
     u0 = ctrl.held(0.0, x0) if ctrl.controller is not None else ctrl.schedule(0.0)
     wall0 = time.perf_counter()
@@ -494,11 +433,12 @@ def simulate(
     sink = None
     if path is not None:
         meta = {"aircraft": model.aircraft.name, "aircraft_source": str(model.aircraft.source),
-                "variant": model.variant.value, "aero": "none" if model.aero is None else model.aero.options.model,
+                "variant": model.variant.kind.value, "aero": "none" if model.aero is None else model.aero.options.model,
                 "method": method, "rtol": f"{rtol:g}", "t_end_s": f"{t_end:g}", "run_id": uuid.uuid4().hex}
-        meta.update({str(k): str(v) for k, v in (metadata or {}).items()})
+        meta.update(output.metadata)
         sink = LogSink(path, outputs, meta, wind=wind)
     bar = None
+    progress = output.progress
     if progress is True:
         from tqdm.auto import tqdm
 
@@ -509,10 +449,10 @@ def simulate(
     results.add(0.0, x0, u0)
     try:
         if sink is not None:
-            sink.event(0.0, f"simulation start: {model.aircraft.name} ({model.variant.value}, aero "
+            sink.event(0.0, f"simulation start: {model.aircraft.name} ({model.variant.kind.value}, aero "
                             f"{meta['aero']}), method {method}, rtol {rtol:g}, t_end {t_end:g} s")
-            for t_note, text in notes:
-                sink.schedule(float(t_note), str(text))
+            for t_note, text in output.notes:
+                sink.schedule(t_note, text)
             sink.write(np.zeros(1), x0[None, :], u0[None, :])
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             wind_data = compiled_wind(model, wind) if method == "ETD2RK" else None

@@ -240,7 +240,7 @@ def phugoid_point(altitude_m: float = 6000.0, mach: float = 0.6, *, body_moments
     phugoid = [m for m in spec.of_kind("rigid") if 0.02 < m.frequency_rad_s < 0.3]
     omega = float(abs(phugoid[0].eigenvalue)) if phugoid else math.nan
     zeta = float(phugoid[0].damping_ratio) if phugoid else math.nan
-    return PhugoidPoint(omega, zeta, math.sqrt(2.0) * model.gravity_m_s2 / man.speed_m_s,
+    return PhugoidPoint(omega, zeta, math.sqrt(2.0) * model.terms.gravity_m_s2 / man.speed_m_s,
                         point.drag_n / (math.sqrt(2.0) * point.lift_n), point.lift_n / point.drag_n,
                         static_margin(model, point).fraction_of_mac)
 
@@ -260,7 +260,7 @@ def _coordinated_turn() -> list[Check]:
     model = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
     radius = 5000.0
     point = trim(model, SteadyManoeuvre.turn(9144.0, radius, mach=0.78, coordinated=True))
-    ratio = point.manoeuvre.speed_m_s**2 / (model.gravity_m_s2 * radius)
+    ratio = point.manoeuvre.speed_m_s**2 / (model.terms.gravity_m_s2 * radius)
     src = "steady level coordinated turn: n = sqrt(1 + (V^2/gR)^2), tan(mu) = V^2/(gR) (Stevens & Lewis 2003, sec. 3.6)"
     bank = ("point-mass turn: n = L/W = 1/cos(mu), mu the bank of the lift about the velocity (wind axes); in Euler "
             "angles sin(mu) = sin(phi) cos(theta) at zero sideslip and climb: with beta = 0 the wind and body y axes coincide "

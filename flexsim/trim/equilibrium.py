@@ -12,11 +12,11 @@ margin's), in the order of :data:`VERDICTS`:
   the aeroelastic stiffness K - K_aero is no longer positive definite); the root is named by the elastic
   coordinate with the largest kinetic-energy share Re(conj(phi_i) (M phi)_i).
 * ``statically unstable``: a static margin < 0 (the neutral point ahead of the CG, Etkin & Reid, *Dynamics of
-  Flight*, 3rd ed., 1996, sec. 2.3; :mod:`flexsim.trim.margin`), or a real unstable rigid-body root in w or q (a
-  pitch divergence).
-* ``dynamically unstable``: a complex pair with a positive real part of an elastic mode (flutter at the trim), or
-  an unstable rigid-body mode faster than the slow limits below (phugoid, spiral) or a short period or Dutch roll
-  with a positive real part.
+  Flight*, 3rd ed., 1996, sec. 2.3; :mod:`flexsim.trim.margin`), or a real unstable rigid-body root (an aperiodic
+  divergence: in w or q a pitch divergence; in u or the lateral coordinates a split phugoid or spiral faster than the
+  slow limits below).
+* ``dynamically unstable``: a complex pair with a positive real part (an oscillation that grows): of an elastic mode
+  (flutter at the trim), or a phugoid faster than the slow limit below, a short period or a Dutch roll.
 * ``slowly unstable``: only rigid-body roots whose time to double T2 = ln 2 / Re(lambda) is at least the
   MIL-F-8785C Level 3 minimum (Military Specification, Flying Qualities of Piloted Airplanes, 1980): 4 s for the
   spiral (sec. 3.3.1.3, every class), 55 s for the phugoid (sec. 3.2.1.2). Such an aircraft is flown every day
@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from flexsim.trim.roots import Spectrum, _classify, _dominant_dofs, reduced_jacobian
+from flexsim.trim.roots import Spectrum, _classify, _dominant_dofs, reduced_jacobian, rigid_mode_name
 
 if TYPE_CHECKING:
     from flexsim.model.aircraft_model import AircraftModel
@@ -64,8 +64,8 @@ class UnstableRoot:
     kind : {"rigid", "elastic", "aerodynamic"}
         As :class:`flexsim.trim.roots.Mode`.
     coordinate : str
-        Dominant coordinate: a rigid-body mode's dominant DOF (u, v, w, p, q, r), an elastic mode's elastic
-        coordinate with the largest kinetic-energy share (e.g. "right_wing bending 1").
+        Dominant coordinate: a rigid-body mode's dominant DOF (u, v, w, p, q, r), an elastic mode's name
+        (:func:`flexsim.structure.mode_names.mode_name`, e.g. "wings bending 1 (symmetric)").
     name : str
         "spiral", "Dutch roll", "phugoid", "longitudinal oscillation", "longitudinal divergence" for a
         rigid-body root, the coordinate for an elastic one.
@@ -163,16 +163,17 @@ def _elastic_coordinate(model: "AircraftModel", q: np.ndarray, shape: np.ndarray
 
 
 def _rigid_root(lam: complex, coordinate: str) -> tuple[str, str]:
-    """(name, verdict) of an unstable rigid-body root (module docstring)."""
+    """(name, verdict) of an unstable rigid-body root (module docstring): a real root faster than the slow limits is an
+    aperiodic divergence, "statically unstable"; only a complex pair is "dynamically unstable"."""
     t2 = math.log(2.0) / lam.real
     real = lam.imag == 0.0
-    if coordinate == "u":
-        return "phugoid", ("slowly unstable" if t2 >= PHUGOID_MIN_DOUBLING_S else "dynamically unstable")
-    if coordinate in ("w", "q"):
-        return ("pitch divergence", "statically unstable") if real else ("short period", "dynamically unstable")
-    if real:
-        return "spiral", ("slowly unstable" if t2 >= SPIRAL_MIN_DOUBLING_S else "dynamically unstable")
-    return "Dutch roll", "dynamically unstable"
+    fast = "statically unstable" if real else "dynamically unstable"
+    name = rigid_mode_name(lam, coordinate)  # the name the roots table gives the same root
+    if name == "phugoid":
+        return name, ("slowly unstable" if t2 >= PHUGOID_MIN_DOUBLING_S else fast)
+    if name == "spiral":
+        return name, ("slowly unstable" if t2 >= SPIRAL_MIN_DOUBLING_S else fast)
+    return name, fast
 
 
 def classify_equilibrium(model: "AircraftModel", x0: np.ndarray, spectrum: Spectrum,
@@ -203,7 +204,8 @@ def classify_equilibrium(model: "AircraftModel", x0: np.ndarray, spectrum: Spect
             name, verdict = _rigid_root(lam, mode.dominant_dof)
             coordinate = mode.dominant_dof
         else:
-            coordinate = (_elastic_coordinate(model, q, mode.shape) if mode.kind == "elastic" else None) or mode.dominant_dof
+            coordinate = (mode.name or _elastic_coordinate(model, q, mode.shape)) if mode.kind == "elastic" else None
+            coordinate = coordinate or mode.dominant_dof
             name, verdict = coordinate, ("statically divergent" if lam.imag == 0.0 else "dynamically unstable")
         unstable.append(UnstableRoot(complex(lam), mode.kind, coordinate, name, verdict))
     unstable.sort(key=lambda r: -r.eigenvalue.real)

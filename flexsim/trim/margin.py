@@ -68,8 +68,4 @@ def static_margin_of_state(model: AircraftModel, x0: np.ndarray, u0: np.ndarray,
 
     l1, m1 = lift_and_moment(dw_m_s)
     l0, m0 = lift_and_moment(-dw_m_s)
-    strips = model.aero.strips
-    idx = np.array([c == "right_wing" for c in strips.component])
-    chord, width = 2.0 * strips.semichord_m[idx], strips.width_m[idx]
-    mac = float((chord**2 * width).sum() / (chord * width).sum())
-    return StaticMargin(float(-(m1 - m0) / (l1 - l0)), mac)
+    return StaticMargin(float(-(m1 - m0) / (l1 - l0)), model.reference_geometry.mac_m)

@@ -36,8 +36,9 @@ from flexsim.aircraft.definition import ContentKey
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.jacobian import jacobian
 from flexsim.structure.mirror import TIE_RTOL
+from flexsim.structure.mode_names import mode_name
 
-__all__ = ["Mode", "Spectrum", "ReducedJacobian", "reduced_jacobian"]
+__all__ = ["Mode", "Spectrum", "ReducedJacobian", "reduced_jacobian", "rigid_mode_name"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -88,6 +89,10 @@ class Mode:
         shape / eigenvalue.
     inflow_participation : float
         Sum of the participation factors of the inflow states in this mode, in [0, 1] [-].
+    name : str
+        The mode's name in every output: for an elastic mode :func:`flexsim.structure.mode_names.mode_name` (e.g.
+        "wings torsion 1 (antisymmetric)"); for a rigid-body one its flight-dynamics name and dominant DOF
+        (:func:`rigid_mode_name`, e.g. "spiral [v]"); "inflow" for an aerodynamic-lag root.
     """
 
     eigenvalue: complex
@@ -96,6 +101,7 @@ class Mode:
     dominant_dof: str
     shape: np.ndarray
     inflow_participation: float = 0.0
+    name: str = ""
 
     @property
     def frequency_rad_s(self) -> float:
@@ -175,17 +181,36 @@ def _classify(model: AircraftModel, lin, vals: np.ndarray, vecs: np.ndarray, aer
     shapes = np.zeros((n_v, vals.size), dtype=complex)
     shapes[active] = phi
     dominant = _dominant_dofs(share, active, n_v, mirror)
+    m0 = model.structure.inertia.mass_matrix(np.zeros(model.structure.dofs.nq))
     modes = []
     for k in range(vals.size):
         if lag[k] or no_energy[k]:
-            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", shapes[:, k].copy(), float(inflow_share[k])))
+            modes.append(Mode(complex(vals[k]), "aerodynamic", 0.0, "inflow", shapes[:, k].copy(), float(inflow_share[k]), "inflow"))
             continue
         frac_el = float(frac[k])
         rigid = frac_el < 0.5 and abs(vals[k]) < cut
-        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, labels_full[dominant[k]],
-                          shapes[:, k].copy(), float(inflow_share[k])))
+        dof = labels_full[dominant[k]]
+        name = (f"{rigid_mode_name(vals[k], dof)} [{dof}]" if rigid
+                else mode_name(model.structure, shapes[:, k], m0, m0))  # M(0): the name every output gives
+        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, dof,
+                          shapes[:, k].copy(), float(inflow_share[k]), name or dof))
     modes.sort(key=lambda m: -m.eigenvalue.real)
     return Spectrum(tuple(modes), aero_model)
+
+
+def rigid_mode_name(eigenvalue: complex, coordinate: str) -> str:
+    """The flight-dynamics name of a rigid-body root from its dominant DOF (Etkin & Reid, *Dynamics of Flight*, 3rd
+    ed., 1996, ch. 6-7): u the phugoid; w or q the short period (complex) or a pitch divergence / subsidence (real);
+    v, p or r the Dutch roll (complex), the spiral (real; a stable real root in p is the roll subsidence)."""
+    lam = complex(eigenvalue)
+    real = lam.imag == 0.0
+    if coordinate == "u":
+        return "phugoid"
+    if coordinate in ("w", "q"):
+        return ("pitch divergence" if lam.real > 0.0 else "pitch subsidence") if real else "short period"
+    if not real:
+        return "Dutch roll"
+    return "roll subsidence" if coordinate == "p" and lam.real < 0.0 else "spiral"
 
 
 def _dominant_dofs(share: np.ndarray, active: np.ndarray, n_v: int, mirror) -> np.ndarray:

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.linalg import LinAlgWarning, lu_factor, lu_solve
@@ -27,6 +27,7 @@ from flexsim.atmosphere import speed_of_sound
 from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel, Variant
 from flexsim.kinematics import dcm_321
+from flexsim.model.linear_range import linear_range_note
 from flexsim.model.sensors import structural_sensors
 from flexsim.structure.mirror import TIE_RTOL
 from flexsim.trim.equilibrium import EquilibriumStability, equilibrium_stability
@@ -128,6 +129,11 @@ class TrimPoint:
     stability : EquilibriumStability or None
         The classification of the equilibrium from the roots of its linearisation
         (:mod:`flexsim.trim.equilibrium`); None when the trim was asked not to classify (``classify=False``).
+    terms : dict
+        The physical terms of the model trimmed (:meth:`flexsim.model.terms.Terms.record`).
+    linear_range : str or None
+        One line when the trim bends or twists a beam beyond the linear structure's range
+        (:func:`flexsim.model.linear_range.linear_range_note`), None within it.
     """
 
     manoeuvre: SteadyManoeuvre
@@ -150,6 +156,8 @@ class TrimPoint:
     drag_n: float = 0.0
     max_local_alpha: StripAngle | None = None
     stability: EquilibriumStability | None = None
+    terms: dict = field(default_factory=dict)
+    linear_range: str | None = None
 
     def __post_init__(self) -> None:
         # a frozen result: its arrays are read-only copies (the caller's arrays are not frozen)
@@ -195,7 +203,7 @@ class _Problem:
     """Maps the unknown vector to a model state and evaluates the scaled residual."""
 
     def __init__(self, model: AircraftModel, manoeuvre: SteadyManoeuvre) -> None:
-        if model.variant is Variant.RESTRAINED:
+        if model.variant.kind is Variant.RESTRAINED:
             raise ValueError("trim needs a free or quasi-rigid model (a restrained aircraft has no flight path)")
         self.model, self.man = model, manoeuvre
         # without a rudder (a flying wing) the yaw balance is met by sideslip: the heading offset psi - chi takes the
@@ -207,8 +215,8 @@ class _Problem:
         lay = model.layout
         self.n_el = lay.nq + lay.nxi
         mass = model.structure.mass_properties.mass_kg
-        self.weight = mass * max(model.gravity_m_s2, 1e-9)
-        g = max(model.gravity_m_s2, 1.0)
+        self.weight = mass * max(model.terms.gravity_m_s2, 1e-9)
+        g = max(model.terms.gravity_m_s2, 1.0)
         n_vel = lay.velocity.stop - lay.velocity.start
         self.scale = np.full(n_vel, 1.0 / g)
         self.scale[3:6] = _ROT_LENGTH / g
@@ -330,7 +338,7 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
     else:
         omega = manoeuvre.turn_rate(0.0)
         z0[0] = 0.08
-        z0[1] = math.atan(manoeuvre.speed_m_s * omega / max(model.gravity_m_s2, 1e-9)) if omega else 0.0
+        z0[1] = math.atan(manoeuvre.speed_m_s * omega / max(model.terms.gravity_m_s2, 1e-9)) if omega else 0.0
         z0[2] = -0.03 if manoeuvre.is_glide else 0.03
     z = r = None
     if guess is not None:  # Newton from a neighbouring trim; hybr only if that does not converge
@@ -412,10 +420,10 @@ def _demand(model: AircraftModel, man: SteadyManoeuvre) -> str:
     A coordinated steady turn needs the bank tan(phi) = V^2 cos(gamma) / (g R) and the load factor
     n = 1 / cos(phi) (point-mass relations; the flexible trim differs little).
     """
-    if man.turn_radius_m == math.inf or model.gravity_m_s2 <= 0.0:
+    if man.turn_radius_m == math.inf or model.terms.gravity_m_s2 <= 0.0:
         return ""
     gamma = 0.0 if man.climb_angle_rad is None else man.climb_angle_rad
-    phi = math.atan(man.speed_m_s**2 * math.cos(gamma) / (model.gravity_m_s2 * abs(man.turn_radius_m)))
+    phi = math.atan(man.speed_m_s**2 * math.cos(gamma) / (model.terms.gravity_m_s2 * abs(man.turn_radius_m)))
     return (f" (this turn needs a bank of about {math.degrees(phi):.0f} deg and a load factor of {1 / math.cos(phi):.2g}"
             f"; a larger radius or a lower speed asks less)")
 
@@ -581,9 +589,10 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
     force = st.thrust.force(u[0], q)[0:3] + aero_force
     v_cg = v + np.cross(vel[3:6], st.mass_properties.cg_m)
     lift, drag = _lift_drag(aero_force, v_cg)
-    weight = st.mass_properties.mass_kg * max(model.gravity_m_s2, 1e-9)
+    weight = st.mass_properties.mass_kg * max(model.terms.gravity_m_s2, 1e-9)
     tip_w = tip_t = 0.0
-    wing = structural_sensors(model).get("right_wing")  # the one implementation of the structural outputs
+    sensors = structural_sensors(model)  # the one implementation of the structural outputs
+    wing = sensors.get("right_wing")
     if wing is not None:
         tip_w, tip_t = float(wing.tip_deflection_m(x)), float(wing.tip_twist_rad(x))
     return TrimPoint(
@@ -606,6 +615,8 @@ def _trim_point(model: AircraftModel, man: SteadyManoeuvre, x: np.ndarray, u: np
         lift_n=lift,
         drag_n=drag,
         max_local_alpha=_max_local_alpha(model, x, u),
+        terms=model.terms.record(),
+        linear_range=linear_range_note(model, x, sensors=sensors),
     )
 
 

@@ -5,6 +5,8 @@ non-orthogonal T (non-normal A with the eigenvalues of D). Each block has the ei
 -d_i/2 +- i sqrt(k_i + kappa_i omega^2 - d_i^2/4), so its p-k root p = -d_i/2 + i omega_i solves
 omega_i^2 = k_i + kappa_i omega_i^2 - d_i^2/4: omega_i = sqrt((k_i - d_i^2/4) / (1 - kappa_i)).
 Blocks 2 and 3 are near-degenerate (frequencies 0.3 % apart). Tolerance: 1e-9 relative with rtol 1e-12.
+A double root: the block diagonal of A(omega) with itself (two equal, uncoupled systems, as the two halves of a
+clamped wing pair) has every root twice; both starts of a double eigenvalue (independent eigenvectors) keep it.
 """
 
 import numpy as np
@@ -80,3 +82,18 @@ def test_compiled_lu_solves_and_detects_a_singular_shift():
     singular = a.copy()
     singular[:, 3] = 0.0
     assert not _lu_factor(singular)[1]
+
+
+def test_a_double_root_is_kept_twice():
+    def twice(omega: float) -> np.ndarray:
+        a = a_of(omega)
+        out = np.zeros((12, 12))
+        out[:6, :6] = out[6:, 6:] = a
+        return out
+
+    vals, vecs = np.linalg.eig(twice(0.0))
+    up = np.flatnonzero(vals.imag > 0)
+    roots = pk_roots(twice, vals[up], vecs[:, up], rtol=1e-12)
+    assert all(r.converged for r in roots)
+    found = np.sort_complex(np.array([r.eigenvalue for r in roots]))
+    np.testing.assert_allclose(found, np.sort_complex(np.repeat(EXACT, 2)), rtol=1e-9)

@@ -8,7 +8,6 @@ and the inertia about the CG Ixx 9034.453, Iyy 1575.078, Izz 9231.149 lb in^2.
 """
 
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -27,6 +26,7 @@ from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.structure.model import StructuralModel
 from flexsim.trim import SteadyManoeuvre
+from tests.installed import child_env
 
 ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "flexsim" / "aircraft" / "data"
@@ -40,7 +40,7 @@ def test_bundled_maewing1_regenerates_from_the_repository(tmp_path):
     tool = tmp_path / "make_maewing1_toml.py"
     shutil.copy(ROOT / "tools" / "make_maewing1_toml.py", tool)
     out = subprocess.run([sys.executable, str(tool), "--source", str(DATA / "sources")], cwd=tmp_path,
-                         capture_output=True, text=True, timeout=120, env=dict(os.environ, PYTHONPATH=str(ROOT)))
+                         capture_output=True, text=True, timeout=120, env=child_env())
     assert out.returncode == 0, out.stderr
     assert out.stdout == (DATA / "maewing1.toml").read_text(encoding="utf-8")
 

@@ -191,7 +191,7 @@ def test_flutter_mode_option_writes_a_verified_recording(tmp_path, capsys):
     assert cli_main(["flutter", "gtm", "--altitudes", "9144", "--models", "QS", "--workers", "1", "--paper-replication",
                      "--mode", str(path)]) == 0
     out = capsys.readouterr().out
-    assert f"recorded to {path}" in out and "right_wing torsion 1" in out
+    assert f"recorded to {path}" in out and "wings torsion 1 (antisymmetric)" in out
     assert _verify(path).returncode == 0
 
 

@@ -39,8 +39,9 @@ from flexsim.linear.stability import spectrum  # noqa: E402
 from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
 from flexsim.model.coupling import AeroOptions  # noqa: E402
 from flexsim.model.sensors import structural_sensors  # noqa: E402
-from flexsim.sim.simulate import simulate  # noqa: E402
+from flexsim.sim.simulate import IntegratorSettings, simulate  # noqa: E402
 from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
+from flexsim.sim.run_settings import EventSettings, OutputSettings  # noqa: E402
 
 POLE_RTOL = 1e-9
 
@@ -150,8 +151,9 @@ def test_step_response_matches_the_nonlinear_simulation(stratosphere, input_name
             wind = _uniform_up_gust(du) if du else None
         else:
             controls[k] += du
-        return simulate(model, point, t_end, controls=controls, wind=wind, method="DOP853", rtol=1e-10, atol=1e-12,
-                        output_rate_hz=rate, events=())
+        return simulate(model, point, t_end, controls=controls, wind=wind,
+            integrator=IntegratorSettings(method="DOP853", rtol=1e-10, atol=1e-12),
+            output=OutputSettings(rate_hz=rate), events=EventSettings(()))
 
     still = run(0.0)  # the trim's own drift (residual 1e-13) is taken out
     signals = ("v_x_m_s", "v_z_m_s", "theta_rad", "omega_y_rad_s", "tip_deflection_right_wing_m",

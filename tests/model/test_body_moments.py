@@ -107,13 +107,13 @@ def test_downwash_gradient_scales_with_the_wing_lift_slope(gtm):
         for alpha in (0.04, 0.06):
             q, xi, vel = _straight_state(model, alpha, speed)
             kin = co.kinematics(q, xi, vel, np.zeros(0), u)
-            eps[comp, alpha] = tail_downwash(co._dw_wing_weight, kin.u0, kin.wc, speed, co.compressibility_factor(mach), co.downwash_gradient)
+            eps[comp, alpha] = tail_downwash(co.dw_wing_weight, kin.u0, kin.wc, speed, co.compressibility_factor(mach), co.downwash_gradient)
             # the tail strips' normal velocity falls by eps V (n . z_b); the wing strips are unchanged
             shifted = co._with_downwash(kin, vel, mach)
             tail = np.isin(np.array(co.strips.component), ("right_htail", "left_htail"))
             np.testing.assert_allclose((shifted.wc - kin.wc)[~tail], 0.0, atol=0)
-            np.testing.assert_allclose((shifted.wc - kin.wc)[tail], -eps[comp, alpha] * speed * co._dw_tail_nz[tail], rtol=1e-12)
-            assert np.all(co._dw_tail_nz[tail] > 0.99)  # the tail's plunge direction is (nearly) body z: eps lowers its angle
+            np.testing.assert_allclose((shifted.wc - kin.wc)[tail], -eps[comp, alpha] * speed * co.dw_tail_nz[tail], rtol=1e-12)
+            assert np.all(co.dw_tail_nz[tail] > 0.99)  # the tail's plunge direction is (nearly) body z: eps lowers its angle
     assert eps["prandtl-glauert", 0.06] / eps["none", 0.06] == pytest.approx(1.0 / beta, rel=1e-12)
     gradient = (eps["prandtl-glauert", 0.06] - eps["prandtl-glauert", 0.04]) / 0.02
     assert gradient == pytest.approx(0.3327 / beta, rel=0.02)

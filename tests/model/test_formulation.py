@@ -36,7 +36,7 @@ def test_paper_formulation_level_trim_thrust_is_weight_times_sin_theta(gtm, alti
     model = AircraftModel(gtm, aero=AeroOptions("quasi-steady", formulation="paper"))
     assert model.formulation == "paper"
     point = trim(model, SteadyManoeuvre.level(altitude_m, mach=mach), check_limits=False)
-    weight = model.structure.mass_properties.mass_kg * model.gravity_m_s2
+    weight = model.structure.mass_properties.mass_kg * model.terms.gravity_m_s2
     assert point.residual < 1e-8
     assert point.thrust_n / (weight * math.sin(point.theta)) == pytest.approx(1.0, abs=1e-6)
 
@@ -45,7 +45,7 @@ def test_physical_formulation_is_the_default_and_differs(gtm):
     model = AircraftModel(gtm, aero="quasi-steady")
     assert model.formulation == "physical"
     point = trim(model, SteadyManoeuvre.level(9144.0, mach=0.7791), check_limits=False)
-    weight = model.structure.mass_properties.mass_kg * model.gravity_m_s2
+    weight = model.structure.mass_properties.mass_kg * model.terms.gravity_m_s2
     assert point.thrust_n / (weight * math.sin(point.theta)) < 0.7
 
 
@@ -103,6 +103,6 @@ def test_simulated_manoeuvres_take_the_formulation():
 
     setup = build_manoeuvre("elevator-doublet", aero="quasi-steady", formulation="paper")
     assert setup.model.formulation == "paper"
-    weight = setup.model.structure.mass_properties.mass_kg * setup.model.gravity_m_s2
+    weight = setup.model.structure.mass_properties.mass_kg * setup.model.terms.gravity_m_s2
     level = setup.initial  # the cruise trim the doublet starts from
     assert level.thrust_n / (weight * math.sin(level.theta)) == pytest.approx(1.0, abs=1e-6)

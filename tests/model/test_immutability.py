@@ -17,6 +17,7 @@ from flexsim._immutable import Immutable
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.sim.run_settings import OutputSettings
 
 
 @pytest.fixture(scope="module")
@@ -79,5 +80,5 @@ def test_trim_point_arrays_are_read_only_and_the_frozen_model_still_flies(model)
         point.u[0] = 1.0
     from flexsim.sim.simulate import simulate
 
-    result = simulate(qs, point, 0.1, output_rate_hz=20.0)
+    result = simulate(qs, point, 0.1, output=OutputSettings(rate_hz=20.0))
     assert result.completed and abs(result.altitude_m[-1] - 9144.0) < 0.01  # 0.1 s from a trim: no drift to speak of

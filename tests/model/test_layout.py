@@ -64,3 +64,30 @@ def test_registration_refuses_duplicates_and_mutable_classes():
 
     with pytest.raises(ValueError, match="Again.m0: a field of that name is already registered"):
         layout.term_data(Again)
+
+
+def test_every_term_fills_its_own_fields_from_the_model():
+    """One way to build kernel data: each registered class but the derived sparsity has ``fields_of(model)``, which
+    returns fields of its own class only, and the model's data are exactly their union, packed."""
+    from flexsim._kernels.layout import SparsityData
+
+    model = AircraftModel(load_aircraft("gtm"), aero="unsteady", structural_damping=0.01)
+    for term in k.TERMS:
+        if term is SparsityData:
+            assert not hasattr(term, "fields_of")
+            continue
+        assert set(term.fields_of(model)) <= set(term.index), term.__name__
+    data = k.pack_fields(k.fields_of(model))
+    assert np.array_equal(data.F, model.kernel_data.F, equal_nan=True) and np.array_equal(data.I, model.kernel_data.I)
+
+    class Stray:  # a builder that writes another class's field is refused, naming both
+        index = {"g": 0}
+
+        @staticmethod
+        def fields_of(model):
+            return {"m0": np.zeros((1, 1))}
+
+    with pytest.raises(ValueError, match=r"Stray.fields_of: \['m0'\] are not fields of Stray"):
+        k.fields_of(model, (Stray,))
+    with pytest.raises(ValueError, match="kernel field 'nonsense'"):
+        k.pack_fields({"nonsense": [1.0]})

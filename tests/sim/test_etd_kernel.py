@@ -34,7 +34,8 @@ from flexsim.model.jacobian import jacobian
 from flexsim.sim.disturbances import OneMinusCosineGust
 from flexsim.sim import ControlSchedule, SimEvent
 from flexsim.sim.fixed_step import ETD2RK, step_accelerations
-from flexsim.sim.simulate import RELINEARISE_DRIFT, simulate
+from flexsim.sim.run_settings import EventSettings, OutputSettings
+from flexsim.sim.simulate import RELINEARISE_DRIFT, IntegratorSettings, simulate
 from flexsim.trim import SteadyManoeuvre, trim
 
 
@@ -226,16 +227,21 @@ def test_simulate_compiled_equals_the_python_steps(gtm):
     sched = ControlSchedule([0.0, 0.3, 0.4, 0.7, 0.8], [u0, u0, u0 + [0, math.radians(-2), math.radians(1), 0],
                                                          u0 + [0, math.radians(-2), math.radians(1), 0], u0])
     up = SimEvent("climbing", lambda t, x: x[model.layout.v.start + 2], direction=0, terminal=False)
-    for kwargs in ({"wind": gust, "controls": sched, "events": ("ground", up)},
-                   {"controls": lambda t, x: u0 + [0, 0, 0.002 * x[model.layout.euler.start], 0], "control_period_s": 0.05},
-                   {"wind": gust, "max_step": 0.02, "output_rate_hz": None, "log_rate_hz": 20.0}):
-        fast = simulate(model, point, 1.0, method="ETD2RK", **kwargs)
-        slow = simulate(model, point, 1.0, method="ETD2RK", **{**kwargs, "wind": _python_wind(kwargs.get("wind"))})
+    etd = IntegratorSettings(method="ETD2RK")
+    for kwargs in ({"wind": gust, "controls": sched, "events": EventSettings(("ground", up)), "integrator": etd},
+                   {"controls": lambda t, x: u0 + [0, 0, 0.002 * x[model.layout.euler.start], 0], "control_rate_hz": 20.0,
+                    "integrator": etd},
+                   {"wind": gust, "integrator": IntegratorSettings(method="ETD2RK", max_step_s=0.02),
+                    "output": OutputSettings(rate_hz=None, log_rate_hz=20.0)}):
+        fast = simulate(model, point, 1.0, **kwargs)
+        slow = simulate(model, point, 1.0, **{**kwargs, "wind": _python_wind(kwargs.get("wind"))})
         _same_run(fast, slow)
     assert fast.t.size == 50 + 1  # every step end and t = 0
     stop = SimEvent("pitch", lambda t, x: 0.01 - abs(x[model.layout.omega.start + 1]), terminal=True)
-    fast = simulate(model, point, 1.0, method="ETD2RK", wind=gust, events=("ground", stop))
-    slow = simulate(model, point, 1.0, method="ETD2RK", wind=_python_wind(gust), events=("ground", stop))
+    fast = simulate(model, point, 1.0, integrator=IntegratorSettings(method="ETD2RK"), wind=gust,
+                    events=EventSettings(("ground", stop)))
+    slow = simulate(model, point, 1.0, integrator=IntegratorSettings(method="ETD2RK"), wind=_python_wind(gust),
+                    events=EventSettings(("ground", stop)))
     _same_run(fast, slow)
     assert fast.status == "event" and 0.0 < fast.t[-1] < 1.0
 
@@ -245,8 +251,9 @@ def test_simulate_compiled_relinearises_when_the_speed_drifts():
     point = trim(model, SteadyManoeuvre.level(9144.0, mach=0.75))
     u1 = point.u + [0.0, 0.0, math.radians(-6.0), 0.0]
     sched = ControlSchedule([0.0, 0.5], [point.u, u1])  # a sustained pull-up: 227 -> ~150 m/s in 20 s
-    fast = simulate(model, point, 20.0, controls=sched, output_rate_hz=2.0)
-    ref = simulate(model, point, 20.0, controls=sched, output_rate_hz=2.0, method="Radau", rtol=1e-6)
+    fast = simulate(model, point, 20.0, controls=sched, output=OutputSettings(rate_hz=2.0))
+    ref = simulate(model, point, 20.0, controls=sched, output=OutputSettings(rate_hz=2.0),
+                   integrator=IntegratorSettings(method="Radau", rtol=1e-6))
     assert fast.method == "ETD2RK" and fast.completed
     assert fast.airspeed_m_s[-1] < (1.0 - RELINEARISE_DRIFT) * fast.airspeed_m_s[0] and fast.njev >= 2
     np.testing.assert_allclose(fast.airspeed_m_s, ref.airspeed_m_s, rtol=1e-3)
@@ -267,8 +274,8 @@ def test_long_chunks_equal_chunks_of_the_check_interval(monkeypatch):
     x0 = point.x.copy()
     x0[model.layout.position.start + 2] = -30.0
     x0[model.layout.v.start + 2] += 40.0
-    runs = [dict(initial=point, t_end_s=20.0, controls=sched, output_rate_hz=2.0),
-            dict(initial=x0, t_end_s=5.0, controls=point.u, events=["ground"])]
+    runs = [dict(initial=point, t_end_s=20.0, controls=sched, output=OutputSettings(rate_hz=2.0)),
+            dict(initial=x0, t_end_s=5.0, controls=point.u, events=EventSettings(("ground",)))]
     assert compiled_run.COMPILED_CHUNK_S > compiled_run.CHECK_INTERVAL_S
     long = [simulate(model, **kw) for kw in runs]
     monkeypatch.setattr(compiled_run, "COMPILED_CHUNK_S", compiled_run.CHECK_INTERVAL_S)

@@ -15,7 +15,8 @@ from scipy.optimize import curve_fit
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.stability import spectrum
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.sim.simulate import simulate
+from flexsim.sim.simulate import simulate, IntegratorSettings
+from flexsim.sim.run_settings import OutputSettings
 
 
 @pytest.mark.parametrize("speed", [110.0, 150.0], ids=["below flutter", "above flutter"])
@@ -39,7 +40,9 @@ def test_perturbation_follows_the_dominant_eigenvalue(speed):
     x0[lin.keep] = 1e-3 * np.real(v)  # 1 mm of modal amplitude: linear regime
     periods = 8.0
     t_end = periods * 2 * np.pi / lam.imag
-    result = simulate(model, x0, t_end, controls=np.zeros(4), method="DOP853", rtol=1e-9, atol=1e-12, output_rate_hz=4000.0)
+    result = simulate(model, x0, t_end, controls=np.zeros(4),
+                      integrator=IntegratorSettings(method="DOP853", rtol=1e-9, atol=1e-12),
+                      output=OutputSettings(rate_hz=4000.0))
     t, y = result.t, result.tip_deflection_m("right_wing")
     f = lambda tt, a, s, w, p: a * np.exp(s * tt) * np.cos(w * tt + p)
     guess = (np.abs(y).max(), lam.real, lam.imag, 0.0)

@@ -17,7 +17,6 @@ import sys
 import textwrap
 import time
 from collections import Counter
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -27,6 +26,8 @@ from flexsim.cli.main import main
 from flexsim.io.flight_log import FlightLogRecoveryWarning, read_flight_log
 from flexsim.sim.manoeuvres import build_manoeuvre
 from flexsim.sim.outputs import OutputMaps
+from flexsim.sim.run_settings import OutputSettings
+from tests.installed import child_env
 
 COMPONENTS = ("fuselage", "right_wing", "left_wing", "right_htail", "left_htail", "vtail")
 
@@ -35,7 +36,7 @@ COMPONENTS = ("fuselage", "right_wing", "left_wing", "right_htail", "left_htail"
 def logged_run(tmp_path_factory):
     path = tmp_path_factory.mktemp("log") / "doublet.mcap"
     setup = build_manoeuvre("elevator-doublet", aero="quasi-steady", duration_s=1.6)
-    result = setup.simulate(log_path=path, output_rate_hz=50.0, log_rate_hz=50.0)
+    result = setup.simulate(output=OutputSettings(rate_hz=50.0, log_path=path, log_rate_hz=50.0))
     return path, result
 
 
@@ -125,8 +126,9 @@ def test_flexsim_view_reports_bad_and_truncated_logs(logged_run, tmp_path, capsy
 _KILL_SCRIPT = textwrap.dedent("""
     import sys
     from flexsim.sim.manoeuvres import build_manoeuvre
+    from flexsim.sim.run_settings import OutputSettings
     setup = build_manoeuvre("elevator-doublet", aero="quasi-steady", duration_s=60.0)
-    setup.simulate(log_path=sys.argv[1], progress=lambda t: print(f"{t:.6f}", flush=True))
+    setup.simulate(output=OutputSettings(log_path=sys.argv[1], progress=lambda t: print(f"{t:.6f}", flush=True)))
 """)
 
 
@@ -135,10 +137,7 @@ def test_sigkill_leaves_a_log_readable_up_to_about_one_second_before(tmp_path):
     path = tmp_path / "killed.mcap"
     script = tmp_path / "run.py"
     script.write_text(_KILL_SCRIPT)
-    # The child imports this checkout's flexsim, installed or not (helpers run tests without installing).
-    root = str(Path(__file__).resolve().parents[2])
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1",
-           "PYTHONPATH": os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH")) if p)}
+    env = child_env(base={**os.environ, "OPENBLAS_NUM_THREADS": "1"})  # the flexsim the tests import
     proc = subprocess.Popen([sys.executable, str(script), str(path)], stdout=subprocess.PIPE, text=True, env=env)
     reported = 0.0
     deadline = time.monotonic() + 60.0

@@ -17,6 +17,7 @@ import pytest
 from flexsim.cli.main import main
 from flexsim.io.flight_log import read_flight_log
 from flexsim.sim.manoeuvres import build_manoeuvre, goland_flutter_speed, manoeuvre_names, pulse_schedule
+from flexsim.sim.run_settings import OutputSettings
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 NAMES = ("level-turn-entry", "climb", "elevator-doublet", "aileron-roll", "gust-encounter", "flutter-onset")
@@ -36,7 +37,7 @@ def test_registry_lists_the_six_manoeuvres_and_rejects_unknown_names():
 @pytest.mark.parametrize("name", NAMES)
 def test_every_manoeuvre_builds_and_runs(name):
     setup = build_manoeuvre(name, aero="quasi-steady", duration_s=0.3)
-    result = setup.simulate(output_rate_hz=20.0)
+    result = setup.simulate(output=OutputSettings(rate_hz=20.0))
     assert result.status == "completed" and result.t[-1] == pytest.approx(0.3)
     assert np.all(np.isfinite(result.x)) and setup.duration_s == 0.3
 

@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.model.aircraft_model import AircraftModel
 from flexsim.atmosphere import speed_of_sound
 from flexsim.sim.disturbances import DrydenTurbulence
 from flexsim.sim.measurements import air_data
@@ -58,7 +59,7 @@ def test_heading_rate_of_a_level_turn():
 @pytest.fixture(scope="module")
 def flying():
     """The GTM's level-flight trim at 9144 m, 12 states spread around it, and a moderate Dryden field."""
-    dyn = FlightDynamics(load_aircraft("gtm"), "unsteady", IntegratorSettings(), ActuatorRates(), 0.02)
+    dyn = FlightDynamics(AircraftModel(load_aircraft("gtm"), aero="unsteady"), IntegratorSettings(), ActuatorRates(), 0.02)
     point = dyn.trim(SteadyManoeuvre(speed_m_s=230.0, altitude_m=9144.0))
     rng = np.random.default_rng(0)
     lay = dyn.layout

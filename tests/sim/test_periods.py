@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim import periods
 from flexsim.sim._step_kernels import ground_crossing, rate_limit_rows
 from flexsim.sim.periods import ActuatorRates, FlightDynamics, IntegratorSettings, advance_period, advance_rows
@@ -48,7 +49,7 @@ def test_ground_crossing_closed_form():
 
 @pytest.fixture(scope="module")
 def three():
-    dyn = FlightDynamics(load_aircraft("gtm"), "unsteady", IntegratorSettings(), ActuatorRates(), 0.02)
+    dyn = FlightDynamics(AircraftModel(load_aircraft("gtm"), aero="unsteady"), IntegratorSettings(), ActuatorRates(), 0.02)
     manoeuvre = SteadyManoeuvre(speed_m_s=230.0, altitude_m=9144.0)
     point = dyn.trim(manoeuvre)
     dyns = [dyn] + [dyn.fork() for _ in range(2)]

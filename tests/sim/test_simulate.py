@@ -25,6 +25,7 @@ from flexsim.sim.result import SimulationResult
 from flexsim.sim.simulate import (HOLDING_RADAU_SCIPY, ControlSchedule, HoldingRadau, IntegratorSettings, SimEvent, radau_class,
                                   simulate, state_scales)
 from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.sim.run_settings import EventSettings, OutputSettings
 
 H, MACH = 9144.0, 0.75
 
@@ -51,7 +52,7 @@ def vacuum(gtm):
 
 def test_level_trim_held_for_60_s(unsteady):
     point = trim(unsteady, SteadyManoeuvre.level(H, mach=MACH))
-    result = simulate(unsteady, point, 60.0, output_rate_hz=10.0)
+    result = simulate(unsteady, point, 60.0, output=OutputSettings(rate_hz=10.0))
     assert isinstance(result, SimulationResult) and result.status == "completed" and result.t[-1] == 60.0
     speed_drift = np.abs(result.airspeed_m_s - point.manoeuvre.speed_m_s).max()
     altitude_drift = np.abs(result.altitude_m - H).max()
@@ -62,7 +63,7 @@ def test_level_trim_held_for_60_s(unsteady):
 def test_level_turn_flies_a_circle_of_the_trim_radius(unsteady):
     radius = 8000.0
     point = trim(unsteady, SteadyManoeuvre.turn(H, radius, mach=MACH))
-    result = simulate(unsteady, point, 60.0, output_rate_hz=5.0)
+    result = simulate(unsteady, point, 60.0, output=OutputSettings(rate_hz=5.0))
     north, east = result.position_ned_m[:, 0], result.position_ned_m[:, 1]
     # algebraic (Kasa) circle fit: x^2 + y^2 + D x + E y + F = 0
     a = np.column_stack([north, east, np.ones_like(north)])
@@ -80,7 +81,7 @@ def test_schedule_is_interpolated_and_held(quasi_steady):
     sched = ControlSchedule([0.0, 0.2, 0.3], [u0, u0, u0 + [0, 0, math.radians(1.0), 0]])
     np.testing.assert_allclose(sched(0.25), u0 + [0, 0, math.radians(0.5), 0])
     np.testing.assert_allclose(sched(5.0), sched(0.3))
-    result = simulate(quasi_steady, point, 0.4, controls=sched, output_rate_hz=50.0)
+    result = simulate(quasi_steady, point, 0.4, controls=sched, output=OutputSettings(rate_hz=50.0))
     np.testing.assert_allclose(result.u, sched.at(result.t), atol=1e-15)
     assert result.signal("elevator_rad")[-1] == pytest.approx(u0[2] + math.radians(1.0))
     assert result.signal("theta_rad")[-1] != pytest.approx(result.signal("theta_rad")[0], abs=1e-8)  # it responds
@@ -95,7 +96,8 @@ def test_constant_segments_skip_the_interpolation(quasi_steady, monkeypatch):
     calls = []
     original = ControlSchedule.__call__
     monkeypatch.setattr(ControlSchedule, "__call__", lambda self, t: calls.append(t) or original(self, t))
-    result = simulate(quasi_steady, point, 0.4, controls=sched, output_rate_hz=50.0, method="Radau")  # rhs from Python
+    result = simulate(quasi_steady, point, 0.4, controls=sched, output=OutputSettings(rate_hz=50.0),
+                      integrator=IntegratorSettings(method="Radau"))  # rhs from Python
     in_ramp = [t for t in calls if 0.2 < t < 0.3]
     outside = [t for t in calls if not 0.2 <= t <= 0.3]
     assert result.nfev > 50 and in_ramp  # the ramp segment interpolates per rhs
@@ -110,16 +112,17 @@ def test_etd2rk_option_is_second_order_near_trim(quasi_steady):
     point = trim(quasi_steady, SteadyManoeuvre.level(H, mach=MACH))
     u0 = point.u
     sched = ControlSchedule([0.0, 0.1, 0.2], [u0, u0, u0 + [0, 0, math.radians(0.5), 0]])
-    ref = simulate(quasi_steady, point, 0.6, controls=sched, method="DOP853", rtol=1e-10)
+    ref = simulate(quasi_steady, point, 0.6, controls=sched, integrator=IntegratorSettings(method="DOP853", rtol=1e-10))
     errs = []
     for h in (0.01, 0.005):
-        r = simulate(quasi_steady, point, 0.6, controls=sched, method="ETD2RK", max_step=h)
+        r = simulate(quasi_steady, point, 0.6, controls=sched,
+                     integrator=IntegratorSettings(method="ETD2RK", max_step_s=h))
         assert r.completed and r.nfev == 3 + 2 * round(0.6 / h)  # one start per schedule segment, 2 per step
         errs.append(np.degrees(np.abs(r.signal("theta_rad") - ref.signal("theta_rad")).max()))
     assert errs[0] < 1e-7
     assert 3.4 < errs[0] / errs[1] < 4.6
-    with pytest.raises(ValueError, match="max_step = inf: ETD2RK"):
-        simulate(quasi_steady, point, 0.1, method="ETD2RK", max_step=math.inf)
+    with pytest.raises(ValueError, match="max_step_s = inf: ETD2RK"):
+        simulate(quasi_steady, point, 0.1, integrator=IntegratorSettings(method="ETD2RK", max_step_s=math.inf))
 
 
 def test_feedback_controller_is_sampled_every_period_and_held(vacuum):
@@ -130,7 +133,8 @@ def test_feedback_controller_is_sampled_every_period_and_held(vacuum):
         calls.append(t)
         return np.array([1e4 * (1 + len(calls)), 0.0, 0.0, 0.0])
 
-    result = simulate(vacuum, x0, 0.1, controls=controller, control_period_s=0.025, output_rate_hz=200.0)
+    result = simulate(vacuum, x0, 0.1, controls=controller, control_rate_hz=40.0,
+                      output=OutputSettings(rate_hz=200.0))
     np.testing.assert_allclose(calls, [0.0, 0.025, 0.05, 0.075], atol=1e-12)
     held = 1e4 * (2 + np.minimum(np.floor(result.t / 0.025 + 1e-9), 3))  # u(t) = controller(t_k) on [t_k, t_k+1)
     np.testing.assert_allclose(result.u[:, 0], held)
@@ -148,7 +152,7 @@ def test_ground_contact_stops_the_run(quasi_steady):
     # linearisation (a 9144 m trim at 30 m, structural rates ~100 m/s): the default's 20 ms steps leave the model's
     # range near t = 1.4 s and the chunk is repeated with 10 ms steps (compiled_run.HALVINGS); Radau at rtol 1e-6:
     # ground contact at 1.463 s, the default at 1.57 s (10 ms throughout: 1.467 s)
-    result = simulate(quasi_steady, x0, 5.0, controls=point.u, events=["ground"])
+    result = simulate(quasi_steady, x0, 5.0, controls=point.u, events=EventSettings(["ground"]))
     assert result.status == "ground_contact" and "ground contact" in result.reason
     assert result.altitude_m[-1] == pytest.approx(0.0, abs=1e-6)
     assert 0.3 < result.t[-1] < 2.0
@@ -167,7 +171,7 @@ def test_structural_limit_stops_a_fluttering_wing():
     from flexsim.sim.manoeuvres import build_manoeuvre
 
     setup = build_manoeuvre("flutter-onset", aero="unsteady")
-    result = setup.simulate(output_rate_hz=50.0)
+    result = setup.simulate(output=OutputSettings(rate_hz=50.0))
     assert result.status == "structural_limit" and "right_wing tip deflection" in result.reason
     length = setup.model.aircraft.component("right_wing").length_m
     assert abs(result.tip_deflection_m()[-1]) == pytest.approx(0.25 * length, abs=1e-6)
@@ -193,10 +197,10 @@ def test_non_finite_state_stops_the_run(vacuum):
 def test_user_events_are_located_on_the_dense_output(vacuum):
     # free fall from rest in vacuum: the body origin has dropped g t^2 / 2
     x0 = vacuum.pack(position_m=[0, 0, -H])
-    g = vacuum.gravity_m_s2
+    g = vacuum.terms.gravity_m_s2
     drop = SimEvent("dropped 1 m", lambda t, x: x[2] - (-H + 1.0), direction=1, terminal=False)
     stop = SimEvent("dropped 5 m", lambda t, x: (-H + 5.0) - x[2])
-    result = simulate(vacuum, x0, 3.0, controls=np.zeros(4), events=["ground", drop, stop])
+    result = simulate(vacuum, x0, 3.0, controls=np.zeros(4), events=EventSettings(["ground", drop, stop]))
     assert result.status == "event" and "dropped 5 m" in result.reason
     (t1, n1), (t2, n2) = result.events
     assert (n1, n2) == ("dropped 1 m", "dropped 5 m")
@@ -245,19 +249,22 @@ def test_bad_arguments_are_rejected_with_clear_messages(quasi_steady, tmp_path):
     with pytest.raises(ValueError, match="give the controls"):
         simulate(quasi_steady, point.x, 1.0)
     with pytest.raises(ValueError, match=r"method = 'Euler': must be 'auto' or one of"):
-        simulate(quasi_steady, point, 1.0, method="Euler")
+        simulate(quasi_steady, point, 1.0, integrator=IntegratorSettings(method="Euler"))
     with pytest.raises(ValueError, match=r"elevator delta_e \[rad\] = 0.7 at t = 0.5 s is outside the aircraft's limits"):
-        simulate(quasi_steady, point, 1.0, controls=ControlSchedule([0.0, 0.5], [point.u, point.u + [0, 0, 0.7 - point.u[2], 0]]))
+        simulate(quasi_steady, point, 1.0,
+                 controls=ControlSchedule([0.0, 0.5], [point.u, point.u + [0, 0, 0.7 - point.u[2], 0]]))
+    with pytest.raises(ValueError, match=r"control_rate_hz = 0.0: must be a finite number > 0 \[Hz\]"):
+        simulate(quasi_steady, point, 1.0, controls=lambda t, x: point.u, control_rate_hz=0.0)
     with pytest.raises(ValueError, match="initial state already stops the run: structural limit"):
-        simulate(quasi_steady, point, 1.0, structural_limit_m=0.5)
-    with pytest.raises(ValueError, match=r"events: unknown event\(s\) \['stall'\]"):
-        simulate(quasi_steady, point, 1.0, events=["stall"])
+        simulate(quasi_steady, point, 1.0, events=EventSettings(wing_tip_deflection_m=0.5))
+    with pytest.raises(ValueError, match=r"names: unknown event 'stall'"):
+        simulate(quasi_steady, point, 1.0, events=EventSettings(["stall"]))
     with pytest.raises(ValueError, match=r"log_path = '.*run.txt': must end in .mcap"):
-        simulate(quasi_steady, point, 1.0, log_path=tmp_path / "run.txt")
+        simulate(quasi_steady, point, 1.0, output=OutputSettings(log_path=tmp_path / "run.txt"))
     with pytest.raises(FileNotFoundError, match="directory .*nowhere.* does not exist"):
-        simulate(quasi_steady, point, 1.0, log_path=tmp_path / "nowhere" / "run.mcap")
+        simulate(quasi_steady, point, 1.0, output=OutputSettings(log_path=tmp_path / "nowhere" / "run.mcap"))
     with pytest.raises(ValueError, match="is a directory"):
-        simulate(quasi_steady, point, 1.0, log_path=tmp_path)
+        simulate(quasi_steady, point, 1.0, output=OutputSettings(log_path=tmp_path))
 
 
 def test_integration_settings_are_frozen_validated_and_resolved(quasi_steady):
@@ -288,8 +295,10 @@ def test_integration_settings_are_frozen_validated_and_resolved(quasi_steady):
             IntegratorSettings(**kwargs)
     with pytest.raises(ValueError, match=r"atol = .*must be positive and finite \(a number or 60 numbers\)"):
         IntegratorSettings(atol=np.ones(3)).resolve(quasi_steady)
-    with pytest.raises(ValueError, match=r"max_step = 0.0: must be a number > 0"):  # simulate names its own argument
-        simulate(quasi_steady, np.zeros(n), 1.0, controls=np.zeros(4), max_step=0.0)
+    with pytest.raises(ValueError, match=r"integrator = 'Radau': must be a IntegratorSettings"):  # one name per setting
+        simulate(quasi_steady, np.zeros(n), 1.0, controls=np.zeros(4), integrator="Radau")
+    with pytest.raises(TypeError, match="max_step"):  # no second name of the step beside IntegratorSettings.max_step_s
+        simulate(quasi_steady, np.zeros(n), 1.0, controls=np.zeros(4), max_step=0.01)
     with pytest.raises(ValueError, match=r"t_end_s = nan: must be a finite number > 0"):
         simulate(quasi_steady, np.zeros(n), math.nan)
 
@@ -309,6 +318,6 @@ def test_control_schedule_rejects_bad_tables(times, values, match):
 def test_default_log_directory_is_created(quasi_steady, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     point = trim(quasi_steady, SteadyManoeuvre.level(H, mach=MACH))
-    result = simulate(quasi_steady, point, 0.05, log_path=True)
+    result = simulate(quasi_steady, point, 0.05, output=OutputSettings(log_path=True))
     assert result.log_path.parent.name == "logs" and (tmp_path / result.log_path).is_file()
     assert state_scales(quasi_steady).shape == (quasi_steady.layout.n_states,)

@@ -106,7 +106,7 @@ def test_gravity_equals_sum_of_weights_through_virtual_work(gtm):
     m, f = model.generalized_forces(x, np.zeros(4))
     f_el = -np.concatenate([np.zeros(6), gtm.k_bending @ q, gtm.k_torsion @ xi])
     q_gravity = f - f_el
-    g_b = dcm_321(*theta) @ np.array([0.0, 0.0, model.gravity_m_s2])
+    g_b = dcm_321(*theta) @ np.array([0.0, 0.0, model.terms.gravity_m_s2])
     total = np.zeros(gtm.dofs.n_v)
     pts = mass_points(gtm.aircraft)
     for name, xs, mbar in zip(pts.component, pts.x, pts.mbar):

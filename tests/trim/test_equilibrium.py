@@ -122,8 +122,8 @@ def test_wing_gj_002_is_statically_divergent_and_refused_by_the_local_angle(mode
     assert math.degrees(point.tip_twist_rad) == pytest.approx(-18.27, abs=0.01)  # the trim of the report
     st = point.stability
     assert st.verdict == "statically divergent" and st.is_divergent
-    assert re.match(r"statically divergent: right_wing bending 1 \(real root \+37\.9 1/s, time to double 0\.0183 s\) and "
-                    r"fuselage bending 1 \(real root \+32\.5\d 1/s", st.message), st.message
+    assert re.match(r"statically divergent: wings bending 1 \(antisymmetric\) \(real root \+37\.9 1/s, time to double 0\.0183 s\) and "
+                    r"fuselage bending 1 \(symmetric\) \(real root \+32\.5\d 1/s", st.message), st.message
     # the divergent roots are real roots > 0 of the flutter search's own analysis too
     lam = _unstable_eigenvalues(models["wing_gj"], point)
     divergent = sorted(r.eigenvalue.real for r in st.unstable if r.verdict == "statically divergent")
@@ -153,9 +153,9 @@ def test_tiny_tail_gj_diverges_with_small_local_angles(models, points):
     assert st.is_divergent and st.unstable[0].kind == "elastic"
     # the tail's torsion diverges with the fuselage's bending it loads: both name real roots of about +35 1/s
     names = [r.coordinate for r in st.unstable if r.verdict == "statically divergent"]
-    assert names[:2] == ["fuselage bending 1", "right_htail torsion 1"], st.message
-    assert re.match(r"statically divergent: fuselage bending 1 \(real root \+35\.37 1/s, time to double 0\.0196 s\) and "
-                    r"right_htail torsion 1 \(real root \+34\.94 1/s", st.message), st.message
+    assert names[:2] == ["fuselage bending 1 (symmetric)", "htails torsion 1 (antisymmetric)"], st.message
+    assert re.match(r"statically divergent: fuselage bending 1 \(symmetric\) \(real root \+35\.37 1/s, time to double 0\.0196 s\) and "
+                    r"htails torsion 1 \(antisymmetric\) \(real root \+34\.94 1/s", st.message), st.message
 
 
 def test_the_trim_linearisation_is_the_linear_layers(models, points):
@@ -178,8 +178,8 @@ def test_slowly_unstable_phugoid_is_reported_not_refused(models):
     assert st.message.startswith("slowly unstable: rigid-body mode phugoid [u] (real root +0.00")
 
 
-@pytest.mark.parametrize("radius_m, verdict, doubling_s", [(5000.0, "dynamically unstable", 24.7),
-                                                           (7000.0, "dynamically unstable", 54.0),
+@pytest.mark.parametrize("radius_m, verdict, doubling_s", [(5000.0, "statically unstable", 24.7),
+                                                           (7000.0, "statically unstable", 54.0),
                                                            (10_000.0, "slowly unstable", 193.0)])
 def test_the_papers_turns_phugoid(models, radius_m, verdict, doubling_s):
     """The paper's (sideslipping) turns at 9144 m, M 0.78, as docs/flutter.md quotes them: the phugoid doubles in
@@ -207,13 +207,13 @@ def test_cli_divergent_trim_is_refused_then_named_with_no_limits(files, capsys):
     assert len(err.splitlines()) == 1 and "local angle of attack -17.09 deg at right_wing strip 10" in err
     assert main(["trim", str(files["wing_gj"]), *CRUISE_ARGS, "--no-limits"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
-    assert lines[-1].startswith("statically divergent: right_wing bending 1 (real root +37.9 1/s")
+    assert lines[-1].startswith("statically divergent: wings bending 1 (antisymmetric) (real root +37.9 1/s")
     assert lines[-1] in (GTM_TOML.parents[3] / "docs" / "flutter.md").read_text()  # the line docs/flutter.md quotes
-    assert any(re.match(r"\s+equilibrium\s+statically divergent$", line) for line in lines)
+    assert any(re.match(r"\s+equilibrium\s+statically divergent \(quasi-steady roots\)$", line) for line in lines)
     assert main(["trim", str(files["wing_gj"]), *CRUISE_ARGS, "--no-limits", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["stability"]["verdict"] == "statically divergent"
-    assert doc["stability"]["message"] == lines[-1]
+    assert lines[-1] == f"{doc['stability']['message']} ({doc['stability']['aero_model']} roots)"
     assert doc["max_local_alpha"]["component"] == "right_wing" and doc["max_local_alpha"]["alpha_deg"] == pytest.approx(-17.09, abs=0.01)
 
 
@@ -228,5 +228,5 @@ def test_cli_statically_unstable_line(files, capsys):
 def test_cli_stable_trim_prints_no_verdict_line(capsys):
     assert main(["trim", "gtm", *CRUISE_ARGS]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
-    assert re.match(r"\s+equilibrium\s+stable$", lines[-1])
+    assert re.match(r"\s+equilibrium\s+stable \(quasi-steady roots\)$", lines[-1])
     assert re.match(r"\s+max_local_alpha\s+4\.4\d+ deg at right_wing strip 10 \(station 17\.3 m from its root\)$", lines[-2])

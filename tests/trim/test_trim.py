@@ -74,7 +74,7 @@ def test_zero_climb_angle_is_level_flight_and_turn_tends_to_level(models):
     # against 1/cos(phi) = 1.249 with the fuselage moments; docs/options.md "Coordinated turn")
     turn = trim(model, MANOEUVRES["turn"])
     man = MANOEUVRES["turn"]
-    assert turn.load_factor_total == pytest.approx(math.hypot(1.0, man.speed_m_s**2 / (model.gravity_m_s2 * man.turn_radius_m)), rel=3e-3)
+    assert turn.load_factor_total == pytest.approx(math.hypot(1.0, man.speed_m_s**2 / (model.terms.gravity_m_s2 * man.turn_radius_m)), rel=3e-3)
 
 
 def test_glide_angle_balances_the_drag_of_level_flight(models):
@@ -85,7 +85,7 @@ def test_glide_angle_balances_the_drag_of_level_flight(models):
     model = models["quasi-steady"]
     glide = trim(model, MANOEUVRES["glide"])
     level = trim(model, MANOEUVRES["level"])
-    weight = model.structure.mass_properties.mass_kg * model.gravity_m_s2
+    weight = model.structure.mass_properties.mass_kg * model.terms.gravity_m_s2
     assert glide.gamma < 0.0
     assert math.sin(-glide.gamma) == pytest.approx(level.u[0] / weight, rel=0.03)
 
@@ -106,7 +106,7 @@ def test_infeasible_trims_name_manoeuvre_and_limit(models):
     model = models["quasi-steady"]
     # a steady 25 deg climb needs T >= W sin(25 deg) = 0.42 W, more than the engines' T_max = 0.36 W:
     # the equations are solved and the thrust limit is named (not a solver failure)
-    weight = model.structure.mass_properties.mass_kg * model.gravity_m_s2
+    weight = model.structure.mass_properties.mass_kg * model.terms.gravity_m_s2
     assert model.aircraft.max_thrust_n < weight * math.sin(math.radians(25.0))
     with pytest.raises(TrimError, match=r"trim infeasible for steady flight \(gamma = \+25\.00 deg\).*thrust T_e \[N\] = "
                                         r"[0-9.e+]+ outside its limits \[0, 3\.56e\+05\] \(the equations were solved"):
