@@ -19,6 +19,7 @@ Sources: Patil, Hodges & Cesnik, J. Aircraft 38(1) 2001 (the analysis and its va
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -32,9 +33,17 @@ from flexsim.model.beam_aero import (LoadSum, StripAirloads, TunnelFlow, WingAer
 from flexsim.structure.beam_statics import BeamConvergenceError, BeamLoads, NewtonSettings, solve_static
 from flexsim.structure.strain_beam import BeamProperties
 
-__all__ = ["WingTunnelSettings", "WingStabilityPoint", "WingTunnelResult", "nonlinear_wing_tunnel"]
+__all__ = ["WingTunnelSettings", "WingStabilityPoint", "WingTunnelResult", "nonlinear_wing_tunnel",
+           "StripRangeWarning", "LINEAR_LIFT_LIMIT_DEG"]
 
 _NEUTRAL = 1e-6
+#: Strip angle of attack beyond which the strips' linear lift (2π, no stall) is outside its range [deg]
+#: (thin-airfoil lift is linear to about 10-12° on attached flow: Abbott & von Doenhoff 1959, ch. 7).
+LINEAR_LIFT_LIMIT_DEG = 10.0
+
+
+class StripRangeWarning(UserWarning):
+    """A static equilibrium of the scan has strips beyond the linear lift range (the result is outside the model)."""
 
 
 @dataclass(frozen=True)
@@ -140,6 +149,9 @@ class WingTunnelResult:
         Least real eigenvalue of ``M⁻¹ K_T`` [1/s²] (< 0: statically unstable).
     tip_positions_m : ndarray, shape (k, 3)
         Static tip position at each speed [m].
+    max_strip_alpha_deg : ndarray, shape (k,)
+        Largest strip angle of attack of the static equilibrium at each speed [deg] (a :class:`StripRangeWarning`
+        names the first speed beyond :data:`LINEAR_LIFT_LIMIT_DEG`).
     """
 
     flutter: WingStabilityPoint | None
@@ -148,6 +160,14 @@ class WingTunnelResult:
     growth: NDArray
     least_stiffness: NDArray
     tip_positions_m: NDArray
+    max_strip_alpha_deg: NDArray
+
+
+def _max_strip_alpha_deg(sol, flow: TunnelFlow) -> float:
+    """Largest |angle of attack| of the strips at a static equilibrium [deg]: atan2(V_a·e3, −V_a·e2)."""
+    rot = sol.kinematics.rotations
+    va = flow.direction
+    return float(np.degrees(np.abs(np.arctan2(rot[:, :, 2] @ va, -(rot[:, :, 1] @ va)))).max())
 
 
 class _Analysis:
@@ -176,7 +196,9 @@ class _Analysis:
         """(growth, frequency of the most unstable oscillatory root, least stiffness eigenvalue, equilibrium)."""
         sol = self.equilibrium(speed)
         flow = self.flow(speed)
-        stiffness = static_stiffness(self.beam, sol.q, self.other, self.aero, flow, self.settings.newton.difference_step)
+        loaded = np.any(self.settings.tip_force_n) or self.settings.gravity_m_s2 > 0
+        stiffness = static_stiffness(self.beam, sol.q, self.other if loaded else None, self.aero, flow,
+                                     self.settings.newton.difference_step)
         system = aeroelastic_system(self.beam, self.aero, flow, sol.q, stiffness)
         roots = np.linalg.eigvals(system.state_matrix)
         ratio = roots.real / np.maximum(np.abs(roots), 1e-300)
@@ -232,7 +254,7 @@ def nonlinear_wing_tunnel(beam: BeamProperties, aero: WingAero, settings: WingTu
     analysis = _Analysis(beam, aero, settings)
     lo, hi = settings.speed_range_m_s
     speeds = np.append(np.arange(lo, hi, settings.speed_step_m_s), hi)
-    growth, least, tips = [], [], []
+    growth, least, tips, alphas = [], [], [], []
     flutter = divergence = None
     done = []
     previous = None
@@ -245,6 +267,11 @@ def nonlinear_wing_tunnel(beam: BeamProperties, aero: WingAero, settings: WingTu
                 divergence = _point(analysis, speed, 0.0, last, "equilibrium lost")
             break
         growth.append(g), least.append(k), tips.append(sol.tip_position_m.copy()), done.append(speed)
+        alphas.append(_max_strip_alpha_deg(sol, analysis.flow(speed)))
+        if alphas[-1] > LINEAR_LIFT_LIMIT_DEG and max(alphas[:-1], default=0.0) <= LINEAR_LIFT_LIMIT_DEG:
+            warnings.warn(f"at {speed:g} m/s the static wing has strips at {alphas[-1]:.1f} deg angle of attack, "
+                          f"beyond the strips' linear lift range ({LINEAR_LIFT_LIMIT_DEG:g} deg, no stall): results "
+                          "from this speed on are outside the model's validity", StripRangeWarning, stacklevel=3)
         if previous is not None:
             q_prev = previous[3].q
             if flutter is None and previous[0] < 0 < g:
@@ -257,7 +284,7 @@ def nonlinear_wing_tunnel(beam: BeamProperties, aero: WingAero, settings: WingTu
             break
     return WingTunnelResult(flutter=flutter, divergence=divergence, speeds_m_s=np.array(done),
                             growth=np.array(growth), least_stiffness=np.array(least),
-                            tip_positions_m=np.array(tips).reshape(-1, 3))
+                            tip_positions_m=np.array(tips).reshape(-1, 3), max_strip_alpha_deg=np.array(alphas))
 
 
 def _refine(analysis: _Analysis, lo: float, hi: float, q_lo: NDArray, index: int, kind: str) -> WingStabilityPoint:

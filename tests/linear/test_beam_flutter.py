@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import flexsim as fs
-from flexsim.linear.beam_flutter import WingTunnelSettings
+from flexsim.linear.beam_flutter import StripRangeWarning, WingTunnelSettings
 from flexsim.model.beam_aero import WingAero
 from flexsim.structure.strain_beam import BeamProperties
 
@@ -78,6 +78,16 @@ def test_phc_flutter_at_a_root_pitch_with_weight():
           f"{speed:.2f}), {fl.frequency_rad_s:.2f} rad/s (reference {freq:.2f})")
     assert fl.speed_m_s == pytest.approx(speed, rel=0.10) and fl.frequency_rad_s == pytest.approx(freq, rel=0.10)
     assert fl.tip_displacement_m[2] > 1.0  # the airloads lift the tip by metres at flutter
+
+
+def test_strips_beyond_the_linear_lift_range_are_reported():
+    # pitched 12 deg: every strip is at 12 deg or more (the airloads twist the wing nose up; bending keeps e2)
+    settings = WingTunnelSettings(RHO_20KM, (5.0, 10.0), speed_step_m_s=5.0, root_pitch_deg=12.0)
+    with pytest.warns(StripRangeWarning, match=r"at 5 m/s the static wing has strips at 12\.\d deg angle of attack"):
+        result = fs.nonlinear_wing_tunnel(_phc_wing(), WingAero(chord_m=1.0), settings)
+    assert np.all(result.max_strip_alpha_deg >= 12.0) and result.max_strip_alpha_deg[1] > result.max_strip_alpha_deg[0]
+    quiet = WingTunnelSettings(RHO_20KM, (5.0, 10.0), speed_step_m_s=5.0, root_pitch_deg=2.0)
+    assert fs.nonlinear_wing_tunnel(_phc_wing(), WingAero(chord_m=1.0), quiet).max_strip_alpha_deg.max() < 10.0
 
 
 @pytest.mark.parametrize(("field", "value", "match"), [
