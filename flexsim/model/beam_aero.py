@@ -6,8 +6,9 @@ The coupling of :mod:`flexsim.structure.strain_beam` (geometrically exact beam) 
 wing clamped in a wind tunnel. Strips sit at the beam's quadrature points and follow the deformed sections: each
 strip's chordwise speed ``u0 = −V_a·e2`` and normal ``w = V_a·e3`` come from its own frame ``[e1, e2, e3]`` (so
 dihedral, twist and sweep of the deformed wing all enter), the spanwise component of the flow is ignored (strip
-theory). Thin-airfoil lift slope 2π, no tip loss, no drag but the leading-edge suction of the Peters model (the
-resultant of a steady strip is normal to the wind: lift 2πρbU² sin α, no drag).
+theory). Thin-airfoil lift slope 2π (no tip loss) or a given spanwise lift slope (:class:`WingAero`), no drag
+but the leading-edge suction of the Peters model (the resultant of a steady strip is normal to the wind: lift
+2πρbU² sin α, no drag).
 
 Frames and units: global frame of the tunnel (the beam's), free stream ``V_a = U d`` [m/s] along the unit vector
 ``d`` (default ``−y``: from the leading edge of an unpitched wing whose ``e2 = y``); loads per unit length: force
@@ -55,11 +56,18 @@ class WingAero:
         Reference (elastic) axis position aft of the leading edge, as a fraction of the chord, in (0, 1).
     inflow_states : int
         Peters finite-state inflow states per strip, 1-10 (default 6).
+    lift_slope_per_rad : float or array of shape (N,)
+        Sectional lift slope per element [1/rad], in [0, 4π] (default 2π: thin airfoil). A spanwise distribution
+        (e.g. one falling to 0 at the tip: tip loss) scales each strip's airloads, steady and unsteady, by
+        ``lift_slope / 2π`` — as if the strip's air density were scaled — so that the strip keeps thin-airfoil
+        theory's centre of pressure and unsteady behaviour (the usual strip-theory correction, e.g. Riso & Cesnik,
+        J. Aircraft 2023, doi 10.2514/1.C036869).
     """
 
     chord_m: ArrayLike
     axis_fraction: ArrayLike = 0.5
     inflow_states: int = 6
+    lift_slope_per_rad: ArrayLike = 2.0 * np.pi
 
     def __post_init__(self) -> None:
         chord = np.atleast_1d(np.array(self.chord_m, dtype=float))
@@ -72,17 +80,28 @@ class WingAero:
         object.__setattr__(self, "chord_m", frozen_array(chord))
         object.__setattr__(self, "axis_fraction", frozen_array(frac))
         inflow_coefficients(self.inflow_states)  # validates 1-10 with a message naming n_states
+        slope = np.atleast_1d(np.array(self.lift_slope_per_rad, dtype=float))
+        if not np.all(np.isfinite(slope) & (slope >= 0) & (slope <= 4.0 * np.pi)):
+            raise ValueError(f"lift_slope_per_rad = {self.lift_slope_per_rad!r}: must be numbers in [0, 4π] "
+                             "[1/rad]")
+        object.__setattr__(self, "lift_slope_per_rad", frozen_array(slope))
 
     def strips(self, beam: BeamProperties, kin: BeamKinematics) -> tuple[NDArray, NDArray]:
         """Semichord ``b`` [m] and axis position ``a`` [semichords aft of mid-chord] at the quadrature points."""
         n = beam.n_elements
-        for name, arr in (("chord_m", self.chord_m), ("axis_fraction", self.axis_fraction)):
+        for name, arr in (("chord_m", self.chord_m), ("axis_fraction", self.axis_fraction),
+                          ("lift_slope_per_rad", self.lift_slope_per_rad)):
             if arr.size not in (1, n):
                 raise ValueError(f"{name} has {arr.size} values: must be one or one per element ({n})")
         e = kin.points_element
         chord = np.broadcast_to(self.chord_m, (n,))[e]
         frac = np.broadcast_to(self.axis_fraction, (n,))[e]
         return 0.5 * chord, 2.0 * frac - 1.0
+
+    def density_scale(self, beam: BeamProperties, kin: BeamKinematics) -> NDArray:
+        """``lift_slope / 2π`` at the quadrature points (the factor on each strip's airloads)."""
+        slope = np.broadcast_to(self.lift_slope_per_rad, (beam.n_elements,))[kin.points_element]
+        return slope / (2.0 * np.pi)
 
 
 @dataclass(frozen=True)
@@ -127,14 +146,17 @@ def _section_matrices():
     return m.mass, m.circulatory, m.inflow
 
 
-def _steady_section_loads(kin, b, a, flow):
-    """Steady strip force [N/m] (P, 3) and moment [N] (P, 3) in global components (inflow zero, no rates)."""
+def _steady_section_loads(kin, b, a, flow, scale=1.0):
+    """Steady strip force [N/m] (P, 3) and moment [N] (P, 3) in global components (inflow zero, no rates).
+
+    ``scale``: ``lift_slope / 2π`` per strip, shape (P,) or scalar (:meth:`WingAero.density_scale`).
+    """
     _, bm, _ = _section_matrices()
-    rho, va = flow.density_kg_m3, flow.velocity_m_s
+    rho, va = flow.density_kg_m3 * scale, flow.velocity_m_s
     e1, e2, e3 = kin.rotations[:, :, 0], kin.rotations[:, :, 1], kin.rotations[:, :, 2]
     u0, w0 = -(e2 @ va), e3 @ va
     w = np.stack([w0, np.zeros_like(w0)], axis=1)
-    gen = np.pi * rho * (b * u0)[:, None] * (w @ bm.T)  # {L} (P, 2)
+    gen = np.pi * (rho * b * u0)[:, None] * (w @ bm.T)  # {L} (P, 2)
     lift, moment = gen[:, 0], a * b * gen[:, 0] - b * gen[:, 1]
     suction = 2.0 * np.pi * rho * b * w0**2
     force = lift[:, None] * e3 + suction[:, None] * e2
@@ -157,7 +179,7 @@ class StripAirloads:
     def generalized_force(self, beam: BeamProperties, kin: BeamKinematics) -> NDArray[np.float64]:
         """``Q = Σ w (J_pᵀ F + J_θᵀ M)`` of the steady strip loads (virtual work; Su & Cesnik 2011 eq. 13)."""
         b, a = self.aero.strips(beam, kin)
-        force, moment = _steady_section_loads(kin, b, a, self.flow)
+        force, moment = _steady_section_loads(kin, b, a, self.flow, self.aero.density_scale(beam, kin))
         w = kin.points_weight
         return (np.einsum("p,pik,pi->k", w, kin.jac_position, force)
                 + np.einsum("p,pik,pi->k", w, kin.jac_rotation, moment))
@@ -219,7 +241,7 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
     coef = inflow_coefficients(aero.inflow_states)
     nl = coef.n_states
     mm, bm, sv = _section_matrices()
-    rho, va, w = flow.density_kg_m3, flow.velocity_m_s, kin.points_weight
+    rho, va, w = flow.density_kg_m3 * aero.density_scale(beam, kin), flow.velocity_m_s, kin.points_weight
     e1, e2, e3 = kin.rotations[:, :, 0], kin.rotations[:, :, 1], kin.rotations[:, :, 2]
     jp, jt = kin.jac_position, kin.jac_rotation
     u0, w0s = -(e2 @ va), e3 @ va
@@ -229,12 +251,12 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
     w0v = -pn - (a * b)[:, None] * a1  # δw0 per δq̇ and δẇ0 per δq̈
     w1v = b[:, None] * a1
     # {L} = πρ{b²[M]{ẇ} + b δu0 [B]{w_s} + b u0([B]{δw} − {S}λ0)}, rows (P, 2, n) per δq̈ and δq̇; per λ0 (P, 2)
-    acc = np.pi * rho * b[:, None, None] ** 2 * np.einsum("ij,pjk->pik", mm, np.stack([w0v, w1v], 1))
+    acc = np.pi * (rho * b**2)[:, None, None] * np.einsum("ij,pjk->pik", mm, np.stack([w0v, w1v], 1))
     acc_rate = np.stack([rn, np.zeros_like(rn)], 1)  # δẇ = ... + [Rn, 0] δq̇
-    vel = np.pi * rho * (b[:, None, None] ** 2 * np.einsum("ij,pjk->pik", mm, acc_rate)
+    vel = np.pi * rho[:, None, None] * (b[:, None, None] ** 2 * np.einsum("ij,pjk->pik", mm, acc_rate)
                          + (b * w0s)[:, None, None] * bm[:, 0][None, :, None] * pc[:, None, :]
                          + (b * u0)[:, None, None] * np.einsum("ij,pjk->pik", bm, np.stack([w0v, w1v], 1)))
-    lam = -np.pi * rho * (b * u0)[:, None] * sv[None, :]  # per λ0
+    lam = -np.pi * (rho * b * u0)[:, None] * sv[None, :]  # per λ0
     # section lift (up, along e3), moment about the axis (nose up, along e1): [L, M] = diag(1, -1) Tᵀ{L}
     lift_acc, lift_vel, lift_lam = acc[:, 0], vel[:, 0], lam[:, 0]
     mom_acc = (a * b)[:, None] * acc[:, 0] - b[:, None] * acc[:, 1]
