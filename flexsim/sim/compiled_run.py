@@ -1,5 +1,5 @@
 """The compiled ETD2RK run of :func:`flexsim.sim.simulate.simulate` (its default with aerodynamics): steps by
-:meth:`flexsim.sim.fixed_step.ETD2RK.run` (the kernel :func:`flexsim.sim._step_kernels.etd2rk_run`) in chunks of
+:meth:`flexsim.sim.fixed_step.ETD2RK.run` (one row of the kernel :func:`flexsim.sim._step_kernels.etd2rk_rows`) in chunks of
 :data:`COMPILED_CHUNK_S`, with the samples, events and flight log of the scipy loop processed per chunk, and
 re-linearisation when the flight condition drifts (:data:`RELINEARISE_DRIFT`). The method and its accuracy:
 ``docs/simulation.md``, "Integration and solver choice".
@@ -59,7 +59,7 @@ class _Steps:
     Hermite interpolant of :class:`~flexsim.sim.fixed_step.ETD2RKSolver`'s dense output
     (:func:`~flexsim.sim.fixed_step.quintic_hermite`, second derivatives with the linear part ``jac`` by
     :func:`~flexsim.sim.fixed_step.step_accelerations`: their means ``mean`` (k, n) from the compiled steps
-    (:func:`flexsim.sim._step_kernels.etd2rk_run_dense`) or, if None, for all steps of the chunk at the first sample
+    (:meth:`flexsim.sim.fixed_step.ETD2RK.run` with ``dense=True``) or, if None, for all steps of the chunk at the first sample
     that needs them; their half differences, needed only off the steps' ends and midpoints, likewise), evaluated by
     the compiled :func:`flexsim.sim._dense_kernels.hermite_samples`. ``sol(t)``: scalar t -> (n,), array t (m,) ->
     (n, m) (as scipy's ``DenseOutput``)."""
@@ -103,6 +103,7 @@ def integrate_compiled(problem: RunProblem, settings: IntegratorSettings, sinks:
     # writer costs far more than the calls, and a killed run then loses at most ~1 s of the log)
     per_call = 1 if sink is not None else max(1, int(round(COMPILED_CHUNK_S / CHECK_INTERVAL_S)))
     lin = {"jac": problem.jacobian, "at": flight_condition(model, problem.x0), "count": 1}
+    wind_data = _k.pack_winds([wind_data])  # the one row of the compiled steps, packed once
 
     def stepper(step: float) -> ETD2RK:  # as ETD2RKSolver._method (h: the current step)
         if abs(step - h) <= 1e-9 * h:

@@ -70,7 +70,7 @@ MAX_STEP_RANGE_S = (1e-4, 0.05)
 #: Number of trims kept per :class:`FlightDynamics` (tasks with random targets trim every episode).
 TRIM_CACHE = 16
 #: From this many rows sharing one stepper on, the products of a period are matrix products over the rows
-#: (:func:`flexsim.sim._step_kernels.etd2rk_rows_gemm`); below it row by row. Measured (benchmarks/bench_envs.py
+#: (``over_rows`` of :func:`flexsim.sim._step_kernels.stage_a`); below it row by row. Measured (benchmarks/bench_envs.py
 #: --batched): row by row 2x faster at N = 1, equal near N = 16, 25 % slower at N = 256.
 COMPILED_ROWS_BELOW = 32
 #: Remaining fraction of a period below which a solver stop counts as having reached its end.
@@ -575,8 +575,8 @@ def advance_period(dynamics: Sequence[FlightDynamics], x: np.ndarray, applied: n
         out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
                             np.empty(m, np.int64), np.empty((m, first.n_measurements)))
         start = _sk.PeriodStart(x, applied, command, first.rate_step, k, first.dt)
-        _sk.period_rows(*first.model.kernel_data, *packed, *first.step_data, *first.measure_data, *start,
-                        _ms.WIND_STILL if still else _ms.WIND_PACKED, m >= COMPILED_ROWS_BELOW, *out)
+        mode = _sk.PeriodMode(_ms.WIND_STILL if still else _ms.WIND_PACKED, m >= COMPILED_ROWS_BELOW)
+        _sk.period_rows(*_sk.period_args(first.model.kernel_data, packed, first.step_data, first.measure_data, start, mode, out))
         stopped = np.count_nonzero(out.status)
         if not stopped or not np.count_nonzero(out.status == _sk.ROW_MODEL_ERROR):
             return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None), out.u,
