@@ -17,12 +17,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flexsim import _kernels as _k
+from flexsim._arrays import frozen_array, kernel_arg
 from flexsim.atmosphere import speed_of_sound
 from flexsim.io.vocabulary import CONTROL_NAMES, check_names
 from flexsim.kinematics import dcm_321
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.naming import state_names
 from flexsim.model.sensors import ComponentSensor, structural_sensors
+from flexsim.sim import _output_kernels as _ok
 from flexsim.sim.measurements import air_angles_rows, heading_rate_rows
 
 __all__ = ["OutputMaps", "AirData", "air_angles", "heading_rate", "CONTROL_NAMES", "WINGS", "STRUCTURE_NODES"]
@@ -197,6 +200,26 @@ class OutputMaps:
         _, _, q, xi, _ = self.model.unpack(x)
         return {name: maps.positions(q, xi) for name, maps in self._maps.items()}
 
+    def structure_series(self, x: np.ndarray) -> dict[str, np.ndarray]:
+        """:meth:`structure` of N states x (N, n) at once: name -> (N, n_nodes, 3) [m], body axes (FRD). The products
+        of :meth:`flexsim.structure.kinematic_map.PointMaps.positions`, with the same BLAS calls per state (the
+        displacements of all components as one stack of matrix-vector products, then per component the rotation of
+        all states as one product), so equal to :meth:`structure` bit for bit."""
+        x = np.atleast_2d(np.asarray(x, float))
+        names = list(self._maps)
+        elastic = [np.concatenate(self.model.unpack(xk)[2:4]) for xk in x]
+        n_el = elastic[0].size if elastic else 0
+        stack = np.concatenate([self._maps[n].g0[:, 0:3, 6:6 + n_el] for n in names])  # (all nodes, 3, n_el)
+        disp = np.array([stack @ e for e in elastic]).reshape(len(x), -1, 3)
+        out, at = {}, 0
+        for name in names:
+            maps = self._maps[name]
+            k = maps.g0.shape[0]
+            rows = np.ascontiguousarray(disp[:, at:at + k]).reshape(-1, 3)
+            out[name] = maps.r0 + (rows @ maps.dcm).reshape(len(x), k, 3)
+            at += k
+        return out
+
     # ------------------------------------------------------------------ loads
     def load_factor_and_lift(self, t: float, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> tuple[float, float]:
         """Load factor and total wing lift at one state.
@@ -221,6 +244,33 @@ class OutputMaps:
             lift = float(loads.lift_n_m[w] @ model.aero.strips.width_m[w])
         weight = st.mass_properties.mass_kg * model.gravity_m_s2
         return (float(-force[2] / weight) if weight > 0 else math.nan), lift
+
+    def _loads_series(self, t: np.ndarray, x: np.ndarray, u: np.ndarray, wind: Wind | None) -> np.ndarray:
+        """:meth:`load_factor_and_lift` of N samples, (N, 2): the aerodynamic force and wing lift of all samples in one
+        compiled call (:func:`flexsim.sim._output_kernels.loads_rows`, the same kernels with the same arguments) for a
+        model with aerodynamics in still air or a field of :mod:`flexsim.sim.disturbances` within its altitude range;
+        otherwise sample by sample."""
+        model = self.model
+        data = None if wind is None else getattr(wind, "wind_data", None)
+        lo, hi = model.altitude_range_m
+        altitude = -x[:, 2] if model.layout.rigid else np.zeros(len(t))
+        if (model.aero is None or (wind is not None and not isinstance(data, _k.WindData)) or not len(t)
+                or not np.all((lo <= altitude) & (altitude <= hi))):
+            return np.array([self.load_factor_and_lift(float(tk), xk, uk, wind) for tk, xk, uk in zip(t, x, u)],
+                            float).reshape(-1, 2)
+        st = model.structure
+        n = len(t)
+        xs, us = kernel_arg(x), kernel_arg(u)
+        force, lift = np.empty((n, 3)), np.zeros(n)
+        wing = self._wing_strips.astype(np.int64)
+        inflow = np.array([model.layout.inflow.start, model.layout.inflow.stop], np.int64)
+        one = model.pack_winds([wind])
+        winds = one._replace(rows=frozen_array(np.repeat(one.rows, n, axis=0), np.int64))  # every sample in the one wind
+        sound = np.asarray(speed_of_sound(np.asarray(self.altitude_m(xs), float)), float).reshape(n)
+        _ok.loads_rows(model.kernel_data, winds, xs, us, kernel_arg(sound), (st.thrust.t0, st.thrust.t1), wing,
+                       kernel_arg(model.aero.strips.width_m), bool(model.aero.downwash_gradient), inflow, force, lift)
+        weight = st.mass_properties.mass_kg * model.gravity_m_s2
+        return np.column_stack([-force[:, 2] / weight if weight > 0 else np.full(n, math.nan), lift])
 
     # ------------------------------------------------------------------ signals
     def series(self, names, t: np.ndarray, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> dict[str, np.ndarray]:
@@ -256,8 +306,7 @@ class OutputMaps:
         if "heading_rate_rad_s" in names:
             out["heading_rate_rad_s"] = self.heading_rate_rad_s(x)
         if any(n in _LOADS for n in names):
-            loads = np.array([self.load_factor_and_lift(float(tk), xk, uk, wind) for tk, xk, uk in zip(t, x, u)],
-                             float).reshape(-1, 2)
+            loads = self._loads_series(t, x, u, wind)
             out.update(load_factor=loads[:, 0], wing_lift_N=loads[:, 1])
         for c, s in self.sensors.items():
             for name, f in ((f"tip_deflection_{c}_m", s.tip_deflection_m), (f"tip_deflection_rate_{c}_m_s", s.tip_deflection_rate_m_s),
