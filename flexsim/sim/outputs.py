@@ -163,19 +163,42 @@ class OutputMaps:
         return v
 
     def air_data(self, t: np.ndarray, x: np.ndarray, wind: Wind | None = None) -> AirData:
-        """:class:`AirData` of samples at times t (N,) [s] with states x (N, n) in the disturbance ``wind``."""
-        t, x = np.atleast_1d(t), np.atleast_2d(x)
-        rows = np.array([air_angles(self.air_velocity_body(float(tk), xk, wind)) for tk, xk in zip(t, x)], float).reshape(-1, 3)
-        a = np.array([speed_of_sound(float(h)) for h in np.atleast_1d(self.altitude_m(x))])
-        return AirData(rows[:, 0], rows[:, 1], rows[:, 2], rows[:, 0] / a)
+        """:class:`AirData` of samples at times t (N,) [s] with states x (N, n) in the disturbance ``wind``: the
+        :meth:`air_velocity_body` of each sample, with the wind of a field of :mod:`flexsim.sim.disturbances`
+        (evaluated point by point, independent of t) asked for all samples' positions in one call."""
+        t, x = np.atleast_1d(np.asarray(t, float)), np.atleast_2d(np.asarray(x, float))
+        if not len(t):
+            return AirData(*(np.zeros(0) for _ in range(4)))
+        pos, eul, _, _, vel = self._blocks(x)
+        v = np.array(vel[:, 0:3], float)
+        if wind is not None:
+            if isinstance(getattr(wind, "wind_data", None), _k.WindData):
+                w_ned = np.asarray(wind(float(t[0]), np.ascontiguousarray(pos, dtype=float)), float)
+            else:
+                w_ned = np.array([np.asarray(wind(float(tk), np.asarray(p, float)[None, :]), float)[0] for tk, p in zip(t, pos)])
+            v = v - np.array([dcm_321(*e) @ w for e, w in zip(eul, w_ned)])
+        speed, alpha, beta = air_angles(v)
+        a = np.asarray(speed_of_sound(np.asarray(self.altitude_m(x), float)), float).reshape(-1)
+        return AirData(speed, alpha, beta, speed / a)
+
+    def _blocks(self, x: np.ndarray) -> tuple[np.ndarray, ...]:
+        """(R, Theta, q, xi, V) of N states x (N, n), each (N, size): :meth:`AircraftModel.unpack` of every state (the
+        blocks of x itself when x holds all of them, as unpack then copies them)."""
+        model, lay = self.model, self.model.layout
+        first = model.unpack(x[0])
+        blocks = (lay.position, lay.euler, lay.q, lay.xi, slice(lay.v.start, lay.v.start + first[4].size))  # V = [v, omega, s, eta]
+        if lay.rigid and all(np.array_equal(x[0, sl], b) for sl, b in zip(blocks, first)):
+            return tuple(x[:, sl] for sl in blocks)
+        rows = [first] + [model.unpack(xk) for xk in x[1:]]
+        return tuple(np.array([r[j] for r in rows], float).reshape(len(x), -1) for j in range(5))
 
     def heading_rate_rad_s(self, x: np.ndarray) -> np.ndarray:
         """:func:`heading_rate` of state(s) x, (N, n) -> (N,) [rad/s]."""
-        rates = []
-        for xk in np.atleast_2d(x):
-            _, euler, _, _, velocity = self.model.unpack(xk)
-            rates.append(heading_rate(euler, velocity))
-        return np.array(rates, float)
+        x = np.atleast_2d(np.asarray(x, float))
+        if not len(x):
+            return np.zeros(0)
+        _, euler, _, _, velocity = self._blocks(x)
+        return heading_rate(euler, velocity)
 
     # ------------------------------------------------------------------ structure
     def _sensor(self, component: str) -> ComponentSensor:
@@ -207,8 +230,11 @@ class OutputMaps:
         all states as one product), so equal to :meth:`structure` bit for bit."""
         x = np.atleast_2d(np.asarray(x, float))
         names = list(self._maps)
-        elastic = [np.concatenate(self.model.unpack(xk)[2:4]) for xk in x]
-        n_el = elastic[0].size if elastic else 0
+        if not len(x):
+            return {name: np.zeros((0, self._maps[name].g0.shape[0], 3)) for name in names}
+        _, _, q, xi, _ = self._blocks(x)
+        elastic = np.ascontiguousarray(np.concatenate([q, xi], axis=1))
+        n_el = elastic.shape[1]
         stack = np.concatenate([self._maps[n].g0[:, 0:3, 6:6 + n_el] for n in names])  # (all nodes, 3, n_el)
         disp = np.array([stack @ e for e in elastic]).reshape(len(x), -1, 3)
         out, at = {}, 0
