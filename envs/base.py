@@ -513,9 +513,9 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             winds, dynamics, states = [b.winds[i] for i in rows], [b.dynamics[i] for i in rows], [b.states[i] for i in rows]
         outcome, u, meas = advance_period(dynamics, states, b.x[rows], b.u[rows], a * self._u_scale, steps, winds,
                                           b.packed_rows(rows))
-        if outcome.states is not states and any(new is not old for new, old in zip(outcome.states, states)):
+        if not self.dynamics.substeps:  # DOP853, Radau: the next period's warm-start step (ETD2RK's states do not change)
             for i, state in zip(range(b.n)[rows] if isinstance(rows, slice) else rows, outcome.states):
-                b.states[i] = state  # a new warm-start step (DOP853, Radau)
+                b.states[i] = state
         b.x[rows], b.u[rows], b.time_s[rows] = outcome.x, u, outcome.time_s
         b.steps[rows] = steps + 1
         errors = self._task_errors(meas, b.references(rows))

@@ -187,12 +187,11 @@ def stage_a(h_phi1, k1, x, live, over_rows, d, a):
 
 @_depends
 @_jit
-def stage_b(h_phi2, jac, k1, k2, d, a, live, over_rows, mp, jm, x_new):
+def stage_b(h_phi2, jac, k1, k2, d, a, live, over_rows, mp, jm, jd, x_new):
     """The second ETD2RK stage of the ``live`` rows: ``x_new = a + h phi_2(hJ) (k_2 - k_1 - J d)`` (all (N, n)); with
     ``mp`` of N rows also ``jm = J mp`` (the dense output's mean second derivative, in the same pass over J; mp of 0
-    rows: none). Products as in :func:`stage_a`; k2 is overwritten by the bracket."""
+    rows: none). Products as in :func:`stage_a`; k2 is overwritten by the bracket, jd (N, n) is scratch."""
     m, n = x_new.shape
-    jd = np.empty((m, n))
     if over_rows:
         for i in range(m):
             if not live[i]:
@@ -220,9 +219,9 @@ def stage_b(h_phi2, jac, k1, k2, d, a, live, over_rows, mp, jm, x_new):
                 for c in range(n):
                     x_new[i, c] = a[i, c] + x_new[i, c]
     else:
-        inc = np.empty(n)
         for i in range(m):
             if live[i]:
+                inc = jd[i]  # J d is used up
                 _matvec(h_phi2, k2[i], inc)
                 for c in range(n):
                     x_new[i, c] = a[i, c] + inc[c]
@@ -265,12 +264,13 @@ def etd2rk_rows(model, wind, step, span, ctrl, x0, f0, over_rows, out):
     h, lo, hi = step.h, step.alt_lo, step.alt_hi
     dense = out.mean.shape[1] > 0
     live = np.ones(m, np.bool_)
-    x, k1, k2 = np.empty((m, n)), np.empty((m, n)), np.empty((m, n))
-    d, a, x_new = np.empty((m, n)), np.empty((m, n)), np.empty((m, n))
+    work = np.empty((7, m, n))  # one allocation for the stages' rows
+    x, k1, k2, d, a, x_new, jd = work[0], work[1], work[2], work[3], work[4], work[5], work[6]
     mp = np.zeros((m if dense else 0, n))  # (f_{k-1} + f_k) / 2 - (x_k - x_{k-1}) / h of the previous step
     jm = np.empty((m if dense else 0, n))
     no_mean = np.zeros((0, n))
-    t, t_next, h_prev = np.empty(m), np.empty(m), np.empty(m)
+    times = np.empty((3, m))
+    t, t_next, h_prev = times[0], times[1], times[2]
     u = np.empty(4)
     for i in range(m):
         out.status[i] = ROW_RUNNING
@@ -306,7 +306,7 @@ def etd2rk_rows(model, wind, step, span, ctrl, x0, f0, over_rows, out):
             if live[i] and not _rhs_row(F, I, wind, i, a[i], ctrl, t[i] + h, lo, hi, u, k2[i]):
                 out.status[i] = ROW_MODEL_ERROR
                 live[i] = False
-        stage_b(step.h_phi2, step.jac, k1, k2, d, a, live, over_rows, mp if dense and j > 0 else no_mean, jm, x_new)
+        stage_b(step.h_phi2, step.jac, k1, k2, d, a, live, over_rows, mp if dense and j > 0 else no_mean, jm, jd, x_new)
         for i in range(m):
             if not live[i]:
                 continue
@@ -445,12 +445,8 @@ def _group_bounds(groups) -> tuple[int, ...]:
 
 
 def period_args(model, wind, step, measure, start, mode, out) -> tuple:
-    """The flat argument list of :func:`period_rows` from its groups (:data:`PERIOD_GROUPS`, each an instance of its
-    NamedTuple; TypeError otherwise)."""
-    groups = (model, wind, step, measure, start, mode, out)
-    for g, kind in zip(groups, PERIOD_GROUPS):
-        if type(g) is not kind:
-            raise TypeError(f"period_rows: expected a {kind.__name__}, got {type(g).__name__}")
+    """The flat argument list of :func:`period_rows` from its groups, in the order and of the NamedTuples of
+    :data:`PERIOD_GROUPS` (not checked here: it is called every control period)."""
     return (*model, *wind, *step, *measure, *start, *mode, *out)
 
 
@@ -475,14 +471,15 @@ def period_rows(*args):
     mode = PeriodMode(*args[_MODE0:_MODE1])
     out = PeriodOut(*args[_OUT0:_OUT1])
     m, n = start.x.shape
-    t0, t1 = np.empty(m), np.empty(m)
+    times = np.empty((2, m))  # period starts and ends [s]
+    t0, t1 = times[0], times[1]
     for i in range(m):
         t0[i] = start.k[i] * start.dt
         t1[i] = (start.k[i] + 1) * start.dt
     rate_limit_rows(start.u, start.command, start.rate_step, out.u)
     k = step.n_steps
-    steps = RowSteps(np.empty((m, k + 1)), np.empty((m, k + 1, n)), np.empty((m, k + 1, n)), np.empty((m, 0, n)), out.status,
-                     np.empty(m, np.int64))
+    history = np.empty((2, m, k + 1, n))
+    steps = RowSteps(np.empty((m, k + 1)), history[0], history[1], np.empty((m, 0, n)), out.status, np.empty(m, np.int64))
     etd2rk_rows(model, wind, step, Span(t0, t1, True, False), RowControls(t0, out.u, np.zeros((m, 4))), start.x,
                 np.empty((0, n)), mode.over_rows, steps)
     period_end(steps, out.x, out.t, out.taken)

@@ -310,7 +310,7 @@ class ETD2RK:
         live, none = np.ones(1, np.bool_), np.zeros((0, self.n))
         _sk.stage_a(self._h_phi1, f1, xs, live, False, d, a)
         f2 = np.array(fun(t + self.h, a[0], *args), dtype=float, ndmin=2)
-        _sk.stage_b(self._h_phi2, self._jac, f1, f2, d, a, live, False, none, none, x_new)
+        _sk.stage_b(self._h_phi2, self._jac, f1, f2, d, a, live, False, none, none, np.empty_like(xs), x_new)
         return x_new[0]
 
     def run(self, model, t0: float, x0: np.ndarray, f0: np.ndarray, t_bound: float, max_steps: int,

@@ -524,6 +524,11 @@ class FlightDynamics:
 
 
 # ---------------------------------------------------------------------- many aircraft
+#: The modes of :func:`flexsim.sim._step_kernels.period_rows`, by (still air, products over the rows).
+_PERIOD_MODES = {(still, over): _sk.PeriodMode(_ms.WIND_STILL if still else _ms.WIND_PACKED, over)
+                 for still in (False, True) for over in (False, True)}
+
+
 def _shared_stepper(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState]) -> ETD2RK | None:
     """The ETD2RK stepper of all rows if they share one (same trim Jacobian and step) and one model with compiled
     data, else None."""
@@ -586,7 +591,7 @@ def advance_period(dynamics: Sequence[FlightDynamics], states: Sequence[Integrat
         out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
                             np.empty(m, np.int64), np.empty((m, first.n_measurements)))
         start = _sk.PeriodStart(x, applied, command, first.rate_step, k, first.dt)
-        mode = _sk.PeriodMode(_ms.WIND_STILL if still else _ms.WIND_PACKED, m >= COMPILED_ROWS_BELOW)
+        mode = _PERIOD_MODES[still, m >= COMPILED_ROWS_BELOW]
         _sk.period_rows(*_sk.period_args(first.model.kernel_data, packed, states[0].step_data, first.measure_data, start, mode, out))
         stopped = np.count_nonzero(out.status)
         if not stopped or not np.count_nonzero(out.status == _sk.ROW_MODEL_ERROR):
