@@ -316,35 +316,40 @@ def etd2rk_rows(model, wind, step, span, ctrl, x0, f0, over_rows, out):
             out.taken[i] = j + 1
             out.t[i, j + 1] = t_next[i]
             out.x[i, j + 1] = x_new[i]
-            out.f[i, j + 1] = np.nan
             if not _finite(x_new[i]):
+                out.f[i, j + 1] = np.nan
                 out.status[i] = ROW_NON_FINITE
                 live[i] = False
                 continue
             if step.z_index >= 0:
                 t_hit = ground_crossing(x[i], x_new[i], t[i], t_next[i], step.z_index, out.x[i, j + 1])
                 if t_hit != -np.inf:
+                    out.f[i, j + 1] = np.nan
                     out.t[i, j + 1] = t_hit
                     out.status[i] = ROW_GROUND
                     live[i] = False
                     continue
             h_prev[i] = t_next[i] - t[i]
-            if j < last or span.end_derivative:
-                if not _rhs_row(F, I, wind, i, x_new[i], ctrl, t_next[i], lo, hi, u, k2[i]):
-                    out.status[i] = ROW_MODEL_ERROR
-                    live[i] = False
-                    continue
-                out.f[i, j + 1] = k2[i]
-                if span.end_derivative and not _finite(k2[i]):  # a run stops after this step (its caller reports it)
-                    out.status[i] = ROW_NON_FINITE
-                    live[i] = False
-                    continue
-                if dense:
-                    for c in range(n):
-                        mp[i, c] = 0.5 * (k1[i, c] + k2[i, c]) - (x_new[i, c] - x[i, c]) / h_prev[i]
-                k1[i] = k2[i]
-            x[i] = x_new[i]
             t[i] = t_next[i]
+            if j == last and not span.end_derivative:
+                out.f[i, j + 1] = np.nan  # not evaluated: the period's controls end here
+                continue
+            if not _rhs_row(F, I, wind, i, x_new[i], ctrl, t_next[i], lo, hi, u, k2[i]):  # the next step's k_1
+                out.f[i, j + 1] = np.nan
+                out.status[i] = ROW_MODEL_ERROR
+                live[i] = False
+                continue
+            out.f[i, j + 1] = k2[i]
+            if span.end_derivative and not _finite(k2[i]):  # a run stops after this step (its caller reports it)
+                out.status[i] = ROW_NON_FINITE
+                live[i] = False
+                continue
+            if dense:
+                for c in range(n):
+                    mp[i, c] = 0.5 * (k1[i, c] + k2[i, c]) - (x_new[i, c] - x[i, c]) / h_prev[i]
+        # the live rows continue from x_new with k_1 = f there (k2): the arrays change roles, nothing is copied
+        x, x_new = x_new, x
+        k1, k2 = k2, k1
     if dense:
         for i in range(m):
             k = out.taken[i]
