@@ -14,7 +14,7 @@ core (OPENBLAS_NUM_THREADS=1).
 
 The default with aerodynamics: ETD2RK (Cox & Matthews 2002) with fixed steps of DEFAULT_MAX_STEP["ETD2RK"] (20 ms
 since the quintic dense output; 10 ms before, the "previous default"), the trim Jacobian as linear part, by the
-compiled steps (flexsim.sim._step_kernels.etd2rk_run).
+compiled steps (flexsim.sim._step_kernels.etd2rk_rows, one row).
 
 ``--manoeuvres``: instead, the accuracy of the default, the previous default and Radau rtol 1e-3 on every named
 manoeuvre of ``flexsim simulate`` against DOP853 at rtol 1e-9 (:func:`flexsim.sim.accuracy.manoeuvre_errors`, the
@@ -169,7 +169,7 @@ def cost_parts(model, point, gust, duration: float) -> None:
                 spent[label] = spent.get(label, 0.0) + time.process_time() - c0
         setattr(owner, attr, wrapper)
 
-    timed(sk, "etd2rk_run_dense", "compiled steps (2 rhs + 3 mat-vecs per step)")
+    timed(sk, "etd2rk_rows", "compiled steps (2 rhs + 3 mat-vecs per step)")
     timed(cr._Steps, "__call__", "dense output (samples, event times)")
     timed(cr, "_chunk_events", "events")
     timed(fs, "phi_functions", "matrix functions")

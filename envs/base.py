@@ -274,9 +274,10 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
     limits : FlightLimits, optional
     perturbation : InitialPerturbation, optional
     dynamics : FlightDynamics, optional
-        Run on this :class:`FlightDynamics` (a :meth:`FlightDynamics.fork` of another env's, built from the
-        same aircraft, aero, integrator, actuator rates and control rate; checked) instead of building one:
-        how :class:`flexsim.envs.vector.FlexSimVectorEnv` shares one model between its sub-environments.
+        Run on this :class:`FlightDynamics` (another env's, built from the same aircraft, aero, integrator, actuator
+        rates and control rate; checked) instead of building one: how :class:`flexsim.envs.vector.FlexSimVectorEnv`
+        shares one model between its sub-environments (each episode's integration state is its own value,
+        :class:`~flexsim.sim.periods.IntegrationState`).
     terms : Terms, optional
         The physical terms of the model flown (:class:`flexsim.model.terms.Terms`; default every term on). Its
         aerodynamic model must be ``aero`` (the one name of it; default "unsteady").
@@ -488,10 +489,10 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         super().reset(seed=seed)
         episode = self._new_episode(self.np_random)
         point = self.dynamics.trim(episode.manoeuvre)
-        self.dynamics.start(episode.manoeuvre)
+        state = self.dynamics.start(episode.manoeuvre)
         b, i = self._batch, self._row
         trim_action = self.controls_to_action(point.u)
-        b.begin(i, self.dynamics, episode.wind, np.asarray(episode.x0, dtype=float), point.u, trim_action.astype(np.float64),
+        b.begin(i, self.dynamics, state, episode.wind, np.asarray(episode.x0, dtype=float), point.u, trim_action.astype(np.float64),
                 episode.reference)
         rows = np.array([i])
         meas = self.dynamics.measure_batch(b.x[rows], b.time_s[rows], [episode.wind])
@@ -545,9 +546,15 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         if not isinstance(rows, slice) and len(rows) == b.n:  # all rows, in order (rows are sorted and unique)
             rows = slice(0, b.n)
         steps = b.steps[rows]
-        winds, dynamics = (b.winds[rows], b.dynamics[rows]) if isinstance(rows, slice) else ([b.winds[i] for i in rows],
-                                                                                             [b.dynamics[i] for i in rows])
-        outcome, u, meas = advance_period(dynamics, b.x[rows], b.u[rows], a * self._u_scale, steps, winds, b.packed_rows(rows))
+        if isinstance(rows, slice):
+            winds, dynamics, states = b.winds[rows], b.dynamics[rows], b.states[rows]
+        else:
+            winds, dynamics, states = [b.winds[i] for i in rows], [b.dynamics[i] for i in rows], [b.states[i] for i in rows]
+        outcome, u, meas = advance_period(dynamics, states, b.x[rows], b.u[rows], a * self._u_scale, steps, winds,
+                                          b.packed_rows(rows))
+        if not self.dynamics.substeps:  # DOP853, Radau: the next period's warm-start step (ETD2RK's states do not change)
+            for i, state in zip(range(b.n)[rows] if isinstance(rows, slice) else rows, outcome.states):
+                b.states[i] = state
         b.x[rows], b.u[rows], b.time_s[rows] = outcome.x, u, outcome.time_s
         b.steps[rows] = steps + 1
         errors = self._task_errors(meas, b.references(rows))

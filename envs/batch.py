@@ -55,7 +55,10 @@ class EpisodeBatch:
     winds : list
         Wind field of each row's episode (None: still air).
     dynamics : list
-        The :class:`~flexsim.sim.periods.FlightDynamics` each row is flown on (forks of one model).
+        The :class:`~flexsim.sim.periods.FlightDynamics` each row is flown on (normally one, shared).
+    states : list
+        The integration state of each row's episode (:class:`~flexsim.sim.periods.IntegrationState`, immutable: each
+        period returns the next).
     """
 
     def __init__(self, n: int, n_states: int, n_errors: int) -> None:
@@ -73,13 +76,15 @@ class EpisodeBatch:
         self.reference_dicts: list[dict] = [{} for _ in range(n)]
         self.winds: list[Any] = [None] * n
         self.dynamics: list[Any] = [None] * n
+        self.states: list[Any] = [None] * n
         self._path = np.zeros((n, PATH_HISTORY, 3))
         self._path_count = np.zeros(n, dtype=np.int64)
         self._packed: Any = None  # the winds packed for the compiled model (None: to pack; False: cannot)
 
     # ------------------------------------------------------------------ episodes
-    def begin(self, row: int, dynamics, wind, x0: np.ndarray, u: np.ndarray, action: np.ndarray, reference: dict) -> None:
-        """Start the episode of ``row``: state ``x0``, controls ``u`` (normalised ``action``), targets, wind."""
+    def begin(self, row: int, dynamics, state, wind, x0: np.ndarray, u: np.ndarray, action: np.ndarray, reference: dict) -> None:
+        """Start the episode of ``row`` on ``dynamics`` from its integration ``state`` (``dynamics.start``): state
+        ``x0``, controls ``u`` (normalised ``action``), targets, wind."""
         self.x[row] = x0
         self.u[row] = u
         self.last_action[row] = action
@@ -95,6 +100,7 @@ class EpisodeBatch:
             self.reference[key][row] = float(value)
         self.winds[row] = wind
         self.dynamics[row] = dynamics
+        self.states[row] = state
         self._path_count[row] = 0
         self._packed = None
 

@@ -3,8 +3,8 @@
 ``gymnasium.make_vec("FlexSim/GTM-LevelHold-v0", num_envs=N, vectorization_mode="vector_entry_point")``
 (every FlexSim id) gives a :class:`FlexSimVectorEnv`: N sub-environments of the task class that share one
 :class:`~flexsim.sim.periods.FlightDynamics` (one model build, one trim, one Jacobian and one matrix
-exponential for all N; :meth:`FlightDynamics.fork`), each with its own episode (state, wind field,
-random stream). All N episodes live in one :class:`~flexsim.envs.batch.EpisodeBatch` (sub-environment i is its
+exponential for all N), each with its own episode (state, wind field, random stream, and the integration state
+:class:`~flexsim.sim.periods.IntegrationState`, an immutable value per row). All N episodes live in one :class:`~flexsim.envs.batch.EpisodeBatch` (sub-environment i is its
 row i), so a step is one pass of array code over the stepping rows (:meth:`FlexSimEnv._step_rows`, the code the
 single env runs with one row): the actions checked and clipped as one array, one
 :func:`flexsim.sim.periods.advance_period` call (rate limits, integration and measurements of all rows, compiled),
@@ -89,7 +89,7 @@ class FlexSimVectorEnv(VectorEnv):
             env_kwargs["aircraft"] = aircraft
         first = self.env_class(**env_kwargs)
         env_kwargs["aircraft"] = first.aircraft
-        self.envs: list[FlexSimEnv] = [first] + [self.env_class(dynamics=first.dynamics.fork(), **env_kwargs)
+        self.envs: list[FlexSimEnv] = [first] + [self.env_class(dynamics=first.dynamics, **env_kwargs)
                                                  for _ in range(int(num_envs) - 1)]
         self.num_envs = int(num_envs)
         self.max_episode_steps = None if max_episode_steps is None else int(max_episode_steps)

@@ -56,10 +56,10 @@ def test_step_kernels_are_keyed_on_the_rhs_source():
     from flexsim._numba_cache import source_digest
     from flexsim.sim import _step_kernels, measurements
 
-    cache = getattr(_step_kernels.etd2rk_run, "_cache", None)
+    cache = getattr(_step_kernels.etd2rk_rows, "_cache", None)
     if cache is None:
         pytest.skip("NUMBA_DISABLE_JIT=1: no cache")
-    for kernel in (_step_kernels.etd2rk_run, _step_kernels.etd2rk_rows):
+    for kernel in (_step_kernels.etd2rk_rows, _step_kernels.period_rows):
         assert kernel._cache._cache_file._source_stamp[1] == source_digest(_kernels, measurements)
 
 

@@ -36,7 +36,7 @@ import re
 import struct
 import time
 import warnings
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NamedTuple
@@ -56,6 +56,7 @@ from mcap_protobuf.decoder import DecoderFactory
 from mcap_protobuf.schema import build_file_descriptor_set
 
 from flexsim.errors import FlexsimError
+from flexsim.io._wire import CLOUD_DATA_KEY, Messages, state_messages, tf_pose, timestamp_field, varint
 from flexsim.io.vocabulary import VOCABULARY_VERSION, check_names, unit, upgrade_v1
 
 FORMAT_NAME = "flexsim-flight-log"
@@ -179,6 +180,22 @@ def _finite_vector(field_name: str, value: Any, size: int,
     return array
 
 
+def _finite_rows(field_name: str, value: Any, k: int, size: int,
+                 names: Sequence[str] | None = None) -> np.ndarray:
+    """``value`` as a float64 array (k, size) of finite numbers (the rows of K samples, :func:`_finite_vector` of
+    each; its message for the first bad row)."""
+    try:
+        array = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        array = None
+    if array is None or array.shape != (k, size) or not np.all(np.isfinite(array)):
+        rows = list(value) if array is None or array.ndim >= 1 and len(array) == k else [value]
+        for row in rows:
+            _finite_vector(field_name, row, size, names)
+        raise ValueError(f"{field_name}: expected shape ({k}, {size}) for {k} samples, got {np.shape(value)}")
+    return array
+
+
 class FlightLogWriter:
     """Write a flexsim flight log (protobuf MCAP) sample by sample, crash-safe.
 
@@ -273,11 +290,16 @@ class FlightLogWriter:
             self._channels[STRUCTURE_TOPIC_PREFIX + name] = self._register(
                 STRUCTURE_TOPIC_PREFIX + name, PointCloud)
         self._mcap.flush()
+        self._messages = Messages(self._mcap)
         self._tf = FrameTransform(parent_frame_id=WORLD_FRAME, child_frame_id=BODY_FRAME)
         self._cloud = PointCloud(frame_id=BODY_FRAME, point_stride=24, fields=[
             PackedElementField(name=axis, offset=8 * i, type=PackedElementField.FLOAT64)
             for i, axis in enumerate("xyz")])
         self._cloud.pose.orientation.w = 1.0
+        # the fields of the per-sample messages that do not change: FrameTransform fields 2-3 (frame ids) and
+        # PointCloud fields 2-5 (frame id, pose, stride, fields), serialised once (:func:`flexsim.io._wire.timestamp_field`)
+        self._tf_frames = FrameTransform(parent_frame_id=WORLD_FRAME, child_frame_id=BODY_FRAME).SerializeToString()
+        self._cloud_middle = self._cloud.SerializeToString()
 
     @staticmethod
     def _validate_topology(topology: Mapping[str, int]) -> dict[str, int]:
@@ -355,44 +377,78 @@ class FlightLogWriter:
             missing or unknown, or a value is not finite. Nothing is written then.
         """
         self._check_open()
-        ns = self._time_ns(t_s)
-        if ns <= self._last_ns:
-            raise ValueError(f"t_s: simulation time must increase strictly, got {t_s!r} s after "
-                             f"{self._last_ns / 1e9!r} s")
-        position = _finite_vector("position_m", position_m, 3)
-        euler = _finite_vector("euler_rad", euler_rad, 3)
-        state = _finite_vector("state", state, len(self.state_names), self.state_names)
-        controls = _finite_vector("controls", controls, len(self.control_names), self.control_names)
-        signals = _finite_vector("signals", signals, len(self.signal_names), self.signal_names)
         if set(structure) != set(self.structure_topology):
             raise ValueError(f"structure: expected components {sorted(self.structure_topology)}, "
                              f"got {sorted(structure)}")
-        nodes = {}
+        try:
+            nodes = {name: np.asarray(structure[name], dtype=np.float64)[None] for name in self.structure_topology}
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"structure: node positions must be numbers ({exc})") from None
+        self._write_rows([t_s], [position_m], [euler_rad], [state], [controls], [signals], nodes, single=True)
+
+    def write_samples(self, t_s: Any, *, position_m: Any, euler_rad: Any, state: Any, controls: Any, signals: Any,
+                      structure: Mapping[str, Any]) -> None:
+        """Append K samples at once: the arguments of :meth:`write` with a leading axis of K samples (``t_s`` (K,),
+        ``position_m`` (K, 3), ..., ``structure[name]`` (K, n_nodes, 3)).
+
+        The file is the one K calls of :meth:`write` give (the same messages, checks and flushes), written with the
+        checks and the pose of all samples done at once and the state message encoded directly (its protobuf
+        wire format: :func:`flexsim.io._wire.state_messages`). Nothing is written if any sample fails a check.
+        """
+        self._check_open()
+        if set(structure) != set(self.structure_topology):
+            raise ValueError(f"structure: expected components {sorted(self.structure_topology)}, "
+                             f"got {sorted(structure)}")
+        try:
+            nodes = {name: np.asarray(structure[name], dtype=np.float64) for name in self.structure_topology}
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"structure: node positions must be numbers ({exc})") from None
+        self._write_rows(t_s, position_m, euler_rad, state, controls, signals, nodes, single=False)
+
+    def _write_rows(self, t_s, position_m, euler_rad, state, controls, signals, nodes, single: bool) -> None:
+        """Check K samples (all before any is written) and write them (:meth:`write_samples`)."""
+        times = list(t_s) if np.ndim(t_s) else [t_s]
+        ns_list = [self._time_ns(t) for t in times]
+        k = len(ns_list)
+        last = self._last_ns
+        for t, ns in zip(times, ns_list):
+            if ns <= last:
+                raise ValueError(f"t_s: simulation time must increase strictly, got {t!r} s after "
+                                 f"{last / 1e9!r} s")
+            last = ns
+        position = _finite_rows("position_m", position_m, k, 3)
+        euler = _finite_rows("euler_rad", euler_rad, k, 3)
+        state = _finite_rows("state", state, k, len(self.state_names), self.state_names)
+        controls = _finite_rows("controls", controls, k, len(self.control_names), self.control_names)
+        signals = _finite_rows("signals", signals, k, len(self.signal_names), self.signal_names)
+        clouds = []
         for name, n_nodes in self.structure_topology.items():
-            array = np.asarray(structure[name], dtype=np.float64)
-            if array.shape != (n_nodes, 3):
-                raise ValueError(f"structure[{name!r}]: expected shape ({n_nodes}, 3), "
-                                 f"got shape {array.shape}")
+            array = nodes[name]
+            if array.shape != (k, n_nodes, 3):
+                shape = array.shape[1:] if single else array.shape
+                expected = f"({n_nodes}, 3)" if single else f"({k}, {n_nodes}, 3)"
+                raise ValueError(f"structure[{name!r}]: expected shape {expected}, got shape {shape}")
             if not np.all(np.isfinite(array)):
                 raise ValueError(f"structure[{name!r}]: node positions must be finite")
-            nodes[name] = array
-
+            data = np.ascontiguousarray(array, dtype="<f8").tobytes()
+            size = n_nodes * 24
+            clouds.append((self._channels[STRUCTURE_TOPIC_PREFIX + name], data, size))
         translation, quaternion = viewer_pose(position, euler)
-        self._tf.timestamp.FromNanoseconds(ns)
-        tr, rot = self._tf.translation, self._tf.rotation
-        tr.x, tr.y, tr.z = translation.tolist()
-        rot.x, rot.y, rot.z, rot.w = quaternion.tolist()
-        self._add(TOPIC_TF, ns, self._tf)
-        self._cloud.timestamp.FromNanoseconds(ns)
-        for name, array in nodes.items():
-            self._cloud.data = array.astype("<f8").tobytes()
-            self._add(STRUCTURE_TOPIC_PREFIX + name, ns, self._cloud)
-        # The state message goes last: a recovered state message implies the whole sample survived.
-        self._add(TOPIC_STATE, ns, AircraftState(
-            t=float(t_s), position_ned_m=position, euler_rad=euler, state=state,
-            controls=controls, signals=signals))
-        self._last_ns = ns
-        self._maybe_flush(float(t_s))
+        translation, quaternion = translation.tolist(), quaternion.tolist()
+        states = state_messages(times, position, euler, state, controls, signals)
+        add = self._messages.add_sample
+        tf_channel, state_channel = self._channels[TOPIC_TF], self._channels[TOPIC_STATE]
+        for i, ns in enumerate(ns_list):
+            stamp = timestamp_field(ns)
+            messages = [(tf_channel, stamp + self._tf_frames + tf_pose(translation[i], quaternion[i]))]
+            for channel, data, size in clouds:
+                part = data[i * size:(i + 1) * size]
+                messages.append((channel, b"".join((stamp, self._cloud_middle, CLOUD_DATA_KEY, varint(len(part)), part))))
+            # The state message goes last: a recovered state message implies the whole sample survived.
+            messages.append((state_channel, states[i]))
+            add(ns, messages)
+            self._last_ns = ns
+            self._maybe_flush(float(times[i]))
 
     def event(self, t_s: float, text: str, level: str = "info") -> None:
         """Log an event (a ``foxglove.Log`` message on ``/events``).
@@ -518,12 +574,6 @@ class FlightLog:
 
 _READ_ERRORS = (McapError, DecodeError, zstandard.ZstdError, struct.error, EOFError, ValueError,
                 KeyError, IndexError, OverflowError, MemoryError)
-
-
-def _decoded(messages: Iterable[Any]) -> Iterator[tuple[str, int, Any]]:
-    """Yield ``(topic, log_time_ns, decoded message)`` from ``iter_decoded_messages`` tuples."""
-    for _schema, channel, message, decoded in messages:
-        yield channel.topic, message.log_time, decoded
 
 
 class _Scan(NamedTuple):

@@ -1,5 +1,5 @@
 """The compiled ETD2RK run of :func:`flexsim.sim.simulate.simulate` (its default with aerodynamics): steps by
-:meth:`flexsim.sim.fixed_step.ETD2RK.run` (the kernel :func:`flexsim.sim._step_kernels.etd2rk_run`) in chunks of
+:meth:`flexsim.sim.fixed_step.ETD2RK.run` (one row of the kernel :func:`flexsim.sim._step_kernels.etd2rk_rows`) in chunks of
 :data:`COMPILED_CHUNK_S`, with the samples, events and flight log of the scipy loop processed per chunk, and
 re-linearisation when the flight condition drifts (:data:`RELINEARISE_DRIFT`). The method and its accuracy:
 ``docs/simulation.md``, "Integration and solver choice".
@@ -27,10 +27,11 @@ __all__ = ["COMPILED_CHUNK_S", "CHECK_INTERVAL_S", "HALVINGS", "RELINEARISE_DRIF
 _EPS = np.finfo(float).eps
 
 
-#: Simulated time per call of the compiled ETD2RK steps without a flight log [s] (with one: :data:`CHECK_INTERVAL_S`,
-#: so that a killed run loses at most ~1 s of the log): samples and events are processed per chunk. Every return to
-#: Python costs ~0.5-1 ms (the interpreter's code and data come back into the caches after the steps), so 2 s chunks
-#: took 6-16 % less CPU than 0.5 s chunks on the 60 s benchmark.
+#: Simulated time per call of the compiled ETD2RK steps [s]: samples, events and the flight log are processed per
+#: chunk (a run killed with SIGKILL loses the chunk being computed and the log's samples since its last flush, at most
+#: about 2.5 s of simulated time: some 25 ms of computing). Every return to Python costs ~0.5-1 ms (the interpreter's
+#: code and data come back into the caches after the steps), so 2 s chunks took 6-16 % less CPU than 0.5 s chunks on
+#: the 60 s benchmark (and 8-12 % less with a flight log, measured 2026-12-04: 0.67 s against 0.72-0.79 s CPU).
 COMPILED_CHUNK_S = 2.0
 #: Simulated time between the checks of the flight condition's drift (:data:`RELINEARISE_DRIFT`) and the sub-chunks a
 #: failed chunk is repeated from [s]: a chunk is cut at the first such boundary where the drift exceeds the limit, so
@@ -59,7 +60,7 @@ class _Steps:
     Hermite interpolant of :class:`~flexsim.sim.fixed_step.ETD2RKSolver`'s dense output
     (:func:`~flexsim.sim.fixed_step.quintic_hermite`, second derivatives with the linear part ``jac`` by
     :func:`~flexsim.sim.fixed_step.step_accelerations`: their means ``mean`` (k, n) from the compiled steps
-    (:func:`flexsim.sim._step_kernels.etd2rk_run_dense`) or, if None, for all steps of the chunk at the first sample
+    (:meth:`flexsim.sim.fixed_step.ETD2RK.run` with ``dense=True``) or, if None, for all steps of the chunk at the first sample
     that needs them; their half differences, needed only off the steps' ends and midpoints, likewise), evaluated by
     the compiled :func:`flexsim.sim._dense_kernels.hermite_samples`. ``sol(t)``: scalar t -> (n,), array t (m,) ->
     (n, m) (as scipy's ``DenseOutput``)."""
@@ -99,10 +100,9 @@ def integrate_compiled(problem: RunProblem, settings: IntegratorSettings, sinks:
     crossings: list[tuple[float, str]] = []
     nfev = 0
     chunk = max(1, int(round(CHECK_INTERVAL_S / h)))  # steps per sub-chunk (doubled with every halving of h)
-    # sub-chunks per call of the compiled steps; one with a flight log, whose samples reach the file per call (its
-    # writer costs far more than the calls, and a killed run then loses at most ~1 s of the log)
-    per_call = 1 if sink is not None else max(1, int(round(COMPILED_CHUNK_S / CHECK_INTERVAL_S)))
+    per_call = max(1, int(round(COMPILED_CHUNK_S / CHECK_INTERVAL_S)))  # sub-chunks per call of the compiled steps
     lin = {"jac": problem.jacobian, "at": flight_condition(model, problem.x0), "count": 1}
+    wind_data = _k.pack_winds([wind_data])  # the one row of the compiled steps, packed once
 
     def stepper(step: float) -> ETD2RK:  # as ETD2RKSolver._method (h: the current step)
         if abs(step - h) <= 1e-9 * h:

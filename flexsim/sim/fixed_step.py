@@ -42,11 +42,13 @@ exceeds 1e-8 (relative) it falls back to the exponential of the augmented matrix
 arithmetic). On the GTM trim Jacobian (252 states) at h = 5-20 ms the two agree to 1e-12 of the largest
 entry (asserted in tests/sim/test_fixed_step.py); timings are in benchmarks/, not here.
 
-Compiled steps: :meth:`ETD2RK.run` (a run of one aircraft, for :func:`flexsim.sim.simulate`) and
-:meth:`ETD2RK.advance_rows` (control periods of N aircraft, for :mod:`flexsim.sim.periods` and the environments) call
-the numba kernels :func:`flexsim.sim._step_kernels.etd2rk_run` and :func:`flexsim.sim._step_kernels.etd2rk_rows` with
-the model's compiled right-hand side: the steps of :meth:`ETD2RK.step`, both with the same products (summed in another
-order than BLAS: equal to rounding), without a Python call per step.
+Compiled steps: every ETD2RK step is taken by the one compiled kernel :func:`flexsim.sim._step_kernels.etd2rk_rows`
+(:meth:`ETD2RK.run`: a run of one aircraft for :func:`flexsim.sim.simulate`; :meth:`ETD2RK.advance_rows`: control
+periods of N aircraft for :mod:`flexsim.sim.periods` and the environments), whose stage arithmetic is
+:func:`flexsim.sim._step_kernels.stage_a` and :func:`~flexsim.sim._step_kernels.stage_b`. :meth:`ETD2RK.step`, for a
+right-hand side the kernels cannot evaluate (a wind given as a Python callable), calls the same two compiled stages
+around it, so the arithmetic exists once. The tests compare all of them with a plain numpy transcription of the
+formulas above (``tests/sim/etd2rk_reference.py``).
 
 References
 ----------
@@ -258,18 +260,29 @@ class ETD2RK:
         """The linear part J (read-only), shape (n, n) [1/s]."""
         return self._jac
 
-    def step_data(self, model, n_steps: int) -> _sk.StepData:
-        """The step as the compiled periods take it (:class:`flexsim.sim._step_kernels.StepData`): ``n_steps`` steps
-        of h per period for ``model`` (its down coordinate and altitude range)."""
+    @property
+    def h_phi1(self) -> np.ndarray:
+        """h phi_1(hJ) (read-only), shape (n, n) [s]."""
+        return self._h_phi1
+
+    @property
+    def h_phi2(self) -> np.ndarray:
+        """h phi_2(hJ) (read-only), shape (n, n) [s]."""
+        return self._h_phi2
+
+    def step_data(self, model, n_steps: int, ground: bool = True) -> _sk.StepData:
+        """The step as the compiled kernel takes it (:class:`flexsim.sim._step_kernels.StepData`): ``n_steps`` steps
+        of h per call for ``model`` (its altitude range), with the ground contact checked (``ground``) or not."""
         if isinstance(n_steps, bool) or not (isinstance(n_steps, (int, np.integer)) and n_steps >= 1):
             raise ValueError(f"n_steps = {n_steps!r}: must be an integer >= 1")
         lo, hi = model.altitude_range_m
-        return _sk.StepData(self.h, int(n_steps), self._h_phi1, self._h_phi2, self._jac, int(model.layout.position.start + 2),
-                            float(lo), float(hi))
+        z = int(model.layout.position.start + 2) if ground else -1
+        return _sk.StepData(self.h, int(n_steps), self._h_phi1, self._h_phi2, self._jac, z, float(lo), float(hi))
 
     def step(self, fun: Callable[..., np.ndarray], t: float, x: np.ndarray, args: tuple = (),
              k1: np.ndarray | None = None) -> np.ndarray:
-        """One step from (t, x) to t + h.
+        """One step from (t, x) to t + h with a right-hand side given as a Python callable: the compiled stages
+        (:func:`flexsim.sim._step_kernels.stage_a`, :func:`~flexsim.sim._step_kernels.stage_b`) around ``fun``.
 
         Parameters
         ----------
@@ -291,42 +304,19 @@ class ETD2RK:
         """
         if np.shape(x) != (self.n,):
             raise ValueError(f"x: expected shape ({self.n},) to match jac, got shape {np.shape(x)}")
-        if k1 is None:
-            k1 = fun(t, x, *args)
-        a = x + self._h_phi1 @ k1
-        k2 = fun(t + self.h, a, *args)
-        return a + self._h_phi2 @ (k2 - k1 - self._jac @ (a - x))
-
-    def step_rows(self, fun: Callable[[np.ndarray, np.ndarray], np.ndarray], t: np.ndarray, x: np.ndarray) -> np.ndarray:
-        """One step of many independent systems sharing this J and h (the rows of ``x``), as matrix products.
-
-        Parameters
-        ----------
-        fun : callable
-            ``fun(t, x) -> x_dot`` for all rows at once: ``t`` shape (m,) [s], ``x`` and the result shape (m, n).
-        t : ndarray, shape (m,)
-            Time of each row [s].
-        x : ndarray, shape (m, n)
-            States at t.
-
-        Returns
-        -------
-        ndarray, shape (m, n)
-            States at t + h: row i equals ``step`` of row i to rounding (the products are evaluated as
-            GEMMs instead of GEMVs); non-finite entries propagate.
-        """
-        if np.ndim(x) != 2 or np.shape(x)[1] != self.n:
-            raise ValueError(f"x: expected shape (m, {self.n}) to match jac, got shape {np.shape(x)}")
-        k1 = fun(t, x)
-        a = x + k1 @ self._h_phi1.T
-        k2 = fun(t + self.h, a)
-        return a + (k2 - k1 - (a - x) @ self._jac.T) @ self._h_phi2.T
-
+        xs = np.array(x, dtype=float, ndmin=2)
+        f1 = np.array(fun(t, x, *args) if k1 is None else k1, dtype=float, ndmin=2)
+        d, a, x_new = np.empty_like(xs), np.empty_like(xs), np.empty_like(xs)
+        live, none = np.ones(1, np.bool_), np.zeros((0, self.n))
+        _sk.stage_a(self._h_phi1, f1, xs, live, False, d, a)
+        f2 = np.array(fun(t + self.h, a[0], *args), dtype=float, ndmin=2)
+        _sk.stage_b(self._h_phi2, self._jac, f1, f2, d, a, live, False, none, none, np.empty_like(xs), x_new)
+        return x_new[0]
 
     def run(self, model, t0: float, x0: np.ndarray, f0: np.ndarray, t_bound: float, max_steps: int,
             controls: tuple[float, np.ndarray, np.ndarray], wind=None, land: bool = False,
             dense: bool = False) -> RunSteps:
-        """Compiled steps of one aircraft (:func:`flexsim.sim._step_kernels.etd2rk_run`): the steps of
+        """Compiled steps of one aircraft (one row of :func:`flexsim.sim._step_kernels.etd2rk_rows`): the steps of
         :class:`ETD2RKSolver` from (t0, x0) towards ``t_bound`` without a Python call per step.
 
         Parameters
@@ -344,13 +334,15 @@ class ETD2RK:
             At most this many steps (>= 1).
         controls : (t_u [s], u_u (4,), du_dt (4,))
             Controls linear in time, u(t) = u_u + (t - t_u) du_dt [N, rad; per s].
-        wind : WindData, optional
-            The arrays of a field of :mod:`flexsim.sim.disturbances` (``wind.wind_data``); None: still air.
+        wind : WindData or BatchWind, optional
+            The arrays of a field of :mod:`flexsim.sim.disturbances` (``wind.wind_data``), or the same packed for one
+            row once (``flexsim._kernels.pack_winds([wind_data])``: the Dryden grids are copied per pack); None: still
+            air.
         land : bool
             Take exactly one step, ending at ``t_bound``.
         dense : bool
-            Also the mean second derivative of each step for the dense output (``RunSteps.mean``;
-            :func:`flexsim.sim._step_kernels.etd2rk_run_dense`, the ``mean`` of :func:`step_accelerations`).
+            Also the mean second derivative of each step for the dense output (``RunSteps.mean``, the ``mean`` of
+            :func:`step_accelerations`, its product with J in the pass over J of the next step).
 
         Returns
         -------
@@ -362,26 +354,25 @@ class ETD2RK:
         x0 = kernel_arg(x0)  # writable: a read-only trim state would compile the step kernel a second time
         if x0.shape != (self.n,):
             raise ValueError(f"x0: expected shape ({self.n},) to match jac, got shape {x0.shape}")
-        k = int(max_steps)
-        ts, xs, fs = np.empty(k + 1), np.empty((k + 1, self.n)), np.empty((k + 1, self.n))
+        k, n = int(max_steps), self.n
         t_u, u_u, du_dt = controls
-        lo, hi = model.altitude_range_m
-        w = _k.NO_WIND if wind is None else wind
-        args = (*model.kernel_data, *w, x0, kernel_arg(f0), float(t0), float(t_bound), self.h, k,
-                bool(land), float(t_u), kernel_arg(u_u), kernel_arg(du_dt),
-                self._h_phi1, self._h_phi2, self._jac, float(lo), float(hi), ts, xs, fs)
+        packed = wind if isinstance(wind, _k.BatchWind) else _k.pack_winds([wind])
+        span = _sk.Span(np.array([float(t0)]), np.array([float(t_bound)]), bool(land), True)
+        ctrl = _sk.RowControls(np.array([float(t_u)]), kernel_arg(np.reshape(u_u, (1, 4))), kernel_arg(np.reshape(du_dt, (1, 4))))
+        out = _sk.RowSteps(np.empty((1, k + 1)), np.empty((1, k + 1, n)), np.empty((1, k + 1, n)),
+                           np.empty((1, k if dense else 0, n)), np.empty(1, np.int64), np.empty(1, np.int64))
         with np.errstate(all="ignore"):
-            if dense:
-                ms = np.empty((k, self.n))
-                done = _sk.etd2rk_run_dense(*args, ms)
-                return RunSteps(ts[:done + 1], xs[:done + 1], fs[:done + 1], ms[:done])
-            done = _sk.etd2rk_run(*args)
-        return RunSteps(ts[:done + 1], xs[:done + 1], fs[:done + 1])
+            _sk.etd2rk_rows(model.kernel_data, packed, self.step_data(model, k, ground=False), span, ctrl, x0[None, :],
+                            kernel_arg(f0)[None, :], False, out)
+        done = int(out.taken[0])
+        if out.status[0] != _sk.ROW_RUNNING:
+            out.f[0, done] = np.nan  # the step the run stops after (its caller asks model.rhs there for the reason)
+        return RunSteps(out.t[0, :done + 1], out.x[0, :done + 1], out.f[0, :done + 1], out.mean[0, :done] if dense else None)
 
     def advance_rows(self, model, x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.ndarray, n_steps: int,
                      wind=None, over_rows: bool = False) -> RowsAdvance:
         """``n_steps`` compiled steps of N aircraft over their control periods [t0, t1] with held controls
-        (:func:`flexsim.sim._step_kernels.etd2rk_rows`; the environments' ``_advance_fixed``, row by row).
+        (:func:`flexsim.sim._step_kernels.etd2rk_rows`, its :func:`~flexsim.sim._step_kernels.period_end`).
 
         Parameters
         ----------
@@ -398,14 +389,14 @@ class ETD2RK:
         wind : None or BatchWind
             Still air, or the winds of the rows packed once by :meth:`AircraftModel.pack_winds`.
         over_rows : bool
-            Take the products as matrix products over the rows (:func:`flexsim.sim._step_kernels.etd2rk_rows_gemm`,
-            faster for many rows) instead of row by row.
+            Take the products as matrix products over the rows (:func:`flexsim.sim._step_kernels.stage_a`, faster for
+            many rows) instead of row by row.
 
         Returns
         -------
         RowsAdvance
             Per row: the state and time reached, the status (:data:`flexsim.sim._step_kernels.ROW_RUNNING` ...) and the
-            number of steps taken (each two right-hand sides; docstring of :func:`flexsim.sim._step_kernels.etd2rk_rows`).
+            number of steps begun (each two right-hand sides; :func:`flexsim.sim._step_kernels.period_end`).
         """
         xs = np.array(x, dtype=float, ndmin=2, order="C")
         m = xs.shape[0]
@@ -420,12 +411,15 @@ class ETD2RK:
             wind = model.pack_winds([None] * m)
         elif not isinstance(wind, _k.BatchWind) or wind.rows.shape[0] != m:
             raise ValueError(f"wind: expected None or a BatchWind of {m} rows (AircraftModel.pack_winds)")
-        x_out, t_out = np.empty_like(xs), np.empty(m)
-        status, steps = np.empty(m, np.int64), np.empty(m, np.int64)
-        kernel = _sk.etd2rk_rows_gemm if over_rows else _sk.etd2rk_rows
+        k, n = step.n_steps, self.n
+        out = _sk.RowSteps(np.empty((m, k + 1)), np.empty((m, k + 1, n)), np.empty((m, k + 1, n)), np.empty((m, 0, n)),
+                           np.empty(m, np.int64), np.empty(m, np.int64))
         with np.errstate(all="ignore"):
-            kernel(model.kernel_data, wind, step, xs, us, t0s, t1s, x_out, t_out, status, steps)
-        return RowsAdvance(x_out, t_out, status, steps)
+            _sk.etd2rk_rows(model.kernel_data, wind, step, _sk.Span(t0s, t1s, True, False), _sk.RowControls(t0s, us, np.zeros((m, 4))),
+                            xs, np.empty((0, n)), bool(over_rows), out)
+        x_out, t_out, steps = np.empty_like(xs), np.empty(m), np.empty(m, np.int64)
+        _sk.period_end(out, x_out, t_out, steps)
+        return RowsAdvance(x_out, t_out, out.status, steps)
 
 
 class RunSteps(NamedTuple):

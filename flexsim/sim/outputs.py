@@ -17,12 +17,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flexsim import _kernels as _k
+from flexsim._arrays import frozen_array, kernel_arg
 from flexsim.atmosphere import speed_of_sound
 from flexsim.io.vocabulary import CONTROL_NAMES, check_names
 from flexsim.kinematics import dcm_321
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.naming import state_names
 from flexsim.model.sensors import ComponentSensor, structural_sensors
+from flexsim.sim import _output_kernels as _ok
 from flexsim.sim.measurements import air_angles_rows, heading_rate_rows
 
 __all__ = ["OutputMaps", "AirData", "air_angles", "heading_rate", "CONTROL_NAMES", "WINGS", "STRUCTURE_NODES"]
@@ -160,19 +163,42 @@ class OutputMaps:
         return v
 
     def air_data(self, t: np.ndarray, x: np.ndarray, wind: Wind | None = None) -> AirData:
-        """:class:`AirData` of samples at times t (N,) [s] with states x (N, n) in the disturbance ``wind``."""
-        t, x = np.atleast_1d(t), np.atleast_2d(x)
-        rows = np.array([air_angles(self.air_velocity_body(float(tk), xk, wind)) for tk, xk in zip(t, x)], float).reshape(-1, 3)
-        a = np.array([speed_of_sound(float(h)) for h in np.atleast_1d(self.altitude_m(x))])
-        return AirData(rows[:, 0], rows[:, 1], rows[:, 2], rows[:, 0] / a)
+        """:class:`AirData` of samples at times t (N,) [s] with states x (N, n) in the disturbance ``wind``: the
+        :meth:`air_velocity_body` of each sample, with the wind of a field of :mod:`flexsim.sim.disturbances`
+        (evaluated point by point, independent of t) asked for all samples' positions in one call."""
+        t, x = np.atleast_1d(np.asarray(t, float)), np.atleast_2d(np.asarray(x, float))
+        if not len(t):
+            return AirData(*(np.zeros(0) for _ in range(4)))
+        pos, eul, _, _, vel = self._blocks(x)
+        v = np.array(vel[:, 0:3], float)
+        if wind is not None:
+            if isinstance(getattr(wind, "wind_data", None), _k.WindData):
+                w_ned = np.asarray(wind(float(t[0]), np.ascontiguousarray(pos, dtype=float)), float)
+            else:
+                w_ned = np.array([np.asarray(wind(float(tk), np.asarray(p, float)[None, :]), float)[0] for tk, p in zip(t, pos)])
+            v = v - np.array([dcm_321(*e) @ w for e, w in zip(eul, w_ned)])
+        speed, alpha, beta = air_angles(v)
+        a = np.asarray(speed_of_sound(np.asarray(self.altitude_m(x), float)), float).reshape(-1)
+        return AirData(speed, alpha, beta, speed / a)
+
+    def _blocks(self, x: np.ndarray) -> tuple[np.ndarray, ...]:
+        """(R, Theta, q, xi, V) of N states x (N, n), each (N, size): :meth:`AircraftModel.unpack` of every state (the
+        blocks of x itself when x holds all of them, as unpack then copies them)."""
+        model, lay = self.model, self.model.layout
+        first = model.unpack(x[0])
+        blocks = (lay.position, lay.euler, lay.q, lay.xi, slice(lay.v.start, lay.v.start + first[4].size))  # V = [v, omega, s, eta]
+        if lay.rigid and all(np.array_equal(x[0, sl], b) for sl, b in zip(blocks, first)):
+            return tuple(x[:, sl] for sl in blocks)
+        rows = [first] + [model.unpack(xk) for xk in x[1:]]
+        return tuple(np.array([r[j] for r in rows], float).reshape(len(x), -1) for j in range(5))
 
     def heading_rate_rad_s(self, x: np.ndarray) -> np.ndarray:
         """:func:`heading_rate` of state(s) x, (N, n) -> (N,) [rad/s]."""
-        rates = []
-        for xk in np.atleast_2d(x):
-            _, euler, _, _, velocity = self.model.unpack(xk)
-            rates.append(heading_rate(euler, velocity))
-        return np.array(rates, float)
+        x = np.atleast_2d(np.asarray(x, float))
+        if not len(x):
+            return np.zeros(0)
+        _, euler, _, _, velocity = self._blocks(x)
+        return heading_rate(euler, velocity)
 
     # ------------------------------------------------------------------ structure
     def _sensor(self, component: str) -> ComponentSensor:
@@ -196,6 +222,29 @@ class OutputMaps:
         """Deformed beam nodes of every component, body axes (FRD) [m]: name -> (n_nodes, 3)."""
         _, _, q, xi, _ = self.model.unpack(x)
         return {name: maps.positions(q, xi) for name, maps in self._maps.items()}
+
+    def structure_series(self, x: np.ndarray) -> dict[str, np.ndarray]:
+        """:meth:`structure` of N states x (N, n) at once: name -> (N, n_nodes, 3) [m], body axes (FRD). The products
+        of :meth:`flexsim.structure.kinematic_map.PointMaps.positions`, with the same BLAS calls per state (the
+        displacements of all components as one stack of matrix-vector products, then per component the rotation of
+        all states as one product), so equal to :meth:`structure` bit for bit."""
+        x = np.atleast_2d(np.asarray(x, float))
+        names = list(self._maps)
+        if not len(x):
+            return {name: np.zeros((0, self._maps[name].g0.shape[0], 3)) for name in names}
+        _, _, q, xi, _ = self._blocks(x)
+        elastic = np.ascontiguousarray(np.concatenate([q, xi], axis=1))
+        n_el = elastic.shape[1]
+        stack = np.concatenate([self._maps[n].g0[:, 0:3, 6:6 + n_el] for n in names])  # (all nodes, 3, n_el)
+        disp = np.array([stack @ e for e in elastic]).reshape(len(x), -1, 3)
+        out, at = {}, 0
+        for name in names:
+            maps = self._maps[name]
+            k = maps.g0.shape[0]
+            rows = np.ascontiguousarray(disp[:, at:at + k]).reshape(-1, 3)
+            out[name] = maps.r0 + (rows @ maps.dcm).reshape(len(x), k, 3)
+            at += k
+        return out
 
     # ------------------------------------------------------------------ loads
     def load_factor_and_lift(self, t: float, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> tuple[float, float]:
@@ -221,6 +270,33 @@ class OutputMaps:
             lift = float(loads.lift_n_m[w] @ model.aero.strips.width_m[w])
         weight = st.mass_properties.mass_kg * model.terms.gravity_m_s2
         return (float(-force[2] / weight) if weight > 0 else math.nan), lift
+
+    def _loads_series(self, t: np.ndarray, x: np.ndarray, u: np.ndarray, wind: Wind | None) -> np.ndarray:
+        """:meth:`load_factor_and_lift` of N samples, (N, 2): the aerodynamic force and wing lift of all samples in one
+        compiled call (:func:`flexsim.sim._output_kernels.loads_rows`, the same kernels with the same arguments) for a
+        model with aerodynamics in still air or a field of :mod:`flexsim.sim.disturbances` within its altitude range;
+        otherwise sample by sample."""
+        model = self.model
+        data = None if wind is None else getattr(wind, "wind_data", None)
+        lo, hi = model.altitude_range_m
+        altitude = -x[:, 2] if model.layout.rigid else np.zeros(len(t))
+        if (model.aero is None or (wind is not None and not isinstance(data, _k.WindData)) or not len(t)
+                or not np.all((lo <= altitude) & (altitude <= hi))):
+            return np.array([self.load_factor_and_lift(float(tk), xk, uk, wind) for tk, xk, uk in zip(t, x, u)],
+                            float).reshape(-1, 2)
+        st = model.structure
+        n = len(t)
+        xs, us = kernel_arg(x), kernel_arg(u)
+        force, lift = np.empty((n, 3)), np.zeros(n)
+        wing = self._wing_strips.astype(np.int64)
+        inflow = np.array([model.layout.inflow.start, model.layout.inflow.stop], np.int64)
+        one = model.pack_winds([wind])
+        winds = one._replace(rows=frozen_array(np.repeat(one.rows, n, axis=0), np.int64))  # every sample in the one wind
+        sound = np.asarray(speed_of_sound(np.asarray(self.altitude_m(xs), float)), float).reshape(n)
+        _ok.loads_rows(model.kernel_data, winds, xs, us, kernel_arg(sound), (st.thrust.t0, st.thrust.t1), wing,
+                       kernel_arg(model.aero.strips.width_m), bool(model.aero.downwash_gradient), inflow, force, lift)
+        weight = st.mass_properties.mass_kg * model.terms.gravity_m_s2
+        return np.column_stack([-force[:, 2] / weight if weight > 0 else np.full(n, math.nan), lift])
 
     # ------------------------------------------------------------------ signals
     def series(self, names, t: np.ndarray, x: np.ndarray, u: np.ndarray, wind: Wind | None = None) -> dict[str, np.ndarray]:
@@ -256,8 +332,7 @@ class OutputMaps:
         if "heading_rate_rad_s" in names:
             out["heading_rate_rad_s"] = self.heading_rate_rad_s(x)
         if any(n in _LOADS for n in names):
-            loads = np.array([self.load_factor_and_lift(float(tk), xk, uk, wind) for tk, xk, uk in zip(t, x, u)],
-                             float).reshape(-1, 2)
+            loads = self._loads_series(t, x, u, wind)
             out.update(load_factor=loads[:, 0], wing_lift_N=loads[:, 1])
         for c, s in self.sensors.items():
             for name, f in ((f"tip_deflection_{c}_m", s.tip_deflection_m), (f"tip_deflection_rate_{c}_m_s", s.tip_deflection_rate_m_s),

@@ -3,7 +3,10 @@
 The integration layer of the gymnasium environments (:mod:`flexsim.envs`), single and batched. A
 :class:`FlightDynamics` holds one :class:`~flexsim.model.aircraft_model.AircraftModel` (whose ``rhs(t, x, u)`` is
 integrated unchanged), trims it with :func:`flexsim.trim.trim`, computes the Jacobian of the trim
-(:func:`flexsim.model.jacobian.jacobian`, once per trim, cached) and integrates a control period:
+(:func:`flexsim.model.jacobian.jacobian`, once per trim, cached) and integrates a control period. An episode's
+integration state (the ETD2RK stepper of its trim, Radau's Jacobian, the warm-start step of the ``solve_ivp`` methods) is
+an immutable :class:`IntegrationState`, returned by :meth:`FlightDynamics.start` and taken (and returned, updated) by
+every period, so one :class:`FlightDynamics` flies any number of episodes at once:
 
 * zero-order hold: the control vector is constant over the period;
 * actuator rate limits (:class:`ActuatorRates`): the applied controls move towards the commanded ones by at most
@@ -26,10 +29,9 @@ stores it, so trims are in still air and do not depend on earlier episodes.
 
 from __future__ import annotations
 
-import copy
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import NamedTuple
 
 import numpy as np
@@ -51,7 +53,7 @@ from flexsim.sim.outputs import OutputMaps
 from flexsim.sim.simulate import DEFAULT_MAX_STEP, IntegratorSettings
 from flexsim.trim import SteadyManoeuvre, TrimError, TrimPoint, trim
 
-__all__ = ["IntegratorSettings", "ActuatorRates", "FlightDynamics", "StepOutcome", "BatchOutcome", "PeriodResult", "advance_rows",
+__all__ = ["IntegratorSettings", "ActuatorRates", "FlightDynamics", "IntegrationState", "StepOutcome", "BatchOutcome", "PeriodResult", "advance_rows",
            "advance_period", "SENSOR_COMPONENTS", "INTEGRATOR_METHODS", "FIXED_STEP_METHODS", "DEFAULT_MAX_STEP_S",
            "MAX_STEP_RANGE_S", "COMPILED_ROWS_BELOW", "TRIM_CACHE", "period_atol", "check_period_settings",
            "pack_period_winds", "select_packed_rows"]
@@ -69,7 +71,7 @@ MAX_STEP_RANGE_S = (1e-4, 0.05)
 #: Number of trims kept per :class:`FlightDynamics` (tasks with random targets trim every episode).
 TRIM_CACHE = 16
 #: From this many rows sharing one stepper on, the products of a period are matrix products over the rows
-#: (:func:`flexsim.sim._step_kernels.etd2rk_rows_gemm`); below it row by row. Measured (benchmarks/bench_envs.py
+#: (``over_rows`` of :func:`flexsim.sim._step_kernels.stage_a`); below it row by row. Measured (benchmarks/bench_envs.py
 #: --batched): row by row 2x faster at N = 1, equal near N = 16, 25 % slower at N = 256.
 COMPILED_ROWS_BELOW = 32
 #: Remaining fraction of a period below which a solver stop counts as having reached its end.
@@ -143,6 +145,33 @@ def check_period_settings(settings: IntegratorSettings) -> IntegratorSettings:
     return settings
 
 
+@dataclass(frozen=True, eq=False)
+class IntegrationState:
+    """The integration state of one episode flown about one trim (:meth:`FlightDynamics.start`), an immutable value
+    passed to each period (:meth:`FlightDynamics.advance`, :func:`advance_period`) and returned by it for the next.
+
+    Attributes
+    ----------
+    manoeuvre : SteadyManoeuvre or None
+        The trim the episode is flown about.
+    stepper : ETD2RK or None
+        ETD2RK: the step with the trim Jacobian as its linear part (its matrix functions computed once per trim).
+    step_data : StepData or None
+        The same as the compiled periods take it (:meth:`ETD2RK.step_data`).
+    jac : ndarray or None
+        Radau: the constant trim Jacobian of its Newton iterations.
+    first_step_s : float or None
+        DOP853 and Radau: the first step of the next period [s] (the step the solver reached in the previous one,
+        shortened so that a whole number of steps fills the period); None: the solver's own choice.
+    """
+
+    manoeuvre: SteadyManoeuvre | None = None
+    stepper: ETD2RK | None = None
+    step_data: _sk.StepData | None = None
+    jac: np.ndarray | None = None
+    first_step_s: float | None = None
+
+
 @dataclass(frozen=True)
 class StepOutcome:
     """Result of one control period.
@@ -160,6 +189,8 @@ class StepOutcome:
     nfev, nlu : int
         Right-hand-side evaluations and LU factorisations of the period (ETD2RK: 2 evaluations per step and no
         factorisation; its matrix functions are computed once per trim, in :meth:`FlightDynamics.start`).
+    state : IntegrationState or None
+        The integration state of the next period (the one given, or with a new warm-start step).
     """
 
     x: np.ndarray
@@ -168,13 +199,15 @@ class StepOutcome:
     failure: str
     nfev: int
     nlu: int = 0
+    state: IntegrationState | None = None
 
 
 @dataclass(frozen=True)
 class BatchOutcome:
     """Results of one control period of N aircraft: the :class:`StepOutcome` fields as arrays over the rows (``x``
     (N, n), ``time_s`` (N,), ``crashed`` (N,) bool, ``failure`` (N,) object array of str, ``nfev`` and ``nlu`` (N,)
-    int), and ``failed`` (N,) bool: the rows whose ``failure`` is not empty."""
+    int), ``failed`` (N,) bool: the rows whose ``failure`` is not empty, and ``states``, the N integration states of
+    the next period (:attr:`StepOutcome.state`)."""
 
     x: np.ndarray
     time_s: np.ndarray
@@ -183,11 +216,12 @@ class BatchOutcome:
     nfev: np.ndarray
     nlu: np.ndarray
     failed: np.ndarray
+    states: tuple = ()
 
     def row(self, i: int) -> StepOutcome:
         """The :class:`StepOutcome` of row i."""
         return StepOutcome(self.x[i].copy(), float(self.time_s[i]), bool(self.crashed[i]), str(self.failure[i]), int(self.nfev[i]),
-                           int(self.nlu[i]))
+                           int(self.nlu[i]), self.states[i] if self.states else None)
 
     @classmethod
     def of(cls, outcomes: list[StepOutcome]) -> BatchOutcome:
@@ -195,7 +229,7 @@ class BatchOutcome:
         failure = np.array([o.failure for o in outcomes], dtype=object)
         return cls(np.array([o.x for o in outcomes], dtype=float), np.array([o.time_s for o in outcomes], dtype=float),
                    np.array([o.crashed for o in outcomes], dtype=bool), failure, np.array([o.nfev for o in outcomes], dtype=np.int64),
-                   np.array([o.nlu for o in outcomes], dtype=np.int64), failure != "")
+                   np.array([o.nlu for o in outcomes], dtype=np.int64), failure != "", tuple(o.state for o in outcomes))
 
 
 class PeriodResult(NamedTuple):
@@ -273,10 +307,6 @@ class FlightDynamics:
         self._jacobians: dict[SteadyManoeuvre, np.ndarray] = {}
         self._steppers: dict[SteadyManoeuvre, ETD2RK] = {}
         self._clear: dict[int, tuple] = {}
-        self._stepper: ETD2RK | None = None
-        self._step_data: _sk.StepData | None = None
-        self._jac = None
-        self._h_next = None
         z = self._z = self.layout.position.start + 2
 
         def ground(t: float, y: np.ndarray, u: np.ndarray, wind) -> float:
@@ -285,29 +315,6 @@ class FlightDynamics:
         ground.terminal = True
         ground.direction = -1.0
         self._ground = ground
-
-    def fork(self) -> FlightDynamics:
-        """Another :class:`FlightDynamics` of the same model for a second episode running at the same time.
-
-        It shares this one's model, sensors and caches (trims, Jacobians and ETD2RK matrix functions: each a
-        deterministic function of the manoeuvre, never changed once computed) and has its own episode state (the
-        ETD2RK stepper or Radau Jacobian of its episode, Radau's warm-start step), so N aircraft cost one model
-        build, one trim and one matrix exponential.
-        """
-        twin = copy.copy(self)
-        twin._jac, twin._stepper, twin._step_data, twin._h_next = None, None, None, None
-        return twin
-
-    @property
-    def stepper(self) -> ETD2RK | None:
-        """The ETD2RK step of the current episode (None for the ``solve_ivp`` methods or before :meth:`start`)."""
-        return self._stepper
-
-    @property
-    def step_data(self) -> _sk.StepData | None:
-        """The ETD2RK step of the current episode as the compiled periods take it (:meth:`ETD2RK.step_data`; None
-        without a stepper)."""
-        return self._step_data
 
     # ------------------------------------------------------------------ trim and Jacobian
     def trim(self, manoeuvre: SteadyManoeuvre) -> TrimPoint:
@@ -326,17 +333,15 @@ class FlightDynamics:
         return point
 
     @single_blas_thread
-    def start(self, manoeuvre: SteadyManoeuvre) -> None:
-        """Prepare an episode flown about the (still-air) trim of ``manoeuvre``.
+    def start(self, manoeuvre: SteadyManoeuvre) -> IntegrationState:
+        """The integration state of an episode flown about the (still-air) trim of ``manoeuvre``.
 
         For Radau and ETD2RK, the Jacobian d rhs / dx at that trim is computed once and cached per manoeuvre
         (:data:`TRIM_CACHE` of them): for Radau it only steers the Newton iterations; for ETD2RK it is the linear
         part, whose matrix functions for the step ``dt / substeps`` are computed here too, once per manoeuvre.
         """
-        self._h_next = None
-        self._jac, self._stepper, self._step_data = None, None, None
         if self.method not in ("Radau", *FIXED_STEP_METHODS):
-            return
+            return IntegrationState(manoeuvre)
         jac = self._jacobians.pop(manoeuvre, None)
         if jac is None:
             point = self.trim(manoeuvre)
@@ -344,15 +349,13 @@ class FlightDynamics:
         self._jacobians[manoeuvre] = jac
         _evict(self._jacobians)
         if self.method == "Radau":
-            self._jac = jac
-            return
+            return IntegrationState(manoeuvre, jac=jac)
         stepper = self._steppers.pop(manoeuvre, None)
         if stepper is None:
             stepper = ETD2RK(jac, self.dt / self.substeps)
         self._steppers[manoeuvre] = stepper
         _evict(self._steppers)
-        self._stepper = stepper
-        self._step_data = stepper.step_data(self.model, self.substeps)
+        return IntegrationState(manoeuvre, stepper, stepper.step_data(self.model, self.substeps))
 
     # ------------------------------------------------------------------ actuators
     def rate_limit(self, applied: np.ndarray, command: np.ndarray) -> np.ndarray:
@@ -366,24 +369,27 @@ class FlightDynamics:
 
     # ------------------------------------------------------------------ integration
     @single_blas_thread
-    def advance(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float, wind: Wind | None = None) -> StepOutcome:
+    def advance(self, state: IntegrationState, x: np.ndarray, u: np.ndarray, t0: float, t1: float,
+                wind: Wind | None = None) -> StepOutcome:
         """Integrate ``rhs`` from t0 to t1 [s] with the controls ``u`` held (zero-order hold) in the wind field
-        ``wind`` (``wind(t, positions_ned_m)``; None: still air).
+        ``wind`` (``wind(t, positions_ned_m)``; None: still air), from the episode's integration ``state`` (what
+        :meth:`start` or the previous period returned; the next one is ``StepOutcome.state``).
 
-        With ETD2RK, t1 - t0 must be the control period ``dt`` (its step is fixed) and :meth:`start` must have been
-        called.
+        With ETD2RK, t1 - t0 must be the control period ``dt`` (its step is fixed).
         """
+        if not isinstance(state, IntegrationState):
+            raise ValueError(f"state = {state!r}: must be the IntegrationState that start() or the previous period returned")
         if self.substeps:
-            return self._advance_fixed(x, u, t0, t1, wind)
+            return self._advance_fixed(state, x, u, t0, t1, wind)
         span = t1 - t0
-        first = None if self._h_next is None else min(self._h_next, span)
-        options = {"jac": self._jac} if self.method == "Radau" else {}
+        first = None if state.first_step_s is None else min(state.first_step_s, span)
+        options = {"jac": state.jac} if self.method == "Radau" else {}
         try:
             with np.errstate(all="ignore"):
                 sol = solve_ivp(self.model.rhs, (t0, t1), x, method=self.method, args=(u, wind), rtol=self.rtol,
                                 atol=self.atol, first_step=first, events=self._ground, **options)
         except _MODEL_ERRORS as exc:
-            return StepOutcome(x, t0, False, f"model error: {exc}", 0)
+            return StepOutcome(x, t0, False, f"model error: {exc}", 0, state=state)
         if sol.status < 0 and t1 - sol.t[-1] <= _SLIVER * span and np.all(np.isfinite(sol.y[:, -1])):
             # scipy stops with "step size less than spacing between numbers" when rounding leaves a
             # remaining interval of a few ulp; the state there is the state at t1 to within |f| * 1e-12 s
@@ -393,16 +399,17 @@ class FlightDynamics:
             last = int(good[-1]) if good.size else None
             x_end = sol.y[:, last] if last is not None else x
             t_end = float(sol.t[last]) if last is not None else t0
-            return StepOutcome(x_end.copy(), t_end, False, f"non-finite state or solver failure: {sol.message}", sol.nfev, sol.nlu)
+            return StepOutcome(x_end.copy(), t_end, False, f"non-finite state or solver failure: {sol.message}", sol.nfev, sol.nlu,
+                               state)
         steps = np.diff(sol.t)
         if steps.size > 1:
             h = float(steps[:-1].max())
             # a whole number of steps per period, 1e-6 long so that rounding cannot leave a sliver at the end
             # (scipy fails when the remaining step is below its spacing of numbers)
-            self._h_next = span / math.ceil(span / h * (1.0 - 1e-9)) * (1.0 + 1e-6)
+            state = replace(state, first_step_s=span / math.ceil(span / h * (1.0 - 1e-9)) * (1.0 + 1e-6))
         elif steps.size == 1:
-            self._h_next = span
-        return StepOutcome(sol.y[:, -1].copy(), float(sol.t[-1]), sol.status == 1, "", sol.nfev, sol.nlu)
+            state = replace(state, first_step_s=span)
+        return StepOutcome(sol.y[:, -1].copy(), float(sol.t[-1]), sol.status == 1, "", sol.nfev, sol.nlu, state)
 
     def check_span(self, span) -> None:
         """Refuse period lengths ``span`` [s] (scalar or (N,)) other than the control period (ETD2RK's fixed steps)."""
@@ -411,12 +418,14 @@ class FlightDynamics:
         if bad.size:
             raise ValueError(f"t1 - t0 = {float(spans[bad[0]])!r} s: ETD2RK steps whole control periods, must be dt = {self.dt!r} s")
 
-    def _advance_fixed(self, x: np.ndarray, u: np.ndarray, t0: float, t1: float, wind: Wind | None) -> StepOutcome:
+    def _advance_fixed(self, state: IntegrationState, x: np.ndarray, u: np.ndarray, t0: float, t1: float,
+                       wind: Wind | None) -> StepOutcome:
         """ETD2RK over one period in Python (``model.rhs``, which names a model error): ``substeps`` equal steps, each
         checked for non-finite states and the ground (:func:`flexsim.sim._step_kernels.ground_crossing`)."""
-        stepper = self._stepper
+        stepper = state.stepper
         if stepper is None:
-            raise RuntimeError("advance() called before start(): ETD2RK needs the trim Jacobian")
+            raise ValueError("state: has no ETD2RK stepper; pass the IntegrationState that start() returned (ETD2RK needs "
+                             "the trim Jacobian)")
         self.check_span(t1 - t0)
         k, h = self.substeps, stepper.h
         rhs = self.model.rhs
@@ -429,20 +438,22 @@ class FlightDynamics:
                 try:
                     x_next = stepper.step(rhs, t, x, (u, wind))
                 except _MODEL_ERRORS as exc:
-                    return StepOutcome(x.copy(), t, False, f"model error: {exc}", 2 * i)
+                    return StepOutcome(x.copy(), t, False, f"model error: {exc}", 2 * i, state=state)
                 if not np.all(np.isfinite(x_next)):
-                    return StepOutcome(x.copy(), t, False, f"non-finite state: ETD2RK step {i} of {k} from t = {t:.6g} s", 2 * i)
+                    return StepOutcome(x.copy(), t, False, f"non-finite state: ETD2RK step {i} of {k} from t = {t:.6g} s", 2 * i,
+                                       state=state)
                 t_hit = _sk.ground_crossing(x, x_next, float(t), float(t_next), self._z, x_hit)
                 if t_hit != -math.inf:
-                    return StepOutcome(x_hit, t_hit, True, "", 2 * i)
+                    return StepOutcome(x_hit, t_hit, True, "", 2 * i, state=state)
                 x, t = x_next, t_next
-        return StepOutcome(x, t1, False, "", 2 * k)
+        return StepOutcome(x, t1, False, "", 2 * k, state=state)
 
-    def rows_outcome(self, x, t, status, taken, t0) -> BatchOutcome:
-        """The :class:`BatchOutcome` of compiled rows of this dynamics' stepper: states x (N, n) and times t (N,) [s]
-        reached, status codes and steps taken (N,) of :func:`flexsim.sim._step_kernels.etd2rk_rows`, period starts t0
-        (N,) [s] (read for stopped rows only; None if no row stopped); a row with a model error (whose message only
-        ``model.rhs`` gives) reads "model error" here."""
+    def rows_outcome(self, x, t, status, taken, t0, states) -> BatchOutcome:
+        """The :class:`BatchOutcome` of compiled rows flown with the integration ``states`` (N, sharing one ETD2RK
+        stepper): states x (N, n) and times t (N,) [s] reached, status codes and steps begun (N,) of
+        :func:`flexsim.sim._step_kernels.period_end`, period starts t0 (N,) [s] (read for stopped rows only; None if no
+        row stopped); a row with a model error (whose message only ``model.rhs`` gives) reads "model error" here."""
+        states = tuple(states)
         m = len(t)
         clear = self._clear.get(m)
         if clear is None:  # the arrays of a period in which no row stopped, shared by such periods: not to be written
@@ -450,13 +461,13 @@ class FlightDynamics:
                                       np.full(m, 2 * self.substeps, np.int64))
         failure, none, nlu, nfev = clear
         if not np.count_nonzero(status):
-            return BatchOutcome(x, t, none, failure, nfev, nlu, none)
+            return BatchOutcome(x, t, none, failure, nfev, nlu, none, states)
         failure = failure.copy()
         failure[status == _sk.ROW_MODEL_ERROR] = "model error"
         for r in np.flatnonzero(status == _sk.ROW_NON_FINITE):
-            t_start = t0[r] + (taken[r] - 1) * self._stepper.h
+            t_start = t0[r] + (taken[r] - 1) * states[r].stepper.h
             failure[r] = f"non-finite state: ETD2RK step {int(taken[r])} of {self.substeps} from t = {float(t_start):.6g} s"
-        return BatchOutcome(x, t, status == _sk.ROW_GROUND, failure, 2 * taken, nlu, failure != "")
+        return BatchOutcome(x, t, status == _sk.ROW_GROUND, failure, 2 * taken, nlu, failure != "", states)
 
     # ------------------------------------------------------------------ outputs
     def measure(self, x: np.ndarray, t: float, wind: Wind | None = None) -> Measurements:
@@ -513,77 +524,82 @@ class FlightDynamics:
 
 
 # ---------------------------------------------------------------------- many aircraft
-def _shared_stepper(dynamics: Sequence[FlightDynamics]) -> ETD2RK | None:
+#: The modes of :func:`flexsim.sim._step_kernels.period_rows`, by (still air, products over the rows).
+_PERIOD_MODES = {(still, over): _sk.PeriodMode(_ms.WIND_STILL if still else _ms.WIND_PACKED, over)
+                 for still in (False, True) for over in (False, True)}
+
+
+def _shared_stepper(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState]) -> ETD2RK | None:
     """The ETD2RK stepper of all rows if they share one (same trim Jacobian and step) and one model with compiled
     data, else None."""
-    first, model = dynamics[0].stepper, dynamics[0].model
+    first, model = states[0].stepper, dynamics[0].model
     if first is None or not dynamics[0].substeps or not isinstance(getattr(model, "kernel_data", None), _k.KernelData):
         return None
-    for d in dynamics:
-        if d.stepper is not first or d.model is not model:
+    for d, st in zip(dynamics, states):
+        if st.stepper is not first or d.model is not model:
             return None
     return first
 
 
 @single_blas_thread
-def advance_rows(dynamics: Sequence[FlightDynamics], x: np.ndarray, u: np.ndarray, t0: np.ndarray, t1: np.ndarray, winds,
-                 packed=None) -> BatchOutcome:
+def advance_rows(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState], x: np.ndarray, u: np.ndarray,
+                 t0: np.ndarray, t1: np.ndarray, winds, packed=None) -> BatchOutcome:
     """Integrate one control period of many aircraft (zero-order hold of each row's controls u (N, 4)).
 
-    Row i is what ``dynamics[i].advance(x[i], u[i], t0[i], t1[i], winds[i])`` returns (same checks: non-finite
-    state, model error, ground contact located by linear interpolation within the ETD2RK step). Rows sharing one
-    ETD2RK stepper, in still air or with their winds ``packed`` (the model's ``pack_winds`` of the N winds), take the
-    compiled steps (:meth:`ETD2RK.advance_rows`; matrix products over the rows from :data:`COMPILED_ROWS_BELOW`
+    Row i is what ``dynamics[i].advance(states[i], x[i], u[i], t0[i], t1[i], winds[i])`` returns (same checks:
+    non-finite state, model error, ground contact located by linear interpolation within the ETD2RK step). Rows sharing
+    one ETD2RK stepper, in still air or with their winds ``packed`` (the model's ``pack_winds`` of the N winds), take
+    the compiled steps (:meth:`ETD2RK.advance_rows`; matrix products over the rows from :data:`COMPILED_ROWS_BELOW`
     rows on); rows whose model raised there, and all others, the Python period of each aircraft.
     """
     n = len(dynamics)
     first = dynamics[0]
-    stepper = _shared_stepper(dynamics)
+    stepper = _shared_stepper(dynamics, states)
     still = all(w is None for w in winds)
     if stepper is not None and (still or isinstance(packed, _k.BatchWind)):
         t0, t1 = np.asarray(t0, float), np.asarray(t1, float)
         first.check_span(t1 - t0)
         res = stepper.advance_rows(first.model, x, u, t0, t1, first.substeps, None if still else packed,
                                    over_rows=n >= COMPILED_ROWS_BELOW)
-        out = first.rows_outcome(res.x, res.t, res.status, res.steps, t0)
+        out = first.rows_outcome(res.x, res.t, res.status, res.steps, t0, states)
         for i in np.flatnonzero(res.status == _sk.ROW_MODEL_ERROR):  # the model's message: this row through model.rhs
-            again = dynamics[i].advance(x[i], u[i], float(t0[i]), float(t1[i]), winds[i])
+            again = dynamics[i].advance(states[i], x[i], u[i], float(t0[i]), float(t1[i]), winds[i])
             out.x[i], out.time_s[i], out.failure[i], out.nfev[i], out.failed[i] = again.x, again.time_s, again.failure, again.nfev, True
         return out
-    return BatchOutcome.of([d.advance(x[i], u[i], float(t0[i]), float(t1[i]), winds[i]) for i, d in enumerate(dynamics)])
+    return BatchOutcome.of([d.advance(states[i], x[i], u[i], float(t0[i]), float(t1[i]), winds[i]) for i, d in enumerate(dynamics)])
 
 
 @single_blas_thread
-def advance_period(dynamics: Sequence[FlightDynamics], x: np.ndarray, applied: np.ndarray, command: np.ndarray, k: np.ndarray,
-                   winds, packed=None) -> PeriodResult:
+def advance_period(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState], x: np.ndarray, applied: np.ndarray,
+                   command: np.ndarray, k: np.ndarray, winds, packed=None) -> PeriodResult:
     """One control period of N aircraft: rate limits from the ``applied`` towards the ``command`` controls (N, 4)
     [N, rad], the integration of period ``k[i]`` (N,) int of row i, [k dt, (k + 1) dt] [s] with the control period
     ``dt`` of the dynamics, and the measurements of the states reached.
 
-    ``dynamics[i]`` flies row i (after :meth:`FlightDynamics.start` of its episode; the rate limits and outputs are
-    those of ``dynamics[0]``, shared by forks); ``winds`` the N wind fields, ``packed`` the same packed by the
-    model's ``pack_winds`` (or None). Rows flown about one trim with packed winds take one compiled call
-    (:func:`flexsim.sim._step_kernels.period_rows`); a model error in a row, other integrators or winds that cannot
-    be packed take :meth:`FlightDynamics.rate_limit`, :func:`advance_rows` and :meth:`FlightDynamics.measure_batch`,
-    the same arithmetic.
+    ``dynamics[i]`` flies row i from its integration state ``states[i]`` (:meth:`FlightDynamics.start` of its episode;
+    those of the next period: ``outcome.states``; the rate limits and outputs are those of ``dynamics[0]``);
+    ``winds`` the N wind fields, ``packed`` the same packed by the model's ``pack_winds`` (or None). Rows flown about
+    one trim with packed winds take one compiled call (:func:`flexsim.sim._step_kernels.period_rows`); a model error
+    in a row, other integrators or winds that cannot be packed take :meth:`FlightDynamics.rate_limit`,
+    :func:`advance_rows` and :meth:`FlightDynamics.measure_batch`, the same arithmetic.
     """
     first = dynamics[0]
     m = len(dynamics)
-    stepper = _shared_stepper(dynamics)
+    stepper = _shared_stepper(dynamics, states)
     if stepper is not None and isinstance(packed, _k.BatchWind):
         still = winds[0] is None if m == 1 else all(w is None for w in winds)
         out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
                             np.empty(m, np.int64), np.empty((m, first.n_measurements)))
         start = _sk.PeriodStart(x, applied, command, first.rate_step, k, first.dt)
-        _sk.period_rows(*first.model.kernel_data, *packed, *first.step_data, *first.measure_data, *start,
-                        _ms.WIND_STILL if still else _ms.WIND_PACKED, m >= COMPILED_ROWS_BELOW, *out)
+        mode = _PERIOD_MODES[still, m >= COMPILED_ROWS_BELOW]
+        _sk.period_rows(*_sk.period_args(first.model.kernel_data, packed, states[0].step_data, first.measure_data, start, mode, out))
         stopped = np.count_nonzero(out.status)
         if not stopped or not np.count_nonzero(out.status == _sk.ROW_MODEL_ERROR):
-            return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None), out.u,
-                                MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))
+            return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None, states),
+                                out.u, MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))
     t0, t1 = k * first.dt, (k + 1) * first.dt
     u = first.rate_limit(applied, command)
-    outcome = advance_rows(dynamics, x, u, t0, t1, winds, packed=packed)
+    outcome = advance_rows(dynamics, states, x, u, t0, t1, winds, packed=packed)
     return PeriodResult(outcome, u, first.measure_batch(outcome.x, outcome.time_s, winds, packed))
 
 

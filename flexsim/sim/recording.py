@@ -130,12 +130,24 @@ class LogSink:
         t, x, u = t[keep], x[keep], u[keep]
         cols = out.series(out.signal_names, t, x, u, self.wind)  # all samples at once
         signals = np.column_stack([cols[n] for n in out.signal_names])
-        for k, (tk, xk, uk) in enumerate(zip(t, x, u)):
-            self._release(float(tk))
-            pos, eul = out.position_euler(xk)
-            self._writer.write(float(tk), position_m=pos, euler_rad=eul, state=xk, controls=uk, signals=signals[k],
-                               structure=out.structure(xk))
-            self._last_ns = round(float(tk) * 1e9)
+        lay = out.model.layout
+        if lay.rigid:
+            pos, eul = x[:, lay.position], x[:, lay.euler]
+        else:
+            pose = [out.position_euler(xk) for xk in x]
+            pos, eul = np.array([p for p, _ in pose]), np.array([e for _, e in pose])
+        nodes = out.structure_series(x)
+        start = 0
+        while start < len(t):  # the events due up to a sample go before it (as sample by sample)
+            self._release(float(t[start]))
+            end = len(t)
+            if self._pending:
+                end = max(start + 1, int(np.searchsorted(t, self._pending[0][0], side="left")))
+            rows = slice(start, end)
+            self._writer.write_samples(t[rows], position_m=pos[rows], euler_rad=eul[rows], state=x[rows], controls=u[rows],
+                                       signals=signals[rows], structure={name: v[rows] for name, v in nodes.items()})
+            self._last_ns = round(float(t[end - 1]) * 1e9)
+            start = end
 
     def event(self, t: float, text: str, level: str = "info") -> None:
         """Log an event at sim time t [s] (``level``: info, warning or error; errors are flushed at once)."""

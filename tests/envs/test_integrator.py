@@ -27,7 +27,7 @@ import pytest
 from flexsim import envs
 from flexsim.sim.fixed_step import ETD2RK
 from flexsim.sim import IntegratorSettings
-from flexsim.sim.periods import check_period_settings, period_atol
+from flexsim.sim.periods import IntegrationState, check_period_settings, period_atol
 from flexsim.sim.simulate import default_method
 
 
@@ -84,7 +84,7 @@ def test_crash_located_within_the_period(monkeypatch):
     env, _ = _level_hold(aero="quasi-steady", integrator=envs.IntegratorSettings(method="ETD2RK", max_step_s=0.005))
     dyn = env.unwrapped.dynamics
     n = dyn.layout.n_states
-    dyn._stepper = ETD2RK(np.zeros((n, n)), dyn.dt / dyn.substeps)
+    state = IntegrationState(stepper=ETD2RK(np.zeros((n, n)), dyn.dt / dyn.substeps))
     z = dyn.layout.position.start + 2
     sink = np.zeros(n)
     sink[z] = 10.0  # down-rate [m/s]
@@ -92,9 +92,9 @@ def test_crash_located_within_the_period(monkeypatch):
     monkeypatch.setattr(type(dyn.model), "rhs", lambda self, t, x, u, wind=None: sink)
     x = np.zeros(n)
     x[z] = -0.27
-    first = dyn.advance(x, np.zeros(4), 0.0, 0.02)
+    first = dyn.advance(state, x, np.zeros(4), 0.0, 0.02)
     assert not first.crashed and first.x[z] == pytest.approx(-0.07, abs=1e-12) and first.nfev == 8
-    second = dyn.advance(first.x, np.zeros(4), 0.02, 0.04)
+    second = dyn.advance(first.state, first.x, np.zeros(4), 0.02, 0.04)
     assert second.crashed and second.failure == ""
     assert second.time_s == pytest.approx(0.027, abs=1e-12)
     assert second.x[z] == pytest.approx(0.0, abs=1e-12)
@@ -105,18 +105,19 @@ def test_crash_located_within_the_period(monkeypatch):
 def test_non_finite_state_and_model_error_are_reported(monkeypatch):
     env, info = _level_hold(integrator=envs.IntegratorSettings(method="ETD2RK", max_step_s=0.005))
     dyn = env.unwrapped.dynamics
+    state = env.unwrapped._batch.states[0]
     x0, u0 = env.unwrapped.state, env.unwrapped.applied_controls
     h = dyn.dt / dyn.substeps
     rhs = type(dyn.model).rhs
     monkeypatch.setattr(type(dyn.model), "rhs",
                         lambda self, t, x, u, wind=None: rhs(self, t, x, u, wind) if t < 2.5 * h else np.full_like(x, np.nan))
-    out = dyn.advance(x0, u0, 0.0, dyn.dt)
+    out = dyn.advance(state, x0, u0, 0.0, dyn.dt)
     assert out.failure == "non-finite state: ETD2RK step 3 of 4 from t = 0.01 s"
     assert out.time_s == pytest.approx(2 * h, abs=1e-15) and np.all(np.isfinite(out.x)) and out.nfev == 6
     assert not out.crashed
     monkeypatch.undo()
     with pytest.raises(ValueError, match=r"t1 - t0 = 0\.01 s: ETD2RK steps whole control periods, must be dt = 0\.02 s"):
-        dyn.advance(x0, u0, 0.0, 0.01)
+        dyn.advance(state, x0, u0, 0.0, 0.01)
     env.close()
     env = gym.make("FlexSim/GTM-LevelHold-v0", turbulence="light")
     _, info = env.reset(seed=0)

@@ -18,6 +18,8 @@ Checks:
   a ValueError naming the field.
 """
 
+import copy
+
 import gymnasium as gym
 import numpy as np
 import pytest
@@ -28,9 +30,9 @@ from flexsim.sim import periods
 from flexsim.sim.fixed_step import ETD2RK
 
 
-def advance_batch(dynamics, x, u, t0, t1, winds):
+def advance_batch(dynamics, states, x, u, t0, t1, winds):
     """:func:`flexsim.sim.periods.advance_rows` as one StepOutcome per row."""
-    out = periods.advance_rows(dynamics, x, u, t0, t1, winds)
+    out = periods.advance_rows(dynamics, states, x, u, t0, t1, winds)
     return [out.row(i) for i in range(len(dynamics))]
 
 
@@ -132,7 +134,8 @@ def test_disabled_autoreset_needs_a_masked_reset():
 def test_batched_failures_equal_the_single_aircraft_outcomes():
     venv = envs.vector.LevelHoldVectorEnv(3, aero="quasi-steady", integrator=envs.IntegratorSettings(method="ETD2RK", max_step_s=0.005))
     venv.reset(seed=0)
-    dyns = [e.dynamics for e in venv.envs]
+    # one FlightDynamics per row, each with its own stand-in model (shallow copies: shared caches)
+    dyns = [copy.copy(venv.envs[0].dynamics) for _ in venv.envs]
     n = dyns[0].layout.n_states
     z = dyns[0].layout.position.start + 2
     stepper = ETD2RK(np.zeros((n, n)), dyns[0].dt / dyns[0].substeps)
@@ -153,14 +156,14 @@ def test_batched_failures_equal_the_single_aircraft_outcomes():
               Model(error)]
     for dyn, model in zip(dyns, models):
         dyn.model = model
-        dyn._stepper = stepper
+    states = [periods.IntegrationState(stepper=stepper) for _ in dyns]
     x = np.zeros((3, n))
     x[:, z] = -0.07
     u = np.zeros((3, 4))
     t0, t1 = np.zeros(3), np.full(3, dyns[0].dt)
-    batch = advance_batch(dyns, x, u, t0, t1, [None] * 3)
+    batch = advance_batch(dyns, states, x, u, t0, t1, [None] * 3)
     for i, dyn in enumerate(dyns):
-        alone = dyn.advance(x[i], u[i], 0.0, dyn.dt)
+        alone = dyn.advance(states[i], x[i], u[i], 0.0, dyn.dt)
         assert (batch[i].crashed, batch[i].failure, batch[i].nfev) == (alone.crashed, alone.failure, alone.nfev)
         assert batch[i].time_s == pytest.approx(alone.time_s, abs=1e-15)
         np.testing.assert_allclose(batch[i].x, alone.x, atol=1e-15)
@@ -181,7 +184,7 @@ def test_bad_input_is_named():
     with pytest.raises(ValueError, match="num_envs = 0: must be an integer >= 1"):
         envs.vector.LevelHoldVectorEnv(0)
     with pytest.raises(ValueError, match="dynamics: was built with aero = 'quasi-steady', this env has aero = 'unsteady'"):
-        envs.LevelHoldEnv(dynamics=venv.envs[0].dynamics.fork())
+        envs.LevelHoldEnv(dynamics=venv.envs[0].dynamics)
     venv.close()
 
 
@@ -192,6 +195,7 @@ def test_compiled_rows_report_as_the_single_aircraft_advance():
     venv = envs.vector.LevelHoldVectorEnv(3, turbulence="none")  # unsteady aero: ETD2RK
     venv.reset(seed=0)
     dyns = [e.dynamics for e in venv.envs]
+    states = [venv._batch.states[i] for i in range(3)]
     lay = dyns[0].layout
     x = np.array([e.state for e in venv.envs])
     x[0, lay.position.start + 2] = -0.05  # 5 cm above the ground, 0.3 rad nose down: ground within the first substep
@@ -199,10 +203,10 @@ def test_compiled_rows_report_as_the_single_aircraft_advance():
     x[1, lay.position.start + 2] = -30_000.0  # above the ISA range of the model
     u = np.array([e.applied_controls for e in venv.envs])
     t0, t1 = np.zeros(3), np.full(3, dyns[0].dt)
-    batch = advance_batch(dyns, x, u, t0, t1, [None] * 3)
+    batch = advance_batch(dyns, states, x, u, t0, t1, [None] * 3)
     assert periods.COMPILED_ROWS_BELOW > 3
     for i, dyn in enumerate(dyns):
-        alone = dyn.advance(x[i], u[i], 0.0, dyn.dt)
+        alone = dyn.advance(states[i], x[i], u[i], 0.0, dyn.dt)
         assert (batch[i].crashed, batch[i].failure, batch[i].nfev) == (alone.crashed, alone.failure, alone.nfev), i
         assert batch[i].time_s == pytest.approx(alone.time_s, abs=1e-15)
         np.testing.assert_allclose(batch[i].x, alone.x, rtol=1e-12, atol=1e-12)

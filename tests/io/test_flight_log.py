@@ -369,3 +369,64 @@ def test_reader_rejects_an_mcap_file_that_is_not_a_flexsim_log(tmp_path):
 def test_reader_raises_file_not_found_for_a_missing_file(tmp_path):
     with pytest.raises(FileNotFoundError, match="nothing.mcap"):
         read_flight_log(tmp_path / "nothing.mcap")
+
+
+def _batched(samples):
+    """The keyword arguments of FlightLogWriter.write_samples for a list of write() samples."""
+    return dict(t_s=[s["t_s"] for s in samples], **{key: np.array([s[key] for s in samples]) for key in
+                                                       ("position_m", "euler_rad", "state", "controls", "signals")},
+                structure={name: np.array([s["structure"][name] for s in samples]) for name in TOPOLOGY})
+
+
+def test_batched_samples_write_the_bytes_of_single_samples_and_of_protobuf(tmp_path):
+    """write_samples in batches gives the file that write() sample by sample gives, byte for byte, with the messages
+    appended directly (flexsim.io._wire.Messages) or through mcap's Writer.add_message; every message equals
+    protobuf's own serialisation of its decoded content (the direct encoding of the state, pose and point-cloud
+    messages), including a sample at t = 0 (no time field, an empty timestamp) and zero entries (left out by proto3)."""
+    samples = _random_samples(40)
+    samples[0]["position_m"][:] = 0.0
+    samples[0]["euler_rad"][:] = 0.0  # a pose of zeros but w (the identity rotation)
+    samples[1]["state"][2] = -0.0
+    single = tmp_path / "single.mcap"
+    _write_log(single, samples, events=[(0.05, "note")])
+    for fast in (True, False):
+        batched = tmp_path / f"batched-{fast}.mcap"
+        with _writer(batched) as writer:
+            writer._messages.fast = fast and writer._messages.fast
+            writer.write_samples(**_batched(samples[:7]))
+            writer.write_samples(**_batched(samples[7:8]))
+            writer.write_samples(**_batched(samples[8:]))
+            writer.event(0.05, "note")
+        assert batched.read_bytes() == single.read_bytes(), fast
+    from mcap.reader import make_reader
+    from foxglove_schemas_protobuf.FrameTransform_pb2 import FrameTransform
+    from foxglove_schemas_protobuf.PointCloud_pb2 import PointCloud
+    kinds = {"/tf": FrameTransform, "/aircraft/state": flight_log.AircraftState}
+    seen = set()
+    with open(single, "rb") as f:
+        for _, channel, message in make_reader(f).iter_messages():
+            kind = kinds.get(channel.topic, PointCloud if channel.topic.startswith("/structure/") else None)
+            if kind is not None:
+                decoded = kind()
+                decoded.ParseFromString(message.data)
+                assert decoded.SerializeToString() == message.data, channel.topic
+                seen.add(channel.topic)
+    assert seen == {"/tf", "/aircraft/state", "/structure/right_wing", "/structure/fuselage"}
+
+
+def test_batched_samples_are_checked_before_any_is_written(tmp_path):
+    samples = _random_samples(5)
+    samples[3]["signals"][1] = math.nan
+    with _writer(tmp_path / "bad.mcap") as writer:
+        with pytest.raises(ValueError, match=r"signals: values must be finite, got signals\[1\] \('tip_deflection_right_wing_m'\)"):
+            writer.write_samples(**_batched(samples))
+        batch = _batched(samples[:3])
+        batch["t_s"][2] = batch["t_s"][1]
+        with pytest.raises(ValueError, match="t_s: simulation time must increase strictly"):
+            writer.write_samples(**batch)
+        batch = _batched(samples[:3])
+        batch["structure"]["fuselage"] = batch["structure"]["fuselage"][:, :2]
+        with pytest.raises(ValueError, match=r"structure\['fuselage'\]: expected shape \(3, 3, 3\), got shape \(3, 2, 3\)"):
+            writer.write_samples(**batch)
+        writer.write_samples(**_batched(samples[:3]))  # nothing of the refused batches was written
+    assert read_flight_log(tmp_path / "bad.mcap").t.tolist() == [0.0, 0.01, 0.02]

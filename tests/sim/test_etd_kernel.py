@@ -1,5 +1,5 @@
-"""The compiled ETD2RK steps (flexsim.sim._step_kernels.etd2rk_run / etd2rk_rows via ETD2RK.run / advance_rows) against the
-numpy ETD2RK.step with the model's right-hand side.
+"""The compiled ETD2RK step (flexsim.sim._step_kernels.etd2rk_rows via ETD2RK.run / advance_rows, and its stages via
+ETD2RK.step) against the numpy transcription of the method (tests/sim/etd2rk_reference.py) with the model's right-hand side.
 
 Invariant: the same arithmetic (two right-hand sides and the matrix-vector products of ETD2RK.step per step), so the
 compiled steps equal the Python steps to rounding: 1e-11 relative to the largest magnitude of each group of the state
@@ -7,9 +7,9 @@ layout (positions, Euler angles, bending, torsion, velocities, rates, inflow) ov
 (252 states) through a 1-cos gust with a linear elevator ramp (measured: states 1.4e-12, derivatives 4.4e-12, in
 the torsion rates; the compiled products sum in another (vectorised) order than BLAS, and the stiff inflow and
 structural terms amplify that rounding; 0.0 while both called BLAS. Per entry, the lateral states of this symmetric
-case are rounding noise, ~1e-11 m, whose digits depend on that order). The dense variant (etd2rk_run_dense) takes the same steps bit for bit and its
+case are rounding noise, ~1e-11 m, whose digits depend on that order). A run with the dense output takes the same steps bit for bit and its
 mean second derivatives equal step_accelerations' to 1e-12 of their largest magnitude (measured 3e-15). Rows of advance_rows
-(the products of etd2rk_run) equal ETD2RK.step row by row (own controls and winds; 1e-12, absolute below 1 SI unit) and
+(the products of the run) equal the reference step row by row (own controls and winds; 1e-12, absolute below 1 SI unit) and
 FlightDynamics' semantics for the ground (linear interpolation within the step), a non-finite state (the state
 before the step) and a model error (altitude outside the ISA range: the state at which rhs fails).
 
@@ -37,6 +37,7 @@ from flexsim.sim.fixed_step import ETD2RK, step_accelerations
 from flexsim.sim.run_settings import EventSettings, OutputSettings
 from flexsim.sim.simulate import RELINEARISE_DRIFT, IntegratorSettings, simulate
 from flexsim.trim import SteadyManoeuvre, trim
+from tests.sim.etd2rk_reference import reference_step
 
 
 @pytest.fixture(scope="module")
@@ -82,7 +83,7 @@ def test_compiled_run_equals_the_numpy_steps(gtm):
     x, t, k1 = point.x.copy(), 0.0, f0
     xs, fs, ts = [x], [f0], [0.0]
     for _ in range(n):
-        x = stepper.step(lambda tt, xx: model.rhs(tt, xx, u_of(tt), gust), t, x, k1=k1)
+        x = reference_step(stepper, lambda tt, xx: model.rhs(tt, xx, u_of(tt), gust), t, x, k1=k1)
         t += h
         k1 = model.rhs(t, x, u_of(t), gust)
         xs.append(x), fs.append(k1), ts.append(t)
@@ -127,14 +128,14 @@ def test_compiled_rows_equal_the_numpy_steps_and_report_like_the_environments(gt
     for r in (0, 1):
         xr = x[r]
         for i in range(k):
-            xr = stepper.step(model.rhs, 1.0 + i * h, xr, (u[r], winds[r]))
+            xr = reference_step(stepper, model.rhs, 1.0 + i * h, xr, (u[r], winds[r]))
         # the run's products (another summation order than numpy's): rounding only, 1e-12 relative above 1 SI unit and
         # absolute below (at the trim most entries are rounding noise of ~1e-16)
         assert _close(out.x[r][None, :], xr[None, :], floor=1.0) <= 1e-12
         assert out.t[r] == 1.0 + k * h and out.steps[r] == k
     xr, t = x[2], 1.0
     for i in range(1, k + 1):
-        x_next = stepper.step(model.rhs, t, xr, (u[2], None))
+        x_next = reference_step(stepper, model.rhs, t, xr, (u[2], None))
         if x_next[z] >= 0.0 > xr[z]:
             s = xr[z] / (xr[z] - x_next[z])
             break
@@ -150,8 +151,8 @@ def test_compiled_rows_equal_the_numpy_steps_and_report_like_the_environments(gt
 
 
 def test_rows_as_matrix_products_equal_the_rows_one_by_one(gtm):
-    """etd2rk_rows_gemm (the stages of all rows at once, products as GEMMs over the rows: the batched environments)
-    gives etd2rk_rows' status, steps and times exactly and its states to rounding of the products (1e-12 of each
+    """etd2rk_rows with over_rows (products as GEMMs over the rows: the batched environments) gives the status, steps
+    and times of the products row by row exactly and its states to rounding of the products (1e-12 of each
     column's largest entry), for normal rows, a gust, a ground crossing and two model errors."""
     model, point, jac, gust = gtm
     h, k = 0.005, 4
@@ -167,7 +168,7 @@ def test_rows_as_matrix_products_equal_the_rows_one_by_one(gtm):
     x[5, model.layout.omega.start] = 0.05
     winds = model.pack_winds([None, gust, None, None, gust, None])
     outs = []
-    for over_rows in (False, True):  # etd2rk_rows, etd2rk_rows_gemm
+    for over_rows in (False, True):
         res = stepper.advance_rows(model, x, u, np.full(6, 1.0), np.full(6, 1.0 + k * h), k, winds, over_rows=over_rows)
         outs.append((res.x, res.t, res.status, res.steps))
     (xa, ta, sa, na), (xb, tb, sb, nb) = outs

@@ -52,29 +52,28 @@ def three():
     dyn = FlightDynamics(AircraftModel(load_aircraft("gtm"), aero="unsteady"), IntegratorSettings(), ActuatorRates(), 0.02)
     manoeuvre = SteadyManoeuvre(speed_m_s=230.0, altitude_m=9144.0)
     point = dyn.trim(manoeuvre)
-    dyns = [dyn] + [dyn.fork() for _ in range(2)]
-    for d in dyns:
-        d.start(manoeuvre)
+    dyns = [dyn] * 3
+    states = [dyn.start(manoeuvre) for _ in range(3)]
     rng = np.random.default_rng(1)
     x = np.repeat(point.x[None, :], 3, axis=0)
     x[:, dyn.layout.omega] += rng.uniform(-0.02, 0.02, (3, 3))
     applied = np.repeat(point.u[None, :], 3, axis=0)
     command = applied * (1.0 + rng.uniform(-0.5, 0.5, (3, 4)))
-    return dyns, x, applied, command
+    return dyns, states, x, applied, command
 
 
 @pytest.mark.parametrize("rows_below", [periods.COMPILED_ROWS_BELOW, 2])
 def test_one_compiled_call_equals_the_separate_calls(three, rows_below, monkeypatch):
     monkeypatch.setattr(periods, "COMPILED_ROWS_BELOW", rows_below)
-    dyns, x, applied, command = three
+    dyns, states, x, applied, command = three
     dyn = dyns[0]
     k = np.full(3, 20)  # the period [0.4, 0.42] s
     t0, t1 = k * dyn.dt, (k + 1) * dyn.dt
     winds = [None] * 3
-    one = advance_period(dyns, x, applied, command, k, winds, dyn.model.pack_winds(winds))
+    one = advance_period(dyns, states, x, applied, command, k, winds, dyn.model.pack_winds(winds))
     u = dyn.rate_limit(applied, command)
     np.testing.assert_array_equal(one.u, u)
-    separate = advance_rows(dyns, x, u, t0, t1, winds)
+    separate = advance_rows(dyns, states, x, u, t0, t1, winds)
     meas = dyn.measure_batch(separate.x, separate.time_s, winds)
     tol = 0.0 if rows_below > 3 else 1e-12
     np.testing.assert_allclose(one.outcome.x, separate.x, rtol=tol, atol=0.0)
