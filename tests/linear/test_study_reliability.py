@@ -154,3 +154,69 @@ def test_chain_length_cuts_chains_the_same_way_everywhere(tmp_path, fake):
         assert run_study(CASES, scheduler=cluster.scheduler_address, progress=False, chain_length=2) == serial
     with pytest.raises(ValueError, match="chain_length = 0: must be an integer >= 1"):
         run_study(CASES, chain_length=0)
+
+
+def _children(pid: int) -> set[int]:
+    """Live child processes of ``pid`` (Linux /proc)."""
+    kids = set()
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                status = open(f"/proc/{entry}/status").read()
+            except OSError:
+                continue
+            fields = dict(line.split(":\t", 1) for line in status.splitlines() if ":\t" in line)
+            if fields.get("PPid", "").strip() == str(pid) and not fields.get("State", "").startswith("Z"):
+                kids.add(int(entry))
+    return kids
+
+
+def _alive(pid: int) -> bool:
+    try:
+        return not open(f"/proc/{pid}/status").read().split("State:\t", 1)[1].startswith("Z")
+    except (OSError, IndexError):
+        return False
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads child processes from /proc")
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
+def test_workers_end_with_their_parent(tmp_path, sig):
+    """SIGTERM to a study's process (as `flexsim flutter --workers 2` installs it: raised as Terminated) stops its
+    worker processes before it exits with 128 + 15; after SIGKILL, which the parent cannot handle, the kernel ends
+    the workers (PR_SET_PDEATHSIG). Either way no worker is left running 10 s later."""
+    script = textwrap.dedent(f"""
+        import sys, time
+        sys.path.insert(0, {os.getcwd()!r})
+        from tests.linear.test_study_reliability import CASES
+        from flexsim.cli.main import Terminated, _end_on_signals
+        from flexsim.linear import study
+        def slow(case, mach_guess=None):
+            time.sleep(0.4)
+            return {{"model": case.model, "altitude_m": case.altitude_m, "turn_radius_m": case.turn_radius_m,
+                     "climb_angle_deg": 0.0, "mach_min": 0.5, "mach_max": 0.95, "aircraft": "gtm",
+                     "structural_damping": None, "mach": 0.6, "omega_rad_s": 1.0}}, 0.4
+        study.run_point = slow
+        study._kernels_cached = lambda: True
+        _end_on_signals()
+        rec = study.StudyRecord({str(tmp_path / "t.jsonl")!r})
+        try:
+            study.run_study(CASES * 20, workers=2, record=rec, progress=False)
+        except Terminated as exc:
+            print("terminated", flush=True)
+            sys.exit(128 + exc.signum)
+    """)
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    record = tmp_path / "t.jsonl"
+    deadline = time.monotonic() + 120.0
+    while time.monotonic() < deadline and not (record.exists() and record.read_text().count("\n") >= 2):
+        time.sleep(0.1)
+    workers = _children(proc.pid)
+    assert len(workers) >= 2, f"workers {workers}; stderr so far: {proc.stderr.read() if proc.poll() is not None else ''}"
+    proc.send_signal(sig)
+    out, err = proc.communicate(timeout=30)
+    if sig == signal.SIGTERM:
+        assert proc.returncode == 128 + signal.SIGTERM and "terminated" in out, (proc.returncode, out, err)
+    deadline = time.monotonic() + 10.0
+    while time.monotonic() < deadline and any(_alive(p) for p in workers):
+        time.sleep(0.1)
+    assert not [p for p in workers if _alive(p)], f"workers still running after {sig.name} to their parent"
