@@ -38,7 +38,7 @@ from scipy.optimize import brentq
 
 from flexsim._threads import single_blas_thread
 from flexsim.model.jacobian import jacobian
-from flexsim.model.aircraft_model import AircraftModel, Wind
+from flexsim.model.aircraft_model import AircraftModel, Wind, check_model
 from flexsim.sim.controls import ControlSchedule, Controls
 from flexsim.sim.fixed_step import ETD2RKSolver
 from flexsim.sim.compiled_run import COMPILED_CHUNK_S, RELINEARISE_DRIFT, compiled_wind, integrate_compiled
@@ -460,6 +460,7 @@ def simulate(
     ValueError, FileNotFoundError
         Bad arguments (the message names the argument, its value and what is allowed).
     """
+    check_model(model)
     x0, u_trim = _initial(model, initial)
     if not (isinstance(t_end_s, (int, float)) and math.isfinite(t_end_s) and t_end_s > 0):
         raise ValueError(f"t_end_s = {t_end_s!r}: must be a finite number > 0 [s]")

@@ -25,7 +25,7 @@ from flexsim._arrays import readonly
 from flexsim._threads import single_blas_thread
 from flexsim.atmosphere import speed_of_sound
 from flexsim.errors import FlexsimError
-from flexsim.model.aircraft_model import AircraftModel, Variant
+from flexsim.model.aircraft_model import AircraftModel, Variant, check_model
 from flexsim.kinematics import dcm_321
 from flexsim.model.sensors import structural_sensors
 from flexsim.structure.mirror import TIE_RTOL
@@ -315,6 +315,7 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
     TrimError
         Naming the manoeuvre and either the residuals that did not vanish or the limiting quantity.
     """
+    check_model(model)
     prob = _Problem(model, manoeuvre)
     lay = model.layout
     z0 = np.zeros(6 + prob.n_el + (1 if manoeuvre.coordinated else 0))
