@@ -12,7 +12,8 @@ from dataclasses import replace
 
 from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.aircraft.toml_loader import load_aircraft
-from flexsim.cli.validation import CliError, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
+from flexsim.cli.validation import CliError, check_writable_dir, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
+from flexsim.io.output_paths import check_not_link, unique_names
 from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, flutter_table, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
 from flexsim.linear.study import PAPER_ALTITUDES_M
@@ -116,9 +117,14 @@ def _flutter(args: argparse.Namespace) -> int:
     if args.mode:  # the critical mode's recording: its path checked before the search
         from flexsim.linear.mode_animation import check_recording_path, record_critical_mode
 
+        check_not_link("--mode", args.mode)
         check_recording_path(args.mode, "--mode")
     if args.vg is not None and not str(args.vg).lower().endswith(".png"):
         raise CliError(f"--vg {args.vg!r}: must name a .png file")
+    if args.vg is not None:  # every PNG's path checked before the search: no link, a writable folder
+        for path in vg_paths(args.vg, list(args.altitudes or [])):
+            check_not_link("--vg", path)
+            check_writable_dir("--vg", str(path), path.parent if str(path.parent) else Path("."))
     if args.vg_points < 3:
         raise CliError(f"--vg-points = {args.vg_points}: must be an integer >= 3")
     if args.glide and args.climb_deg is not None:
@@ -247,15 +253,22 @@ def _vg(args: argparse.Namespace, shape: SteadyManoeuvre, keys: list[str]) -> li
     model = AircraftModel(load_aircraft(args.aircraft), aero=AeroOptions("quasi-steady", formulation=args.formulation),
                           structural_damping=args.structural_damping)
     out = []
-    target = Path(args.vg)
-    for h in args.altitudes:
+    for h, path in zip(args.altitudes, vg_paths(args.vg, args.altitudes)):
         man = _at(shape, h)
         rng = _search_range(model, h, shape, args)
         speeds = [m * speed_of_sound(h) for m in _linspace(rng.mach_min, rng.mach_max, args.vg_points)]
         d = vg_diagram(model, manoeuvre=man, speeds_m_s=speeds, models=keys)
-        path = target if len(args.altitudes) == 1 else target.with_name(f"{target.stem}_{h:.0f}m{target.suffix}")
         out.append((d, d.plot(path)))
     return out
+
+
+def vg_paths(vg: str, altitudes: list[float]) -> list[Path]:
+    """The PNG of each altitude's V-g diagram: ``--vg`` itself for one altitude, else ``STEM_<h>m.png`` per altitude,
+    distinct even for altitudes that print alike (9144 and 9144.4 m: ``_9144m`` and ``_9144m-2``)."""
+    target = Path(vg)
+    if len(altitudes) == 1:
+        return [target]
+    return unique_names([target.with_name(f"{target.stem}_{h:.0f}m{target.suffix}") for h in altitudes])
 
 
 def _linspace(lo: float, hi: float, n: int) -> list[float]:

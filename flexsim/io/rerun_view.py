@@ -34,6 +34,7 @@ import numpy as np
 import rerun as rr
 import rerun.blueprint as rrb
 
+from flexsim.io.output_paths import check_not_link
 from flexsim.io.flight_log import FlightLog, read_flight_log, viewer_pose
 from flexsim.io.vocabulary import quantity
 from flexsim.io.viewer import HEADLESS_HINT, ViewerUnavailableError, viewer_unavailable_reason
@@ -240,7 +241,7 @@ def log_to_recording(log: FlightLog | str | os.PathLike, *, rrd_path: str | os.P
     if spawn and connect is not None:
         raise ValueError(f"log_to_recording: spawn=True and connect={connect!r} both given; choose one viewer")
     if rrd_path is not None:
-        rrd_path = Path(rrd_path)
+        rrd_path = check_not_link("rrd_path", rrd_path)
         if rrd_path.suffix != ".rrd":
             raise ValueError(f"rrd_path: the suffix must be '.rrd', got {str(rrd_path)!r}")
         if not rrd_path.parent.is_dir():
