@@ -269,7 +269,8 @@ class StudyRecord:
             for line in self.path.read_text(encoding="utf-8", errors="replace").splitlines():
                 try:
                     row = json.loads(line)
-                    self.done[case_key(row)] = row
+                    key = row.pop("_case", None)  # the case as it was asked for (a row resolves e.g. formulation)
+                    self.done[key if isinstance(key, str) else case_key(row)] = row
                 except (ValueError, TypeError, AttributeError):
                     self.damaged_lines += 1
             if self.done and not resume:
@@ -279,11 +280,14 @@ class StudyRecord:
                 self.path.unlink()
             elif self.damaged_lines:
                 # rewrite without the partial line(s), so new points start on a clean line
-                self.path.write_text("".join(json.dumps(r, default=str) + "\n" for r in self.done.values()))
+                self.path.write_text("".join(json.dumps({**r, "_case": k}, default=str) + "\n" for k, r in self.done.items()))
         self._file = self.path.open("a", encoding="utf-8")
 
-    def append(self, row: dict) -> None:
-        self._file.write(json.dumps(row, default=str) + "\n")
+    def append(self, row: dict, case: StudyCase | None = None) -> None:
+        """Write ``row`` as one line, flushed and synced; with ``case``, the case's key too (``_case``), by which a
+        resumed study recognises the point (a row's own fields are resolved: ``formulation`` None becomes the
+        file's, so the row alone would not match its case and every point would be computed again)."""
+        self._file.write(json.dumps(row if case is None else {**row, "_case": case_key(case)}, default=str) + "\n")
         self._file.flush()
         os.fsync(self._file.fileno())
 
@@ -424,7 +428,7 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
     def finish(i: int, row: dict, seconds: float) -> None:
         rows[i] = row
         if record is not None:
-            record.append(row)
+            record.append(row, cases[i])
         bar.point(cases[i], row, seconds)
         if on_point is not None:
             on_point(cases[i], row, seconds)

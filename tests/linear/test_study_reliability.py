@@ -220,3 +220,30 @@ def test_workers_end_with_their_parent(tmp_path, sig):
     while time.monotonic() < deadline and any(_alive(p) for p in workers):
         time.sleep(0.1)
     assert not [p for p in workers if _alive(p)], f"workers still running after {sig.name} to their parent"
+
+
+def test_resume_recognises_points_whose_rows_resolve_the_case(tmp_path, monkeypatch):
+    """A real row resolves its case (formulation None -> the file's "physical"): the record keeps the case's key, so a
+    resumed study after a kill skips every finished point instead of computing it again and duplicating its line."""
+    calls = []
+
+    def resolving(case, mach_guess=None):
+        calls.append(case)
+        row = asdict(case)
+        row.update(formulation="physical", mach=0.6, omega_rad_s=40.0)
+        return row, 0.0
+
+    monkeypatch.setattr(study, "run_point", resolving)
+    cases = [StudyCase("gtm", "QS", 0.0, turn_radius_m=r) for r in (5000.0, 6000.0, 7000.0)]
+    assert all(c.formulation is None for c in cases)
+    rec = StudyRecord(tmp_path / "r.jsonl")
+    run_study(cases[:2], workers=1, record=rec, progress=False)
+    rec.close()  # as after a SIGKILL: two finished lines on disk
+    calls.clear()
+    rec = StudyRecord(tmp_path / "r.jsonl", resume=True)
+    assert len(rec.done) == 2
+    rows = run_study(cases, workers=1, record=rec, progress=False)
+    rec.close()
+    assert [c.turn_radius_m for c in calls] == [7000.0] and len(rows) == 3
+    lines = (tmp_path / "r.jsonl").read_text().splitlines()
+    assert len(lines) == 3 and len({json.loads(x)["turn_radius_m"] for x in lines}) == 3
