@@ -256,15 +256,25 @@ class StudyRecord:
     Raises
     ------
     FlexsimError
-        When the file already holds points and ``resume`` is False (finished work is never overwritten).
+        When the file already holds points and ``resume`` is False (finished work is never overwritten), or another
+        process is writing the same file (a lock ``<file>.lock`` beside it, held until :meth:`close`).
     """
 
     def __init__(self, path: str | Path, resume: bool = False) -> None:
-        from flexsim.errors import FlexsimError
-
         self.path = Path(path)
         self.done: dict[str, dict] = {}
         self.damaged_lines = 0
+        self._lock = _lock_beside(self.path)  # one study at a time per file: a second one would mix or lose rows
+        try:
+            self._read(resume)
+        except BaseException:
+            self.close()
+            raise
+
+    def _read(self, resume: bool) -> None:
+        from flexsim.errors import FlexsimError
+
+        self._file = None
         if self.path.exists():
             for line in self.path.read_text(encoding="utf-8", errors="replace").splitlines():
                 try:
@@ -292,7 +302,32 @@ class StudyRecord:
         os.fsync(self._file.fileno())
 
     def close(self) -> None:
-        self._file.close()
+        if self._file is not None:
+            self._file.close()
+        if self._lock is not None:
+            self._lock.close()  # releases the lock
+            self._lock = None
+
+
+def _lock_beside(path: Path):
+    """An exclusive lock on ``<path>.lock`` held by the returned open file (released when it is closed or the process
+    ends, even by SIGKILL); FlexsimError when another process holds it (POSIX ``flock``; elsewhere no lock)."""
+    from flexsim.errors import FlexsimError
+
+    try:
+        import fcntl
+    except ImportError:
+        return None
+    path.parent.mkdir(parents=True, exist_ok=True)
+    lock = open(path.with_name(path.name + ".lock"), "a")
+    try:
+        fcntl.flock(lock.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        lock.close()
+        raise FlexsimError(f"{path}: another study is writing it now (a second sweep into the same --out would mix "
+                           "its rows with that one's and overwrite its results); wait for it to finish, or give "
+                           "another --out") from None
+    return lock
 
 
 def _describe(case: StudyCase) -> str:

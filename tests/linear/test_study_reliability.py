@@ -247,3 +247,17 @@ def test_resume_recognises_points_whose_rows_resolve_the_case(tmp_path, monkeypa
     assert [c.turn_radius_m for c in calls] == [7000.0] and len(rows) == 3
     lines = (tmp_path / "r.jsonl").read_text().splitlines()
     assert len(lines) == 3 and len({json.loads(x)["turn_radius_m"] for x in lines}) == 3
+
+
+def test_two_studies_cannot_write_one_record_at_once(tmp_path):
+    """A second study into the same file while the first runs is refused (it would interleave its rows with the
+    first's and then overwrite the first's results); the lock goes with the first's close, or its process."""
+    first = StudyRecord(tmp_path / "flutter_turn.jsonl")
+    with pytest.raises(FlexsimError, match="another study is writing it now"):
+        StudyRecord(tmp_path / "flutter_turn.jsonl")
+    code = (f"import sys; sys.path.insert(0, {os.getcwd()!r}); from flexsim.linear.study import StudyRecord; "
+            f"StudyRecord({str(tmp_path / 'flutter_turn.jsonl')!r})")
+    other = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert other.returncode != 0 and "another study is writing it now" in other.stderr
+    first.close()
+    StudyRecord(tmp_path / "flutter_turn.jsonl").close()
