@@ -102,3 +102,19 @@ def test_a_second_flight_log_recorder_does_not_overwrite_the_first(tmp_path):
     with pytest.raises(FileExistsError, match="ep3.mcap"):
         FlightLogRecorder(gym.make("FlexSim/GTM-LevelHold-v1", aero="quasi-steady"), pattern)
     assert {p: p.read_bytes() for p in tmp_path.glob("agent*.mcap")} == first
+
+
+def test_vg_path_is_checked_before_the_search(tmp_path, capsys, monkeypatch):
+    """A --vg file in a folder that does not exist is refused before any flutter point is computed (the search used
+    to run to the end, and its table was then not printed)."""
+    from flexsim.cli.main import main
+    from flexsim.linear import study
+
+    def no_search(*args, **kwargs):
+        raise AssertionError("the search ran before the output path was checked")
+
+    monkeypatch.setattr(study, "run_point", no_search)
+    monkeypatch.setattr(study, "run_points", no_search)
+    assert main(["flutter", "goland_wing", "--altitudes", "0", "1000", "--models", "QS", "--workers", "1",
+                 "--vg", str(tmp_path / "missing" / "vg.png")]) == 2
+    assert "--vg" in capsys.readouterr().err
