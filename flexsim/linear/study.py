@@ -491,9 +491,16 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
             queues = _local_steps(cases, todo, [len(chains_all[chain_of[g[0]]]) for g in todo])
             n = max(1, min(workers or os.cpu_count() or 1, len(queues)))
             if queues and not _kernels_cached():  # compiled once here, then loaded by the workers (not once in each)
-                k = min(range(len(queues)), key=lambda k: _longest_first(cases, queues[k]))
-                run_here(queues[k].pop(0))
-                queues = [q for q in queues if q]
+                from flexsim.linear import _precompile
+
+                helper = _precompile.start() if n > 1 else None  # the p-k kernels on the other core meanwhile
+                try:
+                    k = min(range(len(queues)), key=lambda k: _longest_first(cases, queues[k]))
+                    run_here(queues[k].pop(0))
+                    queues = [q for q in queues if q]
+                finally:
+                    if helper is not None and helper.poll() is None:
+                        helper.terminate()
             bar.begin()  # after the compile: the bar's rate is that of the points
             if n == 1:
                 for queue in queues:
