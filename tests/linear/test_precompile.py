@@ -25,3 +25,10 @@ def test_group_signatures_are_those_the_search_compiles():
 def test_no_helper_when_the_group_is_cached(monkeypatch):
     monkeypatch.setattr("flexsim._numba_cache.is_cached", lambda *d: True)
     assert _precompile.start() is None
+
+
+def test_no_helper_without_an_idle_core(monkeypatch):
+    monkeypatch.setattr("flexsim._numba_cache.is_cached", lambda *d: False)
+    monkeypatch.setattr(os, "getloadavg", lambda: (8.0, 8.0, 8.0))
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    assert _precompile.start() is None
