@@ -17,7 +17,7 @@ from flexsim.io.output_paths import check_not_link, unique_names
 from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, flutter_table, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
 from flexsim.linear.study import PAPER_ALTITUDES_M
-from flexsim.linear.study import StudyCase, StudyRecord, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
+from flexsim.linear.study import StudyCase, StudyRecord, case_key, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.atmosphere import mach_to_true_airspeed, speed_of_sound
@@ -335,6 +335,12 @@ def _sweep(args: argparse.Namespace) -> int:
     for row, k in zip(rows, keys):
         row["settings"] = setting.label
         row["search_range"] = ranges[k].describe()
+    asked = {case_key(c) for c in cases}
+    earlier = [r for key, r in record.done.items() if key not in asked]
+    if earlier:  # points of an earlier sweep into this --out (resumed with other points): its results keep them
+        rows = rows + earlier
+        print(f"flexsim sweep: the results keep the {len(earlier)} points of the earlier sweep in {record.path} too",
+              file=sys.stderr)
     csv_path, json_path = write_results(rows, out, stem)
     png = plot_study(rows, kind, out / f"{stem}.png")
     figures = [png]

@@ -261,3 +261,24 @@ def test_two_studies_cannot_write_one_record_at_once(tmp_path):
     assert other.returncode != 0 and "another study is writing it now" in other.stderr
     first.close()
     StudyRecord(tmp_path / "flutter_turn.jsonl").close()
+
+
+def test_a_second_sweep_into_one_folder_keeps_the_first_ones_rows(tmp_path, fake, capsys, monkeypatch):
+    """`flexsim sweep --resume` into a folder with another altitude's points: the CSV and JSON written at the end
+    hold both sweeps' points (they held only the second's, though the record kept both). The figures are left out
+    (the stand-in points have no trim values to draw)."""
+    from flexsim.cli import flutter_commands
+    from flexsim.cli.main import main
+
+    monkeypatch.setattr(flutter_commands, "plot_study", lambda rows, kind, path: path)
+    monkeypatch.setattr(flutter_commands, "plot_trim", lambda rows, kind, path, altitude_m: path)
+
+    out = str(tmp_path / "study")
+    base = ["sweep", "--turn", "--models", "QS", "--radii-m", "5000", "6000", "--workers", "1", "--out", out,
+            "--mach-min", "0.5", "--mach-max", "0.95"]
+    assert main(base + ["--altitudes", "0"]) == 0
+    assert main(base + ["--altitudes", "3048", "--resume"]) == 0
+    rows = json.loads((tmp_path / "study" / "flutter_turn.json").read_text())
+    assert sorted({r["altitude_m"] for r in rows}) == [0.0, 3048.0] and len(rows) == 4
+    csv_lines = (tmp_path / "study" / "flutter_turn.csv").read_text().splitlines()
+    assert len(csv_lines) == 5
