@@ -702,6 +702,13 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         """Short title for renderings."""
         return type(self).__name__
 
+    def __reduce_ex__(self, protocol):
+        """Refused with a clear message: an environment holds compiled models, an integrator's state and open
+        resources that do not travel between processes; build one in each process instead."""
+        raise TypeError(f"{type(self).__name__} cannot be pickled (copied to another process or saved): make a new one "
+                        "there with gymnasium.make(id, **kwargs) - e.g. gymnasium's AsyncVectorEnv takes functions that make the "
+                        "environments, and FlexSimVectorEnv steps many episodes in one process")
+
     def close(self) -> None:
         if self._renderer is not None:
             self._renderer.close()

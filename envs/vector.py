@@ -248,6 +248,13 @@ class FlexSimVectorEnv(VectorEnv):
             return None
         return tuple(env.render() for env in self.envs)
 
+    def __reduce_ex__(self, protocol):
+        """Refused with a clear message: an environment holds compiled models, an integrator's state and open
+        resources that do not travel between processes; build one in each process instead."""
+        raise TypeError(f"{type(self).__name__} cannot be pickled (copied to another process or saved): make a new one "
+                        "there with gymnasium.make_vec(id, num_envs, ...) - e.g. gymnasium's AsyncVectorEnv takes functions that make the "
+                        "environments, and FlexSimVectorEnv steps many episodes in one process")
+
     def close_extras(self, **kwargs: Any) -> None:
         for env in self.envs:
             env.close()

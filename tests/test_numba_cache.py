@@ -136,3 +136,67 @@ def test_announce_compilation_says_it_once_on_a_compile_and_is_cached_sees_the_i
         flexsim_fn(2)  # a second compile: no second line
     assert stream.getvalue().count("\n") == 1 and "compiling" in stream.getvalue()
     assert is_cached(flexsim_fn)
+
+
+def _wait_idle(progress, timeout_s: float = 10.0) -> None:
+    import time
+
+    deadline = time.monotonic() + timeout_s
+    while progress._timer is not None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert progress._timer is None, "the progress timer did not end after the compiles"
+
+
+def test_compile_progress_moves_while_one_function_compiles(monkeypatch):
+    """A log gets the announcement once per process, then a line every LOG_INTERVAL_S while a compile runs (so that a
+    first run is never silent for long, even inside one large function), and the totals; a terminal gets one status
+    line, redrawn in place (at most 78 characters, so it never wraps), erased when the compiles end."""
+    import io
+    import time
+
+    from flexsim import _numba_cache as nc
+
+    monkeypatch.setattr(nc, "LOG_INTERVAL_S", 0.2)
+    monkeypatch.setattr(nc, "TTY_INTERVAL_S", 0.05)
+    log = io.StringIO()
+    progress = nc.CompileProgress(log, tty=False)
+    progress.start("flexsim._kernels.equations.rhs")
+    progress.start("flexsim._kernels.strips.strip_wind")
+    time.sleep(0.9)
+    progress.end()
+    progress.end()
+    _wait_idle(progress)
+    lines = log.getvalue().splitlines()
+    assert lines[0].startswith("flexsim: compiling the numerical kernels") and "cached for later runs" in lines[0]
+    status = [ln for ln in lines if ln.startswith("flexsim: compiling kernels:")]
+    assert len(status) >= 2 and "(now strip_wind)" in status[0]
+    assert lines[-1].startswith("flexsim: compiled 2 functions in")
+    progress.start("flexsim.sim._step_kernels.etd2rk_rows")  # another burst: no second announcement
+    progress.end()
+    _wait_idle(progress)
+    assert log.getvalue().count("compiling the numerical kernels") == 1
+
+    tty = io.StringIO()
+    progress = nc.CompileProgress(tty, tty=True)
+    progress.start("flexsim.linear._pk_kernels." + "a_very_long_kernel_name" * 4)
+    time.sleep(0.3)
+    progress.end()
+    _wait_idle(progress)
+    text = tty.getvalue()
+    assert "\n" not in text and text.count("\r\033[K") >= 3 and text.endswith("\r\033[K")
+    drawn = [part for part in text.split("\r\033[K") if part]
+    assert drawn and all(len(part) <= 78 for part in drawn) and "compiling kernels" in drawn[-1]
+
+
+def test_compile_progress_is_on_for_the_process():
+    """Importing flexsim's kernels turns the progress display on for the whole process (the CLI and the Python API),
+    unless FLEXSIM_COMPILE_PROGRESS=0."""
+    import os
+
+    import flexsim._kernels  # noqa: F401
+    from flexsim import _numba_cache as nc
+
+    if os.environ.get(nc.PROGRESS_ENV, "1") == "0":
+        assert nc._PROCESS_PROGRESS is None
+    else:
+        assert isinstance(nc._PROCESS_PROGRESS, nc.CompileProgress)

@@ -12,10 +12,11 @@ from dataclasses import replace
 
 from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.aircraft.toml_loader import load_aircraft
-from flexsim.cli.validation import CliError, flight_condition, in_user_words, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
+from flexsim.cli.validation import CliError, check_writable_dir, flight_condition, in_user_words, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
+from flexsim.io.output_paths import check_not_link, unique_names
 from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, flutter_table, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
-from flexsim.linear.study import StudyCase, StudyRecord, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
+from flexsim.linear.study import StudyCase, StudyRecord, case_key, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
 from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
@@ -170,9 +171,14 @@ def _flutter(args: argparse.Namespace) -> int:
     if args.mode:  # the critical mode's recording: its path checked before the search
         from flexsim.linear.mode_animation import check_recording_path, record_critical_mode
 
+        check_not_link("--mode", args.mode)
         check_recording_path(args.mode, "--mode")
     _check_vg_options(args)
     _check_replication(args)
+    if args.vg is not None:  # every PNG's path checked before the search: no link, a writable folder
+        for path in vg_paths(args.vg, list(args.altitudes or [])):
+            check_not_link("--vg", path)
+            check_writable_dir("--vg", str(path), path.parent if str(path.parent) else Path("."))
     if args.glide and args.climb_deg is not None:
         raise CliError("--glide, --climb-deg: a glide finds its own flight-path angle; give one of them")
     if args.speed_step_m_s is not None:
@@ -291,6 +297,10 @@ def _wind_tunnel(args: argparse.Namespace, keys: list[str]) -> int:
     _check_vg_options(args)
     altitudes = [0.0] if args.altitudes is None else args.altitudes
     check_altitudes(altitudes)
+    if args.vg is not None:  # every PNG's path checked before the search: no link, a writable folder
+        for path in vg_paths(args.vg, altitudes):
+            check_not_link("--vg", path)
+            check_writable_dir("--vg", str(path), path.parent if str(path.parent) else Path("."))
     aircraft = load_aircraft(args.aircraft)
     if args.components:
         aircraft = aircraft.subset(args.components)
@@ -347,14 +357,12 @@ def _tunnel_vg(args: argparse.Namespace, aircraft, altitudes: list[float], keys:
     """The V-g diagram of the clamped structure in the stream at every altitude, over --speed-range-m-s."""
     from flexsim.linear.vg import vg_diagram
 
-    lo, hi = args.speed_range_m_s
-    target = Path(args.vg)
+    lo, hi = args.speed_range_m_s if args.speed_range_m_s is not None else WIND_TUNNEL_SPEEDS_M_S
     out = []
-    for h in altitudes:
+    for h, path in zip(altitudes, vg_paths(args.vg, altitudes)):
         model = AircraftModel(aircraft, variant="restrained", aero=AeroOptions("quasi-steady"), gravity_m_s2=0.0,
                               altitude_m=h, restrained_velocity_m_s=[lo, 0.0, 0.0])
         d = vg_diagram(model, speeds_m_s=_linspace(lo, hi, args.vg_points), models=keys)
-        path = _vg_path(target, h, altitudes)
         out.append((d, d.plot(path)))
     return out
 
@@ -392,24 +400,22 @@ def _vg(args: argparse.Namespace, shape: SteadyManoeuvre, keys: list[str]) -> li
     model = AircraftModel(load_aircraft(args.aircraft), aero=AeroOptions("quasi-steady", formulation=args.formulation),
                           structural_damping=args.structural_damping)
     out = []
-    target = Path(args.vg)
-    for h in args.altitudes:
+    for h, path in zip(args.altitudes, vg_paths(args.vg, args.altitudes)):
         man = _at(shape, h)
         rng = _search_range(model, h, shape, args)
         speeds = [m * speed_of_sound(h) for m in _linspace(rng.mach_min, rng.mach_max, args.vg_points)]
         d = vg_diagram(model, manoeuvre=man, speeds_m_s=speeds, models=keys)
-        path = _vg_path(target, h, args.altitudes)
         out.append((d, d.plot(path)))
     return out
 
 
-def _vg_path(target: Path, altitude_m: float, altitudes: list[float]) -> Path:
-    """The V-g file of one altitude: ``target`` alone, else FILE_<H>m.png with H as precise as the altitudes need to
-    differ (9144 and 9144.4 m give two files, not one written twice)."""
+def vg_paths(vg: str, altitudes: list[float]) -> list[Path]:
+    """The PNG of each altitude's V-g diagram: ``--vg`` itself for one altitude, else ``STEM_<h>m.png`` per altitude,
+    distinct even for altitudes that print alike (9144 and 9144.4 m: ``_9144m`` and ``_9144m-2``)."""
+    target = Path(vg)
     if len(altitudes) == 1:
-        return target
-    digits = next((d for d in range(0, 7) if len({f"{h:.{d}f}" for h in altitudes}) == len(set(altitudes))), 6)
-    return target.with_name(f"{target.stem}_{altitude_m:.{digits}f}m{target.suffix}")
+        return [target]
+    return unique_names([target.with_name(f"{target.stem}_{h:.0f}m{target.suffix}") for h in altitudes])
 
 
 def _linspace(lo: float, hi: float, n: int) -> list[float]:
@@ -490,6 +496,12 @@ def _sweep(args: argparse.Namespace) -> int:
             row["error"] = in_user_words(row["error"])
         row["settings"] = setting.label
         row["search_range"] = ranges[k].describe()
+    asked = {case_key(c) for c in cases}
+    earlier = [r for key, r in record.done.items() if key not in asked]
+    if earlier:  # points of an earlier sweep into this --out (resumed with other points): its results keep them
+        rows = rows + earlier
+        print(f"flexsim sweep: the results keep the {len(earlier)} points of the earlier sweep in {record.path} too",
+              file=sys.stderr)
     csv_path, json_path = write_results(rows, out, stem)
     png = plot_study(rows, kind, out / f"{stem}.png")
     figures = [png]

@@ -27,7 +27,6 @@ from typing import Sequence
 
 import numpy as np
 
-from flexsim._numba_cache import announce_compilation
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import bundled_aircraft_names, load_aircraft
 from flexsim.cli.validation import CliError, SanitisedStream, in_user_words, check_count, check_mach, check_plot_path, json_text, printable
@@ -223,20 +222,53 @@ def _parser(command: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM or SIGHUP received: raised in the main thread, so that the command ends as on Ctrl-C (worker
+    processes stopped, finished points kept, files closed) instead of dying with its children left running."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _terminate(signum: int, frame) -> None:
+    raise Terminated(signum)
+
+
+def _end_on_signals() -> dict:
+    """Raise :class:`Terminated` on SIGTERM and SIGHUP (main thread only); returns the handlers it replaced."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+    old = {}
+    for name in ("SIGTERM", "SIGHUP"):
+        sig = getattr(signal, name, None)
+        if sig is not None and signal.getsignal(sig) in (signal.SIG_DFL, None):
+            old[sig] = signal.signal(sig, _terminate)
+    return old
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``flexsim`` command; returns the process exit code."""
+    import signal
+
     argv = sys.argv[1:] if argv is None else list(argv)
     parser = _parser(argv[0] if argv else None)
     args = parser.parse_args(argv)
     np.set_printoptions(precision=5)
     stdout = sys.stdout
     sys.stdout = SanitisedStream(stdout)  # names from files are printed with escape sequences shown, not run
+    handlers = _end_on_signals()
     try:
-        with announce_compilation():
-            return int(args.func(args))
+        return int(args.func(args))  # first compiles show their progress (flexsim._numba_cache.CompileProgress)
     except BrokenPipeError:  # output piped into e.g. `head`
         sys.stderr.close()
         return 0
+    except Terminated as exc:
+        print(f"flexsim {args.command}: terminated by {signal.Signals(exc.signum).name}", file=sys.stderr)
+        return 128 + exc.signum
     except KeyboardInterrupt:
         print(f"flexsim {args.command}: interrupted", file=sys.stderr)
         return 130
@@ -246,6 +278,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     finally:
         sys.stdout = stdout
+        for sig, handler in handlers.items():
+            signal.signal(sig, handler)
 
 
 #: Commands that leave nothing to finish at exit (they print; they open no file, log or pool that outlives them).

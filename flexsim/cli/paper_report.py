@@ -68,53 +68,111 @@ def mode_matches_paper(row: dict) -> bool:
 def _mode_text(row: dict) -> str:
     linear = [p for p in row.get("participation", []) if p["kind"] == "linear"]
     lead = f", largest linear {linear[0]['label']}" if linear else ""
-    flag = "" if mode_matches_paper(row) else "  [differs from the paper's]"
-    return f"{row['mode']}{lead}{flag}"  # the mode's name carries its symmetry
+    return f"{row['mode']}{lead}"  # the mode's name carries its symmetry
 
 
-_HEADER = (f"{'settings':<18} {'h [m]':>6} {'M_F [-]':>8} {'w_F [rad/s]':>11} {'theta [deg]':>11} {'T_e [kN]':>9} "
-           f"{'d_e [deg]':>9} {'w_tip [m]':>9} {'psi_tip [deg]':>13}  critical mode")
+#: Width of the text report [characters]: every line of :func:`flutter_report` fits a terminal this wide.
+REPORT_WIDTH = 100
+
+_HEAD = (f"{'':<18} {'h':>5} {'M_F':>7} {'w_F':>7} {'theta':>6} {'T_e':>6} {'d_e':>6} {'w_tip':>7} {'psi_tip':>7}  "
+         f"{'vs paper [%]':>12}",
+         f"{'settings':<18} {'[m]':>5} {'[-]':>7} {'[rad/s]':>7} {'[deg]':>6} {'[kN]':>6} {'[deg]':>6} {'[m]':>7} {'[deg]':>7}  "
+         f"{'M_F':>5} {'w_F':>6}")
+
+
+def _values(label: str, h: float, v: tuple) -> str:
+    """One table row: label, altitude and (M_F, w_F, theta, T_e, d_e, w_tip, psi_tip)."""
+    return (f"{label:<18} {h:5.0f} {v[0]:7.4f} {v[1]:7.3f} {v[2]:6.3f} {v[3]:6.2f} {v[4]:6.3f} {v[5]:7.4f} {v[6]:7.4f}")
+
+
+def _wrapped(lines: list[str], width: int = REPORT_WIDTH) -> list[str]:
+    """``lines`` with every line longer than ``width`` wrapped at spaces, continued with its own indent + 4."""
+    import textwrap
+
+    out = []
+    for line in lines:
+        if len(line) <= width:
+            out.append(line)
+            continue
+        indent = " " * (len(line) - len(line.lstrip()) + 4)
+        out += textwrap.wrap(line, width, subsequent_indent=indent, break_on_hyphens=False)
+    return out
+
+
+def _where(rows: list[tuple[float, str]], n_settings: int) -> str:
+    """Where a critical mode was found: its altitudes, and its settings unless all of them."""
+    hs = sorted({h for h, _ in rows})
+    labels = sorted({s for _, s in rows})
+    text = f"{', '.join(f'{h:.0f}' for h in hs)} m"
+    if len(labels) < n_settings or len(rows) < len(hs) * n_settings:
+        text += " (" + ", ".join(f"{h:.0f} m {s}" for h, s in rows) + ")" if len(labels) > 1 else f" ({labels[0]})"
+    return text
+
+
+def _span(values: list[float]) -> str:
+    lo, hi = min(values), max(values)
+    return f"{lo:+.1f} %" if abs(hi - lo) < 0.05 else f"{lo:+.1f} to {hi:+.1f} %"
 
 
 def flutter_report(rows: list[dict], settings: list[RunSettings], models: list[str]) -> tuple[list[str], dict]:
-    """Text lines and the JSON document of ``flexsim flutter`` (level flight, paper Tables 2-3).
+    """Text lines (at most :data:`REPORT_WIDTH` characters each) and the JSON document of ``flexsim flutter`` (level
+    flight, paper Tables 2-3).
 
-    Rows must carry a ``settings`` label (one of ``settings``' labels).
+    The text opens with a one-line summary (each model's flutter Mach against the paper's, in %, and how many rows
+    have the paper's critical mode), then per model a table of the flutter points with the paper's row below each
+    altitude and one column comparing M_F and w_F with the paper's, and the critical modes below the table. The
+    differences of every quantity are in the JSON rows' ``vs_paper_percent``. Rows must carry a ``settings`` label
+    (one of ``settings``' labels).
     """
     paper = {"QS": TABLE_QS, "US": TABLE_US, "FS": TABLE_US}
-    lines = ["Flutter in steady level flight: flexsim beside Tuzcu & Nguyen (2014) Tables 2-3 (the bundled GTM is notional:",
-             "structure estimated from public data, calibrated to Table 3, docs/calibration.md). Settings:"]
-    lines += [f"  {s.describe()}" for s in settings]
-    lines.append(f"  paper's critical mode: {PAPER_MODE} (Figs. 11, 16)")
+    keys = ("mach", "omega_rad_s", "theta_deg", "thrust_kN", "elevator_deg", "tip_deflection_m", "tip_twist_deg")
+    for row in rows:  # every quantity against the paper's row of the same model and altitude (JSON)
+        ref = {p[0]: p for p in paper.get(row["model"], ())}.get(row["altitude_m"])
+        if ref and "mach" in row:
+            row["vs_paper_percent"] = {k: 100 * (row[k] / ref[i + 1] - 1) for i, k in enumerate(keys)}
+    found = [r for r in rows if "mach" in r]
+    summary = []
+    for key in models:
+        d = [r["vs_paper_percent"]["mach"] for r in found if r["model"] == key and "vs_paper_percent" in r]
+        if d:
+            summary.append(f"{key} {_span(d)}")
+    n_mode = sum(mode_matches_paper(r) for r in found)
+    lines = [f"M_F vs the paper's: {', '.join(summary) or 'no flutter point'}; the paper's critical mode in "
+             f"{n_mode}/{len(found)} rows"]
+    lines += ["", "Flutter in steady level flight beside Tuzcu & Nguyen (2014) Tables 2-3; the bundled GTM is notional "
+              "(structure from public data, calibrated to Table 3: docs/calibration.md). Settings:"]
+    lines += [f"  {s.label}: aircraft {s.aircraft}, {s.formulation or 'the file' + chr(39) + 's'} force resolution, "
+              + ("true density" if s.linear_density_altitude_m is None else f"density of {s.linear_density_altitude_m:.0f} m")
+              for s in settings]
+    lines.append("  paper's critical mode: symmetric, fuselage bending 1 (q_f1) the largest linear (Figs. 11, 16)")
     searched: dict[tuple[float, float], list[float]] = {}
     for r in rows:
         hs = searched.setdefault((r["mach_min"], r["mach_max"]), [])
         if r["altitude_m"] not in hs:
             hs.append(r["altitude_m"])
-    lines += [f"  searched M {lo:.3f}-{hi:.3f} at {', '.join(f'{h:.0f}' for h in sorted(hs))} m (the aircraft files' "
-              "[envelope] or --mach-min/--mach-max)" for (lo, hi), hs in searched.items()]
+    lines += [f"  searched M {lo:.3f}-{hi:.3f} at {', '.join(f'{h:.0f}' for h in sorted(hs))} m" for (lo, hi), hs in searched.items()]
     for key in models:
-        lines += ["", f"{key} ({MODELS[key]}) beside paper Table {'2' if key == 'QS' else '3'}", _HEADER]
+        lines += ["", f"{key} ({MODELS[key]}) beside paper Table {'2' if key == 'QS' else '3'}", *_HEAD]
         table = {p[0]: p for p in paper[key]}
+        modes: dict[str, list[str]] = {}
         for h in sorted({r["altitude_m"] for r in rows if r["model"] == key}):
             for s in settings:
                 for row in [r for r in rows if r["model"] == key and r["altitude_m"] == h and r["settings"] == s.label]:
                     if "error" in row:
-                        lines.append(f"{s.label:<18} {h:6.0f}  no flutter point: {row['error'][:100]}")
+                        lines.append(f"{s.label:<18} {h:5.0f}  no flutter point: {row['error'][:70]}")
                         continue
-                    lines.append(f"{s.label:<18} {h:6.0f} {row['mach']:8.4f} {row['omega_rad_s']:11.3f} {row['theta_deg']:11.3f} "
-                                 f"{row['thrust_kN']:9.2f} {row['elevator_deg']:9.3f} {row['tip_deflection_m']:9.4f} "
-                                 f"{row['tip_twist_deg']:13.4f}  {_mode_text(row)}")
+                    line = _values(s.label, h, tuple(row[k] for k in keys))
+                    d = row.get("vs_paper_percent")
+                    lines.append(line + (f"  {d['mach']:+5.1f} {d['omega_rad_s']:+6.1f}" if d else ""))
+                    modes.setdefault(_mode_text(row), []).append((h, s.label))
             ref = table.get(h)
             if ref:
-                lines.append(f"{'paper Table ' + ('2' if key == 'QS' else '3'):<18} {h:6.0f} {ref[1]:8.4f} {ref[2]:11.3f} {ref[3]:11.3f} "
-                             f"{ref[4]:9.2f} {ref[5]:9.3f} {ref[6]:9.4f} {ref[7]:13.4f}")
-                for s in settings:
-                    for row in [r for r in rows if r["model"] == key and r["altitude_m"] == h and r["settings"] == s.label and "mach" in r]:
-                        d = [100 * (row[k] / ref[i] - 1) for i, k in ((1, "mach"), (2, "omega_rad_s"), (3, "theta_deg"), (4, "thrust_kN"),
-                                                                         (5, "elevator_deg"), (6, "tip_deflection_m"), (7, "tip_twist_deg"))]
-                        lines.append(f"{'  vs paper [%]':<18} {'':6} {d[0]:+8.1f} {d[1]:+11.1f} {d[2]:+11.1f} {d[3]:+9.1f} {d[4]:+9.1f} "
-                                     f"{d[5]:+9.1f} {d[6]:+13.1f}  ({s.label})")
+                lines.append(_values(f"paper Table {'2' if key == 'QS' else '3'}", h, ref[1:8]))
+        if modes:
+            lines.append("critical mode:")
+        for text, where in modes.items():
+            same = text.startswith("symmetric") and "fuselage bending 1" in text.split("largest linear")[-1]
+            lines.append(f"  {_where(where, len(settings))}: {text}{'' if same else ' [not the paper' + chr(39) + 's]'}")
     score = []
     if "QS" in models and "US" in models:
         lines += ["", "QS/US crossover altitude (where M_F(US) - M_F(QS) changes sign) [m]:"]
@@ -129,7 +187,7 @@ def flutter_report(rows: list[dict], settings: list[RunSettings], models: list[s
     doc = {"rows": rows, "scorecard": score, "settings": [s.__dict__ for s in settings],
            "paper": {"table_qs": TABLE_QS, "table_us": TABLE_US, "crossover_altitude_m": paper_crossover_altitude_m(),
                      "critical_mode": PAPER_MODE}}
-    return lines, doc
+    return _wrapped(lines), doc
 
 
 _TABLE_HEADER = (f"{'settings':<18} {'h [m]':>6} {'M_F [-]':>8} {'V_F [m/s]':>9} {'w_F [rad/s]':>11} {'theta [deg]':>11} "

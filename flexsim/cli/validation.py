@@ -211,8 +211,12 @@ def check_writable_dir(option: str, path: str, directory: Path) -> None:
 
 
 def check_log_path(command: str, path: str) -> None:
-    """An existing file at a flight-log path is overwritten only if it is an MCAP file (with a warning)."""
+    """An existing file at a flight-log path is overwritten only if it is an MCAP file (with a warning); never
+    through a symbolic link."""
     p = Path(path)
+    if p.is_symlink():
+        raise CliError(f"--log = {path!r}: is a symbolic link (to {os.readlink(p)!r}); flexsim does not write through "
+                       "links (that would create or replace the link's target): give the real path")
     if p.is_file():
         with open(p, "rb") as f:
             head = f.read(8)

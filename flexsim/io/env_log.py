@@ -10,6 +10,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
+from flexsim.io.output_paths import check_not_link
 from flexsim.io.flight_log import FlightLogWriter
 from flexsim.io.vocabulary import CONTROL_NAMES as LOG_CONTROL_NAMES
 
@@ -80,17 +81,34 @@ class FlightLogRecorder(gym.Wrapper):
         super().__init__(env)
         if not all(hasattr(env.unwrapped, name) for name in ("log_sample", "signal_names", "dynamics")):
             raise ValueError(f"env = {env!r}: FlightLogRecorder needs a flexsim environment (FlexSimEnv)")
-        path = Path(path)
+        path = check_not_link("path", path)
         if path.suffix != ".mcap":
             raise ValueError(f"path = {str(path)!r}: the suffix must be '.mcap'")
         if not path.parent.is_dir():
             raise FileNotFoundError(f"path = {str(path)!r}: directory {str(path.parent)!r} does not exist")
         self.pattern = path
+        taken = self._existing_logs()
+        if taken:
+            raise FileExistsError(f"path = {str(path)!r}: {len(taken)} log(s) of an earlier recording are there "
+                                  f"({', '.join(p.name for p in taken[:3])}{', ...' if len(taken) > 3 else ''}); they are "
+                                  "not overwritten: give another name (e.g. with {episode} and a run name) or move them")
         self.run_metadata = dict(metadata or {})
         self.paths: list[Path] = []
         self._writer: FlightLogWriter | None = None
         self._episode = -1
         self._last_sample_t = float("-inf")
+
+    def _existing_logs(self) -> list[Path]:
+        """Files this recorder would write that exist already (episode 0's name and the episodes' pattern)."""
+        name = self.pattern.name
+        if "{episode}" in name:
+            glob = name.replace("{episode}", "*")
+        else:
+            glob = f"{self.pattern.stem}-[0-9][0-9][0-9][0-9]*.mcap"
+        found = sorted(self.pattern.parent.glob(glob))
+        if "{episode}" not in name and (self.pattern.exists() or self.pattern.is_symlink()):
+            found.insert(0, self.pattern)
+        return found
 
     def _episode_path(self, k: int) -> Path:
         name = self.pattern.name
@@ -114,6 +132,8 @@ class FlightLogRecorder(gym.Wrapper):
         self._episode += 1
         base = self.env.unwrapped
         path = self._episode_path(self._episode)
+        if path.exists() or path.is_symlink():  # written since this recorder started (e.g. by another recorder)
+            raise FileExistsError(f"{str(path)!r}: exists; the recorder does not overwrite it (episode {self._episode})")
         metadata = {"aircraft": str(base.aircraft_source), "env": type(base).__name__, "episode": str(self._episode),
                     "seed": str(seed), "aero": base.dynamics.aero, "integrator": base.dynamics.method,
                     "control_rate_hz": f"{base.control_rate_hz:g}", "run_id": f"{type(base).__name__}-{self._episode}",

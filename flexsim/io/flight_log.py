@@ -55,6 +55,7 @@ from mcap.writer import Writer as McapWriter
 from mcap_protobuf.decoder import DecoderFactory
 from mcap_protobuf.schema import build_file_descriptor_set
 
+from flexsim.io.output_paths import open_output
 from flexsim.errors import FlexsimError
 from flexsim.io._wire import CLOUD_DATA_KEY, Messages, state_messages, tf_pose, timestamp_field, varint
 from flexsim.io.vocabulary import VOCABULARY_VERSION, check_names, unit, upgrade_v1
@@ -262,7 +263,7 @@ class FlightLogWriter:
                              f"got {flush_interval_s!r}")
         self.path = path
         self.flush_interval_s = float(flush_interval_s)
-        self._file = open(path, "wb")
+        self._file = open_output(path)  # never through a symbolic link
         self._closed = False
         self._last_ns = -1
         self._sim_flushed_s = -math.inf

@@ -34,6 +34,7 @@ import numpy as np
 import rerun as rr
 import rerun.blueprint as rrb
 
+from flexsim.io.output_paths import check_not_link, open_output
 from flexsim.io.flight_log import FlightLog, read_flight_log, viewer_pose
 from flexsim.io.vocabulary import quantity
 from flexsim.io.viewer import HEADLESS_HINT, ViewerUnavailableError, viewer_unavailable_reason
@@ -240,7 +241,7 @@ def log_to_recording(log: FlightLog | str | os.PathLike, *, rrd_path: str | os.P
     if spawn and connect is not None:
         raise ValueError(f"log_to_recording: spawn=True and connect={connect!r} both given; choose one viewer")
     if rrd_path is not None:
-        rrd_path = Path(rrd_path)
+        rrd_path = check_not_link("rrd_path", rrd_path)
         if rrd_path.suffix != ".rrd":
             raise ValueError(f"rrd_path: the suffix must be '.rrd', got {str(rrd_path)!r}")
         if not rrd_path.parent.is_dir():
@@ -251,12 +252,19 @@ def log_to_recording(log: FlightLog | str | os.PathLike, *, rrd_path: str | os.P
     rec = rr.RecordingStream(APPLICATION_ID, recording_id=log.metadata.get("run_id"))
     rec.set_log_time_enabled(False)
     sinks: list[rr.FileSink | rr.GrpcSink] = []
-    if rrd_path is not None:
-        sinks.append(rr.FileSink(str(rrd_path)))
     url = spawn_viewer(rec, port=viewer_port, executable=viewer_executable) if spawn else connect
+    memory = None
+    if rrd_path is not None and url is None:
+        # kept in memory and written by Python at the end: a write error (a full disk) is an OSError naming the file;
+        # rerun's own file sink waited forever on it
+        memory = rec.memory_recording()
+        rr.send_blueprint(_blueprint(groups), make_active=False, make_default=True, recording=rec)
+    elif rrd_path is not None:
+        sinks.append(rr.FileSink(str(rrd_path)))
     if url is not None:
         sinks.append(rr.GrpcSink(url))
-    rec.set_sinks(*sinks, default_blueprint=_blueprint(groups))
+    if sinks:
+        rec.set_sinks(*sinks, default_blueprint=_blueprint(groups))
     try:
         if len(log.t):
             time = [rr.TimeColumn(TIMELINE, duration=log.t)]
@@ -270,8 +278,24 @@ def log_to_recording(log: FlightLog | str | os.PathLike, *, rrd_path: str | os.P
                 raise
             raise ViewerUnavailableError(f"the Rerun viewer at {url} did not take the recording ({exc}); "
                                          f"{HEADLESS_HINT}") from exc
+        if memory is not None:
+            _write_recording(rrd_path, memory.drain_as_bytes())
     finally:
         rec.disconnect()
+
+
+def _write_recording(path: Path, data: bytes) -> None:
+    """``data`` written to ``path`` (no symbolic link followed); on a write error (disk full, quota) the partial file
+    is removed and the error names the file."""
+    try:
+        with open_output(path) as f:
+            f.write(data)
+            f.flush()
+            os.fsync(f.fileno())
+    except OSError as exc:
+        path.unlink(missing_ok=True)
+        raise OSError(exc.errno, f"rrd_path = {str(path)!r}: the recording ({len(data)} bytes) could not be written: "
+                                 f"{exc.strerror or exc}") from None
 
 
 def main(argv: Sequence[str] | None = None) -> None:

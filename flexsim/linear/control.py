@@ -39,10 +39,10 @@ import numpy as np
 
 from flexsim._arrays import readonly
 from flexsim.aircraft.definition import Aircraft
-from flexsim.errors import FlexsimError
+from flexsim.errors import FlexsimError, float_array
 from flexsim.io.vocabulary import CONTROL_NAMES, check_names
 from flexsim.linear.linearize import linearize
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, check_model
 from flexsim.model.coupling import AeroOptions
 from flexsim.model.terms import Terms
 from flexsim.model.variant import VariantSettings
@@ -273,18 +273,26 @@ class LinearSystem:
         ValueError
             Not such a file (another ``.npz``, another format version, or missing entries).
         """
+        import zipfile
+        import zlib
+
         path = Path(path)
         try:
             with np.load(path, allow_pickle=False) as f:
                 data = {k: f[k] for k in f.files}
-        except (OSError, ValueError) as exc:
+        except (OSError, ValueError, EOFError, zipfile.BadZipFile, zlib.error) as exc:  # a truncated file: BadZipFile, EOFError
             if not path.exists():
                 raise FileNotFoundError(f"path = {str(path)!r}: no such file") from None
-            raise ValueError(f"path = {str(path)!r}: not a readable .npz file ({exc})") from None
+            raise ValueError(f"path = {str(path)!r}: not a readable .npz file, truncated or damaged "
+                             f"({type(exc).__name__}: {exc})") from None
         fmt = str(data.get("format", ""))
         if fmt != FILE_FORMAT:
             raise ValueError(f"path = {str(path)!r}: format = {fmt!r}, expected {FILE_FORMAT!r} (a file written by "
                              "LinearSystem.save / flexsim linearize)")
+        missing = [k for k in ("A", "B", "C", "D", "state_names", "input_names", "output_names", "keep", "x0", "u0",
+                               "model_options") if k not in data]
+        if missing:
+            raise ValueError(f"path = {str(path)!r}: entries {', '.join(missing)} missing (a damaged or edited file)")
         man = None
         if "speed_m_s" in data:
             climb = float(data["climb_angle_rad"])
@@ -381,6 +389,7 @@ def linear_system(model: AircraftModel, point: TrimPoint | np.ndarray, u0: np.nd
     -------
     LinearSystem
     """
+    check_model(model)
     manoeuvre = None
     if isinstance(point, TrimPoint):
         if u0 is not None:
@@ -389,16 +398,14 @@ def linear_system(model: AircraftModel, point: TrimPoint | np.ndarray, u0: np.nd
     elif u0 is None:
         raise ValueError("u0: the controls (4 numbers) are required when point is a state vector")
     else:
-        x0 = np.asarray(point, float)
+        x0 = float_array("point", point, (None,), what="(a state vector)")
     lay = model.layout
     if lay.n_inflow and x0.shape == (lay.inflow.start,):
         x0 = np.concatenate([x0, np.zeros(lay.n_inflow)])
     if x0.shape != (lay.n_states,):
         raise ValueError(f"point: a state of {x0.size} entries for a model of {lay.n_states} states "
                          f"({model.variant.kind.value}, {lay.n_inflow} inflow states)")
-    u0 = np.asarray(u0, float)
-    if u0.shape != (4,):
-        raise ValueError(f"u0 = {u0!r}: must be 4 numbers [T_e (N), delta_a, delta_e, delta_r (rad)]")
+    u0 = float_array("u0", u0, (4,), what="[T_e (N), delta_a, delta_e, delta_r (rad)]")
     _check_operating_point(model, x0, u0, manoeuvre is not None)
     lin = linearize(model, x0, u0)
     b = np.column_stack([lin.b, _gust_column(model, lin.x0, lin.u0)[lin.keep]])

@@ -20,6 +20,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from flexsim._threads import single_blas_thread
+from flexsim.errors import float_array
 from flexsim.aircraft.definition import Aircraft, ContentKey
 from flexsim.atmosphere import isa_density, speed_of_sound
 from flexsim.errors import FlexsimError
@@ -29,7 +30,7 @@ from flexsim.linear.stability import Mode, Spectrum, linear_spectrum, spectrum
 from flexsim.linear.scan import (CURVATURE_SAFETY, MAX_MACH_STEP, MIN_SCAN_STEPS, MIN_TRIM_SPEED_M_S,  # noqa: F401
                                  REFINE_LEVELS, UNSTABLE_DAMPING, _growth, anchored_grid, hidden_crossing, scan_step)
 from flexsim.linear.validity import mach_note
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, check_aircraft, check_model
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
 from flexsim.model.terms import Terms
 from flexsim.model.variant import VariantSettings
@@ -339,11 +340,7 @@ class FlutterAnalysis:
             When no elastic mode becomes unstable in ``mach_range``, or a trim of the grid scan is statically
             divergent before any crossing (``TrimPoint.stability``; the message names its roots).
         """
-        lo, hi = mach_range
-        if not 0.0 < lo < hi < 1.0:
-            raise ValueError(f"mach_range = {mach_range!r}: must satisfy 0 < lo < hi < 1")
-        if isinstance(mach_step, bool) or not (isinstance(mach_step, (int, float)) and 0.0 < mach_step <= hi - lo):
-            raise ValueError(f"mach_step = {mach_step!r}: must be in (0, {hi - lo:g}] (the width of mach_range)")
+        lo, hi, mach_step, tol = _scan_settings("mach_range", mach_range, "mach_step", mach_step, "tol", tol, "[-]", upper=1.0)
         name = self._model_name(aero_model)
         a_sound = speed_of_sound(float(manoeuvre.altitude_m))
         state = _SearchState()
@@ -498,8 +495,7 @@ class FlutterAnalysis:
 
 def _check_flutter_model(model: AircraftModel) -> None:
     """Refuse a model a flutter search of a manoeuvre cannot use, naming what is wrong."""
-    if not isinstance(model, AircraftModel):
-        raise TypeError(f"model: an AircraftModel, not {type(model).__name__}")
+    check_model(model)
     if model.variant.kind.value != "free":
         raise ValueError(f"model.variant = {model.variant.kind.value!r}: a flutter search of a manoeuvre needs the free aircraft; "
                          "a restrained structure in an airflow is flexsim.wind_tunnel(aircraft, ...)")
@@ -509,6 +505,24 @@ def _check_flutter_model(model: AircraftModel) -> None:
     if model.terms.aero_density_kg_m3 is not None:
         raise ValueError(f"model.terms.aero_density_kg_m3 = {model.terms.aero_density_kg_m3!r}: trims need the true density; fix the "
                          "density of the linearised aerodynamics with linear_aero_density_kg_m3 of the analysis instead")
+
+
+def _scan_settings(range_name: str, rng, step_name: str, step, tol_name: str, tol, unit: str,
+                   upper: float | None = None) -> tuple[float, float, float, float]:
+    """(lo, hi, step, tol) of a scan, each checked where it enters: ``rng`` two finite numbers 0 < lo < hi (< ``upper``),
+    ``step`` a finite number in (0, hi - lo], ``tol`` a finite number in (0, step]; a ValueError names the argument,
+    its value and the allowed range otherwise (``unit``: e.g. ``"[m/s]"``)."""
+    lo, hi = float_array(range_name, rng, (2,), what=f"(lo, hi) {unit}")
+    if not (0.0 < lo < hi and (upper is None or hi < upper)):
+        raise ValueError(f"{range_name} = {tuple(rng)!r}: must satisfy 0 < lo < hi{f' < {upper:g}' if upper else ''} {unit}")
+    for name, value, top in ((step_name, step, hi - lo), (tol_name, tol, None)):
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+            raise ValueError(f"{name} = {value!r}: must be a number {unit}")
+        top = step if top is None else top
+        if not (math.isfinite(value) and 0.0 < value <= top):
+            raise ValueError(f"{name} = {value!r}: must be a finite number in (0, {top:g}] {unit}"
+                             + (f" (at most the width of {range_name})" if name == step_name else f" (at most {step_name})"))
+    return float(lo), float(hi), float(step), float(tol)
 
 
 @single_blas_thread
@@ -651,13 +665,9 @@ def wind_tunnel(aircraft: Aircraft | AircraftModel, *, aero_model: str = "unstea
     """
     if aero_model not in AERO_MODELS:
         raise ValueError(f"aero_model = {aero_model!r}: must be one of {', '.join(AERO_MODELS)}")
-    lo, hi = (float(v) for v in speed_range)
-    if not (np.isfinite(lo) and np.isfinite(hi) and 0.0 < lo < hi):
-        raise ValueError(f"speed_range = {speed_range!r}: must satisfy 0 < lo < hi [m/s]")
-    if not (np.isfinite(speed_step) and 0.0 < speed_step <= hi - lo):
-        raise ValueError(f"speed_step = {speed_step!r}: must be in (0, {hi - lo:g}] m/s (the width of speed_range)")
-    if not (np.isfinite(tol_m_s) and tol_m_s > 0.0):
-        raise ValueError(f"tol_m_s = {tol_m_s!r}: must be > 0 [m/s]")
+    if not isinstance(aircraft, AircraftModel):
+        check_aircraft(aircraft)
+    lo, hi, speed_step, tol_m_s = _scan_settings("speed_range", speed_range, "speed_step", speed_step, "tol_m_s", tol_m_s, "[m/s]")
     tunnel = VariantSettings("restrained", altitude_m=altitude_m, air_density_kg_m3=density_kg_m3)
     if isinstance(aircraft, AircraftModel):
         given = aircraft

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexsim.io.vocabulary import CONTROL_NAMES
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, check_model
 from flexsim.model.jacobian import jacobian
 from flexsim.model.naming import state_names
 from flexsim.trim.solver import TrimPoint
@@ -72,6 +72,7 @@ def linearize(model: AircraftModel, x0: TrimPoint | np.ndarray, u0: np.ndarray |
     LinearModel
         With the names of its states and inputs.
     """
+    check_model(model)
     if isinstance(x0, TrimPoint):
         if u0 is not None:
             raise ValueError("u0: a TrimPoint supplies its own controls; give u0 only with a state vector")

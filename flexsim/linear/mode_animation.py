@@ -27,7 +27,7 @@ import numpy as np
 
 from flexsim.io.mode_recording import ModeAnimation, ParticipationBar, write_mode_recording
 from flexsim.kinematics import dcm_321, euler_rate_matrix_inverse
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, check_model
 from flexsim.model.naming import state_names
 
 __all__ = ["mode_animation", "record_flutter_mode", "record_critical_mode", "check_recording_path", "PEAK_DEFLECTION_FRACTION"]
@@ -140,6 +140,7 @@ def record_flutter_mode(model: AircraftModel, point, path: str | os.PathLike, *,
     Path
         ``path``.
     """
+    check_model(model)
     mode = point.mode
     x0 = model.layout.zeros() if point.trim is None else point.trim.x
     bars = tuple(ParticipationBar(p.label, p.magnitude, p.unit, p.phase_deg) for p in point.participation)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import eigh
 
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, check_model
 from flexsim.structure.mode_names import mode_name
 
 __all__ = ["Mode", "ModalAnalysis", "in_vacuo_modes"]
@@ -87,6 +87,7 @@ def in_vacuo_modes(model: AircraftModel) -> ModalAnalysis:
     -------
     ModalAnalysis
     """
+    check_model(model)
     st = model.structure
     active = model.active_dofs
     if active.size == 0:

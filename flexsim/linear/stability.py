@@ -22,7 +22,7 @@ from flexsim.aero.pk import PkStateMatrix, pk_roots
 from flexsim.linear._pk_kernels import w34_jacobian
 from flexsim.linear.linearize import LinearModel, linearize
 from flexsim.linear.symmetry import decoupled, mirror_bases
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, check_model
 from flexsim.trim.roots import Mode, Spectrum, _classify, _dominant_dofs  # noqa: F401 (_dominant_dofs: the name tests and benchmarks use)
 
 __all__ = ["Mode", "Spectrum", "spectrum", "linear_spectrum", "PkStateMatrix", "pk_state_matrix", "PK_METHODS", "conjugate_slots"]
@@ -56,6 +56,7 @@ def spectrum(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, *, aero_model
         (default; :mod:`flexsim.linear.symmetry`, measured on A); False always uses the full matrix (the
         reference; same roots to round-off, slower).
     """
+    check_model(model)
     if pk_method not in PK_METHODS:
         raise ValueError(f"pk_method = {pk_method!r}: must be one of {', '.join(PK_METHODS)}")
     return linear_spectrum(model, linearize(model, x0, u0), aero_model=aero_model, pk_model=pk_model,

@@ -288,20 +288,31 @@ class StudyRecord:
     Raises
     ------
     FlexsimError
-        When the file already holds points and ``resume`` is False (finished work is never overwritten).
+        When the file already holds points and ``resume`` is False (finished work is never overwritten), or another
+        process is writing the same file (a lock ``<file>.lock`` beside it, held until :meth:`close`).
     """
 
     def __init__(self, path: str | Path, resume: bool = False) -> None:
-        from flexsim.errors import FlexsimError
-
         self.path = Path(path)
         self.done: dict[str, dict] = {}
         self.damaged_lines = 0
+        self._lock = _lock_beside(self.path)  # one study at a time per file: a second one would mix or lose rows
+        try:
+            self._read(resume)
+        except BaseException:
+            self.close()
+            raise
+
+    def _read(self, resume: bool) -> None:
+        from flexsim.errors import FlexsimError
+
+        self._file = None
         if self.path.exists():
             for line in self.path.read_text(encoding="utf-8", errors="replace").splitlines():
                 try:
                     row = json.loads(line)
-                    self.done[case_key(row)] = row
+                    key = row.pop("_case", None)  # the case as it was asked for (a row resolves e.g. formulation)
+                    self.done[key if isinstance(key, str) else case_key(row)] = row
                 except (ValueError, TypeError, AttributeError):
                     self.damaged_lines += 1
             if self.done and not resume:
@@ -311,16 +322,44 @@ class StudyRecord:
                 self.path.unlink()
             elif self.damaged_lines:
                 # rewrite without the partial line(s), so new points start on a clean line
-                self.path.write_text("".join(json.dumps(r, default=str) + "\n" for r in self.done.values()))
+                self.path.write_text("".join(json.dumps({**r, "_case": k}, default=str) + "\n" for k, r in self.done.items()))
         self._file = self.path.open("a", encoding="utf-8")
 
-    def append(self, row: dict) -> None:
-        self._file.write(json.dumps(row, default=str) + "\n")
+    def append(self, row: dict, case: StudyCase | None = None) -> None:
+        """Write ``row`` as one line, flushed and synced; with ``case``, the case's key too (``_case``), by which a
+        resumed study recognises the point (a row's own fields are resolved: ``formulation`` None becomes the
+        file's, so the row alone would not match its case and every point would be computed again)."""
+        self._file.write(json.dumps(row if case is None else {**row, "_case": case_key(case)}, default=str) + "\n")
         self._file.flush()
         os.fsync(self._file.fileno())
 
     def close(self) -> None:
-        self._file.close()
+        if self._file is not None:
+            self._file.close()
+        if self._lock is not None:
+            self._lock.close()  # releases the lock
+            self._lock = None
+
+
+def _lock_beside(path: Path):
+    """An exclusive lock on ``<path>.lock`` held by the returned open file (released when it is closed or the process
+    ends, even by SIGKILL); FlexsimError when another process holds it (POSIX ``flock``; elsewhere no lock)."""
+    from flexsim.errors import FlexsimError
+
+    try:
+        import fcntl
+    except ImportError:
+        return None
+    path.parent.mkdir(parents=True, exist_ok=True)
+    lock = open(path.with_name(path.name + ".lock"), "a")
+    try:
+        fcntl.flock(lock.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        lock.close()
+        raise FlexsimError(f"{path}: another study is writing it now (a second sweep into the same --out would mix "
+                           "its rows with that one's and overwrite its results); wait for it to finish, or give "
+                           "another --out") from None
+    return lock
 
 
 def _describe(case: StudyCase) -> str:
@@ -330,21 +369,27 @@ def _describe(case: StudyCase) -> str:
 
 
 class _Progress:
-    """A tqdm bar on a terminal; otherwise one line per completed point on stderr (visible when piped)."""
+    """A tqdm bar on a terminal; otherwise one line per completed point on stderr (visible when piped).
+
+    The bar starts at :meth:`begin`, after the first compile of the kernels (which shows its own progress,
+    :class:`flexsim._numba_cache.CompileProgress`): started before, its rate and time left would count the compile
+    as the first point's time (an estimate of 10:46 for a 45 s run)."""
 
     def __init__(self, total: int, done: int, enabled: bool) -> None:
         self.total, self.count, self.enabled = total, done, enabled
         self.bar = None
-        if enabled and sys.stderr.isatty():
+
+    def begin(self) -> None:
+        if self.bar is None and self.enabled and sys.stderr.isatty():
             from tqdm.auto import tqdm
 
-            self.bar = tqdm(total=total, initial=done, desc="flutter points")
+            self.bar = tqdm(total=self.total, initial=self.count, desc="flutter points")
 
     def point(self, case: StudyCase, row: dict, seconds: float) -> None:
         self.count += 1
         if self.bar is not None:
             self.bar.update(1)
-        elif self.enabled:
+        elif self.enabled and not sys.stderr.isatty():  # on a terminal the bar, once begun, counts this point
             what = f"M_F {row['mach']:.4f}, {row['omega_rad_s']:.2f} rad/s" if "mach" in row else f"no flutter point: {str(row.get('error'))[:80]}"
             print(f"[{self.count}/{self.total}] {_describe(case)}: {what} ({seconds:.1f} s)", file=sys.stderr, flush=True)
 
@@ -356,9 +401,32 @@ class _Progress:
             self.bar.close()
 
 
-def _ignore_sigint() -> None:
-    """Process-pool initializer: Ctrl-C is handled by the parent, which stops the workers."""
+def _ignore_sigint(parent_pid: int | None = None) -> None:
+    """Process-pool initializer: Ctrl-C is handled by the parent, which stops the workers; and the worker ends with
+    its parent even when the parent cannot stop it (killed with SIGKILL): on Linux the kernel sends it SIGTERM then
+    (``prctl(PR_SET_PDEATHSIG)``)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for name in ("SIGTERM", "SIGHUP"):  # a handler inherited from the parent (the CLI's) would be caught as a task's error
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), signal.SIG_DFL)
+    end_with_parent(parent_pid)
+
+
+def end_with_parent(parent_pid: int | None = None) -> None:
+    """Ask the kernel to send this process SIGTERM when its parent ends (Linux ``prctl(PR_SET_PDEATHSIG)``; elsewhere
+    nothing is done: the parent's handlers stop its workers). A parent that ended before the call (this process's
+    parent is no longer ``parent_pid``, or is init) ends this process at once."""
+    if not sys.platform.startswith("linux"):
+        return
+    import ctypes
+
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGTERM, 0, 0, 0)  # PR_SET_PDEATHSIG = 1
+    except (OSError, AttributeError):
+        return
+    if os.getppid() == 1 or (parent_pid is not None and os.getppid() != parent_pid):  # re-parented: the parent is gone
+        os.kill(os.getpid(), signal.SIGTERM)
 
 
 def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, workers: int | None = None,
@@ -427,7 +495,7 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
     def finish(i: int, row: dict, seconds: float) -> None:
         rows[i] = row
         if record is not None:
-            record.append(row)
+            record.append(row, cases[i])
         bar.point(cases[i], row, seconds)
         if on_point is not None:
             on_point(cases[i], row, seconds)
@@ -449,19 +517,28 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
 
     try:
         if scheduler:
+            bar.begin()
             _run_dask(scheduler, cases, todo, guess_for, finish, bar, max_attempts)
         else:
             queues = _local_steps(cases, todo, [len(chains_all[chain_of[g[0]]]) for g in todo])
             n = max(1, min(workers or os.cpu_count() or 1, len(queues)))
+            if queues and not _kernels_cached():  # compiled once here, then loaded by the workers (not once in each)
+                from flexsim.linear import _precompile
+
+                helper = _precompile.start() if n > 1 else None  # the p-k kernels on the other core meanwhile
+                try:
+                    k = min(range(len(queues)), key=lambda k: _longest_first(cases, queues[k]))
+                    run_here(queues[k].pop(0))
+                    queues = [q for q in queues if q]
+                finally:
+                    if helper is not None and helper.poll() is None:
+                        helper.terminate()
+            bar.begin()  # after the compile: the bar's rate is that of the points
             if n == 1:
                 for queue in queues:
                     for step in queue:
                         run_here(step)
             else:
-                if not _kernels_cached():  # compiled once here, then loaded by the workers (not once in each)
-                    k = min(range(len(queues)), key=lambda k: _longest_first(cases, queues[k]))
-                    run_here(queues[k].pop(0))
-                    queues = [q for q in queues if q]
                 _run_pool(n, cases, queues, guess_for, finish, bar, attempts, max_attempts)
     finally:
         bar.close()
@@ -519,7 +596,7 @@ def _run_pool(n, cases, queues, guess_for, finish, bar, attempts, max_attempts) 
 
     queues = [list(q) for q in queues]
     while any(queues):
-        pool = ProcessPoolExecutor(max_workers=n, initializer=_ignore_sigint)
+        pool = ProcessPoolExecutor(max_workers=n, initializer=_ignore_sigint, initargs=(os.getpid(),))
         running: dict = {}
         idle = sorted((k for k in range(len(queues)) if queues[k]), key=lambda k: _longest_first(cases, queues[k]))
         warm: dict[int, set] = {}  # worker process id -> analyses it has built

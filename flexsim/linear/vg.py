@@ -53,7 +53,7 @@ from scipy.optimize import linear_sum_assignment
 from flexsim.atmosphere import speed_of_sound
 from flexsim.linear.stability import Mode, Spectrum, spectrum
 from flexsim.linear.validity import mach_note
-from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.aircraft_model import AircraftModel, check_model
 from flexsim.trim import SteadyManoeuvre, TrimError
 
 __all__ = ["VgCrossing", "VgTrack", "VgDiagram", "vg_diagram", "track_branches", "mac", "MIN_MAC", "VG_MODELS"]
@@ -426,6 +426,7 @@ def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_
     ValueError
         For a bad argument (named, with the allowed values).
     """
+    check_model(model)
     from flexsim.linear.envelope import search_range
     from flexsim.linear.flutter import FlutterAnalysis, SharedEvaluations, _check_flutter_model
 

@@ -24,6 +24,7 @@ one model serves still-air trims and any number of windy runs without being chan
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Callable
 import dataclasses
 
@@ -34,6 +35,7 @@ from flexsim._arrays import kernel_arg as _arg
 from flexsim.aircraft.definition import Aircraft
 from flexsim._immutable import Immutable
 from flexsim.atmosphere import G0, Z_MAX, Z_MIN, _range_error
+from flexsim.errors import expect_type
 from flexsim.model.coupling import AeroCoupling, AeroOptions
 from flexsim.model.bodies import SlenderBodies
 from flexsim.model.drag import ParasiteDrag
@@ -44,7 +46,8 @@ from flexsim.model.variant import Variant, VariantSettings
 from flexsim.kinematics import dcm_321
 from flexsim.structure.model import StructuralModel, structural_model
 
-__all__ = ["Variant", "VariantSettings", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES", "Wind"]
+__all__ = ["Variant", "VariantSettings", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES", "Wind", "check_model",
+           "check_aircraft"]
 
 #: Standard gravitational acceleration [m/s^2] (paper eq. 32's g): the atmosphere module's one definition.
 STANDARD_GRAVITY = G0
@@ -85,6 +88,28 @@ def _split(changes: dict, terms: Terms, variant: VariantSettings) -> tuple[Terms
     if for_variant:
         variant = dataclasses.replace(variant, **for_variant)
     return terms, variant
+
+
+def check_aircraft(aircraft, name: str = "aircraft") -> None:
+    """TypeError naming ``name`` unless ``aircraft`` is an :class:`Aircraft` (a name or a path says how to load it)."""
+    hint = ""
+    if isinstance(aircraft, (str, os.PathLike)):
+        hint = f"load it first: flexsim.load_aircraft({str(aircraft)!r})"
+    elif isinstance(aircraft, AircraftModel):
+        hint = "give the model's aircraft (model.aircraft)"
+    expect_type(name, aircraft, Aircraft, "an Aircraft (flexsim.load_aircraft)", hint)
+
+
+def check_model(model, name: str = "model") -> "AircraftModel":
+    """``model`` when it is an :class:`AircraftModel`; else a TypeError naming ``name`` and saying how to build one
+    (from an :class:`Aircraft`, a bundled name or a TOML path). Every public function taking a model calls it where
+    the model enters."""
+    hint = "build one with flexsim.AircraftModel(aircraft, aero=...)"
+    if isinstance(model, Aircraft):
+        hint = f"an Aircraft is the definition; build the model with flexsim.AircraftModel({name}, aero=...)"
+    elif isinstance(model, (str, os.PathLike)):
+        hint = f"build it with flexsim.AircraftModel(flexsim.load_aircraft({str(model)!r}), aero=...)"
+    return expect_type(name, model, AircraftModel, "an AircraftModel", hint)
 
 
 class AircraftModel(Immutable):
@@ -128,8 +153,7 @@ class AircraftModel(Immutable):
 
     def __init__(self, aircraft: Aircraft, *, terms: Terms | None = None,
                  variant: VariantSettings | Variant | str | None = None, **fields) -> None:
-        if not isinstance(aircraft, Aircraft):
-            raise ValueError(f"aircraft = {aircraft!r}: must be an Aircraft (flexsim.load_aircraft(name or path) gives one)")
+        check_aircraft(aircraft)
         if terms is not None:
             if not isinstance(terms, Terms):
                 raise ValueError(f"terms = {terms!r}: must be a flexsim.model.terms.Terms (or None)")

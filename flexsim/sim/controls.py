@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flexsim.errors import float_array
 from flexsim.model.aircraft_model import AircraftModel
 
 __all__ = ["ControlSchedule", "Controls", "CONTROL_LABELS"]
@@ -37,11 +38,8 @@ class ControlSchedule:
     values: np.ndarray
 
     def __post_init__(self) -> None:
-        try:
-            t = np.array(self.times_s, dtype=float)
-            v = np.array(self.values, dtype=float)
-        except (TypeError, ValueError):
-            raise ValueError(f"ControlSchedule: times_s and values must be numbers, got {self.times_s!r} and {self.values!r}") from None
+        t = float_array("ControlSchedule.times_s", self.times_s, finite=False).copy()
+        v = float_array("ControlSchedule.values", self.values, finite=False).copy()
         if t.ndim != 1 or t.size == 0:
             raise ValueError(f"ControlSchedule.times_s: expected a 1-D array of k >= 1 times [s], got shape {t.shape}")
         bad = np.flatnonzero(~np.isfinite(t))
@@ -119,10 +117,8 @@ class Controls:
         if isinstance(controls, ControlSchedule):
             self.schedule = controls
         elif isinstance(controls, (np.ndarray, list, tuple)):
-            u = np.asarray(controls, dtype=float)
-            if u.shape != (4,) or not np.all(np.isfinite(u)):
-                raise ValueError(f"controls = {controls!r}: a constant control vector must be 4 finite numbers "
-                                 "[thrust N, aileron, elevator, rudder rad]")
+            u = float_array("controls", controls, (4,), what="[thrust N, aileron, elevator, rudder rad] (a constant "
+                            "control vector; a ControlSchedule for controls that change)")
             self.schedule = ControlSchedule.constant(u)
         elif callable(controls):
             self.controller = controls

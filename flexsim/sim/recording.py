@@ -13,12 +13,14 @@ from __future__ import annotations
 import math
 import os
 import time
+import warnings
 from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 
 from flexsim.io.flight_log import FlightLogWriter
+from flexsim.io.output_paths import check_not_link, reserve_new
 from flexsim.model.aircraft_model import Wind
 from flexsim.sim.outputs import OutputMaps
 
@@ -29,9 +31,11 @@ DEFAULT_LOG_DIR = Path("logs")
 
 
 def default_log_path(name: str) -> Path:
-    """``logs/<name>-<YYYYmmdd-HHMMSS>.mcap`` (local time) for a run called ``name``."""
+    """``logs/<name>-<YYYYmmdd-HHMMSS>.mcap`` (local time) for a run called ``name``, reserved as a new empty file;
+    a name taken already (another run in the same second, in this or another process) gets ``-2``, ``-3``, ...
+    (:func:`flexsim.io.output_paths.reserve_new`), so no log replaces another."""
     safe = "".join(ch if ch.isalnum() or ch in "-_" else "_" for ch in str(name)) or "simulation"
-    return DEFAULT_LOG_DIR / f"{safe}-{time.strftime('%Y%m%d-%H%M%S')}.mcap"
+    return reserve_new(DEFAULT_LOG_DIR, f"{safe}-{time.strftime('%Y%m%d-%H%M%S')}", ".mcap")
 
 
 def resolve_log_path(log_path: str | os.PathLike | bool | None, name: str = "simulation") -> Path | None:
@@ -51,7 +55,7 @@ def resolve_log_path(log_path: str | os.PathLike | bool | None, name: str = "sim
         return None
     if not isinstance(log_path, (bool, str, os.PathLike)) or log_path == "":
         raise ValueError(f"log_path = {log_path!r}: must be a path ending in .mcap, True (default logs/ file) or None")
-    path = default_log_path(name) if log_path is True else Path(log_path)
+    path = default_log_path(name) if log_path is True else check_not_link("log_path", log_path)
     if path.is_dir():
         raise ValueError(f"log_path = {str(path)!r}: is a directory; give a file name ending in .mcap")
     if path.suffix != ".mcap":
@@ -67,6 +71,14 @@ def resolve_log_path(log_path: str | os.PathLike | bool | None, name: str = "sim
         raise ValueError(f"log_path = {str(path)!r}: {str(parent)!r} is not a directory")
     if not os.access(parent, os.W_OK):
         raise ValueError(f"log_path = {str(path)!r}: directory {str(parent)!r} is not writable")
+    if log_path is not True and path.is_file() and path.stat().st_size > 0:
+        with open(path, "rb") as f:
+            head = f.read(8)
+        if head != b"\x89MCAP0\r\n":
+            raise FileExistsError(f"log_path = {str(path)!r}: an existing file that is not a flight log; it is not "
+                                  "overwritten: remove it or choose another name")
+        warnings.warn(f"log_path = {str(path)!r}: replacing the existing flight log (log_path=True writes a new file "
+                      "in logs/ instead)", UserWarning, stacklevel=3)
     return path
 
 

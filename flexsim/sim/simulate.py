@@ -38,7 +38,7 @@ from scipy.optimize import brentq
 from flexsim._threads import single_blas_thread
 from flexsim.errors import positive_number
 from flexsim.model.jacobian import jacobian
-from flexsim.model.aircraft_model import AircraftModel, Wind
+from flexsim.model.aircraft_model import AircraftModel, Wind, check_model
 from flexsim.sim.controls import ControlSchedule, Controls
 from flexsim.sim.fixed_step import ETD2RKSolver
 from flexsim.sim.compiled_run import COMPILED_CHUNK_S, RELINEARISE_DRIFT, compiled_wind, integrate_compiled
@@ -400,6 +400,7 @@ def simulate(
     ValueError, FileNotFoundError
         Bad arguments (the message names the argument, its value and what is allowed).
     """
+    check_model(model)
     for name, value, kind in (("integrator", integrator, IntegratorSettings), ("events", events, EventSettings),
                               ("output", output, OutputSettings)):
         if not isinstance(value, kind):

@@ -25,7 +25,7 @@ from flexsim._arrays import readonly
 from flexsim._threads import single_blas_thread
 from flexsim.atmosphere import speed_of_sound
 from flexsim.errors import FlexsimError
-from flexsim.model.aircraft_model import AircraftModel, Variant
+from flexsim.model.aircraft_model import AircraftModel, Variant, check_model
 from flexsim.kinematics import dcm_321
 from flexsim.model.linear_range import linear_range_note
 from flexsim.model.sensors import structural_sensors
@@ -215,8 +215,10 @@ class _Problem:
         lay = model.layout
         self.n_el = lay.nq + lay.nxi
         mass = model.structure.mass_properties.mass_kg
-        self.weight = mass * max(model.terms.gravity_m_s2, 1e-9)
         g = max(model.terms.gravity_m_s2, 1.0)
+        # the thrust unknown's scale: the weight (with gravity below 1 m/s^2, mass x 1 m/s^2: a thrust scaled by a
+        # vanishing weight would have no effect on the scaled equations and be reported as undetermined)
+        self.weight = mass * g
         n_vel = lay.velocity.stop - lay.velocity.start
         self.scale = np.full(n_vel, 1.0 / g)
         self.scale[3:6] = _ROT_LENGTH / g
@@ -323,6 +325,7 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
     TrimError
         Naming the manoeuvre and either the residuals that did not vanish or the limiting quantity.
     """
+    check_model(model)
     prob = _Problem(model, manoeuvre)
     lay = model.layout
     z0 = np.zeros(6 + prob.n_el + (1 if manoeuvre.coordinated else 0))
@@ -402,9 +405,8 @@ def _check_singular(prob: "_Problem", z: np.ndarray, jac: np.ndarray | None = No
     describe = prob.man.describe()
     if dead.size:
         names = ", ".join(labels[i] for i in dead)
-        raise TrimError(f"trim singular for {describe}: the equations do not depend on {names} (no effect on any "
-                        f"force or moment, e.g. a control surface with no aerodynamic strip on it); the trim is "
-                        f"undetermined — check the aircraft's strips and control surfaces")
+        raise TrimError(f"trim singular for {describe}: the equations do not depend on {names}; the trim is "
+                        f"undetermined — {_why_dead([labels[i] for i in dead], prob.model)}")
     sv, vt = np.linalg.svd(jac / col, compute_uv=True)[1:]
     cond = sv[0] / sv[-1] if sv[-1] > 0 else np.inf
     if cond > 1e12:
@@ -412,6 +414,31 @@ def _check_singular(prob: "_Problem", z: np.ndarray, jac: np.ndarray | None = No
         names = ", ".join(labels[i] for i in np.argsort(-null)[:3])
         raise TrimError(f"trim singular for {describe}: the trim equations are (nearly) singular, condition number "
                         f"{cond:.3g} > 1e12, along a direction mostly in {names}; the trim is undetermined")
+
+
+def _why_dead(names: list[str], model: AircraftModel) -> str:
+    """What makes each trim unknown of ``names`` drop out of the equations, in the user's terms."""
+    reasons = []
+    attitude = [n for n in names if n.startswith(("pitch", "bank", "heading"))]
+    if attitude:
+        if model.terms.gravity_m_s2 == 0.0:
+            reasons.append(f"{', '.join(attitude)}: the model has no gravity (gravity_m_s2 = 0), and the attitude "
+                           "enters the steady equations only through the weight; trim a model with gravity, or "
+                           "start a simulation from a state you choose")
+        else:
+            reasons.append(f"{', '.join(attitude)}: no force or moment changes with it")
+    surfaces = [n for n in names if n.startswith(("aileron", "elevator", "rudder"))]
+    if surfaces:
+        reasons.append(f"{', '.join(surfaces)}: no aerodynamic strip carries the surface (check the aircraft's "
+                       "strips and control surfaces)" + (" — the model has no aerodynamics (aero=None)"
+                                                         if model.aero is None else ""))
+    thrust = [n for n in names if n.startswith(("thrust", "flight-path"))]
+    if thrust:
+        reasons.append(f"{', '.join(thrust)}: no force changes with it (check the aircraft's engines)")
+    other = [n for n in names if n not in attitude + surfaces + thrust]
+    if other:
+        reasons.append(f"{', '.join(other)}: no force or moment changes with it")
+    return "; ".join(reasons)
 
 
 def _demand(model: AircraftModel, man: SteadyManoeuvre) -> str:

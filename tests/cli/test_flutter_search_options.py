@@ -63,10 +63,10 @@ def test_flight_search_mach_step_is_honoured_and_warnings_printed(capsys, tmp_pa
 
 
 def test_vg_files_of_close_altitudes_are_distinct(tmp_path):
-    from flexsim.cli.flutter_commands import _vg_path
+    from flexsim.cli.flutter_commands import vg_paths
 
     target = tmp_path / "vg.png"
-    names = {_vg_path(target, h, [9144.0, 9144.4]).name for h in (9144.0, 9144.4)}
-    assert names == {"vg_9144.0m.png", "vg_9144.4m.png"}
-    assert _vg_path(target, 3048.0, [0.0, 3048.0]).name == "vg_3048m.png"
-    assert _vg_path(target, 0.0, [0.0]) == target
+    names = [p.name for p in vg_paths(str(target), [9144.0, 9144.4])]
+    assert len(set(names)) == 2 and names[0] == "vg_9144m.png"
+    assert [p.name for p in vg_paths(str(target), [0.0, 3048.0])] == ["vg_0m.png", "vg_3048m.png"]
+    assert vg_paths(str(target), [0.0]) == [target]

@@ -43,10 +43,19 @@ def test_flutter_prints_both_settings_labelled(capsys):
     assert doc["paper"]["table_qs"][3][1] == 0.7329  # the paper's values only under "paper"
     assert main(argv) == 0
     out = capsys.readouterr().out
-    assert "paper Table 2" in out and "M_F [-]" in out and "w_F [rad/s]" in out and "T_e [kN]" in out
+    assert "paper Table 2" in out and "M_F" in out and "w_F" in out and "T_e" in out and "[rad/s]" in out
     assert "paper-replication" in out and "physical" in out
     if not all(r["mode_matches_paper"] for r in rows.values()):
-        assert "[differs from the paper's]" in out
+        assert "[not the paper's]" in out
+    lines = out.splitlines()
+    assert max(map(len, lines)) <= 100  # readable in a 100-column terminal
+    assert lines[0].startswith("M_F vs the paper's: QS ") and lines[0].endswith(f"critical mode in {sum(r['mode_matches_paper'] for r in rows.values())}/2 rows")
+    mach = {r["settings"]: r["mach"] for r in doc["rows"]}
+    for label, r in rows.items():  # the compact comparison column: M_F and w_F against Table 2's 9144 m row [%]
+        row = next(x for x in lines if x.startswith(label) and f"{r['mach']:7.4f}" in x)
+        d = r["vs_paper_percent"]
+        assert d["mach"] == pytest.approx(100 * (mach[label] / 0.7329 - 1))
+        assert row.split()[-2:] == [f"{d['mach']:+.1f}", f"{d['omega_rad_s']:+.1f}"]
 
 
 def test_sweep_scorecard_text_and_json():

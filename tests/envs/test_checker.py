@@ -104,3 +104,18 @@ def test_check_env_with_render_check_passes_headless(env_id, monkeypatch):
         check_env(env.unwrapped)
     with pytest.raises(ViewerUnavailableError, match="render_mode = 'human': cannot open a Rerun viewer: no display"):
         gym.make(env_id, render_mode="human")
+
+
+def test_pickling_an_environment_is_refused_with_the_way_to_share_it():
+    """An environment cannot travel to another process (compiled models, integrator state): pickling it, single or
+    vector, raises a TypeError that says how to make one there, instead of pickle's message about a local function."""
+    import pickle
+
+    env = gym.make("FlexSim/GTM-LevelHold-v1")
+    with pytest.raises(TypeError, match=r"cannot be pickled .*make a new one there with gymnasium.make\(id, \*\*kwargs\)"):
+        pickle.dumps(env)
+    vec = gym.make_vec("FlexSim/GTM-LevelHold-v1", num_envs=2, vectorization_mode="vector_entry_point")
+    with pytest.raises(TypeError, match=r"VectorEnv cannot be pickled .*gymnasium.make_vec"):
+        pickle.dumps(vec)
+    env.close()
+    vec.close()

@@ -5,6 +5,7 @@ Headless: recordings are written to ``.rrd`` files under ``tmp_path`` and read b
 500 m at 50 m/s, 1000 m altitude) with a sinusoidally bending 5-node right wing, 200 samples.
 """
 
+import os
 import math
 from collections import Counter
 
@@ -166,3 +167,19 @@ def test_rerun_mcap_importer_reads_our_mcap(circle_log):
     table = pa.Table.from_batches(cloud).sort_by("message_log_time")
     np.testing.assert_allclose(np.array(table.column("Points3D:positions").to_pylist()), nodes, atol=1e-6)
     assert {tuple(f) for f in table.column("CoordinateFrame:frame").to_pylist()} == {("body",)}
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="needs /dev/full (writes fail with ENOSPC)")
+def test_save_onto_a_full_disk_fails_at_once_naming_the_file(circle_log, tmp_path, monkeypatch, capsys):
+    """`flexsim view --save` onto a full disk: an error naming the file (ENOSPC from the kernel's /dev/full), no
+    partial file, and no hang (rerun's own file sink waited forever on a full disk)."""
+    from flexsim.cli.main import main
+    from flexsim.io import output_paths, rerun_view
+
+    mcap_path, _ = circle_log
+    target = tmp_path / "full.rrd"
+    monkeypatch.setattr(rerun_view, "open_output", lambda path: output_paths.open_output("/dev/full"))
+    assert main(["view", str(mcap_path), "--save", str(target)]) == 2
+    err = capsys.readouterr().err
+    assert "full.rrd" in err and "could not be written" in err and "No space left" in err
+    assert not target.exists()

@@ -42,6 +42,7 @@ from flexsim.model.sensors import structural_sensors  # noqa: E402
 from flexsim.sim.simulate import IntegratorSettings, simulate  # noqa: E402
 from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
 from flexsim.sim.run_settings import EventSettings, OutputSettings  # noqa: E402
+import flexsim as fs  # noqa: E402
 
 POLE_RTOL = 1e-9
 
@@ -223,3 +224,33 @@ def test_missing_python_control_names_the_extra(level, monkeypatch):
         system.to_statespace()
     with pytest.raises(ImportError):
         state_space(model, point)
+
+
+def test_wrong_inputs_are_refused_naming_the_argument(tmp_path, gtm, level):
+    """Inputs are checked where they enter: an Aircraft or a name where a model is expected, a truncated or damaged
+    file, a NaN or ragged operating point: each a clear error naming the argument, never numpy's or zipfile's."""
+    model, point = level
+    with pytest.raises(TypeError, match=r"model = .*must be an AircraftModel, not a flexsim.aircraft.definition.Aircraft; "
+                                        r"an Aircraft is the definition; build the model with flexsim.AircraftModel"):
+        linear_system(gtm, point)
+    with pytest.raises(TypeError, match=r"model = 'gtm': must be an AircraftModel.*load_aircraft\('gtm'\)"):
+        fs.state_space("gtm", point)
+    with pytest.raises(TypeError, match="model = .*must be an AircraftModel"):
+        fs.linearize(gtm, point)
+    with pytest.raises(TypeError, match=r"aircraft = 'gtm': must be an Aircraft.*flexsim.load_aircraft\('gtm'\)"):
+        AircraftModel("gtm")
+    with pytest.raises(TypeError, match=r"aircraft = .*must be an Aircraft.*model.aircraft"):
+        AircraftModel(model)
+    path = linear_system(model, point).save(tmp_path / "full.npz")
+    data = path.read_bytes()
+    for cut in (len(data) // 2, len(data) - 30, 10):
+        damaged = tmp_path / f"cut{cut}.npz"
+        damaged.write_bytes(data[:cut])
+        with pytest.raises(ValueError, match=r"not a readable \.npz file, truncated or damaged"):
+            LinearSystem.load(damaged)
+    x = point.x.copy()
+    x[7] = np.nan
+    with pytest.raises(ValueError, match=r"point\[7\] = nan: must be finite"):
+        linear_system(model, x, point.u)
+    with pytest.raises(ValueError, match="u0 = .*must be an array of numbers"):
+        linear_system(model, point.x, [1.0, [2.0, 3.0], 0.0, 0.0])

@@ -244,3 +244,37 @@ def test_shared_trims_give_the_separate_searches_results_bit_for_bit():
         FlutterAnalysis(gtm, "theodorsen").evaluate(man, shared=shared)
     with pytest.raises(ValueError, match="aero_model = 'theodorsen': this analysis \\(quasi-steady\\) has the models of quasi-steady only"):
         FlutterAnalysis(gtm, "quasi-steady").search(man, aero_model="theodorsen")
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"mach_step": 0}, r"mach_step = 0: must be a finite number in \(0, 0.2\] \[-\] \(at most the width of mach_range\)"),
+    ({"mach_step": -0.05}, r"mach_step = -0.05: must be a finite number in \(0, 0.2\]"),
+    ({"mach_step": float("nan")}, r"mach_step = nan: must be a finite number"),
+    ({"mach_step": "0.05"}, r"mach_step = '0.05': must be a number"),
+    ({"tol": 0.0}, r"tol = 0.0: must be a finite number in \(0, 0.05\] \[-\] \(at most mach_step\)"),
+    ({"mach_range": (0.5,)}, r"mach_range = \(0.5,\): must have shape \(2,\)"),
+    ({"mach_range": ("a", "b")}, r"mach_range = \('a', 'b'\): must be an array of numbers"),
+])
+def test_flutter_scan_settings_are_checked_where_they_enter(goland, kwargs, message):
+    """A zero, negative, NaN or non-numeric scan step or tolerance, or a malformed range: refused naming the argument
+    (a zero step made numpy divide by zero, a negative one an empty grid and an IndexError)."""
+    from flexsim.linear.flutter import flutter
+    from flexsim.model.aircraft_model import AircraftModel
+    from flexsim.trim import SteadyManoeuvre
+
+    gtm = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
+    args = {"mach_range": (0.6, 0.8), "mach_step": 0.05, **kwargs}
+    with pytest.raises(ValueError, match=message):
+        flutter(gtm, SteadyManoeuvre.level(0.0, mach=0.6), "quasi-steady", **args)
+
+
+def test_wind_tunnel_settings_are_checked_where_they_enter(goland):
+    from flexsim.linear.flutter import wind_tunnel
+    from flexsim.model.aircraft_model import AircraftModel
+
+    with pytest.raises(ValueError, match=r"speed_step = 0: must be a finite number in \(0, 50\] \[m/s\]"):
+        wind_tunnel(goland, speed_range=(100.0, 150.0), speed_step=0)
+    with pytest.raises(ValueError, match=r"speed_range = None: must have shape \(2,\)"):
+        wind_tunnel(goland, speed_range=None)
+    with pytest.raises(TypeError, match=r"aircraft = .*must be an Aircraft.*load it first"):
+        wind_tunnel("goland_wing")  # a name: load it first (a model is accepted: its terms are evaluated)

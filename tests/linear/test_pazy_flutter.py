@@ -3,7 +3,7 @@
 The wing: the bundled ``pazy_wing`` (the AePW3 Large Deflection Working Group's equivalent beam, with skin, no tip
 mass; sources in flexsim/aircraft/data/pazy_wing.md) as a 32- (vibration) or 16-element (flutter) strain-based beam
 (:func:`flexsim.structure.beam_sections.beam_from_sections`). References, all from the public repository
-UM-A2SRL/AePW3-LDWG (commit 7baa3e7):
+UM-A2SRL/AePW3-LDWG (the files named below):
 
 * vacuum frequencies: UM/NAST's beam and the ground vibration test (Avin et al., AIAA J. 2022),
   03_2023_JA_Riso_Cesnik/01_Modal_Undeformed/00_Comparisons/GFEM_vs_Beam.xlsx — within 3 % of UM/NAST's beam

@@ -154,3 +154,131 @@ def test_chain_length_cuts_chains_the_same_way_everywhere(tmp_path, fake):
         assert run_study(CASES, scheduler=cluster.scheduler_address, progress=False, chain_length=2) == serial
     with pytest.raises(ValueError, match="chain_length = 0: must be an integer >= 1"):
         run_study(CASES, chain_length=0)
+
+
+def _children(pid: int) -> set[int]:
+    """Live child processes of ``pid`` (Linux /proc)."""
+    kids = set()
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                status = open(f"/proc/{entry}/status").read()
+            except OSError:
+                continue
+            fields = dict(line.split(":\t", 1) for line in status.splitlines() if ":\t" in line)
+            if fields.get("PPid", "").strip() == str(pid) and not fields.get("State", "").startswith("Z"):
+                kids.add(int(entry))
+    return kids
+
+
+def _alive(pid: int) -> bool:
+    try:
+        return not open(f"/proc/{pid}/status").read().split("State:\t", 1)[1].startswith("Z")
+    except (OSError, IndexError):
+        return False
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads child processes from /proc")
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
+def test_workers_end_with_their_parent(tmp_path, sig):
+    """SIGTERM to a study's process (as `flexsim flutter --workers 2` installs it: raised as Terminated) stops its
+    worker processes before it exits with 128 + 15; after SIGKILL, which the parent cannot handle, the kernel ends
+    the workers (PR_SET_PDEATHSIG). Either way no worker is left running 10 s later."""
+    script = textwrap.dedent(f"""
+        import sys, time
+        sys.path.insert(0, {os.getcwd()!r})
+        from tests.linear.test_study_reliability import CASES
+        from flexsim.cli.main import Terminated, _end_on_signals
+        from flexsim.linear import study
+        def slow(case, mach_guess=None):
+            time.sleep(0.4)
+            return {{"model": case.model, "altitude_m": case.altitude_m, "turn_radius_m": case.turn_radius_m,
+                     "climb_angle_deg": 0.0, "mach_min": 0.5, "mach_max": 0.95, "aircraft": "gtm",
+                     "structural_damping": None, "mach": 0.6, "omega_rad_s": 1.0}}, 0.4
+        study.run_point = slow
+        study._kernels_cached = lambda: True
+        _end_on_signals()
+        rec = study.StudyRecord({str(tmp_path / "t.jsonl")!r})
+        try:
+            study.run_study(CASES * 20, workers=2, record=rec, progress=False)
+        except Terminated as exc:
+            print("terminated", flush=True)
+            sys.exit(128 + exc.signum)
+    """)
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    record = tmp_path / "t.jsonl"
+    deadline = time.monotonic() + 120.0
+    while time.monotonic() < deadline and not (record.exists() and record.read_text().count("\n") >= 2):
+        time.sleep(0.1)
+    workers = _children(proc.pid)
+    assert len(workers) >= 2, f"workers {workers}; stderr so far: {proc.stderr.read() if proc.poll() is not None else ''}"
+    proc.send_signal(sig)
+    out, err = proc.communicate(timeout=30)
+    if sig == signal.SIGTERM:
+        assert proc.returncode == 128 + signal.SIGTERM and "terminated" in out, (proc.returncode, out, err)
+    deadline = time.monotonic() + 10.0
+    while time.monotonic() < deadline and any(_alive(p) for p in workers):
+        time.sleep(0.1)
+    assert not [p for p in workers if _alive(p)], f"workers still running after {sig.name} to their parent"
+
+
+def test_resume_recognises_points_whose_rows_resolve_the_case(tmp_path, monkeypatch):
+    """A real row resolves its case (formulation None -> the file's "physical"): the record keeps the case's key, so a
+    resumed study after a kill skips every finished point instead of computing it again and duplicating its line."""
+    calls = []
+
+    def resolving(case, mach_guess=None):
+        calls.append(case)
+        row = asdict(case)
+        row.update(formulation="physical", mach=0.6, omega_rad_s=40.0)
+        return row, 0.0
+
+    monkeypatch.setattr(study, "run_point", resolving)
+    cases = [StudyCase("gtm", "QS", 0.0, turn_radius_m=r) for r in (5000.0, 6000.0, 7000.0)]
+    assert all(c.formulation is None for c in cases)
+    rec = StudyRecord(tmp_path / "r.jsonl")
+    run_study(cases[:2], workers=1, record=rec, progress=False)
+    rec.close()  # as after a SIGKILL: two finished lines on disk
+    calls.clear()
+    rec = StudyRecord(tmp_path / "r.jsonl", resume=True)
+    assert len(rec.done) == 2
+    rows = run_study(cases, workers=1, record=rec, progress=False)
+    rec.close()
+    assert [c.turn_radius_m for c in calls] == [7000.0] and len(rows) == 3
+    lines = (tmp_path / "r.jsonl").read_text().splitlines()
+    assert len(lines) == 3 and len({json.loads(x)["turn_radius_m"] for x in lines}) == 3
+
+
+def test_two_studies_cannot_write_one_record_at_once(tmp_path):
+    """A second study into the same file while the first runs is refused (it would interleave its rows with the
+    first's and then overwrite the first's results); the lock goes with the first's close, or its process."""
+    first = StudyRecord(tmp_path / "flutter_turn.jsonl")
+    with pytest.raises(FlexsimError, match="another study is writing it now"):
+        StudyRecord(tmp_path / "flutter_turn.jsonl")
+    code = (f"import sys; sys.path.insert(0, {os.getcwd()!r}); from flexsim.linear.study import StudyRecord; "
+            f"StudyRecord({str(tmp_path / 'flutter_turn.jsonl')!r})")
+    other = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert other.returncode != 0 and "another study is writing it now" in other.stderr
+    first.close()
+    StudyRecord(tmp_path / "flutter_turn.jsonl").close()
+
+
+def test_a_second_sweep_into_one_folder_keeps_the_first_ones_rows(tmp_path, fake, capsys, monkeypatch):
+    """`flexsim sweep --resume` into a folder with another altitude's points: the CSV and JSON written at the end
+    hold both sweeps' points (they held only the second's, though the record kept both). The figures are left out
+    (the stand-in points have no trim values to draw)."""
+    from flexsim.cli import flutter_commands
+    from flexsim.cli.main import main
+
+    monkeypatch.setattr(flutter_commands, "plot_study", lambda rows, kind, path: path)
+    monkeypatch.setattr(flutter_commands, "plot_trim", lambda rows, kind, path, altitude_m: path)
+
+    out = str(tmp_path / "study")
+    base = ["sweep", "--turn", "--models", "QS", "--radii-m", "5000", "6000", "--workers", "1", "--out", out,
+            "--mach-min", "0.5", "--mach-max", "0.95"]
+    assert main(base + ["--altitudes", "0"]) == 0
+    assert main(base + ["--altitudes", "3048", "--resume"]) == 0
+    rows = json.loads((tmp_path / "study" / "flutter_turn.json").read_text())
+    assert sorted({r["altitude_m"] for r in rows}) == [0.0, 3048.0] and len(rows) == 4
+    csv_lines = (tmp_path / "study" / "flutter_turn.csv").read_text().splitlines()
+    assert len(csv_lines) == 5

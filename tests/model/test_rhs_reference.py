@@ -6,9 +6,12 @@ near-trim states of seven GTM models: quasi-steady and unsteady, bending-inciden
 resolution, vacuum, restrained with structural damping, quasi-rigid; the fourth state of each in a 1-cos gust.
 The kernel now skips the exact zeros of each strip's rows and eliminates the lifting surfaces' 4 x 4 blocks into a
 Schur complement of the rigid-body and fuselage entries (:func:`flexsim._kernels.solve_structure`). Same algebra,
-other rounding: tolerance 1e-12 of the largest derivative (both eliminations are backward stable; the dense LU
-against LAPACK differs by about 1e-14 at these states, measured). The state derivatives near trim are small in
-the accelerations, so the acceleration block is also checked against its own largest entry (1e-10).
+other rounding (both eliminations are backward stable; the dense LU against LAPACK differs by about 1e-14 at these
+states, measured). The state derivatives near trim are small in the accelerations, so the acceleration block is also
+checked against its own largest entry. Largest differences measured across CPU targets (``python
+tools/reference_spread.py``: OpenBLAS core types Haswell, Zen, Sandybridge, SkylakeX, Prescott and numba's
+``NUMBA_CPU_NAME=generic``; 2026-12-04): 2.9e-13 of the largest derivative, 1.3e-12 of the largest acceleration.
+Tolerances: 2e-12 and 1e-10 (7x and 80x those).
 """
 
 from __future__ import annotations
@@ -56,7 +59,7 @@ def test_equal_to_the_dense_kernel_of_9d7f24c(cases):
             whole = np.max(np.abs(new - old)) / np.max(np.abs(old))
             accel = np.max(np.abs(new[vs] - old[vs])) / np.max(np.abs(old[vs]))
             worst[name] = max(worst.get(name, 0.0), whole)
-            assert whole <= 1e-12, (name, s, whole)
+            assert whole <= 2e-12, (name, s, whole)
             assert accel <= 1e-10, (name, s, accel)
     print("largest difference / max |dx| per model:", {n: f"{w:.1e}" for n, w in worst.items()})
 

@@ -321,3 +321,22 @@ def test_default_log_directory_is_created(quasi_steady, tmp_path, monkeypatch):
     result = simulate(quasi_steady, point, 0.05, output=OutputSettings(log_path=True))
     assert result.log_path.parent.name == "logs" and (tmp_path / result.log_path).is_file()
     assert state_scales(quasi_steady).shape == (quasi_steady.layout.n_states,)
+
+
+def test_ragged_or_non_numeric_controls_are_refused_naming_them(gtm, quasi_steady):
+    """Ragged, non-numeric or NaN controls, constant or scheduled, and a definition where a model is expected: each
+    refused naming the argument (before: numpy's "inhomogeneous shape" message, ``controls`` not named)."""
+    from flexsim.sim.controls import ControlSchedule
+    from flexsim.trim import SteadyManoeuvre, trim
+
+    point = trim(quasi_steady, SteadyManoeuvre.level(9144.0, mach=0.75))
+    with pytest.raises(ValueError, match=r"controls = .*must be an array of numbers \[thrust N, aileron"):
+        simulate(quasi_steady, point, 0.1, controls=[1e4, [0.0, 0.1], 0.0, 0.0])
+    with pytest.raises(ValueError, match=r"controls = .*must have shape \(4,\)"):
+        simulate(quasi_steady, point, 0.1, controls=[1e4, 0.0, 0.0])
+    with pytest.raises(ValueError, match=r"controls\[2\] = nan: must be finite"):
+        simulate(quasi_steady, point, 0.1, controls=[1e4, 0.0, float("nan"), 0.0])
+    with pytest.raises(ValueError, match=r"ControlSchedule.values = .*must be an array of numbers"):
+        ControlSchedule([0.0, 1.0], [[1e4, 0.0, 0.0, 0.0], [1e4, 0.0, 0.0]])
+    with pytest.raises(TypeError, match=r"model = .*must be an AircraftModel.*build the model with flexsim.AircraftModel"):
+        simulate(gtm, point, 0.1)

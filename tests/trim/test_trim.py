@@ -175,3 +175,27 @@ def test_trim_residual_through_the_batched_kernel_equals_rhs(models, name):
         x, u, _ = prob.state(z)
         expected = model.rhs(0.0, x, u)[model.layout.velocity] * prob.scale
         np.testing.assert_array_equal(prob.residual(z), expected)
+
+
+def test_gravity_free_trim_balances_thrust_and_drag_and_says_what_is_undetermined():
+    """Without gravity a level trim needs no lift: thrust along the body x axis balances the aerodynamic force,
+    T cos(alpha) = D and T sin(alpha) + L = 0 (wind axes; to 1e-12 of D, the trim's residual being ~1e-14). The thrust
+    unknown used to be scaled by the vanishing weight, so the trim was refused as singular with the aircraft's strips
+    and control surfaces blamed. A model without gravity and without aerodynamics is undetermined in its attitude and
+    controls, and the error says why in those terms."""
+    import math
+
+    from flexsim.aircraft.toml_loader import load_aircraft
+    from flexsim.model.aircraft_model import AircraftModel
+    from flexsim.trim import SteadyManoeuvre, TrimError, trim
+
+    gtm = load_aircraft("gtm")
+    model = AircraftModel(gtm, aero="quasi-steady", gravity_m_s2=0.0)
+    p = trim(model, SteadyManoeuvre.level(9144.0, mach=0.75), check_limits=False, classify=False)
+    thrust = p.u[0]
+    assert thrust > 0 and abs(thrust * math.cos(p.alpha) - p.drag_n) <= 1e-12 * p.drag_n
+    assert abs(thrust * math.sin(p.alpha) + p.lift_n) <= 1e-12 * p.drag_n
+    vacuum = AircraftModel(gtm, aero=None, gravity_m_s2=0.0)
+    with pytest.raises(TrimError, match=r"do not depend on .*the model has no gravity \(gravity_m_s2 = 0\).*"
+                                        r"the model has no aerodynamics \(aero=None\)"):
+        trim(vacuum, SteadyManoeuvre.level(9144.0, mach=0.75), check_limits=False, classify=False)
