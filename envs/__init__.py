@@ -1,4 +1,5 @@
-"""Gymnasium environments of flexsim: the flexible notional GTM in four control tasks (six ids).
+"""Gymnasium environments of flexsim: the flexible notional GTM in four control tasks (six ids),
+and the very flexible PHC HALE aircraft in gust alleviation (one id).
 
 Importing this package registers (idempotently) the environment ids of :data:`ENV_IDS`::
 
@@ -20,19 +21,20 @@ import gymnasium as gym
 from flexsim.envs.base import FlexSimEnv
 from flexsim.envs.config import ActuatorRates, FlightLimits, InitialPerturbation, IntegratorSettings, RewardTerm, TrackingReward
 from flexsim.envs.flutter_margin import FlutterMarginEnv, FlutterMarginTask, WingFlutterMarginEnv, WingFlutterMarginTask
-from flexsim.envs.gust_alleviation import GustAlleviationEnv, GustAlleviationTask
+from flexsim.envs.gust_alleviation import GustAlleviationEnv, GustAlleviationTask, HaleGustAlleviationEnv
 from flexsim.envs.level_hold import LevelHoldCaptureEnv, LevelHoldEnv, LevelHoldTask
 from flexsim.envs.turn import TurnEnv, TurnTask
 from flexsim.io.env_log import FlightLogRecorder
 
 __all__ = [
-    "ENV_IDS", "VECTOR_ENTRY_POINTS", "register_envs", "FlexSimEnv", "LevelHoldEnv", "LevelHoldCaptureEnv", "TurnEnv", "GustAlleviationEnv", "FlutterMarginEnv",
+    "ENV_IDS", "VECTOR_ENTRY_POINTS", "register_envs", "FlexSimEnv", "LevelHoldEnv", "LevelHoldCaptureEnv", "TurnEnv", "GustAlleviationEnv", "HaleGustAlleviationEnv", "FlutterMarginEnv",
     "WingFlutterMarginEnv", "LevelHoldTask", "TurnTask", "GustAlleviationTask", "FlutterMarginTask", "WingFlutterMarginTask", "ActuatorRates", "FlightLimits",
     "InitialPerturbation", "IntegratorSettings", "RewardTerm", "TrackingReward", "FlightLogRecorder",
 ]
 
 #: The task classes, one per registered id (their ``env_id`` and ``max_episode_steps``).
-_ENV_CLASSES = (LevelHoldEnv, LevelHoldCaptureEnv, TurnEnv, GustAlleviationEnv, FlutterMarginEnv, WingFlutterMarginEnv)
+_ENV_CLASSES = (LevelHoldEnv, LevelHoldCaptureEnv, TurnEnv, GustAlleviationEnv, FlutterMarginEnv, WingFlutterMarginEnv,
+                HaleGustAlleviationEnv)
 #: Registered id -> (entry point, max_episode_steps; 50 steps = 1 s at the default 50 Hz).
 ENV_IDS: dict[str, tuple[str, int]] = {
     c.env_id: (f"{c.__module__}:{c.__name__}", c.max_episode_steps) for c in _ENV_CLASSES}

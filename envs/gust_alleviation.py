@@ -16,7 +16,7 @@ from flexsim.envs.config import GUST_MAX_STEP_S, RewardTerm, TrackingReward
 from flexsim.sim.measurements import MeasurementBatch
 from flexsim.sim.initial_states import perturbed_state, turbulence_field
 
-__all__ = ["GustAlleviationTask", "GustAlleviationEnv"]
+__all__ = ["GustAlleviationTask", "GustAlleviationEnv", "HaleGustAlleviationEnv"]
 
 
 def _range(name: str, value: tuple[float, float], low: float, high: float) -> tuple[float, float]:
@@ -153,3 +153,57 @@ class GustAlleviationEnv(FlexSimEnv):
 
     def task_label(self) -> str:
         return f"GTM gust {self._reference.get('gust_amplitude_m_s', math.nan):+.1f} m/s"
+
+
+@shared_docs
+class HaleGustAlleviationEnv(GustAlleviationEnv):
+    """
+    ## Description
+    The very flexible PHC HALE aircraft (bundled ``phc_hale``: Patil, Hodges & Cesnik 2001; 16 m wing halves,
+    see ``flexsim/aircraft/data/phc_hale.md``) flies trimmed at its cruise point (20 km, the file's
+    ``[envelope]``) and meets a vertical "1 - cos" gust: hold the attitude (pitch, roll) and altitude while
+    keeping the wing loads — tip deflection and root bending moment above their 1-g values — small. The task
+    is ``FlexSim/GTM-GustAlleviation-v0``'s with its defaults derived from this aircraft
+    (``flexsim.envs.aircraft_defaults``): the cruise altitude and Mach number, gust amplitudes scaled with the
+    airspeed (the same gust angles of attack), the wing-tip deflection bound 0.3 x the wing's length beyond the
+    trim's own deflection, and the speed bounds from the aircraft's envelope.
+
+    The structure flown is the paper's linear (small-deflection) beam: the trim alone bends the wing tips by
+    several metres, beyond the linear structure's range (14 % of the wing's length), and ``reset`` says so in one
+    line (``info["linear_range"]``, a warning once per env). The geometrically nonlinear beam is not yet coupled
+    to the free-flying model; until it is, this environment is a control task on the linear model of a very
+    flexible aircraft, not a prediction of its large-deflection response.
+
+    ## Action Space
+    <action space>
+
+    ## Observation Space
+    <observation>
+
+    The root bending moment is the modal-curvature estimate EI(0) w''(0) of the beam model.
+
+    ## Rewards
+    <rewards>
+
+    ## Starting State
+    Perturbed level trim (``InitialPerturbation``); gust amplitude, sign, gradient distance and encounter
+    time drawn from ``self.np_random`` (``info["reference"]`` at reset reports them).
+
+    ## Episode End
+    <termination>
+    <truncation>
+
+    ## Arguments
+    <arguments>
+
+    ## Version History
+    * v0: initial version (linear structure, with the linear-range note).
+    """
+
+    env_id, max_episode_steps = "FlexSim/HALE-GustAlleviation-v0", 500
+
+    def __init__(self, *, aircraft="phc_hale", **kwargs) -> None:
+        super().__init__(aircraft=aircraft, **kwargs)
+
+    def task_label(self) -> str:
+        return f"HALE gust {self._reference.get('gust_amplitude_m_s', math.nan):+.1f} m/s"

@@ -38,12 +38,12 @@ from flexsim.envs.base import TERMINATION_CODES, FlexSimEnv, RowsStep, check_res
 from flexsim.envs.batch import EpisodeBatch
 from flexsim.model.aircraft_model import CONTROL_NAMES
 from flexsim.envs.flutter_margin import FlutterMarginEnv, WingFlutterMarginEnv
-from flexsim.envs.gust_alleviation import GustAlleviationEnv
+from flexsim.envs.gust_alleviation import GustAlleviationEnv, HaleGustAlleviationEnv
 from flexsim.envs.level_hold import LevelHoldCaptureEnv, LevelHoldEnv
 from flexsim.envs.turn import TurnEnv
 
 __all__ = ["FlexSimVectorEnv", "LevelHoldVectorEnv", "LevelHoldCaptureVectorEnv", "TurnVectorEnv", "GustAlleviationVectorEnv", "FlutterMarginVectorEnv",
-           "WingFlutterMarginVectorEnv"]
+           "WingFlutterMarginVectorEnv", "HaleGustAlleviationVectorEnv"]
 
 #: Attributes of the sub-environments that the batched step reads from the first one only (all equal).
 _SHARED = ("limits", "task", "reward_definition")
@@ -298,3 +298,4 @@ TurnVectorEnv = _vector_class(TurnEnv)
 GustAlleviationVectorEnv = _vector_class(GustAlleviationEnv)
 FlutterMarginVectorEnv = _vector_class(FlutterMarginEnv)
 WingFlutterMarginVectorEnv = _vector_class(WingFlutterMarginEnv)
+HaleGustAlleviationVectorEnv = _vector_class(HaleGustAlleviationEnv)

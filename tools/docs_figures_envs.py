@@ -148,7 +148,7 @@ def env_baselines() -> str:
         else:
             common = max(set(reasons), key=reasons.count)
             ending = f"{common.replace('_', ' ')} ({reasons.count(common)}/10), {rand['lengths'].mean():.0f} steps on average"
-        label = env_id.removeprefix("FlexSim/GTM-").removesuffix("-v0")
+        label = env_id.removeprefix("FlexSim/").removeprefix("GTM-").removesuffix("-v0")
         rows.append([f"{label} (max {limit})", f"{base['returns'].mean():.1f} +- {base['returns'].std():.1f}",
                      f"{rand['returns'].mean():.1f} +- {rand['returns'].std():.1f}", ending])
     return table("| id | baseline return | random return | random episodes end by |", rows)

@@ -1,4 +1,5 @@
-"""Classical baselines of the flexsim tasks (LQR on the linearised model; PID + fin or aileron damper for flutter).
+"""Classical baselines of the flexsim tasks (LQR on the linearised model; PID + fin or aileron damper for flutter;
+the trim's controls held for the very flexible HALE).
 
 Each policy is designed from the environment's own model at a trim (``lqr_design``) and then acts on
 observations only (run from ``examples/agents`` or put it on ``sys.path``; these are scripts, not a package)::
@@ -22,7 +23,8 @@ import numpy as np
 from lqr_design import (StateFeedback, _discrete_full_model, _rigid_indices, checked_feedback, design_fin_damper, design_rigid_lqr,
                         rigid_state_from_obs)
 
-__all__ = ["LevelHoldLqr", "TurnLqr", "GustLqr", "FlutterPidDamper", "WingFlutterAileronDamper", "RandomPolicy", "make_baseline", "BASELINES"]
+__all__ = ["LevelHoldLqr", "TurnLqr", "GustLqr", "FlutterPidDamper", "WingFlutterAileronDamper", "TrimHold", "RandomPolicy", "make_baseline",
+           "BASELINES"]
 
 _ALL = ("z_m", "phi_rad", "theta_rad", "psi_rad", "u_m_s", "v_m_s", "w_m_s", "p_rad_s", "q_rad_s", "r_rad_s")
 
@@ -203,6 +205,20 @@ def elastic_growth(env, gains: dict, extra_feedback: np.ndarray) -> float:
     return float(fast.real.max())
 
 
+class TrimHold:
+    """Holds the controls of the episode's trim (``info["trim_action"]`` at reset): the open-loop reference that
+    a gust-alleviation controller has to beat (the very flexible HALE's baseline)."""
+
+    def __init__(self, env) -> None:
+        self.action = None
+
+    def reset(self, info: dict) -> None:
+        self.action = np.asarray(info["trim_action"], dtype=np.float32)
+
+    def __call__(self, obs: np.ndarray) -> np.ndarray:
+        return self.action
+
+
 class RandomPolicy:
     """Uniform random actions from the action space (seeded at every reset)."""
 
@@ -220,7 +236,7 @@ class RandomPolicy:
 
 BASELINES = {"FlexSim/GTM-LevelHold-v0": LevelHoldLqr, "FlexSim/GTM-LevelHold-v1": LevelHoldLqr, "FlexSim/GTM-Turn-v0": TurnLqr,
              "FlexSim/GTM-GustAlleviation-v0": GustLqr, "FlexSim/GTM-FlutterMargin-v0": FlutterPidDamper,
-             "FlexSim/GTM-FlutterMargin-v1": WingFlutterAileronDamper}
+             "FlexSim/GTM-FlutterMargin-v1": WingFlutterAileronDamper, "FlexSim/HALE-GustAlleviation-v0": TrimHold}
 
 
 def make_baseline(env_id: str, env):

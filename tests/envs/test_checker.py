@@ -1,7 +1,7 @@
 """Registration and gymnasium's env checker.
 
-Checks: the six ids are registered once (registering again is a no-op); ``gymnasium.utils.env_checker.
-check_env`` passes without warnings for every id, its render check included (on a headless machine the
+Checks: the seven ids are registered once (registering again is a no-op); ``gymnasium.utils.env_checker.
+check_env`` passes without warnings for every id (but the linear-range note of the HALE's trim), its render check included (on a headless machine the
 instances offer "rgb_array" only, and ``render_mode="human"`` fails at once with a clear message);
 the spaces are float32 Boxes with finite bounds and ``observation_structure`` tiles the observation.
 Tolerances: exact (structural checks).
@@ -18,13 +18,17 @@ from gymnasium.utils.env_checker import check_env
 from flexsim import envs
 from flexsim.io.viewer import ViewerUnavailableError
 
+#: The one line a reset says when its trim bends a wing beyond the linear structure's range (the HALE's does, by design:
+#: tests/envs/test_linear_range_reset.py); every other warning fails the check.
+LINEAR_RANGE_NOTE = r".*linear structure beyond its range"
+
 
 def test_ids_registered_once():
     before = {k: gym.registry[k] for k in envs.ENV_IDS}
     envs.register_envs()
     assert set(envs.ENV_IDS) <= set(gym.registry)
     assert all(gym.registry[k] is before[k] for k in envs.ENV_IDS)
-    assert [gym.registry[k].max_episode_steps for k in envs.ENV_IDS] == [1000, 1000, 1000, 500, 1000, 1000]
+    assert [gym.registry[k].max_episode_steps for k in envs.ENV_IDS] == [1000, 1000, 1000, 500, 1000, 1000, 500]
 
 
 @pytest.mark.parametrize("env_id", list(envs.ENV_IDS))
@@ -32,6 +36,7 @@ def test_check_env_passes(env_id):
     env = gym.make(env_id)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
+        warnings.filterwarnings("ignore", message=LINEAR_RANGE_NOTE)
         check_env(env.unwrapped, skip_render_check=True)  # with the render check: the test below
     space = env.observation_space
     assert space.dtype == np.float32 and np.all(np.isfinite(space.low)) and np.all(np.isfinite(space.high))
@@ -101,6 +106,7 @@ def test_check_env_with_render_check_passes_headless(env_id, monkeypatch):
     assert env.unwrapped.metadata["render_modes"] == ["rgb_array"]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
+        warnings.filterwarnings("ignore", message=LINEAR_RANGE_NOTE)
         check_env(env.unwrapped)
     with pytest.raises(ViewerUnavailableError, match="render_mode = 'human': cannot open a Rerun viewer: no display"):
         gym.make(env_id, render_mode="human")

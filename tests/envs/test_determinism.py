@@ -45,7 +45,7 @@ def test_level_hold_200_steps_identical_for_same_seed():
 
 
 @pytest.mark.parametrize("env_id", ["FlexSim/GTM-Turn-v0", "FlexSim/GTM-GustAlleviation-v0", "FlexSim/GTM-FlutterMargin-v0",
-                                    "FlexSim/GTM-FlutterMargin-v1"])
+                                    "FlexSim/GTM-FlutterMargin-v1", "FlexSim/HALE-GustAlleviation-v0"])
 def test_other_tasks_20_steps_identical_for_same_seed(env_id):
     a = _rollout(env_id, 3, 20)
     b = _rollout(env_id, 3, 20)
