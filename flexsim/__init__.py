@@ -50,6 +50,7 @@ _API: dict[str, str] = {
     "FlutterPoint": "flexsim.linear.flutter",
     "FlutterNotFound": "flexsim.linear.flutter",
     "wind_tunnel": "flexsim.linear.flutter",
+    "nonlinear_wing_tunnel": "flexsim.linear.beam_flutter",
     "WindTunnelResult": "flexsim.linear.flutter",
     "SearchRange": "flexsim.linear.envelope",
     "search_range": "flexsim.linear.envelope",

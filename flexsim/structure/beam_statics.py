@@ -230,7 +230,11 @@ def solve_static(beam: BeamProperties, loads: LoadModel, settings: NewtonSetting
     if q.shape != (beam.n_coordinates,) or not np.all(np.isfinite(q)):
         raise ValueError(f"q0 must be {beam.n_coordinates} finite strains; got shape {q.shape}")
     done, increment, total_it, halvings = 0.0, 1.0 / settings.load_steps, 0, 0
-    res = 0.0
+    kin = beam_kinematics(beam, q)
+    load = loads.generalized_force(beam, kin)
+    res = float(np.abs(k @ q - load).max())
+    if res <= settings.tolerance * max(np.abs(load).max(), np.abs(k @ q).max(), 1e-12):
+        return StaticSolution(q=q, kinematics=kin, iterations=0, residual=res)  # q0 is already the equilibrium
     while done < 1.0 - 1e-12:
         target = min(1.0, done + increment)
         q_new, it, res, ok, why = _newton(beam, loads, k, q, target, settings)
@@ -283,6 +287,11 @@ def vibration_modes(beam: BeamProperties, loads: LoadModel | None = None, q0: Ar
     q0 = np.zeros(beam.n_coordinates) if q0 is None else np.asarray(q0, dtype=float)
     kin = beam_kinematics(beam, q0)
     m = mass_matrix(beam, kin)
+    try:
+        np.linalg.cholesky(m)
+    except np.linalg.LinAlgError:
+        raise ValueError("the beam's mass matrix is singular: a strain moves no mass (give torsion_inertia_kg_m > 0 "
+                         "for twist, or the section inertias); vibration frequencies are not defined") from None
     kt = tangent_stiffness(beam, loads, q0, step)
     if np.abs(kt - kt.T).max() <= 1e-8 * np.abs(kt).max():
         lam, vec = eigh(0.5 * (kt + kt.T), m)

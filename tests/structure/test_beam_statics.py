@@ -132,6 +132,13 @@ def test_convergence_error_names_the_load_factor_and_the_coordinate():
         solve_static(beam, BeamLoads(tip_force_n=[0.0, 0.0, 10.0]), NewtonSettings(max_iterations=1, max_halvings=1))
 
 
+def test_a_beam_without_torsional_inertia_has_no_vibration_frequencies():
+    beam = BeamProperties(length_m=1.0, n_elements=2, gj_nm2=1.0, ei_flap_nm2=1.0, ei_chord_nm2=1.0,
+                          mass_kg_per_m=1.0)
+    with pytest.raises(ValueError, match="mass matrix is singular.*torsion_inertia_kg_m"):
+        vibration_modes(beam)
+
+
 def _phc_wing(n=16):
     """PHC 2001 Table 1; the rotary inertia split as AeroBeams' SMWVacuumEigen.jl (5e-4 about the chordwise axis)."""
     return BeamProperties(length_m=16.0, n_elements=n, gj_nm2=1e4, ei_flap_nm2=2e4, ei_chord_nm2=4e6,

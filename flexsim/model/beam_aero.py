@@ -1,0 +1,281 @@
+"""Strip airloads on the strain-based beam and the linear aeroelastic system about a deformed equilibrium.
+
+The coupling of :mod:`flexsim.structure.strain_beam` (geometrically exact beam) with flexsim's 2-D aerodynamics
+(:mod:`flexsim.aero.peters`: Peters-Johnson airloads of a rigid section in the downwash form, reference §1.3-1.4;
+:mod:`flexsim.aero.inflow`: Peters' finite-state inflow, Peters, Karunamoorthy & Cao 1995, reference §2.1), for a
+wing clamped in a wind tunnel. Strips sit at the beam's quadrature points and follow the deformed sections: each
+strip's chordwise speed ``u0 = −V_a·e2`` and normal ``w = V_a·e3`` come from its own frame ``[e1, e2, e3]`` (so
+dihedral, twist and sweep of the deformed wing all enter), the spanwise component of the flow is ignored (strip
+theory). Thin-airfoil lift slope 2π, no tip loss, no drag but the leading-edge suction of the Peters model (the
+resultant of a steady strip is normal to the wind: lift 2πρbU² sin α, no drag).
+
+Frames and units: global frame of the tunnel (the beam's), free stream ``V_a = U d`` [m/s] along the unit vector
+``d`` (default ``−y``: from the leading edge of an unpitched wing whose ``e2 = y``); loads per unit length: force
+[N/m] in global components at the reference axis, moment [N] (N m/m) about it. Reference-axis position in the
+chord: ``a`` semichords aft of mid-chord, ``a = 2 × axis_fraction − 1``.
+
+Linearisation about a static equilibrium ``q0`` (rates zero, inflow zero), exact to first order:
+``M(q0) δq̈ + K_T δq = δQ_a(δq̇, δq̈, λ)`` with ``K_T = K − ∂Q_ext/∂q − ∂Q_steady/∂q`` (the preload's geometric
+stiffness and the steady airloads' stiffness of the deformed strips, by central differences; the steady loads are
+``U²`` times those at unit speed) and the unsteady loads linear in the strip motions:
+``δw0 = −(e3ᵀJ_p + a b e1ᵀJ_θ) δq̇``, ``δw1 = b e1ᵀJ_θ δq̇``, ``δu0 = e2ᵀJ_p δq̇``, ``δẇ0 = −(e3ᵀJ_p + a b e1ᵀJ_θ) δq̈
++ (e3 × V_a)ᵀJ_θ δq̇``, ``δẇ1 = b e1ᵀJ_θ δq̈``; ``{L} = πρ{b²[M]{ẇ} + b u0([B]{w} − {S}λ0)}`` (reference §1.3);
+``[L, M_EA] = diag(1, −1) Tᵀ{L}`` (paper eq. 26); suction ``2πρ b (w0 − λ0)²`` forward along ``e2``;
+``[A]λ̇ + (u0/b)λ = {c}(ẇ0 + ẇ1/2)`` per strip.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from flexsim._arrays import frozen_array
+from flexsim.aero.inflow import inflow_coefficients
+from flexsim.aero.peters import peters_matrices
+from flexsim.structure.beam_statics import LoadModel, load_stiffness
+from flexsim.structure.strain_beam import (BeamKinematics, BeamProperties, beam_kinematics, mass_matrix,
+                                           stiffness_matrix)
+
+__all__ = ["WingAero", "TunnelFlow", "StripAirloads", "LoadSum", "AeroelasticSystem", "aeroelastic_system",
+           "static_stiffness"]
+
+
+@dataclass(frozen=True)
+class WingAero:
+    """Strip aerodynamics of a beam (validated, frozen).
+
+    Parameters
+    ----------
+    chord_m : float or array of shape (N,)
+        Chord per element [m].
+    axis_fraction : float or array of shape (N,)
+        Reference (elastic) axis position aft of the leading edge, as a fraction of the chord, in (0, 1).
+    inflow_states : int
+        Peters finite-state inflow states per strip, 1-10 (default 6).
+    """
+
+    chord_m: ArrayLike
+    axis_fraction: ArrayLike = 0.5
+    inflow_states: int = 6
+
+    def __post_init__(self) -> None:
+        chord = np.atleast_1d(np.array(self.chord_m, dtype=float))
+        if not np.all(np.isfinite(chord) & (chord > 0)):
+            raise ValueError(f"chord_m = {self.chord_m!r}: must be finite numbers > 0 [m]")
+        frac = np.atleast_1d(np.array(self.axis_fraction, dtype=float))
+        if not np.all(np.isfinite(frac) & (frac > 0) & (frac < 1)):
+            raise ValueError(f"axis_fraction = {self.axis_fraction!r}: must be numbers in (0, 1) (of the chord, "
+                             "from the leading edge)")
+        object.__setattr__(self, "chord_m", frozen_array(chord))
+        object.__setattr__(self, "axis_fraction", frozen_array(frac))
+        inflow_coefficients(self.inflow_states)  # validates 1-10 with a message naming n_states
+
+    def strips(self, beam: BeamProperties, kin: BeamKinematics) -> tuple[NDArray, NDArray]:
+        """Semichord ``b`` [m] and axis position ``a`` [semichords aft of mid-chord] at the quadrature points."""
+        n = beam.n_elements
+        for name, arr in (("chord_m", self.chord_m), ("axis_fraction", self.axis_fraction)):
+            if arr.size not in (1, n):
+                raise ValueError(f"{name} has {arr.size} values: must be one or one per element ({n})")
+        e = kin.points_element
+        chord = np.broadcast_to(self.chord_m, (n,))[e]
+        frac = np.broadcast_to(self.axis_fraction, (n,))[e]
+        return 0.5 * chord, 2.0 * frac - 1.0
+
+
+@dataclass(frozen=True)
+class TunnelFlow:
+    """Free stream of a wind tunnel (validated, frozen).
+
+    Parameters
+    ----------
+    speed_m_s : float
+        ``U`` >= 0 [m/s].
+    density_kg_m3 : float
+        ``ρ`` > 0 [kg/m³].
+    direction : array_like, shape (3,)
+        Unit vector of the free stream in the global frame (default ``(0, −1, 0)``).
+    """
+
+    speed_m_s: float
+    density_kg_m3: float
+    direction: ArrayLike = field(default_factory=lambda: np.array([0.0, -1.0, 0.0]))
+
+    def __post_init__(self) -> None:
+        for name, allow_zero in (("speed_m_s", True), ("density_kg_m3", False)):
+            v = getattr(self, name)
+            ok = isinstance(v, (int, float, np.floating)) and not isinstance(v, bool) and np.isfinite(v)
+            if not ok or v < 0 or (v == 0 and not allow_zero):
+                raise ValueError(f"{name} = {v!r}: must be a finite number {'>=' if allow_zero else '>'} 0")
+        d = np.array(self.direction, dtype=float)
+        if d.shape != (3,) or not np.all(np.isfinite(d)) or abs(np.linalg.norm(d) - 1.0) > 1e-9:
+            raise ValueError(f"direction = {self.direction!r}: must be a unit vector of 3 numbers")
+        object.__setattr__(self, "direction", frozen_array(d))
+
+    @property
+    def velocity_m_s(self) -> NDArray:
+        """``V_a = U d`` [m/s], shape (3,)."""
+        return self.speed_m_s * self.direction
+
+
+@lru_cache(maxsize=4)
+def _section_matrices():
+    """Peters-Johnson [M], [B], {S} of a rigid section (2 Chebyshev terms: exact rows 0, 1; reference §1.4)."""
+    m = peters_matrices(2)
+    return m.mass, m.circulatory, m.inflow
+
+
+def _steady_section_loads(kin, b, a, flow):
+    """Steady strip force [N/m] (P, 3) and moment [N] (P, 3) in global components (inflow zero, no rates)."""
+    _, bm, _ = _section_matrices()
+    rho, va = flow.density_kg_m3, flow.velocity_m_s
+    e1, e2, e3 = kin.rotations[:, :, 0], kin.rotations[:, :, 1], kin.rotations[:, :, 2]
+    u0, w0 = -(e2 @ va), e3 @ va
+    w = np.stack([w0, np.zeros_like(w0)], axis=1)
+    gen = np.pi * rho * (b * u0)[:, None] * (w @ bm.T)  # {L} (P, 2)
+    lift, moment = gen[:, 0], a * b * gen[:, 0] - b * gen[:, 1]
+    suction = 2.0 * np.pi * rho * b * w0**2
+    force = lift[:, None] * e3 + suction[:, None] * e2
+    return force, moment[:, None] * e1
+
+
+@dataclass(frozen=True)
+class StripAirloads:
+    """Steady strip airloads following the deformed strips (a :class:`~flexsim.structure.beam_statics.LoadModel`).
+
+    Parameters
+    ----------
+    aero : WingAero
+    flow : TunnelFlow
+    """
+
+    aero: WingAero
+    flow: TunnelFlow
+
+    def generalized_force(self, beam: BeamProperties, kin: BeamKinematics) -> NDArray[np.float64]:
+        """``Q = Σ w (J_pᵀ F + J_θᵀ M)`` of the steady strip loads (virtual work; Su & Cesnik 2011 eq. 13)."""
+        b, a = self.aero.strips(beam, kin)
+        force, moment = _steady_section_loads(kin, b, a, self.flow)
+        w = kin.points_weight
+        return (np.einsum("p,pik,pi->k", w, kin.jac_position, force)
+                + np.einsum("p,pik,pi->k", w, kin.jac_rotation, moment))
+
+
+@dataclass(frozen=True)
+class LoadSum:
+    """The sum of several load models (each a :class:`~flexsim.structure.beam_statics.LoadModel`)."""
+
+    parts: tuple
+
+    def generalized_force(self, beam: BeamProperties, kin: BeamKinematics) -> NDArray[np.float64]:
+        """``Σ Q_i``, shape (n,)."""
+        return sum(part.generalized_force(beam, kin) for part in self.parts)
+
+
+@dataclass(frozen=True, eq=False)
+class AeroelasticSystem:
+    """Linear aeroelastic system about a static equilibrium, ``ẋ = A x`` with ``x = [δq, δq̇, λ]``.
+
+    Attributes
+    ----------
+    state_matrix : ndarray, shape (2n + P N_λ, 2n + P N_λ)
+        ``A`` [1/s and mixed units]; ``λ`` stacks the inflow states of the P strips [m/s].
+    n_structural : int
+        ``n``.
+    tangent_stiffness : ndarray, shape (n, n)
+        ``K_T`` including the preload's and the steady airloads' stiffness.
+    mass : ndarray, shape (n, n)
+        ``M(q0)``.
+    """
+
+    state_matrix: NDArray
+    n_structural: int
+    tangent_stiffness: NDArray
+    mass: NDArray
+
+
+def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q0: ArrayLike,
+                       stiffness: NDArray) -> AeroelasticSystem:
+    """Linear aeroelastic state matrix about the equilibrium ``q0`` (module docstring).
+
+    Parameters
+    ----------
+    beam, aero, flow
+    q0 : array_like, shape (n,)
+        Static equilibrium under the flow (and any other loads).
+    stiffness : ndarray, shape (n, n)
+        ``K_T`` at ``q0``: elastic, geometric and steady-aero stiffness (:func:`static_stiffness`).
+
+    Returns
+    -------
+    AeroelasticSystem
+    """
+    q0 = np.asarray(q0, dtype=float)
+    kin = beam_kinematics(beam, q0)
+    n = beam.n_coordinates
+    b, a = aero.strips(beam, kin)
+    coef = inflow_coefficients(aero.inflow_states)
+    nl = coef.n_states
+    mm, bm, sv = _section_matrices()
+    rho, va, w = flow.density_kg_m3, flow.velocity_m_s, kin.points_weight
+    e1, e2, e3 = kin.rotations[:, :, 0], kin.rotations[:, :, 1], kin.rotations[:, :, 2]
+    jp, jt = kin.jac_position, kin.jac_rotation
+    u0, w0s = -(e2 @ va), e3 @ va
+    pn, pc = np.einsum("pi,pik->pk", e3, jp), np.einsum("pi,pik->pk", e2, jp)
+    a1 = np.einsum("pi,pik->pk", e1, jt)
+    rn = np.einsum("pi,pik->pk", np.cross(e3, va), jt)
+    w0v = -pn - (a * b)[:, None] * a1  # δw0 per δq̇ and δẇ0 per δq̈
+    w1v = b[:, None] * a1
+    # {L} = πρ{b²[M]{ẇ} + b δu0 [B]{w_s} + b u0([B]{δw} − {S}λ0)}, rows (P, 2, n) per δq̈ and δq̇; per λ0 (P, 2)
+    acc = np.pi * rho * b[:, None, None] ** 2 * np.einsum("ij,pjk->pik", mm, np.stack([w0v, w1v], 1))
+    acc_rate = np.stack([rn, np.zeros_like(rn)], 1)  # δẇ = ... + [Rn, 0] δq̇
+    vel = np.pi * rho * (b[:, None, None] ** 2 * np.einsum("ij,pjk->pik", mm, acc_rate)
+                         + (b * w0s)[:, None, None] * bm[:, 0][None, :, None] * pc[:, None, :]
+                         + (b * u0)[:, None, None] * np.einsum("ij,pjk->pik", bm, np.stack([w0v, w1v], 1)))
+    lam = -np.pi * rho * (b * u0)[:, None] * sv[None, :]  # per λ0
+    # section lift (up, along e3), moment about the axis (nose up, along e1): [L, M] = diag(1, -1) Tᵀ{L}
+    lift_acc, lift_vel, lift_lam = acc[:, 0], vel[:, 0], lam[:, 0]
+    mom_acc = (a * b)[:, None] * acc[:, 0] - b[:, None] * acc[:, 1]
+    mom_vel = (a * b)[:, None] * vel[:, 0] - b[:, None] * vel[:, 1]
+    mom_lam = a * b * lam[:, 0] - b * lam[:, 1]
+    suc = 4.0 * np.pi * rho * b * w0s  # δS = suc (δw0 − λ0)
+    # δQ = Σ w (pnᵀ δL + pcᵀ δS + a1ᵀ δM)  ->  −M_a δq̈ − C_a δq̇ + G_λ λ0
+    ma = -(np.einsum("p,pk,pl->kl", w, pn, lift_acc) + np.einsum("p,pk,pl->kl", w, a1, mom_acc))
+    ca = -(np.einsum("p,pk,pl->kl", w, pn, lift_vel) + np.einsum("p,pk,pl->kl", w, a1, mom_vel)
+           + np.einsum("p,pk,pl->kl", w * suc, pc, w0v))
+    g0 = (w[:, None] * (pn * lift_lam[:, None] + a1 * mom_lam[:, None] - pc * suc[:, None])).T  # (n, P) per λ0_p
+    # λ0_p = ½ bᵀ λ_p
+    p = b.size
+    g_lam = np.zeros((n, p * nl))
+    for i in range(p):
+        g_lam[:, i * nl:(i + 1) * nl] = np.outer(g0[:, i], 0.5 * coef.b)
+    m = mass_matrix(beam, kin)
+    h = np.linalg.inv(m + ma)
+    size = 2 * n + p * nl
+    out = np.zeros((size, size))
+    out[:n, n:2 * n] = np.eye(n)
+    qdd_q, qdd_v, qdd_l = -h @ stiffness, -h @ ca, h @ g_lam
+    out[n:2 * n, :n], out[n:2 * n, n:2 * n], out[n:2 * n, 2 * n:] = qdd_q, qdd_v, qdd_l
+    # [A]λ̇ + (u0/b)λ = {c}(ẇ0 + ẇ1/2),  ẇ0 + ẇ1/2 = (w0v + w1v/2) δq̈ + rn δq̇
+    forcing_acc = w0v + 0.5 * w1v
+    for i in range(p):
+        rows = slice(2 * n + i * nl, 2 * n + (i + 1) * nl)
+        f_row = forcing_acc[i] @ np.hstack([qdd_q, qdd_v, qdd_l])
+        f_row[n:2 * n] += rn[i]
+        out[rows] = np.outer(coef.A_inv_c, f_row)
+        out[rows, rows] -= (u0[i] / b[i]) * coef.A_inv
+    return AeroelasticSystem(state_matrix=out, n_structural=n, tangent_stiffness=stiffness, mass=m)
+
+
+def static_stiffness(beam: BeamProperties, q0: ArrayLike, loads: LoadModel | None, aero: WingAero,
+                     flow: TunnelFlow, step: float = 1e-6) -> NDArray:
+    """``K_T = K − ∂Q_loads/∂q − U² ∂Q_steady(U = 1)/∂q`` at ``q0`` (central differences, step in q units)."""
+    k = stiffness_matrix(beam)
+    if loads is not None:
+        k = k - load_stiffness(beam, loads, q0, step)
+    if flow.speed_m_s > 0:
+        unit = StripAirloads(aero, TunnelFlow(1.0, flow.density_kg_m3, flow.direction))
+        k = k - flow.speed_m_s**2 * load_stiffness(beam, unit, q0, step)
+    return k
