@@ -2,7 +2,7 @@
 
 Formulation
 -----------
-Meirovitch & Tuzcu's Lagrange equations in quasi-coordinates (the paper's eqs. 1-33, ``docs/design.md``): the
+Meirovitch & Tuzcu's Lagrange equations in quasi-coordinates (the paper's eq. 2, ``docs/design.md``): the
 generalized velocities are ``V = [v, ω, ε̇]`` — the body-axes velocity [m/s] of the body origin ``o``, the body
 angular velocity [rad/s] (body components) and the strain rates of all beams — and the configuration is
 ``[X, quaternion, ε]``. The beams are the strain-based beams of Su & Cesnik (Int. J. Solids Struct. 48, 2011,
@@ -13,7 +13,7 @@ and Su & Cesnik (J. Aircraft 47(5), 2010).
 Kinematic map (Shearer & Cesnik 2007 eq. 9, in body axes): a section's mass centre at ``r_c(ε)`` moves with
 ``u = v + ω × r_c + J_c(ε) ε̇ = L(ε) V`` and turns with ``w = ω + J_θ(ε) ε̇ = A(ε) V``; the kinetic energy is
 ``T = ½ Vᵀ M(ε) V`` with ``M = Σ ∫ (m Lᵀ L + Aᵀ R I Rᵀ A) ds`` plus the rigid body's share. The equations in
-quasi-coordinates (paper eqs. 25-27; Meirovitch & Tuzcu 2004) are written here in Kane's equivalent form, which
+quasi-coordinates (the paper's eq. 2; Meirovitch & Tuzcu 2004) are written here in Kane's equivalent form, which
 needs no derivative of ``M``: with the partial velocities ``L`` and ``A`` as the virtual-power weights,
 
     M(ε) V̇ = Q − Σ ∫ [Lᵀ m b + Aᵀ β] ds − (rigid body's ω × terms),                                   (1)
@@ -22,8 +22,9 @@ needs no derivative of ``M``: with the partial velocities ``L`` and ``A`` as the
 
 where ``r̈_c|ε̈=0 = J̇_c ε̇`` and ``α_rel|ε̈=0 = J̇_θ ε̇`` are the accelerations of the section relative to the body
 at zero strain acceleration. ``Lᵀ m b`` expands to ``[m b, r_c × m b, J_cᵀ m b]``, which is the paper's
-``d/dt ∂T/∂V`` terms with the transport terms ``ω̃ ∂T/∂v`` etc. (paper eqs. 25-26) and ``−∂T/∂ε`` (eq. 27),
-collected. ``Q = [F, M_o, −K ε + Q_ε]``: the elastic force ``K ε`` (Su & Cesnik eq. 6) and gravity (optional).
+``d/dt ∂T/∂V`` terms with the transport terms ``ω̃ ∂T/∂v`` etc. (eq. 2, first two rows) and ``−∂T/∂ε``
+(its elastic rows), collected. ``Q = [F, M_o, −K ε + Q_ε]``: the elastic force ``K ε`` (Su & Cesnik eq. 6) and
+gravity (optional).
 
 The relative accelerations are exact: along the path ``ε + t ε̇`` each element's transform ``G = exp(ℓ ξ^)``
 (SE(3), 4 × 4) and its first two time derivatives are the blocks of one matrix exponential,
@@ -352,7 +353,7 @@ def _split(structure: FreeFlexibleStructure, y: ArrayLike):
 
 
 def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike) -> NDArray[np.float64]:
-    """``dy/dt`` of the free-flying structure in vacuum (eq. 1 of the module doc; paper eqs. 25-27, 31-33).
+    """``dy/dt`` of the free-flying structure in vacuum (eq. 1 of the module doc; the paper's eq. 2).
 
     Parameters
     ----------
@@ -451,7 +452,7 @@ def free_free_frequencies(structure: FreeFlexibleStructure) -> NDArray[np.float6
     About ``ε = 0, V = 0`` without gravity the velocity terms of eq. (1) are quadratic and drop out, leaving
     ``M(0) V̇ + [0; K ε] = 0``; eliminating the rigid-body accelerations (six zero-frequency modes) gives
     ``K ε = ω² (M_εε − M_εr M_rr⁻¹ M_rε) ε`` (Meirovitch & Tuzcu's free-free modes with the body's
-    participation; paper eqs. 31-33 linearised).
+    participation; the paper's eq. 2 linearised).
 
     Returns
     -------
