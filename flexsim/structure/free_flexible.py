@@ -1,0 +1,468 @@
+"""A free-flying rigid body with geometrically exact strain-based beams clamped to it (equations of motion).
+
+Formulation
+-----------
+Meirovitch & Tuzcu's Lagrange equations in quasi-coordinates (the paper's eq. 2, ``docs/design.md``): the
+generalized velocities are ``V = [v, ω, ε̇]`` — the body-axes velocity [m/s] of the body origin ``o``, the body
+angular velocity [rad/s] (body components) and the strain rates of all beams — and the configuration is
+``[X, quaternion, ε]``. The beams are the strain-based beams of Su & Cesnik (Int. J. Solids Struct. 48, 2011,
+eqs. 1-12; :mod:`flexsim.structure.strain_beam`) clamped to the body at their root positions and orientations in
+body axes, as in the free-flying strain-based aircraft of Shearer & Cesnik (J. Aircraft 44(5), 2007, eqs. 1-20)
+and Su & Cesnik (J. Aircraft 47(5), 2010).
+
+Kinematic map (Shearer & Cesnik 2007 eq. 9, in body axes): a section's mass centre at ``r_c(ε)`` moves with
+``u = v + ω × r_c + J_c(ε) ε̇ = L(ε) V`` and turns with ``w = ω + J_θ(ε) ε̇ = A(ε) V``; the kinetic energy is
+``T = ½ Vᵀ M(ε) V`` with ``M = Σ ∫ (m Lᵀ L + Aᵀ R I Rᵀ A) ds`` plus the rigid body's share. The equations in
+quasi-coordinates (the paper's eq. 2; Meirovitch & Tuzcu 2004) are written here in Kane's equivalent form, which
+needs no derivative of ``M``: with the partial velocities ``L`` and ``A`` as the virtual-power weights,
+
+    M(ε) V̇ = Q − Σ ∫ [Lᵀ m b + Aᵀ β] ds − (rigid body's ω × terms),                                   (1)
+
+    b = ω × ṙ_c + r̈_c|ε̈=0 + ω × u,      β = I_s (α_rel|ε̈=0 + ω × w) + w × I_s w,      I_s = R I Rᵀ,
+
+where ``r̈_c|ε̈=0 = J̇_c ε̇`` and ``α_rel|ε̈=0 = J̇_θ ε̇`` are the accelerations of the section relative to the body
+at zero strain acceleration. ``Lᵀ m b`` expands to ``[m b, r_c × m b, J_cᵀ m b]``, which is the paper's
+``d/dt ∂T/∂V`` terms with the transport terms ``ω̃ ∂T/∂v`` etc. (eq. 2, first two rows) and ``−∂T/∂ε``
+(its elastic rows), collected. ``Q = [F, M_o, −K ε + Q_ε]``: the elastic force ``K ε`` (Su & Cesnik eq. 6) and
+gravity (optional).
+
+The relative accelerations are exact: along the path ``ε + t ε̇`` each element's transform ``G = exp(ℓ ξ^)``
+(SE(3), 4 × 4) and its first two time derivatives are the blocks of one matrix exponential,
+
+    exp([[A, E, 0], [0, A, E], [0, 0, A]]) = [[G, Ġ, G̈/2], [0, G, Ġ], [0, 0, G]],   A = ℓ ξ^, E = ℓ ξ̇^,
+
+(the Fréchet derivatives of the exponential; Higham, *Functions of Matrices*, 2008, theorem 3.6 and §10.6), and
+the chain ``T_{j+1} = T_j G_j`` is differentiated by the product rule. No finite differences enter the equations,
+so energy and momenta are conserved to the integrator's accuracy.
+
+Frames and units: body axes x forward, y right, z down (``docs/conventions.md``), origin ``o``; the inertial frame
+north-east-down. The quaternion ``[q0, q1, q2, q3]`` (scalar first) rotates body components into inertial ones,
+``x_inertial = C(q) x_body`` (no gimbal lock). SI units throughout.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.linalg import cho_factor, cho_solve, eigh, expm
+
+from flexsim._arrays import frozen_array
+from flexsim.structure.strain_beam import (BeamProperties, beam_kinematics, mass_centre_jacobian,
+                                           stiffness_matrix)
+
+__all__ = ["RigidBody", "FreeFlexibleStructure", "Conserved", "quaternion_matrix", "initial_state",
+           "generalized_mass_matrix", "free_flight_rhs", "conserved_quantities", "free_free_frequencies",
+           "beam_relative_motion"]
+
+
+def _hat(v: NDArray) -> NDArray:
+    """Skew-symmetric matrices ``v^`` (``v^ w = v × w``), shape (..., 3, 3)."""
+    out = np.zeros(v.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
+    out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
+    out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
+    return out
+
+
+def _vee(m: NDArray) -> NDArray:
+    """Axial vector of the skew part of ``m`` (..., 3, 3)."""
+    return 0.5 * np.stack([m[..., 2, 1] - m[..., 1, 2], m[..., 0, 2] - m[..., 2, 0], m[..., 1, 0] - m[..., 0, 1]], -1)
+
+
+@dataclass(frozen=True)
+class RigidBody:
+    """The rigid part of a free-flying structure (validated, frozen).
+
+    Parameters
+    ----------
+    mass_kg : float
+        Mass ``m_b`` [kg], >= 0 (0: the beams alone, joined rigidly at their roots).
+    cg_m : array_like, shape (3,)
+        Mass centre in body axes [m].
+    inertia_kg_m2 : array_like, shape (3, 3)
+        Inertia tensor about the mass centre, body axes [kg m²]; symmetric positive semi-definite.
+    """
+
+    mass_kg: float
+    cg_m: ArrayLike = field(default_factory=lambda: np.zeros(3))
+    inertia_kg_m2: ArrayLike = field(default_factory=lambda: np.zeros((3, 3)))
+
+    def __post_init__(self) -> None:
+        m = self.mass_kg
+        if isinstance(m, bool) or not isinstance(m, (int, float, np.floating)) or not (np.isfinite(m) and m >= 0):
+            raise ValueError(f"mass_kg = {m!r}: must be a finite number >= 0 [kg]")
+        object.__setattr__(self, "mass_kg", float(m))
+        cg = np.array(self.cg_m, dtype=float)
+        if cg.shape != (3,) or not np.all(np.isfinite(cg)):
+            raise ValueError(f"cg_m = {self.cg_m!r}: must be 3 finite numbers [m]")
+        object.__setattr__(self, "cg_m", frozen_array(cg))
+        inertia = np.array(self.inertia_kg_m2, dtype=float)
+        if inertia.shape != (3, 3) or not np.all(np.isfinite(inertia)):
+            raise ValueError(f"inertia_kg_m2 has shape {inertia.shape}: must be a finite 3 x 3 matrix [kg m^2]")
+        asym = np.abs(inertia - inertia.T).max()
+        low = np.linalg.eigvalsh(0.5 * (inertia + inertia.T)).min()
+        scale = max(np.abs(inertia).max(), 1e-300)
+        if asym > 1e-12 * scale or low < -1e-12 * scale:
+            raise ValueError(f"inertia_kg_m2 must be symmetric positive semi-definite (asymmetry {asym:.3e}, "
+                             f"smallest eigenvalue {low:.3e} kg m^2; allowed: 0 and >= 0)")
+        object.__setattr__(self, "inertia_kg_m2", frozen_array(0.5 * (inertia + inertia.T)))
+
+
+@dataclass(frozen=True)
+class FreeFlexibleStructure:
+    """A rigid body with strain-based beams clamped to it (validated, frozen).
+
+    Parameters
+    ----------
+    body : RigidBody
+    beams : tuple of BeamProperties
+        Each beam's ``root_position_m`` and ``root_rotation`` are in body axes (its "global" frame is the body
+        frame). A wing continuous through the centreline is two beams rooted at the same point.
+    gravity_m_s2 : array_like, shape (3,)
+        Acceleration of gravity in inertial (north-east-down) components [m/s²]; default none (vacuum, no gravity).
+
+    The generalized coordinates are numbered ``[6 rigid-body, beam 0's strains, beam 1's strains, ...]``.
+    """
+
+    body: RigidBody
+    beams: tuple = ()
+    gravity_m_s2: ArrayLike = field(default_factory=lambda: np.zeros(3))
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.body, RigidBody):
+            raise ValueError(f"body = {self.body!r}: must be a RigidBody")
+        beams = tuple(self.beams)
+        for i, b in enumerate(beams):
+            if not isinstance(b, BeamProperties):
+                raise ValueError(f"beams[{i}] = {b!r}: must be a BeamProperties")
+        object.__setattr__(self, "beams", beams)
+        g = np.array(self.gravity_m_s2, dtype=float)
+        if g.shape != (3,) or not np.all(np.isfinite(g)):
+            raise ValueError(f"gravity_m_s2 = {self.gravity_m_s2!r}: must be 3 finite numbers [m/s^2]")
+        object.__setattr__(self, "gravity_m_s2", frozen_array(g))
+        rigid = generalized_mass_matrix(self, np.zeros(self.n_strains))[:6, :6]
+        if np.linalg.eigvalsh(rigid).min() <= 1e-12 * max(np.abs(rigid).max(), 1e-300):
+            raise ValueError("body and beams together have a singular rigid-body mass matrix (mass or an inertia "
+                             "of the undeformed structure is zero): give the body mass_kg > 0 or inertia_kg_m2")
+
+    @property
+    def n_strains(self) -> int:
+        """Total number of strain coordinates ``n``."""
+        return sum(b.n_coordinates for b in self.beams)
+
+    @property
+    def n_velocities(self) -> int:
+        """``6 + n``: the length of ``V``."""
+        return 6 + self.n_strains
+
+    @property
+    def n_states(self) -> int:
+        """``3 + 4 + n + 6 + n``: ``[X, quaternion, ε, V]``."""
+        return 7 + self.n_strains + self.n_velocities
+
+    def strain_slices(self) -> list[slice]:
+        """The slice of each beam's strains in ``ε``."""
+        out, start = [], 0
+        for b in self.beams:
+            out.append(slice(start, start + b.n_coordinates))
+            start += b.n_coordinates
+        return out
+
+    def stiffness(self) -> NDArray[np.float64]:
+        """``blockdiag(K_beam)``, shape (n, n) (Su & Cesnik 2011 eq. 6)."""
+        k = np.zeros((self.n_strains, self.n_strains))
+        for b, s in zip(self.beams, self.strain_slices()):
+            k[s, s] = stiffness_matrix(b)
+        return k
+
+
+def quaternion_matrix(quat: ArrayLike) -> NDArray[np.float64]:
+    """``C(q)``, body to inertial components, of the normalised quaternion ``[q0, q1, q2, q3]`` (scalar first)."""
+    q0, q1, q2, q3 = np.asarray(quat, dtype=float) / np.linalg.norm(quat)
+    return np.array([[q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)],
+                     [2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)],
+                     [2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3]])
+
+
+def initial_state(structure: FreeFlexibleStructure, *, position_m: ArrayLike = (0.0, 0.0, 0.0),
+                  quaternion: ArrayLike = (1.0, 0.0, 0.0, 0.0), strains: ArrayLike | None = None,
+                  velocity_m_s: ArrayLike = (0.0, 0.0, 0.0), rate_rad_s: ArrayLike = (0.0, 0.0, 0.0),
+                  strain_rates: ArrayLike | None = None) -> NDArray[np.float64]:
+    """The state ``y = [X (3), quaternion (4), ε (n), v (3), ω (3), ε̇ (n)]``, checked field by field."""
+    n = structure.n_strains
+    parts = []
+    for name, value, size in (("position_m", position_m, 3), ("quaternion", quaternion, 4),
+                              ("strains", np.zeros(n) if strains is None else strains, n),
+                              ("velocity_m_s", velocity_m_s, 3), ("rate_rad_s", rate_rad_s, 3),
+                              ("strain_rates", np.zeros(n) if strain_rates is None else strain_rates, n)):
+        arr = np.array(value, dtype=float).ravel()
+        if arr.shape != (size,) or not np.all(np.isfinite(arr)):
+            raise ValueError(f"{name} = {value!r}: must be {size} finite numbers")
+        parts.append(arr)
+    norm = np.linalg.norm(parts[1])
+    if not 1e-6 < norm:
+        raise ValueError(f"quaternion = {quaternion!r}: must be non-zero (it is normalised)")
+    parts[1] = parts[1] / norm
+    return np.concatenate(parts)
+
+
+def _element_transforms(beam: BeamProperties, strains: NDArray, rates: NDArray, frac: NDArray):
+    """``G, Ġ, G̈`` (..., 4, 4) of ``exp(σ ℓ ξ^)`` along ``ε + t ε̇``, from one block exponential each (module doc)."""
+    ell = beam.element_length_m * frac
+    a = np.zeros(frac.shape + (4, 4))
+    e = np.zeros(frac.shape + (4, 4))
+    a[..., :3, :3] = _hat(ell[..., None] * strains[..., 1:])
+    a[..., 0, 3] = frac * (1.0 + strains[..., 0])  # translations per unit element length: a small norm for the
+    e[..., :3, :3] = _hat(ell[..., None] * rates[..., 1:])  # Padé approximant; they scale back below (linear in ρ)
+    e[..., 0, 3] = frac * rates[..., 0]
+    big = np.zeros(frac.shape + (12, 12))
+    for i in range(3):
+        big[..., 4 * i:4 * i + 4, 4 * i:4 * i + 4] = a
+    big[..., 0:4, 4:8] = e
+    big[..., 4:8, 8:12] = e
+    x = expm(big)
+    x[..., 0:3, 3::4] *= beam.element_length_m
+    return x[..., 0:4, 0:4], x[..., 0:4, 4:8], 2.0 * x[..., 0:4, 8:12]
+
+
+def beam_relative_motion(beam: BeamProperties, q: ArrayLike, qdot: ArrayLike, points_element: NDArray,
+                         points_fraction: NDArray) -> tuple[NDArray, ...]:
+    """Frames and their first two time derivatives at points of a beam moving along ``q + t q̇`` (body axes).
+
+    Parameters
+    ----------
+    beam : BeamProperties
+    q, qdot : array_like, shape (n,)
+        Strains [-, 1/m] and strain rates [1/s, 1/(m s)].
+    points_element : ndarray of int, shape (P,)
+    points_fraction : ndarray, shape (P,)
+        Element and fraction of its length (0-1) of each point.
+
+    Returns
+    -------
+    p, pdot, pddot : ndarray, shape (P, 3)
+        Reference-axis position [m], velocity ``J_p q̇`` [m/s] and acceleration at ``q̈ = 0``, ``J̇_p q̇`` [m/s²].
+    rot, rotdot, rotddot : ndarray, shape (P, 3, 3)
+        Section frame ``R`` and its first and second time derivatives at ``q̈ = 0``.
+    """
+    strains = beam.full_strains(q)
+    rates = beam.full_strains(qdot)
+    n_el = beam.n_elements
+    g, gd, gdd = _element_transforms(beam, strains, rates, np.ones(n_el))
+    t = np.zeros((n_el + 1, 4, 4))
+    t[0, :3, :3], t[0, :3, 3], t[0, 3, 3] = beam.root_rotation, beam.root_position_m, 1.0
+    td = np.zeros_like(t)
+    tdd = np.zeros_like(t)
+    for j in range(n_el):  # product rule along the chain T_{j+1} = T_j G_j
+        t[j + 1] = t[j] @ g[j]
+        td[j + 1] = td[j] @ g[j] + t[j] @ gd[j]
+        tdd[j + 1] = tdd[j] @ g[j] + 2.0 * td[j] @ gd[j] + t[j] @ gdd[j]
+    e = np.asarray(points_element)
+    h, hd, hdd = _element_transforms(beam, strains[e], rates[e], np.asarray(points_fraction, dtype=float))
+    pt = t[e] @ h
+    ptd = td[e] @ h + t[e] @ hd
+    ptdd = tdd[e] @ h + 2.0 * td[e] @ hd + t[e] @ hdd
+    return (pt[:, :3, 3], ptd[:, :3, 3], ptdd[:, :3, 3], pt[:, :3, :3], ptd[:, :3, :3], ptdd[:, :3, :3])
+
+
+@dataclass(frozen=True, eq=False)
+class _Points:
+    """Quadrature points of all beams (body axes): weights × mass, positions, Jacobians over all of V, motion."""
+
+    mass: NDArray         # (P,) [kg] (m × weight)
+    inertia: NDArray      # (P, 3, 3) [kg m²] R I Rᵀ × weight
+    r: NDArray            # (P, 3) mass-centre positions [m]
+    jac_c: NDArray        # (P, 3, 6 + n): L (mass-centre velocity per V)
+    jac_w: NDArray        # (P, 3, 6 + n): A (section angular velocity per V)
+    rdot: NDArray         # (P, 3) J_c ε̇
+    rddot: NDArray        # (P, 3) J̇_c ε̇
+    w_rel: NDArray        # (P, 3) J_θ ε̇
+    alpha_rel: NDArray    # (P, 3) J̇_θ ε̇
+
+
+def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | None) -> _Points:
+    nv = structure.n_velocities
+    blocks = []
+    for beam, s in zip(structure.beams, structure.strain_slices()):
+        kin = beam_kinematics(beam, eps[s])
+        r, jc = mass_centre_jacobian(beam, kin)
+        e = kin.points_element
+        n_p = e.size
+        lc = np.zeros((n_p, 3, nv))
+        lw = np.zeros((n_p, 3, nv))
+        lc[:, :, :3] = np.eye(3)
+        lc[:, :, 3:6] = -_hat(r)
+        lc[:, :, 6 + s.start:6 + s.stop] = jc
+        lw[:, :, 3:6] = np.eye(3)
+        lw[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
+        w = kin.points_weight
+        sec = np.stack([beam.torsion_inertia_kg_m[e], beam.flap_inertia_kg_m[e], beam.chord_inertia_kg_m[e]], 1)
+        inertia = np.einsum("pij,pj,pkj->pik", kin.rotations, sec * w[:, None], kin.rotations)
+        motion = [np.zeros((n_p, 3))] * 4
+        if epsdot is not None:
+            frac = kin.points_s / beam.element_length_m - e
+            _, pd, pdd, rot, rd, rdd = beam_relative_motion(beam, eps[s], epsdot[s], e, frac)
+            d = beam.cg_offset_m[e][:, None]
+            rdot, rddot = pd + d * rd[:, :, 1], pdd + d * rdd[:, :, 1]
+            w_rel = _vee(rd @ np.swapaxes(rot, 1, 2))
+            alpha_rel = _vee(rdd @ np.swapaxes(rot, 1, 2) + rd @ np.swapaxes(rd, 1, 2))
+            motion = [rdot, rddot, w_rel, alpha_rel]
+        blocks.append((beam.mass_kg_per_m[e] * w, inertia, r, lc, lw, *motion))
+    if not blocks:
+        z3, zj = np.zeros((0, 3)), np.zeros((0, 3, nv))
+        return _Points(np.zeros(0), np.zeros((0, 3, 3)), z3, zj, zj, z3, z3, z3, z3)
+    return _Points(*(np.concatenate(parts) for parts in zip(*blocks)))
+
+
+def _rigid_mass(body: RigidBody, nv: int) -> NDArray:
+    m = np.zeros((nv, nv))
+    c = _hat(body.cg_m)
+    m[:3, :3] = body.mass_kg * np.eye(3)
+    m[:3, 3:6] = -body.mass_kg * c
+    m[3:6, :3] = body.mass_kg * c
+    m[3:6, 3:6] = body.inertia_kg_m2 - body.mass_kg * c @ c
+    return m
+
+
+def _mass_from_points(structure: FreeFlexibleStructure, pts: _Points) -> NDArray:
+    out = _rigid_mass(structure.body, structure.n_velocities)
+    out += np.einsum("p,pji,pjk->ik", pts.mass, pts.jac_c, pts.jac_c)
+    out += np.einsum("pji,pjl,plk->ik", pts.jac_w, pts.inertia, pts.jac_w)
+    return 0.5 * (out + out.T)
+
+
+def generalized_mass_matrix(structure: FreeFlexibleStructure, eps: ArrayLike) -> NDArray[np.float64]:
+    """``M(ε)`` [kg, kg m, kg m²], shape (6 + n, 6 + n): ``T = ½ Vᵀ M V`` (Shearer & Cesnik 2007 eq. 12).
+
+    Its strain block equals :func:`flexsim.structure.strain_beam.mass_matrix` of each beam; its rigid block is
+    the mass and inertia about ``o`` of the body and the (deformed) beams.
+    """
+    eps = np.asarray(eps, dtype=float)
+    return _mass_from_points(structure, _points(structure, eps, None))
+
+
+def _split(structure: FreeFlexibleStructure, y: ArrayLike):
+    y = np.asarray(y, dtype=float)
+    if y.shape != (structure.n_states,):
+        raise ValueError(f"state has shape {y.shape}: must be ({structure.n_states},) = [X (3), quaternion (4), "
+                         f"strains ({structure.n_strains}), v (3), omega (3), strain rates ({structure.n_strains})]")
+    n = structure.n_strains
+    return y[:3], y[3:7], y[7:7 + n], y[7 + n:]
+
+
+def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike) -> NDArray[np.float64]:
+    """``dy/dt`` of the free-flying structure in vacuum (eq. 1 of the module doc; the paper's eq. 2).
+
+    Parameters
+    ----------
+    structure : FreeFlexibleStructure
+    t : float
+        Time [s] (the equations are autonomous).
+    y : array_like, shape (n_states,)
+        ``[X [m] (inertial), quaternion (body→inertial), ε, v [m/s], ω [rad/s] (body axes), ε̇]``.
+
+    Returns
+    -------
+    ndarray, shape (n_states,)
+        ``[C v, ½ q ⊗ (0, ω), ε̇, V̇]``.
+    """
+    _, quat, eps, vel = _split(structure, y)
+    v, om, epsdot = vel[:3], vel[3:6], vel[6:]
+    pts = _points(structure, eps, epsdot)
+    mass = _mass_from_points(structure, pts)
+    body = structure.body
+    rot = quaternion_matrix(quat)
+    g_body = rot.T @ structure.gravity_m_s2
+
+    q = np.zeros(structure.n_velocities)
+    q[6:] = -structure.stiffness() @ eps
+    # rigid body: bias ω × (m u_b) and ω × I_b ω, and its weight
+    u_b = v + np.cross(om, body.cg_m)
+    f_b = body.mass_kg * (g_body - np.cross(om, u_b))
+    q[:3] += f_b
+    q[3:6] += np.cross(body.cg_m, f_b) - np.cross(om, body.inertia_kg_m2 @ om)
+    if pts.mass.size:
+        u = pts.jac_c @ vel
+        w = om + pts.w_rel
+        b = np.cross(om, pts.rdot) + pts.rddot + np.cross(om, u)
+        f = pts.mass[:, None] * (g_body - b)
+        iw = np.einsum("pij,pj->pi", pts.inertia, w)
+        tau = -(np.einsum("pij,pj->pi", pts.inertia, pts.alpha_rel + np.cross(om, w)) + np.cross(w, iw))
+        q += np.einsum("pji,pj->i", pts.jac_c, f) + np.einsum("pji,pj->i", pts.jac_w, tau)
+    vdot = cho_solve(cho_factor(mass), q)
+    q0, qv = quat[0], quat[1:]
+    quat_dot = 0.5 * np.concatenate([[-qv @ om], q0 * om + np.cross(qv, om)])
+    return np.concatenate([rot @ v, quat_dot, epsdot, vdot])
+
+
+@dataclass(frozen=True)
+class Conserved:
+    """Energy and momenta of a state (inertial components, SI).
+
+    Attributes
+    ----------
+    kinetic_j, strain_j, gravity_j, energy_j : float
+        ``½ Vᵀ M V``, ``½ εᵀ K ε``, ``−Σ m g·x`` and their sum [J].
+    linear_momentum : ndarray, shape (3,)
+        [kg m/s].
+    angular_momentum_cg : ndarray, shape (3,)
+        About the instantaneous mass centre of the whole structure [kg m²/s].
+    cg_m : ndarray, shape (3,)
+        Inertial position of the mass centre [m].
+    """
+
+    kinetic_j: float
+    strain_j: float
+    gravity_j: float
+    energy_j: float
+    linear_momentum: NDArray
+    angular_momentum_cg: NDArray
+    cg_m: NDArray
+
+
+def conserved_quantities(structure: FreeFlexibleStructure, y: ArrayLike) -> Conserved:
+    """Energy, linear momentum and angular momentum about the mass centre of state ``y`` (see :class:`Conserved`)."""
+    x, quat, eps, vel = _split(structure, y)
+    pts = _points(structure, eps, None)
+    mass = _mass_from_points(structure, pts)
+    body = structure.body
+    rot = quaternion_matrix(quat)
+    om = vel[3:6]
+    u = pts.jac_c @ vel
+    w = pts.jac_w @ vel
+    m_tot = body.mass_kg + pts.mass.sum()
+    cg = (body.mass_kg * body.cg_m + pts.mass @ pts.r) / m_tot
+    u_b = vel[:3] + np.cross(om, body.cg_m)
+    p_body = body.mass_kg * u_b + pts.mass @ u
+    h = (body.mass_kg * np.cross(body.cg_m - cg, u_b) + body.inertia_kg_m2 @ om
+         + np.sum(pts.mass[:, None] * np.cross(pts.r - cg, u), 0) + np.einsum("pij,pj->i", pts.inertia, w))
+    kin = 0.5 * vel @ mass @ vel
+    strain = 0.5 * eps @ structure.stiffness() @ eps
+    cg_inertial = x + rot @ cg
+    grav = -m_tot * structure.gravity_m_s2 @ cg_inertial
+    return Conserved(float(kin), float(strain), float(grav), float(kin + strain + grav), rot @ p_body, rot @ h,
+                     cg_inertial)
+
+
+def free_free_frequencies(structure: FreeFlexibleStructure) -> NDArray[np.float64]:
+    """Elastic natural frequencies [rad/s] of the free structure linearised about the undeformed state.
+
+    About ``ε = 0, V = 0`` without gravity the velocity terms of eq. (1) are quadratic and drop out, leaving
+    ``M(0) V̇ + [0; K ε] = 0``; eliminating the rigid-body accelerations (six zero-frequency modes) gives
+    ``K ε = ω² (M_εε − M_εr M_rr⁻¹ M_rε) ε`` (Meirovitch & Tuzcu's free-free modes with the body's
+    participation; the paper's eq. 2 linearised).
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        Ascending.
+    """
+    if structure.n_strains == 0:
+        return np.zeros(0)
+    mass = generalized_mass_matrix(structure, np.zeros(structure.n_strains))
+    mrr, mre, mee = mass[:6, :6], mass[:6, 6:], mass[6:, 6:]
+    reduced = mee - mre.T @ np.linalg.solve(mrr, mre)
+    lam = eigh(structure.stiffness(), 0.5 * (reduced + reduced.T), eigvals_only=True)
+    return np.sqrt(np.clip(lam, 0.0, None))
