@@ -40,7 +40,7 @@ def main() -> None:
     task, inner = sys.argv[1], int(sys.argv[2])
     from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.linear.flutter import FlutterAnalysis
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     gtm = load_aircraft("gtm")
     res: dict = {"task": task}
@@ -60,7 +60,7 @@ def main() -> None:
         res.update(cpu_s=t, mach=float(p.mach), frequency_rad_s=float(p.frequency_rad_s), evaluations=p.evaluations)
     elif task == "jacobian-fs":
         from flexsim.model.aircraft_model import AircraftModel
-        from flexsim.trim import trim
+        from flexsim.trimming import trim
 
         qs, fs = AircraftModel(gtm, aero="quasi-steady"), AircraftModel(gtm, aero="unsteady")
         point = trim(qs, SteadyManoeuvre.level(3048.0, mach=0.7))
@@ -71,7 +71,7 @@ def main() -> None:
     elif task == "dense-eig":
         from flexsim.linear.linearize import linearize
         from flexsim.model.aircraft_model import AircraftModel
-        from flexsim.trim import trim
+        from flexsim.trimming import trim
 
         qs, fs = AircraftModel(gtm, aero="quasi-steady"), AircraftModel(gtm, aero="unsteady")
         point = trim(qs, SteadyManoeuvre.level(0.0, mach=0.85))

@@ -39,7 +39,7 @@ def scenario():
     from flexsim.kinematics import dcm_321
     from flexsim.model.aircraft_model import AircraftModel
     from flexsim.sim.disturbances import OneMinusCosineGust
-    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trimming import SteadyManoeuvre, trim
 
     still = AircraftModel(load_aircraft("gtm"), aero="unsteady")
     point = trim(still, SteadyManoeuvre.level(9144.0, mach=0.75))

@@ -212,7 +212,7 @@ out, blocks = sys.argv[1], int(sys.argv[2])
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.simulate import simulate
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 from flexsim.sim import _step_kernels as sk
 if not hasattr(sk, "etd2rk_run_dense"):
     print(json.dumps({"skipped": "the compiled ETD2RK step of this tree (etd2rk_rows) takes grouped arguments (NamedTuples "

@@ -33,7 +33,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from flexsim.aircraft.toml_loader import load_aircraft  # noqa: E402
 from flexsim.linear.flutter import FlutterAnalysis  # noqa: E402
-from flexsim.trim import SteadyManoeuvre  # noqa: E402
+from flexsim.trimming import SteadyManoeuvre  # noqa: E402
 
 
 def _median(fn, repeats: int) -> float:
@@ -63,7 +63,7 @@ def breakdown(repeats: int) -> None:
     from flexsim.linear.linearize import linearize
     from flexsim.linear.stability import _classify, _pk, pk_state_matrix
     from flexsim.linear.symmetry import mirror_bases
-    from flexsim.trim import trim
+    from flexsim.trimming import trim
 
     gtm = load_aircraft("gtm")
     an = FlutterAnalysis(gtm, "theodorsen")

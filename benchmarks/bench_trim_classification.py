@@ -5,7 +5,7 @@ Side by side in one run, CPU medians of this thread (time.thread_time) over --re
 * ``trim(classify=False)`` and ``trim()`` (the default classifies: linearisation, eig, root classification and the
   static margin), cold and from a neighbouring trim, with their ratio, for the quasi-steady model (60 states) and
   the finite-state one (252 states: the inflow states are in its linearisation);
-* what a flutter search adds per evaluation: :func:`flexsim.trim.equilibrium.with_stability` on the spectrum the
+* what a flutter search adds per evaluation: :func:`flexsim.trimming.equilibrium.with_stability` on the spectrum the
   search computes anyway (the static margin and the verdict), beside one ``FlutterAnalysis.evaluate`` (QS and US)
   without it.
 
@@ -25,8 +25,8 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from flexsim.aircraft.toml_loader import load_aircraft  # noqa: E402
 from flexsim.linear.flutter import FlutterAnalysis  # noqa: E402
-from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
-from flexsim.trim.equilibrium import with_stability  # noqa: E402
+from flexsim.trimming import SteadyManoeuvre, trim  # noqa: E402
+from flexsim.trimming.equilibrium import with_stability  # noqa: E402
 
 
 def _cpu_median(fn, repeats: int) -> float:

@@ -23,7 +23,7 @@ from pathlib import Path
 
 from flexsim.aircraft.definition import Aircraft
 from flexsim.atmosphere import speed_of_sound
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 
 from flexsim.envs.config import FlightLimits
 
@@ -31,7 +31,7 @@ __all__ = ["is_bundled_gtm", "task_for_aircraft", "limits_for_aircraft", "WING_D
 
 #: The bundled aircraft files the task and limit defaults were written for.
 _GTM_FILES = ("gtm.toml", "gtm_paper.toml", "gtm_uncalibrated.toml")
-#: Tightest turn radius of a steady manoeuvre (:class:`flexsim.trim.SteadyManoeuvre`) [m]: a slow aircraft's turn task
+#: Tightest turn radius of a steady manoeuvre (:class:`flexsim.trimming.SteadyManoeuvre`) [m]: a slow aircraft's turn task
 #: keeps the ratio of its radii from there, at smaller bank angles than the GTM task's.
 MIN_TURN_RADIUS_M = 100.0
 #: Wing-tip deflection bound beyond the trim's, as a fraction of the wing's length: the GTM's 5.5 m of 18.25 m [-].
@@ -83,7 +83,7 @@ def limits_for_aircraft(aircraft: Aircraft, dynamics, task) -> FlightLimits:
     if is_bundled_gtm(aircraft) or "altitude_m" not in names:
         return FlightLimits()
     from flexsim.linear.envelope import MODEL_MAX_MACH, search_range
-    from flexsim.trim import TrimError
+    from flexsim.trimming import TrimError
 
     # the task's flight, or for a flutter-margin task the middle of its flutter search (its target is found later)
     mach = task.mach if "mach" in names else 0.5 * sum(task.flutter_mach_range)

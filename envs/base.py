@@ -30,7 +30,7 @@ from flexsim.model.terms import Terms
 from flexsim.sim.measurements import MeasurementBatch, Measurements
 from flexsim.threads import limit_blas_threads
 from flexsim.sim.periods import SENSOR_COMPONENTS, BatchOutcome, FlightDynamics, advance_period
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 
 from flexsim.envs.config import (AERO_MODELS, DEFAULT_MAX_STEP_S, TURBULENCE_LEVELS, ActuatorRates, FlightLimits, InitialPerturbation,
                          IntegratorSettings, TrackingReward)

@@ -14,7 +14,7 @@ import numpy as np
 
 from flexsim.aircraft.definition import Aircraft
 from flexsim.linear.flutter import FlutterCondition, flutter_condition
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 
 from flexsim.envs.base import TERMINATION_CODES, Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import FLUTTER_MAX_STEP_S, RewardTerm, TrackingReward

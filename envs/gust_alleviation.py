@@ -9,7 +9,7 @@ import numpy as np
 
 from flexsim.sim.disturbances import OneMinusCosineGust, combine
 from flexsim.kinematics import dcm_321
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 
 from flexsim.envs.base import Episode, FlexSimEnv, shared_docs
 from flexsim.envs.config import GUST_MAX_STEP_S, RewardTerm, TrackingReward

@@ -31,11 +31,11 @@ _API: dict[str, str] = {
     "AeroOptions": "flexsim.model.coupling",
     "Terms": "flexsim.model.terms",
     "VariantSettings": "flexsim.model.variant",
-    "SteadyManoeuvre": "flexsim.trim",
-    "TrimPoint": "flexsim.trim",
-    "TrimError": "flexsim.trim",
-    "EquilibriumStability": "flexsim.trim",
-    "trim": "flexsim.trim",
+    "SteadyManoeuvre": "flexsim.trimming",
+    "TrimPoint": "flexsim.trimming",
+    "TrimError": "flexsim.trimming",
+    "EquilibriumStability": "flexsim.trimming",
+    "trim": "flexsim.trimming",
     "LinearModel": "flexsim.linear.linearize",
     "linearize": "flexsim.linear.linearize",
     "Mode": "flexsim.linear.stability",
@@ -83,33 +83,3 @@ def __getattr__(name: str):
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_API))
-
-
-# >>> the name clash of the function flexsim.trim and the subpackage flexsim.trim (gone with the subpackage's rename)
-import sys as _sys  # noqa: E402
-import types as _types  # noqa: E402
-
-
-class _SubpackageShadowed:
-    """``flexsim.trim`` the function although ``flexsim.trim`` is also a subpackage: a data descriptor on the package's
-    module type takes precedence over the binding of the imported subpackage."""
-
-    def __init__(self, name: str) -> None:
-        self.name = name
-
-    def __get__(self, package, owner=None):
-        return self if package is None else __getattr__(self.name)
-
-    def __set__(self, package, value) -> None:
-        if not isinstance(value, _types.ModuleType):
-            raise AttributeError(f"flexsim.{self.name} is the public function; it cannot be replaced")
-
-
-class _Package(_types.ModuleType):
-    """The module type of ``flexsim``: see :class:`_SubpackageShadowed`."""
-
-    trim = _SubpackageShadowed("trim")
-
-
-_sys.modules[__name__].__class__ = _Package
-# <<< the name clash of the function flexsim.trim and the subpackage flexsim.trim

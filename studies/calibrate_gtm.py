@@ -64,7 +64,7 @@ def flutter_point(aircraft, altitude: float) -> dict:
     frequency [rad/s], dominant coordinate, wing-tip deflection [m] and twist [deg] of the trim at it, or
     ``error`` where there is none below M 0.95."""
     from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
-    from flexsim.trim import SteadyManoeuvre, TrimError
+    from flexsim.trimming import SteadyManoeuvre, TrimError
 
     try:
         fp = FlutterAnalysis(aircraft, "unsteady").search(SteadyManoeuvre.level(altitude, mach=0.5), mach_range=(0.4, 0.95))

@@ -20,7 +20,7 @@ import numpy as np
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.simulate import simulate
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 def main() -> None:

@@ -89,7 +89,7 @@ from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
 from flexsim.model.coupling import AeroOptions  # noqa: E402
 from flexsim.model.terms import Terms  # noqa: E402
 from flexsim.structure.mirror import ranked  # noqa: E402
-from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
+from flexsim.trimming import SteadyManoeuvre, trim  # noqa: E402
 
 SWITCHES = ("none", "rotation", "mass_matrix", "static_deformation", "force_resolution", "aero_alpha", "thrust",
             "gravity", "prandtl_glauert", "damping", "density")

@@ -30,7 +30,7 @@ from flexsim.linear.flutter import FlutterAnalysis
 from flexsim.linear.stability import spectrum
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 def _with(aircraft, **settings):

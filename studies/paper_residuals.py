@@ -58,7 +58,7 @@ def trims_at_paper(ac, formulation: str) -> str:
     """Trim columns at the paper's own flight conditions (h, M_F of each row): the static model alone."""
     from manoeuvre_decomposition import Decomposition, Setup
     from flexsim.linear.paper_data import TABLE_QS, TABLE_US
-    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trimming import SteadyManoeuvre, trim
 
     model = Decomposition(Setup(ac, 0.0, "none", 0.0, formulation=formulation)).trim_model
     out = ["| table | h [m] | M | θ [°] | T_e [kN] | δ_e [°] | w_tip [m] | ψ_tip [°] |", "|---|---|---|---|---|---|---|---|"]
@@ -86,7 +86,7 @@ def glide(ac, formulation: str, altitude_m: float, mach: float) -> dict:
     """The glide (thrust zero, gamma unknown) of ``ac`` at ``altitude_m`` and ``mach``: the trim summary
     (``gamma_deg``, ``alpha_deg``, ...)."""
     from manoeuvre_decomposition import Decomposition, Setup
-    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trimming import SteadyManoeuvre, trim
 
     dec = Decomposition(Setup(ac, altitude_m, "none", 0.0, formulation=formulation))
     return trim(dec.trim_model, SteadyManoeuvre.glide(altitude_m, mach=mach), check_limits=False).summary()

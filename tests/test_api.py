@@ -34,7 +34,7 @@ def test_import_flexsim_loads_no_numerical_library():
 def test_every_api_name_resolves_and_is_the_documented_object():
     from flexsim.linear.flutter import flutter
     from flexsim.sim.disturbances import DrydenTurbulence, OneMinusCosineGust
-    from flexsim.trim.solver import trim
+    from flexsim.trimming.solver import trim
 
     for name in fs.__all__:
         assert getattr(fs, name) is not None, name
@@ -47,11 +47,11 @@ def test_every_api_name_resolves_and_is_the_documented_object():
 
 def test_fs_trim_stays_the_function_after_the_subpackage_is_imported():
     """``fs.trim`` is the function, whatever subpackage was imported before (the solver's, imported by the rest)."""
-    import flexsim.trim.solver  # noqa: F401 - binds the subpackage on its parent, which must not win
-    from flexsim.trim import TrimPoint
+    import flexsim.trimming.solver  # noqa: F401 - binds the subpackage on its parent, which must not win
+    from flexsim.trimming import TrimPoint
 
     assert callable(fs.trim) and fs.trim.__name__ == "trim"
-    assert TrimPoint.__module__ == "flexsim.trim.solver"
+    assert TrimPoint.__module__ == "flexsim.trimming.solver"
 
 
 @pytest.fixture(scope="module")

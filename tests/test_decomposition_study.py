@@ -25,7 +25,7 @@ def test_every_switch_is_a_term_of_the_current_model():
     import numpy as np
 
     md = _study()
-    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trimming import SteadyManoeuvre, trim
 
     source = (ROOT / "studies" / "manoeuvre_decomposition.py").read_text(encoding="utf-8")
     assert "object.__setattr__" not in source and "NUMPY_RHS" not in source

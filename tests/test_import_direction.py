@@ -4,7 +4,7 @@ Every ``import`` in ``flexsim/`` and ``envs/`` — module level and function-loc
 go to the importing package itself or to a package of a lower layer::
 
     errors, _arrays, _threads, threads  <  _kernels  <  atmosphere, kinematics, io  <  aircraft  <  structure  <  aero  <  model
-        <  trim  <  linear  <  sim  <  cli, envs
+        <  trimming  <  linear  <  sim  <  cli, envs
 
 ``io`` (file formats: the flight log, depending on ``errors`` only) is a leaf library that ``sim`` writes its logs
 with. ``aero`` is 2-D/strip aerodynamics and may not import ``structure`` although it sits above it: the
@@ -30,7 +30,7 @@ LAYERS: dict[str, int] = {
     "structure": 4,
     "aero": 5,
     "model": 6,
-    "trim": 7,
+    "trimming": 7,
     "linear": 8,
     "sim": 9,
     "cli": 10, "envs": 10,
@@ -109,7 +109,7 @@ def test_package_imports_go_one_way_down_the_layers():
     ("flexsim.model.coupling", "from flexsim.sim.outputs import OutputMaps\n", "layer model (6) may not import sim (9)"),
     ("flexsim.aircraft.definition", "def f():\n    from flexsim.structure import shapes\n", "flexsim.aircraft.definition:2"),
     ("flexsim.sim.outputs", "from ..cli import main\n", "imports flexsim.cli: layer sim (9) may not import cli (10)"),
-    ("flexsim.trim.solver", "import flexsim.linear.flutter\n", "layer trim (7) may not import linear (8)"),
+    ("flexsim.trimming.solver", "import flexsim.linear.flutter\n", "layer trimming (7) may not import linear (8)"),
     ("flexsim.newpkg.thing", "import flexsim.model\n", "'newpkg' has no layer"),
 ])
 def test_checker_reports_reverse_imports(module, source, expected):

@@ -8,7 +8,7 @@ from flexsim.linear.flutter import FlutterAnalysis, wind_tunnel
 from flexsim.linear.stability import spectrum
 from flexsim.model.jacobian import jacobian
 from flexsim.sim.simulate import simulate
-from flexsim.trim import trim
+from flexsim.trimming import trim
 
 
 def _blas_threads() -> set[int]:

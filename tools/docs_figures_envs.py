@@ -64,7 +64,7 @@ def env_flutter_v1_point() -> str:
     """FlutterMargin-v1's flutter point and the wing coordinates of its mode shape: the env's flutter search repeated
     for its ``FlutterPoint`` (the same call as ``flexsim.envs.flutter_margin`` makes), checked against the env's."""
     from flexsim.linear.flutter import FlutterAnalysis
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     u = _flutter_env(1)[0].unwrapped
     fp = FlutterAnalysis(u.aircraft, u.dynamics.aero).search(SteadyManoeuvre.level(u.task.altitude_m, mach=0.6),

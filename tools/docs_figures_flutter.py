@@ -253,7 +253,7 @@ def flutter_glide_climb() -> str:
 def flutter_climb_tight() -> str:
     """Finite-state M_F(+15 deg) - M_F(-15 deg) with a Brent tolerance of 1e-7 in Mach, at the table altitudes."""
     from flexsim.linear.study import StudyCase
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     parts = []
     for h in TABLE_ALTITUDES_M:

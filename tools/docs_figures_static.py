@@ -17,8 +17,8 @@ def _cruise_trim(altitude_m: float, mach: float, glide: bool = False, **switches
     from flexsim.atmosphere import mach_to_true_airspeed
     from flexsim.model.aircraft_model import AircraftModel
     from flexsim.model.coupling import AeroOptions
-    from flexsim.trim import SteadyManoeuvre, trim
-    from flexsim.trim.margin import static_margin
+    from flexsim.trimming import SteadyManoeuvre, trim
+    from flexsim.trimming.margin import static_margin
 
     model = AircraftModel(load_aircraft("gtm"), aero=AeroOptions("quasi-steady", **switches))
     manoeuvre = SteadyManoeuvre(float(mach_to_true_airspeed(mach, altitude_m)), altitude_m, math.inf,
@@ -109,7 +109,7 @@ def _turn_trim(coordinated: bool, altitude_m: float = 9144.0, mach: float = 0.78
     ``(trim point, V^2/(gR))`` with the manoeuvre's speed (as ``studies/coordinated_turn.py``)."""
     from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.model.aircraft_model import AircraftModel
-    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trimming import SteadyManoeuvre, trim
 
     model = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
     man = SteadyManoeuvre.turn(altitude_m, radius_m, mach=mach, coordinated=coordinated)
@@ -177,7 +177,7 @@ def options_effects_flutter() -> str:
 
     from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.linear.flutter import FlutterAnalysis
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     gtm = load_aircraft("gtm")
     level = SteadyManoeuvre.level(0.0, mach=0.65)

@@ -32,7 +32,7 @@ def options_turn_hold() -> str:
     """``python studies/coordinated_turn.py``'s 30 s hold of the coordinated turn's trim controls (unsteady)."""
     import coordinated_turn
 
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     point, _ = _turn_trim(True)
     man = SteadyManoeuvre.turn(9144.0, 5000.0, mach=0.78, coordinated=True)
@@ -64,7 +64,7 @@ def options_t2() -> str:
 
 
 def options_mean_chord() -> str:
-    """Mean aerodynamic chord of the exposed right wing's strips (``flexsim/trim/margin.py``), cruise trim."""
+    """Mean aerodynamic chord of the exposed right wing's strips (``flexsim/trimming/margin.py``), cruise trim."""
     return f"{_cruise_trim(9144.0, 0.78)[1].mean_chord_m:.2f} m"
 
 

@@ -260,7 +260,7 @@ for side, sign in (("right", 1.0), ("left", -1.0)):
 # ch. 7); horizontal tail 2 x 45.7 m^2 (exposed 45 of 50.4 m^2, t/c = 0.10); fin 69.6 m^2 (34.3 m^2); nacelle and
 # pylon 46 m^2 each (RB211-535 class, 2.5 m x 6.0 m). Points: fuselage mid-length, 40 % span of each surface
 # on its elastic axis, the engines. Total f = 2.677 m^2: C_D0 = 0.0148 on 181.25 m^2.
-# Validity limit of the linear (no-stall) strip aerodynamics, |alpha| of the CG (flexsim/trim/solver.py
+# Validity limit of the linear (no-stall) strip aerodynamics, |alpha| of the CG (flexsim/trimming/solver.py
 # _check_limits): the end of the NASA GTM's linear lift range in its wind-tunnel database (the T2's, NASA
 # GTM_DesignSim, sources/t2_aero_basic_beta0.csv): CN = -CZ stays within 10 % of its line over alpha = 0-6 deg
 # up to 11 deg (8.2 % below; 12.6 % at 12 deg). flexsim.aircraft.t2_data.t2_linear_alpha_limit_deg computes it

@@ -208,7 +208,7 @@ class AeroSettings:
         Validity limit of the linear (no-stall) aerodynamics: the largest |angle of attack| of the centre of
         gravity at which a trim is accepted [rad], in (0, 30 deg] (file: ``max_alpha_deg``). Default
         :data:`DEFAULT_MAX_ALPHA_DEG`, the NASA GTM's measured linear range (its wind-tunnel database, see the
-        constant); another aircraft should give its own. :func:`flexsim.trim.trim` raises beyond it unless
+        constant); another aircraft should give its own. :func:`flexsim.trimming.trim` raises beyond it unless
         ``check_limits=False``.
     """
 

@@ -1,4 +1,4 @@
-"""`flexsim trim` and `flexsim flutter`: thin commands over flexsim.trim and flexsim.linear.flutter."""
+"""`flexsim trim` and `flexsim flutter`: thin commands over flexsim.trimming and flexsim.linear.flutter."""
 
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.model.linear_range import linear_range_note, nonlinear_fields_note
 from flexsim.atmosphere import mach_to_true_airspeed, speed_of_sound
-from flexsim.trim import SteadyManoeuvre, TrimError, trim
+from flexsim.trimming import SteadyManoeuvre, TrimError, trim
 
 __all__ = ["add_flutter_commands"]
 
@@ -53,14 +53,14 @@ def _trim(args: argparse.Namespace) -> int:
     out = point.summary()
     out["weight_kN"] = model.structure.mass_properties.mass_kg * model.terms.gravity_m_s2 / 1e3
     if model.aero is not None and "right_wing" in aircraft.component_names:
-        from flexsim.trim.margin import static_margin
+        from flexsim.trimming.margin import static_margin
 
         margin = static_margin(model, point)
         out = {**out, "static_margin_mac": margin.fraction_of_mac, "neutral_point_aft_of_cg_m": margin.neutral_point_aft_of_cg_m}
     roots = None
     if args.roots:  # the verdict then comes from the roots printed beside it (their aerodynamic model)
         roots, spec = _roots(aircraft, point, args.roots, args.formulation)
-        from flexsim.trim.equilibrium import with_stability
+        from flexsim.trimming.equilibrium import with_stability
 
         point = with_stability(model, point, spec)
     local = point.max_local_alpha
@@ -122,7 +122,7 @@ def _settings(args: argparse.Namespace, default_aircraft: str = "gtm") -> list[R
 
 def _roots(aircraft, point, aero_model: str, formulation: str | None = None) -> tuple[dict, object]:
     """Eigenvalues of the linearised trim with their classification (rigid-body, elastic, aerodynamic-lag), and their
-    :class:`~flexsim.trim.roots.Spectrum` (the trim's verdict is then classified from it)."""
+    :class:`~flexsim.trimming.roots.Spectrum` (the trim's verdict is then classified from it)."""
     import numpy as np
 
     from flexsim.linear.stability import spectrum

@@ -4,7 +4,7 @@
                       [--aero quasi-steady|unsteady] [--n-inflow N] [--formulation F] [--state-outputs]
                       [--no-limits] --out FILE.npz [--json]
 
-A thin command over :func:`flexsim.trim.trim` and :func:`flexsim.linear.control.linear_system`; the file holds A, B,
+A thin command over :func:`flexsim.trimming.trim` and :func:`flexsim.linear.control.linear_system`; the file holds A, B,
 C, D with the state, input and output names, the trim point and the model options (:meth:`LinearSystem.save`).
 """
 
@@ -50,7 +50,7 @@ def _linearize(args: argparse.Namespace) -> int:
     from flexsim.linear.control import linear_system
     from flexsim.model.aircraft_model import AircraftModel
     from flexsim.model.coupling import AeroOptions
-    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trimming import SteadyManoeuvre, trim
 
     aircraft = load_aircraft(args.aircraft)
     if args.components:

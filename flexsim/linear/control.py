@@ -1,6 +1,6 @@
 """Linear models for control design: the linearised aircraft with named states, inputs and outputs.
 
-The state-space model about an operating point (a trim, :func:`flexsim.trim.trim`)::
+The state-space model about an operating point (a trim, :func:`flexsim.trimming.trim`)::
 
     dx_dot = A dx + B du,      dy = C dx + D du
 
@@ -48,8 +48,8 @@ from flexsim.model.terms import Terms
 from flexsim.model.variant import VariantSettings
 from flexsim.model.naming import state_names
 from flexsim.model.sensors import SENSOR_QUANTITIES, SensorBank, structural_sensors
-from flexsim.trim.manoeuvre import SteadyManoeuvre
-from flexsim.trim.solver import TrimPoint
+from flexsim.trimming.manoeuvre import SteadyManoeuvre
+from flexsim.trimming.solver import TrimPoint
 
 __all__ = ["GUST_INPUT", "INPUT_NAMES", "FILE_FORMAT", "ModelRecord", "LinearSystem", "MissingDependencyError",
            "linear_system", "state_space"]
@@ -341,7 +341,7 @@ def _sensor_rows(model: AircraftModel) -> tuple[np.ndarray, tuple[str, ...]]:
 
 
 #: Largest scaled residual (accelerations in g, angular ones in g per 5 m, as the trim's) of a trim accepted as an
-#: equilibrium of the model it is linearised with: trims converge to 1e-8 (``flexsim.trim.solver``); a trim of another
+#: equilibrium of the model it is linearised with: trims converge to 1e-8 (``flexsim.trimming.solver``); a trim of another
 #: aircraft, variant or formulation leaves residuals of order 1 and more.
 EQUILIBRIUM_TOLERANCE = 1e-6
 
@@ -364,7 +364,7 @@ def _check_operating_point(model: AircraftModel, x0: np.ndarray, u0: np.ndarray,
     if not residual <= EQUILIBRIUM_TOLERANCE:
         raise ValueError(f"point: the trim is not an equilibrium of this model of {model.aircraft.name} (scaled residual "
                          f"{residual:.3g} > {EQUILIBRIUM_TOLERANCE:g}): a trim of another aircraft, variant or formulation; "
-                         "trim this model (flexsim.trim.trim(model, manoeuvre)) and linearise that")
+                         "trim this model (flexsim.trimming.trim(model, manoeuvre)) and linearise that")
 
 
 def linear_system(model: AircraftModel, point: TrimPoint | np.ndarray, u0: np.ndarray | None = None, *,
@@ -378,7 +378,7 @@ def linear_system(model: AircraftModel, point: TrimPoint | np.ndarray, u0: np.nd
         states of the linear model.
     point : TrimPoint or ndarray, shape (n_states,)
         A trim (which supplies the controls and the manoeuvre) or a state. A trim of the model's quasi-steady twin
-        (no inflow states: :func:`flexsim.trim.trim` trims with quasi-steady aerodynamics) is extended with zero
+        (no inflow states: :func:`flexsim.trimming.trim` trims with quasi-steady aerodynamics) is extended with zero
         inflow, the finite-state wake's steady state.
     u0 : ndarray, shape (4,), optional
         Controls [T_e (N), delta_a, delta_e, delta_r (rad)], with a state only.

@@ -155,7 +155,7 @@ def _stall_mach(model: AircraftModel, manoeuvre) -> tuple[float, str]:
     """(Mach, source) of the stall estimate of the module docstring: two quasi-steady trims, limits not enforced."""
     from dataclasses import replace
 
-    from flexsim.trim import TrimError, trim
+    from flexsim.trimming import TrimError, trim
 
     qs = model
     if model.aero.options.model != "quasi-steady":
@@ -262,7 +262,7 @@ def cruise_point(model: AircraftModel | Aircraft | str | Path, *, altitude_m: fl
         no speed can be derived (the message says which ``[envelope]`` key to give).
     """
     from flexsim.atmosphere import isa
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     if mach is not None and speed_m_s is not None:
         raise ValueError(f"mach = {mach!r} and speed_m_s = {speed_m_s!r}: give the speed once")

@@ -34,8 +34,8 @@ from flexsim.model.aircraft_model import AircraftModel, check_aircraft, check_mo
 from flexsim.model.coupling import AERO_MODELS, AeroOptions
 from flexsim.model.terms import Terms
 from flexsim.model.variant import VariantSettings
-from flexsim.trim import SteadyManoeuvre, TrimError, TrimPoint, trim
-from flexsim.trim.equilibrium import with_stability
+from flexsim.trimming import SteadyManoeuvre, TrimError, TrimPoint, trim
+from flexsim.trimming.equilibrium import with_stability
 
 __all__ = ["FlutterPoint", "FlutterNotFound", "FlutterAnalysis", "flutter", "scan_step", "anchored_grid", "hidden_crossing",
            "SharedEvaluations", "WindTunnelResult", "wind_tunnel", "wind_tunnel_flutter",

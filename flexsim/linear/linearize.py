@@ -19,7 +19,7 @@ from flexsim.io.vocabulary import CONTROL_NAMES
 from flexsim.model.aircraft_model import AircraftModel, check_model
 from flexsim.model.jacobian import jacobian
 from flexsim.model.naming import state_names
-from flexsim.trim.solver import TrimPoint
+from flexsim.trimming.solver import TrimPoint
 
 __all__ = ["LinearModel", "linearize"]
 

@@ -190,7 +190,7 @@ def record_critical_mode(cases, rows, path: str | os.PathLike) -> str:
     study's rows do not keep.
     """
     from flexsim.linear.study import MODELS
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     found = [(row["mach"], k) for k, row in enumerate(rows) if "mach" in row]
     if not found:

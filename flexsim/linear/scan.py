@@ -14,12 +14,12 @@ from typing import Callable
 
 import numpy as np
 
-from flexsim.trim.roots import Spectrum
+from flexsim.trimming.roots import Spectrum
 
 __all__ = ["REFINE_LEVELS", "CURVATURE_SAFETY", "UNSTABLE_DAMPING", "MIN_TRIM_SPEED_M_S", "MAX_MACH_STEP", "MIN_SCAN_STEPS",
            "anchored_grid", "hidden_crossing", "scan_step"]
 
-#: The slowest flight a scan point may ask for (:class:`flexsim.trim.SteadyManoeuvre`'s lower limit) [m/s].
+#: The slowest flight a scan point may ask for (:class:`flexsim.trimming.SteadyManoeuvre`'s lower limit) [m/s].
 MIN_TRIM_SPEED_M_S = 1.0
 #: Largest Mach step of a flutter scan, and the fewest steps over the range (:func:`scan_step`).
 MAX_MACH_STEP = 0.05

@@ -9,8 +9,8 @@ inflow in state space), ``theodorsen`` (p-k iteration: lambda0 = (1 - C(k_j)) (w
 k_j = omega b_j / u0_j, iterated on omega for every mode until consistent).
 
 Each root is classified (rigid-body, elastic or aerodynamic-lag, by its kinetic energy and its participation
-factors, with its dominant DOF) by :mod:`flexsim.trim.roots`, which the trim also uses to classify its own
-equilibrium (:mod:`flexsim.trim.equilibrium`).
+factors, with its dominant DOF) by :mod:`flexsim.trimming.roots`, which the trim also uses to classify its own
+equilibrium (:mod:`flexsim.trimming.equilibrium`).
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from flexsim.linear._pk_kernels import w34_jacobian
 from flexsim.linear.linearize import LinearModel, linearize
 from flexsim.linear.symmetry import decoupled, mirror_bases
 from flexsim.model.aircraft_model import AircraftModel, check_model
-from flexsim.trim.roots import Mode, Spectrum, _classify, _dominant_dofs  # noqa: F401 (_dominant_dofs: the name tests and benchmarks use)
+from flexsim.trimming.roots import Mode, Spectrum, _classify, _dominant_dofs  # noqa: F401 (_dominant_dofs: the name tests and benchmarks use)
 
 __all__ = ["Mode", "Spectrum", "spectrum", "linear_spectrum", "PkStateMatrix", "pk_state_matrix", "PK_METHODS", "conjugate_slots"]
 

@@ -156,7 +156,7 @@ def run_case(case: StudyCase, mach_guess: float | None = None, analysis=None, sh
     """
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     from flexsim.linear.flutter import FlutterNotFound, scan_step
-    from flexsim.trim import SteadyManoeuvre, TrimError
+    from flexsim.trimming import SteadyManoeuvre, TrimError
 
     row = asdict(case)
     gamma = None if case.climb_angle_deg is None else math.radians(case.climb_angle_deg)

@@ -54,7 +54,7 @@ from flexsim.atmosphere import speed_of_sound
 from flexsim.linear.stability import Mode, Spectrum, spectrum
 from flexsim.linear.validity import mach_note
 from flexsim.model.aircraft_model import AircraftModel, check_model
-from flexsim.trim import SteadyManoeuvre, TrimError
+from flexsim.trimming import SteadyManoeuvre, TrimError
 
 __all__ = ["VgCrossing", "VgTrack", "VgDiagram", "vg_diagram", "track_branches", "mac", "MIN_MAC", "VG_MODELS"]
 

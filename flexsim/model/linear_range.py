@@ -19,7 +19,7 @@ deflections and errs increasingly beyond. The limits below are where the error r
 
 Beyond either limit the answers of the linear structure are outside its validity; the geometrically nonlinear
 beam (docs/nonlinear-beams.md) is the model for them. :func:`linear_range_note` returns the one line the trim
-(:attr:`flexsim.trim.TrimPoint.linear_range`), ``flexsim trim``, ``flexsim flutter``, ``simulate``
+(:attr:`flexsim.trimming.TrimPoint.linear_range`), ``flexsim trim``, ``flexsim flutter``, ``simulate``
 (:meth:`flexsim.sim.result.SimulationResult.summary`) and the environments (``info["linear_range"]`` at reset) print.
 """
 

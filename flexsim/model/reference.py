@@ -42,7 +42,7 @@ class ReferenceGeometry:
         Geometric mean chord c_bar = S / b [m].
     mac_m : float
         Mean aerodynamic chord, sum c^2 w / sum c w [m] (the length of the pitching-moment coefficient and of the
-        static margin, :func:`flexsim.trim.margin.static_margin`).
+        static margin, :func:`flexsim.trimming.margin.static_margin`).
     components : tuple of str
         The wing's components whose strips were summed.
     """

@@ -1,6 +1,6 @@
 """Structural outputs of a state: tip deflection, tip twist, their rates and the root bending moment.
 
-The one implementation of these outputs, used by the trim (:class:`flexsim.trim.TrimPoint`), the simulation
+The one implementation of these outputs, used by the trim (:class:`flexsim.trimming.TrimPoint`), the simulation
 outputs and logs (:class:`flexsim.sim.outputs.OutputMaps`) and the environments' observations
 (:class:`flexsim.envs.dynamics.FlightDynamics`). With the modal expansion of paper eq. (1),
 ``w(x, t) = sum_k U_k(x) q_k(t)`` and ``psi(x, t) = sum_k Psi_k(x) xi_k(t)`` (clamped-free shapes,

@@ -44,7 +44,7 @@ from flexsim.sim.result import SimulationResult
 from flexsim.sim.run_settings import EventSettings, OutputSettings
 from flexsim.sim.simulate import ControlSchedule, IntegratorSettings, simulate
 from flexsim.kinematics import dcm_321
-from flexsim.trim import SteadyManoeuvre, TrimPoint, trim
+from flexsim.trimming import SteadyManoeuvre, TrimPoint, trim
 
 __all__ = ["ManoeuvreSetup", "build_manoeuvre", "manoeuvre_names", "goland_flutter_speed", "pulse_schedule",
            "BankController", "CRUISE_ALTITUDE_M", "CRUISE_MACH"]

@@ -251,7 +251,7 @@ class OutputMaps:
         """Load factor and total wing lift at one state.
 
         Load factor: aerodynamic plus thrust force along -z_body over the weight [-], exactly as
-        :attr:`flexsim.trim.TrimPoint.load_factor` (:meth:`AircraftModel.aerodynamic_force`: the explicit strip
+        :attr:`flexsim.trimming.TrimPoint.load_factor` (:meth:`AircraftModel.aerodynamic_force`: the explicit strip
         airloads and parasite drag, without the added-mass reaction M_a V_dot, which would need the accelerations;
         the GTM strips' added mass is 0.3 % of the aircraft's mass at 9144 m). NaN without gravity. Wing lift: sum
         of the circulatory strip lifts of both wings [N].

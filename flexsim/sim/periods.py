@@ -2,7 +2,7 @@
 
 The integration layer of the gymnasium environments (:mod:`flexsim.envs`), single and batched. A
 :class:`FlightDynamics` holds one :class:`~flexsim.model.aircraft_model.AircraftModel` (whose ``rhs(t, x, u)`` is
-integrated unchanged), trims it with :func:`flexsim.trim.trim`, computes the Jacobian of the trim
+integrated unchanged), trims it with :func:`flexsim.trimming.trim`, computes the Jacobian of the trim
 (:func:`flexsim.model.jacobian.jacobian`, once per trim, cached) and integrates a control period. An episode's
 integration state (the ETD2RK stepper of its trim, Radau's Jacobian, the warm-start step of the ``solve_ivp`` methods) is
 an immutable :class:`IntegrationState`, returned by :meth:`FlightDynamics.start` and taken (and returned, updated) by
@@ -51,7 +51,7 @@ from flexsim.sim.fixed_step import ETD2RK
 from flexsim.sim.measurements import MeasurementBatch, Measurements
 from flexsim.sim.outputs import OutputMaps
 from flexsim.sim.simulate import DEFAULT_MAX_STEP, IntegratorSettings
-from flexsim.trim import SteadyManoeuvre, TrimError, TrimPoint, trim
+from flexsim.trimming import SteadyManoeuvre, TrimError, TrimPoint, trim
 
 __all__ = ["IntegratorSettings", "ActuatorRates", "FlightDynamics", "IntegrationState", "StepOutcome", "BatchOutcome", "PeriodResult", "advance_rows",
            "advance_period", "SENSOR_COMPONENTS", "INTEGRATOR_METHODS", "FIXED_STEP_METHODS", "DEFAULT_MAX_STEP_S",

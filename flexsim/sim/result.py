@@ -18,7 +18,7 @@ import numpy as np
 from flexsim.model.aircraft_model import AircraftModel, Wind
 from flexsim.model.linear_range import linear_range_note
 from flexsim.sim.outputs import OutputMaps
-from flexsim.trim.equilibrium import EquilibriumStability
+from flexsim.trimming.equilibrium import EquilibriumStability
 
 __all__ = ["SimulationResult", "STATUSES"]
 
@@ -63,7 +63,7 @@ class SimulationResult:
         The disturbance the run was flown in (air data and loads are computed with it); None: still air.
     initial_stability : EquilibriumStability or None
         The classification of the trim the run started from (``TrimPoint.stability``,
-        :mod:`flexsim.trim.equilibrium`); None when it started from a state vector.
+        :mod:`flexsim.trimming.equilibrium`); None when it started from a state vector.
     """
 
     t: np.ndarray

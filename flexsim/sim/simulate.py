@@ -47,7 +47,7 @@ from flexsim.sim.recording import LogSink, resolve_log_path
 from flexsim.sim.run_parts import RunEvent, RunOutcome, RunProblem, Sampler, Sinks, emit_step, segment_controls
 from flexsim.sim.result import SimulationResult
 from flexsim.sim.run_settings import DEFAULT_EVENTS, EventSettings, OutputSettings, SimEvent
-from flexsim.trim.solver import TrimPoint
+from flexsim.trimming.solver import TrimPoint
 
 __all__ = ["ControlSchedule", "IntegratorSettings", "EventSettings", "OutputSettings", "SimEvent", "simulate", "state_scales",
            "METHODS", "DEFAULT_EVENTS", "default_method",

@@ -228,8 +228,8 @@ def phugoid_point(altitude_m: float = 6000.0, mach: float = 0.6, *, body_moments
     from flexsim.linear.stability import spectrum
     from flexsim.model.aircraft_model import AircraftModel
     from flexsim.model.coupling import AeroOptions
-    from flexsim.trim import SteadyManoeuvre, trim
-    from flexsim.trim.margin import static_margin
+    from flexsim.trimming import SteadyManoeuvre, trim
+    from flexsim.trimming.margin import static_margin
 
     options = AeroOptions("quasi-steady", compressibility="none", body_moments=body_moments, downwash=downwash,
                           parasite_drag=parasite_drag)
@@ -255,7 +255,7 @@ def _phugoid() -> list[Check]:
 def _coordinated_turn() -> list[Check]:
     from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.model.aircraft_model import AircraftModel
-    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trimming import SteadyManoeuvre, trim
 
     model = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
     radius = 5000.0
@@ -406,7 +406,7 @@ def load_case(path: str | Path) -> ValidationCase:
             from flexsim.aircraft.toml_loader import load_aircraft
             from flexsim.model.aircraft_model import AircraftModel
             from flexsim.model.coupling import AeroOptions
-            from flexsim.trim import SteadyManoeuvre, trim
+            from flexsim.trimming import SteadyManoeuvre, trim
 
             model = AircraftModel(load_aircraft(aircraft_arg), aero=AeroOptions("quasi-steady", compressibility=compressibility))
             start = SteadyManoeuvre.level(alt, mach=mach)

@@ -25,7 +25,7 @@ from flexsim.linear.stability import spectrum
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.structure.model import StructuralModel
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 from tests.installed import child_env
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -19,7 +19,7 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.modes import in_vacuo_modes
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.structure.model import StructuralModel
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 @pytest.fixture(scope="module")

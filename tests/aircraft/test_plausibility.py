@@ -102,7 +102,7 @@ def test_nesting_bom_and_empty_files(tmp_path):
 def test_singular_trim_is_named(tmp_path):
     """1 strip per surface: the aileron sits outboard of every strip, trim used to print -1.34e6 deg."""
     from flexsim.model.aircraft_model import AircraftModel
-    from flexsim.trim import SteadyManoeuvre, TrimError, trim
+    from flexsim.trimming import SteadyManoeuvre, TrimError, trim
 
     doc = _doc("gtm")
     for c in doc["components"].values():

@@ -23,7 +23,7 @@ from flexsim.cli.main import main
 from flexsim.linear.flutter import FlutterAnalysis
 from flexsim.linear.paper_data import TABLE_QS
 from flexsim.model.aircraft_model import STANDARD_GRAVITY
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 
 H = 9144.0
 
@@ -42,7 +42,7 @@ def test_trim_level_turn_and_climb(capsys):
     v = turn["speed_m_s"]
     # the aerodynamic + thrust resultant balances weight and centripetal force, |F|/W = sqrt(1 + (V^2/gR)^2) (to the
     # CG's offset from o, 0.3 %); the paper's turn slips (its side force tilts F, so tan(phi) != V^2/gR: 0.658 against
-    # 0.586 measured with the fuselage moments; the coordinated turn's closed forms are in tests/trim)
+    # 0.586 measured with the fuselage moments; the coordinated turn's closed forms are in tests/trimming)
     assert turn["load_factor_total"] == pytest.approx(math.hypot(1.0, v * v / (STANDARD_GRAVITY * 9000.0)), rel=3e-3)
     assert abs(turn["sideslip_deg"]) > 1.0
     climb = _json(capsys, "trim", "gtm", "--altitude-m", str(H), "--mach", "0.75", "--climb-deg", "3", "--json")

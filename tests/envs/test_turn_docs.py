@@ -19,7 +19,7 @@ import pytest
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.envs.turn import TurnEnv, TurnTask
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 DOC = Path(__file__).resolve().parents[2] / "docs" / "environments.md"
 

@@ -27,7 +27,7 @@ from flexsim.linear.mode_animation import mode_animation, record_flutter_mode
 from flexsim.linear.participation import describe_mode
 from flexsim.linear.stability import spectrum
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 from tests.io.test_rerun_view import _rows_by_entity
 
 FRAMES, CYCLES = 24, 2

@@ -40,7 +40,7 @@ from flexsim.model.aircraft_model import AircraftModel  # noqa: E402
 from flexsim.model.coupling import AeroOptions  # noqa: E402
 from flexsim.model.sensors import structural_sensors  # noqa: E402
 from flexsim.sim.simulate import IntegratorSettings, simulate  # noqa: E402
-from flexsim.trim import SteadyManoeuvre, trim  # noqa: E402
+from flexsim.trimming import SteadyManoeuvre, trim  # noqa: E402
 from flexsim.sim.run_settings import EventSettings, OutputSettings  # noqa: E402
 import flexsim as fs  # noqa: E402
 

@@ -10,7 +10,7 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.cli.main import main
 from flexsim.linear.control import INPUT_NAMES, LinearSystem, linear_system
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 def test_written_file_is_the_linear_model_of_the_trim(tmp_path, capsys):

@@ -18,7 +18,7 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.atmosphere import isa_density
 from flexsim.linear.envelope import _stall_mach
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 
 
 def test_the_stall_estimate_follows_the_models_gravity():

@@ -24,7 +24,7 @@ from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound, wind_tunnel
 from flexsim.linear.paper_data import TABLE_US
 from flexsim.linear.stability import spectrum
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 GOLAND_SPEED, GOLAND_FREQ = 137.2, 70.7
 
@@ -260,7 +260,7 @@ def test_flutter_scan_settings_are_checked_where_they_enter(goland, kwargs, mess
     (a zero step made numpy divide by zero, a negative one an empty grid and an IndexError)."""
     from flexsim.linear.flutter import flutter
     from flexsim.model.aircraft_model import AircraftModel
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     gtm = AircraftModel(load_aircraft("gtm"), aero="quasi-steady")
     args = {"mach_range": (0.6, 0.8), "mach_step": 0.05, **kwargs}

@@ -13,7 +13,7 @@ from flexsim.io.vocabulary import CONTROL_NAMES
 from flexsim.linear.linearize import linearize
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.naming import state_names
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 @pytest.fixture(scope="module")

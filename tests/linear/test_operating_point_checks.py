@@ -10,7 +10,7 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.control import linear_system
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 @pytest.fixture(scope="module")

@@ -16,7 +16,7 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.linearize import linearize
 from flexsim.linear.stability import pk_state_matrix, spectrum
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 @pytest.fixture(scope="module")

@@ -16,7 +16,7 @@ import pytest
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.linear.stability import spectrum
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 @pytest.fixture(scope="module")

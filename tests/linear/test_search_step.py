@@ -104,7 +104,7 @@ def test_hale_flight_flutter_does_not_depend_on_the_lower_end(hale):
     tolerance (1e-4 in Mach), each with the step flexsim flutter uses (scan_step of the range)."""
     from flexsim.atmosphere import speed_of_sound
     from flexsim.linear.flutter import FlutterAnalysis, scan_step
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     a = speed_of_sound(20000.0)
     analysis = FlutterAnalysis(hale, "theodorsen")

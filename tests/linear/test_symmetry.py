@@ -15,7 +15,7 @@ from flexsim.linear.linearize import linearize
 from flexsim.linear.stability import pk_state_matrix, spectrum
 from flexsim.linear.symmetry import COUPLING_RTOL, decoupled, mirror_bases
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 @pytest.fixture(scope="module")

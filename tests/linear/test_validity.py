@@ -25,7 +25,7 @@ from flexsim.linear.validity import MACH_LIMIT, mach_note
 from flexsim.linear.vg import vg_diagram
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 from tests.linear.hale_like import write_hale
 
 H = 20000.0

@@ -86,7 +86,7 @@ def _winds():
 def rhs_inputs(gtm) -> dict:
     """Seeded states and controls of every rhs model near a GTM trim (recorded once, stored in the file)."""
     from flexsim.model.aircraft_model import AircraftModel
-    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trimming import SteadyManoeuvre, trim
 
     free = AircraftModel(gtm, aero="quasi-steady")
     base = trim(free, SteadyManoeuvre.level(3000.0, mach=0.6))
@@ -123,7 +123,7 @@ def rhs_values(gtm, inputs: dict) -> dict:
 
 def trim_values(gtm) -> dict:
     from flexsim.model.aircraft_model import AircraftModel
-    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trimming import SteadyManoeuvre, trim
 
     model = AircraftModel(gtm, aero="quasi-steady")
     out = {}
@@ -135,7 +135,7 @@ def trim_values(gtm) -> dict:
 
 def flutter_values(gtm) -> dict:
     from flexsim.linear.flutter import FlutterAnalysis
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     out = {}
     analyses = {}

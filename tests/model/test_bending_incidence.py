@@ -17,7 +17,7 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.structure.shapes import bending_shapes
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 def test_strip_pitch_is_sweep_times_bending_slope():

@@ -23,7 +23,7 @@ from flexsim.atmosphere import isa_density
 from flexsim.errors import AircraftDefinitionError
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 @pytest.fixture(scope="module")

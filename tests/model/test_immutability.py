@@ -16,7 +16,7 @@ import pytest
 from flexsim._immutable import Immutable
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 from flexsim.sim.run_settings import OutputSettings
 
 

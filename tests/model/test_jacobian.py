@@ -13,7 +13,7 @@ import pytest
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.jacobian import _column, jacobian
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 def _gust(t, positions):

@@ -30,7 +30,7 @@ from flexsim.model.linear_range import (
     nonlinear_fields_note,
 )
 from flexsim.model.sensors import structural_sensors
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 def elastica_tip_deflection(load: float) -> float:

@@ -25,7 +25,7 @@ from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.model.terms import Terms
 from flexsim.model.variant import Variant, VariantSettings
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 #: Switches of terms that a flutter search must carry from the model it is given to the siblings it trims and solves.
 SWITCHES = dict(force_resolution="normal", thrust_follows_deflection=False, engine_angular_momentum=(2e5, 0.0, 0.0))

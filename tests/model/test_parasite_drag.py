@@ -16,7 +16,7 @@ from flexsim.aircraft.toml_loader import load_aircraft, parse_aircraft
 from flexsim.errors import AircraftDefinitionError
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 @pytest.fixture(scope="module")

@@ -48,7 +48,7 @@ def test_the_gtm_model_carries_its_reference_geometry():
     """The GTM's wing strips: the span is the two halves' elastic axes projected normal to the flow, ~2 L cos(sweep)
     (the strips' widths, :class:`flexsim.model.strips.StripSet`; the exposed wing, without the fuselage's width:
     34.19 m of the published 37.955 m, docs/reference), and the MAC is the static margin's (5.09 m,
-    tests/trim/test_static_margin.py)."""
+    tests/trimming/test_static_margin.py)."""
     gtm = load_aircraft("gtm")
     model = AircraftModel(gtm, aero="quasi-steady")
     ref, wing = model.reference_geometry, gtm.component("right_wing")

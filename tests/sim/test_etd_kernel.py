@@ -36,7 +36,7 @@ from flexsim.sim import ControlSchedule, SimEvent
 from flexsim.sim.fixed_step import ETD2RK, step_accelerations
 from flexsim.sim.run_settings import EventSettings, OutputSettings
 from flexsim.sim.simulate import RELINEARISE_DRIFT, IntegratorSettings, simulate
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 from tests.sim.etd2rk_reference import reference_step
 
 

@@ -39,7 +39,7 @@ def test_manoeuvre_refuses_a_bool_duration():
 def test_bools_are_not_altitudes_nor_speeds():
     """New cases of the class where a flight condition enters: the ISA and a steady manoeuvre."""
     from flexsim.atmosphere import isa
-    from flexsim.trim import SteadyManoeuvre
+    from flexsim.trimming import SteadyManoeuvre
 
     with pytest.raises(ValueError, match=r"altitude = True: must be a number \[m\], got bool"):
         isa(True)

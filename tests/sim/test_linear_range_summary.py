@@ -9,7 +9,7 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.run_settings import EventSettings, OutputSettings
 from flexsim.sim.simulate import simulate
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 def test_simulate_summary_says_it():

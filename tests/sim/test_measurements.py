@@ -25,7 +25,7 @@ from flexsim.sim.disturbances import DrydenTurbulence
 from flexsim.sim.measurements import air_data
 from flexsim.sim.outputs import air_angles, heading_rate
 from flexsim.sim.periods import SENSOR_COMPONENTS, ActuatorRates, FlightDynamics, IntegratorSettings
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 
 
 def _close(a, b, rtol=1e-12):

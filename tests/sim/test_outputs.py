@@ -18,7 +18,7 @@ from flexsim.sim.disturbances import OneMinusCosineGust
 from flexsim.atmosphere import speed_of_sound
 from flexsim.sim.outputs import OutputMaps, air_angles, heading_rate
 from flexsim.sim.simulate import simulate
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 @pytest.fixture(scope="module")

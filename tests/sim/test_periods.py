@@ -21,7 +21,7 @@ from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim import periods
 from flexsim.sim._step_kernels import ground_crossing, rate_limit_rows
 from flexsim.sim.periods import ActuatorRates, FlightDynamics, IntegratorSettings, advance_period, advance_rows
-from flexsim.trim import SteadyManoeuvre
+from flexsim.trimming import SteadyManoeuvre
 
 
 def test_rate_limits_closed_form():

@@ -24,7 +24,7 @@ from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.result import SimulationResult
 from flexsim.sim.simulate import (HOLDING_RADAU_SCIPY, ControlSchedule, HoldingRadau, IntegratorSettings, SimEvent, radau_class,
                                   simulate, state_scales)
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 from flexsim.sim.run_settings import EventSettings, OutputSettings
 
 H, MACH = 9144.0, 0.75
@@ -327,7 +327,7 @@ def test_ragged_or_non_numeric_controls_are_refused_naming_them(gtm, quasi_stead
     """Ragged, non-numeric or NaN controls, constant or scheduled, and a definition where a model is expected: each
     refused naming the argument (before: numpy's "inhomogeneous shape" message, ``controls`` not named)."""
     from flexsim.sim.controls import ControlSchedule
-    from flexsim.trim import SteadyManoeuvre, trim
+    from flexsim.trimming import SteadyManoeuvre, trim
 
     point = trim(quasi_steady, SteadyManoeuvre.level(9144.0, mach=0.75))
     with pytest.raises(ValueError, match=r"controls = .*must be an array of numbers \[thrust N, aileron"):

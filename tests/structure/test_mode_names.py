@@ -27,8 +27,8 @@ from flexsim.linear.modes import in_vacuo_modes
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
 from flexsim.structure.mode_names import pair_name
-from flexsim.trim import SteadyManoeuvre, trim
-from flexsim.trim.equilibrium import _rigid_root
+from flexsim.trimming import SteadyManoeuvre, trim
+from flexsim.trimming.equilibrium import _rigid_root
 from tests.linear.hale_like import write_hale
 
 SAILPLANE = str(Path(__file__).resolve().parents[2] / "examples" / "aircraft" / "sailplane15.toml")

@@ -3,7 +3,7 @@
 Source: Tuzcu & Nguyen (2014), "Numerical Model": linearise eq. (33) about the steady manoeuvre and solve the
 eigenvalue problem; the first 12 eigenvalues are rigid-body dominated, the others elastic. This module holds the
 classification of the roots (used by :mod:`flexsim.linear.stability` for every eigen-analysis and by the trim to
-classify its own equilibrium, :mod:`flexsim.trim.equilibrium`).
+classify its own equilibrium, :mod:`flexsim.trimming.equilibrium`).
 
 Each mode is classified by the split of its kinetic energy (velocity part phi of the eigenvector, M the
 structural mass matrix at the trim) into the energy of the rigid-body motion of the whole aircraft and
@@ -264,7 +264,7 @@ def _first_elastic_frequency(model: AircraftModel) -> float:
 def _first_elastic_of(key: ContentKey) -> float:
     """The in-vacuo problem K phi = omega^2 M(0) phi of the free aircraft without aerodynamics and gravity (eqs. 8,
     15), solved as :func:`flexsim.linear.modes.in_vacuo_modes` solves it (same matrices, same rigid-body threshold
-    1e-10 of the largest eigenvalue), for its lowest elastic frequency only (tests/trim/test_roots.py compares the
+    1e-10 of the largest eigenvalue), for its lowest elastic frequency only (tests/trimming/test_roots.py compares the
     two)."""
     model = AircraftModel(key.aircraft, aero=None, gravity_m_s2=0.0)
     st, active = model.structure, model.active_dofs

@@ -5,7 +5,7 @@ pitching moment does not change with the angle of attack. With dL and dM_cg the 
 pitching moment about the centre of gravity for a change of the angle of attack (central differences of the
 body-axis normal velocity w at the trim, elastic coordinates and controls held), the neutral point lies
 h_n - h = -dM_cg / (dL c) mean chords behind the CG; that is the static margin. Lift is the aerodynamic force
-along -z of the wind axes (:class:`~flexsim.trim.TrimPoint`). The mean aerodynamic chord is that of the
+along -z of the wind axes (:class:`~flexsim.trimming.TrimPoint`). The mean aerodynamic chord is that of the
 right wing's strips, c = sum(c^2 w) / sum(c w) over the exposed wing.
 """
 
@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim.solver import TrimPoint
+from flexsim.trimming.solver import TrimPoint
 
 __all__ = ["StaticMargin", "static_margin", "static_margin_of_state"]
 

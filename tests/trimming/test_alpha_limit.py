@@ -16,7 +16,7 @@ import pytest
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.errors import AircraftDefinitionError
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, TrimError, trim
+from flexsim.trimming import SteadyManoeuvre, TrimError, trim
 
 HIGH = SteadyManoeuvre.level(20000.0, mach=0.78)
 SLOW_GLIDE = SteadyManoeuvre.glide(3000.0, mach=0.3)

@@ -14,7 +14,7 @@ import pytest
 
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, TrimError, trim
+from flexsim.trimming import SteadyManoeuvre, TrimError, trim
 
 LEVEL = SteadyManoeuvre.level(0.0, speed_m_s=25.0)
 

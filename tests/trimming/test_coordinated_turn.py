@@ -18,7 +18,7 @@ import pytest
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import STANDARD_GRAVITY, AircraftModel
 from flexsim.sim.simulate import simulate
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 R = 5000.0
 

@@ -1,6 +1,6 @@
 """The trim's verdict travels with it: flutter searches, study rows, simulations and the envs.
 
-Aircraft as in tests/trim/test_equilibrium.py (the GTM file with the wing's, or the horizontal tail's, GJ scaled).
+Aircraft as in tests/trimming/test_equilibrium.py (the GTM file with the wing's, or the horizontal tail's, GJ scaled).
 """
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ from flexsim.linear.flutter import FlutterAnalysis, FlutterNotFound
 from flexsim.linear.study import StudyCase, run_case
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim.simulate import simulate
-from flexsim.trim import SteadyManoeuvre, TrimError, trim
-from tests.trim.test_equilibrium import CRUISE, _variants
+from flexsim.trimming import SteadyManoeuvre, TrimError, trim
+from tests.trimming.test_equilibrium import CRUISE, _variants
 
 
 @pytest.fixture(scope="module")

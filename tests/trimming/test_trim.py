@@ -13,7 +13,7 @@ from scipy.integrate import solve_ivp
 
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, TrimError, trim
+from flexsim.trimming import SteadyManoeuvre, TrimError, trim
 
 H = 9144.0
 
@@ -136,7 +136,7 @@ def test_bad_manoeuvre_arguments():
 def test_batched_trim_jacobian_equals_column_differences(models, name):
     """The trim's Jacobian in one rhs_batch call is bit for bit the column-by-column central difference of the
     residual (same steps, same states; rhs_batch rows equal rhs), also with a coordinated turn's extra unknown."""
-    from flexsim.trim import solver
+    from flexsim.trimming import solver
 
     man = MANOEUVRES[name]
     for coordinated in ((False, True) if name == "turn" else (False,)):
@@ -166,7 +166,7 @@ def test_trim_from_a_neighbouring_trim_equals_the_cold_trim(models):
 def test_trim_residual_through_the_batched_kernel_equals_rhs(models, name):
     """The trim residual is evaluated with one row of rhs_batch (so that trimming loads one compiled right-hand
     side): equal bit for bit to the velocity rows of ``rhs`` scaled, for both aerodynamic models."""
-    from flexsim.trim import solver
+    from flexsim.trimming import solver
 
     for model in models.values():
         prob = solver._Problem(model, MANOEUVRES[name])
@@ -187,7 +187,7 @@ def test_gravity_free_trim_balances_thrust_and_drag_and_says_what_is_undetermine
 
     from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.model.aircraft_model import AircraftModel
-    from flexsim.trim import SteadyManoeuvre, TrimError, trim
+    from flexsim.trimming import SteadyManoeuvre, TrimError, trim
 
     gtm = load_aircraft("gtm")
     model = AircraftModel(gtm, aero="quasi-steady", gravity_m_s2=0.0)

@@ -9,7 +9,7 @@ Each aircraft is the GTM's TOML with one change, written under tmp_path as a use
 * every horizontal-tail ``gj_nm2`` x 0.002: the tail diverges while every local angle stays small.
 
 The verdicts are checked against quantities computed apart from the classification: the static margin of
-:func:`flexsim.trim.margin.static_margin` (Etkin & Reid 1996, sec. 2.3), the eigenvalues of
+:func:`flexsim.trimming.margin.static_margin` (Etkin & Reid 1996, sec. 2.3), the eigenvalues of
 :func:`flexsim.linear.stability.spectrum` (the flutter search's analysis), and the local angle recomputed from the
 strip kinematics; the GTM itself must stay stable with every angle inside its +-11 deg.
 """
@@ -30,10 +30,10 @@ from flexsim.linear.linearize import linearize
 from flexsim.linear.modes import in_vacuo_modes
 from flexsim.linear.stability import spectrum
 from flexsim.model.aircraft_model import AircraftModel
-from flexsim.trim import SteadyManoeuvre, TrimError, trim
-from flexsim.trim.equilibrium import PHUGOID_MIN_DOUBLING_S, UNSTABLE_DAMPING
-from flexsim.trim.margin import static_margin
-from flexsim.trim.roots import _first_elastic_of, reduced_jacobian
+from flexsim.trimming import SteadyManoeuvre, TrimError, trim
+from flexsim.trimming.equilibrium import PHUGOID_MIN_DOUBLING_S, UNSTABLE_DAMPING
+from flexsim.trimming.margin import static_margin
+from flexsim.trimming.roots import _first_elastic_of, reduced_jacobian
 
 GTM_TOML = Path(__file__).resolve().parents[2] / "flexsim" / "aircraft" / "data" / "gtm.toml"
 CRUISE = SteadyManoeuvre.level(9144.0, mach=0.78)

@@ -17,8 +17,8 @@ from flexsim.aircraft.t2_data import CBAR_M, cbar_fraction, t2_pitch
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.trim import SteadyManoeuvre, trim
-from flexsim.trim.margin import static_margin
+from flexsim.trimming import SteadyManoeuvre, trim
+from flexsim.trimming.margin import static_margin
 
 
 def t2_neutral_point() -> float:

@@ -14,7 +14,7 @@ import pytest
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import STANDARD_GRAVITY, AircraftModel
 from flexsim.kinematics import dcm_321
-from flexsim.trim import SteadyManoeuvre, trim
+from flexsim.trimming import SteadyManoeuvre, trim
 
 
 @pytest.fixture(scope="module")

@@ -8,7 +8,7 @@ system solved by scipy's MINPACK hybrid method. A coordinated turn adds the head
 unknown and zero sideslip at the centre of gravity as an equation. The residual reported is the norm of V_dot scaled by g
 (translations, elastic coordinates) and g / 5 m (rotations); trim converges to ~1e-12. Every trim records its
 largest local angle of attack (:class:`StripAngle`) and classifies its equilibrium from the roots of its own
-linearisation (:mod:`flexsim.trim.equilibrium`).
+linearisation (:mod:`flexsim.trimming.equilibrium`).
 """
 
 from __future__ import annotations
@@ -30,8 +30,8 @@ from flexsim.kinematics import dcm_321
 from flexsim.model.linear_range import linear_range_note
 from flexsim.model.sensors import structural_sensors
 from flexsim.structure.mirror import TIE_RTOL
-from flexsim.trim.equilibrium import EquilibriumStability, equilibrium_stability
-from flexsim.trim.manoeuvre import SteadyManoeuvre
+from flexsim.trimming.equilibrium import EquilibriumStability, equilibrium_stability
+from flexsim.trimming.manoeuvre import SteadyManoeuvre
 
 __all__ = ["TrimPoint", "TrimError", "StripAngle", "trim"]
 
@@ -128,7 +128,7 @@ class TrimPoint:
         The strip with the largest local angle of attack |alpha| (None without aerodynamic strips).
     stability : EquilibriumStability or None
         The classification of the equilibrium from the roots of its linearisation
-        (:mod:`flexsim.trim.equilibrium`); None when the trim was asked not to classify (``classify=False``).
+        (:mod:`flexsim.trimming.equilibrium`); None when the trim was asked not to classify (``classify=False``).
     terms : dict
         The physical terms of the model trimmed (:meth:`flexsim.model.terms.Terms.record`).
     linear_range : str or None
@@ -313,7 +313,7 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         limit (default True; False returns the solution of the equations as asked).
     classify : bool
         Classify the equilibrium from the roots of the model linearised about it (``TrimPoint.stability``,
-        :func:`flexsim.trim.equilibrium.equilibrium_stability`; default True). False leaves it None, for a caller
+        :func:`flexsim.trimming.equilibrium.equilibrium_stability`; default True). False leaves it None, for a caller
         that classifies from an eigen-analysis of its own (the flutter search).
 
     Returns

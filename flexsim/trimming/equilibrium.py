@@ -2,7 +2,7 @@
 
 A trim solves V_dot = 0 (eqs. 33-39); whether the aircraft stays there follows from the eigenvalues of the model
 linearised about it (Tuzcu & Nguyen 2014, "Numerical Model"), each told apart as rigid-body, elastic or
-aerodynamic-lag by :mod:`flexsim.trim.roots`. A root is unstable when its real part exceeds ``UNSTABLE_DAMPING``
+aerodynamic-lag by :mod:`flexsim.trimming.roots`. A root is unstable when its real part exceeds ``UNSTABLE_DAMPING``
 times its modulus (the flutter search's test, :data:`flexsim.linear.flutter.UNSTABLE_DAMPING`: round-off on a
 neutral root is not an instability). The equilibrium's verdict is the worst of its roots' (and of the static
 margin's), in the order of :data:`VERDICTS`:
@@ -12,7 +12,7 @@ margin's), in the order of :data:`VERDICTS`:
   the aeroelastic stiffness K - K_aero is no longer positive definite); the root is named by the elastic
   coordinate with the largest kinetic-energy share Re(conj(phi_i) (M phi)_i).
 * ``statically unstable``: a static margin < 0 (the neutral point ahead of the CG, Etkin & Reid, *Dynamics of
-  Flight*, 3rd ed., 1996, sec. 2.3; :mod:`flexsim.trim.margin`), or a real unstable rigid-body root (an aperiodic
+  Flight*, 3rd ed., 1996, sec. 2.3; :mod:`flexsim.trimming.margin`), or a real unstable rigid-body root (an aperiodic
   divergence: in w or q a pitch divergence; in u or the lateral coordinates a split phugoid or spiral faster than the
   slow limits below).
 * ``dynamically unstable``: a complex pair with a positive real part (an oscillation that grows): of an elastic mode
@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from flexsim.trim.roots import Spectrum, _classify, _dominant_dofs, reduced_jacobian, rigid_mode_name
+from flexsim.trimming.roots import Spectrum, _classify, _dominant_dofs, reduced_jacobian, rigid_mode_name
 
 if TYPE_CHECKING:
     from flexsim.model.aircraft_model import AircraftModel
@@ -62,7 +62,7 @@ class UnstableRoot:
     eigenvalue : complex
         [1/s], real part > 0.
     kind : {"rigid", "elastic", "aerodynamic"}
-        As :class:`flexsim.trim.roots.Mode`.
+        As :class:`flexsim.trimming.roots.Mode`.
     coordinate : str
         Dominant coordinate: a rigid-body mode's dominant DOF (u, v, w, p, q, r), an elastic mode's name
         (:func:`flexsim.structure.mode_names.mode_name`, e.g. "wings bending 1 (symmetric)").
@@ -108,7 +108,7 @@ class EquilibriumStability:
     unstable : tuple of UnstableRoot
         Every unstable root, fastest first.
     static_margin_mac : float
-        Static margin as a fraction of the mean aerodynamic chord [-] (:mod:`flexsim.trim.margin`); nan where it
+        Static margin as a fraction of the mean aerodynamic chord [-] (:mod:`flexsim.trimming.margin`); nan where it
         is not defined (no right wing, a restrained model).
     aero_model : str
         Aerodynamic model of the linearisation the roots come from.
@@ -153,7 +153,7 @@ class EquilibriumStability:
 
 def _elastic_coordinate(model: "AircraftModel", q: np.ndarray, shape: np.ndarray) -> str | None:
     """The elastic coordinate with the largest kinetic-energy share Re(conj(phi_i) (M(q) phi)_i) of a mode (velocity
-    shape over V), mirror ties to the right half as :func:`flexsim.trim.roots._dominant_dofs`; None without one."""
+    shape over V), mirror ties to the right half as :func:`flexsim.trimming.roots._dominant_dofs`; None without one."""
     st = model.structure
     elastic = model.active_dofs[model.active_dofs >= 6]
     if elastic.size == 0:
@@ -214,12 +214,12 @@ def classify_equilibrium(model: "AircraftModel", x0: np.ndarray, spectrum: Spect
 
 
 def equilibrium_stability(model: "AircraftModel", x0: np.ndarray, u0: np.ndarray) -> EquilibriumStability:
-    """Linearise ``model`` about (x0, u0) (:func:`flexsim.trim.roots.reduced_jacobian`), classify its roots and the
+    """Linearise ``model`` about (x0, u0) (:func:`flexsim.trimming.roots.reduced_jacobian`), classify its roots and the
     static margin, and give the verdict (:func:`classify_equilibrium`).
 
     The eigenvalues come first without eigenvectors; only when one of them is unstable are the eigenvectors computed
     and every root classified (a stable trim, the usual one, costs the Jacobian and ``eigvals``)."""
-    from flexsim.trim.margin import static_margin_of_state
+    from flexsim.trimming.margin import static_margin_of_state
 
     rj = reduced_jacobian(model, x0, u0)
     label = "none" if model.aero is None else model.aero.options.model
@@ -233,12 +233,12 @@ def equilibrium_stability(model: "AircraftModel", x0: np.ndarray, u0: np.ndarray
 
 
 def with_stability(model: "AircraftModel", point, spectrum: Spectrum, neutral: complex | None = None):
-    """``point`` (a :class:`~flexsim.trim.TrimPoint`) with its ``stability`` classified from ``spectrum``, an
+    """``point`` (a :class:`~flexsim.trimming.TrimPoint`) with its ``stability`` classified from ``spectrum``, an
     eigen-analysis at that trim made anyway (e.g. by a flutter search: the classification then costs the static
     margin's two force evaluations, not a second linearisation); ``neutral`` as in :func:`classify_equilibrium`."""
     from dataclasses import replace
 
-    from flexsim.trim.margin import static_margin_of_state
+    from flexsim.trimming.margin import static_margin_of_state
 
     margin = static_margin_of_state(model, point.x, point.u)
     return replace(point, stability=classify_equilibrium(model, point.x, spectrum,
