@@ -18,6 +18,17 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 
+
+def _trimming():
+    """The trim subpackage of the flexsim on sys.path: ``flexsim.trimming``, or ``flexsim.trim`` in revisions before
+    its rename (the reference tree of a side-by-side run)."""
+    import importlib
+
+    try:
+        return importlib.import_module("flexsim.trimming")
+    except ImportError:
+        return importlib.import_module("flexsim.trim")
+
 def _timed(fn, inner: int) -> tuple[float, object]:
     out = fn()  # warm-up (caches, lazy imports)
     times = []
@@ -40,7 +51,7 @@ def main() -> None:
     task, inner = sys.argv[1], int(sys.argv[2])
     from flexsim.aircraft.toml_loader import load_aircraft
     from flexsim.linear.flutter import FlutterAnalysis
-    from flexsim.trimming import SteadyManoeuvre
+    SteadyManoeuvre = _trimming().SteadyManoeuvre
 
     gtm = load_aircraft("gtm")
     res: dict = {"task": task}
@@ -60,7 +71,7 @@ def main() -> None:
         res.update(cpu_s=t, mach=float(p.mach), frequency_rad_s=float(p.frequency_rad_s), evaluations=p.evaluations)
     elif task == "jacobian-fs":
         from flexsim.model.aircraft_model import AircraftModel
-        from flexsim.trimming import trim
+        trim = _trimming().trim
 
         qs, fs = AircraftModel(gtm, aero="quasi-steady"), AircraftModel(gtm, aero="unsteady")
         point = trim(qs, SteadyManoeuvre.level(3048.0, mach=0.7))
@@ -71,7 +82,7 @@ def main() -> None:
     elif task == "dense-eig":
         from flexsim.linear.linearize import linearize
         from flexsim.model.aircraft_model import AircraftModel
-        from flexsim.trimming import trim
+        trim = _trimming().trim
 
         qs, fs = AircraftModel(gtm, aero="quasi-steady"), AircraftModel(gtm, aero="unsteady")
         point = trim(qs, SteadyManoeuvre.level(0.0, mach=0.85))

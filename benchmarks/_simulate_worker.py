@@ -22,6 +22,17 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 
+
+def _trimming():
+    """The trim subpackage of the flexsim on sys.path: ``flexsim.trimming``, or ``flexsim.trim`` in revisions before
+    its rename (the reference tree of a side-by-side run)."""
+    import importlib
+
+    try:
+        return importlib.import_module("flexsim.trimming")
+    except ImportError:
+        return importlib.import_module("flexsim.trim")
+
 def _log_option(path: str) -> dict:
     """The flight-log keyword of simulate in the tree measured: an OutputSettings since simulate takes settings
     objects, ``log_path`` before (the benchmarks run older trees side by side)."""
@@ -39,7 +50,7 @@ def scenario():
     from flexsim.kinematics import dcm_321
     from flexsim.model.aircraft_model import AircraftModel
     from flexsim.sim.disturbances import OneMinusCosineGust
-    from flexsim.trimming import SteadyManoeuvre, trim
+    SteadyManoeuvre, trim = _trimming().SteadyManoeuvre, _trimming().trim
 
     still = AircraftModel(load_aircraft("gtm"), aero="unsteady")
     point = trim(still, SteadyManoeuvre.level(9144.0, mach=0.75))

@@ -27,7 +27,9 @@ Re(conj(phi_i) (M phi)_i); a tie between mirror coordinates (right and left halv
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from functools import cached_property, partial
 
 import numpy as np
 from scipy.linalg import eigh
@@ -92,7 +94,10 @@ class Mode:
     name : str
         The mode's name in every output: for an elastic mode :func:`flexsim.structure.mode_names.mode_name` (e.g.
         "wings torsion 1 (antisymmetric)"); for a rigid-body one its flight-dynamics name and dominant DOF
-        (:func:`rigid_mode_name`, e.g. "spiral [v]"); "inflow" for an aerodynamic-lag root.
+        (:func:`rigid_mode_name`, e.g. "spiral [v]"); "inflow" for an aerodynamic-lag root. Computed from ``namer``
+        when first read (a flutter scan classifies every root of every speed and reads the names of a few).
+    namer : str or callable () -> str
+        The name, or how to compute it.
     """
 
     eigenvalue: complex
@@ -101,7 +106,12 @@ class Mode:
     dominant_dof: str
     shape: np.ndarray
     inflow_participation: float = 0.0
-    name: str = ""
+    namer: str | Callable[[], str] = field(default="", repr=False)
+
+    @cached_property
+    def name(self) -> str:
+        """The mode's name (``namer``'s value; see the class docstring)."""
+        return self.namer() if callable(self.namer) else self.namer
 
     @property
     def frequency_rad_s(self) -> float:
@@ -190,12 +200,20 @@ def _classify(model: AircraftModel, lin, vals: np.ndarray, vecs: np.ndarray, aer
         frac_el = float(frac[k])
         rigid = frac_el < 0.5 and abs(vals[k]) < cut
         dof = labels_full[dominant[k]]
-        name = (f"{rigid_mode_name(vals[k], dof)} [{dof}]" if rigid
-                else mode_name(model.structure, shapes[:, k], m0, m0))  # M(0): the name every output gives
-        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, dof,
-                          shapes[:, k].copy(), float(inflow_share[k]), name or dof))
+        shape = shapes[:, k].copy()
+        if rigid:
+            name = f"{rigid_mode_name(vals[k], dof)} [{dof}]"
+        else:  # M(0): the name every output gives; computed when first read
+            name = partial(_elastic_name, model.structure, shape, m0, dof)
+        modes.append(Mode(complex(vals[k]), "rigid" if rigid else "elastic", frac_el, dof, shape,
+                          float(inflow_share[k]), name))
     modes.sort(key=lambda m: -m.eigenvalue.real)
     return Spectrum(tuple(modes), aero_model)
+
+
+def _elastic_name(structure, shape: np.ndarray, m0: np.ndarray, dominant_dof: str) -> str:
+    """The name of an elastic mode (:func:`flexsim.structure.mode_names.mode_name` with M(0)), else its dominant DOF."""
+    return mode_name(structure, shape, m0, m0) or dominant_dof
 
 
 def rigid_mode_name(eigenvalue: complex, coordinate: str) -> str:
