@@ -20,7 +20,7 @@ from flexsim.linear.study import StudyCase, StudyRecord, case_key, climb_cases, 
 from flexsim.errors import FlexsimError
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.model.linear_range import linear_range_note, nonlinear_fields_note
+from flexsim.model.linear_range import nonlinear_fields_note
 from flexsim.atmosphere import mach_to_true_airspeed, speed_of_sound
 from flexsim.trimming import SteadyManoeuvre, TrimError, trim
 

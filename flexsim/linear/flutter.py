@@ -27,8 +27,7 @@ from flexsim.errors import FlexsimError
 from flexsim.linear.linearize import LinearModel, jacobian, linearize
 from flexsim.linear.participation import Participation, describe_mode
 from flexsim.linear.stability import Mode, Spectrum, linear_spectrum, spectrum
-from flexsim.linear.scan import (CURVATURE_SAFETY, MAX_MACH_STEP, MIN_SCAN_STEPS, MIN_TRIM_SPEED_M_S,  # noqa: F401
-                                 REFINE_LEVELS, UNSTABLE_DAMPING, _growth, anchored_grid, hidden_crossing, scan_step)
+from flexsim.linear.scan import MIN_TRIM_SPEED_M_S, REFINE_LEVELS, _growth, anchored_grid, hidden_crossing, scan_step
 from flexsim.linear.validity import mach_note
 from flexsim.model.aircraft_model import AircraftModel, check_aircraft, check_model
 from flexsim.model.coupling import AERO_MODELS, AeroOptions

@@ -3,7 +3,7 @@
 A trim solves V_dot = 0 (eqs. 33-39); whether the aircraft stays there follows from the eigenvalues of the model
 linearised about it (Tuzcu & Nguyen 2014, "Numerical Model"), each told apart as rigid-body, elastic or
 aerodynamic-lag by :mod:`flexsim.trimming.roots`. A root is unstable when its real part exceeds ``UNSTABLE_DAMPING``
-times its modulus (the flutter search's test, :data:`flexsim.linear.flutter.UNSTABLE_DAMPING`: round-off on a
+times its modulus (the flutter search's test, :data:`flexsim.linear.scan.UNSTABLE_DAMPING`: round-off on a
 neutral root is not an instability). The equilibrium's verdict is the worst of its roots' (and of the static
 margin's), in the order of :data:`VERDICTS`:
 
