@@ -51,7 +51,12 @@ def _signatures() -> list[tuple[object, tuple]]:
     f8, i8, c16 = t.float64, t.int64, t.complex128
     F, I = arr(f8, 1, True), arr(i8, 1, True)  # the packed model data (read-only)
     solve = importlib.import_module("flexsim._kernels.solve")  # the module: flexsim._kernels.solve is a function
-    return [
+    v, rho = arr(f8, 1), f8  # a state's part (q, xi, V, f) and the air density
+    return [  # first what this process's assemble reaches after aero_evaluate, then the rest of rhs_batch, then p-k
+        (_kernels.inertia_term, (F, I, v, v)),
+        (_kernels.elastic_force, (F, I, v, v, v, v)),
+        (_kernels.parasite_drag, (F, I, v, v, rho)),
+        (_kernels.body_force, (F, I, v, v, rho)),
         (_kernels.strip_wind_at, (F, I, arr(f8, 2, True), arr(f8, 2, True), arr(f8, 2, True), arr(f8, 1))),
         (solve.block_solve, (arr(f8, 2), arr(f8, 1), arr(i8, 1, True), arr(i8, 1, True))),
         (_kernels.inflow_rate, (F, I, arr(f8, 2), arr(f8, 1), arr(f8, 1), arr(f8, 1), arr(f8, 1))),
@@ -70,7 +75,9 @@ def _signatures_here() -> list[tuple[object, tuple]]:
     f8, i8 = t.float64, t.int64
     F, I = arr(f8, 1, True), arr(i8, 1, True)
     args = (F, I, arr(f8, 1), arr(f8, 1), arr(f8, 2), t.boolean)  # x, u, strip wind (n_s, 3), whether any
-    return [(_kernels.assemble, args), (_kernels.aerodynamic_force, args)]
+    v = arr(f8, 1)
+    aero = (F, I, v, v, v, v, v, f8, f8, arr(f8, 2), t.boolean)  # q, xi, V, lambda, u, rho, Mach, strip wind, any
+    return [(_kernels.aero_evaluate, aero), (_kernels.assemble, args), (_kernels.aerodynamic_force, args)]
 
 
 def _compile(signatures) -> None:
