@@ -37,6 +37,7 @@ import numpy as np
 from numba import njit
 
 from flexsim import _kernels as _k
+from flexsim._arrays import group_bounds
 from flexsim._kernels import _rhs_wind
 from flexsim._numba_cache import depends_on
 from flexsim.sim import measurements as _ms
@@ -436,17 +437,8 @@ class PeriodOut(NamedTuple):
 PERIOD_GROUPS = (_k.KernelData, _k.BatchWind, StepData, _ms.MeasureData, PeriodStart, PeriodMode, PeriodOut)
 
 
-def _group_bounds(groups) -> tuple[int, ...]:
-    """The first and end position of each group's fields in the flat argument list (2 per group)."""
-    out, at = [], 0
-    for g in groups:
-        out += [at, at + len(g._fields)]
-        at += len(g._fields)
-    return tuple(out)
-
-
 (_MODEL0, _MODEL1, _WIND0, _WIND1, _STEP0, _STEP1, _MEAS0, _MEAS1, _START0, _START1, _MODE0, _MODE1, _OUT0,
- _OUT1) = _group_bounds(PERIOD_GROUPS)
+ _OUT1) = group_bounds(PERIOD_GROUPS)
 
 
 def period_args(model, wind, step, measure, start, mode, out) -> tuple:
