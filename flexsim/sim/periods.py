@@ -440,8 +440,9 @@ class FlightDynamics:
     def _advance_fixed(self, state: IntegrationState, x: np.ndarray, u: np.ndarray, t0: float, t1: float,
                        wind: Wind | None) -> StepOutcome:
         """ETD2RK over one period around ``model.rhs`` (a Python wind callable, or a right-hand side the kernels do not
-        evaluate): ``substeps`` equal steps (:meth:`ETD2RK.step`: the compiled stages), each checked for non-finite
-        states and the ground (:func:`flexsim.sim._step_kernels.ground_crossing`)."""
+        evaluate): ``substeps`` equal steps (:meth:`ETD2RK.step`: the compiled stages), each checked as the compiled
+        step checks it (:func:`flexsim.sim._step_kernels.step_end`) and reported as it reports it (:meth:`rows_outcome`);
+        a model error with the message of the exception ``model.rhs`` raised."""
         stepper = state.stepper
         if stepper is None:
             raise ValueError("state: has no ETD2RK stepper; pass the IntegrationState that start() returned (ETD2RK needs "
@@ -450,8 +451,8 @@ class FlightDynamics:
         k, h = self.substeps, stepper.h
         rhs = self.model.rhs
         x = np.asarray(x, dtype=float)
-        x_hit = np.empty_like(x)
-        t = t0
+        x_end = np.empty_like(x)
+        t, status, taken = t0, _sk.ROW_RUNNING, k
         with np.errstate(all="ignore"):
             for i in range(1, k + 1):
                 t_next = t1 if i == k else t0 + i * h
@@ -459,18 +460,19 @@ class FlightDynamics:
                     x_next = stepper.step(rhs, t, x, (u, wind))
                 except _MODEL_ERRORS as exc:
                     return StepOutcome(x.copy(), t, False, f"model error: {exc}", 2 * i, state=state)
-                if not np.all(np.isfinite(x_next)):
-                    return StepOutcome(x.copy(), t, False, f"non-finite state: ETD2RK step {i} of {k} from t = {t:.6g} s", 2 * i,
-                                       state=state)
-                t_hit = _sk.ground_crossing(x, x_next, float(t), float(t_next), self._z, x_hit)
-                if t_hit != -math.inf:
-                    return StepOutcome(x_hit, t_hit, True, "", 2 * i, state=state)
+                status, t_end = _sk.step_end(x, x_next, float(t), float(t_next), self._z, x_end)
+                if status != _sk.ROW_RUNNING:
+                    taken = i
+                    if status == _sk.ROW_GROUND:
+                        x, t = x_end, t_end
+                    break
                 x, t = x_next, t_next
-        return StepOutcome(x, t1, False, "", 2 * k, state=state)
+        return self.rows_outcome(x[None, :], np.array([float(t)]), np.array([status]), np.array([taken]),
+                                 np.array([float(t0)]), (state,)).row(0)
 
     def rows_outcome(self, x, t, status, taken, t0, states, u=None, winds=None) -> BatchOutcome:
-        """The :class:`BatchOutcome` of compiled rows flown with the integration ``states`` (N, sharing one ETD2RK
-        stepper): states x (N, n) and times t (N,) [s] reached, status codes and steps begun (N,) of
+        """The :class:`BatchOutcome` of ETD2RK rows (the compiled step, or the steps around ``model.rhs``) flown with the
+        integration ``states`` (N): states x (N, n) and times t (N,) [s] reached, status codes and steps begun (N,) of
         :func:`flexsim.sim._step_kernels.period_end`, period starts t0 (N,) [s] (read for stopped rows only; None if no
         row stopped); a row with a model error reads the model's message (:meth:`model_error`, with the rows' held
         controls ``u`` (N, 4) and wind fields ``winds``; without them "model error")."""
