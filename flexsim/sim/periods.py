@@ -611,6 +611,36 @@ def _shared_stepper(dynamics: Sequence[FlightDynamics], states: Sequence[Integra
     return first
 
 
+def _stepper_groups(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState]) -> list[np.ndarray] | None:
+    """The rows grouped by their ETD2RK stepper (one per trim; int index arrays, in order of first appearance) when
+    every row flies the first row's model, whose right-hand side the compiled step evaluates, with ETD2RK; else None."""
+    model = dynamics[0].model
+    if not dynamics[0].substeps or not _compiled_rhs(model):
+        return None
+    first = states[0].stepper
+    if first is not None and all(st.stepper is first and d.model is model for d, st in zip(dynamics, states)):
+        return [np.arange(len(states))]
+    groups: dict[int, list[int]] = {}
+    for i, (d, st) in enumerate(zip(dynamics, states)):
+        if st.stepper is None or d.model is not model:
+            return None
+        groups.setdefault(id(st.stepper), []).append(i)
+    return [np.array(rows, np.int64) for rows in groups.values()]
+
+
+def _period_group(first: FlightDynamics, step_data: _sk.StepData, x: np.ndarray, applied: np.ndarray, command: np.ndarray,
+                  k: np.ndarray, packed: _k.BatchWind, winds) -> _sk.PeriodOut:
+    """One compiled call (:func:`flexsim.sim._step_kernels.period_rows`) for rows about one trim (``step_data``)."""
+    m = x.shape[0]
+    still = winds[0] is None if m == 1 else all(w is None for w in winds)
+    out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
+                        np.empty(m, np.int64), np.empty((m, first.n_measurements)))
+    start = _sk.PeriodStart(x, applied, command, first.rate_step, k, first.dt)
+    mode = _PERIOD_MODES[still, m >= COMPILED_ROWS_BELOW]
+    _sk.period_rows(*_sk.period_args(first.model.kernel_data, packed, step_data, first.measure_data, start, mode, out))
+    return out
+
+
 @single_blas_thread
 def advance_rows(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState], x: np.ndarray, u: np.ndarray,
                  t0: np.ndarray, t1: np.ndarray, winds, packed=None) -> BatchOutcome:
@@ -654,20 +684,24 @@ def advance_period(dynamics: Sequence[FlightDynamics], states: Sequence[Integrat
     those of the next period: ``outcome.states``; the rate limits and outputs are those of ``dynamics[0]``);
     ``winds`` the N wind fields, ``packed`` the same packed by the model's ``pack_winds`` (or None). Rows flown about
     one trim with packed winds take one compiled call (:func:`flexsim.sim._step_kernels.period_rows`; a row that stops
-    with a model error reads the model's message, :meth:`FlightDynamics.model_error`); rows about different trims,
-    other integrators or winds that cannot be packed take :meth:`FlightDynamics.rate_limit`, :func:`advance_rows` and
-    :meth:`FlightDynamics.measure_batch`, the same arithmetic.
+    with a model error reads the model's message, :meth:`FlightDynamics.model_error`), rows about several trims one such
+    call per trim; other integrators or winds that cannot be packed take :meth:`FlightDynamics.rate_limit`,
+    :func:`advance_rows` and :meth:`FlightDynamics.measure_batch`, the same arithmetic.
     """
     first = dynamics[0]
     m = len(dynamics)
-    stepper = _shared_stepper(dynamics, states)
-    if stepper is not None and isinstance(packed, _k.BatchWind):
-        still = winds[0] is None if m == 1 else all(w is None for w in winds)
-        out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
-                            np.empty(m, np.int64), np.empty((m, first.n_measurements)))
-        start = _sk.PeriodStart(x, applied, command, first.rate_step, k, first.dt)
-        mode = _PERIOD_MODES[still, m >= COMPILED_ROWS_BELOW]
-        _sk.period_rows(*_sk.period_args(first.model.kernel_data, packed, states[0].step_data, first.measure_data, start, mode, out))
+    groups = _stepper_groups(dynamics, states) if isinstance(packed, _k.BatchWind) else None
+    if groups is not None:
+        if len(groups) == 1:  # every row about one trim: one call on the arrays as given
+            out = _period_group(first, states[0].step_data, x, applied, command, k, packed, winds)
+        else:  # one call per trim, each on its rows (a row's result does not depend on the others)
+            out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
+                                np.empty(m, np.int64), np.empty((m, first.n_measurements)))
+            for rows in groups:
+                part = _period_group(first, states[rows[0]].step_data, x[rows], applied[rows], command[rows], k[rows],
+                                     select_packed_rows(packed, rows), [winds[i] for i in rows])
+                for whole, piece in zip(out, part):
+                    whole[rows] = piece
         stopped = np.count_nonzero(out.status)
         return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None, states,
                                                out.u, winds), out.u, MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))

@@ -16,6 +16,8 @@ Checks:
 * ``FlightDynamics.advance`` with ETD2RK in a Dryden field is the compiled step of one row: equal, bit for bit, to the
   steps around ``model.rhs`` (the compiled stages with a Python right-hand side), over 20 periods with changing
   controls; rows about two different trims (no shared stepper) give each row's own ``advance``, bit for bit.
+* Rows about two trims in one :func:`advance_period` (one compiled call per trim) equal, bit for bit, the separate
+  calls (rate limits, each row's ``advance``, measurements).
 * A Python wind callable takes the steps around ``model.rhs``: the same Dryden field passed as a plain callable gives
   the compiled step's states over 20 periods to 1e-12 relative (the wind evaluated by numpy instead of the compiled
   kernel: rounding only; equal bit for bit when measured), with the same nfev and no failure.
@@ -158,3 +160,21 @@ def test_a_wind_callable_equals_the_compiled_step(three):
         scale = np.maximum(np.abs(a.x), 1e-6 * np.abs(a.x).max())
         assert np.max(np.abs(a.x - b.x) / scale) <= 1e-12
         xa, xb = a.x, b.x
+
+
+def test_rows_about_two_trims(three):
+    dyns, states, x, applied, command = three
+    dyn = dyns[0]
+    other = dyn.start(SteadyManoeuvre(speed_m_s=220.0, altitude_m=9144.0))
+    mixed = [states[0], other, states[2]]
+    winds = [None, DrydenTurbulence.mil_f_8785c(9144.0, "moderate", seed=4), None]
+    k = np.array([3, 7, 5])
+    one = advance_period(dyns, mixed, x, applied, command, k, winds, dyn.model.pack_winds(winds))
+    u = dyn.rate_limit(applied, command)
+    np.testing.assert_array_equal(one.u, u)
+    for i in range(3):
+        alone = dyn.advance(mixed[i], x[i], u[i], k[i] * dyn.dt, (k[i] + 1) * dyn.dt, winds[i])
+        np.testing.assert_array_equal(one.outcome.x[i], alone.x)
+        assert (one.outcome.time_s[i], one.outcome.failure[i], one.outcome.nfev[i]) == (alone.time_s, "", 2)
+        meas = dyn.measure_batch(alone.x[None, :], np.array([alone.time_s]), [winds[i]], dyn.model.pack_winds([winds[i]]))
+        np.testing.assert_array_equal(one.meas.matrix[i], meas.matrix[0])
