@@ -617,9 +617,6 @@ def _stepper_groups(dynamics: Sequence[FlightDynamics], states: Sequence[Integra
     model = dynamics[0].model
     if not dynamics[0].substeps or not _compiled_rhs(model):
         return None
-    first = states[0].stepper
-    if first is not None and all(st.stepper is first and d.model is model for d, st in zip(dynamics, states)):
-        return [np.arange(len(states))]
     groups: dict[int, list[int]] = {}
     for i, (d, st) in enumerate(zip(dynamics, states)):
         if st.stepper is None or d.model is not model:
@@ -690,18 +687,21 @@ def advance_period(dynamics: Sequence[FlightDynamics], states: Sequence[Integrat
     """
     first = dynamics[0]
     m = len(dynamics)
-    groups = _stepper_groups(dynamics, states) if isinstance(packed, _k.BatchWind) else None
-    if groups is not None:
-        if len(groups) == 1:  # every row about one trim: one call on the arrays as given
+    out = None
+    if isinstance(packed, _k.BatchWind):
+        if _shared_stepper(dynamics, states) is not None:  # every row about one trim: one call on the arrays as given
             out = _period_group(first, states[0].step_data, x, applied, command, k, packed, winds)
-        else:  # one call per trim, each on its rows (a row's result does not depend on the others)
-            out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
-                                np.empty(m, np.int64), np.empty((m, first.n_measurements)))
-            for rows in groups:
-                part = _period_group(first, states[rows[0]].step_data, x[rows], applied[rows], command[rows], k[rows],
-                                     select_packed_rows(packed, rows), [winds[i] for i in rows])
-                for whole, piece in zip(out, part):
-                    whole[rows] = piece
+        else:
+            groups = _stepper_groups(dynamics, states)
+            if groups is not None:  # one call per trim, each on its rows (a row's result does not depend on the others)
+                out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
+                                    np.empty(m, np.int64), np.empty((m, first.n_measurements)))
+                for rows in groups:
+                    part = _period_group(first, states[rows[0]].step_data, x[rows], applied[rows], command[rows], k[rows],
+                                         select_packed_rows(packed, rows), [winds[i] for i in rows])
+                    for whole, piece in zip(out, part):
+                        whole[rows] = piece
+    if out is not None:
         stopped = np.count_nonzero(out.status)
         return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None, states,
                                                out.u, winds), out.u, MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))
