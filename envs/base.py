@@ -383,7 +383,8 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         self._act_low, self._act_high = self.action_space.low.astype(np.float64), self.action_space.high.astype(np.float64)
         self._act_low_list, self._act_high_list = self._act_low.tolist(), self._act_high.tolist()
         self._zeros: dict[int, np.ndarray] = {}
-        self._observe_data = (self._u_scale, self._act_low, self._act_high, len(SENSOR_COMPONENTS), self._obs_low, self._obs_high)
+        self._observe_data = _rk.ObserveData(self._u_scale, self._act_low, self._act_high, len(SENSOR_COMPONENTS), self._obs_low,
+                                             self._obs_high)
 
     # ------------------------------------------------------------------ task hooks
     def _new_episode(self, rng: np.random.Generator) -> Episode:
@@ -560,13 +561,15 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         errors = self._task_errors(meas, b.references(rows))
         error_matrix = self._error_matrix(errors)
         b.errors[rows] = error_matrix
-        _, _, limit_data, reward_data, terms, part_names = self._kernel_constants()
+        _, _, end_data, part_names = self._kernel_constants()
         m = len(steps)
         task_codes = self._task_termination(meas)
-        codes, parts, reward = np.empty(m, np.int64), np.empty((m, len(part_names))), np.empty(m)
-        obs = np.empty((m, self._obs_low.shape[0]), np.float32)
-        _rk.finish_rows(meas.matrix, outcome.failed, outcome.crashed, limit_data, self._no_task_codes(m) if task_codes is None else task_codes,
-                        error_matrix, terms, a - b.last_action[rows], reward_data, u, *self._observe_data, codes, parts, reward, obs)
+        out = _rk.FinishOut(np.empty(m, np.int64), np.empty((m, len(part_names))), np.empty(m),
+                            np.empty((m, self._obs_low.shape[0]), np.float32))
+        end = _rk.RowsEnd(meas.matrix, outcome.failed, outcome.crashed, self._no_task_codes(m) if task_codes is None else task_codes,
+                          error_matrix, a - b.last_action[rows], u)
+        _rk.finish_rows(*_rk.finish_args(end, end_data, self._observe_data, out))
+        codes, parts, reward, obs = out
         terminated = codes > 0
         b.ended[rows] = terminated
         b.last_action[rows] = a
@@ -576,9 +579,9 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         return RowsStep(obs, reward, terminated, codes, dict(zip(part_names, parts.T)), errors, outcome, clipped)
 
     def _kernel_constants(self) -> tuple:
-        """(limits, reward, limit data, reward data, reward-term error columns, part names): the arguments of
-        :mod:`flexsim.envs.row_kernels` that come from ``self.limits`` and ``self.reward_definition``, built again
-        when either attribute is replaced."""
+        """(limits, reward, end data, part names): the arguments of :mod:`flexsim.envs.row_kernels` that come from
+        ``self.limits`` and ``self.reward_definition`` (:class:`flexsim.envs.row_kernels.EndData`: limit data,
+        reward-term error columns, reward data), built again when either attribute is replaced."""
         lim, reward, c = self.limits, self.reward_definition, self._constants
         if c is None or c[0] is not lim or c[1] is not reward:
             missing = [t.error for t in reward.terms if t.error not in self._error_names]
@@ -588,7 +591,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
             limit_data = np.array([lim.wing_tip_deflection_m, lim.fin_tip_twist_rad, lim.max_abs_pitch_rad, lim.max_mach,
                                    lim.max_abs_alpha_rad, lim.min_airspeed_m_s])
             terms = np.array([self._error_names.index(t.error) for t in reward.terms], dtype=np.int64)
-            c = self._constants = (lim, reward, limit_data, reward.kernel_data, terms, reward.part_names)
+            c = self._constants = (lim, reward, _rk.EndData(limit_data, terms, reward.kernel_data), reward.part_names)
         return c
 
     def _error_matrix(self, errors: dict[str, np.ndarray]) -> np.ndarray:

@@ -3,7 +3,11 @@
 One implementation over rows of aircraft, used by the single environment (as one row) and by the batched
 :class:`~flexsim.envs.vector.FlexSimVectorEnv` (N rows): :meth:`FlexSimEnv._step_rows` calls, per control period,
 :func:`finish_rows` (termination, reward parts, reward and observation) on the measurement rows of
-:mod:`flexsim.sim.measurements`; only the task errors (a few lines of array code per task) stay in Python. Reward:
+:mod:`flexsim.sim.measurements`; only the task errors (a few lines of array code per task) stay in Python. Its
+arguments are grouped in NamedTuples (:class:`RowsEnd`, :class:`EndData`, :class:`ObserveData`, :class:`FinishOut`);
+called once per control period from Python, it takes their fields flat, made by :func:`finish_args` and taken apart by
+the kernel from the same group definitions (:data:`FINISH_GROUPS`, as :func:`flexsim.sim._step_kernels.period_rows`
+does). Reward:
 :class:`flexsim.envs.config.TrackingReward` (parts in the order of ``part_names``, summed left to right);
 observation: the layout of :meth:`FlexSimEnv._observation_layout` (NaN replaced by 0, clipped to the bounds,
 float32). Compiled with ``cache=True``; plain Python under ``NUMBA_DISABLE_JIT=1``.
@@ -12,13 +16,16 @@ float32). Compiled with ``cache=True``; plain Python under ``NUMBA_DISABLE_JIT=1
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 
+from flexsim._arrays import group_bounds
 from flexsim.sim.measurements import SENSORS_AT
 
-__all__ = ["termination_rows", "finish_rows", "observe_rows", "reward_rows", "wrap", "wrap_rows"]
+__all__ = ["termination_rows", "finish_rows", "finish_args", "observe_rows", "reward_rows", "wrap", "wrap_rows", "RowsEnd",
+           "EndData", "ObserveData", "FinishOut", "FINISH_GROUPS"]
 
 _jit = njit(cache=True, nogil=True)
 
@@ -136,17 +143,80 @@ def reward_rows(errors, terms, terminated, da, reward_data, parts, reward):
         reward[i] = total
 
 
+class RowsEnd(NamedTuple):
+    """What a control period of N aircraft ended with: the measurement rows ``meas`` (N, m)
+    (:func:`flexsim.sim.measurements.measure_rows`), the integration's ``failed`` and ``crashed`` flags (N,) bool, the
+    task's own termination codes ``task_codes`` (N,) int (0: none), the task errors ``errors`` (N, k), the action
+    changes ``da`` (N, 4) and the applied controls ``u`` (N, 4) [N, rad]."""
+
+    meas: np.ndarray
+    failed: np.ndarray
+    crashed: np.ndarray
+    task_codes: np.ndarray
+    errors: np.ndarray
+    da: np.ndarray
+    u: np.ndarray
+
+
+class EndData(NamedTuple):
+    """The environment's constants of termination and reward: ``limits`` (6,) of :func:`termination_rows`, ``terms``
+    (T,) int and ``reward_data`` of :func:`reward_rows`."""
+
+    limits: np.ndarray
+    terms: np.ndarray
+    reward_data: np.ndarray
+
+
+class ObserveData(NamedTuple):
+    """The environment's constants of :func:`observe_rows`: the control scales ``u_scale`` (4,) [N, rad], the action
+    bounds ``act_low``, ``act_high`` (4,), the number of sensor components ``n_comp`` and the observation bounds
+    ``obs_low``, ``obs_high`` (n_obs,)."""
+
+    u_scale: np.ndarray
+    act_low: np.ndarray
+    act_high: np.ndarray
+    n_comp: int
+    obs_low: np.ndarray
+    obs_high: np.ndarray
+
+
+class FinishOut(NamedTuple):
+    """Results of :func:`finish_rows` (written in place): termination ``codes`` (N,) int, reward ``parts`` (N, T + 3),
+    ``reward`` (N,) and observations ``obs`` (N, n_obs) float32."""
+
+    codes: np.ndarray
+    parts: np.ndarray
+    reward: np.ndarray
+    obs: np.ndarray
+
+
+#: The groups of :func:`finish_rows`' arguments, in order.
+FINISH_GROUPS = (RowsEnd, EndData, ObserveData, FinishOut)
+_END0, _END1, _DATA0, _DATA1, _OBS0, _OBS1, _OUT0, _OUT1 = group_bounds(FINISH_GROUPS)
+
+
+def finish_args(end: RowsEnd, data: EndData, observe: ObserveData, out: FinishOut) -> tuple:
+    """The flat argument list of :func:`finish_rows` from its groups, in the order and of the NamedTuples of
+    :data:`FINISH_GROUPS` (not checked here: it is called every control period)."""
+    return (*end, *data, *observe, *out)
+
+
 @_jit
-def finish_rows(meas, failed, crashed, limits, task_codes, errors, terms, da, reward_data, u, u_scale, act_low, act_high, n_comp,
-                obs_low, obs_high, codes, parts, reward, obs):
-    """The end of a control period in one call: :func:`termination_rows` into ``codes`` (N,), where it gives 0 the
-    task's own code ``task_codes[i]`` (0: none), then :func:`reward_rows` (terminated: code > 0) and
-    :func:`observe_rows`."""
-    termination_rows(meas, failed, crashed, limits, n_comp, codes)
+def finish_rows(*args):
+    """The end of a control period in one call; ``args`` is :func:`finish_args` of the groups end (:class:`RowsEnd`),
+    data (:class:`EndData`), observe (:class:`ObserveData`) and out (:class:`FinishOut`): :func:`termination_rows`
+    into ``out.codes``, where it gives 0 the task's own code ``end.task_codes[i]`` (0: none), then :func:`reward_rows`
+    (terminated: code > 0) and :func:`observe_rows`."""
+    end = RowsEnd(*args[_END0:_END1])
+    data = EndData(*args[_DATA0:_DATA1])
+    ob = ObserveData(*args[_OBS0:_OBS1])
+    out = FinishOut(*args[_OUT0:_OUT1])
+    codes = out.codes
+    termination_rows(end.meas, end.failed, end.crashed, data.limits, ob.n_comp, codes)
     terminated = np.empty(codes.shape[0], np.bool_)
     for i in range(codes.shape[0]):
         if codes[i] == 0:
-            codes[i] = task_codes[i]
+            codes[i] = end.task_codes[i]
         terminated[i] = codes[i] > 0
-    reward_rows(errors, terms, terminated, da, reward_data, parts, reward)
-    observe_rows(meas, errors, u, u_scale, act_low, act_high, n_comp, obs_low, obs_high, obs)
+    reward_rows(end.errors, data.terms, terminated, end.da, data.reward_data, out.parts, out.reward)
+    observe_rows(end.meas, end.errors, end.u, ob.u_scale, ob.act_low, ob.act_high, ob.n_comp, ob.obs_low, ob.obs_high, out.obs)

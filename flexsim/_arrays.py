@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["readonly", "frozen_array", "kernel_arg"]
+__all__ = ["readonly", "frozen_array", "kernel_arg", "group_bounds"]
 
 
 def readonly(array: np.ndarray) -> np.ndarray:
@@ -27,3 +27,15 @@ def kernel_arg(a) -> np.ndarray:
     if not (out.flags.c_contiguous and out.flags.writeable):
         out = np.array(out, dtype=float, order="C")
     return out
+
+
+def group_bounds(groups) -> tuple[int, ...]:
+    """The first and end position of each group's fields in a flat argument list, 2 per group, for ``groups`` a
+    sequence of NamedTuple classes in the order of the list: a compiled kernel called with the fields of its argument
+    groups flat (numba types a flat argument list in its dispatcher, a tuple of arrays in Python, about 13 us more per
+    call) takes them apart with these bounds, so the list and the kernel are defined by the same groups."""
+    out, at = [], 0
+    for g in groups:
+        out += [at, at + len(g._fields)]
+        at += len(g._fields)
+    return tuple(out)

@@ -1,6 +1,7 @@
 """The compiled ETD2RK step (numba): one kernel, :func:`etd2rk_rows`, that steps N aircraft of one model (one row for a
 run of ``simulate``), with the one implementation of the ETD2RK stage arithmetic (:func:`stage_a`, :func:`stage_b`),
-of the actuator rate limits (:func:`rate_limit_rows`) and of the ground crossing (:func:`ground_crossing`).
+of the actuator rate limits (:func:`rate_limit_rows`), of the checks after a step (:func:`step_end`) and of the
+ground crossing (:func:`ground_crossing`).
 
 :func:`etd2rk_rows` serves :meth:`flexsim.sim.fixed_step.ETD2RK.run` (``simulate(..., method="ETD2RK")``, one row
 whose controls are linear in time) and :meth:`~flexsim.sim.fixed_step.ETD2RK.advance_rows` (control periods of N
@@ -37,11 +38,13 @@ import numpy as np
 from numba import njit
 
 from flexsim import _kernels as _k
+from flexsim._arrays import group_bounds
 from flexsim._kernels import _rhs_wind
 from flexsim._numba_cache import depends_on
 from flexsim.sim import measurements as _ms
 
 __all__ = ["etd2rk_rows", "stage_a", "stage_b", "period_rows", "period_args", "period_end", "rate_limit_rows", "ground_crossing",
+           "step_end",
            "StepData", "Span", "RowControls", "RowSteps", "PeriodStart", "PeriodMode", "PeriodOut", "PERIOD_GROUPS",
            "ROW_RUNNING", "ROW_GROUND", "ROW_NON_FINITE", "ROW_MODEL_ERROR"]
 
@@ -316,19 +319,13 @@ def etd2rk_rows(model, wind, step, span, ctrl, x0, f0, over_rows, out):
             out.taken[i] = j + 1
             out.t[i, j + 1] = t_next[i]
             out.x[i, j + 1] = x_new[i]
-            if not _finite(x_new[i]):
+            code, t_end = step_end(x[i], x_new[i], t[i], t_next[i], step.z_index, out.x[i, j + 1])
+            if code != ROW_RUNNING:  # non-finite (the state recorded) or the ground (the crossing, at t_end)
                 out.f[i, j + 1] = np.nan
-                out.status[i] = ROW_NON_FINITE
+                out.t[i, j + 1] = t_end
+                out.status[i] = code
                 live[i] = False
                 continue
-            if step.z_index >= 0:
-                t_hit = ground_crossing(x[i], x_new[i], t[i], t_next[i], step.z_index, out.x[i, j + 1])
-                if t_hit != -np.inf:
-                    out.f[i, j + 1] = np.nan
-                    out.t[i, j + 1] = t_hit
-                    out.status[i] = ROW_GROUND
-                    live[i] = False
-                    continue
             h_prev[i] = t_next[i] - t[i]
             t[i] = t_next[i]
             if j == last and not span.end_derivative:
@@ -385,6 +382,22 @@ def rate_limit_rows(applied, command, rate_step, out):
 
 
 @_jit
+def step_end(x, x_new, t, t_next, z_index, x_out):
+    """The checks after an ETD2RK step from (t, x) to (t_next, x_new), the one implementation (:func:`etd2rk_rows`, and
+    the steps around a Python right-hand side, :meth:`flexsim.sim.periods.FlightDynamics.advance`): (status, time) =
+    (:data:`ROW_NON_FINITE`, t_next) when x_new has a non-finite entry; (:data:`ROW_GROUND`, the crossing time) when
+    ``z_index`` >= 0 and the step crosses the ground, the crossing state in x_out (:func:`ground_crossing`); else
+    (:data:`ROW_RUNNING`, t_next)."""
+    if not _finite(x_new):
+        return ROW_NON_FINITE, t_next
+    if z_index >= 0:
+        t_hit = ground_crossing(x, x_new, t, t_next, z_index, x_out)
+        if t_hit != -np.inf:
+            return ROW_GROUND, t_hit
+    return ROW_RUNNING, t_next
+
+
+@_jit
 def ground_crossing(x, x_new, t, t_next, z_index, x_out):
     """The ground contact within a step from (t, x) to (t_next, x_new): if the altitude -x[z_index] goes from above 0
     to 0 or below, the state interpolated linearly at the crossing, fraction ``s = x_z / (x_z - x_new_z)``, into
@@ -436,17 +449,8 @@ class PeriodOut(NamedTuple):
 PERIOD_GROUPS = (_k.KernelData, _k.BatchWind, StepData, _ms.MeasureData, PeriodStart, PeriodMode, PeriodOut)
 
 
-def _group_bounds(groups) -> tuple[int, ...]:
-    """The first and end position of each group's fields in the flat argument list (2 per group)."""
-    out, at = [], 0
-    for g in groups:
-        out += [at, at + len(g._fields)]
-        at += len(g._fields)
-    return tuple(out)
-
-
 (_MODEL0, _MODEL1, _WIND0, _WIND1, _STEP0, _STEP1, _MEAS0, _MEAS1, _START0, _START1, _MODE0, _MODE1, _OUT0,
- _OUT1) = _group_bounds(PERIOD_GROUPS)
+ _OUT1) = group_bounds(PERIOD_GROUPS)
 
 
 def period_args(model, wind, step, measure, start, mode, out) -> tuple:

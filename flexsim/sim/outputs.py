@@ -293,8 +293,9 @@ class OutputMaps:
         one = model.pack_winds([wind])
         winds = one._replace(rows=frozen_array(np.repeat(one.rows, n, axis=0), np.int64))  # every sample in the one wind
         sound = np.asarray(speed_of_sound(np.asarray(self.altitude_m(xs), float)), float).reshape(n)
-        _ok.loads_rows(model.kernel_data, winds, xs, us, kernel_arg(sound), (st.thrust.t0, st.thrust.t1), wing,
-                       kernel_arg(model.aero.strips.width_m), bool(model.aero.downwash_gradient), inflow, force, lift)
+        data = _ok.LoadsData(st.thrust.t0, st.thrust.t1, wing, kernel_arg(model.aero.strips.width_m),
+                             bool(model.aero.downwash_gradient), inflow)
+        _ok.loads_rows(model.kernel_data, winds, _ok.LoadSamples(xs, us, kernel_arg(sound)), data, _ok.LoadsOut(force, lift))
         weight = st.mass_properties.mass_kg * model.terms.gravity_m_s2
         return np.column_stack([-force[:, 2] / weight if weight > 0 else np.full(n, math.nan), lift])
 

@@ -23,8 +23,9 @@ every period, so one :class:`FlightDynamics` flies any number of episodes at onc
 limits, integration and measurements (:mod:`flexsim.sim.measurements`) in one compiled call
 (:func:`flexsim.sim._step_kernels.period_rows`) for rows flown about one trim with packed winds, the products over
 the rows as matrix products from :data:`COMPILED_ROWS_BELOW` rows on; otherwise the same arithmetic in separate
-calls. The wind field of each episode is passed per call and reaches ``model.rhs(t, x, u, wind)``; nothing here
-stores it, so trims are in still air and do not depend on earlier episodes.
+calls (rows about different trims: the compiled step row by row; a Python wind callable: steps around ``model.rhs``,
+:meth:`FlightDynamics.advance`). The wind field of each episode is passed per call and reaches ``model.rhs(t, x, u,
+wind)``; nothing here stores it, so trims are in still air and do not depend on earlier episodes.
 """
 
 from __future__ import annotations
@@ -307,6 +308,7 @@ class FlightDynamics:
         self._jacobians: dict[SteadyManoeuvre, np.ndarray] = {}
         self._steppers: dict[SteadyManoeuvre, ETD2RK] = {}
         self._clear: dict[int, tuple] = {}
+        self._last_packed: tuple | None = None  # (wind, packed) of the last wind flown by advance (_packed_wind)
         z = self._z = self.layout.position.start + 2
 
         def ground(t: float, y: np.ndarray, u: np.ndarray, wind) -> float:
@@ -375,12 +377,14 @@ class FlightDynamics:
         ``wind`` (``wind(t, positions_ned_m)``; None: still air), from the episode's integration ``state`` (what
         :meth:`start` or the previous period returned; the next one is ``StepOutcome.state``).
 
-        With ETD2RK, t1 - t0 must be the control period ``dt`` (its step is fixed).
+        With ETD2RK, t1 - t0 must be the control period ``dt`` (its step is fixed); in still air or a field of
+        :mod:`flexsim.sim.disturbances` the period is the compiled step of one row (:meth:`ETD2RK.advance_rows`), with a
+        Python wind callable steps around ``model.rhs``.
         """
         if not isinstance(state, IntegrationState):
             raise ValueError(f"state = {state!r}: must be the IntegrationState that start() or the previous period returned")
         if self.substeps:
-            return self._advance_fixed(state, x, u, t0, t1, wind)
+            return self._advance_etd2rk(state, x, u, t0, t1, wind, self._packed_wind(wind))
         span = t1 - t0
         first = None if state.first_step_s is None else min(state.first_step_s, span)
         options = {"jac": state.jac} if self.method == "Radau" else {}
@@ -418,10 +422,27 @@ class FlightDynamics:
         if bad.size:
             raise ValueError(f"t1 - t0 = {float(spans[bad[0]])!r} s: ETD2RK steps whole control periods, must be dt = {self.dt!r} s")
 
+    def _advance_etd2rk(self, state: IntegrationState, x: np.ndarray, u: np.ndarray, t0: float, t1: float,
+                        wind: Wind | None, packed: _k.BatchWind | None) -> StepOutcome:
+        """ETD2RK over one period: the compiled step (:meth:`ETD2RK.advance_rows`, one row) with the wind ``packed``
+        for one row; with ``packed`` None (a Python wind callable, or a right-hand side the kernels do not evaluate,
+        :meth:`_packed_wind`) the steps around ``model.rhs`` (:meth:`_advance_fixed`)."""
+        if packed is None:
+            return self._advance_fixed(state, x, u, t0, t1, wind)
+        if state.stepper is None:
+            raise ValueError("state: has no ETD2RK stepper; pass the IntegrationState that start() returned (ETD2RK needs "
+                             "the trim Jacobian)")
+        self.check_span(t1 - t0)
+        res = state.stepper.advance_rows(self.model, x, u, float(t0), float(t1), self.substeps, packed)
+        return self.rows_outcome(res.x, res.t, res.status, res.steps, np.array([float(t0)]), (state,),
+                                 np.reshape(u, (1, 4)), (wind,)).row(0)
+
     def _advance_fixed(self, state: IntegrationState, x: np.ndarray, u: np.ndarray, t0: float, t1: float,
                        wind: Wind | None) -> StepOutcome:
-        """ETD2RK over one period in Python (``model.rhs``, which names a model error): ``substeps`` equal steps, each
-        checked for non-finite states and the ground (:func:`flexsim.sim._step_kernels.ground_crossing`)."""
+        """ETD2RK over one period around ``model.rhs`` (a Python wind callable, or a right-hand side the kernels do not
+        evaluate): ``substeps`` equal steps (:meth:`ETD2RK.step`: the compiled stages), each checked as the compiled
+        step checks it (:func:`flexsim.sim._step_kernels.step_end`) and reported as it reports it (:meth:`rows_outcome`);
+        a model error with the message of the exception ``model.rhs`` raised."""
         stepper = state.stepper
         if stepper is None:
             raise ValueError("state: has no ETD2RK stepper; pass the IntegrationState that start() returned (ETD2RK needs "
@@ -430,8 +451,8 @@ class FlightDynamics:
         k, h = self.substeps, stepper.h
         rhs = self.model.rhs
         x = np.asarray(x, dtype=float)
-        x_hit = np.empty_like(x)
-        t = t0
+        x_end = np.empty_like(x)
+        t, status, taken = t0, _sk.ROW_RUNNING, k
         with np.errstate(all="ignore"):
             for i in range(1, k + 1):
                 t_next = t1 if i == k else t0 + i * h
@@ -439,20 +460,22 @@ class FlightDynamics:
                     x_next = stepper.step(rhs, t, x, (u, wind))
                 except _MODEL_ERRORS as exc:
                     return StepOutcome(x.copy(), t, False, f"model error: {exc}", 2 * i, state=state)
-                if not np.all(np.isfinite(x_next)):
-                    return StepOutcome(x.copy(), t, False, f"non-finite state: ETD2RK step {i} of {k} from t = {t:.6g} s", 2 * i,
-                                       state=state)
-                t_hit = _sk.ground_crossing(x, x_next, float(t), float(t_next), self._z, x_hit)
-                if t_hit != -math.inf:
-                    return StepOutcome(x_hit, t_hit, True, "", 2 * i, state=state)
+                status, t_end = _sk.step_end(x, x_next, float(t), float(t_next), self._z, x_end)
+                if status != _sk.ROW_RUNNING:
+                    taken = i
+                    if status == _sk.ROW_GROUND:
+                        x, t = x_end, t_end
+                    break
                 x, t = x_next, t_next
-        return StepOutcome(x, t1, False, "", 2 * k, state=state)
+        return self.rows_outcome(x[None, :], np.array([float(t)]), np.array([status]), np.array([taken]),
+                                 np.array([float(t0)]), (state,)).row(0)
 
-    def rows_outcome(self, x, t, status, taken, t0, states) -> BatchOutcome:
-        """The :class:`BatchOutcome` of compiled rows flown with the integration ``states`` (N, sharing one ETD2RK
-        stepper): states x (N, n) and times t (N,) [s] reached, status codes and steps begun (N,) of
+    def rows_outcome(self, x, t, status, taken, t0, states, u=None, winds=None) -> BatchOutcome:
+        """The :class:`BatchOutcome` of ETD2RK rows (the compiled step, or the steps around ``model.rhs``) flown with the
+        integration ``states`` (N): states x (N, n) and times t (N,) [s] reached, status codes and steps begun (N,) of
         :func:`flexsim.sim._step_kernels.period_end`, period starts t0 (N,) [s] (read for stopped rows only; None if no
-        row stopped); a row with a model error (whose message only ``model.rhs`` gives) reads "model error" here."""
+        row stopped); a row with a model error reads the model's message (:meth:`model_error`, with the rows' held
+        controls ``u`` (N, 4) and wind fields ``winds``; without them "model error")."""
         states = tuple(states)
         m = len(t)
         clear = self._clear.get(m)
@@ -463,11 +486,48 @@ class FlightDynamics:
         if not np.count_nonzero(status):
             return BatchOutcome(x, t, none, failure, nfev, nlu, none, states)
         failure = failure.copy()
-        failure[status == _sk.ROW_MODEL_ERROR] = "model error"
+        for r in np.flatnonzero(status == _sk.ROW_MODEL_ERROR):
+            failure[r] = "model error" if u is None else self.model_error(states[r], x[r], u[r], float(t[r]), winds[r])
         for r in np.flatnonzero(status == _sk.ROW_NON_FINITE):
             t_start = t0[r] + (taken[r] - 1) * states[r].stepper.h
             failure[r] = f"non-finite state: ETD2RK step {int(taken[r])} of {self.substeps} from t = {float(t_start):.6g} s"
         return BatchOutcome(x, t, status == _sk.ROW_GROUND, failure, 2 * taken, nlu, failure != "", states)
+
+    def model_error(self, state: IntegrationState, x: np.ndarray, u: np.ndarray, t: float, wind: Wind | None) -> str:
+        """The failure of a row that the compiled step stopped with a model error (``ROW_MODEL_ERROR``) at state ``x``
+        (n,), time ``t`` [s], controls ``u`` (4,) held: "model error: " and the message of ``model.rhs``, which the
+        kernel cannot give, at x, or, where the right-hand side can be evaluated there, at the stage state of the step
+        from x (:func:`flexsim.sim._step_kernels.stage_a`, as the kernel computes it); "model error" if neither raises.
+        Two right-hand sides at most: the period is not flown again."""
+        rhs = self.model.rhs
+        with np.errstate(all="ignore"):
+            try:
+                k1 = rhs(t, x, u, wind)
+                stepper = state.stepper
+                if stepper is not None:
+                    xs, f1 = np.array(x, dtype=float, ndmin=2), np.array(k1, dtype=float, ndmin=2)
+                    d, a = np.empty_like(xs), np.empty_like(xs)
+                    _sk.stage_a(stepper.h_phi1, f1, xs, np.ones(1, np.bool_), False, d, a)
+                    rhs(t + stepper.h, a[0], u, wind)
+            except _MODEL_ERRORS as exc:
+                return f"model error: {exc}"
+        return "model error"
+
+    def _packed_wind(self, wind: Wind | None) -> _k.BatchWind | None:
+        """``wind`` packed for one row of the compiled step (the last one packed is kept), or None where the compiled
+        step cannot fly it: a wind that is not a field of :mod:`flexsim.sim.disturbances` (a Python callable), or a
+        model whose right-hand side is not the compiled one (no compiled kernel data, or ``rhs`` replaced)."""
+        if not _compiled_rhs(self.model):
+            return None
+        last = self._last_packed
+        if last is not None and last[0] is wind:
+            return last[1]
+        try:
+            packed = self.model.pack_winds([wind])
+        except ValueError:
+            return None
+        self._last_packed = (wind, packed)
+        return packed
 
     # ------------------------------------------------------------------ outputs
     def measure(self, x: np.ndarray, t: float, wind: Wind | None = None) -> Measurements:
@@ -529,16 +589,53 @@ _PERIOD_MODES = {(still, over): _sk.PeriodMode(_ms.WIND_STILL if still else _ms.
                  for still in (False, True) for over in (False, True)}
 
 
+#: The right-hand side that the compiled kernels evaluate (:func:`_compiled_rhs`).
+_KERNEL_RHS = AircraftModel.rhs
+
+
+def _compiled_rhs(model) -> bool:
+    """Whether the compiled step evaluates ``model.rhs``: a model with compiled kernel data whose ``rhs`` is the
+    :class:`AircraftModel` one (not one replaced on its class, e.g. a stand-in right-hand side)."""
+    return isinstance(getattr(model, "kernel_data", None), _k.KernelData) and type(model).rhs is _KERNEL_RHS
+
+
 def _shared_stepper(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState]) -> ETD2RK | None:
     """The ETD2RK stepper of all rows if they share one (same trim Jacobian and step) and one model with compiled
     data, else None."""
     first, model = states[0].stepper, dynamics[0].model
-    if first is None or not dynamics[0].substeps or not isinstance(getattr(model, "kernel_data", None), _k.KernelData):
+    if first is None or not dynamics[0].substeps or not _compiled_rhs(model):
         return None
     for d, st in zip(dynamics, states):
         if st.stepper is not first or d.model is not model:
             return None
     return first
+
+
+def _stepper_groups(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState]) -> list[np.ndarray] | None:
+    """The rows grouped by their ETD2RK stepper (one per trim; int index arrays, in order of first appearance) when
+    every row flies the first row's model, whose right-hand side the compiled step evaluates, with ETD2RK; else None."""
+    model = dynamics[0].model
+    if not dynamics[0].substeps or not _compiled_rhs(model):
+        return None
+    groups: dict[int, list[int]] = {}
+    for i, (d, st) in enumerate(zip(dynamics, states)):
+        if st.stepper is None or d.model is not model:
+            return None
+        groups.setdefault(id(st.stepper), []).append(i)
+    return [np.array(rows, np.int64) for rows in groups.values()]
+
+
+def _period_group(first: FlightDynamics, step_data: _sk.StepData, x: np.ndarray, applied: np.ndarray, command: np.ndarray,
+                  k: np.ndarray, packed: _k.BatchWind, winds) -> _sk.PeriodOut:
+    """One compiled call (:func:`flexsim.sim._step_kernels.period_rows`) for rows about one trim (``step_data``)."""
+    m = x.shape[0]
+    still = winds[0] is None if m == 1 else all(w is None for w in winds)
+    out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
+                        np.empty(m, np.int64), np.empty((m, first.n_measurements)))
+    start = _sk.PeriodStart(x, applied, command, first.rate_step, k, first.dt)
+    mode = _PERIOD_MODES[still, m >= COMPILED_ROWS_BELOW]
+    _sk.period_rows(*_sk.period_args(first.model.kernel_data, packed, step_data, first.measure_data, start, mode, out))
+    return out
 
 
 @single_blas_thread
@@ -549,8 +646,9 @@ def advance_rows(dynamics: Sequence[FlightDynamics], states: Sequence[Integratio
     Row i is what ``dynamics[i].advance(states[i], x[i], u[i], t0[i], t1[i], winds[i])`` returns (same checks:
     non-finite state, model error, ground contact located by linear interpolation within the ETD2RK step). Rows sharing
     one ETD2RK stepper, in still air or with their winds ``packed`` (the model's ``pack_winds`` of the N winds), take
-    the compiled steps (:meth:`ETD2RK.advance_rows`; matrix products over the rows from :data:`COMPILED_ROWS_BELOW`
-    rows on); rows whose model raised there, and all others, the Python period of each aircraft.
+    the compiled steps in one call (:meth:`ETD2RK.advance_rows`; matrix products over the rows from
+    :data:`COMPILED_ROWS_BELOW` rows on); the others each aircraft's period (:meth:`FlightDynamics.advance`: the
+    compiled step for one row, with its packed wind).
     """
     n = len(dynamics)
     first = dynamics[0]
@@ -561,12 +659,15 @@ def advance_rows(dynamics: Sequence[FlightDynamics], states: Sequence[Integratio
         first.check_span(t1 - t0)
         res = stepper.advance_rows(first.model, x, u, t0, t1, first.substeps, None if still else packed,
                                    over_rows=n >= COMPILED_ROWS_BELOW)
-        out = first.rows_outcome(res.x, res.t, res.status, res.steps, t0, states)
-        for i in np.flatnonzero(res.status == _sk.ROW_MODEL_ERROR):  # the model's message: this row through model.rhs
-            again = dynamics[i].advance(states[i], x[i], u[i], float(t0[i]), float(t1[i]), winds[i])
-            out.x[i], out.time_s[i], out.failure[i], out.nfev[i], out.failed[i] = again.x, again.time_s, again.failure, again.nfev, True
-        return out
-    return BatchOutcome.of([d.advance(states[i], x[i], u[i], float(t0[i]), float(t1[i]), winds[i]) for i, d in enumerate(dynamics)])
+        return first.rows_outcome(res.x, res.t, res.status, res.steps, t0, states, np.broadcast_to(u, (n, 4)), winds)
+    outcomes = []
+    for i, d in enumerate(dynamics):
+        one = None if packed is None or not d.substeps else select_packed_rows(packed, slice(i, i + 1))
+        if one is not None and _compiled_rhs(d.model):  # its wind already packed: the compiled step, one row
+            outcomes.append(d._advance_etd2rk(states[i], x[i], u[i], float(t0[i]), float(t1[i]), winds[i], one))
+        else:
+            outcomes.append(d.advance(states[i], x[i], u[i], float(t0[i]), float(t1[i]), winds[i]))
+    return BatchOutcome.of(outcomes)
 
 
 @single_blas_thread
@@ -579,24 +680,31 @@ def advance_period(dynamics: Sequence[FlightDynamics], states: Sequence[Integrat
     ``dynamics[i]`` flies row i from its integration state ``states[i]`` (:meth:`FlightDynamics.start` of its episode;
     those of the next period: ``outcome.states``; the rate limits and outputs are those of ``dynamics[0]``);
     ``winds`` the N wind fields, ``packed`` the same packed by the model's ``pack_winds`` (or None). Rows flown about
-    one trim with packed winds take one compiled call (:func:`flexsim.sim._step_kernels.period_rows`); a model error
-    in a row, other integrators or winds that cannot be packed take :meth:`FlightDynamics.rate_limit`,
+    one trim with packed winds take one compiled call (:func:`flexsim.sim._step_kernels.period_rows`; a row that stops
+    with a model error reads the model's message, :meth:`FlightDynamics.model_error`), rows about several trims one such
+    call per trim; other integrators or winds that cannot be packed take :meth:`FlightDynamics.rate_limit`,
     :func:`advance_rows` and :meth:`FlightDynamics.measure_batch`, the same arithmetic.
     """
     first = dynamics[0]
     m = len(dynamics)
-    stepper = _shared_stepper(dynamics, states)
-    if stepper is not None and isinstance(packed, _k.BatchWind):
-        still = winds[0] is None if m == 1 else all(w is None for w in winds)
-        out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
-                            np.empty(m, np.int64), np.empty((m, first.n_measurements)))
-        start = _sk.PeriodStart(x, applied, command, first.rate_step, k, first.dt)
-        mode = _PERIOD_MODES[still, m >= COMPILED_ROWS_BELOW]
-        _sk.period_rows(*_sk.period_args(first.model.kernel_data, packed, states[0].step_data, first.measure_data, start, mode, out))
+    out = None
+    if isinstance(packed, _k.BatchWind):
+        if _shared_stepper(dynamics, states) is not None:  # every row about one trim: one call on the arrays as given
+            out = _period_group(first, states[0].step_data, x, applied, command, k, packed, winds)
+        else:
+            groups = _stepper_groups(dynamics, states)
+            if groups is not None:  # one call per trim, each on its rows (a row's result does not depend on the others)
+                out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
+                                    np.empty(m, np.int64), np.empty((m, first.n_measurements)))
+                for rows in groups:
+                    part = _period_group(first, states[rows[0]].step_data, x[rows], applied[rows], command[rows], k[rows],
+                                         select_packed_rows(packed, rows), [winds[i] for i in rows])
+                    for whole, piece in zip(out, part):
+                        whole[rows] = piece
+    if out is not None:
         stopped = np.count_nonzero(out.status)
-        if not stopped or not np.count_nonzero(out.status == _sk.ROW_MODEL_ERROR):
-            return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None, states),
-                                out.u, MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))
+        return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None, states,
+                                               out.u, winds), out.u, MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))
     t0, t1 = k * first.dt, (k + 1) * first.dt
     u = first.rate_limit(applied, command)
     outcome = advance_rows(dynamics, states, x, u, t0, t1, winds, packed=packed)

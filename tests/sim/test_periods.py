@@ -9,6 +9,19 @@ Checks:
 * :func:`advance_period` of 3 aircraft about one trim in one compiled call equals, bit for bit, the same period
   by the separate calls (rate limits, :func:`advance_rows`, measurements), row by row and as matrix products
   over the rows (the latter to 1e-12: other rounding of the products).
+* A row stopped by a model error stays in the compiled call and reads the model's own message: above the ISA range
+  at the start of the period (``model.rhs`` raises there; the state and time are the start, 2 right-hand sides
+  begun), and 1 cm below its top climbing at 50 m/s, where the right-hand side is evaluated at the start but not at
+  the stage state of the first step, 1 m higher (the message of ``model.rhs`` there, state and time the start).
+* ``FlightDynamics.advance`` with ETD2RK in a Dryden field is the compiled step of one row: equal to the steps around
+  ``model.rhs`` (the compiled stages with a Python right-hand side) over 20 periods with changing controls, to 1e-12
+  relative (two compiled right-hand sides, ``model.rhs``'s and the step's: rounding only; bit for bit when measured);
+  rows about two different trims (no shared stepper) give each row's own ``advance``, bit for bit (one kernel).
+* Rows about two trims in one :func:`advance_period` (one compiled call per trim) equal, bit for bit, the separate
+  calls (rate limits, each row's ``advance``, measurements).
+* A Python wind callable takes the steps around ``model.rhs``: the same Dryden field passed as a plain callable gives
+  the compiled step's states over 20 periods to 1e-12 relative (the wind evaluated by numpy instead of the compiled
+  kernel: rounding only; equal bit for bit when measured), with the same nfev and no failure.
 """
 
 import math
@@ -20,6 +33,7 @@ from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.sim import periods
 from flexsim.sim._step_kernels import ground_crossing, rate_limit_rows
+from flexsim.sim.disturbances import DrydenTurbulence
 from flexsim.sim.periods import ActuatorRates, FlightDynamics, IntegratorSettings, advance_period, advance_rows
 from flexsim.trimming import SteadyManoeuvre
 
@@ -80,3 +94,89 @@ def test_one_compiled_call_equals_the_separate_calls(three, rows_below, monkeypa
     np.testing.assert_array_equal(one.outcome.time_s, separate.time_s)
     np.testing.assert_allclose(one.meas.matrix, meas.matrix, rtol=tol, atol=tol)
     assert not one.outcome.crashed.any() and list(one.outcome.failure) == [""] * 3 and one.outcome.nfev.tolist() == [2] * 3
+
+
+def test_model_error_named_in_the_compiled_call(three):
+    dyns, states, x, applied, command = three
+    dyn = dyns[0]
+    lo, hi = dyn.model.altitude_range_m
+    z, w = dyn.layout.position.start + 2, dyn.layout.v.start + 2
+    x = x.copy()
+    x[1, z] = -(hi + 100.0)  # above the ISA range: rhs fails at the start
+    x[2, z] = -(hi - 0.01)  # 1 cm below the top, climbing 50 m/s (body axes, level attitude): fails at the stage state
+    x[2, dyn.layout.euler] = 0.0
+    x[2, w] = -50.0
+    k = np.zeros(3, np.int64)
+    winds = [None] * 3
+    one = advance_period(dyns, states, x, applied, command, k, winds, dyn.model.pack_winds(winds))
+    out = one.outcome
+    assert out.failure[0] == "" and out.failed.tolist() == [False, True, True]
+    for r in (1, 2):
+        np.testing.assert_array_equal(out.x[r], x[r])
+        assert out.time_s[r] == 0.0 and out.nfev[r] == 2
+    with pytest.raises(ValueError) as at_start:
+        dyn.model.rhs(0.0, x[1], one.u[1])
+    assert out.failure[1] == f"model error: {at_start.value}"
+    dyn.model.rhs(0.0, x[2], one.u[2])  # evaluated at the start ...
+    stage = x[2] + states[2].stepper.h_phi1 @ dyn.model.rhs(0.0, x[2], one.u[2])
+    with pytest.raises(ValueError) as at_stage:  # ... not at the stage state
+        dyn.model.rhs(dyn.dt, stage, one.u[2])
+    assert out.failure[2] == f"model error: {at_stage.value}" and "ISA range" in out.failure[2]
+
+
+def test_advance_is_the_compiled_step_of_one_row(three):
+    dyns, states, x, applied, _ = three
+    dyn, state = dyns[0], states[0]
+    wind = DrydenTurbulence.mil_f_8785c(9144.0, "moderate", seed=2)
+    xa = xb = x[0]
+    for k in range(20):
+        u = applied[0] * (1.0 + 0.05 * math.sin(k))
+        a = dyn.advance(state, xa, u, k * dyn.dt, (k + 1) * dyn.dt, wind)
+        b = dyn._advance_fixed(state, xb, u, k * dyn.dt, (k + 1) * dyn.dt, wind)  # the steps around model.rhs
+        assert (a.failure, a.crashed, a.nfev, a.time_s) == (b.failure, b.crashed, b.nfev, b.time_s) == ("", False, 2, (k + 1) * dyn.dt)
+        scale = np.maximum(np.abs(b.x), 1e-6 * np.abs(b.x).max())
+        assert np.max(np.abs(a.x - b.x) / scale) <= 1e-12
+        xa, xb = a.x, b.x
+    other = dyn.start(SteadyManoeuvre(speed_m_s=220.0, altitude_m=9144.0))  # another trim: no shared stepper
+    two = [state, other]
+    winds = [wind, None]
+    rows = advance_rows([dyn, dyn], two, x[:2], applied[:2], np.zeros(2), np.full(2, dyn.dt), winds, dyn.model.pack_winds(winds))
+    for i in range(2):
+        alone = dyn.advance(two[i], x[i], applied[i], 0.0, dyn.dt, winds[i])
+        np.testing.assert_array_equal(rows.x[i], alone.x)
+        assert (rows.failure[i], rows.nfev[i]) == (alone.failure, alone.nfev)
+
+
+def test_a_wind_callable_equals_the_compiled_step(three):
+    dyns, states, x, applied, _ = three
+    dyn, state = dyns[0], states[0]
+    field = DrydenTurbulence.mil_f_8785c(9144.0, "severe", seed=2)
+    plain = lambda t, positions: field(t, positions)  # not packable: the steps around model.rhs
+    assert dyn._packed_wind(plain) is None and dyn._packed_wind(field) is not None
+    xa = xb = x[0]
+    for k in range(20):
+        u = applied[0] * (1.0 + 0.05 * math.sin(k))
+        a = dyn.advance(state, xa, u, k * dyn.dt, (k + 1) * dyn.dt, field)
+        b = dyn.advance(state, xb, u, k * dyn.dt, (k + 1) * dyn.dt, plain)
+        assert (a.failure, a.nfev, a.time_s) == (b.failure, b.nfev, b.time_s) == ("", 2, (k + 1) * dyn.dt)
+        scale = np.maximum(np.abs(a.x), 1e-6 * np.abs(a.x).max())
+        assert np.max(np.abs(a.x - b.x) / scale) <= 1e-12
+        xa, xb = a.x, b.x
+
+
+def test_rows_about_two_trims(three):
+    dyns, states, x, applied, command = three
+    dyn = dyns[0]
+    other = dyn.start(SteadyManoeuvre(speed_m_s=220.0, altitude_m=9144.0))
+    mixed = [states[0], other, states[2]]
+    winds = [None, DrydenTurbulence.mil_f_8785c(9144.0, "moderate", seed=4), None]
+    k = np.array([3, 7, 5])
+    one = advance_period(dyns, mixed, x, applied, command, k, winds, dyn.model.pack_winds(winds))
+    u = dyn.rate_limit(applied, command)
+    np.testing.assert_array_equal(one.u, u)
+    for i in range(3):
+        alone = dyn.advance(mixed[i], x[i], u[i], k[i] * dyn.dt, (k[i] + 1) * dyn.dt, winds[i])
+        np.testing.assert_array_equal(one.outcome.x[i], alone.x)
+        assert (one.outcome.time_s[i], one.outcome.failure[i], one.outcome.nfev[i]) == (alone.time_s, "", 2)
+        meas = dyn.measure_batch(alone.x[None, :], np.array([alone.time_s]), [winds[i]], dyn.model.pack_winds([winds[i]]))
+        np.testing.assert_array_equal(one.meas.matrix[i], meas.matrix[0])
