@@ -1,21 +1,22 @@
 """The first flutter search's compile split over two cores (first run after an install only).
 
 A first flutter search compiles the right-hand side (``rhs_batch`` and the term kernels it calls), the aerodynamic
-force and the p-k kernels: 33-34 s of CPU in one process on the 2-core machine, idle, 2026-12-05 (``rhs_batch``
-25 s of it, of which ``assemble`` 14 s, ``strip_wind_at`` 4.5 s, ``block_solve`` 1.9 s; the p-k kernels 5.8 s;
-``aerodynamic_force`` 1.9 s). numba compiles a called kernel before its caller and, for a new signature, first
-looks for it in its on-disk cache; so the work splits into two groups that share no kernel of weight:
+force and the p-k kernels: 33-35 s of CPU in one process on the 2-core machine, 2026-12-05 (``rhs_batch`` 25 s of
+it, of which ``assemble`` 14 s, ``aero_evaluate`` 5.3 s, ``strip_wind_at`` 4.5 s, ``block_solve`` 1.9 s; the p-k
+kernels 5.8 s; ``aerodynamic_force`` 1.9 s). numba compiles a called kernel before its caller and, for a new
+signature, first looks for it in its on-disk cache; so the work splits into two groups:
 
-* this process (:func:`compile_here`): ``assemble`` with the term kernels, then ``aerodynamic_force`` (which
-  reuses them), about 16 s;
-* a second process (:func:`start`, :func:`compile_group`): the other callees of ``rhs_batch`` (the wind at the
-  strips, the block elimination, the inflow rate) and the p-k kernels, about 13 s;
+* this process (:func:`compile_here`): ``aero_evaluate`` (the strips), then ``assemble`` (loading the terms below
+  from the cache), then ``aerodynamic_force``, which reuses them: about 15 s;
+* a second process (:func:`start`, :func:`compile_group`): first the terms ``assemble`` reaches after the strips
+  (inertia, elasticity, parasite drag, slender bodies), then the other callees of ``rhs_batch`` (the wind at the
+  strips, the block elimination, the inflow rate), then the p-k kernels: 20 s of CPU;
 
 after which ``rhs_batch`` itself compiles here (about 4 s), loading the second group's kernels from the cache.
-Measured (the Quickstart's ``flexsim flutter`` from an empty cache, idle 2-core machine, 2026-12-05): see
-``docs/performance.md``. A signature below that no longer matches a kernel (the kernel changed) only costs the
-other core's time: the search then compiles the kernel itself, as without this module
-(tests/linear/test_precompile.py checks that every signature is one the search compiles). The second process runs
+Measured side by side, an empty cache: 36-37 s wall in one process, 21-25 s split, output identical
+(``docs/performance.md``, ``benchmarks/results/2026-12-05-first-run.json``). A signature below that no longer
+matches a kernel (the kernel changed) only costs the other core's time: the search then compiles the kernel itself,
+as without this module (tests/linear/test_precompile.py checks that every signature is one the search compiles). The second process runs
 only when a core is idle: the 1-minute load average, which counts this process, below the cores - 0.5 (on a busy
 machine two compiles compete for the same cores: measured at load 4-5, the first ``flexsim flutter`` took 66 and
 99 s with the second process against 85, 82 and 71 s without, 48-52 s of CPU against 40-41 s, 2026-12-04).
