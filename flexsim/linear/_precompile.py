@@ -18,8 +18,9 @@ Measured side by side, an empty cache: 36-37 s wall in one process, 21-25 s spli
 matches a kernel (the kernel changed) only costs the other core's time: the search then compiles the kernel itself,
 as without this module (tests/linear/test_precompile.py checks that every signature is one the search compiles).
 The second process runs only when a core is idle: the 1-minute load average, which counts this process, below the
-cores - 0.5 (on a busy machine two compiles compete for the same cores: measured at load 4-5, the first ``flexsim flutter`` took 66 and
-99 s with the second process against 85, 82 and 71 s without, 48-52 s of CPU against 40-41 s, 2026-12-04).
+cores - 0.5 (on a busy machine two compiles compete for the same cores: measured at load 4-5, the first
+``flexsim flutter`` took 66 and 99 s with the second process against 85, 82 and 71 s without, 48-52 s of CPU
+against 40-41 s, 2026-12-04).
 """
 
 from __future__ import annotations
