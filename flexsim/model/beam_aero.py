@@ -40,7 +40,7 @@ from flexsim.structure.beam_statics import LoadModel, load_stiffness
 from flexsim.structure.strain_beam import (BeamKinematics, BeamProperties, beam_kinematics, mass_matrix,
                                            stiffness_matrix)
 
-__all__ = ["WingAero", "TunnelFlow", "StripAirloads", "LoadSum", "AeroelasticSystem", "aeroelastic_system",
+__all__ = ["WingAero", "TunnelFlow", "section_loads", "StripAirloads", "LoadSum", "AeroelasticSystem", "aeroelastic_system",
            "static_stiffness"]
 
 
@@ -146,21 +146,62 @@ def _section_matrices():
     return m.mass, m.circulatory, m.inflow
 
 
+def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDArray, rho: NDArray | float, *,
+                  rate_e1: NDArray | float = 0.0, incidence: NDArray | float = 0.0,
+                  cd0: NDArray | float = 0.0) -> tuple[NDArray, NDArray]:
+    """Quasi-steady strip loads per unit span (inflow zero) of sections in a flow (module docstring).
+
+    Peters-Johnson airloads of a rigid section (reference §1.3-1.4, ``{L} = πρ b u0 [B]{w}`` with the inflow
+    ``λ0 = 0``), resolved as in the module docstring: lift along ``e3``, leading-edge suction along ``e2``, moment
+    about the reference axis along ``e1``; plus, when ``cd0`` is given, a profile drag ``½ρ|V|² 2b cd0`` along the
+    in-section air velocity (the linear model's physical force resolution, paper eq. 28 with
+    ``docs/design.md`` "Force resolution").
+
+    Parameters
+    ----------
+    rotations : ndarray, shape (P, 3, 3)
+        Section frames ``[e1, e2, e3]`` (columns): span, towards the leading edge, normal (``e3 = e1 × e2``).
+    b, a : ndarray, shape (P,)
+        Semichord [m]; reference-axis position [semichords aft of mid-chord].
+    air_velocity : ndarray, shape (P, 3) or (3,)
+        Air velocity relative to the section's reference axis [m/s], in the frames' components.
+    rho : float or ndarray, shape (P,)
+        Air density [kg/m³] (times ``lift_slope / 2π`` for a corrected lift slope, :meth:`WingAero.density_scale`).
+    rate_e1 : float or ndarray, shape (P,)
+        Section angular velocity about ``e1`` [rad/s] (pitch rate: ``w1 = b Ω1``, ``w0`` at mid-chord ``−a b Ω1``).
+    incidence : float or ndarray, shape (P,)
+        Nose-up incidence added to the section [rad] (rigging, or a flap's equivalent angle ``τ δ``).
+    cd0 : float or ndarray, shape (P,)
+        Profile drag coefficient [-].
+
+    Returns
+    -------
+    force, moment : ndarray, shape (P, 3)
+        [N/m] and [N m/m] in the frames' components.
+    """
+    _, bm, _ = _section_matrices()
+    e1, e2, e3 = rotations[:, :, 0], rotations[:, :, 1], rotations[:, :, 2]
+    va = np.broadcast_to(air_velocity, e1.shape)
+    u0, wn = -np.einsum("pi,pi->p", e2, va), np.einsum("pi,pi->p", e3, va)
+    w1 = b * rate_e1
+    w0 = wn + u0 * incidence - a * w1
+    w = np.stack([w0, w1 * np.ones_like(w0)], axis=1)
+    gen = np.pi * (rho * b * u0)[:, None] * (w @ bm.T)  # {L} (P, 2)
+    lift, moment = gen[:, 0], a * b * gen[:, 0] - b * gen[:, 1]
+    suction = 2.0 * np.pi * rho * b * w0**2
+    force = lift[:, None] * e3 + suction[:, None] * e2
+    if np.any(cd0):
+        in_plane = wn[:, None] * e3 - u0[:, None] * e2
+        force = force + (rho * b * cd0)[:, None] * np.linalg.norm(in_plane, axis=1)[:, None] * in_plane
+    return force, moment[:, None] * e1
+
+
 def _steady_section_loads(kin, b, a, flow, scale=1.0):
     """Steady strip force [N/m] (P, 3) and moment [N] (P, 3) in global components (inflow zero, no rates).
 
     ``scale``: ``lift_slope / 2π`` per strip, shape (P,) or scalar (:meth:`WingAero.density_scale`).
     """
-    _, bm, _ = _section_matrices()
-    rho, va = flow.density_kg_m3 * scale, flow.velocity_m_s
-    e1, e2, e3 = kin.rotations[:, :, 0], kin.rotations[:, :, 1], kin.rotations[:, :, 2]
-    u0, w0 = -(e2 @ va), e3 @ va
-    w = np.stack([w0, np.zeros_like(w0)], axis=1)
-    gen = np.pi * (rho * b * u0)[:, None] * (w @ bm.T)  # {L} (P, 2)
-    lift, moment = gen[:, 0], a * b * gen[:, 0] - b * gen[:, 1]
-    suction = 2.0 * np.pi * rho * b * w0**2
-    force = lift[:, None] * e3 + suction[:, None] * e2
-    return force, moment[:, None] * e1
+    return section_loads(kin.rotations, b, a, flow.velocity_m_s, flow.density_kg_m3 * scale)
 
 
 @dataclass(frozen=True)

@@ -54,7 +54,7 @@ from flexsim.structure.strain_beam import (BeamProperties, beam_kinematics, mass
 
 __all__ = ["RigidBody", "FreeFlexibleStructure", "Conserved", "quaternion_matrix", "initial_state",
            "generalized_mass_matrix", "free_flight_rhs", "conserved_quantities", "free_free_frequencies",
-           "beam_relative_motion"]
+           "beam_relative_motion", "steady_generalized_force"]
 
 
 def _hat(v: NDArray) -> NDArray:
@@ -352,6 +352,55 @@ def _split(structure: FreeFlexibleStructure, y: ArrayLike):
     return y[:3], y[3:7], y[7:7 + n], y[7 + n:]
 
 
+def _generalized_force(structure: FreeFlexibleStructure, pts: _Points, quat: NDArray, eps: NDArray, vel: NDArray,
+                       gravity_m_s2: ArrayLike) -> NDArray:
+    """The right-hand side of eq. (1), ``Q − Σ ∫ [Lᵀ m b + Aᵀ β] ds − (rigid body's terms)``, shape (6 + n,)."""
+    v, om = vel[:3], vel[3:6]
+    body = structure.body
+    g_body = quaternion_matrix(quat).T @ np.asarray(gravity_m_s2, dtype=float)
+    q = np.zeros(structure.n_velocities)
+    q[6:] = -structure.stiffness() @ eps
+    # rigid body: bias ω × (m u_b) and ω × I_b ω, and its weight
+    u_b = v + np.cross(om, body.cg_m)
+    f_b = body.mass_kg * (g_body - np.cross(om, u_b))
+    q[:3] += f_b
+    q[3:6] += np.cross(body.cg_m, f_b) - np.cross(om, body.inertia_kg_m2 @ om)
+    if pts.mass.size:
+        u = pts.jac_c @ vel
+        w = om + pts.w_rel
+        b = np.cross(om, pts.rdot) + pts.rddot + np.cross(om, u)
+        f = pts.mass[:, None] * (g_body - b)
+        iw = np.einsum("pij,pj->pi", pts.inertia, w)
+        tau = -(np.einsum("pij,pj->pi", pts.inertia, pts.alpha_rel + np.cross(om, w)) + np.cross(w, iw))
+        q += np.einsum("pji,pj->i", pts.jac_c, f) + np.einsum("pji,pj->i", pts.jac_w, tau)
+    return q
+
+
+def steady_generalized_force(structure: FreeFlexibleStructure, quat: ArrayLike, eps: ArrayLike, rigid_velocity: ArrayLike,
+                             gravity_m_s2: ArrayLike) -> NDArray[np.float64]:
+    """The right-hand side of eq. (1) at ``ε̇ = 0``: ``M(ε) V̇`` of a state whose strains are momentarily at rest.
+
+    Parameters
+    ----------
+    structure : FreeFlexibleStructure
+    quat : array_like, shape (4,)
+        Body→inertial quaternion (scalar first).
+    eps : array_like, shape (n,)
+    rigid_velocity : array_like, shape (6,)
+        ``[v [m/s], ω [rad/s]]``, body axes.
+    gravity_m_s2 : array_like, shape (3,)
+        Inertial (north-east-down) components [m/s²].
+
+    Returns
+    -------
+    ndarray, shape (6 + n,)
+        Zero exactly in a steady state (``V̇ = 0``, ``ε̇ = 0``): force [N], moment about o [N m], strain forces.
+    """
+    eps = np.asarray(eps, dtype=float)
+    vel = np.concatenate([np.asarray(rigid_velocity, dtype=float), np.zeros(structure.n_strains)])
+    return _generalized_force(structure, _points(structure, eps, None), np.asarray(quat, float), eps, vel, gravity_m_s2)
+
+
 def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike) -> NDArray[np.float64]:
     """``dy/dt`` of the free-flying structure in vacuum (eq. 1 of the module doc; the paper's eq. 2).
 
@@ -369,32 +418,14 @@ def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike) ->
         ``[C v, ½ q ⊗ (0, ω), ε̇, V̇]``.
     """
     _, quat, eps, vel = _split(structure, y)
-    v, om, epsdot = vel[:3], vel[3:6], vel[6:]
+    om, epsdot = vel[3:6], vel[6:]
     pts = _points(structure, eps, epsdot)
     mass = _mass_from_points(structure, pts)
-    body = structure.body
-    rot = quaternion_matrix(quat)
-    g_body = rot.T @ structure.gravity_m_s2
-
-    q = np.zeros(structure.n_velocities)
-    q[6:] = -structure.stiffness() @ eps
-    # rigid body: bias ω × (m u_b) and ω × I_b ω, and its weight
-    u_b = v + np.cross(om, body.cg_m)
-    f_b = body.mass_kg * (g_body - np.cross(om, u_b))
-    q[:3] += f_b
-    q[3:6] += np.cross(body.cg_m, f_b) - np.cross(om, body.inertia_kg_m2 @ om)
-    if pts.mass.size:
-        u = pts.jac_c @ vel
-        w = om + pts.w_rel
-        b = np.cross(om, pts.rdot) + pts.rddot + np.cross(om, u)
-        f = pts.mass[:, None] * (g_body - b)
-        iw = np.einsum("pij,pj->pi", pts.inertia, w)
-        tau = -(np.einsum("pij,pj->pi", pts.inertia, pts.alpha_rel + np.cross(om, w)) + np.cross(w, iw))
-        q += np.einsum("pji,pj->i", pts.jac_c, f) + np.einsum("pji,pj->i", pts.jac_w, tau)
+    q = _generalized_force(structure, pts, quat, eps, vel, structure.gravity_m_s2)
     vdot = cho_solve(cho_factor(mass), q)
     q0, qv = quat[0], quat[1:]
     quat_dot = 0.5 * np.concatenate([[-qv @ om], q0 * om + np.cross(qv, om)])
-    return np.concatenate([rot @ v, quat_dot, epsdot, vdot])
+    return np.concatenate([quaternion_matrix(quat) @ vel[:3], quat_dot, epsdot, vdot])
 
 
 @dataclass(frozen=True)
