@@ -1,0 +1,333 @@
+"""A free-flying aircraft whose flexible components are geometrically exact beams, with strip airloads.
+
+The structure is :class:`flexsim.structure.free_flexible.FreeFlexibleStructure`: a rigid body (the rigid
+components, lumped masses and engines) with strain-based beams (Su & Cesnik 2011) clamped to it — one beam per
+flexible component, rooted where the component is rooted, in body axes (x forward, y right, z down, origin o).
+Each beam's frame ``[e1, e2, e3]`` has ``e1`` along the component's axis, ``e2`` along the streamwise chord
+towards the leading edge (body +x for an unswept wing) and ``e3 = e1 × e2`` (up on the right wing, down on the
+left: the section theory is the same in either orientation, and the mass-centre offsets keep their meaning).
+
+Aerodynamics (:func:`flexsim.model.beam_aero.section_loads`, the one implementation shared with the wind-tunnel
+wing): quasi-steady Peters-Johnson strip loads (reference §1.3-1.4 with the inflow at zero) on
+
+* the strips of a flexible component, at its beam's quadrature points, following the deformed sections (their
+  dihedral, twist and sweep enter through the section frame and the strip's own air velocity
+  ``V_a = −(v + ω × p)`` at ``ε̇ = 0``);
+* the strips of a rigid component, fixed in the body at the linear model's strip stations
+  (:class:`flexsim.model.strips.StripSet`: same stations, widths, chords, axes, lift slopes, incidences, cd0).
+
+Control surfaces act through the thin-airfoil lift effectiveness of a plain flap, an equivalent incidence
+``τ δ`` with ``τ = 1 − (φ_h − sin φ_h)/π``, ``cos φ_h`` = the hinge position (Glauert 1927; the first entry of
+the linear model's flap weights ``[φ_h/π, 2 sin φ_h/π, …]``, :mod:`flexsim.model.strips`); the flap's own
+zero-lift moment is neglected. Thrust acts at the engines along body x. The generalized forces are the virtual
+work of these loads, ``Q = Σ w (L_pᵀ F + Aᵀ M)`` with ``L_p = [I, −p^, J_p]`` and ``A = [0, I, J_θ]`` over the
+generalized velocities ``V = [v, ω, ε̇]`` (Shearer & Cesnik 2007 eq. 9; Su & Cesnik 2011 eq. 13).
+
+Mass: the rigid body is the linear structural model's rigid block ``M0[:6, :6]`` (the whole undeformed aircraft,
+paper eq. 8) less the beams' share at ``ε = 0``, so both models carry the same mass, centre of gravity and inertia
+(up to the beams' element quadrature, O(1/N²) in the inertia). Units SI, angles in radians.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import NDArray
+
+from flexsim.model.beam_aero import WingAero, section_loads
+from flexsim.structure.beam_sections import beam_from_sections
+from flexsim.structure.free_flexible import (FreeFlexibleStructure, RigidBody, generalized_mass_matrix,
+                                             steady_generalized_force)
+from flexsim.structure.strain_beam import BeamProperties, beam_kinematics
+
+__all__ = ["FlexibleAircraft", "flexible_aircraft"]
+
+
+def _hat(v: NDArray) -> NDArray:
+    out = np.zeros(v.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
+    out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
+    out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
+    return out
+
+
+def _flap_effectiveness(hinge_d: float) -> float:
+    """Thin-airfoil lift effectiveness of a plain flap, ``τ = (φ_h + sin φ_h)/π``, ``φ_h = acos(hinge_d)``.
+
+    Glauert's ``τ = 1 − (θ_h − sin θ_h)/π`` with the hinge angle from the leading edge ``θ_h = π − φ_h`` (``hinge_d``
+    semichords aft of mid-chord; e.g. a 25 % chord flap, ``hinge_d = 0.5``: τ = 0.609).
+    """
+    phi = np.arccos(hinge_d)
+    return float((phi + np.sin(phi)) / np.pi)
+
+
+def _normal_sign(comp) -> float:
+    """+1 when the frame's ``e3`` is the linear model's upward strip normal ``−z_i``, −1 when it is ``+z_i``.
+
+    Incidences and flap deflections are nose-up / trailing-edge-down in the linear model's sense
+    (:mod:`flexsim.model.strips`: plunge ``n = z_i``, pitch axis ``d × n``); a section whose ``e3`` points along
+    ``+z_i`` (the left wing's) sees them with the opposite sign in its own frame.
+    """
+    return -float(np.sign(_beam_frame(comp)[:, 2] @ comp.axes_in_body[:, 2]) or 1.0)
+
+
+@dataclass(frozen=True, eq=False)
+class _RigidStrips:
+    """Strips fixed in the body (arrays over the S strips, body axes)."""
+
+    position: NDArray    # (S, 3) reference-axis point [m]
+    rotations: NDArray   # (S, 3, 3) [e1, e2, e3]
+    b: NDArray
+    a: NDArray
+    width: NDArray       # [m]
+    scale: NDArray       # lift slope / 2π
+    cd0: NDArray
+    incidence: NDArray   # [rad]
+    flap: NDArray        # (S, 4): incidence per control u (τ × sign on its channel)
+
+
+@dataclass(frozen=True, eq=False)
+class _BeamStrips:
+    """Aerodynamics of one beam: its section data per element and its controls (element-wise)."""
+
+    aero: WingAero
+    cd0: NDArray         # (N,)
+    incidence: NDArray   # (N,) [rad]
+    flap: NDArray        # (N, 4): incidence per control u
+
+
+@dataclass(frozen=True, eq=False)
+class FlexibleAircraft:
+    """The geometrically nonlinear free-flying aircraft of a model (module docstring).
+
+    Attributes
+    ----------
+    name : str
+    structure : FreeFlexibleStructure
+        Rigid body and beams (body axes); gravity is applied by the callers through the attitude.
+    beam_components : tuple of str
+        The component of each beam.
+    beam_strips : tuple
+        Per beam, its aerodynamic sections.
+    rigid_strips : _RigidStrips
+    engine_position_m : ndarray, shape (E, 3)
+        Engines (thrust shared equally, along body x) [m].
+    """
+
+    name: str
+    structure: FreeFlexibleStructure
+    beam_components: tuple
+    beam_strips: tuple
+    rigid_strips: _RigidStrips
+    engine_position_m: NDArray
+
+    @property
+    def n_strains(self) -> int:
+        """Number of strain coordinates ``n``."""
+        return self.structure.n_strains
+
+    def beam_index(self, component: str) -> int:
+        """Index of the beam of ``component``."""
+        if component not in self.beam_components:
+            raise ValueError(f"component = {component!r}: not a flexible component of {self.name!r} "
+                             f"(flexible: {', '.join(self.beam_components) or 'none'})")
+        return self.beam_components.index(component)
+
+    def kinematics(self, eps: NDArray) -> list:
+        """:class:`~flexsim.structure.strain_beam.BeamKinematics` of every beam at strains ``eps`` (n,)."""
+        return [beam_kinematics(b, eps[s]) for b, s in zip(self.structure.beams, self.structure.strain_slices())]
+
+    def tip_positions(self, eps: NDArray) -> NDArray:
+        """Tip reference-axis positions [m] of the beams, body axes, shape (B, 3)."""
+        return np.array([k.tip_position for k in self.kinematics(np.asarray(eps, float))]).reshape(-1, 3)
+
+    @cached_property
+    def undeformed_tips(self) -> NDArray:
+        """Tip positions at ``ε = 0`` [m], shape (B, 3)."""
+        return self.tip_positions(np.zeros(self.n_strains))
+
+    def airloads(self, eps: NDArray, v: NDArray, omega: NDArray, u: NDArray, rho: float,
+                 wind: NDArray | None = None) -> NDArray:
+        """Generalized aerodynamic and thrust force ``Q`` (6 + n) at strains ``eps``, ``ε̇ = 0`` (module docstring).
+
+        Parameters
+        ----------
+        eps : ndarray, shape (n,)
+        v, omega : ndarray, shape (3,)
+            Velocity of o [m/s] and angular velocity [rad/s], body axes.
+        u : ndarray, shape (4,)
+            ``[T [N], δa, δe, δr [rad]]``.
+        rho : float
+            Air density [kg/m³].
+        wind : ndarray, shape (3,), optional
+            Uniform wind velocity in body axes [m/s].
+
+        Returns
+        -------
+        ndarray, shape (6 + n,)
+            Force [N] (body), moment about o [N m] (body), strain forces.
+        """
+        nv = self.structure.n_velocities
+        out = np.zeros(nv)
+        w_air = np.zeros(3) if wind is None else np.asarray(wind, float)
+        for beam, s, strips, kin in zip(self.structure.beams, self.structure.strain_slices(), self.beam_strips,
+                                        self.kinematics(eps)):
+            b, a = strips.aero.strips(beam, kin)
+            e = kin.points_element
+            p = kin.positions
+            va = w_air - (v + np.cross(omega, p))
+            rate = kin.rotations[:, :, 0] @ omega
+            force, moment = section_loads(kin.rotations, b, a, va, rho * strips.aero.density_scale(beam, kin),
+                                          rate_e1=rate, incidence=strips.incidence[e] + strips.flap[e] @ u,
+                                          cd0=strips.cd0[e])
+            wt = kin.points_weight
+            f, m = wt[:, None] * force, wt[:, None] * moment
+            out[:3] += f.sum(0)
+            out[3:6] += (np.cross(p, f) + m).sum(0)
+            out[6 + s.start:6 + s.stop] += (np.einsum("pik,pi->k", kin.jac_position, f)
+                                            + np.einsum("pik,pi->k", kin.jac_rotation, m))
+        r = self.rigid_strips
+        if r.b.size:
+            va = w_air - (v + np.cross(omega, r.position))
+            force, moment = section_loads(r.rotations, r.b, r.a, va, rho * r.scale,
+                                          rate_e1=r.rotations[:, :, 0] @ omega, incidence=r.incidence + r.flap @ u,
+                                          cd0=r.cd0)
+            f, m = r.width[:, None] * force, r.width[:, None] * moment
+            out[:3] += f.sum(0)
+            out[3:6] += (np.cross(r.position, f) + m).sum(0)
+        n_eng = self.engine_position_m.shape[0]
+        if n_eng:
+            thrust = np.array([u[0] / n_eng, 0.0, 0.0])
+            out[:3] += u[0] * np.array([1.0, 0.0, 0.0])
+            out[3:6] += np.cross(self.engine_position_m, thrust).sum(0)
+        return out
+
+    def max_strip_alpha_deg(self, eps: NDArray, v: NDArray, omega: NDArray, u: NDArray) -> float:
+        """Largest ``|atan2(w, u0)|`` over all strips, incidence and flap angle included [deg] (``ε̇ = 0``)."""
+        worst = 0.0
+        groups = []
+        for beam, strips, kin in zip(self.structure.beams, self.beam_strips, self.kinematics(eps)):
+            e = kin.points_element
+            groups.append((kin.rotations, kin.positions, strips.incidence[e] + strips.flap[e] @ u))
+        r = self.rigid_strips
+        groups.append((r.rotations, r.position, r.incidence + r.flap @ u))
+        for rot, pos, inc in groups:
+            if not len(pos):
+                continue
+            va = -(v + np.cross(omega, pos))
+            u0 = -np.einsum("pi,pi->p", rot[:, :, 1], va)
+            wn = np.einsum("pi,pi->p", rot[:, :, 2], va)
+            worst = max(worst, float(np.degrees(np.abs(np.arctan2(wn, u0) + inc)).max()))
+        return worst
+
+    def steady_residual(self, eps: NDArray, attitude: NDArray, v: NDArray, omega: NDArray, u: NDArray,
+                        rho: float, gravity_m_s2: float) -> NDArray:
+        """``Q_total`` (6 + n) of a steady state (``V̇ = 0`` and ``ε̇ = 0`` exactly when it vanishes).
+
+        The inertial, elastic and gravity terms are those of the free-flying structure's equations
+        (:func:`flexsim.structure.free_flexible.steady_generalized_force`), the airloads :meth:`airloads`.
+        ``attitude`` is the body→NED quaternion [q0, q1, q2, q3].
+        """
+        q = steady_generalized_force(self.structure, attitude, eps, np.concatenate([v, omega]),
+                                     np.array([0.0, 0.0, gravity_m_s2]))
+        return q + self.airloads(eps, v, omega, u, rho)
+
+
+def _beam_frame(comp) -> NDArray:
+    """``[e1, e2, e3]`` in body axes: along the axis, towards the leading edge, ``e1 × e2``."""
+    axes = comp.axes_in_body
+    e1 = axes[:, 0]
+    e2 = -(axes @ comp.chord_direction)
+    e2 = e2 - (e2 @ e1) * e1
+    e2 /= np.linalg.norm(e2)
+    return np.column_stack([e1, e2, np.cross(e1, e2)])
+
+
+def _flap_rows(comp, stations: NDArray) -> NDArray:
+    """(k, 4) incidence per control at the given stations (0 outside the surface)."""
+    from flexsim.model.strips import FLAP_KINDS
+
+    rows = np.zeros((stations.size, 4))
+    cs = comp.control_surface
+    if cs is not None:
+        inside = (stations >= cs.start_m) & (stations <= cs.end_m)
+        sign = -1.0 if comp.name == "left_wing" else 1.0
+        rows[inside, 1 + FLAP_KINDS.index(cs.kind)] = sign * _normal_sign(comp) * _flap_effectiveness(cs.hinge_d)
+    return rows
+
+
+def flexible_aircraft(model, elements_per_beam: int = 8) -> FlexibleAircraft:
+    """The :class:`FlexibleAircraft` of ``model`` (an :class:`~flexsim.model.aircraft_model.AircraftModel`).
+
+    Parameters
+    ----------
+    model : AircraftModel
+        Its aircraft, strips (lift slopes as the linear model resolves them) and structural model (mass).
+    elements_per_beam : int
+        Equal elements of each flexible component's beam, 1-64.
+
+    Raises
+    ------
+    ValueError
+        A flexible component without ``sections.ei_chord_nm2`` (the beam bends in both planes), a flexible
+        component without strips that is not the fuselage, or a bad element count.
+    """
+    if isinstance(elements_per_beam, bool) or not isinstance(elements_per_beam, (int, np.integer)) \
+            or not 1 <= elements_per_beam <= 64:
+        raise ValueError(f"elements_per_beam = {elements_per_beam!r}: must be an integer in 1-64")
+    aircraft = model.aircraft
+    if model.aero is None:
+        raise ValueError("the model has no aerodynamics (Terms(aero=None)): the flexible aircraft needs its strips")
+    strips = model.aero.strips
+    beams, names, beam_strips = [], [], []
+    for comp in aircraft.components:
+        if not comp.is_flexible:
+            continue
+        if comp.sections.ei_chord_nm2 is None:
+            raise ValueError(f"components.{comp.name}.sections.ei_chord_nm2 is not given: the geometrically "
+                             "nonlinear structure needs the chordwise bending stiffness of every flexible "
+                             "component [N m^2] (or set rigid = true)")
+        beam = beam_from_sections(comp.sections, int(elements_per_beam), root_position_m=comp.root_m,
+                                  root_rotation=_beam_frame(comp))
+        n = beam.n_elements
+        mid = (np.arange(n) + 0.5) * beam.element_length_m
+        if comp.aero is None:
+            aero = _BeamStrips(WingAero(chord_m=1.0, lift_slope_per_rad=0.0), np.zeros(n), np.zeros(n),
+                               np.zeros((n, 4)))
+        else:
+            rows = [i for i, c in enumerate(strips.component) if c == comp.name]
+            slope = np.interp(mid, strips.station_m[rows], strips.lift_slope0[rows])
+            aero = _BeamStrips(WingAero(chord_m=comp.sections.at("chord_m", mid),
+                                        axis_fraction=comp.sections.at("ea_fraction", mid),
+                                        lift_slope_per_rad=slope),
+                               np.full(n, comp.aero.cd0), np.full(n, _normal_sign(comp) * comp.aero.incidence_rad),
+                               _flap_rows(comp, mid))
+        beams.append(beam), names.append(comp.name), beam_strips.append(aero)
+    probe = FreeFlexibleStructure(RigidBody(0.0), tuple(beams))
+    m_beams = generalized_mass_matrix(probe, np.zeros(probe.n_strains))[:6, :6]
+    m_rigid = model.structure.inertia.m0[:6, :6] - m_beams
+    mass = float(m_rigid[0, 0])
+    first = np.array([m_rigid[1, 5], m_rigid[2, 3], m_rigid[0, 4]])  # m c (M_v,ω = −m c^)
+    cg = first / mass
+    j_cg = m_rigid[3:6, 3:6] + mass * _hat(cg) @ _hat(cg)
+    body = RigidBody(mass, cg, 0.5 * (j_cg + j_cg.T))
+    rigid_rows = [i for i, c in enumerate(strips.component) if not aircraft.component(c).is_flexible]
+    r = np.asarray(rigid_rows, dtype=int)
+    frames = []
+    flap = np.zeros((r.size, 4))
+    normal = np.ones(r.size)
+    for k, i in enumerate(r):
+        comp = aircraft.component(strips.component[i])
+        frames.append(_beam_frame(comp))
+        normal[k] = _normal_sign(comp)
+        flap[k] = _flap_rows(comp, np.array([strips.station_m[i]]))[0]
+    rigid = _RigidStrips(position=strips.position_body_m[r], rotations=np.array(frames).reshape(-1, 3, 3),
+                         b=strips.semichord_m[r], a=strips.a[r], width=strips.width_m[r],
+                         scale=strips.lift_slope0[r] / (2.0 * np.pi), cd0=strips.cd0[r],
+                         incidence=normal * strips.incidence_rad[r], flap=flap)
+    engines = np.array([e.position_m for e in aircraft.engines]).reshape(-1, 3)
+    return FlexibleAircraft(name=aircraft.name, structure=FreeFlexibleStructure(body, tuple(beams)),
+                            beam_components=tuple(names), beam_strips=tuple(beam_strips), rigid_strips=rigid,
+                            engine_position_m=engines)

@@ -1,0 +1,187 @@
+"""Trim of the geometrically nonlinear aircraft in steady symmetric flight (level, climb, descent, glide, pull-up).
+
+The flexible aircraft (:mod:`flexsim.model.flexible_aircraft`: rigid body + strain-based beams, strip airloads on the
+deformed strips) is in a steady state when its generalized accelerations and strain rates vanish: with
+``ε̇ = 0`` the equations of motion (:func:`flexsim.structure.free_flexible.steady_generalized_force`, the paper's
+eq. 2 in Kane's form, plus the airloads) reduce to ``Q_total(ε, v, ω, attitude, u) = 0`` (6 + n equations).
+
+Symmetric flight (Tuzcu & Nguyen 2014 eqs. 34-35 for level flight, 38-39 climb; the pull-up of
+:meth:`flexsim.trimming.manoeuvre.SteadyManoeuvre.pull_up`, ``q = (n − 1) g / V`` at the bottom of the loop):
+the speed ``V`` of the undeformed aircraft's centre of gravity makes the angle of attack ``α`` with body x,
+``θ = α + γ``, ``ω = (0, q, 0)``, no sideslip. Unknowns: ``α``, the elevator ``δe``, the thrust ``T`` (or, in a
+glide, ``T = 0`` and ``γ``) and all strains ``ε``; equations: the force rows x and z, the pitching moment and the
+strain rows. The lateral rows vanish by the aircraft's symmetry (checked: their residual is reported). Solved by
+MINPACK's ``hybrd`` (Powell's hybrid method) from the rigid trim's attitude with the strains continued in load
+(the gravity and load factor scaled 1/4, 1/2, 3/4, 1) so that a wing bending to half its span is reached on a path
+of equilibria. Units SI, radians.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import root
+
+from flexsim.atmosphere import isa_density
+from flexsim.errors import FlexsimError
+from flexsim.model.flexible_aircraft import FlexibleAircraft, flexible_aircraft
+from flexsim.trimming.manoeuvre import SteadyManoeuvre
+
+__all__ = ["FlexibleTrimPoint", "FlexibleTrimError", "trim_flexible"]
+
+_RIGID_ROWS = np.array([0, 2, 4])
+
+
+class FlexibleTrimError(FlexsimError, RuntimeError):
+    """The nonlinear trim did not converge (the message names the manoeuvre and the residual)."""
+
+
+@dataclass(frozen=True, eq=False)
+class FlexibleTrimPoint:
+    """A steady symmetric state of the flexible aircraft (body axes, SI).
+
+    Attributes
+    ----------
+    manoeuvre : SteadyManoeuvre
+    aircraft : FlexibleAircraft
+    alpha_rad, theta_rad, climb_angle_rad : float
+        Angle of attack of the CG's velocity, pitch attitude and flight-path angle [rad].
+    controls : ndarray, shape (4,)
+        ``[T [N], δa, δe, δr [rad]]``.
+    strains : ndarray, shape (n,)
+    velocity_m_s, rate_rad_s : ndarray, shape (3,)
+        ``v`` of o and ``ω``, body axes.
+    density_kg_m3 : float
+    residual : float
+        Largest scaled residual of all 6 + n equations (lateral rows included) [-].
+    """
+
+    manoeuvre: SteadyManoeuvre
+    aircraft: FlexibleAircraft
+    alpha_rad: float
+    theta_rad: float
+    climb_angle_rad: float
+    controls: NDArray
+    strains: NDArray
+    velocity_m_s: NDArray
+    rate_rad_s: NDArray
+    density_kg_m3: float
+    residual: float
+
+    @property
+    def tip_displacement_m(self) -> NDArray:
+        """Tip displacement of each beam from its undeformed position [m], body axes, shape (B, 3)."""
+        return self.aircraft.tip_positions(self.strains) - self.aircraft.undeformed_tips
+
+    @property
+    def max_strip_alpha_deg(self) -> float:
+        """Largest local angle of attack of the strips, incidences and flaps included [deg]."""
+        return self.aircraft.max_strip_alpha_deg(self.strains, self.velocity_m_s, self.rate_rad_s, self.controls)
+
+    @property
+    def tip_deflection_fraction(self) -> NDArray:
+        """Vertical tip displacement (up positive) over the beam's length [-], shape (B,)."""
+        lengths = np.array([b.length_m for b in self.aircraft.structure.beams])
+        return -self.tip_displacement_m[:, 2] / lengths
+
+
+def _state(z: NDArray, man: SteadyManoeuvre, cg: NDArray, g: float, glide: bool):
+    alpha, de = z[0], z[1]
+    thrust, gamma = (0.0, z[2]) if glide else (z[2], man.climb_angle_rad)
+    speed = man.speed_m_s
+    q = (man.load_factor - 1.0) * g / speed
+    omega = np.array([0.0, q, 0.0])
+    v = speed * np.array([math.cos(alpha), 0.0, math.sin(alpha)]) - np.cross(omega, cg)
+    theta = alpha + gamma
+    quat = np.array([math.cos(theta / 2), 0.0, math.sin(theta / 2), 0.0])
+    return v, omega, quat, np.array([thrust, 0.0, de, 0.0]), theta, gamma
+
+
+def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int = 8,
+                  guess: FlexibleTrimPoint | None = None, check_limits: bool = True) -> FlexibleTrimPoint:
+    """Trim the geometrically nonlinear aircraft of ``model`` in a steady symmetric manoeuvre (module docstring).
+
+    Parameters
+    ----------
+    model : AircraftModel
+        Its aircraft, strips, gravity (``terms.gravity_m_s2``) and air density (ISA at the manoeuvre's altitude, or
+        the variant's ``air_density_kg_m3``).
+    manoeuvre : SteadyManoeuvre
+        Level, climb/descent, glide or pull-up; turns are refused (not symmetric).
+    elements_per_beam : int
+        Elements of each flexible component's beam (:func:`flexible_aircraft`), 1-64.
+    guess : FlexibleTrimPoint, optional
+        A nearby trim to start from (e.g. the previous speed of a scan); else the load is continued from 1/4.
+    check_limits : bool
+        Refuse a trim whose strips' angle of attack exceeds the aircraft's linear-lift range
+        (``[aero] max_alpha_deg``; the strips have no stall), as the linear trim does.
+
+    Returns
+    -------
+    FlexibleTrimPoint
+
+    Raises
+    ------
+    ValueError
+        A turn, or a model without aerodynamics.
+    FlexibleTrimError
+        No convergence, or (``check_limits``) strips beyond the linear-lift range.
+    """
+    if not isinstance(manoeuvre, SteadyManoeuvre):
+        raise ValueError(f"manoeuvre = {manoeuvre!r}: must be a SteadyManoeuvre")
+    if manoeuvre.turn_radius_m != math.inf:
+        raise ValueError(f"manoeuvre.turn_radius_m = {manoeuvre.turn_radius_m!r}: the nonlinear trim covers symmetric "
+                         "flight (level, climb, descent, glide, pull-up); a turn is not available with the nonlinear "
+                         "structure")
+    flex = guess.aircraft if guess is not None else flexible_aircraft(model, elements_per_beam)
+    variant_rho = model.variant.air_density_kg_m3
+    rho = float(variant_rho) if variant_rho is not None else float(isa_density(manoeuvre.altitude_m))
+    g = float(model.terms.gravity_m_s2)
+    glide = manoeuvre.climb_angle_rad is None
+    struct = flex.structure
+    mp = model.structure.mass_properties
+    cg, weight = np.asarray(mp.cg_m), mp.mass_kg * max(g, 1e-3)
+    span = max(max(b.length_m for b in struct.beams) if struct.beams else 1.0, 1.0)
+    k_diag = np.sqrt(np.clip(np.diag(struct.stiffness()), 1e-12, None))
+    n = struct.n_strains
+
+    def residual(z: NDArray, g_now: float) -> NDArray:
+        v, omega, quat, u, _, _ = _state(z, manoeuvre, cg, g, glide)
+        eps = z[3:]
+        # a step of the load continuation scales gravity and the pull-up's rate together
+        full = flex.steady_residual(eps, quat, v, omega * (g_now / g if g > 0 else 1.0), u, rho, g_now)
+        return np.concatenate([full[_RIGID_ROWS] / np.array([weight, weight, weight * span]), full[6:] / k_diag])
+
+    if guess is not None:
+        z0 = np.concatenate([[guess.alpha_rad, guess.controls[2],
+                              guess.climb_angle_rad if glide else guess.controls[0]], guess.strains])
+        steps = (1.0,)
+    else:
+        z0 = np.concatenate([[math.radians(2.0), 0.0, -0.05 if glide else 0.1 * weight], np.zeros(n)])
+        steps = (0.25, 0.5, 0.75, 1.0)
+    z = z0
+    for frac in steps:
+        sol = root(residual, z, args=(g * frac,), method="hybr", options={"xtol": 1e-12, "maxfev": 200 * (n + 4)})
+        z = sol.x
+    final = residual(z, g)
+    v, omega, quat, u, theta, gamma = _state(z, manoeuvre, cg, g, glide)
+    full = flex.steady_residual(z[3:], quat, v, omega, u, rho, g)
+    lateral = np.abs(full[[1, 3, 5]]).max() / weight
+    worst = float(max(np.abs(final).max(), lateral))
+    if not np.isfinite(worst) or worst > 1e-8:
+        raise FlexibleTrimError(f"the nonlinear trim of {flex.name!r} at {manoeuvre.speed_m_s:g} m/s, "
+                                f"{manoeuvre.altitude_m:g} m, load factor {manoeuvre.load_factor:g} did not converge "
+                                f"(largest scaled residual {worst:.2e}; allowed 1e-8)")
+    point = FlexibleTrimPoint(manoeuvre=manoeuvre, aircraft=flex, alpha_rad=float(z[0]), theta_rad=float(theta),
+                              climb_angle_rad=float(gamma), controls=u, strains=z[3:].copy(), velocity_m_s=v,
+                              rate_rad_s=omega, density_kg_m3=rho, residual=worst)
+    limit = math.degrees(model.aircraft.aero_settings.max_alpha_rad)
+    if check_limits and point.max_strip_alpha_deg > limit:
+        raise FlexibleTrimError(f"the nonlinear trim of {flex.name!r} at {manoeuvre.speed_m_s:g} m/s, "
+                                f"{manoeuvre.altitude_m:g} m, load factor {manoeuvre.load_factor:g} has strips at "
+                                f"{point.max_strip_alpha_deg:.1f} deg angle of attack, beyond the linear (no-stall) "
+                                f"lift range +-{limit:g} deg ([aero] max_alpha_deg)")
+    return point
