@@ -525,9 +525,7 @@ def run_study(cases: Iterable[StudyCase], *, scheduler: str | None = None, worke
             if queues and not _kernels_cached():  # compiled once here, then loaded by the workers (not once in each)
                 from flexsim.linear import _precompile
 
-                helper = _precompile.start() if n > 1 else None  # half the compile on the other core meanwhile
-                if helper is not None:
-                    _precompile.compile_here()  # the other half here first, so that neither waits for the other
+                helper = _precompile.start() if n > 1 else None  # the p-k kernels on the other core meanwhile
                 try:
                     k = min(range(len(queues)), key=lambda k: _longest_first(cases, queues[k]))
                     run_here(queues[k].pop(0))
