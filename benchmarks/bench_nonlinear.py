@@ -1,0 +1,78 @@
+"""The geometrically nonlinear aircraft against the linear model on the bundled PHC HALE, side by side in one run.
+
+Cases (CPU seconds of this process, one BLAS thread as the analyses use; medians of ``--repeats`` after one warm-up
+run that compiles the linear kernels):
+
+* ``trim``: one level trim at 20 km, 25 m/s — linear ``fs.trim`` against nonlinear ``fs.trim_flexible``
+  (8 elements per wing, 48 strains, from a cold start);
+* ``force``: one evaluation of the equations — the linear model's right-hand side (``model.rhs``, compiled) against
+  the nonlinear aircraft's ``steady_residual`` at its trim (NumPy: the beams' kinematics and the strip loads);
+* ``flutter``: one flutter point of level flight — linear ``fs.flutter(..., "theodorsen")`` against
+  ``fs.flexible_flutter(..., (20, 45), speed_step_m_s=2.5)``.
+
+The issue's target for a nonlinear flutter point is 5x the linear one; the ratio is printed, not asserted.
+
+Run: python benchmarks/bench_nonlinear.py [--repeats 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import time
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+import flexsim as fs  # noqa: E402
+
+
+def _cpu(fn, repeats: int) -> float:
+    times = []
+    for _ in range(repeats):
+        t0 = time.process_time()
+        fn()
+        times.append(time.process_time() - t0)
+    return statistics.median(times)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    model = fs.AircraftModel(fs.load_aircraft("phc_hale"))
+    level = fs.SteadyManoeuvre.level(20000.0, speed_m_s=25.0)
+    lin_trim = fs.trim(model, level)
+    nl_trim = fs.trim_flexible(model, level)
+    fs.flutter(model, level, "theodorsen")
+    flex = nl_trim.aircraft
+    quat = np.array([np.cos(nl_trim.theta_rad / 2), 0.0, np.sin(nl_trim.theta_rad / 2), 0.0])
+    u_lin = lin_trim.u
+
+    def nl_force():
+        for _ in range(10):
+            flex.steady_residual(nl_trim.strains, quat, nl_trim.velocity_m_s, nl_trim.rate_rad_s, nl_trim.controls,
+                                 nl_trim.density_kg_m3, 9.80665)
+
+    def lin_force():
+        for _ in range(10):
+            model.rhs(0.0, lin_trim.x, u_lin)
+
+    rows = [
+        ("trim", lambda: fs.trim(model, level), lambda: fs.trim_flexible(model, level)),
+        ("force (x10)", lin_force, nl_force),
+        ("flutter", lambda: fs.flutter(model, level, "theodorsen"),
+         lambda: fs.flexible_flutter(model, level, (20.0, 45.0), speed_step_m_s=2.5)),
+    ]
+    print(f"PHC HALE, 20 km; CPU s, median of {args.repeats}; load {os.getloadavg()[0]:.2f}")
+    print(f"{'case':<14}{'linear':>12}{'nonlinear':>12}{'nonlinear/linear':>18}")
+    for name, lin, nl in rows:
+        a, b = _cpu(lin, args.repeats), _cpu(nl, args.repeats)
+        print(f"{name:<14}{a:>12.4f}{b:>12.4f}{b / a:>18.1f}")
+
+
+if __name__ == "__main__":
+    main()
