@@ -149,8 +149,12 @@ class FlexibleAircraft:
         return self.tip_positions(np.zeros(self.n_strains))
 
     def airloads(self, eps: NDArray, v: NDArray, omega: NDArray, u: NDArray, rho: float,
-                 wind: NDArray | None = None) -> NDArray:
-        """Generalized aerodynamic and thrust force ``Q`` (6 + n) at strains ``eps``, ``ε̇ = 0`` (module docstring).
+                 wind: NDArray | None = None, epsdot: NDArray | None = None) -> NDArray:
+        """Generalized aerodynamic and thrust force ``Q`` (6 + n) at strains ``eps`` (module docstring).
+
+        Quasi-steady: each strip sees the air velocity relative to its reference axis, ``−(v + ω × p + J_p ε̇)``
+        plus the wind, and pitches at ``e1 · (ω + J_θ ε̇)`` (``epsdot`` None: ``ε̇ = 0``); no apparent mass and
+        no wake (Peters' inflow at zero).
 
         Parameters
         ----------
@@ -163,6 +167,8 @@ class FlexibleAircraft:
             Air density [kg/m³].
         wind : ndarray, shape (3,), optional
             Uniform wind velocity in body axes [m/s].
+        epsdot : ndarray, shape (n,), optional
+            Strain rates.
 
         Returns
         -------
@@ -179,6 +185,9 @@ class FlexibleAircraft:
             p = kin.positions
             va = w_air - (v + np.cross(omega, p))
             rate = kin.rotations[:, :, 0] @ omega
+            if epsdot is not None:
+                va = va - kin.jac_position @ epsdot[s]
+                rate = rate + np.einsum("pi,pi->p", kin.rotations[:, :, 0], kin.jac_rotation @ epsdot[s])
             force, moment = section_loads(kin.rotations, b, a, va, rho * strips.aero.density_scale(beam, kin),
                                           rate_e1=rate, incidence=strips.incidence[e] + strips.flap[e] @ u,
                                           cd0=strips.cd0[e])

@@ -401,7 +401,8 @@ def steady_generalized_force(structure: FreeFlexibleStructure, quat: ArrayLike, 
     return _generalized_force(structure, _points(structure, eps, None), np.asarray(quat, float), eps, vel, gravity_m_s2)
 
 
-def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike) -> NDArray[np.float64]:
+def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike,
+                    external_force: ArrayLike | None = None) -> NDArray[np.float64]:
     """``dy/dt`` of the free-flying structure in vacuum (eq. 1 of the module doc; the paper's eq. 2).
 
     Parameters
@@ -411,6 +412,9 @@ def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike) ->
         Time [s] (the equations are autonomous).
     y : array_like, shape (n_states,)
         ``[X [m] (inertial), quaternion (body→inertial), ε, v [m/s], ω [rad/s] (body axes), ε̇]``.
+    external_force : array_like, shape (6 + n,), optional
+        Generalized external force added to ``Q`` (e.g. airloads): force [N] and moment about o [N m] in body
+        axes, strain forces; default none (vacuum).
 
     Returns
     -------
@@ -422,6 +426,8 @@ def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike) ->
     pts = _points(structure, eps, epsdot)
     mass = _mass_from_points(structure, pts)
     q = _generalized_force(structure, pts, quat, eps, vel, structure.gravity_m_s2)
+    if external_force is not None:
+        q = q + np.asarray(external_force, dtype=float)
     vdot = cho_solve(cho_factor(mass), q)
     q0, qv = quat[0], quat[1:]
     quat_dot = 0.5 * np.concatenate([[-qv @ om], q0 * om + np.cross(qv, om)])

@@ -10,6 +10,7 @@ import pytest
 
 import flexsim as fs
 from flexsim.linear.flexible_flutter import NEGLECTED, flexible_flutter
+from flexsim.linear.flexible_stability import free_aircraft_spectrum
 
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "flutter.md"
 
@@ -36,8 +37,22 @@ def test_bad_ranges_are_refused():
         flexible_flutter(model, man, (20.0, 30.0), speed_step_m_s=0.0)
 
 
-def _docs_rows() -> dict[float, list[str]]:
-    text = DOCS.read_text().split("<!-- hale-load-factor-table -->", 1)[1]
+def _numbers(cell: str) -> list[float]:
+    """The decimal numbers of a table cell, with its signs (U+2212 minus included)."""
+    return [float(x) for x in re.findall(r"[-+]?\d+\.\d+", cell.replace("\u2212", "-").replace("± ", "+"))]
+
+
+def _flat(roots) -> list[float]:
+    out = []
+    for z in roots:
+        out.append(z.real)
+        if z.imag > 1e-9:
+            out.append(abs(z.imag))
+    return out
+
+
+def _docs_rows(marker: str = "hale-load-factor-table") -> dict[float, list[str]]:
+    text = DOCS.read_text().split(f"<!-- {marker} -->", 1)[1]
     rows = {}
     for line in text.splitlines()[3:]:
         if not line.startswith("|"):
@@ -63,6 +78,24 @@ def test_docs_table_is_current(n):
     assert float(cells[6]) == pytest.approx(nonlinear.frequency_rad_s, abs=0.006)
     assert float(cells[7].rstrip(" %")) == pytest.approx(100 * nonlinear.tip_deflection_fraction, abs=0.06)
     phugoid = [r.eigenvalue for r in linear.trim.stability.unstable if r.name == "phugoid"][0]
-    re_, im = (float(x) for x in re.findall(r"[-+]?\d+\.\d+", cells[4]))
-    assert re_ == pytest.approx(phugoid.real, abs=6e-5) and im == pytest.approx(abs(phugoid.imag), abs=6e-5)
-    assert float(cells[8]) == pytest.approx(nonlinear.speeds_m_s[0], abs=1e-9)
+    np.testing.assert_allclose(_numbers(cells[4]), _flat([complex(phugoid.real, abs(phugoid.imag))]), atol=6e-5)
+    np.testing.assert_allclose(_numbers(cells[8]), _flat(free_aircraft_spectrum(model, nonlinear.trim).phugoid),
+                               atol=6e-5)
+    assert float(cells[9]) == pytest.approx(nonlinear.speeds_m_s[0], abs=1e-9)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("speed", [25.0, 37.5])
+def test_docs_phugoid_table_is_current(speed):
+    cells = _docs_rows("hale-phugoid-table")[speed]
+    man = fs.SteadyManoeuvre.level(20000.0, speed_m_s=speed)
+    model = fs.AircraftModel(fs.load_aircraft("phc_hale"))
+    point = fs.trim_flexible(model, man)
+    assert float(cells[3].rstrip(" %")) == pytest.approx(100 * point.tip_deflection_fraction[0], abs=0.06)
+    np.testing.assert_allclose(_numbers(cells[4]), _flat(free_aircraft_spectrum(model, point).phugoid), atol=6e-5)
+    qs = fs.AircraftModel(fs.load_aircraft("phc_hale"), terms=fs.Terms(aero=fs.AeroOptions("quasi-steady")))
+    trim = fs.trim(qs, man, check_limits=False)
+    assert float(cells[1].rstrip(" %")) == pytest.approx(-100 * trim.tip_deflection_m / 16.0, abs=0.06)
+    pair = [m.eigenvalue for m in fs.spectrum(qs, trim.x, trim.u).modes
+            if m.name.startswith("phugoid") and abs(m.eigenvalue.imag) > 1e-9][0]
+    np.testing.assert_allclose(_numbers(cells[2]), [pair.real, abs(pair.imag)], atol=6e-5)
