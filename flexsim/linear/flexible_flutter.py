@@ -18,13 +18,15 @@ air velocity in the perturbation equations. SI units, radians.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
 from flexsim.atmosphere import isa
+from flexsim.model.aircraft_model import check_model
+from flexsim.model.terms import NonlinearBeams
 from flexsim.model.beam_aero import TunnelFlow, aeroelastic_system, static_stiffness
 from flexsim.structure.strain_beam import BeamKinematics, BeamProperties, mass_centre_jacobian
 from flexsim.trimming.flexible_trim import FlexibleTrimError, FlexibleTrimPoint, trim_flexible
@@ -84,8 +86,6 @@ def wing_stability(model, point: FlexibleTrimPoint, component: str = "right_wing
     eps = point.strains[flex.structure.strain_slices()[i]]
     aero = flex.beam_strips[i].aero
     if inflow_states != aero.inflow_states:
-        from dataclasses import replace
-
         aero = replace(aero, inflow_states=inflow_states)
     air = -(point.velocity_m_s + np.cross(point.rate_rad_s, beam.root_position_m))
     speed = float(np.linalg.norm(air))
@@ -122,6 +122,8 @@ class FlexibleFlutterPoint:
         Speeds of the scan that could not be trimmed (e.g. beyond the strips' lift range).
     warnings : tuple of str
         What the result neglects (:data:`NEGLECTED`) and any skipped speeds.
+    terms : dict
+        The terms of the model analysed, with the nonlinear beams used (:attr:`FlexibleAircraft.terms`).
     """
 
     speed_m_s: float
@@ -132,6 +134,7 @@ class FlexibleFlutterPoint:
     growth: NDArray
     skipped_m_s: NDArray
     warnings: tuple
+    terms: dict = field(default_factory=dict)
 
     @property
     def tip_deflection_fraction(self) -> float:
@@ -140,8 +143,8 @@ class FlexibleFlutterPoint:
 
 
 def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[float, float], *,
-                     speed_step_m_s: float = 1.0, component: str = "right_wing", elements_per_beam: int = 8,
-                     inflow_states: int = 6, tol_m_s: float = 1e-3) -> FlexibleFlutterPoint:
+                     speed_step_m_s: float = 1.0, component: str = "right_wing", elements_per_beam: int | None = None,
+                     inflow_states: int | None = None, tol_m_s: float = 1e-3) -> FlexibleFlutterPoint:
     """Lowest flutter speed of a very flexible aircraft's wing about its nonlinear trim in ``manoeuvre``.
 
     Parameters
@@ -156,8 +159,11 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
         Scan step [m/s], > 0.
     component : str
         The wing analysed.
-    elements_per_beam, inflow_states : int
-        Beam elements per component; Peters inflow states per strip.
+    elements_per_beam : int, optional
+        Beam elements per component; default the model's ``terms.nonlinear_beams`` (8 for a model of the linear
+        structure).
+    inflow_states : int, optional
+        Peters inflow states per strip; default the model's ``terms.aero.n_inflow``.
     tol_m_s : float
         Brent tolerance [m/s].
 
@@ -165,6 +171,15 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
     -------
     FlexibleFlutterPoint
     """
+    check_model(model, nonlinear=True)
+    beams = model.terms.nonlinear_beams or NonlinearBeams()
+    if elements_per_beam is not None:
+        beams = NonlinearBeams(elements_per_beam)
+    if model.aero is None:
+        raise ValueError("the model has no aerodynamics (Terms(aero=None)): a flutter search needs its strips")
+    if inflow_states is None:
+        inflow_states = model.terms.aero.n_inflow
+    terms = replace(model.terms, nonlinear_beams=beams).record()
     lo, hi = (float(v) for v in speed_range_m_s)
     if not (0.0 < lo < hi and np.isfinite(hi)):
         raise ValueError(f"speed_range_m_s = {speed_range_m_s!r}: must be 0 < lo < hi, finite [m/s]")
@@ -174,7 +189,7 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
     def at(speed, guess):
         man = SteadyManoeuvre(speed, manoeuvre.altitude_m, climb_angle_rad=manoeuvre.climb_angle_rad,
                               load_factor=manoeuvre.load_factor)
-        point = trim_flexible(model, man, elements_per_beam=elements_per_beam, guess=guess)
+        point = trim_flexible(model, man, elements_per_beam=beams.elements_per_beam, guess=guess)
         growth, freq, _ = wing_stability(model, point, component, inflow_states)
         return point, growth, freq
 
@@ -205,7 +220,7 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
     sound = float(isa(manoeuvre.altitude_m).speed_of_sound)
     if found is None:
         return FlexibleFlutterPoint(float("nan"), float("nan"), float("nan"), None, np.array(speeds),
-                                    np.array(growth), np.array(skipped), tuple(notes))
+                                    np.array(growth), np.array(skipped), tuple(notes), terms)
     speed_f, freq_f, point_f = found
     return FlexibleFlutterPoint(float(speed_f), float(speed_f / sound), float(freq_f), point_f, np.array(speeds),
-                                np.array(growth), np.array(skipped), tuple(notes))
+                                np.array(growth), np.array(skipped), tuple(notes), terms)

@@ -551,8 +551,11 @@ def flutter(model: AircraftModel, manoeuvre: SteadyManoeuvre, aero_model: str = 
 
     Returns
     -------
-    FlutterPoint
-        With ``mach_range``, the range searched.
+    FlutterPoint or FlexibleFlutterPoint
+        With ``mach_range``, the range searched. For a model with ``terms.nonlinear_beams`` (aero_model
+        ``"unsteady"`` only), the flutter of its wing about the nonlinear trim at each scanned speed
+        (:func:`flexsim.linear.flexible_flutter.flexible_flutter`; the Mach range, step and tolerance become true
+        airspeeds at the altitude, the default range the envelope of the model's linear sibling).
 
     Raises
     ------
@@ -561,12 +564,41 @@ def flutter(model: AircraftModel, manoeuvre: SteadyManoeuvre, aero_model: str = 
     """
     from flexsim.linear.envelope import search_range
 
+    if isinstance(model, AircraftModel) and model.terms.nonlinear_beams is not None:
+        return _nonlinear_flutter(model, manoeuvre, aero_model, mach_range, mach_step, tol, linear_aero_density_kg_m3)
     _check_flutter_model(model)
     if mach_range is None:
         mach_range = (lambda r: (r.mach_min, r.mach_max))(search_range(model, manoeuvre))
     analysis = FlutterAnalysis(model, aero_model, linear_aero_density_kg_m3=linear_aero_density_kg_m3)
     step = scan_step(mach_range) if mach_step is None else mach_step
     return analysis.search(manoeuvre, mach_range=mach_range, mach_step=step, tol=tol)
+
+
+def _nonlinear_flutter(model: AircraftModel, manoeuvre: SteadyManoeuvre, aero_model: str, mach_range, mach_step, tol,
+                       linear_aero_density_kg_m3):
+    """:func:`flutter` of a model with the geometrically nonlinear beams: the wing's flutter about the nonlinear trim
+    (:func:`flexsim.linear.flexible_flutter.flexible_flutter`), its Mach range, step and tolerance as true airspeeds at
+    the manoeuvre's altitude."""
+    from flexsim.linear.envelope import search_range
+    from flexsim.linear.flexible_flutter import flexible_flutter
+
+    beams = model.terms.nonlinear_beams
+    if aero_model != "unsteady":
+        raise ValueError(f"aero_model = {aero_model!r}: the flutter of the geometrically nonlinear beams (nonlinear_beams "
+                         f"= {beams!r}) is solved with Peters finite-state strips; give aero_model='unsteady'")
+    if linear_aero_density_kg_m3 is not None:
+        raise ValueError(f"linear_aero_density_kg_m3 = {linear_aero_density_kg_m3!r}: the linear model's paper-replication "
+                         f"setting; not available with nonlinear_beams = {beams!r}")
+    if model.variant.kind.value != "free":
+        raise ValueError(f"model.variant = {model.variant.kind.value!r}: a flutter search of a manoeuvre needs the free "
+                         "aircraft")
+    if mach_range is None:  # the envelope (or the stall estimate) of the model's linear sibling
+        found = search_range(model.replace(nonlinear_beams=None), manoeuvre)
+        mach_range = (found.mach_min, found.mach_max)
+    step = scan_step(mach_range) if mach_step is None else mach_step
+    lo, hi, step, tol = _scan_settings("mach_range", mach_range, "mach_step", step, "tol", tol, "[-]", upper=1.0)
+    a = float(speed_of_sound(float(manoeuvre.altitude_m)))
+    return flexible_flutter(model, manoeuvre, (lo * a, hi * a), speed_step_m_s=step * a, tol_m_s=tol * a)
 
 
 @dataclass(frozen=True, eq=False)
@@ -669,7 +701,7 @@ def wind_tunnel(aircraft: Aircraft | AircraftModel, *, aero_model: str = "unstea
     lo, hi, speed_step, tol_m_s = _scan_settings("speed_range", speed_range, "speed_step", speed_step, "tol_m_s", tol_m_s, "[m/s]")
     tunnel = VariantSettings("restrained", altitude_m=altitude_m, air_density_kg_m3=density_kg_m3)
     if isinstance(aircraft, AircraftModel):
-        given = aircraft
+        given = check_model(aircraft, "aircraft")
         if given.aero is None:
             raise ValueError("aircraft: a model without aerodynamics (aero None) has nothing for a wind tunnel to act on")
         options = given.terms.aero

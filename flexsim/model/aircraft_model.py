@@ -41,7 +41,7 @@ from flexsim.model.bodies import SlenderBodies
 from flexsim.model.drag import ParasiteDrag
 from flexsim.model.layout import StateLayout
 from flexsim.model.reference import ReferenceGeometry
-from flexsim.model.terms import Terms
+from flexsim.model.terms import NONLINEAR_ANALYSES, Terms
 from flexsim.model.variant import Variant, VariantSettings
 from flexsim.kinematics import dcm_321
 from flexsim.structure.model import StructuralModel, structural_model
@@ -100,16 +100,26 @@ def check_aircraft(aircraft, name: str = "aircraft") -> None:
     expect_type(name, aircraft, Aircraft, "an Aircraft (flexsim.load_aircraft)", hint)
 
 
-def check_model(model, name: str = "model") -> "AircraftModel":
+def check_model(model, name: str = "model", *, nonlinear: bool = False) -> "AircraftModel":
     """``model`` when it is an :class:`AircraftModel`; else a TypeError naming ``name`` and saying how to build one
     (from an :class:`Aircraft`, a bundled name or a TOML path). Every public function taking a model calls it where
-    the model enters."""
+    the model enters.
+
+    A model whose terms choose the geometrically nonlinear beams (:attr:`Terms.nonlinear_beams`) is refused with a
+    ValueError naming that field unless the caller evaluates it (``nonlinear=True``): the analyses of the paper's
+    linear structure never answer for it silently."""
     hint = "build one with flexsim.AircraftModel(aircraft, aero=...)"
     if isinstance(model, Aircraft):
         hint = f"an Aircraft is the definition; build the model with flexsim.AircraftModel({name}, aero=...)"
     elif isinstance(model, (str, os.PathLike)):
         hint = f"build it with flexsim.AircraftModel(flexsim.load_aircraft({str(model)!r}), aero=...)"
-    return expect_type(name, model, AircraftModel, "an AircraftModel", hint)
+    expect_type(name, model, AircraftModel, "an AircraftModel", hint)
+    beams = model.terms.nonlinear_beams
+    if beams is not None and not nonlinear:
+        raise ValueError(f"nonlinear_beams = {beams!r}: this analysis evaluates the paper's linear structure only; a "
+                         f"model with the geometrically nonlinear beams is evaluated by {NONLINEAR_ANALYSES} "
+                         "(docs/nonlinear-beams.md), or use model.replace(nonlinear_beams=None) for the linear model")
+    return model
 
 
 class AircraftModel(Immutable):

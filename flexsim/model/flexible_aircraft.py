@@ -30,13 +30,15 @@ paper eq. 8) less the beams' share at ``ε = 0``, so both models carry the same 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
 
+from flexsim.model.aircraft_model import check_model
 from flexsim.model.beam_aero import WingAero, section_loads
+from flexsim.model.terms import NonlinearBeams
 from flexsim.structure.beam_sections import beam_from_sections
 from flexsim.structure.free_flexible import (FreeFlexibleStructure, RigidBody, generalized_mass_matrix,
                                              steady_generalized_force)
@@ -114,6 +116,9 @@ class FlexibleAircraft:
     rigid_strips : _RigidStrips
     engine_position_m : ndarray, shape (E, 3)
         Engines (thrust shared equally, along body x) [m].
+    terms : dict
+        The terms of the model it was built from, with the nonlinear beams it uses
+        (:meth:`flexsim.model.terms.Terms.record`; ``nonlinear_beams.elements_per_beam`` the element count).
     """
 
     name: str
@@ -122,6 +127,7 @@ class FlexibleAircraft:
     beam_strips: tuple
     rigid_strips: _RigidStrips
     engine_position_m: NDArray
+    terms: dict = field(default_factory=dict)
 
     @property
     def n_strains(self) -> int:
@@ -267,15 +273,17 @@ def _flap_rows(comp, stations: NDArray) -> NDArray:
     return rows
 
 
-def flexible_aircraft(model, elements_per_beam: int = 8) -> FlexibleAircraft:
+def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAircraft:
     """The :class:`FlexibleAircraft` of ``model`` (an :class:`~flexsim.model.aircraft_model.AircraftModel`).
 
     Parameters
     ----------
     model : AircraftModel
         Its aircraft, strips (lift slopes as the linear model resolves them) and structural model (mass).
-    elements_per_beam : int
-        Equal elements of each flexible component's beam, 1-64.
+    elements_per_beam : int, optional
+        Equal elements of each flexible component's beam, 1-64; default the model's
+        ``terms.nonlinear_beams.elements_per_beam``, or :class:`~flexsim.model.terms.NonlinearBeams`'s default (8) for a
+        model of the linear structure.
 
     Raises
     ------
@@ -283,9 +291,14 @@ def flexible_aircraft(model, elements_per_beam: int = 8) -> FlexibleAircraft:
         A flexible component without ``sections.ei_chord_nm2`` (the beam bends in both planes), a flexible
         component without strips that is not the fuselage, or a bad element count.
     """
+    check_model(model, nonlinear=True)
+    beams_option = model.terms.nonlinear_beams or NonlinearBeams()
+    if elements_per_beam is None:
+        elements_per_beam = beams_option.elements_per_beam
     if isinstance(elements_per_beam, bool) or not isinstance(elements_per_beam, (int, np.integer)) \
             or not 1 <= elements_per_beam <= 64:
         raise ValueError(f"elements_per_beam = {elements_per_beam!r}: must be an integer in 1-64")
+    terms = replace(model.terms, nonlinear_beams=NonlinearBeams(int(elements_per_beam))).record()
     aircraft = model.aircraft
     if model.aero is None:
         raise ValueError("the model has no aerodynamics (Terms(aero=None)): the flexible aircraft needs its strips")
@@ -295,7 +308,8 @@ def flexible_aircraft(model, elements_per_beam: int = 8) -> FlexibleAircraft:
         if not comp.is_flexible:
             continue
         if comp.sections.ei_chord_nm2 is None:
-            raise ValueError(f"components.{comp.name}.sections.ei_chord_nm2 is not given: the geometrically "
+            option = "" if model.terms.nonlinear_beams is None else f"nonlinear_beams = {model.terms.nonlinear_beams!r}: "
+            raise ValueError(f"{option}components.{comp.name}.sections.ei_chord_nm2 is not given: the geometrically "
                              "nonlinear structure needs the chordwise bending stiffness of every flexible "
                              "component [N m^2] (or set rigid = true)")
         beam = beam_from_sections(comp.sections, int(elements_per_beam), root_position_m=comp.root_m,
@@ -339,4 +353,4 @@ def flexible_aircraft(model, elements_per_beam: int = 8) -> FlexibleAircraft:
     engines = np.array([e.position_m for e in aircraft.engines]).reshape(-1, 3)
     return FlexibleAircraft(name=aircraft.name, structure=FreeFlexibleStructure(body, tuple(beams)),
                             beam_components=tuple(names), beam_strips=tuple(beam_strips), rigid_strips=rigid,
-                            engine_position_m=engines)
+                            engine_position_m=engines, terms=terms)

@@ -41,7 +41,7 @@ DEFLECTION_LIMIT_FRACTION = 0.14
 #: Largest |tip twist| of the linear structure's range [rad]: 1 - sin(psi)/psi = 0.02.
 TWIST_LIMIT_RAD = 0.3475
 #: What to use beyond the range.
-NONLINEAR_OPTION = "the geometrically nonlinear beam, docs/nonlinear-beams.md"
+NONLINEAR_OPTION = "the geometrically nonlinear beam, Terms(nonlinear_beams=NonlinearBeams()), docs/nonlinear-beams.md"
 
 
 def linear_range_note(model, x: np.ndarray, where: str = "", sensors: dict | None = None) -> str | None:
@@ -64,7 +64,8 @@ def linear_range_note(model, x: np.ndarray, where: str = "", sensors: dict | Non
     str or None
         ``"linear structure beyond its range: right_wing tip deflection -6.667 m = 42 % of its 16 m length (limit
         14 %, where linear beam theory errs by 2 % against the elastica); results need the geometrically nonlinear
-        beam, docs/nonlinear-beams.md"`` for the worst beam (``... and N more beams`` when several are beyond).
+        beam, Terms(nonlinear_beams=NonlinearBeams()), docs/nonlinear-beams.md"`` for the worst beam (``... and N
+        more beams`` when several are beyond).
     """
     worst, count = None, 0
     x = np.asarray(x, dtype=float)

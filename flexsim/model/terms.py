@@ -31,7 +31,7 @@ from dataclasses import dataclass, field, fields
 from flexsim.atmosphere import G0
 from flexsim.model.coupling import AeroOptions
 
-__all__ = ["Terms", "FORCE_RESOLUTIONS"]
+__all__ = ["Terms", "NonlinearBeams", "FORCE_RESOLUTIONS", "NONLINEAR_ANALYSES"]
 
 #: Metadata of a :class:`Terms` field that switches an aerodynamic term: with ``aero=None`` it must keep its default.
 _AERODYNAMIC = {"aerodynamic": True}
@@ -51,6 +51,33 @@ def _finite_tuple(name: str, value, length: int | None = None) -> tuple[float, .
     if length is not None and len(out) != length:
         raise ValueError(f"{name} = {value!r}: must have {length} entries")
     return out
+
+
+#: The analyses that evaluate a model with :attr:`Terms.nonlinear_beams`; every other analysis refuses such a model
+#: (:func:`flexsim.model.aircraft_model.check_model`).
+NONLINEAR_ANALYSES = "fs.trim, fs.flutter, fs.flexible_aircraft, fs.trim_flexible, fs.flexible_flutter"
+
+
+@dataclass(frozen=True)
+class NonlinearBeams:
+    """The geometrically nonlinear structure: each flexible component a strain-based beam (Su & Cesnik 2011, J.
+    Aircraft 48(1) eqs. 1-17; :mod:`flexsim.structure.strain_beam`) on the free-flying rigid body, instead of the
+    paper's linear beams (Tuzcu & Nguyen 2014 eqs. 1, 14). docs/nonlinear-beams.md; docs/design.md gives the choice.
+
+    Attributes
+    ----------
+    elements_per_beam : int
+        Elements of each flexible component's beam, 1-64 (default 8: the HALE wing's first modes and its flutter
+        within 1 % of 16 elements, docs/nonlinear-beams.md).
+    """
+
+    elements_per_beam: int = 8
+
+    def __post_init__(self) -> None:
+        n = self.elements_per_beam
+        if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= 64:
+            raise ValueError(f"nonlinear_beams.elements_per_beam = {n!r}: must be an integer in 1-64")
+        object.__setattr__(self, "elements_per_beam", int(n))
 
 
 @dataclass(frozen=True)
@@ -113,6 +140,12 @@ class Terms:
         Etkin & Reid 1996 ch. 5, USAF DATCOM sec. 7.4.4), as an apparent mass of w_dot
         (:mod:`flexsim._kernels.downwash_lag`); needs the wing's downwash at the tail (the file's
         ``downwash_gradient``). False (default): the tail sees the downwash without lag (the paper has none).
+    nonlinear_beams : NonlinearBeams or None
+        The structure: None (default) the paper's linear beams (eqs. 1, 14; the small-deflection limit, valid to a
+        tip deflection of 14 % of a beam's length, :mod:`flexsim.model.linear_range`); a :class:`NonlinearBeams`:
+        geometrically exact strain-based beams with strip airloads on the deformed strips. A model with it is
+        evaluated by the analyses of :data:`NONLINEAR_ANALYSES` (trim of symmetric flight, flutter about that trim)
+        and refused by the others with a message naming this field.
     """
 
     aero: AeroOptions | None = AeroOptions()
@@ -127,6 +160,7 @@ class Terms:
     inertia_q_offset_m: tuple[float, ...] | None = None
     aero_velocity_offset_m_s: tuple[float, float, float] | None = field(default=None, metadata=_AERODYNAMIC)
     downwash_lag: bool = field(default=False, metadata=_AERODYNAMIC)
+    nonlinear_beams: NonlinearBeams | None = None
 
     def __post_init__(self) -> None:
         if self.aero is not None and not isinstance(self.aero, AeroOptions):
@@ -161,6 +195,9 @@ class Terms:
             raise ValueError(f"thrust_follows_deflection = {self.thrust_follows_deflection!r}: must be True or False")
         if not isinstance(self.downwash_lag, bool):
             raise ValueError(f"downwash_lag = {self.downwash_lag!r}: must be True or False")
+        if self.nonlinear_beams is not None and not isinstance(self.nonlinear_beams, NonlinearBeams):
+            raise ValueError(f"nonlinear_beams = {self.nonlinear_beams!r}: must be a NonlinearBeams (e.g. "
+                             "NonlinearBeams(elements_per_beam=8)) or None (the paper's linear beams)")
         object.__setattr__(self, "engine_angular_momentum",
                            _finite_tuple("engine_angular_momentum", self.engine_angular_momentum, 3))
         object.__setattr__(self, "inertia_q_offset_m", _finite_tuple("inertia_q_offset_m", self.inertia_q_offset_m))
@@ -178,7 +215,7 @@ class Terms:
         out = {}
         for f in fields(self):
             v = getattr(self, f.name)
-            if f.name == "aero":
+            if f.name in ("aero", "nonlinear_beams"):
                 v = None if v is None else {g.name: getattr(v, g.name) for g in fields(v)}
             elif isinstance(v, tuple):
                 v = list(v)

@@ -43,7 +43,7 @@ from flexsim._arrays import frozen_array, kernel_arg
 from flexsim._threads import single_blas_thread
 from flexsim.errors import positive_number
 from flexsim.kinematics import euler_rate_matrix_inverse
-from flexsim.model.aircraft_model import AircraftModel, Wind
+from flexsim.model.aircraft_model import AircraftModel, Wind, check_model
 from flexsim.model.jacobian import jacobian
 from flexsim.model.sensors import ComponentSensor, SensorBank
 from flexsim.sim import _step_kernels as _sk
@@ -277,6 +277,7 @@ class FlightDynamics:
                  control_dt_s: float) -> None:
         if not isinstance(model, AircraftModel) or model.aero is None or model.variant.kind.value != "free":
             raise ValueError(f"model = {model!r}: must be a free-flying AircraftModel with aerodynamics")
+        check_model(model)
         aircraft = model.aircraft
         self.aircraft = aircraft
         #: The aerodynamic model's name ("unsteady" or "quasi-steady").

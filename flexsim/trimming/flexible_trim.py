@@ -72,6 +72,11 @@ class FlexibleTrimPoint:
     residual: float
 
     @property
+    def terms(self) -> dict:
+        """The terms of the model trimmed, with the nonlinear beams used (:attr:`FlexibleAircraft.terms`)."""
+        return self.aircraft.terms
+
+    @property
     def tip_displacement_m(self) -> NDArray:
         """Tip displacement of each beam from its undeformed position [m], body axes, shape (B, 3)."""
         return self.aircraft.tip_positions(self.strains) - self.aircraft.undeformed_tips
@@ -100,7 +105,7 @@ def _state(z: NDArray, man: SteadyManoeuvre, cg: NDArray, g: float, glide: bool)
     return v, omega, quat, np.array([thrust, 0.0, de, 0.0]), theta, gamma
 
 
-def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int = 8,
+def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int | None = None,
                   guess: FlexibleTrimPoint | None = None, check_limits: bool = True) -> FlexibleTrimPoint:
     """Trim the geometrically nonlinear aircraft of ``model`` in a steady symmetric manoeuvre (module docstring).
 
@@ -111,8 +116,9 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int =
         the variant's ``air_density_kg_m3``).
     manoeuvre : SteadyManoeuvre
         Level, climb/descent, glide or pull-up; turns are refused (not symmetric).
-    elements_per_beam : int
-        Elements of each flexible component's beam (:func:`flexible_aircraft`), 1-64.
+    elements_per_beam : int, optional
+        Elements of each flexible component's beam (:func:`flexible_aircraft`), 1-64; default the model's
+        ``terms.nonlinear_beams`` (8 for a model of the linear structure).
     guess : FlexibleTrimPoint, optional
         A nearby trim to start from (e.g. the previous speed of a scan); else the load is continued from 1/4.
     check_limits : bool

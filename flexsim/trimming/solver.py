@@ -299,7 +299,7 @@ class _Problem:
 
 @single_blas_thread
 def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint | None = None, check_limits: bool = True,
-         classify: bool = True) -> TrimPoint:
+         classify: bool | None = None) -> TrimPoint:
     """Trim ``model`` in ``manoeuvre`` (eqs. 33-39) with its own right-hand side.
 
     Parameters
@@ -314,21 +314,27 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         Raise when the angle of attack of the CG or the local angle of attack of a strip is beyond the linear
         aerodynamics' range (the aircraft's ``[aero] max_alpha_deg``) or the thrust or a surface is beyond its
         limit (default True; False returns the solution of the equations as asked).
-    classify : bool
+    classify : bool, optional
         Classify the equilibrium from the roots of the model linearised about it (``TrimPoint.stability``,
-        :func:`flexsim.trimming.equilibrium.equilibrium_stability`; default True). False leaves it None, for a caller
-        that classifies from an eigen-analysis of its own (the flutter search).
+        :func:`flexsim.trimming.equilibrium.equilibrium_stability`; default: yes for the linear structure). False
+        leaves it None, for a caller that classifies from an eigen-analysis of its own (the flutter search). A model
+        with the geometrically nonlinear beams is not classified here (True is refused): its roots are
+        :func:`flexsim.linear.flexible_stability.free_aircraft_spectrum`.
 
     Returns
     -------
-    TrimPoint
+    TrimPoint or FlexibleTrimPoint
+        The latter for a model with ``terms.nonlinear_beams`` (:func:`flexsim.trimming.flexible_trim.trim_flexible`:
+        symmetric flight and the pull-up; its ``guess`` a FlexibleTrimPoint).
 
     Raises
     ------
     TrimError
         Naming the manoeuvre and either the residuals that did not vanish or the limiting quantity.
     """
-    check_model(model)
+    check_model(model, nonlinear=True)
+    if model.terms.nonlinear_beams is not None:
+        return _trim_nonlinear(model, manoeuvre, guess, check_limits, classify)
     prob = _Problem(model, manoeuvre)
     lay = model.layout
     z0 = np.zeros(6 + prob.n_el + (1 if manoeuvre.coordinated else 0))
@@ -373,7 +379,7 @@ def trim(model: AircraftModel, manoeuvre: SteadyManoeuvre, *, guess: TrimPoint |
         except TrimError:
             _check_singular(prob, z, jac)  # an absurd control from a singular system: say so instead
             raise
-    if classify:
+    if classify is None or classify:
         point = replace(point, stability=equilibrium_stability(model, x, u))
     return point
 
@@ -671,3 +677,17 @@ def _max_local_alpha(model: AircraftModel, x: np.ndarray, u: np.ndarray) -> Stri
     name = strips.component[j]
     number = sum(1 for c in strips.component[:j] if c == name) + 1
     return StripAngle(float(alpha[j]), j, name, number, float(strips.station_m[j]))
+
+
+def _trim_nonlinear(model: AircraftModel, manoeuvre: SteadyManoeuvre, guess, check_limits: bool, classify: bool | None):
+    """:func:`trim` of a model with the geometrically nonlinear beams, its options checked where they enter."""
+    from flexsim.trimming.flexible_trim import FlexibleTrimPoint, trim_flexible
+
+    if classify:
+        raise ValueError(f"classify = {classify!r}: the trim of the geometrically nonlinear beams (nonlinear_beams = "
+                         f"{model.terms.nonlinear_beams!r}) is not classified by trim; its roots are "
+                         "flexsim.linear.flexible_stability.free_aircraft_spectrum(model, point)")
+    if guess is not None and not isinstance(guess, FlexibleTrimPoint):
+        raise ValueError(f"guess = {type(guess).__name__}: a model with the geometrically nonlinear beams starts from a "
+                         "FlexibleTrimPoint (a trim of the same model)")
+    return trim_flexible(model, manoeuvre, guess=guess, check_limits=check_limits)

@@ -53,4 +53,4 @@ def test_trims_at_20_km_and_says_it_is_beyond_the_linear_range(hale):
     assert point.load_factor_total == pytest.approx(1.0, rel=1e-6)
     assert point.tip_deflection_m / 16.0 < -0.3  # the linear structure's answer (positive down): far beyond its range
     assert point.linear_range.startswith("linear structure beyond its range: right_wing tip deflection")
-    assert point.linear_range.endswith("results need the geometrically nonlinear beam, docs/nonlinear-beams.md")
+    assert point.linear_range.endswith("results need the geometrically nonlinear beam, Terms(nonlinear_beams=NonlinearBeams()), docs/nonlinear-beams.md")

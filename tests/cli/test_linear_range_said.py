@@ -22,7 +22,7 @@ def test_flexsim_trim_says_it_in_one_line(capsys):
     lines = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("linear structure beyond its range")]
     assert len(lines) == 1
     assert "right_wing tip deflection -7.49 m = 47% of its 16 m length" in lines[0]
-    assert lines[0].endswith("results need the geometrically nonlinear beam, docs/nonlinear-beams.md")
+    assert lines[0].endswith("results need the geometrically nonlinear beam, Terms(nonlinear_beams=NonlinearBeams()), docs/nonlinear-beams.md")
     assert main([*HALE_TRIM, "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["linear_range"] == lines[0]
     assert main(["trim", "gtm"]) == 0

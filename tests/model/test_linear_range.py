@@ -95,7 +95,7 @@ def test_silent_within_the_range_and_one_line_beyond(wing_model):
     note = linear_range_note(wing_model, _state(wing_model, tip_m=-0.42 * 16.0))
     assert "\n" not in note
     assert note.startswith("linear structure beyond its range: right_wing tip deflection -6.72 m = 42% of its 16 m length")
-    assert note.endswith("the geometrically nonlinear beam, docs/nonlinear-beams.md")
+    assert note.endswith("the geometrically nonlinear beam, Terms(nonlinear_beams=NonlinearBeams()), docs/nonlinear-beams.md")
     twisted = linear_range_note(wing_model, _state(wing_model, twist_rad=math.radians(25.0)))
     assert "right_wing tip twist +25 deg" in twisted
 
