@@ -14,6 +14,7 @@ from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.cli.validation import CliError, check_writable_dir, flight_condition, in_user_words, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
 from flexsim.io.output_paths import check_not_link, unique_names
+from flexsim.cli.nonlinear_commands import NONLINEAR_HELP, check_load_factor, nonlinear_flutter, nonlinear_trim
 from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, flutter_table, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
 from flexsim.linear.study import StudyCase, StudyRecord, case_key, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
@@ -33,6 +34,13 @@ def _manoeuvre(args: argparse.Namespace, altitude: float, mach: float) -> Steady
     coordinated = bool(getattr(args, "coordinated", False))
     if coordinated and radius == math.inf:
         raise ValueError("--coordinated: applies to turns only; give --turn-radius-m")
+    n = getattr(args, "load_factor", None)
+    if n is not None:
+        check_load_factor(n)
+        if radius != math.inf or gamma is None or gamma != 0.0:
+            raise CliError(f"--load-factor {n:g}: the bottom of a symmetric pull-up (wings level, gamma = 0); not with "
+                           "--turn-radius-m, --climb-deg or --glide")
+        return SteadyManoeuvre.pull_up(altitude, n, speed_m_s=float(mach_to_true_airspeed(mach, altitude)))
     return SteadyManoeuvre(float(mach_to_true_airspeed(mach, altitude)), altitude, radius, gamma, coordinated)
 
 
@@ -42,6 +50,8 @@ def _trim(args: argparse.Namespace) -> int:
     aircraft = load_aircraft(args.aircraft)
     if args.components:
         aircraft = aircraft.subset(args.components)
+    if args.nonlinear_beams is not None:
+        return nonlinear_trim(args, aircraft, _manoeuvre(args, condition.altitude_m, condition.mach), condition)
     model = AircraftModel(aircraft, aero=AeroOptions("quasi-steady", formulation=args.formulation))
     try:
         point = trim(model, _manoeuvre(args, condition.altitude_m, condition.mach), check_limits=not args.no_limits)
@@ -149,6 +159,8 @@ def _model_keys(text: str) -> list[str]:
 
 
 def _flutter(args: argparse.Namespace) -> int:
+    if args.nonlinear_beams is not None or args.load_factor is not None:
+        return nonlinear_flutter(args)
     keys = _model_keys(args.models)
     if args.wind_tunnel:
         return _wind_tunnel(args, keys)
@@ -552,6 +564,9 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_trim.add_argument("--turn-radius-m", type=float, default=None, help="steady turn of this radius [m]")
     p_trim.add_argument("--climb-deg", type=float, default=None, help="flight-path angle [deg] [0]")
     p_trim.add_argument("--glide", action="store_true", help="thrust zero, flight-path angle unknown")
+    p_trim.add_argument("--load-factor", type=float, default=None, metavar="N",
+                        help="bottom of a steady symmetric pull-up at load factor N [1: level]")
+    p_trim.add_argument("--nonlinear-beams", type=int, nargs="?", const=8, default=None, metavar="N", help=NONLINEAR_HELP)
     p_trim.add_argument("--coordinated", action="store_true",
                         help="coordinated turn: zero sideslip at the CG, heading free (default: the paper's turn, heading on track)")
     p_trim.add_argument("--no-limits", action="store_true",
@@ -576,6 +591,9 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_fl.add_argument("--turn-radius-m", type=float, default=None, metavar="R", help="steady level turn of radius R [m]")
     p_fl.add_argument("--climb-deg", type=float, default=None, metavar="G", help="steady climb (G > 0) or descent [deg] [0]")
     p_fl.add_argument("--glide", action="store_true", help="steady glide: thrust zero, flight-path angle found by trim")
+    p_fl.add_argument("--load-factor", type=float, default=None, metavar="N",
+                      help="steady symmetric pull-up at load factor N (with --nonlinear-beams) [1: level]")
+    p_fl.add_argument("--nonlinear-beams", type=int, nargs="?", const=8, default=None, metavar="N", help=NONLINEAR_HELP)
     p_fl.add_argument("--coordinated", action="store_true",
                       help="with --turn-radius-m: coordinated turn (zero sideslip, heading free)")
     p_fl.add_argument("--vg", default=None, metavar="FILE.png",

@@ -5,7 +5,9 @@
                   [--bending-modes M] [--torsion-modes N] [--count K] [--json]
     flexsim aero  [AIRCRAFT] [--mach M] [--plot FILE.png] [--json]
     flexsim trim  [AIRCRAFT] [--altitude-m H] [--mach M | --speed-m-s V] [--turn-radius-m R] [--climb-deg G | --glide]
-    flexsim flutter [AIRCRAFT] [--altitudes H ...] [--models QS,US] [--workers N] [--json]
+                  [--load-factor N] [--nonlinear-beams [N]]
+    flexsim flutter [AIRCRAFT] [--altitudes H ...] [--models QS,US] [--workers N] [--load-factor N]
+                    [--nonlinear-beams [N]] [--json]
     flexsim linearize [AIRCRAFT] [--altitude-m H] [--mach M | --speed-m-s V] [--turn-radius-m R | --climb-deg G] --out FILE.npz
     flexsim validate [CASE ...] [--json]
     flexsim sweep (--turn | --climb) [AIRCRAFT] [--altitudes H ...] [--scheduler ADDRESS] [--out DIR]

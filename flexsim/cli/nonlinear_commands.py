@@ -1,0 +1,146 @@
+"""`flexsim trim --nonlinear-beams` and `flexsim flutter --nonlinear-beams`: the model with the geometrically nonlinear
+beams (:class:`flexsim.model.terms.NonlinearBeams`), through ``fs.trim`` and ``fs.flutter`` as a script would."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+import numpy as np
+
+from flexsim.aircraft.toml_loader import load_aircraft
+from flexsim.atmosphere import speed_of_sound
+from flexsim.cli.validation import CliError, check_altitudes, check_mach_range, json_text
+from flexsim.model.aircraft_model import AircraftModel
+from flexsim.model.terms import NonlinearBeams, Terms
+from flexsim.trimming import SteadyManoeuvre, trim
+from flexsim.trimming.manoeuvre import LOAD_FACTOR_RANGE
+
+__all__ = ["beams_option", "check_load_factor", "nonlinear_trim", "nonlinear_flutter", "NONLINEAR_HELP"]
+
+#: Help of ``--nonlinear-beams`` (trim and flutter).
+NONLINEAR_HELP = ("geometrically nonlinear beams with N elements per flexible component [8] "
+                  "(the aircraft file's ei_chord_nm2 needed; docs/nonlinear-beams.md)")
+
+
+def beams_option(n: int | None) -> NonlinearBeams:
+    """``--nonlinear-beams N`` as the model's term, or a CliError in the option's words."""
+    try:
+        return NonlinearBeams(n)
+    except ValueError:
+        raise CliError(f"--nonlinear-beams = {n!r}: must be an integer in 1-64 (elements per flexible component)") from None
+
+
+def check_load_factor(n: float | None) -> None:
+    """``--load-factor`` inside :data:`LOAD_FACTOR_RANGE`."""
+    lo, hi = LOAD_FACTOR_RANGE
+    if n is not None and not (math.isfinite(n) and lo <= n <= hi):
+        raise CliError(f"--load-factor = {n!r}: must be a load factor in [{lo:g}, {hi:g}] (1: level flight)")
+
+
+def _refuse(args: argparse.Namespace, flags: dict[str, bool], why: str) -> None:
+    given = [flag for flag, on in flags.items() if on]
+    if given:
+        raise CliError(f"{', '.join(given)}: {why}")
+
+
+def nonlinear_trim(args: argparse.Namespace, aircraft, manoeuvre: SteadyManoeuvre, condition) -> int:
+    """``flexsim trim --nonlinear-beams``: the nonlinear trim's angles, controls and tip deflections."""
+    _refuse(args, {"--roots": bool(args.roots), "--formulation": args.formulation is not None},
+            "apply to the linear structure's trim; with --nonlinear-beams the strips resolve the full force on their "
+            "deformed sections and the roots are flexsim.linear.flexible_stability.free_aircraft_spectrum")
+    beams = beams_option(args.nonlinear_beams)
+    model = AircraftModel(aircraft, terms=Terms(nonlinear_beams=beams))
+    point = trim(model, manoeuvre, check_limits=not args.no_limits, classify=False)
+    flex = point.aircraft
+    tips = {name: float(f) for name, f in zip(flex.beam_components, point.tip_deflection_fraction)}
+    u = point.controls
+    out = {"alpha_deg": math.degrees(point.alpha_rad), "theta_deg": math.degrees(point.theta_rad),
+           "gamma_deg": math.degrees(point.climb_angle_rad), "thrust_N": float(u[0]),
+           "aileron_deg": math.degrees(u[1]), "elevator_deg": math.degrees(u[2]), "rudder_deg": math.degrees(u[3]),
+           "max_strip_alpha_deg": point.max_strip_alpha_deg, "residual": point.residual}
+    if args.json:
+        print(json_text({**out, "tip_deflection_fraction": tips, "flight_condition": condition.describe(),
+                         "manoeuvre": manoeuvre.describe(), "terms": point.terms}))
+        return 0
+    print(f"Trim of {aircraft.name} (geometrically nonlinear beams, {beams.elements_per_beam} elements per flexible "
+          f"component): {manoeuvre.describe()}")
+    if condition.derived:
+        print(f"  flight condition : {condition.describe()}")
+    for key, value in out.items():
+        print(f"  {key:<20} {value: .6g}")
+    for name, fraction in tips.items():
+        print(f"  {'tip ' + name:<20} {100.0 * fraction:+.1f} % of its length (vertical, up +)")
+    return 0
+
+
+def nonlinear_flutter(args: argparse.Namespace) -> int:
+    """``flexsim flutter --nonlinear-beams [--load-factor n]``: the wing's flutter about the nonlinear trim at each
+    altitude (:func:`flexsim.linear.flexible_flutter.flexible_flutter` through ``fs.flutter``)."""
+    from flexsim.linear.envelope import flutter_altitudes
+    from flexsim.linear.flutter import flutter
+
+    if args.nonlinear_beams is None:
+        raise CliError(f"--load-factor {args.load_factor:g}: the pull-up's flutter is searched with the geometrically "
+                       "nonlinear beams (--nonlinear-beams); for the linear model use "
+                       "fs.flutter(model, fs.SteadyManoeuvre.pull_up(h, n)) in Python")
+    _refuse(args, {"--wind-tunnel": args.wind_tunnel, "--vg": args.vg is not None, "--mode": bool(args.mode),
+                   "--components": args.components is not None, "--turn-radius-m": args.turn_radius_m is not None,
+                   "--glide": args.glide, "--coordinated": args.coordinated, "--formulation": args.formulation is not None,
+                   "--paper-replication": args.paper_replication,
+                   "--linear-density-altitude-m": args.linear_density_altitude_m is not None,
+                   "--speed-range-m-s": args.speed_range_m_s is not None,
+                   "--speed-step-m-s": args.speed_step_m_s is not None,
+                   "--structural-damping": args.structural_damping is not None},
+            "not available with --nonlinear-beams (the flutter of a free-flying aircraft's wing about its nonlinear "
+            "trim in level flight, climb or pull-up; a clamped wing in a tunnel is fs.nonlinear_wing_tunnel)")
+    if args.models not in ("FS", "QS,US"):  # QS,US: the option's default, not chosen
+        raise CliError(f"--models {args.models}: with --nonlinear-beams the flutter is solved with Peters finite-state "
+                       "strips only (--models FS)")
+    check_load_factor(args.load_factor)
+    if args.load_factor is not None and args.load_factor != 1.0 and args.climb_deg:
+        raise CliError(f"--load-factor {args.load_factor:g}, --climb-deg {args.climb_deg:g}: a pull-up's bottom has "
+                       "gamma = 0; give one of them")
+    beams = beams_option(args.nonlinear_beams)
+    aircraft = load_aircraft(args.aircraft)
+    altitudes = args.altitudes if args.altitudes is not None else flutter_altitudes(aircraft)[0]
+    check_altitudes(altitudes)
+    if args.mach_min is not None and args.mach_max is not None:
+        check_mach_range(args.mach_min, args.mach_max)
+    model = AircraftModel(aircraft, terms=Terms(nonlinear_beams=beams))
+    n = 1.0 if args.load_factor is None else float(args.load_factor)
+    gamma = math.radians(args.climb_deg or 0.0)
+    rows = []
+    for h in altitudes:
+        shape = (SteadyManoeuvre.pull_up(h, n, mach=0.5) if n != 1.0
+                 else SteadyManoeuvre(0.5 * speed_of_sound(h), h, climb_angle_rad=gamma))
+        given = (args.mach_min, args.mach_max)
+        rng = None
+        if any(v is not None for v in given):
+            from flexsim.linear.envelope import search_range
+
+            found = search_range(model.replace(nonlinear_beams=None), shape, mach_min=given[0], mach_max=given[1])
+            rng = (found.mach_min, found.mach_max)
+        point = flutter(model, shape, "unsteady", mach_range=rng, mach_step=args.mach_step)
+        rows.append({"altitude_m": float(h), "load_factor": n, "climb_deg": float(args.climb_deg or 0.0),
+                     "speed_m_s": point.speed_m_s, "mach": point.mach, "frequency_rad_s": point.frequency_rad_s,
+                     "tip_deflection_fraction": point.tip_deflection_fraction,
+                     "scanned_m_s": [float(v) for v in point.speeds_m_s], "warnings": list(point.warnings),
+                     "terms": point.terms})
+    if args.json:
+        print(json_text({"aircraft": aircraft.name, "rows": rows}))
+        return 0
+    print(f"Flutter of {aircraft.name}'s wing about the nonlinear trim (geometrically nonlinear beams, "
+          f"{beams.elements_per_beam} elements per flexible component; Peters finite-state strips), load factor {n:g}")
+    print(f"  {'H [m]':>8} {'V_F [m/s]':>10} {'M_F':>8} {'w_F [rad/s]':>12} {'tip [%]':>8}")
+    for r in rows:
+        if np.isfinite(r["speed_m_s"]):
+            print(f"  {r['altitude_m']:8.0f} {r['speed_m_s']:10.3f} {r['mach']:8.4f} {r['frequency_rad_s']:12.3f} "
+                  f"{100.0 * r['tip_deflection_fraction']:+8.1f}")
+        else:
+            scanned = r["scanned_m_s"]
+            where = f"{scanned[0]:.1f}-{scanned[-1]:.1f} m/s" if scanned else "no trimmable speed"
+            print(f"  {r['altitude_m']:8.0f}   no flutter in the trimmed scan ({where})")
+    for note in dict.fromkeys(w for r in rows for w in r["warnings"]):
+        print(f"note: {note}")
+    return 0

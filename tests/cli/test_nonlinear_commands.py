@@ -1,0 +1,60 @@
+"""``flexsim trim --nonlinear-beams`` and ``flexsim flutter --nonlinear-beams``: the command prints what the API computes
+for the model with the geometrically nonlinear beams (to the printed digits), and refuses what it cannot honour."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+import flexsim as fs
+from flexsim.cli.main import main
+from flexsim.model.terms import NonlinearBeams
+
+#: Speed of sound at 20 km [m/s] (ISA, 216.65 K): the flutter scan below, 34-40 m/s, in Mach.
+A_20KM = 295.0696
+
+
+def _run(argv, capsys):
+    code = main(argv)
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_trim_prints_the_nonlinear_trim(capsys):
+    code, out, _ = _run(["trim", "phc_hale", "--nonlinear-beams", "4", "--json"], capsys)
+    assert code == 0
+    doc = json.loads(out)
+    model = fs.AircraftModel(fs.load_aircraft("phc_hale"), terms=fs.Terms(nonlinear_beams=NonlinearBeams(4)))
+    point = fs.trim(model, fs.SteadyManoeuvre.level(20000.0, speed_m_s=25.0))
+    assert doc["alpha_deg"] == pytest.approx(point.alpha_rad * 57.29577951308232, rel=1e-12)
+    assert doc["terms"]["nonlinear_beams"] == {"elements_per_beam": 4}
+    assert doc["tip_deflection_fraction"]["right_wing"] == pytest.approx(point.tip_deflection_fraction[0], rel=1e-12)
+
+
+def test_flutter_prints_the_nonlinear_flutter_point(capsys):
+    argv = ["flutter", "phc_hale", "--nonlinear-beams", "4", "--altitudes", "20000", "--mach-min", f"{34 / A_20KM:.6f}",
+            "--mach-max", f"{40 / A_20KM:.6f}"]
+    code, out, _ = _run(argv + ["--json"], capsys)
+    assert code == 0
+    row = json.loads(out)["rows"][0]
+    model = fs.AircraftModel(fs.load_aircraft("phc_hale"), terms=fs.Terms(nonlinear_beams=NonlinearBeams(4)))
+    point = fs.flutter(model, fs.SteadyManoeuvre.level(20000.0, speed_m_s=25.0), "unsteady",
+                       mach_range=(round(34 / A_20KM, 6), round(40 / A_20KM, 6)))
+    assert row["speed_m_s"] == pytest.approx(point.speed_m_s, rel=1e-9) and row["terms"] == point.terms
+    code, text, _ = _run(argv, capsys)
+    assert code == 0 and f"{point.speed_m_s:10.3f}" in text and "wing clamped at the trimmed root" in text
+
+
+@pytest.mark.parametrize("extra, words", [
+    (["--models", "QS"], "--models QS: with --nonlinear-beams"),
+    (["--vg", "x.png"], "--vg: not available with --nonlinear-beams"),
+    (["--nonlinear-beams", "0"], "--nonlinear-beams = 0: must be an integer in 1-64"),
+    (["--load-factor", "9"], "--load-factor = 9.0: must be a load factor in [1, 6]"),
+    (["--load-factor", "1.2", "--climb-deg", "2"], "--load-factor 1.2, --climb-deg 2"),
+])
+def test_flutter_refuses_what_it_cannot_honour(extra, words, capsys):
+    argv = ["flutter", "phc_hale", "--altitudes", "20000", *(["--nonlinear-beams"] if "--nonlinear-beams" not in extra
+                                                             else []), *extra]
+    code, _, err = _run(argv, capsys)
+    assert code == 2 and words in err, err
