@@ -160,7 +160,8 @@ def _model_keys(text: str) -> list[str]:
 
 def _flutter(args: argparse.Namespace) -> int:
     if args.nonlinear_beams is not None or args.load_factor is not None:
-        return nonlinear_flutter(args)
+        _check_vg_options(args)
+        return nonlinear_flutter(args, vg_paths)
     keys = _model_keys(args.models)
     if args.wind_tunnel:
         return _wind_tunnel(args, keys)

@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import argparse
 import math
+from pathlib import Path
 
 import numpy as np
 
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.atmosphere import speed_of_sound
-from flexsim.cli.validation import CliError, check_altitudes, check_mach_range, json_text
+from flexsim.cli.validation import CliError, check_altitudes, check_mach_range, check_writable_dir, json_text
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.terms import NonlinearBeams, Terms
 from flexsim.trimming import SteadyManoeuvre, trim
@@ -74,17 +75,20 @@ def nonlinear_trim(args: argparse.Namespace, aircraft, manoeuvre: SteadyManoeuvr
     return 0
 
 
-def nonlinear_flutter(args: argparse.Namespace) -> int:
-    """``flexsim flutter --nonlinear-beams [--load-factor n]``: the wing's flutter about the nonlinear trim at each
-    altitude (:func:`flexsim.linear.flexible_flutter.flexible_flutter` through ``fs.flutter``)."""
-    from flexsim.linear.envelope import flutter_altitudes
+def nonlinear_flutter(args: argparse.Namespace, vg_paths) -> int:
+    """``flexsim flutter --nonlinear-beams [--load-factor n] [--vg FILE.png]``: the wing's flutter about the nonlinear
+    trim at each altitude (:func:`flexsim.linear.flexible_flutter.flexible_flutter` through ``fs.flutter``) and its V-g
+    diagram (``fs.vg_diagram``); ``vg_paths(vg, altitudes)`` names each altitude's PNG."""
+    from flexsim.io.output_paths import check_not_link
+    from flexsim.linear.envelope import flutter_altitudes, search_range
     from flexsim.linear.flutter import flutter
+    from flexsim.linear.vg import vg_diagram
 
     if args.nonlinear_beams is None:
         raise CliError(f"--load-factor {args.load_factor:g}: the pull-up's flutter is searched with the geometrically "
                        "nonlinear beams (--nonlinear-beams); for the linear model use "
                        "fs.flutter(model, fs.SteadyManoeuvre.pull_up(h, n)) in Python")
-    _refuse(args, {"--wind-tunnel": args.wind_tunnel, "--vg": args.vg is not None, "--mode": bool(args.mode),
+    _refuse(args, {"--wind-tunnel": args.wind_tunnel, "--mode": bool(args.mode),
                    "--components": args.components is not None, "--turn-radius-m": args.turn_radius_m is not None,
                    "--glide": args.glide, "--coordinated": args.coordinated, "--formulation": args.formulation is not None,
                    "--paper-replication": args.paper_replication,
@@ -107,28 +111,36 @@ def nonlinear_flutter(args: argparse.Namespace) -> int:
     check_altitudes(altitudes)
     if args.mach_min is not None and args.mach_max is not None:
         check_mach_range(args.mach_min, args.mach_max)
+    paths = vg_paths(args.vg, list(altitudes)) if args.vg is not None else []
+    for path in paths:  # every PNG's path checked before the search
+        check_not_link("--vg", path)
+        check_writable_dir("--vg", str(path), path.parent if str(path.parent) else Path("."))
     model = AircraftModel(aircraft, terms=Terms(nonlinear_beams=beams))
     n = 1.0 if args.load_factor is None else float(args.load_factor)
     gamma = math.radians(args.climb_deg or 0.0)
-    rows = []
-    for h in altitudes:
+    rows, vg_lines = [], []
+    for i, h in enumerate(altitudes):
         shape = (SteadyManoeuvre.pull_up(h, n, mach=0.5) if n != 1.0
                  else SteadyManoeuvre(0.5 * speed_of_sound(h), h, climb_angle_rad=gamma))
-        given = (args.mach_min, args.mach_max)
-        rng = None
-        if any(v is not None for v in given):
-            from flexsim.linear.envelope import search_range
-
-            found = search_range(model.replace(nonlinear_beams=None), shape, mach_min=given[0], mach_max=given[1])
-            rng = (found.mach_min, found.mach_max)
+        # the envelope (or stall estimate) of the model's linear sibling, or the range given
+        found = search_range(model.replace(nonlinear_beams=None), shape, mach_min=args.mach_min, mach_max=args.mach_max)
+        rng = (found.mach_min, found.mach_max)
         point = flutter(model, shape, "unsteady", mach_range=rng, mach_step=args.mach_step)
+        if paths:
+            speeds = np.linspace(rng[0], rng[1], args.vg_points) * speed_of_sound(h)
+            diagram = vg_diagram(model, manoeuvre=shape, models=("FS",), speeds_m_s=speeds)
+            diagram.plot(paths[i])
+            first = diagram.flutter("unsteady")
+            said = (f"{first.label} crosses at {first.speed_m_s:.3f} m/s, {first.frequency_rad_s:.3f} rad/s"
+                    if first is not None else "no branch crosses into instability")
+            vg_lines.append(f"V-g diagram H = {h:.0f} m: {paths[i]} ({said})")
         rows.append({"altitude_m": float(h), "load_factor": n, "climb_deg": float(args.climb_deg or 0.0),
                      "speed_m_s": point.speed_m_s, "mach": point.mach, "frequency_rad_s": point.frequency_rad_s,
                      "tip_deflection_fraction": point.tip_deflection_fraction,
                      "scanned_m_s": [float(v) for v in point.speeds_m_s], "warnings": list(point.warnings),
                      "terms": point.terms})
     if args.json:
-        print(json_text({"aircraft": aircraft.name, "rows": rows}))
+        print(json_text({"aircraft": aircraft.name, "rows": rows, "vg": vg_lines}))
         return 0
     print(f"Flutter of {aircraft.name}'s wing about the nonlinear trim (geometrically nonlinear beams, "
           f"{beams.elements_per_beam} elements per flexible component; Peters finite-state strips), load factor {n:g}")
@@ -141,6 +153,8 @@ def nonlinear_flutter(args: argparse.Namespace) -> int:
             scanned = r["scanned_m_s"]
             where = f"{scanned[0]:.1f}-{scanned[-1]:.1f} m/s" if scanned else "no trimmable speed"
             print(f"  {r['altitude_m']:8.0f}   no flutter in the trimmed scan ({where})")
+    for line in vg_lines:
+        print(line)
     for note in dict.fromkeys(w for r in rows for w in r["warnings"]):
         print(f"note: {note}")
     return 0

@@ -27,12 +27,12 @@ from scipy.optimize import brentq
 from flexsim.atmosphere import isa
 from flexsim.model.aircraft_model import check_model
 from flexsim.model.terms import NonlinearBeams
-from flexsim.model.beam_aero import TunnelFlow, aeroelastic_system, static_stiffness
+from flexsim.model.beam_aero import AeroelasticSystem, TunnelFlow, aeroelastic_system, static_stiffness
 from flexsim.structure.strain_beam import BeamKinematics, BeamProperties, mass_centre_jacobian
 from flexsim.trimming.flexible_trim import FlexibleTrimError, FlexibleTrimPoint, trim_flexible
 from flexsim.trimming.manoeuvre import SteadyManoeuvre
 
-__all__ = ["SteadyInertialLoad", "FlexibleFlutterPoint", "wing_stability", "flexible_flutter", "NEGLECTED"]
+__all__ = ["SteadyInertialLoad", "FlexibleFlutterPoint", "wing_system", "wing_stability", "flexible_flutter", "NEGLECTED"]
 
 #: The approximation every result of this module carries.
 NEGLECTED = ("wing clamped at the trimmed root: coupling with the rigid-body motion and the other wing neglected "
@@ -64,6 +64,29 @@ class SteadyInertialLoad:
         return np.einsum("pik,pi->k", jc, mass[:, None] * (np.asarray(self.gravity_body_m_s2, float) - acc))
 
 
+def wing_system(model, point: FlexibleTrimPoint, component: str = "right_wing",
+                inflow_states: int = 6) -> AeroelasticSystem:
+    """The linear aeroelastic system of ``component``'s wing, clamped at its trimmed root, about the trim ``point``
+    (module docstring): ``x = [δε, δε̇, λ]`` of the wing's strains and its strips' Peters inflow states
+    (:func:`flexsim.model.beam_aero.aeroelastic_system`), with the preload's and the steady airloads' stiffness."""
+    flex = point.aircraft
+    i = flex.beam_index(component)
+    beam = flex.structure.beams[i]
+    eps = point.strains[flex.structure.strain_slices()[i]]
+    aero = flex.beam_strips[i].aero
+    if inflow_states != aero.inflow_states:
+        aero = replace(aero, inflow_states=inflow_states)
+    air = -(point.velocity_m_s + np.cross(point.rate_rad_s, beam.root_position_m))
+    speed = float(np.linalg.norm(air))
+    flow = TunnelFlow(speed, point.density_kg_m3, air / speed)
+    theta = point.theta_rad
+    g = float(model.terms.gravity_m_s2)
+    preload = SteadyInertialLoad(np.array([-g * np.sin(theta), 0.0, g * np.cos(theta)]), point.velocity_m_s,
+                                 point.rate_rad_s)
+    stiffness = static_stiffness(beam, eps, preload, aero, flow)
+    return aeroelastic_system(beam, aero, flow, eps, stiffness)
+
+
 def wing_stability(model, point: FlexibleTrimPoint, component: str = "right_wing", inflow_states: int = 6,
                    max_frequency_rad_s: float = 200.0) -> tuple[float, float, NDArray]:
     """Stability of ``component``'s wing about the trim ``point`` (module docstring).
@@ -80,23 +103,7 @@ def wing_stability(model, point: FlexibleTrimPoint, component: str = "right_wing
         ``|Im λ|`` of that root.
     roots : ndarray of complex
     """
-    flex = point.aircraft
-    i = flex.beam_index(component)
-    beam = flex.structure.beams[i]
-    eps = point.strains[flex.structure.strain_slices()[i]]
-    aero = flex.beam_strips[i].aero
-    if inflow_states != aero.inflow_states:
-        aero = replace(aero, inflow_states=inflow_states)
-    air = -(point.velocity_m_s + np.cross(point.rate_rad_s, beam.root_position_m))
-    speed = float(np.linalg.norm(air))
-    flow = TunnelFlow(speed, point.density_kg_m3, air / speed)
-    theta = point.theta_rad
-    g = float(model.terms.gravity_m_s2)
-    preload = SteadyInertialLoad(np.array([-g * np.sin(theta), 0.0, g * np.cos(theta)]), point.velocity_m_s,
-                                 point.rate_rad_s)
-    stiffness = static_stiffness(beam, eps, preload, aero, flow)
-    system = aeroelastic_system(beam, aero, flow, eps, stiffness)
-    roots = np.linalg.eigvals(system.state_matrix)
+    roots = np.linalg.eigvals(wing_system(model, point, component, inflow_states).state_matrix)
     ratio = roots.real / np.maximum(np.abs(roots), 1e-300)
     oscillatory = ((np.abs(roots.imag) > 1e-6 * np.abs(roots)) & (np.abs(ratio) > _NEUTRAL)
                    & (np.abs(roots.imag) <= max_frequency_rad_s))

@@ -392,6 +392,29 @@ def _roots(spec: Spectrum, model: AircraftModel) -> list[tuple[Mode, str, str]]:
     return out
 
 
+def _nonlinear_vg(model: AircraftModel, altitude_m, speeds_m_s, keys: list[str], manoeuvre, n_speeds: int,
+                  refine: bool) -> VgDiagram:
+    """:func:`vg_diagram` of a model with the geometrically nonlinear beams: its wing about the nonlinear trim at each
+    speed (:func:`flexsim.linear.flexible_vg.flexible_vg`), Peters strips only."""
+    from flexsim.linear.envelope import search_range
+    from flexsim.linear.flexible_vg import flexible_vg
+
+    if keys != ["FS"]:
+        raise ValueError(f"models = {keys!r}: the V-g diagram of the geometrically nonlinear beams (nonlinear_beams = "
+                         f"{model.terms.nonlinear_beams!r}) is solved with Peters finite-state strips only: models=('FS',)")
+    if model.variant.kind.value != "free":
+        raise ValueError(f"model.variant = {model.variant.kind.value!r}: the nonlinear beams' V-g diagram is of the free "
+                         "aircraft's wing about its trim; a clamped wing in a tunnel is flexsim.nonlinear_wing_tunnel")
+    if manoeuvre is None:
+        if altitude_m is None:
+            raise ValueError("altitude_m: give the altitude of the sweep (or a manoeuvre)")
+        manoeuvre = SteadyManoeuvre.level(float(altitude_m), mach=0.5)
+    if speeds_m_s is None:  # the envelope (or stall estimate) of the model's linear sibling
+        rng = search_range(model.replace(nonlinear_beams=None), manoeuvre)
+        speeds_m_s = np.linspace(rng.mach_min, rng.mach_max, n_speeds) * speed_of_sound(float(manoeuvre.altitude_m))
+    return flexible_vg(model, manoeuvre, speeds_m_s, refine=refine)
+
+
 def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_m_s: Sequence[float] | None = None,
                models: Sequence[str] = ("QS", "FS", "US"), manoeuvre: SteadyManoeuvre | None = None,
                n_speeds: int = 25, refine: bool = True) -> VgDiagram:
@@ -420,13 +443,15 @@ def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_
     Returns
     -------
     VgDiagram
+        For a model with ``terms.nonlinear_beams`` (``models=("FS",)`` only): its wing about the nonlinear trim at
+        each speed (:func:`flexsim.linear.flexible_vg.flexible_vg`).
 
     Raises
     ------
     ValueError
         For a bad argument (named, with the allowed values).
     """
-    check_model(model)
+    check_model(model, nonlinear=True)
     from flexsim.linear.envelope import search_range
     from flexsim.linear.flutter import FlutterAnalysis, SharedEvaluations, _check_flutter_model
 
@@ -436,6 +461,8 @@ def vg_diagram(model: AircraftModel, altitude_m: float | None = None, *, speeds_
         raise ValueError(f"models = {list(models)!r}: each must be one of {', '.join(VG_MODELS)}")
     if isinstance(n_speeds, bool) or not (isinstance(n_speeds, int) and n_speeds >= 3):
         raise ValueError(f"n_speeds = {n_speeds!r}: must be an integer >= 3")
+    if model.terms.nonlinear_beams is not None:
+        return _nonlinear_vg(model, altitude_m, speeds_m_s, keys, manoeuvre, n_speeds, refine)
     if model.aero is None:
         raise ValueError("model.aero = None: a model without aerodynamics has no V-g diagram")
     restrained = model.variant.kind.value == "restrained"

@@ -46,9 +46,22 @@ def test_flutter_prints_the_nonlinear_flutter_point(capsys):
     assert code == 0 and f"{point.speed_m_s:10.3f}" in text and "wing clamped at the trimmed root" in text
 
 
+def test_flutter_writes_the_nonlinear_vg_diagram(tmp_path, capsys):
+    png = tmp_path / "vg.png"
+    argv = ["flutter", "phc_hale", "--nonlinear-beams", "4", "--altitudes", "20000", "--mach-min", f"{34 / A_20KM:.6f}",
+            "--mach-max", f"{40 / A_20KM:.6f}", "--vg", str(png), "--vg-points", "4"]
+    code, text, _ = _run(argv, capsys)
+    assert code == 0 and png.stat().st_size > 0
+    line = next(ln for ln in text.splitlines() if ln.startswith("V-g diagram H = 20000 m"))
+    speed = float(line.split(" crosses at ")[1].split(" m/s")[0])
+    table = next(ln for ln in text.splitlines() if ln.strip().startswith("20000"))
+    assert abs(speed - float(table.split()[1])) < 0.05  # two routes to one point: crossing and search tolerances
+
+
 @pytest.mark.parametrize("extra, words", [
     (["--models", "QS"], "--models QS: with --nonlinear-beams"),
-    (["--vg", "x.png"], "--vg: not available with --nonlinear-beams"),
+    (["--vg", "x.txt"], "--vg 'x.txt': must name a .png file"),
+    (["--mode", "x.rrd"], "--mode: not available with --nonlinear-beams"),
     (["--nonlinear-beams", "0"], "--nonlinear-beams = 0: must be an integer in 1-64"),
     (["--load-factor", "9"], "--load-factor = 9.0: must be a load factor in [1, 6]"),
     (["--load-factor", "1.2", "--climb-deg", "2"], "--load-factor 1.2, --climb-deg 2"),

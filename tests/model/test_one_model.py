@@ -230,6 +230,8 @@ def test_nonlinear_beams_reach_trim_and_flutter():
         fs.flutter(model, level)
     with pytest.raises(ValueError, match="classify = True"):
         trim(model, level, classify=True)
+    vg = vg_diagram(model, manoeuvre=level, models=("FS",), speeds_m_s=(30.0, 31.0), refine=False)
+    assert vg.terms["unsteady"] == fp.terms
     for refused in (lambda: linear_system(model, point), lambda: vg_diagram(model, manoeuvre=level, models=("QS",)),
                     lambda: wind_tunnel(model, speed_range=(10.0, 20.0)), lambda: fs.simulate(model, point, 1.0),
                     lambda: fs.spectrum(model, np.zeros(model.layout.n_states), np.zeros(4))):
