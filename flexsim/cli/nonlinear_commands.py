@@ -11,6 +11,7 @@ import numpy as np
 
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.atmosphere import speed_of_sound
+from flexsim.linear.flexible_flutter import MAX_FREQUENCY_RAD_S
 from flexsim.cli.validation import CliError, check_altitudes, check_mach_range, check_writable_dir, json_text
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.terms import NonlinearBeams, Terms
@@ -47,12 +48,20 @@ def _refuse(args: argparse.Namespace, flags: dict[str, bool], why: str) -> None:
 
 def nonlinear_trim(args: argparse.Namespace, aircraft, manoeuvre: SteadyManoeuvre, condition) -> int:
     """``flexsim trim --nonlinear-beams``: the nonlinear trim's angles, controls and tip deflections."""
-    _refuse(args, {"--roots": bool(args.roots), "--formulation": args.formulation is not None},
-            "apply to the linear structure's trim; with --nonlinear-beams the strips resolve the full force on their "
-            "deformed sections and the roots are flexsim.linear.flexible_stability.free_aircraft_spectrum")
+    _refuse(args, {"--formulation": args.formulation is not None},
+            "applies to the linear structure's trim; with --nonlinear-beams the strips resolve the full force on their "
+            "deformed sections")
+    if args.roots == "unsteady":
+        raise CliError("--roots unsteady: the free aircraft's roots about the nonlinear trim are computed with "
+                       "quasi-steady strips; give --roots quasi-steady")
     beams = beams_option(args.nonlinear_beams)
     model = AircraftModel(aircraft, terms=Terms(nonlinear_beams=beams))
     point = trim(model, manoeuvre, check_limits=not args.no_limits, classify=False)
+    spectrum = None
+    if args.roots:
+        from flexsim.linear.flexible_stability import free_aircraft_spectrum
+
+        spectrum = free_aircraft_spectrum(model, point)
     flex = point.aircraft
     tips = {name: float(f) for name, f in zip(flex.beam_components, point.tip_deflection_fraction)}
     u = point.controls
@@ -60,9 +69,13 @@ def nonlinear_trim(args: argparse.Namespace, aircraft, manoeuvre: SteadyManoeuvr
            "gamma_deg": math.degrees(point.climb_angle_rad), "thrust_N": float(u[0]),
            "aileron_deg": math.degrees(u[1]), "elevator_deg": math.degrees(u[2]), "rudder_deg": math.degrees(u[3]),
            "max_strip_alpha_deg": point.max_strip_alpha_deg, "residual": point.residual}
+    roots = None if spectrum is None else [
+        {"name": m.name, "kind": m.kind, "real": m.eigenvalue.real, "imag": m.eigenvalue.imag,
+         "rigid_share": m.rigid_share} for m in spectrum.modes]
     if args.json:
+        extra = {} if spectrum is None else {"roots": roots, "verdict": spectrum.verdict()}
         print(json_text({**out, "tip_deflection_fraction": tips, "flight_condition": condition.describe(),
-                         "manoeuvre": manoeuvre.describe(), "terms": point.terms}))
+                         "manoeuvre": manoeuvre.describe(), "terms": point.terms, **extra}))
         return 0
     print(f"Trim of {aircraft.name} (geometrically nonlinear beams, {beams.elements_per_beam} elements per flexible "
           f"component): {manoeuvre.describe()}")
@@ -72,6 +85,15 @@ def nonlinear_trim(args: argparse.Namespace, aircraft, manoeuvre: SteadyManoeuvr
         print(f"  {key:<20} {value: .6g}")
     for name, fraction in tips.items():
         print(f"  {'tip ' + name:<20} {100.0 * fraction:+.1f} % of its length (vertical, up +)")
+    if spectrum is not None:
+        band = MAX_FREQUENCY_RAD_S
+        print(f"Roots of the free aircraft linearised about the nonlinear trim (quasi-steady strips; below {band:g} rad/s, "
+              "the beams' converged band):")
+        print(f"  {'kind':<8} {'real [1/s]':>11} {'imag [rad/s]':>12}  mode")
+        for r in roots:
+            if abs(complex(r["real"], r["imag"])) <= band:
+                print(f"  {r['kind']:<8} {r['real']:11.5f} {r['imag']:12.5f}  {r['name']}")
+        print(spectrum.verdict())
     return 0
 
 

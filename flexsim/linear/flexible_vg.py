@@ -23,7 +23,7 @@ from typing import Sequence
 import numpy as np
 
 from flexsim.atmosphere import speed_of_sound
-from flexsim.linear.flexible_flutter import NEGLECTED, wing_system
+from flexsim.linear.flexible_flutter import MAX_FREQUENCY_RAD_S, NEGLECTED, wing_system
 from flexsim.linear.vg import (CROSSING_ITERATIONS, CROSSING_TOL_M_S, MIN_FREQUENCY_RAD_S, MIN_MAC, VgCrossing,
                                VgDiagram, VgTrack, mac, track_branches)
 from flexsim.model.aircraft_model import check_model
@@ -64,7 +64,7 @@ def _kind(beam, strains: np.ndarray) -> str:
 
 def flexible_vg(model, manoeuvre: SteadyManoeuvre, speeds_m_s: Sequence[float], *, component: str = "right_wing",
                 elements_per_beam: int | None = None, inflow_states: int | None = None,
-                max_frequency_rad_s: float = 200.0, refine: bool = True) -> VgDiagram:
+                max_frequency_rad_s: float = MAX_FREQUENCY_RAD_S, refine: bool = True) -> VgDiagram:
     """The V-g / V-f diagram of ``component``'s wing about the nonlinear trim (module docstring).
 
     Parameters

@@ -32,6 +32,16 @@ def test_trim_prints_the_nonlinear_trim(capsys):
     assert doc["tip_deflection_fraction"]["right_wing"] == pytest.approx(point.tip_deflection_fraction[0], rel=1e-12)
 
 
+def test_trim_prints_the_named_roots_about_the_nonlinear_trim(capsys):
+    code, out, _ = _run(["trim", "phc_hale", "--nonlinear-beams", "4", "--roots", "quasi-steady", "--json"], capsys)
+    assert code == 0
+    doc = json.loads(out)
+    names = [r["name"] for r in doc["roots"]]
+    assert "phugoid" in names and "short period" in names and doc["verdict"].startswith(("stable", "unstable"))
+    code, _, err = _run(["trim", "phc_hale", "--nonlinear-beams", "4", "--roots"], capsys)
+    assert code == 2 and "--roots unsteady: the free aircraft's roots about the nonlinear trim" in err
+
+
 def test_flutter_prints_the_nonlinear_flutter_point(capsys):
     argv = ["flutter", "phc_hale", "--nonlinear-beams", "4", "--altitudes", "20000", "--mach-min", f"{34 / A_20KM:.6f}",
             "--mach-max", f"{40 / A_20KM:.6f}"]

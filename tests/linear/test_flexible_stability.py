@@ -44,6 +44,10 @@ def test_stiff_aircraft_has_the_linear_models_flight_modes():
     (phugoid,) = spectrum.phugoid
     assert phugoid.imag == pytest.approx(abs(modes["phugoid"].imag), rel=5e-3)
     assert phugoid.real == pytest.approx(modes["phugoid"].real, rel=0.1)
+    # the modes are named as the linear model names them (kinetic energy in the rigid-body velocities)
+    named = {m.name: m.eigenvalue for m in spectrum.modes if m.kind == "rigid"}
+    for name in ("spiral", "Dutch roll", "phugoid"):
+        assert named[name] == pytest.approx(modes[name] if modes[name].imag >= 0 else modes[name].conjugate(), rel=0.1)
 
 
 def test_flexible_hale_phugoid_is_found():
@@ -54,3 +58,7 @@ def test_flexible_hale_phugoid_is_found():
     (phugoid,) = spectrum.phugoid
     assert 0.1 < phugoid.imag < 1.0
     assert np.sum(np.abs(spectrum.eigenvalues) < 1e-6) >= 2
+    names = [m.name for m in spectrum.modes]
+    assert "phugoid" in names and "wings bending 1 (antisymmetric)" in names and "wings bending 1 (symmetric)" in names
+    # an unstable mode of the verdict lies in the converged band
+    assert all(abs(m.eigenvalue) <= 200.0 for m in spectrum.unstable)
