@@ -1,0 +1,226 @@
+"""Compiled kernels of the strain-based beam's kinematics (:mod:`flexsim.structure.strain_beam`).
+
+The one implementation of the exponential map of SE(3) and its left Jacobian (Barfoot, *State Estimation for
+Robotics*, 2017, eqs. 7.80-7.86) and of the chain of element transforms and point Jacobians of a beam of
+constant-strain elements (Su & Cesnik, Int. J. Solids Struct. 48, 2011, eqs. 1-5); the module docstring of
+:mod:`flexsim.structure.strain_beam` gives the formulas, frames and units. Everything is written with explicit
+loops over 3-vectors and 3 × 3 matrices: a beam of a few tens of elements costs microseconds, where the same
+steps in NumPy cost a call overhead each.
+
+The θ-coefficients switch to their Taylor series below θ = 1e-2 (the closed forms lose digits there).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+_jit = njit(cache=True, nogil=True)
+
+
+@_jit
+def _coefficients(theta):
+    """sinθ/θ, (1-cosθ)/θ², (θ-sinθ)/θ³, (θ²+2cosθ-2)/(2θ⁴), (2θ-3sinθ+θcosθ)/(2θ⁵)."""
+    s2 = theta * theta
+    if theta < 1e-2:
+        return (1 - s2 / 6 + s2 * s2 / 120, 0.5 - s2 / 24 + s2 * s2 / 720, 1 / 6 - s2 / 120 + s2 * s2 / 5040,
+                1 / 24 - s2 / 720 + s2 * s2 / 40320, 1 / 120 - s2 / 2520 + s2 * s2 / 120960)
+    t, t2 = theta, s2
+    s, c = np.sin(t), np.cos(t)
+    return (s / t, (1 - c) / t2, (t - s) / (t2 * t), (t2 + 2 * c - 2) / (2 * t2 * t2),
+            (2 * t - 3 * s + t * c) / (2 * t2 * t2 * t))
+
+
+@_jit
+def _hat(v, out):
+    out[0, 0], out[0, 1], out[0, 2] = 0.0, -v[2], v[1]
+    out[1, 0], out[1, 1], out[1, 2] = v[2], 0.0, -v[0]
+    out[2, 0], out[2, 1], out[2, 2] = -v[1], v[0], 0.0
+
+
+@_jit
+def _mm(a, b, out):
+    for i in range(3):
+        for j in range(3):
+            out[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j] + a[i, 2] * b[2, j]
+
+
+@_jit
+def _exp_one(rho, phi, rot, pos):
+    """``R = I + sinc φ^ + a1 φ^²`` and ``p = J(φ) ρ`` (Barfoot eqs. 7.80-7.83), written into rot (3, 3), pos (3,)."""
+    theta = np.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
+    sinc, a1, a2, _, _ = _coefficients(theta)
+    ph = np.empty((3, 3))
+    ph2 = np.empty((3, 3))
+    _hat(phi, ph)
+    _mm(ph, ph, ph2)
+    for i in range(3):
+        acc = 0.0
+        for j in range(3):
+            eye = 1.0 if i == j else 0.0
+            rot[i, j] = eye + sinc * ph[i, j] + a1 * ph2[i, j]
+            acc += (eye + a1 * ph[i, j] + a2 * ph2[i, j]) * rho[j]
+        pos[i] = acc
+
+
+@_jit
+def _left_jacobian_one(rho, phi, out):
+    """``𝒥 = [[J, Q], [0, J]]`` (Barfoot eqs. 7.85-7.86; translation first), written into out (6, 6)."""
+    theta = np.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
+    _, a1, a2, a3, a4 = _coefficients(theta)
+    ph = np.empty((3, 3))
+    rh = np.empty((3, 3))
+    ph2 = np.empty((3, 3))
+    pr = np.empty((3, 3))
+    rp = np.empty((3, 3))
+    prp = np.empty((3, 3))
+    p2r = np.empty((3, 3))
+    rp2 = np.empty((3, 3))
+    prpp = np.empty((3, 3))
+    pprp = np.empty((3, 3))
+    _hat(phi, ph)
+    _hat(rho, rh)
+    _mm(ph, ph, ph2)
+    _mm(ph, rh, pr)
+    _mm(rh, ph, rp)
+    _mm(pr, ph, prp)
+    _mm(ph2, rh, p2r)
+    _mm(rh, ph2, rp2)
+    _mm(prp, ph, prpp)
+    _mm(ph, prp, pprp)
+    for i in range(6):
+        for j in range(6):
+            out[i, j] = 0.0
+    for i in range(3):
+        for j in range(3):
+            eye = 1.0 if i == j else 0.0
+            jac = eye + a1 * ph[i, j] + a2 * ph2[i, j]
+            out[i, j] = jac
+            out[3 + i, 3 + j] = jac
+            out[i, 3 + j] = (0.5 * rh[i, j] + a2 * (pr[i, j] + rp[i, j] + prp[i, j])
+                             + a3 * (p2r[i, j] + rp2[i, j] - 3.0 * prp[i, j]) + a4 * (prpp[i, j] + pprp[i, j]))
+
+
+@_jit
+def se3_exp_batch(rho, phi, rot, pos):
+    """:func:`_exp_one` over rows: rho, phi (m, 3) -> rot (m, 3, 3), pos (m, 3)."""
+    for k in range(rho.shape[0]):
+        _exp_one(rho[k], phi[k], rot[k], pos[k])
+
+
+@_jit
+def se3_left_jacobian_batch(rho, phi, out):
+    """:func:`_left_jacobian_one` over rows: rho, phi (m, 3) -> out (m, 6, 6)."""
+    for k in range(rho.shape[0]):
+        _left_jacobian_one(rho[k], phi[k], out[k])
+
+
+@_jit
+def _twist_columns(rot, pos, strain, length, first, z):
+    """Spatial-twist Jacobian ``Ad(T) 𝒥(ξ) ℓ B`` (6, ns) of a piece of element of length ``length`` from the frame
+    (rot, pos), strains ``[e, κ]``; ``first``: index of the first free strain (0 extensible, 1 not)."""
+    rho = np.zeros(3)
+    rho[0] = length * (1.0 + strain[0])
+    phi = np.empty(3)
+    for i in range(3):
+        phi[i] = length * strain[1 + i]
+    jl = np.empty((6, 6))
+    _left_jacobian_one(rho, phi, jl)
+    ph = np.empty((3, 3))
+    _hat(pos, ph)
+    phr = np.empty((3, 3))
+    _mm(ph, rot, phr)
+    ns = 4 - first
+    for c in range(ns):
+        k = c + first  # 0: extension (column e1 of the translation), 1-3: curvature about e_(k-1) (rotation)
+        jt = np.empty(3)
+        jb = np.empty(3)
+        for i in range(3):
+            if k == 0:
+                jt[i], jb[i] = length * jl[i, 0], length * jl[3 + i, 0]
+            else:
+                jt[i], jb[i] = length * jl[i, 2 + k], length * jl[3 + i, 2 + k]
+        for i in range(3):
+            top = 0.0
+            bottom = 0.0
+            for j in range(3):
+                top += rot[i, j] * jt[j] + phr[i, j] * jb[j]
+                bottom += rot[i, j] * jb[j]
+            z[i, c] = top
+            z[3 + i, c] = bottom
+
+
+@_jit
+def beam_chain(strains, ell, root_rot, root_pos, sigma, first, node_rot, node_pos, prot, ppos, jac_pos, jac_rot,
+               tip_pos, tip_rot):
+    """Frames and Jacobians of a beam (outputs written in place; shapes as in ``BeamKinematics``).
+
+    strains (N, 4); ell element length [m]; root_rot (3, 3), root_pos (3,); sigma (G,) Gauss fractions of an element;
+    first: 0 (extensible) or 1. Outputs: node_rot (N+1, 3, 3), node_pos (N+1, 3), prot (P, 3, 3), ppos (P, 3),
+    jac_pos, jac_rot (P, 3, n), tip_pos, tip_rot (3, n), P = N G, n = N (4 - first).
+    """
+    n_el = strains.shape[0]
+    ns = 4 - first
+    n_g = sigma.shape[0]
+    node_rot[0] = root_rot
+    node_pos[0] = root_pos
+    rho = np.zeros(3)
+    phi = np.empty(3)
+    r_e = np.empty((3, 3))
+    p_e = np.empty(3)
+    z = np.empty((6, ns))
+    twist = np.zeros((6, n_el * ns))  # the spatial twists of the whole elements before the current point
+    for j in range(n_el):
+        rho[0] = ell * (1.0 + strains[j, 0])
+        for i in range(3):
+            phi[i] = ell * strains[j, 1 + i]
+        _exp_one(rho, phi, r_e, p_e)
+        _mm(node_rot[j], r_e, node_rot[j + 1])
+        for i in range(3):
+            node_pos[j + 1, i] = node_pos[j, i] + (node_rot[j, i, 0] * p_e[0] + node_rot[j, i, 1] * p_e[1]
+                                                   + node_rot[j, i, 2] * p_e[2])
+    for j in range(n_el):
+        for g in range(n_g):
+            f = sigma[g]
+            k = j * n_g + g
+            rho[0] = f * ell * (1.0 + strains[j, 0])
+            for i in range(3):
+                phi[i] = f * ell * strains[j, 1 + i]
+            _exp_one(rho, phi, r_e, p_e)
+            _mm(node_rot[j], r_e, prot[k])
+            for i in range(3):
+                ppos[k, i] = node_pos[j, i] + (node_rot[j, i, 0] * p_e[0] + node_rot[j, i, 1] * p_e[1]
+                                               + node_rot[j, i, 2] * p_e[2])
+            _twist_columns(node_rot[j], node_pos[j], strains[j], f * ell, first, z)
+            for c in range(j * ns):
+                for i in range(3):
+                    jac_rot[k, i, c] = twist[3 + i, c]
+            for c in range(ns):
+                for i in range(3):
+                    jac_rot[k, i, j * ns + c] = z[3 + i, c]
+            for c in range(j * ns + ns, n_el * ns):
+                for i in range(3):
+                    jac_rot[k, i, c] = 0.0
+            x, y, w = ppos[k, 0], ppos[k, 1], ppos[k, 2]
+            for c in range(n_el * ns):
+                if c < j * ns:
+                    t0, t1, t2 = twist[0, c], twist[1, c], twist[2, c]
+                elif c < j * ns + ns:
+                    t0, t1, t2 = z[0, c - j * ns], z[1, c - j * ns], z[2, c - j * ns]
+                else:
+                    t0, t1, t2 = 0.0, 0.0, 0.0
+                r0, r1, r2 = jac_rot[k, 0, c], jac_rot[k, 1, c], jac_rot[k, 2, c]
+                jac_pos[k, 0, c] = t0 - (y * r2 - w * r1)
+                jac_pos[k, 1, c] = t1 - (w * r0 - x * r2)
+                jac_pos[k, 2, c] = t2 - (x * r1 - y * r0)
+        _twist_columns(node_rot[j], node_pos[j], strains[j], ell, first, z)
+        for c in range(ns):
+            for i in range(6):
+                twist[i, j * ns + c] = z[i, c]
+    x, y, w = node_pos[n_el, 0], node_pos[n_el, 1], node_pos[n_el, 2]
+    for c in range(n_el * ns):
+        r0, r1, r2 = twist[3, c], twist[4, c], twist[5, c]
+        tip_rot[0, c], tip_rot[1, c], tip_rot[2, c] = r0, r1, r2
+        tip_pos[0, c] = twist[0, c] - (y * r2 - w * r1)
+        tip_pos[1, c] = twist[1, c] - (w * r0 - x * r2)
+        tip_pos[2, c] = twist[2, c] - (x * r1 - y * r0)
