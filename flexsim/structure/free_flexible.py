@@ -66,6 +66,14 @@ def _hat(v: NDArray) -> NDArray:
     return out
 
 
+def _cross(a: NDArray, b: NDArray) -> NDArray:
+    """``a × b`` over the last axis (length 3), broadcast; explicit components (cheaper than ``np.cross`` on the
+    small arrays of the equations)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack(np.broadcast_arrays(a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
+
+
 def _vee(m: NDArray) -> NDArray:
     """Axial vector of the skew part of ``m`` (..., 3, 3)."""
     return 0.5 * np.stack([m[..., 2, 1] - m[..., 1, 2], m[..., 0, 2] - m[..., 2, 0], m[..., 1, 0] - m[..., 0, 1]], -1)
@@ -282,11 +290,15 @@ class _Points:
     alpha_rel: NDArray    # (P, 3) J̇_θ ε̇
 
 
-def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | None) -> _Points:
+def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | None,
+            kinematics: list | None = None) -> _Points:
+    """The quadrature points of all beams at ``eps`` (``kinematics``: the beams' kinematics there, if known)."""
     nv = structure.n_velocities
     blocks = []
-    for beam, s in zip(structure.beams, structure.strain_slices()):
-        kin = beam_kinematics(beam, eps[s])
+    slices = structure.strain_slices()
+    if kinematics is None:
+        kinematics = [beam_kinematics(beam, eps[s]) for beam, s in zip(structure.beams, slices)]
+    for beam, s, kin in zip(structure.beams, slices, kinematics):
         r, jc = mass_centre_jacobian(beam, kin)
         e = kin.points_element
         n_p = e.size
@@ -361,23 +373,23 @@ def _generalized_force(structure: FreeFlexibleStructure, pts: _Points, quat: NDA
     q = np.zeros(structure.n_velocities)
     q[6:] = -structure.stiffness() @ eps
     # rigid body: bias ω × (m u_b) and ω × I_b ω, and its weight
-    u_b = v + np.cross(om, body.cg_m)
-    f_b = body.mass_kg * (g_body - np.cross(om, u_b))
+    u_b = v + _cross(om, body.cg_m)
+    f_b = body.mass_kg * (g_body - _cross(om, u_b))
     q[:3] += f_b
-    q[3:6] += np.cross(body.cg_m, f_b) - np.cross(om, body.inertia_kg_m2 @ om)
+    q[3:6] += _cross(body.cg_m, f_b) - _cross(om, body.inertia_kg_m2 @ om)
     if pts.mass.size:
         u = pts.jac_c @ vel
         w = om + pts.w_rel
-        b = np.cross(om, pts.rdot) + pts.rddot + np.cross(om, u)
+        b = _cross(om, pts.rdot) + pts.rddot + _cross(om, u)
         f = pts.mass[:, None] * (g_body - b)
         iw = np.einsum("pij,pj->pi", pts.inertia, w)
-        tau = -(np.einsum("pij,pj->pi", pts.inertia, pts.alpha_rel + np.cross(om, w)) + np.cross(w, iw))
+        tau = -(np.einsum("pij,pj->pi", pts.inertia, pts.alpha_rel + _cross(om, w)) + _cross(w, iw))
         q += np.einsum("pji,pj->i", pts.jac_c, f) + np.einsum("pji,pj->i", pts.jac_w, tau)
     return q
 
 
 def steady_generalized_force(structure: FreeFlexibleStructure, quat: ArrayLike, eps: ArrayLike, rigid_velocity: ArrayLike,
-                             gravity_m_s2: ArrayLike) -> NDArray[np.float64]:
+                             gravity_m_s2: ArrayLike, *, kinematics: list | None = None) -> NDArray[np.float64]:
     """The right-hand side of eq. (1) at ``ε̇ = 0``: ``M(ε) V̇`` of a state whose strains are momentarily at rest.
 
     Parameters
@@ -390,6 +402,9 @@ def steady_generalized_force(structure: FreeFlexibleStructure, quat: ArrayLike, 
         ``[v [m/s], ω [rad/s]]``, body axes.
     gravity_m_s2 : array_like, shape (3,)
         Inertial (north-east-down) components [m/s²].
+    kinematics : list of BeamKinematics, optional
+        The beams' kinematics at ``eps`` (:func:`~flexsim.structure.strain_beam.beam_kinematics`) when the caller
+        has them already; default: computed here.
 
     Returns
     -------
@@ -398,7 +413,8 @@ def steady_generalized_force(structure: FreeFlexibleStructure, quat: ArrayLike, 
     """
     eps = np.asarray(eps, dtype=float)
     vel = np.concatenate([np.asarray(rigid_velocity, dtype=float), np.zeros(structure.n_strains)])
-    return _generalized_force(structure, _points(structure, eps, None), np.asarray(quat, float), eps, vel, gravity_m_s2)
+    return _generalized_force(structure, _points(structure, eps, None, kinematics), np.asarray(quat, float), eps,
+                              vel, gravity_m_s2)
 
 
 def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike,
@@ -430,7 +446,7 @@ def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike,
         q = q + np.asarray(external_force, dtype=float)
     vdot = cho_solve(cho_factor(mass), q)
     q0, qv = quat[0], quat[1:]
-    quat_dot = 0.5 * np.concatenate([[-qv @ om], q0 * om + np.cross(qv, om)])
+    quat_dot = 0.5 * np.concatenate([[-qv @ om], q0 * om + _cross(qv, om)])
     return np.concatenate([quaternion_matrix(quat) @ vel[:3], quat_dot, epsdot, vdot])
 
 

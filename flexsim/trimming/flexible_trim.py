@@ -19,6 +19,7 @@ of equilibria. Units SI, radians.
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -100,6 +101,49 @@ def _state(z: NDArray, man: SteadyManoeuvre, cg: NDArray, g: float, glide: bool)
     return v, omega, quat, np.array([thrust, 0.0, de, 0.0]), theta, gamma
 
 
+#: The solver's final Jacobian of each trim point (of its scaled residuals with respect to its unknowns), the
+#: first Jacobian of a trim started from that point (``guess``): a neighbouring speed of a scan then costs a few
+#: residuals instead of a finite-difference Jacobian (one residual per unknown).
+_JACOBIANS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _forward_jacobian(fun, x: NDArray, *args) -> NDArray:
+    """Forward-difference Jacobian of ``fun(x, *args)`` with MINPACK's steps ``√ε |x_j|`` (``√ε`` at 0)."""
+    f0 = fun(x, *args)
+    out = np.empty((f0.size, x.size))
+    h0 = math.sqrt(np.finfo(float).eps)
+    for j in range(x.size):
+        h = h0 * abs(x[j]) or h0
+        xp = x.copy()
+        xp[j] += h
+        out[:, j] = (fun(xp, *args) - f0) / h
+    return out
+
+
+def _solve(residual, z0: NDArray, loads: list, jacobian: NDArray | None, maxfev: int) -> tuple[NDArray, NDArray]:
+    """Solve ``residual(z, g) = 0`` for each gravity ``g`` of the continuation in turn by MINPACK's ``hybrj``
+    (Powell's hybrid method with Broyden updates of the Jacobian). The first Jacobian of each solve is the last
+    one of the previous solve (or ``jacobian``; else forward differences); ``hybrj`` asks for a fresh
+    finite-difference one when its steps stop making progress. Returns the solution and its final Jacobian."""
+    z = z0
+    for g_now in loads:
+        start = jacobian if jacobian is not None and jacobian.shape == (z.size, z.size) else None
+
+        known = [(z.copy(), start)]  # (x, Jacobian at x): scipy calls jac once more at the start to check its shape
+
+        def jac(x, g_arg, known=known):
+            if known[0][1] is None or not np.array_equal(x, known[0][0]):
+                known[0] = (x.copy(), _forward_jacobian(residual, x, g_arg))
+            return known[0][1]
+
+        sol = root(residual, z, args=(g_now,), method="hybr", jac=jac, options={"xtol": 1e-12, "maxfev": maxfev})
+        z = sol.x
+        r = np.zeros((z.size, z.size))
+        r[np.triu_indices(z.size)] = sol.r
+        jacobian = sol.fjac.T @ r
+    return z, jacobian
+
+
 def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int = 8,
                   guess: FlexibleTrimPoint | None = None, check_limits: bool = True) -> FlexibleTrimPoint:
     """Trim the geometrically nonlinear aircraft of ``model`` in a steady symmetric manoeuvre (module docstring).
@@ -162,10 +206,8 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int =
     else:
         z0 = np.concatenate([[math.radians(2.0), 0.0, -0.05 if glide else 0.1 * weight], np.zeros(n)])
         steps = (0.25, 0.5, 0.75, 1.0)
-    z = z0
-    for frac in steps:
-        sol = root(residual, z, args=(g * frac,), method="hybr", options={"xtol": 1e-12, "maxfev": 200 * (n + 4)})
-        z = sol.x
+    z, jacobian = _solve(residual, z0, [g * frac for frac in steps], _JACOBIANS.get(guess) if guess is not None else None,
+                         200 * (n + 4))
     final = residual(z, g)
     v, omega, quat, u, theta, gamma = _state(z, manoeuvre, cg, g, glide)
     full = flex.steady_residual(z[3:], quat, v, omega, u, rho, g)
@@ -178,6 +220,7 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int =
     point = FlexibleTrimPoint(manoeuvre=manoeuvre, aircraft=flex, alpha_rad=float(z[0]), theta_rad=float(theta),
                               climb_angle_rad=float(gamma), controls=u, strains=z[3:].copy(), velocity_m_s=v,
                               rate_rad_s=omega, density_kg_m3=rho, residual=worst)
+    _JACOBIANS[point] = jacobian
     limit = math.degrees(model.aircraft.aero_settings.max_alpha_rad)
     if check_limits and point.max_strip_alpha_deg > limit:
         raise FlexibleTrimError(f"the nonlinear trim of {flex.name!r} at {manoeuvre.speed_m_s:g} m/s, "
