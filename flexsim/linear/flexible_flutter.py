@@ -171,12 +171,20 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
     if not (np.isfinite(speed_step_m_s) and speed_step_m_s > 0):
         raise ValueError(f"speed_step_m_s = {speed_step_m_s!r}: must be > 0 [m/s]")
 
+    evaluated = {}  # speed -> (trim, growth, frequency): brentq's last evaluation is its root
+
     def at(speed, guess):
-        man = SteadyManoeuvre(speed, manoeuvre.altitude_m, climb_angle_rad=manoeuvre.climb_angle_rad,
-                              load_factor=manoeuvre.load_factor)
-        point = trim_flexible(model, man, elements_per_beam=elements_per_beam, guess=guess)
-        growth, freq, _ = wing_stability(model, point, component, inflow_states)
-        return point, growth, freq
+        if speed not in evaluated:
+            man = SteadyManoeuvre(speed, manoeuvre.altitude_m, climb_angle_rad=manoeuvre.climb_angle_rad,
+                                  load_factor=manoeuvre.load_factor)
+            point = trim_flexible(model, man, elements_per_beam=elements_per_beam, guess=guess)
+            growth, freq, _ = wing_stability(model, point, component, inflow_states)
+            evaluated[speed] = (point, growth, freq)
+        return evaluated[speed]
+
+    def nearest(speed):
+        """The trim of the evaluated speed closest to ``speed`` (the start of its trim)."""
+        return evaluated[min(evaluated, key=lambda s: abs(s - speed))][0]
 
     speeds, growth, skipped = [], [], []
     previous = None
@@ -191,11 +199,11 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
             continue
         speeds.append(speed), growth.append(g)
         if previous is not None and previous[1] < 0.0 < g:
-            base = previous[0]
-            speed_f = brentq(lambda s: at(s, base)[1], previous[2], speed, xtol=tol_m_s)
-            point_f = at(speed_f, base)[0]
+            speed_f = brentq(lambda s: at(s, nearest(s))[1], previous[2], speed, xtol=tol_m_s)
+            point_f = at(speed_f, nearest(speed_f))[0]
             # the critical root just past the crossing (at the crossing it is neutral and not counted)
-            freq_f = at(min(speed_f + 2.0 * tol_m_s, speed), base)[2]
+            past = min(speed_f + 2.0 * tol_m_s, speed)
+            freq_f = at(past, nearest(past))[2]
             found = (speed_f, freq_f, point_f)
             break
         previous = (point, g, speed)

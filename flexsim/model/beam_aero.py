@@ -334,11 +334,12 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
 
 def static_stiffness(beam: BeamProperties, q0: ArrayLike, loads: LoadModel | None, aero: WingAero,
                      flow: TunnelFlow, step: float = 1e-6) -> NDArray:
-    """``K_T = K − ∂Q_loads/∂q − U² ∂Q_steady(U = 1)/∂q`` at ``q0`` (central differences, step in q units)."""
-    k = stiffness_matrix(beam)
-    if loads is not None:
-        k = k - load_stiffness(beam, loads, q0, step)
+    """``K_T = K − ∂(Q_loads + Q_steady)/∂q`` at ``q0`` (central differences of their sum, step in q units; one
+    kinematics per perturbed configuration serves both; ``Q_steady`` is ``U²`` times the loads at unit speed)."""
+    parts = () if loads is None else (loads,)
     if flow.speed_m_s > 0:
-        unit = StripAirloads(aero, TunnelFlow(1.0, flow.density_kg_m3, flow.direction))
-        k = k - flow.speed_m_s**2 * load_stiffness(beam, unit, q0, step)
-    return k
+        parts += (StripAirloads(aero, flow),)  # U² × the loads at unit speed: the steady loads at U
+    if not parts:
+        return stiffness_matrix(beam)
+    # one kinematics per perturbed configuration for all loads
+    return stiffness_matrix(beam) - load_stiffness(beam, parts[0] if len(parts) == 1 else LoadSum(parts), q0, step)

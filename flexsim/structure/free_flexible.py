@@ -43,6 +43,7 @@ north-east-down. The quaternion ``[q0, q1, q2, q3]`` (scalar first) rotates body
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -71,7 +72,11 @@ def _cross(a: NDArray, b: NDArray) -> NDArray:
     small arrays of the equations)."""
     a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
     b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    return np.stack(np.broadcast_arrays(a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out[..., 0] = a1 * b2 - a2 * b1
+    out[..., 1] = a2 * b0 - a0 * b2
+    out[..., 2] = a0 * b1 - a1 * b0
+    return out
 
 
 def _vee(m: NDArray) -> NDArray:
@@ -180,10 +185,15 @@ class FreeFlexibleStructure:
 
     def stiffness(self) -> NDArray[np.float64]:
         """``blockdiag(K_beam)``, shape (n, n) (Su & Cesnik 2011 eq. 6)."""
+        return self._stiffness.copy()
+
+    @cached_property
+    def _stiffness(self) -> NDArray[np.float64]:
+        """:meth:`stiffness`, built once (read-only)."""
         k = np.zeros((self.n_strains, self.n_strains))
         for b, s in zip(self.beams, self.strain_slices()):
             k[s, s] = stiffness_matrix(b)
-        return k
+        return frozen_array(k)
 
 
 def quaternion_matrix(quat: ArrayLike) -> NDArray[np.float64]:
@@ -371,7 +381,7 @@ def _generalized_force(structure: FreeFlexibleStructure, pts: _Points, quat: NDA
     body = structure.body
     g_body = quaternion_matrix(quat).T @ np.asarray(gravity_m_s2, dtype=float)
     q = np.zeros(structure.n_velocities)
-    q[6:] = -structure.stiffness() @ eps
+    q[6:] = -structure._stiffness @ eps
     # rigid body: bias ω × (m u_b) and ω × I_b ω, and its weight
     u_b = v + _cross(om, body.cg_m)
     f_b = body.mass_kg * (g_body - _cross(om, u_b))
