@@ -350,8 +350,10 @@ def _rigid_mass(body: RigidBody, nv: int) -> NDArray:
 
 def _mass_from_points(structure: FreeFlexibleStructure, pts: _Points) -> NDArray:
     out = _rigid_mass(structure.body, structure.n_velocities)
-    out += np.einsum("p,pji,pjk->ik", pts.mass, pts.jac_c, pts.jac_c)
-    out += np.einsum("pji,pjl,plk->ik", pts.jac_w, pts.inertia, pts.jac_w)
+    nv = out.shape[0]
+    jc, jw = pts.jac_c.reshape(-1, nv), pts.jac_w.reshape(-1, nv)  # (3P, nv): one product each (BLAS)
+    out += (pts.mass[:, None, None] * pts.jac_c).reshape(-1, nv).T @ jc
+    out += jw.T @ (pts.inertia @ pts.jac_w).reshape(-1, nv)
     return 0.5 * (out + out.T)
 
 

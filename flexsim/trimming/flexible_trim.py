@@ -136,7 +136,7 @@ def _solve(residual, z0: NDArray, loads: list, jacobian: NDArray | None, maxfev:
                 known[0] = (x.copy(), _forward_jacobian(residual, x, g_arg))
             return known[0][1]
 
-        sol = root(residual, z, args=(g_now,), method="hybr", jac=jac, options={"xtol": 1e-12, "maxfev": maxfev})
+        sol = root(residual, z, args=(g_now,), method="hybr", jac=jac, options={"xtol": 1e-10, "maxfev": maxfev})
         z = sol.x
         r = np.zeros((z.size, z.size))
         r[np.triu_indices(z.size)] = sol.r
