@@ -18,6 +18,7 @@ air velocity in the perturbation equations. SI units, radians.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,6 +27,7 @@ from scipy.optimize import brentq
 
 from flexsim.atmosphere import isa
 from flexsim.model.beam_aero import TunnelFlow, aeroelastic_system, static_stiffness
+from flexsim.structure.free_flexible import _cross
 from flexsim.structure.strain_beam import BeamKinematics, BeamProperties, mass_centre_jacobian
 from flexsim.trimming.flexible_trim import FlexibleTrimError, FlexibleTrimPoint, trim_flexible
 from flexsim.trimming.manoeuvre import SteadyManoeuvre
@@ -57,7 +59,7 @@ class SteadyInertialLoad:
         """``Q = Σ w J_cᵀ m (g_b − ω × v − ω × (ω × r_c))``, shape (n,)."""
         r, jc = mass_centre_jacobian(beam, kin)
         om = np.asarray(self.rate_rad_s, float)
-        acc = np.cross(om, self.velocity_m_s) + np.cross(om, np.cross(om, r))
+        acc = _cross(om, self.velocity_m_s) + _cross(om, _cross(om, r))
         mass = beam.mass_kg_per_m[kin.points_element] * kin.points_weight
         return np.einsum("pik,pi->k", jc, mass[:, None] * (np.asarray(self.gravity_body_m_s2, float) - acc))
 
@@ -172,12 +174,17 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
         raise ValueError(f"speed_step_m_s = {speed_step_m_s!r}: must be > 0 [m/s]")
 
     evaluated = {}  # speed -> (trim, growth, frequency): brentq's last evaluation is its root
+    converged = []  # the last converged trim, within the strips' lift range or not: the start of the next scan speed
+    limit = math.degrees(model.aircraft.aero_settings.max_alpha_rad)
 
     def at(speed, guess):
         if speed not in evaluated:
             man = SteadyManoeuvre(speed, manoeuvre.altitude_m, climb_angle_rad=manoeuvre.climb_angle_rad,
                                   load_factor=manoeuvre.load_factor)
-            point = trim_flexible(model, man, elements_per_beam=elements_per_beam, guess=guess)
+            point = trim_flexible(model, man, elements_per_beam=elements_per_beam, guess=guess, check_limits=False)
+            converged[:] = [point]
+            if point.max_strip_alpha_deg > limit:  # trim_flexible's check_limits, the converged trim kept
+                raise FlexibleTrimError(f"strips at {point.max_strip_alpha_deg:.1f} deg at {speed:g} m/s")
             growth, freq, _ = wing_stability(model, point, component, inflow_states)
             evaluated[speed] = (point, growth, freq)
         return evaluated[speed]
@@ -191,7 +198,7 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
     found = None
     for speed in np.append(np.arange(lo, hi, speed_step_m_s), hi):
         try:
-            point, g, f = at(speed, previous[0] if previous is not None else None)
+            point, g, f = at(speed, previous[0] if previous is not None else (converged[0] if converged else None))
         except FlexibleTrimError:
             skipped.append(speed)
             if previous is not None:

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
+from numba import njit
 from numpy.typing import ArrayLike, NDArray
 
 from flexsim._arrays import frozen_array
@@ -180,20 +181,48 @@ def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDAr
         [N/m] and [N m/m] in the frames' components.
     """
     _, bm, _ = _section_matrices()
-    e1, e2, e3 = rotations[:, :, 0], rotations[:, :, 1], rotations[:, :, 2]
-    va = np.broadcast_to(air_velocity, e1.shape)
-    u0, wn = -np.einsum("pi,pi->p", e2, va), np.einsum("pi,pi->p", e3, va)
-    w1 = b * rate_e1
-    w0 = wn + u0 * incidence - a * w1
-    w = np.stack([w0, w1 * np.ones_like(w0)], axis=1)
-    gen = np.pi * (rho * b * u0)[:, None] * (w @ bm.T)  # {L} (P, 2)
-    lift, moment = gen[:, 0], a * b * gen[:, 0] - b * gen[:, 1]
-    suction = 2.0 * np.pi * rho * b * w0**2
-    force = lift[:, None] * e3 + suction[:, None] * e2
-    if np.any(cd0):
-        in_plane = wn[:, None] * e3 - u0[:, None] * e2
-        force = force + (rho * b * cd0)[:, None] * np.linalg.norm(in_plane, axis=1)[:, None] * in_plane
-    return force, moment[:, None] * e1
+    rotations = np.asarray(rotations, dtype=float)
+    p = rotations.shape[0]
+    force, moment = np.empty((p, 3)), np.empty((p, 3))
+    _section_loads_kernel(_strip_array(rotations, (p, 3, 3)), _strip_array(b, (p,)), _strip_array(a, (p,)),
+                          _strip_array(air_velocity, (p, 3)), _strip_array(rho, (p,)), _strip_array(rate_e1, (p,)),
+                          _strip_array(incidence, (p,)), _strip_array(cd0, (p,)), bm, force, moment)
+    return force, moment
+
+
+def _strip_array(value, shape: tuple) -> NDArray:
+    """``value`` broadcast to ``shape`` as a C-contiguous float array (no copy when it already is one)."""
+    arr = np.asarray(value, dtype=float)
+    if arr.shape != shape or not arr.flags.c_contiguous:
+        arr = np.ascontiguousarray(np.broadcast_to(arr, shape))
+    return arr
+
+
+@njit(cache=True, nogil=True)
+def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, bm, force, moment):
+    """The loads of :func:`section_loads` strip by strip (compiled; arguments broadcast to P strips).
+
+    ``u0 = −e2·V_a``, ``w_n = e3·V_a``, ``w1 = b Ω1``, ``w0 = w_n + u0 α_i − a w1``; ``{L} = πρ b u0 [B]{w}``;
+    lift ``L0`` along e3, moment ``a b L0 − b L1`` along e1, suction ``2πρ b w0²`` along e2, profile drag
+    ``ρ b cd0 |V_in| V_in`` along the in-section air velocity ``V_in = w_n e3 − u0 e2``.
+    """
+    for k in range(rotations.shape[0]):
+        r = rotations[k]
+        u0 = -(r[0, 1] * va[k, 0] + r[1, 1] * va[k, 1] + r[2, 1] * va[k, 2])
+        wn = r[0, 2] * va[k, 0] + r[1, 2] * va[k, 1] + r[2, 2] * va[k, 2]
+        w1 = b[k] * rate[k]
+        w0 = wn + u0 * incidence[k] - a[k] * w1
+        scale = np.pi * rho[k] * b[k] * u0
+        gen0 = scale * (bm[0, 0] * w0 + bm[0, 1] * w1)
+        gen1 = scale * (bm[1, 0] * w0 + bm[1, 1] * w1)
+        mom = a[k] * b[k] * gen0 - b[k] * gen1
+        suction = 2.0 * np.pi * rho[k] * b[k] * w0 ** 2
+        drag = 0.0
+        if cd0[k] != 0.0:
+            drag = rho[k] * b[k] * cd0[k] * np.sqrt(wn * wn + u0 * u0)
+        for i in range(3):
+            force[k, i] = gen0 * r[i, 2] + suction * r[i, 1] + drag * (wn * r[i, 2] - u0 * r[i, 1])
+            moment[k, i] = mom * r[i, 0]
 
 
 def _steady_section_loads(kin, b, a, flow, scale=1.0):

@@ -46,12 +46,13 @@ def _mm(a, b, out):
 
 
 @_jit
-def _exp_one(rho, phi, rot, pos):
-    """``R = I + sinc φ^ + a1 φ^²`` and ``p = J(φ) ρ`` (Barfoot eqs. 7.80-7.83), written into rot (3, 3), pos (3,)."""
+def _exp_one(rho, phi, rot, pos, work):
+    """``R = I + sinc φ^ + a1 φ^²`` and ``p = J(φ) ρ`` (Barfoot eqs. 7.80-7.83), written into rot (3, 3), pos (3,);
+    work: scratch (>= 2, 3, 3)."""
     theta = np.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
     sinc, a1, a2, _, _ = _coefficients(theta)
-    ph = np.empty((3, 3))
-    ph2 = np.empty((3, 3))
+    ph = work[0]
+    ph2 = work[1]
     _hat(phi, ph)
     _mm(ph, ph, ph2)
     for i in range(3):
@@ -64,20 +65,13 @@ def _exp_one(rho, phi, rot, pos):
 
 
 @_jit
-def _left_jacobian_one(rho, phi, out):
-    """``𝒥 = [[J, Q], [0, J]]`` (Barfoot eqs. 7.85-7.86; translation first), written into out (6, 6)."""
+def _left_jacobian_one(rho, phi, out, work):
+    """``𝒥 = [[J, Q], [0, J]]`` (Barfoot eqs. 7.85-7.86; translation first), written into out (6, 6);
+    work: scratch (>= 10, 3, 3)."""
     theta = np.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
     _, a1, a2, a3, a4 = _coefficients(theta)
-    ph = np.empty((3, 3))
-    rh = np.empty((3, 3))
-    ph2 = np.empty((3, 3))
-    pr = np.empty((3, 3))
-    rp = np.empty((3, 3))
-    prp = np.empty((3, 3))
-    p2r = np.empty((3, 3))
-    rp2 = np.empty((3, 3))
-    prpp = np.empty((3, 3))
-    pprp = np.empty((3, 3))
+    ph, rh, ph2, pr, rp = work[0], work[1], work[2], work[3], work[4]
+    prp, p2r, rp2, prpp, pprp = work[5], work[6], work[7], work[8], work[9]
     _hat(phi, ph)
     _hat(rho, rh)
     _mm(ph, ph, ph2)
@@ -104,37 +98,36 @@ def _left_jacobian_one(rho, phi, out):
 @_jit
 def se3_exp_batch(rho, phi, rot, pos):
     """:func:`_exp_one` over rows: rho, phi (m, 3) -> rot (m, 3, 3), pos (m, 3)."""
+    work = np.empty((2, 3, 3))
     for k in range(rho.shape[0]):
-        _exp_one(rho[k], phi[k], rot[k], pos[k])
+        _exp_one(rho[k], phi[k], rot[k], pos[k], work)
 
 
 @_jit
 def se3_left_jacobian_batch(rho, phi, out):
     """:func:`_left_jacobian_one` over rows: rho, phi (m, 3) -> out (m, 6, 6)."""
+    work = np.empty((10, 3, 3))
     for k in range(rho.shape[0]):
-        _left_jacobian_one(rho[k], phi[k], out[k])
+        _left_jacobian_one(rho[k], phi[k], out[k], work)
 
 
 @_jit
-def _twist_columns(rot, pos, strain, length, first, z):
+def _twist_columns(rot, pos, strain, length, first, z, work, jl, vec):
     """Spatial-twist Jacobian ``Ad(T) 𝒥(ξ) ℓ B`` (6, ns) of a piece of element of length ``length`` from the frame
-    (rot, pos), strains ``[e, κ]``; ``first``: index of the first free strain (0 extensible, 1 not)."""
-    rho = np.zeros(3)
-    rho[0] = length * (1.0 + strain[0])
-    phi = np.empty(3)
+    (rot, pos), strains ``[e, κ]``; ``first``: index of the first free strain (0 extensible, 1 not).
+    Scratch: work (12, 3, 3), jl (6, 6), vec (4, 3)."""
+    rho, phi, jt, jb = vec[0], vec[1], vec[2], vec[3]
+    rho[0], rho[1], rho[2] = length * (1.0 + strain[0]), 0.0, 0.0
     for i in range(3):
         phi[i] = length * strain[1 + i]
-    jl = np.empty((6, 6))
-    _left_jacobian_one(rho, phi, jl)
-    ph = np.empty((3, 3))
+    _left_jacobian_one(rho, phi, jl, work)
+    ph = work[10]
     _hat(pos, ph)
-    phr = np.empty((3, 3))
+    phr = work[11]
     _mm(ph, rot, phr)
     ns = 4 - first
     for c in range(ns):
         k = c + first  # 0: extension (column e1 of the translation), 1-3: curvature about e_(k-1) (rotation)
-        jt = np.empty(3)
-        jb = np.empty(3)
         for i in range(3):
             if k == 0:
                 jt[i], jb[i] = length * jl[i, 0], length * jl[3 + i, 0]
@@ -169,12 +162,15 @@ def beam_chain(strains, ell, root_rot, root_pos, sigma, first, node_rot, node_po
     r_e = np.empty((3, 3))
     p_e = np.empty(3)
     z = np.empty((6, ns))
+    work = np.empty((12, 3, 3))
+    jl = np.empty((6, 6))
+    vec = np.empty((4, 3))
     twist = np.zeros((6, n_el * ns))  # the spatial twists of the whole elements before the current point
     for j in range(n_el):
         rho[0] = ell * (1.0 + strains[j, 0])
         for i in range(3):
             phi[i] = ell * strains[j, 1 + i]
-        _exp_one(rho, phi, r_e, p_e)
+        _exp_one(rho, phi, r_e, p_e, work)
         _mm(node_rot[j], r_e, node_rot[j + 1])
         for i in range(3):
             node_pos[j + 1, i] = node_pos[j, i] + (node_rot[j, i, 0] * p_e[0] + node_rot[j, i, 1] * p_e[1]
@@ -186,12 +182,12 @@ def beam_chain(strains, ell, root_rot, root_pos, sigma, first, node_rot, node_po
             rho[0] = f * ell * (1.0 + strains[j, 0])
             for i in range(3):
                 phi[i] = f * ell * strains[j, 1 + i]
-            _exp_one(rho, phi, r_e, p_e)
+            _exp_one(rho, phi, r_e, p_e, work)
             _mm(node_rot[j], r_e, prot[k])
             for i in range(3):
                 ppos[k, i] = node_pos[j, i] + (node_rot[j, i, 0] * p_e[0] + node_rot[j, i, 1] * p_e[1]
                                                + node_rot[j, i, 2] * p_e[2])
-            _twist_columns(node_rot[j], node_pos[j], strains[j], f * ell, first, z)
+            _twist_columns(node_rot[j], node_pos[j], strains[j], f * ell, first, z, work, jl, vec)
             for c in range(j * ns):
                 for i in range(3):
                     jac_rot[k, i, c] = twist[3 + i, c]
@@ -213,7 +209,7 @@ def beam_chain(strains, ell, root_rot, root_pos, sigma, first, node_rot, node_po
                 jac_pos[k, 0, c] = t0 - (y * r2 - w * r1)
                 jac_pos[k, 1, c] = t1 - (w * r0 - x * r2)
                 jac_pos[k, 2, c] = t2 - (x * r1 - y * r0)
-        _twist_columns(node_rot[j], node_pos[j], strains[j], ell, first, z)
+        _twist_columns(node_rot[j], node_pos[j], strains[j], ell, first, z, work, jl, vec)
         for c in range(ns):
             for i in range(6):
                 twist[i, j * ns + c] = z[i, c]
