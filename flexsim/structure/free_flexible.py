@@ -294,10 +294,10 @@ class _Points:
     r: NDArray            # (P, 3) mass-centre positions [m]
     jac_c: NDArray        # (P, 3, 6 + n): L (mass-centre velocity per V)
     jac_w: NDArray        # (P, 3, 6 + n): A (section angular velocity per V)
-    rdot: NDArray         # (P, 3) J_c ε̇
-    rddot: NDArray        # (P, 3) J̇_c ε̇
-    w_rel: NDArray        # (P, 3) J_θ ε̇
-    alpha_rel: NDArray    # (P, 3) J̇_θ ε̇
+    rdot: NDArray | None       # (P, 3) J_c ε̇ (the four: None when ε̇ = 0)
+    rddot: NDArray | None      # (P, 3) J̇_c ε̇
+    w_rel: NDArray | None      # (P, 3) J_θ ε̇
+    alpha_rel: NDArray | None  # (P, 3) J̇_θ ε̇
 
 
 def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | None,
@@ -321,8 +321,8 @@ def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | No
         lw[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
         w = kin.points_weight
         sec = np.stack([beam.torsion_inertia_kg_m[e], beam.flap_inertia_kg_m[e], beam.chord_inertia_kg_m[e]], 1)
-        inertia = np.einsum("pij,pj,pkj->pik", kin.rotations, sec * w[:, None], kin.rotations)
-        motion = [np.zeros((n_p, 3))] * 4
+        inertia = (kin.rotations * (sec * w[:, None])[:, None, :]) @ np.swapaxes(kin.rotations, 1, 2)
+        motion = []
         if epsdot is not None:
             frac = kin.points_s / beam.element_length_m - e
             _, pd, pdd, rot, rd, rdd = beam_relative_motion(beam, eps[s], epsdot[s], e, frac)
@@ -335,7 +335,8 @@ def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | No
     if not blocks:
         z3, zj = np.zeros((0, 3)), np.zeros((0, 3, nv))
         return _Points(np.zeros(0), np.zeros((0, 3, 3)), z3, zj, zj, z3, z3, z3, z3)
-    return _Points(*(np.concatenate(parts) for parts in zip(*blocks)))
+    parts = [np.concatenate(arrays) for arrays in zip(*blocks)]
+    return _Points(*parts) if epsdot is not None else _Points(*parts, None, None, None, None)
 
 
 def _rigid_mass(body: RigidBody, nv: int) -> NDArray:
@@ -390,13 +391,18 @@ def _generalized_force(structure: FreeFlexibleStructure, pts: _Points, quat: NDA
     q[:3] += f_b
     q[3:6] += _cross(body.cg_m, f_b) - _cross(om, body.inertia_kg_m2 @ om)
     if pts.mass.size:
-        u = pts.jac_c @ vel
-        w = om + pts.w_rel
-        b = _cross(om, pts.rdot) + pts.rddot + _cross(om, u)
+        nv = q.size
+        u = (pts.jac_c.reshape(-1, nv) @ vel).reshape(-1, 3)
+        if pts.w_rel is None:  # ε̇ = 0: no relative motion (the same terms, their zeros left out)
+            b = _cross(om, u)
+            tau = -_cross(om, pts.inertia @ om)
+        else:
+            w = om + pts.w_rel
+            b = _cross(om, pts.rdot) + pts.rddot + _cross(om, u)
+            iw = (pts.inertia @ w[:, :, None])[:, :, 0]
+            tau = -((pts.inertia @ (pts.alpha_rel + _cross(om, w))[:, :, None])[:, :, 0] + _cross(w, iw))
         f = pts.mass[:, None] * (g_body - b)
-        iw = np.einsum("pij,pj->pi", pts.inertia, w)
-        tau = -(np.einsum("pij,pj->pi", pts.inertia, pts.alpha_rel + _cross(om, w)) + _cross(w, iw))
-        q += np.einsum("pji,pj->i", pts.jac_c, f) + np.einsum("pji,pj->i", pts.jac_w, tau)
+        q += f.reshape(-1) @ pts.jac_c.reshape(-1, nv) + tau.reshape(-1) @ pts.jac_w.reshape(-1, nv)
     return q
 
 
