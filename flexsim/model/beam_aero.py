@@ -95,14 +95,16 @@ class WingAero:
             if arr.size not in (1, n):
                 raise ValueError(f"{name} has {arr.size} values: must be one or one per element ({n})")
         e = kin.points_element
-        chord = np.broadcast_to(self.chord_m, (n,))[e]
-        frac = np.broadcast_to(self.axis_fraction, (n,))[e]
-        return 0.5 * chord, 2.0 * frac - 1.0
+        return 0.5 * _at_points(self.chord_m, n, e), 2.0 * _at_points(self.axis_fraction, n, e) - 1.0
 
     def density_scale(self, beam: BeamProperties, kin: BeamKinematics) -> NDArray:
         """``lift_slope / 2π`` at the quadrature points (the factor on each strip's airloads)."""
-        slope = np.broadcast_to(self.lift_slope_per_rad, (beam.n_elements,))[kin.points_element]
-        return slope / (2.0 * np.pi)
+        return _at_points(self.lift_slope_per_rad, beam.n_elements, kin.points_element) / (2.0 * np.pi)
+
+
+def _at_points(values: NDArray, n: int, element: NDArray) -> NDArray:
+    """Per-element ``values`` (one, or one per element of n) at points on the elements ``element``."""
+    return values[element] if values.size == n else np.full(element.shape, values[0])
 
 
 @dataclass(frozen=True)
@@ -193,9 +195,11 @@ def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDAr
 def _strip_array(value, shape: tuple) -> NDArray:
     """``value`` broadcast to ``shape`` as a C-contiguous float array (no copy when it already is one)."""
     arr = np.asarray(value, dtype=float)
-    if arr.shape != shape or not arr.flags.c_contiguous:
-        arr = np.ascontiguousarray(np.broadcast_to(arr, shape))
-    return arr
+    if arr.shape == shape and arr.flags.c_contiguous:
+        return arr
+    out = np.empty(shape)
+    out[...] = arr
+    return out
 
 
 @njit(cache=True, nogil=True)
@@ -250,9 +254,10 @@ class StripAirloads:
         """``Q = Σ w (J_pᵀ F + J_θᵀ M)`` of the steady strip loads (virtual work; Su & Cesnik 2011 eq. 13)."""
         b, a = self.aero.strips(beam, kin)
         force, moment = _steady_section_loads(kin, b, a, self.flow, self.aero.density_scale(beam, kin))
-        w = kin.points_weight
-        return (np.einsum("p,pik,pi->k", w, kin.jac_position, force)
-                + np.einsum("p,pik,pi->k", w, kin.jac_rotation, moment))
+        w = kin.points_weight[:, None]
+        n = kin.jac_position.shape[-1]
+        return ((w * force).reshape(-1) @ kin.jac_position.reshape(-1, n)
+                + (w * moment).reshape(-1) @ kin.jac_rotation.reshape(-1, n))
 
 
 @dataclass(frozen=True)

@@ -317,7 +317,7 @@ def beam_kinematics(beam: BeamProperties, q: ArrayLike) -> BeamKinematics:
     """
     strains = beam.full_strains(q)
     n_el, ell, n = beam.n_elements, beam.element_length_m, beam.n_coordinates
-    sigma, weights = _gauss(beam.gauss_points)
+    sigma, _ = _gauss(beam.gauss_points)
     n_points = n_el * sigma.size
     rots, poss = np.empty((n_el + 1, 3, 3)), np.empty((n_el + 1, 3))
     prot, ppos = np.empty((n_points, 3, 3)), np.empty((n_points, 3))
@@ -325,19 +325,21 @@ def beam_kinematics(beam: BeamProperties, q: ArrayLike) -> BeamKinematics:
     tip_pos, tip_rot = np.empty((3, n)), np.empty((3, n))
     _kern.beam_chain(strains, ell, beam.root_rotation, beam.root_position_m, sigma, 4 - beam.strains_per_element,
                      rots, poss, prot, ppos, jac_pos, jac_rot, tip_pos, tip_rot)
-    elem, frac = _point_layout(n_el, beam.gauss_points)
+    elem, points_s, points_weight = _point_layout(n_el, beam.gauss_points, ell)
     return BeamKinematics(
         q=np.array(q, dtype=float), node_positions=poss, node_rotations=rots,
-        points_s=(elem + frac) * ell, points_weight=np.tile(weights, n_el) * ell, points_element=elem,
+        points_s=points_s, points_weight=points_weight, points_element=elem,
         positions=ppos, rotations=prot, jac_position=jac_pos, jac_rotation=jac_rot,
         tip_jac_position=tip_pos, tip_jac_rotation=tip_rot)
 
 
-@lru_cache(maxsize=32)
-def _point_layout(n_el: int, n_gauss: int) -> tuple[NDArray, NDArray]:
-    """Element index and fraction of each quadrature point, root to tip (read-only; cached)."""
-    sigma, _ = _gauss(n_gauss)
-    return frozen_array(np.repeat(np.arange(n_el), n_gauss), dtype=np.int64), frozen_array(np.tile(sigma, n_el))
+@lru_cache(maxsize=64)
+def _point_layout(n_el: int, n_gauss: int, ell: float) -> tuple[NDArray, NDArray, NDArray]:
+    """Element index, arc length [m] and weight [m] of each quadrature point, root to tip (read-only; cached)."""
+    sigma, weights = _gauss(n_gauss)
+    elem = np.repeat(np.arange(n_el), n_gauss)
+    return (frozen_array(elem, dtype=np.int64), frozen_array((elem + np.tile(sigma, n_el)) * ell),
+            frozen_array(np.tile(weights, n_el) * ell))
 
 
 def stiffness_matrix(beam: BeamProperties) -> NDArray[np.float64]:
