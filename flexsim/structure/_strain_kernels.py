@@ -16,9 +16,10 @@ import numpy as np
 from numba import njit
 
 _jit = njit(cache=True, nogil=True)
+_inline = njit(cache=True, nogil=True, inline="always")
 
 
-@_jit
+@_inline
 def _coefficients(theta):
     """sinθ/θ, (1-cosθ)/θ², (θ-sinθ)/θ³, (θ²+2cosθ-2)/(2θ⁴), (2θ-3sinθ+θcosθ)/(2θ⁵)."""
     s2 = theta * theta
@@ -31,21 +32,21 @@ def _coefficients(theta):
             (2 * t - 3 * s + t * c) / (2 * t2 * t2 * t))
 
 
-@_jit
+@_inline
 def _hat(v, out):
     out[0, 0], out[0, 1], out[0, 2] = 0.0, -v[2], v[1]
     out[1, 0], out[1, 1], out[1, 2] = v[2], 0.0, -v[0]
     out[2, 0], out[2, 1], out[2, 2] = -v[1], v[0], 0.0
 
 
-@_jit
+@_inline
 def _mm(a, b, out):
     for i in range(3):
         for j in range(3):
             out[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j] + a[i, 2] * b[2, j]
 
 
-@_jit
+@_inline
 def _exp_one(rho, phi, rot, pos, work):
     """``R = I + sinc φ^ + a1 φ^²`` and ``p = J(φ) ρ`` (Barfoot eqs. 7.80-7.83), written into rot (3, 3), pos (3,);
     work: scratch (>= 2, 3, 3)."""
@@ -64,7 +65,7 @@ def _exp_one(rho, phi, rot, pos, work):
         pos[i] = acc
 
 
-@_jit
+@_inline
 def _left_jacobian_one(rho, phi, out, work):
     """``𝒥 = [[J, Q], [0, J]]`` (Barfoot eqs. 7.85-7.86; translation first), written into out (6, 6);
     work: scratch (>= 10, 3, 3)."""
@@ -111,7 +112,7 @@ def se3_left_jacobian_batch(rho, phi, out):
         _left_jacobian_one(rho[k], phi[k], out[k], work)
 
 
-@_jit
+@_inline
 def _twist_columns(rot, pos, strain, length, first, z, work, jl, vec):
     """Spatial-twist Jacobian ``Ad(T) 𝒥(ξ) ℓ B`` (6, ns) of a piece of element of length ``length`` from the frame
     (rot, pos), strains ``[e, κ]``; ``first``: index of the first free strain (0 extensible, 1 not).

@@ -72,7 +72,11 @@ def _cross(a: NDArray, b: NDArray) -> NDArray:
     small arrays of the equations)."""
     a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
     b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    if a.shape == b.shape or b.ndim == 1:
+        shape = a.shape
+    else:
+        shape = b.shape if a.ndim == 1 else np.broadcast_shapes(a.shape, b.shape)
+    out = np.empty(shape)
     out[..., 0] = a1 * b2 - a2 * b1
     out[..., 1] = a2 * b0 - a0 * b2
     out[..., 2] = a0 * b1 - a1 * b0
