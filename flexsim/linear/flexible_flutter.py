@@ -183,8 +183,8 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
                                   load_factor=manoeuvre.load_factor)
             point = trim_flexible(model, man, elements_per_beam=elements_per_beam, guess=guess, check_limits=False)
             converged[:] = [point]
-            if point.max_strip_alpha_deg > limit:  # trim_flexible's check_limits, the converged trim kept
-                raise FlexibleTrimError(f"strips at {point.max_strip_alpha_deg:.1f} deg at {speed:g} m/s")
+            if point.max_strip_alpha_deg > limit:  # refused with trim_flexible's own error (from the converged trim)
+                trim_flexible(model, man, elements_per_beam=elements_per_beam, guess=point)
             growth, freq, _ = wing_stability(model, point, component, inflow_states)
             evaluated[speed] = (point, growth, freq)
         return evaluated[speed]

@@ -11,7 +11,8 @@ the speed ``V`` of the undeformed aircraft's centre of gravity makes the angle o
 ``θ = α + γ``, ``ω = (0, q, 0)``, no sideslip. Unknowns: ``α``, the elevator ``δe``, the thrust ``T`` (or, in a
 glide, ``T = 0`` and ``γ``) and all strains ``ε``; equations: the force rows x and z, the pitching moment and the
 strain rows. The lateral rows vanish by the aircraft's symmetry (checked: their residual is reported). Solved by
-MINPACK's ``hybrd`` (Powell's hybrid method) from the rigid trim's attitude with the strains continued in load
+MINPACK's ``hybrj`` (Powell's hybrid method; one forward-difference Jacobian, then Broyden's updates, carried across
+the continuation and from a ``guess``) from the rigid trim's attitude with the strains continued in load
 (the gravity and load factor scaled 1/4, 1/2, 3/4, 1) so that a wing bending to half its span is reached on a path
 of equilibria. Units SI, radians.
 """
@@ -101,9 +102,10 @@ def _state(z: NDArray, man: SteadyManoeuvre, cg: NDArray, g: float, glide: bool)
     return v, omega, quat, np.array([thrust, 0.0, de, 0.0]), theta, gamma
 
 
-#: The solver's final Jacobian of each trim point (of its scaled residuals with respect to its unknowns), the
-#: first Jacobian of a trim started from that point (``guess``): a neighbouring speed of a scan then costs a few
-#: residuals instead of a finite-difference Jacobian (one residual per unknown).
+#: The solver's final Jacobian of each trim point (of its scaled residuals with respect to its unknowns; with the
+#: glide flag, which changes the unknowns), the first Jacobian of a trim started from that point (``guess``): a
+#: neighbouring speed of a scan then costs a few residuals instead of a finite-difference Jacobian (one residual
+#: per unknown).
 _JACOBIANS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
@@ -206,8 +208,9 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int =
     else:
         z0 = np.concatenate([[math.radians(2.0), 0.0, -0.05 if glide else 0.1 * weight], np.zeros(n)])
         steps = (0.25, 0.5, 0.75, 1.0)
-    z, jacobian = _solve(residual, z0, [g * frac for frac in steps], _JACOBIANS.get(guess) if guess is not None else None,
-                         200 * (n + 4))
+    known = _JACOBIANS.get(guess) if guess is not None else None
+    start = known[1] if known is not None and known[0] == glide else None  # the same unknowns
+    z, jacobian = _solve(residual, z0, [g * frac for frac in steps], start, 200 * (n + 4))
     final = residual(z, g)
     v, omega, quat, u, theta, gamma = _state(z, manoeuvre, cg, g, glide)
     full = flex.steady_residual(z[3:], quat, v, omega, u, rho, g)
@@ -220,7 +223,7 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int =
     point = FlexibleTrimPoint(manoeuvre=manoeuvre, aircraft=flex, alpha_rad=float(z[0]), theta_rad=float(theta),
                               climb_angle_rad=float(gamma), controls=u, strains=z[3:].copy(), velocity_m_s=v,
                               rate_rad_s=omega, density_kg_m3=rho, residual=worst)
-    _JACOBIANS[point] = jacobian
+    _JACOBIANS[point] = (glide, jacobian)
     limit = math.degrees(model.aircraft.aero_settings.max_alpha_rad)
     if check_limits and point.max_strip_alpha_deg > limit:
         raise FlexibleTrimError(f"the nonlinear trim of {flex.name!r} at {manoeuvre.speed_m_s:g} m/s, "
