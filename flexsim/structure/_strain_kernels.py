@@ -221,3 +221,108 @@ def beam_chain(strains, ell, root_rot, root_pos, sigma, first, node_rot, node_po
         tip_pos[0, c] = twist[0, c] - (y * r2 - w * r1)
         tip_pos[1, c] = twist[1, c] - (w * r0 - x * r2)
         tip_pos[2, c] = twist[2, c] - (x * r1 - y * r0)
+
+
+#: Padé coefficients b_0..b_m of exp and the 1-norm bounds θ_m below which degree m is accurate to double precision
+#: without scaling (Higham, SIAM J. Matrix Anal. Appl. 26(4), 2005, table 2.3 and eq. 2.9; as in scipy.linalg.expm).
+_PADE_DEGREE = np.array([3, 5, 7, 9])
+_PADE_THETA = np.array([1.495585217958292e-2, 2.539398330063230e-1, 9.504178996162932e-1, 2.097847961257068])
+_PADE_B = np.array([[120.0, 60.0, 12.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+                    [30240.0, 15120.0, 3360.0, 420.0, 30.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+                    [17297280.0, 8648640.0, 1995840.0, 277200.0, 25200.0, 1512.0, 56.0, 1.0, 0.0, 0.0],
+                    [17643225600.0, 8821612800.0, 2075673600.0, 302702400.0, 30270240.0, 2162160.0, 110880.0,
+                     3960.0, 90.0, 1.0]])
+_PADE13 = (64764752532480000.0, 32382376266240000.0, 7771770303897600.0, 1187353796428800.0, 129060195264000.0,
+           10559470521600.0, 670442572800.0, 33522128640.0, 1323241920.0, 40840800.0, 960960.0, 16380.0, 182.0, 1.0)
+_THETA13 = 5.371920351148152
+
+
+@_inline
+def _tmul(x, y, out):
+    """Product of block upper-triangular Toeplitz matrices ``[[X0, X1, X2], [0, X0, X1], [0, 0, X0]]`` stored as
+    their first block rows x, y (3, k, k): ``(X0 Y0, X0 Y1 + X1 Y0, X0 Y2 + X1 Y1 + X2 Y0)`` into out."""
+    k = x.shape[1]
+    for i in range(k):
+        for j in range(k):
+            s0 = 0.0
+            s1 = 0.0
+            s2 = 0.0
+            for m in range(k):
+                s0 += x[0, i, m] * y[0, m, j]
+                s1 += x[0, i, m] * y[1, m, j] + x[1, i, m] * y[0, m, j]
+                s2 += x[0, i, m] * y[2, m, j] + x[1, i, m] * y[1, m, j] + x[2, i, m] * y[0, m, j]
+            out[0, i, j], out[1, i, j], out[2, i, j] = s0, s1, s2
+
+
+@_inline
+def _tsolve(d, n, out):
+    """``X`` with ``D X = N`` for block upper-triangular Toeplitz D, N, X (first block rows, (3, k, k)): block
+    back-substitution ``X0 = D0⁻¹ N0``, ``X1 = D0⁻¹ (N1 − D1 X0)``, ``X2 = D0⁻¹ (N2 − D1 X1 − D2 X0)``."""
+    out[0] = np.linalg.solve(d[0], n[0])
+    out[1] = np.linalg.solve(d[0], n[1] - d[1] @ out[0])
+    out[2] = np.linalg.solve(d[0], n[2] - d[1] @ out[1] - d[2] @ out[0])
+
+
+@_jit
+def _expm_toeplitz(x, out):
+    """``exp`` of the block upper-triangular Toeplitz matrix with first block row x (3, k, k), as its first block
+    row, into out: scaling and squaring with a Padé approximant of degree 3, 5, 7, 9 or 13 chosen from the 1-norm
+    (Higham, SIAM J. Matrix Anal. Appl. 26(4), 2005, Algorithm 2.3: the method of scipy.linalg.expm), the powers
+    and the solve done block by block (the structure is kept by products, sums and inverses)."""
+    k = x.shape[1]
+    norm = 0.0
+    for j in range(k):
+        col0 = 0.0
+        col12 = 0.0
+        for i in range(k):
+            col0 += abs(x[0, i, j])
+            col12 += abs(x[0, i, j]) + abs(x[1, i, j]) + abs(x[2, i, j])
+        norm = max(norm, col0, col12)
+    eye = np.zeros((3, k, k))
+    for i in range(k):
+        eye[0, i, i] = 1.0
+    x2 = np.empty((3, k, k))
+    _tmul(x, x, x2)
+    u = np.empty((3, k, k))
+    for d in range(_PADE_DEGREE.size):
+        if norm <= _PADE_THETA[d]:
+            b = _PADE_B[d]
+            power = eye.copy()  # X^(2i)
+            nxt = np.empty((3, k, k))
+            odd = b[1] * eye
+            v = b[0] * eye
+            for i in range(1, (_PADE_DEGREE[d] - 1) // 2 + 1):
+                _tmul(power, x2, nxt)
+                power, nxt = nxt, power
+                odd += b[2 * i + 1] * power
+                v += b[2 * i] * power
+            _tmul(x, odd, u)
+            _tsolve(v - u, v + u, out)
+            return
+    s = 0
+    if norm > _THETA13:
+        s = int(np.ceil(np.log2(norm / _THETA13)))
+    scale = 0.5 ** s
+    xs = x * scale
+    x2 *= scale * scale
+    x4 = np.empty((3, k, k))
+    x6 = np.empty((3, k, k))
+    tmp = np.empty((3, k, k))
+    _tmul(x2, x2, x4)
+    _tmul(x4, x2, x6)
+    b = _PADE13
+    _tmul(x6, b[13] * x6 + b[11] * x4 + b[9] * x2, tmp)
+    _tmul(xs, tmp + b[7] * x6 + b[5] * x4 + b[3] * x2 + b[1] * eye, u)
+    _tmul(x6, b[12] * x6 + b[10] * x4 + b[8] * x2, tmp)
+    v = tmp + b[6] * x6 + b[4] * x4 + b[2] * x2 + b[0] * eye
+    _tsolve(v - u, v + u, out)
+    for _ in range(s):
+        _tmul(out, out, tmp)
+        out[:, :, :] = tmp
+
+
+@_jit
+def expm_toeplitz_batch(x, out):
+    """:func:`_expm_toeplitz` over the leading axis: x, out (m, 3, k, k)."""
+    for i in range(x.shape[0]):
+        _expm_toeplitz(x[i], out[i])

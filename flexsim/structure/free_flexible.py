@@ -47,9 +47,10 @@ from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.linalg import cho_factor, cho_solve, eigh, expm
+from scipy.linalg import cho_factor, cho_solve, eigh
 
 from flexsim._arrays import frozen_array
+from flexsim.structure import _strain_kernels as _kern
 from flexsim.structure.strain_beam import (BeamProperties, beam_kinematics, mass_centre_jacobian,
                                            stiffness_matrix)
 
@@ -231,22 +232,20 @@ def initial_state(structure: FreeFlexibleStructure, *, position_m: ArrayLike = (
 
 
 def _element_transforms(beam: BeamProperties, strains: NDArray, rates: NDArray, frac: NDArray):
-    """``G, Ġ, G̈`` (..., 4, 4) of ``exp(σ ℓ ξ^)`` along ``ε + t ε̇``, from one block exponential each (module doc)."""
+    """``G, Ġ, G̈`` (..., 4, 4) of ``exp(σ ℓ ξ^)`` along ``ε + t ε̇``, from one block exponential each (module doc;
+    the block matrix is upper-triangular Toeplitz, exponentiated block by block:
+    :func:`flexsim.structure._strain_kernels.expm_toeplitz_batch`)."""
     ell = beam.element_length_m * frac
-    a = np.zeros(frac.shape + (4, 4))
-    e = np.zeros(frac.shape + (4, 4))
+    x = np.zeros(frac.shape + (3, 4, 4))  # first block row [A, E, 0]
+    a, e = x[..., 0, :, :], x[..., 1, :, :]
     a[..., :3, :3] = _hat(ell[..., None] * strains[..., 1:])
     a[..., 0, 3] = frac * (1.0 + strains[..., 0])  # translations per unit element length: a small norm for the
     e[..., :3, :3] = _hat(ell[..., None] * rates[..., 1:])  # Padé approximant; they scale back below (linear in ρ)
     e[..., 0, 3] = frac * rates[..., 0]
-    big = np.zeros(frac.shape + (12, 12))
-    for i in range(3):
-        big[..., 4 * i:4 * i + 4, 4 * i:4 * i + 4] = a
-    big[..., 0:4, 4:8] = e
-    big[..., 4:8, 8:12] = e
-    x = expm(big)
-    x[..., 0:3, 3::4] *= beam.element_length_m
-    return x[..., 0:4, 0:4], x[..., 0:4, 4:8], 2.0 * x[..., 0:4, 8:12]
+    out = np.empty_like(x)
+    _kern.expm_toeplitz_batch(x.reshape(-1, 3, 4, 4), out.reshape(-1, 3, 4, 4))
+    out[..., 0:3, 3] *= beam.element_length_m
+    return out[..., 0, :, :], out[..., 1, :, :], 2.0 * out[..., 2, :, :]
 
 
 def beam_relative_motion(beam: BeamProperties, q: ArrayLike, qdot: ArrayLike, points_element: NDArray,
