@@ -1,12 +1,12 @@
 """The geometrically nonlinear aircraft against the linear model on the bundled PHC HALE, side by side in one run.
 
 Cases (CPU seconds of this process, one BLAS thread as the analyses use; medians of ``--repeats`` after one warm-up
-run that compiles the linear kernels):
+run that compiles the kernels):
 
 * ``trim``: one level trim at 20 km, 25 m/s — linear ``fs.trim`` against nonlinear ``fs.trim_flexible``
   (8 elements per wing, 48 strains, from a cold start);
 * ``force``: one evaluation of the equations — the linear model's right-hand side (``model.rhs``, compiled) against
-  the nonlinear aircraft's ``steady_residual`` at its trim (the beams' kinematics compiled, the loads in NumPy);
+  the nonlinear aircraft's ``steady_residual`` at its trim (beam kinematics and strip loads compiled, sums NumPy);
 * ``rhs``: one right-hand side of the equations of motion in time — the linear ``model.rhs`` against the nonlinear
   free-flight equations with quasi-steady strips, ``free_flight_rhs(structure, t, y, external_force=airloads(...,
   epsdot=...))`` as :mod:`flexsim.linear.flexible_stability` combines them, at the trim's state (strain rates given,
@@ -76,6 +76,8 @@ def main() -> None:
             eps, vel = y0[7:7 + n], y0[7 + n:]
             q = flex.airloads(eps, vel[:3], vel[3:6], nl_trim.controls, nl_trim.density_kg_m3, epsdot=vel[6:])
             free_flight_rhs(structure, 0.0, y0, q)
+
+    lin_force(), nl_rhs()  # warm-up: loads the linear right-hand side, compiles the block exponential
 
     rows = [
         ("trim", lambda: fs.trim(model, level), lambda: fs.trim_flexible(model, level)),
