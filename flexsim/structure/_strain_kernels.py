@@ -326,3 +326,19 @@ def expm_toeplitz_batch(x, out):
     """:func:`_expm_toeplitz` over the leading axis: x, out (m, 3, k, k)."""
     for i in range(x.shape[0]):
         _expm_toeplitz(x[i], out[i])
+
+
+@_jit
+def chain_toeplitz(root, elements, points_element, points, out):
+    """Frames and their first two time derivatives along a chain of element transforms, as first block rows
+    ``[T, Ṫ, T̈/2]`` (3, 4, 4) of block Toeplitz matrices, whose product is the product rule
+    (``T̈_(j+1) = T̈_j G + 2 Ṫ_j Ġ + T_j G̈``): nodes ``X_(j+1) = X_j X(G_j)`` from ``root``, then each point
+    ``X_node(e) X(H_p)``. root (3, 4, 4); elements (N, 3, 4, 4); points_element (P,) int; points, out (P, 3, 4, 4).
+    """
+    n = elements.shape[0]
+    nodes = np.empty((n + 1, 3, 4, 4))
+    nodes[0] = root
+    for j in range(n):
+        _tmul(nodes[j], elements[j], nodes[j + 1])
+    for k in range(points.shape[0]):
+        _tmul(nodes[points_element[k]], points[k], out[k])

@@ -231,9 +231,9 @@ def initial_state(structure: FreeFlexibleStructure, *, position_m: ArrayLike = (
     return np.concatenate(parts)
 
 
-def _element_transforms(beam: BeamProperties, strains: NDArray, rates: NDArray, frac: NDArray):
-    """``G, Ġ, G̈`` (..., 4, 4) of ``exp(σ ℓ ξ^)`` along ``ε + t ε̇``, from one block exponential each (module doc;
-    the block matrix is upper-triangular Toeplitz, exponentiated block by block:
+def _element_transforms(beam: BeamProperties, strains: NDArray, rates: NDArray, frac: NDArray) -> NDArray:
+    """``[G, Ġ, G̈/2]`` (..., 3, 4, 4) of ``exp(σ ℓ ξ^)`` along ``ε + t ε̇``: the first block row of one block
+    exponential each (module doc; the block matrix is upper-triangular Toeplitz, exponentiated block by block:
     :func:`flexsim.structure._strain_kernels.expm_toeplitz_batch`)."""
     ell = beam.element_length_m * frac
     x = np.zeros(frac.shape + (3, 4, 4))  # first block row [A, E, 0]
@@ -245,7 +245,7 @@ def _element_transforms(beam: BeamProperties, strains: NDArray, rates: NDArray, 
     out = np.empty_like(x)
     _kern.expm_toeplitz_batch(x.reshape(-1, 3, 4, 4), out.reshape(-1, 3, 4, 4))
     out[..., 0:3, 3] *= beam.element_length_m
-    return out[..., 0, :, :], out[..., 1, :, :], 2.0 * out[..., 2, :, :]
+    return out
 
 
 def beam_relative_motion(beam: BeamProperties, q: ArrayLike, qdot: ArrayLike, points_element: NDArray,
@@ -270,21 +270,14 @@ def beam_relative_motion(beam: BeamProperties, q: ArrayLike, qdot: ArrayLike, po
     """
     strains = beam.full_strains(q)
     rates = beam.full_strains(qdot)
-    n_el = beam.n_elements
-    g, gd, gdd = _element_transforms(beam, strains, rates, np.ones(n_el))
-    t = np.zeros((n_el + 1, 4, 4))
-    t[0, :3, :3], t[0, :3, 3], t[0, 3, 3] = beam.root_rotation, beam.root_position_m, 1.0
-    td = np.zeros_like(t)
-    tdd = np.zeros_like(t)
-    for j in range(n_el):  # product rule along the chain T_{j+1} = T_j G_j
-        t[j + 1] = t[j] @ g[j]
-        td[j + 1] = td[j] @ g[j] + t[j] @ gd[j]
-        tdd[j + 1] = tdd[j] @ g[j] + 2.0 * td[j] @ gd[j] + t[j] @ gdd[j]
-    e = np.asarray(points_element)
-    h, hd, hdd = _element_transforms(beam, strains[e], rates[e], np.asarray(points_fraction, dtype=float))
-    pt = t[e] @ h
-    ptd = td[e] @ h + t[e] @ hd
-    ptdd = tdd[e] @ h + 2.0 * td[e] @ hd + t[e] @ hdd
+    elements = _element_transforms(beam, strains, rates, np.ones(beam.n_elements))
+    e = np.ascontiguousarray(points_element, dtype=np.int64)
+    points = _element_transforms(beam, strains[e], rates[e], np.asarray(points_fraction, dtype=float))
+    root = np.zeros((3, 4, 4))
+    root[0, :3, :3], root[0, :3, 3], root[0, 3, 3] = beam.root_rotation, beam.root_position_m, 1.0
+    out = np.empty_like(points)  # the product rule along the chain T_(j+1) = T_j G_j, then T_e H_p at each point
+    _kern.chain_toeplitz(root, elements, e, points, out)
+    pt, ptd, ptdd = out[:, 0], out[:, 1], 2.0 * out[:, 2]
     return (pt[:, :3, 3], ptd[:, :3, 3], ptdd[:, :3, 3], pt[:, :3, :3], ptd[:, :3, :3], ptdd[:, :3, :3])
 
 
