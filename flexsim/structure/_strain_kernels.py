@@ -255,20 +255,61 @@ def _tmul(x, y, out):
 
 
 @_inline
-def _tsolve(d, n, out):
+def _lu_solve(a, b, piv):
+    """Solve ``a x = b`` in place (b becomes x; a (k, k) is overwritten by its LU factors with partial pivoting,
+    piv (k,) int scratch): Gaussian elimination, the right-hand side (k, k) eliminated along."""
+    k = a.shape[0]
+    for c in range(k):
+        p = c
+        for r in range(c + 1, k):
+            if abs(a[r, c]) > abs(a[p, c]):
+                p = r
+        piv[c] = p
+        if p != c:
+            for j in range(k):
+                a[c, j], a[p, j] = a[p, j], a[c, j]
+                b[c, j], b[p, j] = b[p, j], b[c, j]
+        for r in range(c + 1, k):
+            f = a[r, c] / a[c, c]
+            for j in range(c, k):
+                a[r, j] -= f * a[c, j]
+            for j in range(k):
+                b[r, j] -= f * b[c, j]
+    for c in range(k - 1, -1, -1):
+        for j in range(k):
+            acc = b[c, j]
+            for m in range(c + 1, k):
+                acc -= a[c, m] * b[m, j]
+            b[c, j] = acc / a[c, c]
+
+
+@_inline
+def _tsolve(d, n, out, work, piv):
     """``X`` with ``D X = N`` for block upper-triangular Toeplitz D, N, X (first block rows, (3, k, k)): block
-    back-substitution ``X0 = D0⁻¹ N0``, ``X1 = D0⁻¹ (N1 − D1 X0)``, ``X2 = D0⁻¹ (N2 − D1 X1 − D2 X0)``."""
-    out[0] = np.linalg.solve(d[0], n[0])
-    out[1] = np.linalg.solve(d[0], n[1] - d[1] @ out[0])
-    out[2] = np.linalg.solve(d[0], n[2] - d[1] @ out[1] - d[2] @ out[0])
+    back-substitution ``X0 = D0⁻¹ N0``, ``X1 = D0⁻¹ (N1 − D1 X0)``, ``X2 = D0⁻¹ (N2 − D1 X1 − D2 X0)``.
+    work (k, k) scratch; d is left unchanged."""
+    k = d.shape[1]
+    for blk in range(3):
+        for i in range(k):
+            for j in range(k):
+                acc = n[blk, i, j]
+                for m in range(k):
+                    if blk >= 1:
+                        acc -= d[1, i, m] * out[blk - 1, m, j]
+                    if blk == 2:
+                        acc -= d[2, i, m] * out[0, m, j]
+                out[blk, i, j] = acc
+        work[:, :] = d[0]
+        _lu_solve(work, out[blk], piv)
 
 
 @_jit
-def _expm_toeplitz(x, out):
+def _expm_toeplitz(x, out, work, piv):
     """``exp`` of the block upper-triangular Toeplitz matrix with first block row x (3, k, k), as its first block
     row, into out: scaling and squaring with a Padé approximant of degree 3, 5, 7, 9 or 13 chosen from the 1-norm
     (Higham, SIAM J. Matrix Anal. Appl. 26(4), 2005, Algorithm 2.3: the method of scipy.linalg.expm), the powers
-    and the solve done block by block (the structure is kept by products, sums and inverses)."""
+    and the solve done block by block (the structure is kept by products, sums and inverses).
+    work (8, 3, k, k) and piv (k,) int: scratch."""
     k = x.shape[1]
     norm = 0.0
     for j in range(k):
@@ -278,54 +319,70 @@ def _expm_toeplitz(x, out):
             col0 += abs(x[0, i, j])
             col12 += abs(x[0, i, j]) + abs(x[1, i, j]) + abs(x[2, i, j])
         norm = max(norm, col0, col12)
-    eye = np.zeros((3, k, k))
-    for i in range(k):
-        eye[0, i, i] = 1.0
-    x2 = np.empty((3, k, k))
-    _tmul(x, x, x2)
-    u = np.empty((3, k, k))
+    xs, x2, u, v, p1, p2, t1, t2 = work[0], work[1], work[2], work[3], work[4], work[5], work[6], work[7]
+    s = 0
+    if norm > _PADE_THETA[_PADE_DEGREE.size - 1]:
+        if norm > _THETA13:
+            s = int(np.ceil(np.log2(norm / _THETA13)))
+    scale = 0.5 ** s
+    xs[:, :, :] = x
+    if s > 0:
+        xs *= scale
+    _tmul(xs, xs, x2)
+    degree = 13
     for d in range(_PADE_DEGREE.size):
         if norm <= _PADE_THETA[d]:
-            b = _PADE_B[d]
-            power = eye.copy()  # X^(2i)
-            nxt = np.empty((3, k, k))
-            odd = b[1] * eye
-            v = b[0] * eye
-            for i in range(1, (_PADE_DEGREE[d] - 1) // 2 + 1):
-                _tmul(power, x2, nxt)
-                power, nxt = nxt, power
-                odd += b[2 * i + 1] * power
-                v += b[2 * i] * power
-            _tmul(x, odd, u)
-            _tsolve(v - u, v + u, out)
-            return
-    s = 0
-    if norm > _THETA13:
-        s = int(np.ceil(np.log2(norm / _THETA13)))
-    scale = 0.5 ** s
-    xs = x * scale
-    x2 *= scale * scale
-    x4 = np.empty((3, k, k))
-    x6 = np.empty((3, k, k))
-    tmp = np.empty((3, k, k))
-    _tmul(x2, x2, x4)
-    _tmul(x4, x2, x6)
-    b = _PADE13
-    _tmul(x6, b[13] * x6 + b[11] * x4 + b[9] * x2, tmp)
-    _tmul(xs, tmp + b[7] * x6 + b[5] * x4 + b[3] * x2 + b[1] * eye, u)
-    _tmul(x6, b[12] * x6 + b[10] * x4 + b[8] * x2, tmp)
-    v = tmp + b[6] * x6 + b[4] * x4 + b[2] * x2 + b[0] * eye
-    _tsolve(v - u, v + u, out)
+            degree = d
+            break
+    if degree < 13:  # U = X Σ b_(2i+1) X^(2i), V = Σ b_(2i) X^(2i)
+        b = _PADE_B[degree]
+        p1[:, :, :] = 0.0
+        t1[:, :, :] = 0.0  # the odd sum
+        v[:, :, :] = 0.0
+        for i in range(k):
+            p1[0, i, i] = 1.0
+            t1[0, i, i] = b[1]
+            v[0, i, i] = b[0]
+        for i in range(1, (_PADE_DEGREE[degree] - 1) // 2 + 1):
+            _tmul(p1, x2, p2)
+            p1[:, :, :] = p2
+            t1 += b[2 * i + 1] * p1
+            v += b[2 * i] * p1
+        _tmul(xs, t1, u)
+    else:
+        b = _PADE13
+        _tmul(x2, x2, p1)  # X^4
+        _tmul(p1, x2, p2)  # X^6
+        t1[:, :, :] = b[13] * p2 + b[11] * p1 + b[9] * x2
+        _tmul(p2, t1, t2)
+        t2 += b[7] * p2 + b[5] * p1 + b[3] * x2
+        for i in range(k):
+            t2[0, i, i] += b[1]
+        _tmul(xs, t2, u)
+        t1[:, :, :] = b[12] * p2 + b[10] * p1 + b[8] * x2
+        _tmul(p2, t1, v)
+        v += b[6] * p2 + b[4] * p1 + b[2] * x2
+        for i in range(k):
+            v[0, i, i] += b[0]
+    for blk in range(3):  # D = V − U into p1, N = V + U into p2
+        for i in range(k):
+            for j in range(k):
+                p1[blk, i, j] = v[blk, i, j] - u[blk, i, j]
+                p2[blk, i, j] = v[blk, i, j] + u[blk, i, j]
+    _tsolve(p1, p2, out, t1[0], piv)
     for _ in range(s):
-        _tmul(out, out, tmp)
-        out[:, :, :] = tmp
+        _tmul(out, out, t2)
+        out[:, :, :] = t2
 
 
 @_jit
 def expm_toeplitz_batch(x, out):
     """:func:`_expm_toeplitz` over the leading axis: x, out (m, 3, k, k)."""
+    k = x.shape[2]
+    work = np.empty((8, 3, k, k))
+    piv = np.empty(k, dtype=np.int64)
     for i in range(x.shape[0]):
-        _expm_toeplitz(x[i], out[i])
+        _expm_toeplitz(x[i], out[i], work, piv)
 
 
 @_jit
