@@ -357,11 +357,11 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
     out[n:2 * n, :n], out[n:2 * n, n:2 * n], out[n:2 * n, 2 * n:] = qdd_q, qdd_v, qdd_l
     # [A]λ̇ + (u0/b)λ = {c}(ẇ0 + ẇ1/2),  ẇ0 + ẇ1/2 = (w0v + w1v/2) δq̈ + rn δq̇
     forcing_acc = w0v + 0.5 * w1v
+    f_rows = forcing_acc @ out[n:2 * n]  # (P, size): ẇ0 + ẇ1/2 of each strip per state, through δq̈
+    f_rows[:, n:2 * n] += rn
     for i in range(p):
         rows = slice(2 * n + i * nl, 2 * n + (i + 1) * nl)
-        f_row = forcing_acc[i] @ np.hstack([qdd_q, qdd_v, qdd_l])
-        f_row[n:2 * n] += rn[i]
-        out[rows] = np.outer(coef.A_inv_c, f_row)
+        out[rows] = np.outer(coef.A_inv_c, f_rows[i])
         out[rows, rows] -= (u0[i] / b[i]) * coef.A_inv
     return AeroelasticSystem(state_matrix=out, n_structural=n, tangent_stiffness=stiffness, mass=m)
 
