@@ -1,12 +1,16 @@
 """The geometrically nonlinear aircraft against the linear model on the bundled PHC HALE, side by side in one run.
 
 Cases (CPU seconds of this process, one BLAS thread as the analyses use; medians of ``--repeats`` after one warm-up
-run that compiles the linear kernels):
+run that compiles the kernels):
 
 * ``trim``: one level trim at 20 km, 25 m/s — linear ``fs.trim`` against nonlinear ``fs.trim_flexible``
   (8 elements per wing, 48 strains, from a cold start);
 * ``force``: one evaluation of the equations — the linear model's right-hand side (``model.rhs``, compiled) against
-  the nonlinear aircraft's ``steady_residual`` at its trim (NumPy: the beams' kinematics and the strip loads);
+  the nonlinear aircraft's ``steady_residual`` at its trim (beam kinematics and strip loads compiled, sums NumPy);
+* ``rhs``: one right-hand side of the equations of motion in time — the linear ``model.rhs`` against the nonlinear
+  free-flight equations with quasi-steady strips, ``free_flight_rhs(structure, t, y, external_force=airloads(...,
+  epsdot=...))`` as :mod:`flexsim.linear.flexible_stability` combines them, at the trim's state (strain rates given,
+  so the relative accelerations of the sections are computed);
 * ``flutter``: one flutter point of level flight — linear ``fs.flutter(..., "theodorsen")`` against
   ``fs.flexible_flutter(..., (20, 45), speed_step_m_s=2.5)``.
 
@@ -28,6 +32,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 import flexsim as fs  # noqa: E402
+from flexsim.structure.free_flexible import FreeFlexibleStructure, free_flight_rhs  # noqa: E402
 
 
 def _cpu(fn, repeats: int) -> float:
@@ -61,9 +66,23 @@ def main() -> None:
         for _ in range(10):
             model.rhs(0.0, lin_trim.x, u_lin)
 
+    structure = FreeFlexibleStructure(flex.structure.body, flex.structure.beams, np.array([0.0, 0.0, 9.80665]))
+    n = structure.n_strains
+    y0 = np.concatenate([[0.0, 0.0, -level.altitude_m], quat, nl_trim.strains, nl_trim.velocity_m_s,
+                         nl_trim.rate_rad_s, np.zeros(n)])
+
+    def nl_rhs():
+        for _ in range(10):
+            eps, vel = y0[7:7 + n], y0[7 + n:]
+            q = flex.airloads(eps, vel[:3], vel[3:6], nl_trim.controls, nl_trim.density_kg_m3, epsdot=vel[6:])
+            free_flight_rhs(structure, 0.0, y0, q)
+
+    lin_force(), nl_rhs()  # warm-up: loads the linear right-hand side, compiles the block exponential
+
     rows = [
         ("trim", lambda: fs.trim(model, level), lambda: fs.trim_flexible(model, level)),
         ("force (x10)", lin_force, nl_force),
+        ("rhs (x10)", lin_force, nl_rhs),
         ("flutter", lambda: fs.flutter(model, level, "theodorsen"),
          lambda: fs.flexible_flutter(model, level, (20.0, 45.0), speed_step_m_s=2.5)),
     ]

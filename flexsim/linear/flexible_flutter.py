@@ -18,6 +18,7 @@ air velocity in the perturbation equations. SI units, radians.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -26,8 +27,9 @@ from scipy.optimize import brentq
 
 from flexsim.atmosphere import isa
 from flexsim.model.aircraft_model import check_model
-from flexsim.model.terms import NonlinearBeams
 from flexsim.model.beam_aero import AeroelasticSystem, TunnelFlow, aeroelastic_system, static_stiffness
+from flexsim.model.terms import NonlinearBeams
+from flexsim.structure.free_flexible import _cross
 from flexsim.structure.strain_beam import BeamKinematics, BeamProperties, mass_centre_jacobian
 from flexsim.trimming.flexible_trim import FlexibleTrimError, FlexibleTrimPoint, trim_flexible
 from flexsim.trimming.manoeuvre import SteadyManoeuvre
@@ -64,7 +66,7 @@ class SteadyInertialLoad:
         """``Q = Σ w J_cᵀ m (g_b − ω × v − ω × (ω × r_c))``, shape (n,)."""
         r, jc = mass_centre_jacobian(beam, kin)
         om = np.asarray(self.rate_rad_s, float)
-        acc = np.cross(om, self.velocity_m_s) + np.cross(om, np.cross(om, r))
+        acc = _cross(om, self.velocity_m_s) + _cross(om, _cross(om, r))
         mass = beam.mass_kg_per_m[kin.points_element] * kin.points_weight
         return np.einsum("pik,pi->k", jc, mass[:, None] * (np.asarray(self.gravity_body_m_s2, float) - acc))
 
@@ -198,19 +200,32 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
     if not (np.isfinite(speed_step_m_s) and speed_step_m_s > 0):
         raise ValueError(f"speed_step_m_s = {speed_step_m_s!r}: must be > 0 [m/s]")
 
+    evaluated = {}  # speed -> (trim, growth, frequency): brentq's last evaluation is its root
+    converged = []  # the last converged trim, within the strips' lift range or not: the start of the next scan speed
+    limit = math.degrees(model.aircraft.aero_settings.max_alpha_rad)
+
     def at(speed, guess):
-        man = SteadyManoeuvre(speed, manoeuvre.altitude_m, climb_angle_rad=manoeuvre.climb_angle_rad,
-                              load_factor=manoeuvre.load_factor)
-        point = trim_flexible(model, man, elements_per_beam=beams.elements_per_beam, guess=guess)
-        growth, freq, _ = wing_stability(model, point, component, inflow_states)
-        return point, growth, freq
+        if speed not in evaluated:
+            man = SteadyManoeuvre(speed, manoeuvre.altitude_m, climb_angle_rad=manoeuvre.climb_angle_rad,
+                                  load_factor=manoeuvre.load_factor)
+            point = trim_flexible(model, man, elements_per_beam=beams.elements_per_beam, guess=guess, check_limits=False)
+            converged[:] = [point]
+            if point.max_strip_alpha_deg > limit:  # refused with trim_flexible's own error (from the converged trim)
+                trim_flexible(model, man, elements_per_beam=beams.elements_per_beam, guess=point)
+            growth, freq, _ = wing_stability(model, point, component, inflow_states)
+            evaluated[speed] = (point, growth, freq)
+        return evaluated[speed]
+
+    def nearest(speed):
+        """The trim of the evaluated speed closest to ``speed`` (the start of its trim)."""
+        return evaluated[min(evaluated, key=lambda s: abs(s - speed))][0]
 
     speeds, growth, skipped = [], [], []
     previous = None
     found = None
     for speed in np.append(np.arange(lo, hi, speed_step_m_s), hi):
         try:
-            point, g, f = at(speed, previous[0] if previous is not None else None)
+            point, g, f = at(speed, previous[0] if previous is not None else (converged[0] if converged else None))
         except FlexibleTrimError:
             skipped.append(speed)
             if previous is not None:
@@ -218,11 +233,11 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
             continue
         speeds.append(speed), growth.append(g)
         if previous is not None and previous[1] < 0.0 < g:
-            base = previous[0]
-            speed_f = brentq(lambda s: at(s, base)[1], previous[2], speed, xtol=tol_m_s)
-            point_f = at(speed_f, base)[0]
+            speed_f = brentq(lambda s: at(s, nearest(s))[1], previous[2], speed, xtol=tol_m_s)
+            point_f = at(speed_f, nearest(speed_f))[0]
             # the critical root just past the crossing (at the crossing it is neutral and not counted)
-            freq_f = at(min(speed_f + 2.0 * tol_m_s, speed), base)[2]
+            past = min(speed_f + 2.0 * tol_m_s, speed)
+            freq_f = at(past, nearest(past))[2]
             found = (speed_f, freq_f, point_f)
             break
         previous = (point, g, speed)

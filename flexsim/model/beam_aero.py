@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
+from numba import njit
 from numpy.typing import ArrayLike, NDArray
 
 from flexsim._arrays import frozen_array
@@ -94,14 +95,16 @@ class WingAero:
             if arr.size not in (1, n):
                 raise ValueError(f"{name} has {arr.size} values: must be one or one per element ({n})")
         e = kin.points_element
-        chord = np.broadcast_to(self.chord_m, (n,))[e]
-        frac = np.broadcast_to(self.axis_fraction, (n,))[e]
-        return 0.5 * chord, 2.0 * frac - 1.0
+        return 0.5 * _at_points(self.chord_m, n, e), 2.0 * _at_points(self.axis_fraction, n, e) - 1.0
 
     def density_scale(self, beam: BeamProperties, kin: BeamKinematics) -> NDArray:
         """``lift_slope / 2π`` at the quadrature points (the factor on each strip's airloads)."""
-        slope = np.broadcast_to(self.lift_slope_per_rad, (beam.n_elements,))[kin.points_element]
-        return slope / (2.0 * np.pi)
+        return _at_points(self.lift_slope_per_rad, beam.n_elements, kin.points_element) / (2.0 * np.pi)
+
+
+def _at_points(values: NDArray, n: int, element: NDArray) -> NDArray:
+    """Per-element ``values`` (one, or one per element of n) at points on the elements ``element``."""
+    return values[element] if values.size == n else np.full(element.shape, values[0])
 
 
 @dataclass(frozen=True)
@@ -180,20 +183,50 @@ def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDAr
         [N/m] and [N m/m] in the frames' components.
     """
     _, bm, _ = _section_matrices()
-    e1, e2, e3 = rotations[:, :, 0], rotations[:, :, 1], rotations[:, :, 2]
-    va = np.broadcast_to(air_velocity, e1.shape)
-    u0, wn = -np.einsum("pi,pi->p", e2, va), np.einsum("pi,pi->p", e3, va)
-    w1 = b * rate_e1
-    w0 = wn + u0 * incidence - a * w1
-    w = np.stack([w0, w1 * np.ones_like(w0)], axis=1)
-    gen = np.pi * (rho * b * u0)[:, None] * (w @ bm.T)  # {L} (P, 2)
-    lift, moment = gen[:, 0], a * b * gen[:, 0] - b * gen[:, 1]
-    suction = 2.0 * np.pi * rho * b * w0**2
-    force = lift[:, None] * e3 + suction[:, None] * e2
-    if np.any(cd0):
-        in_plane = wn[:, None] * e3 - u0[:, None] * e2
-        force = force + (rho * b * cd0)[:, None] * np.linalg.norm(in_plane, axis=1)[:, None] * in_plane
-    return force, moment[:, None] * e1
+    rotations = np.asarray(rotations, dtype=float)
+    p = rotations.shape[0]
+    force, moment = np.empty((p, 3)), np.empty((p, 3))
+    _section_loads_kernel(_strip_array(rotations, (p, 3, 3)), _strip_array(b, (p,)), _strip_array(a, (p,)),
+                          _strip_array(air_velocity, (p, 3)), _strip_array(rho, (p,)), _strip_array(rate_e1, (p,)),
+                          _strip_array(incidence, (p,)), _strip_array(cd0, (p,)), bm, force, moment)
+    return force, moment
+
+
+def _strip_array(value, shape: tuple) -> NDArray:
+    """``value`` broadcast to ``shape`` as a C-contiguous float array (no copy when it already is one)."""
+    arr = np.asarray(value, dtype=float)
+    if arr.shape == shape and arr.flags.c_contiguous:
+        return arr
+    out = np.empty(shape)
+    out[...] = arr
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, bm, force, moment):
+    """The loads of :func:`section_loads` strip by strip (compiled; arguments broadcast to P strips).
+
+    ``u0 = −e2·V_a``, ``w_n = e3·V_a``, ``w1 = b Ω1``, ``w0 = w_n + u0 α_i − a w1``; ``{L} = πρ b u0 [B]{w}``;
+    lift ``L0`` along e3, moment ``a b L0 − b L1`` along e1, suction ``2πρ b w0²`` along e2, profile drag
+    ``ρ b cd0 |V_in| V_in`` along the in-section air velocity ``V_in = w_n e3 − u0 e2``.
+    """
+    for k in range(rotations.shape[0]):
+        r = rotations[k]
+        u0 = -(r[0, 1] * va[k, 0] + r[1, 1] * va[k, 1] + r[2, 1] * va[k, 2])
+        wn = r[0, 2] * va[k, 0] + r[1, 2] * va[k, 1] + r[2, 2] * va[k, 2]
+        w1 = b[k] * rate[k]
+        w0 = wn + u0 * incidence[k] - a[k] * w1
+        scale = np.pi * rho[k] * b[k] * u0
+        gen0 = scale * (bm[0, 0] * w0 + bm[0, 1] * w1)
+        gen1 = scale * (bm[1, 0] * w0 + bm[1, 1] * w1)
+        mom = a[k] * b[k] * gen0 - b[k] * gen1
+        suction = 2.0 * np.pi * rho[k] * b[k] * w0 ** 2
+        drag = 0.0
+        if cd0[k] != 0.0:
+            drag = rho[k] * b[k] * cd0[k] * np.sqrt(wn * wn + u0 * u0)
+        for i in range(3):
+            force[k, i] = gen0 * r[i, 2] + suction * r[i, 1] + drag * (wn * r[i, 2] - u0 * r[i, 1])
+            moment[k, i] = mom * r[i, 0]
 
 
 def _steady_section_loads(kin, b, a, flow, scale=1.0):
@@ -221,9 +254,10 @@ class StripAirloads:
         """``Q = Σ w (J_pᵀ F + J_θᵀ M)`` of the steady strip loads (virtual work; Su & Cesnik 2011 eq. 13)."""
         b, a = self.aero.strips(beam, kin)
         force, moment = _steady_section_loads(kin, b, a, self.flow, self.aero.density_scale(beam, kin))
-        w = kin.points_weight
-        return (np.einsum("p,pik,pi->k", w, kin.jac_position, force)
-                + np.einsum("p,pik,pi->k", w, kin.jac_rotation, moment))
+        w = kin.points_weight[:, None]
+        n = kin.jac_position.shape[-1]
+        return ((w * force).reshape(-1) @ kin.jac_position.reshape(-1, n)
+                + (w * moment).reshape(-1) @ kin.jac_rotation.reshape(-1, n))
 
 
 @dataclass(frozen=True)
@@ -323,22 +357,23 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
     out[n:2 * n, :n], out[n:2 * n, n:2 * n], out[n:2 * n, 2 * n:] = qdd_q, qdd_v, qdd_l
     # [A]λ̇ + (u0/b)λ = {c}(ẇ0 + ẇ1/2),  ẇ0 + ẇ1/2 = (w0v + w1v/2) δq̈ + rn δq̇
     forcing_acc = w0v + 0.5 * w1v
+    f_rows = forcing_acc @ out[n:2 * n]  # (P, size): ẇ0 + ẇ1/2 of each strip per state, through δq̈
+    f_rows[:, n:2 * n] += rn
     for i in range(p):
         rows = slice(2 * n + i * nl, 2 * n + (i + 1) * nl)
-        f_row = forcing_acc[i] @ np.hstack([qdd_q, qdd_v, qdd_l])
-        f_row[n:2 * n] += rn[i]
-        out[rows] = np.outer(coef.A_inv_c, f_row)
+        out[rows] = np.outer(coef.A_inv_c, f_rows[i])
         out[rows, rows] -= (u0[i] / b[i]) * coef.A_inv
     return AeroelasticSystem(state_matrix=out, n_structural=n, tangent_stiffness=stiffness, mass=m)
 
 
 def static_stiffness(beam: BeamProperties, q0: ArrayLike, loads: LoadModel | None, aero: WingAero,
                      flow: TunnelFlow, step: float = 1e-6) -> NDArray:
-    """``K_T = K − ∂Q_loads/∂q − U² ∂Q_steady(U = 1)/∂q`` at ``q0`` (central differences, step in q units)."""
-    k = stiffness_matrix(beam)
-    if loads is not None:
-        k = k - load_stiffness(beam, loads, q0, step)
+    """``K_T = K − ∂(Q_loads + Q_steady)/∂q`` at ``q0`` (central differences of their sum, step in q units; one
+    kinematics per perturbed configuration serves both; ``Q_steady`` is ``U²`` times the loads at unit speed)."""
+    parts = () if loads is None else (loads,)
     if flow.speed_m_s > 0:
-        unit = StripAirloads(aero, TunnelFlow(1.0, flow.density_kg_m3, flow.direction))
-        k = k - flow.speed_m_s**2 * load_stiffness(beam, unit, q0, step)
-    return k
+        parts += (StripAirloads(aero, flow),)  # U² × the loads at unit speed: the steady loads at U
+    if not parts:
+        return stiffness_matrix(beam)
+    # one kinematics per perturbed configuration for all loads
+    return stiffness_matrix(beam) - load_stiffness(beam, parts[0] if len(parts) == 1 else LoadSum(parts), q0, step)

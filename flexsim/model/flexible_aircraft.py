@@ -40,7 +40,7 @@ from flexsim.model.aircraft_model import check_model
 from flexsim.model.beam_aero import WingAero, section_loads
 from flexsim.model.terms import NonlinearBeams
 from flexsim.structure.beam_sections import beam_from_sections
-from flexsim.structure.free_flexible import (FreeFlexibleStructure, RigidBody, generalized_mass_matrix,
+from flexsim.structure.free_flexible import (FreeFlexibleStructure, RigidBody, _cross, generalized_mass_matrix,
                                              steady_generalized_force)
 from flexsim.structure.strain_beam import BeamProperties, beam_kinematics
 
@@ -181,42 +181,56 @@ class FlexibleAircraft:
         ndarray, shape (6 + n,)
             Force [N] (body), moment about o [N m] (body), strain forces.
         """
+        return self._airloads(eps, v, omega, u, rho, wind, epsdot, self.kinematics(eps))
+
+    @cached_property
+    def _strip_data(self) -> tuple:
+        """Per beam, its strips' constants at the quadrature points: ``b``, ``a``, ``lift_slope/2π``, incidence,
+        flap rows (P, 4) and cd0 (they depend on the element of each point only, not on the strains)."""
+        out = []
+        for beam, strips in zip(self.structure.beams, self.beam_strips):
+            kin = beam_kinematics(beam, np.zeros(beam.n_coordinates))
+            b, a = strips.aero.strips(beam, kin)
+            e = kin.points_element
+            out.append((b, a, strips.aero.density_scale(beam, kin), strips.incidence[e], strips.flap[e],
+                        strips.cd0[e]))
+        return tuple(out)
+
+    def _airloads(self, eps, v, omega, u, rho, wind, epsdot, kinematics) -> NDArray:
+        """:meth:`airloads` with the beams' kinematics at ``eps`` given (one list per evaluation of the equations)."""
         nv = self.structure.n_velocities
         out = np.zeros(nv)
         w_air = np.zeros(3) if wind is None else np.asarray(wind, float)
-        for beam, s, strips, kin in zip(self.structure.beams, self.structure.strain_slices(), self.beam_strips,
-                                        self.kinematics(eps)):
-            b, a = strips.aero.strips(beam, kin)
-            e = kin.points_element
+        for s, kin, (b, a, scale, incidence, flap, cd0) in zip(self.structure.strain_slices(), kinematics,
+                                                              self._strip_data):
             p = kin.positions
-            va = w_air - (v + np.cross(omega, p))
+            va = w_air - (v + _cross(omega, p))
             rate = kin.rotations[:, :, 0] @ omega
             if epsdot is not None:
                 va = va - kin.jac_position @ epsdot[s]
                 rate = rate + np.einsum("pi,pi->p", kin.rotations[:, :, 0], kin.jac_rotation @ epsdot[s])
-            force, moment = section_loads(kin.rotations, b, a, va, rho * strips.aero.density_scale(beam, kin),
-                                          rate_e1=rate, incidence=strips.incidence[e] + strips.flap[e] @ u,
-                                          cd0=strips.cd0[e])
+            force, moment = section_loads(kin.rotations, b, a, va, rho * scale, rate_e1=rate,
+                                          incidence=incidence + flap @ u, cd0=cd0)
             wt = kin.points_weight
             f, m = wt[:, None] * force, wt[:, None] * moment
             out[:3] += f.sum(0)
-            out[3:6] += (np.cross(p, f) + m).sum(0)
+            out[3:6] += (_cross(p, f) + m).sum(0)
             out[6 + s.start:6 + s.stop] += (np.einsum("pik,pi->k", kin.jac_position, f)
                                             + np.einsum("pik,pi->k", kin.jac_rotation, m))
         r = self.rigid_strips
         if r.b.size:
-            va = w_air - (v + np.cross(omega, r.position))
+            va = w_air - (v + _cross(omega, r.position))
             force, moment = section_loads(r.rotations, r.b, r.a, va, rho * r.scale,
                                           rate_e1=r.rotations[:, :, 0] @ omega, incidence=r.incidence + r.flap @ u,
                                           cd0=r.cd0)
             f, m = r.width[:, None] * force, r.width[:, None] * moment
             out[:3] += f.sum(0)
-            out[3:6] += (np.cross(r.position, f) + m).sum(0)
+            out[3:6] += (_cross(r.position, f) + m).sum(0)
         n_eng = self.engine_position_m.shape[0]
         if n_eng:
             thrust = np.array([u[0] / n_eng, 0.0, 0.0])
             out[:3] += u[0] * np.array([1.0, 0.0, 0.0])
-            out[3:6] += np.cross(self.engine_position_m, thrust).sum(0)
+            out[3:6] += _cross(self.engine_position_m, thrust).sum(0)
         return out
 
     def max_strip_alpha_deg(self, eps: NDArray, v: NDArray, omega: NDArray, u: NDArray) -> float:
@@ -245,9 +259,10 @@ class FlexibleAircraft:
         (:func:`flexsim.structure.free_flexible.steady_generalized_force`), the airloads :meth:`airloads`.
         ``attitude`` is the body→NED quaternion [q0, q1, q2, q3].
         """
+        kinematics = self.kinematics(eps)  # built once, shared by the structure's and the air's forces
         q = steady_generalized_force(self.structure, attitude, eps, np.concatenate([v, omega]),
-                                     np.array([0.0, 0.0, gravity_m_s2]))
-        return q + self.airloads(eps, v, omega, u, rho)
+                                     np.array([0.0, 0.0, gravity_m_s2]), kinematics=kinematics)
+        return q + self._airloads(eps, v, omega, u, rho, None, None, kinematics)
 
 
 def _beam_frame(comp) -> NDArray:

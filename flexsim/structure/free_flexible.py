@@ -43,12 +43,14 @@ north-east-down. The quaternion ``[q0, q1, q2, q3]`` (scalar first) rotates body
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.linalg import cho_factor, cho_solve, eigh, expm
+from scipy.linalg import cho_factor, cho_solve, eigh
 
 from flexsim._arrays import frozen_array
+from flexsim.structure import _strain_kernels as _kern
 from flexsim.structure.strain_beam import (BeamProperties, beam_kinematics, mass_centre_jacobian,
                                            stiffness_matrix)
 
@@ -63,6 +65,22 @@ def _hat(v: NDArray) -> NDArray:
     out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
     out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
     out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
+    return out
+
+
+def _cross(a: NDArray, b: NDArray) -> NDArray:
+    """``a × b`` over the last axis (length 3), broadcast; explicit components (cheaper than ``np.cross`` on the
+    small arrays of the equations)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    if a.shape == b.shape or b.ndim == 1:
+        shape = a.shape
+    else:
+        shape = b.shape if a.ndim == 1 else np.broadcast_shapes(a.shape, b.shape)
+    out = np.empty(shape)
+    out[..., 0] = a1 * b2 - a2 * b1
+    out[..., 1] = a2 * b0 - a0 * b2
+    out[..., 2] = a0 * b1 - a1 * b0
     return out
 
 
@@ -172,10 +190,15 @@ class FreeFlexibleStructure:
 
     def stiffness(self) -> NDArray[np.float64]:
         """``blockdiag(K_beam)``, shape (n, n) (Su & Cesnik 2011 eq. 6)."""
+        return self._stiffness.copy()
+
+    @cached_property
+    def _stiffness(self) -> NDArray[np.float64]:
+        """:meth:`stiffness`, built once (read-only)."""
         k = np.zeros((self.n_strains, self.n_strains))
         for b, s in zip(self.beams, self.strain_slices()):
             k[s, s] = stiffness_matrix(b)
-        return k
+        return frozen_array(k)
 
 
 def quaternion_matrix(quat: ArrayLike) -> NDArray[np.float64]:
@@ -208,23 +231,21 @@ def initial_state(structure: FreeFlexibleStructure, *, position_m: ArrayLike = (
     return np.concatenate(parts)
 
 
-def _element_transforms(beam: BeamProperties, strains: NDArray, rates: NDArray, frac: NDArray):
-    """``G, Ġ, G̈`` (..., 4, 4) of ``exp(σ ℓ ξ^)`` along ``ε + t ε̇``, from one block exponential each (module doc)."""
+def _element_transforms(beam: BeamProperties, strains: NDArray, rates: NDArray, frac: NDArray) -> NDArray:
+    """``[G, Ġ, G̈/2]`` (..., 3, 4, 4) of ``exp(σ ℓ ξ^)`` along ``ε + t ε̇``: the first block row of one block
+    exponential each (module doc; the block matrix is upper-triangular Toeplitz, exponentiated block by block:
+    :func:`flexsim.structure._strain_kernels.expm_toeplitz_batch`)."""
     ell = beam.element_length_m * frac
-    a = np.zeros(frac.shape + (4, 4))
-    e = np.zeros(frac.shape + (4, 4))
+    x = np.zeros(frac.shape + (3, 4, 4))  # first block row [A, E, 0]
+    a, e = x[..., 0, :, :], x[..., 1, :, :]
     a[..., :3, :3] = _hat(ell[..., None] * strains[..., 1:])
     a[..., 0, 3] = frac * (1.0 + strains[..., 0])  # translations per unit element length: a small norm for the
     e[..., :3, :3] = _hat(ell[..., None] * rates[..., 1:])  # Padé approximant; they scale back below (linear in ρ)
     e[..., 0, 3] = frac * rates[..., 0]
-    big = np.zeros(frac.shape + (12, 12))
-    for i in range(3):
-        big[..., 4 * i:4 * i + 4, 4 * i:4 * i + 4] = a
-    big[..., 0:4, 4:8] = e
-    big[..., 4:8, 8:12] = e
-    x = expm(big)
-    x[..., 0:3, 3::4] *= beam.element_length_m
-    return x[..., 0:4, 0:4], x[..., 0:4, 4:8], 2.0 * x[..., 0:4, 8:12]
+    out = np.empty_like(x)
+    _kern.expm_toeplitz_batch(x.reshape(-1, 3, 4, 4), out.reshape(-1, 3, 4, 4))
+    out[..., 0:3, 3] *= beam.element_length_m
+    return out
 
 
 def beam_relative_motion(beam: BeamProperties, q: ArrayLike, qdot: ArrayLike, points_element: NDArray,
@@ -249,21 +270,14 @@ def beam_relative_motion(beam: BeamProperties, q: ArrayLike, qdot: ArrayLike, po
     """
     strains = beam.full_strains(q)
     rates = beam.full_strains(qdot)
-    n_el = beam.n_elements
-    g, gd, gdd = _element_transforms(beam, strains, rates, np.ones(n_el))
-    t = np.zeros((n_el + 1, 4, 4))
-    t[0, :3, :3], t[0, :3, 3], t[0, 3, 3] = beam.root_rotation, beam.root_position_m, 1.0
-    td = np.zeros_like(t)
-    tdd = np.zeros_like(t)
-    for j in range(n_el):  # product rule along the chain T_{j+1} = T_j G_j
-        t[j + 1] = t[j] @ g[j]
-        td[j + 1] = td[j] @ g[j] + t[j] @ gd[j]
-        tdd[j + 1] = tdd[j] @ g[j] + 2.0 * td[j] @ gd[j] + t[j] @ gdd[j]
-    e = np.asarray(points_element)
-    h, hd, hdd = _element_transforms(beam, strains[e], rates[e], np.asarray(points_fraction, dtype=float))
-    pt = t[e] @ h
-    ptd = td[e] @ h + t[e] @ hd
-    ptdd = tdd[e] @ h + 2.0 * td[e] @ hd + t[e] @ hdd
+    elements = _element_transforms(beam, strains, rates, np.ones(beam.n_elements))
+    e = np.ascontiguousarray(points_element, dtype=np.int64)
+    points = _element_transforms(beam, strains[e], rates[e], np.asarray(points_fraction, dtype=float))
+    root = np.zeros((3, 4, 4))
+    root[0, :3, :3], root[0, :3, 3], root[0, 3, 3] = beam.root_rotation, beam.root_position_m, 1.0
+    out = np.empty_like(points)  # the product rule along the chain T_(j+1) = T_j G_j, then T_e H_p at each point
+    _kern.chain_toeplitz(root, elements, e, points, out)
+    pt, ptd, ptdd = out[:, 0], out[:, 1], 2.0 * out[:, 2]
     return (pt[:, :3, 3], ptd[:, :3, 3], ptdd[:, :3, 3], pt[:, :3, :3], ptd[:, :3, :3], ptdd[:, :3, :3])
 
 
@@ -276,17 +290,21 @@ class _Points:
     r: NDArray            # (P, 3) mass-centre positions [m]
     jac_c: NDArray        # (P, 3, 6 + n): L (mass-centre velocity per V)
     jac_w: NDArray        # (P, 3, 6 + n): A (section angular velocity per V)
-    rdot: NDArray         # (P, 3) J_c ε̇
-    rddot: NDArray        # (P, 3) J̇_c ε̇
-    w_rel: NDArray        # (P, 3) J_θ ε̇
-    alpha_rel: NDArray    # (P, 3) J̇_θ ε̇
+    rdot: NDArray | None       # (P, 3) J_c ε̇ (the four: None when ε̇ = 0)
+    rddot: NDArray | None      # (P, 3) J̇_c ε̇
+    w_rel: NDArray | None      # (P, 3) J_θ ε̇
+    alpha_rel: NDArray | None  # (P, 3) J̇_θ ε̇
 
 
-def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | None) -> _Points:
+def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | None,
+            kinematics: list | None = None) -> _Points:
+    """The quadrature points of all beams at ``eps`` (``kinematics``: the beams' kinematics there, if known)."""
     nv = structure.n_velocities
     blocks = []
-    for beam, s in zip(structure.beams, structure.strain_slices()):
-        kin = beam_kinematics(beam, eps[s])
+    slices = structure.strain_slices()
+    if kinematics is None:
+        kinematics = [beam_kinematics(beam, eps[s]) for beam, s in zip(structure.beams, slices)]
+    for beam, s, kin in zip(structure.beams, slices, kinematics):
         r, jc = mass_centre_jacobian(beam, kin)
         e = kin.points_element
         n_p = e.size
@@ -299,8 +317,8 @@ def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | No
         lw[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
         w = kin.points_weight
         sec = np.stack([beam.torsion_inertia_kg_m[e], beam.flap_inertia_kg_m[e], beam.chord_inertia_kg_m[e]], 1)
-        inertia = np.einsum("pij,pj,pkj->pik", kin.rotations, sec * w[:, None], kin.rotations)
-        motion = [np.zeros((n_p, 3))] * 4
+        inertia = (kin.rotations * (sec * w[:, None])[:, None, :]) @ np.swapaxes(kin.rotations, 1, 2)
+        motion = []
         if epsdot is not None:
             frac = kin.points_s / beam.element_length_m - e
             _, pd, pdd, rot, rd, rdd = beam_relative_motion(beam, eps[s], epsdot[s], e, frac)
@@ -313,7 +331,8 @@ def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | No
     if not blocks:
         z3, zj = np.zeros((0, 3)), np.zeros((0, 3, nv))
         return _Points(np.zeros(0), np.zeros((0, 3, 3)), z3, zj, zj, z3, z3, z3, z3)
-    return _Points(*(np.concatenate(parts) for parts in zip(*blocks)))
+    parts = [np.concatenate(arrays) for arrays in zip(*blocks)]
+    return _Points(*parts) if epsdot is not None else _Points(*parts, None, None, None, None)
 
 
 def _rigid_mass(body: RigidBody, nv: int) -> NDArray:
@@ -328,8 +347,10 @@ def _rigid_mass(body: RigidBody, nv: int) -> NDArray:
 
 def _mass_from_points(structure: FreeFlexibleStructure, pts: _Points) -> NDArray:
     out = _rigid_mass(structure.body, structure.n_velocities)
-    out += np.einsum("p,pji,pjk->ik", pts.mass, pts.jac_c, pts.jac_c)
-    out += np.einsum("pji,pjl,plk->ik", pts.jac_w, pts.inertia, pts.jac_w)
+    nv = out.shape[0]
+    jc, jw = pts.jac_c.reshape(-1, nv), pts.jac_w.reshape(-1, nv)  # (3P, nv): one product each (BLAS)
+    out += (pts.mass[:, None, None] * pts.jac_c).reshape(-1, nv).T @ jc
+    out += jw.T @ (pts.inertia @ pts.jac_w).reshape(-1, nv)
     return 0.5 * (out + out.T)
 
 
@@ -359,25 +380,30 @@ def _generalized_force(structure: FreeFlexibleStructure, pts: _Points, quat: NDA
     body = structure.body
     g_body = quaternion_matrix(quat).T @ np.asarray(gravity_m_s2, dtype=float)
     q = np.zeros(structure.n_velocities)
-    q[6:] = -structure.stiffness() @ eps
+    q[6:] = -structure._stiffness @ eps
     # rigid body: bias ω × (m u_b) and ω × I_b ω, and its weight
-    u_b = v + np.cross(om, body.cg_m)
-    f_b = body.mass_kg * (g_body - np.cross(om, u_b))
+    u_b = v + _cross(om, body.cg_m)
+    f_b = body.mass_kg * (g_body - _cross(om, u_b))
     q[:3] += f_b
-    q[3:6] += np.cross(body.cg_m, f_b) - np.cross(om, body.inertia_kg_m2 @ om)
+    q[3:6] += _cross(body.cg_m, f_b) - _cross(om, body.inertia_kg_m2 @ om)
     if pts.mass.size:
-        u = pts.jac_c @ vel
-        w = om + pts.w_rel
-        b = np.cross(om, pts.rdot) + pts.rddot + np.cross(om, u)
+        nv = q.size
+        u = (pts.jac_c.reshape(-1, nv) @ vel).reshape(-1, 3)
+        if pts.w_rel is None:  # ε̇ = 0: no relative motion (the same terms, their zeros left out)
+            b = _cross(om, u)
+            tau = -_cross(om, pts.inertia @ om)
+        else:
+            w = om + pts.w_rel
+            b = _cross(om, pts.rdot) + pts.rddot + _cross(om, u)
+            iw = (pts.inertia @ w[:, :, None])[:, :, 0]
+            tau = -((pts.inertia @ (pts.alpha_rel + _cross(om, w))[:, :, None])[:, :, 0] + _cross(w, iw))
         f = pts.mass[:, None] * (g_body - b)
-        iw = np.einsum("pij,pj->pi", pts.inertia, w)
-        tau = -(np.einsum("pij,pj->pi", pts.inertia, pts.alpha_rel + np.cross(om, w)) + np.cross(w, iw))
-        q += np.einsum("pji,pj->i", pts.jac_c, f) + np.einsum("pji,pj->i", pts.jac_w, tau)
+        q += f.reshape(-1) @ pts.jac_c.reshape(-1, nv) + tau.reshape(-1) @ pts.jac_w.reshape(-1, nv)
     return q
 
 
 def steady_generalized_force(structure: FreeFlexibleStructure, quat: ArrayLike, eps: ArrayLike, rigid_velocity: ArrayLike,
-                             gravity_m_s2: ArrayLike) -> NDArray[np.float64]:
+                             gravity_m_s2: ArrayLike, *, kinematics: list | None = None) -> NDArray[np.float64]:
     """The right-hand side of eq. (1) at ``ε̇ = 0``: ``M(ε) V̇`` of a state whose strains are momentarily at rest.
 
     Parameters
@@ -390,6 +416,9 @@ def steady_generalized_force(structure: FreeFlexibleStructure, quat: ArrayLike, 
         ``[v [m/s], ω [rad/s]]``, body axes.
     gravity_m_s2 : array_like, shape (3,)
         Inertial (north-east-down) components [m/s²].
+    kinematics : list of BeamKinematics, optional
+        The beams' kinematics at ``eps`` (:func:`~flexsim.structure.strain_beam.beam_kinematics`) when the caller
+        has them already; default: computed here.
 
     Returns
     -------
@@ -398,7 +427,8 @@ def steady_generalized_force(structure: FreeFlexibleStructure, quat: ArrayLike, 
     """
     eps = np.asarray(eps, dtype=float)
     vel = np.concatenate([np.asarray(rigid_velocity, dtype=float), np.zeros(structure.n_strains)])
-    return _generalized_force(structure, _points(structure, eps, None), np.asarray(quat, float), eps, vel, gravity_m_s2)
+    return _generalized_force(structure, _points(structure, eps, None, kinematics), np.asarray(quat, float), eps,
+                              vel, gravity_m_s2)
 
 
 def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike,
@@ -430,7 +460,7 @@ def free_flight_rhs(structure: FreeFlexibleStructure, t: float, y: ArrayLike,
         q = q + np.asarray(external_force, dtype=float)
     vdot = cho_solve(cho_factor(mass), q)
     q0, qv = quat[0], quat[1:]
-    quat_dot = 0.5 * np.concatenate([[-qv @ om], q0 * om + np.cross(qv, om)])
+    quat_dot = 0.5 * np.concatenate([[-qv @ om], q0 * om + _cross(qv, om)])
     return np.concatenate([quaternion_matrix(quat) @ vel[:3], quat_dot, epsdot, vdot])
 
 

@@ -36,18 +36,19 @@ points along each element.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from flexsim._arrays import frozen_array
+from flexsim.structure import _strain_kernels as _kern
 
 __all__ = ["BeamProperties", "BeamKinematics", "beam_kinematics", "stiffness_matrix", "mass_matrix",
            "se3_exp", "se3_left_jacobian", "STRAIN_NAMES"]
 
 #: Names of the four strains of an element, in order.
 STRAIN_NAMES = ("extension", "twist", "flap curvature", "chord curvature")
-_E1 = np.array([1.0, 0.0, 0.0])
 
 
 def _per_element(name: str, value, n: int, unit: str, *, allow_zero: bool = False) -> NDArray[np.float64]:
@@ -193,23 +194,11 @@ def _hat(v: NDArray) -> NDArray:
     return out
 
 
-def _coefficients(theta: NDArray) -> tuple[NDArray, ...]:
-    """sinθ/θ, (1-cosθ)/θ², (θ-sinθ)/θ³, (θ²+2cosθ-2)/(2θ⁴), (2θ-3sinθ+θcosθ)/(2θ⁵); Taylor series below 1e-2."""
-    small = theta < 1e-2
-    t = np.where(small, 1.0, theta)
-    t2, s2 = t * t, theta * theta
-    s, c = np.sin(t), np.cos(t)
-    exact = (s / t, (1 - c) / t2, (t - s) / (t2 * t), (t2 + 2 * c - 2) / (2 * t2 * t2),
-             (2 * t - 3 * s + t * c) / (2 * t2 * t2 * t))
-    series = (1 - s2 / 6 + s2 * s2 / 120, 0.5 - s2 / 24 + s2 * s2 / 720, 1 / 6 - s2 / 120 + s2 * s2 / 5040,
-              1 / 24 - s2 / 720 + s2 * s2 / 40320, 1 / 120 - s2 / 2520 + s2 * s2 / 120960)
-    return tuple(np.where(small, b, a) for a, b in zip(exact, series))
-
-
 def se3_exp(rho: ArrayLike, phi: ArrayLike) -> tuple[NDArray, NDArray]:
     """The exponential map of SE(3): ``exp([[φ^, ρ], [0, 0]]) = [[R, J(φ) ρ], [0, 1]]``.
 
-    Source: Barfoot (2017) eqs. 7.80-7.83 (Rodrigues' formula and the SO(3) left Jacobian ``J``).
+    Source: Barfoot (2017) eqs. 7.80-7.83 (Rodrigues' formula and the SO(3) left Jacobian ``J``); compiled
+    (:mod:`flexsim.structure._strain_kernels`).
 
     Parameters
     ----------
@@ -222,15 +211,12 @@ def se3_exp(rho: ArrayLike, phi: ArrayLike) -> tuple[NDArray, NDArray]:
     p : ndarray, shape (..., 3)
         ``J(φ) ρ`` [m].
     """
-    rho, phi = np.asarray(rho, dtype=float), np.asarray(phi, dtype=float)
-    theta = np.linalg.norm(phi, axis=-1)
-    sinc, a1, a2, _, _ = _coefficients(theta)
-    ph = _hat(phi)
-    ph2 = ph @ ph
-    eye = np.eye(3)
-    rot = eye + sinc[..., None, None] * ph + a1[..., None, None] * ph2
-    jac = eye + a1[..., None, None] * ph + a2[..., None, None] * ph2
-    return rot, np.einsum("...ij,...j->...i", jac, rho)
+    rho, phi = np.broadcast_arrays(np.asarray(rho, dtype=float), np.asarray(phi, dtype=float))
+    shape = rho.shape[:-1]
+    rot, pos = np.empty(shape + (3, 3)), np.empty(shape + (3,))
+    _kern.se3_exp_batch(np.ascontiguousarray(rho.reshape(-1, 3)), np.ascontiguousarray(phi.reshape(-1, 3)),
+                        rot.reshape(-1, 3, 3), pos.reshape(-1, 3))
+    return rot, pos
 
 
 def se3_left_jacobian(rho: ArrayLike, phi: ArrayLike) -> NDArray:
@@ -238,6 +224,7 @@ def se3_left_jacobian(rho: ArrayLike, phi: ArrayLike) -> NDArray:
 
     Source: Barfoot (2017) eqs. 7.85-7.86 (``𝒥 = [[J, Q], [0, J]]``; ``Q(ρ, φ)`` with the four θ-coefficients);
     checked against the Fréchet derivative of the matrix exponential (scipy.linalg.expm_frechet) in the tests.
+    Compiled (:mod:`flexsim.structure._strain_kernels`).
 
     Parameters
     ----------
@@ -248,20 +235,10 @@ def se3_left_jacobian(rho: ArrayLike, phi: ArrayLike) -> NDArray:
     ndarray, shape (..., 6, 6)
         Ordering (translation, rotation) in rows and columns.
     """
-    rho, phi = np.asarray(rho, dtype=float), np.asarray(phi, dtype=float)
-    theta = np.linalg.norm(phi, axis=-1)
-    _, a1, a2, a3, a4 = _coefficients(theta)
-    ph, rh = _hat(phi), _hat(rho)
-    ph2 = ph @ ph
-    jac = np.eye(3) + a1[..., None, None] * ph + a2[..., None, None] * ph2
-    prp = ph @ rh @ ph
-    q = (0.5 * rh + a2[..., None, None] * (ph @ rh + rh @ ph + prp)
-         + a3[..., None, None] * (ph2 @ rh + rh @ ph2 - 3.0 * prp)
-         + a4[..., None, None] * (prp @ ph + ph @ prp))
-    out = np.zeros(rho.shape[:-1] + (6, 6))
-    out[..., :3, :3] = jac
-    out[..., 3:, 3:] = jac
-    out[..., :3, 3:] = q
+    rho, phi = np.broadcast_arrays(np.asarray(rho, dtype=float), np.asarray(phi, dtype=float))
+    out = np.empty(rho.shape[:-1] + (6, 6))
+    _kern.se3_left_jacobian_batch(np.ascontiguousarray(rho.reshape(-1, 3)), np.ascontiguousarray(phi.reshape(-1, 3)),
+                                  out.reshape(-1, 6, 6))
     return out
 
 
@@ -314,34 +291,19 @@ class BeamKinematics:
         return self.node_rotations[-1]
 
 
-def _twist_basis(beam: BeamProperties) -> NDArray:
-    """``B = ∂ξ/∂ε_free`` per unit element length, shape (6, ns): extension moves along e1, curvatures rotate."""
-    full = np.zeros((6, 4))
-    full[:3, 0] = _E1
-    full[3:, 1:] = np.eye(3)
-    return full[:, 4 - beam.strains_per_element:]
-
-
-def _spatial_twists(beam, rot, pos, strains, fraction):
-    """Spatial-twist Jacobians ``Ad(T) 𝒥(σ ξ) σ ℓ B``, shape (..., 6, ns), of elements with start frames (rot, pos)
-    and strains ``[e, κ]`` (..., 4), over the fraction σ (...) of their length."""
-    ell = beam.element_length_m * fraction
-    rho = ell[..., None] * (1.0 + strains[..., :1]) * _E1
-    phi = ell[..., None] * strains[..., 1:]
-    jl = se3_left_jacobian(rho, phi) @ (ell[..., None, None] * _twist_basis(beam))
-    top = np.einsum("...ij,...jk->...ik", rot, jl[..., :3, :]) + np.einsum(
-        "...ij,...jk->...ik", _hat(pos) @ rot, jl[..., 3:, :])
-    bottom = np.einsum("...ij,...jk->...ik", rot, jl[..., 3:, :])
-    return np.concatenate([top, bottom], axis=-2)
-
-
+@lru_cache(maxsize=8)
 def _gauss(n: int) -> tuple[NDArray, NDArray]:
+    """Gauss-Legendre fractions of an element (0-1) and weights (sum 1) of ``n`` points (read-only; cached)."""
     x, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (x + 1.0), 0.5 * w
+    return frozen_array(0.5 * (x + 1.0)), frozen_array(0.5 * w)
 
 
 def beam_kinematics(beam: BeamProperties, q: ArrayLike) -> BeamKinematics:
     """Positions, rotations and Jacobians of the beam at strains ``q`` (Su & Cesnik 2011 eqs. 1-5, exact map).
+
+    The chain of element transforms ``T_(j+1) = T_j exp(ℓ ξ_j^)`` and the point Jacobians (sums of the spatial
+    twists ``Ad(T_k) 𝒥(ξ_k) ℓ B`` of the elements between the root and the point) are compiled
+    (:func:`flexsim.structure._strain_kernels.beam_chain`).
 
     Parameters
     ----------
@@ -354,43 +316,30 @@ def beam_kinematics(beam: BeamProperties, q: ArrayLike) -> BeamKinematics:
     BeamKinematics
     """
     strains = beam.full_strains(q)
-    n_el, ns, ell = beam.n_elements, beam.strains_per_element, beam.element_length_m
-    rho = ell * (1.0 + strains[:, :1]) * _E1
-    phi = ell * strains[:, 1:]
-    rot_e, pos_e = se3_exp(rho, phi)
-    rots = np.empty((n_el + 1, 3, 3))
-    poss = np.empty((n_el + 1, 3))
-    rots[0], poss[0] = beam.root_rotation, beam.root_position_m
-    for j in range(n_el):  # the chain of element transforms (N small products)
-        rots[j + 1] = rots[j] @ rot_e[j]
-        poss[j + 1] = poss[j] + rots[j] @ pos_e[j]
-    z_full = _spatial_twists(beam, rots[:-1], poss[:-1], strains, np.ones(n_el))  # (N, 6, ns)
-
-    sigma, weights = _gauss(beam.gauss_points)
-    elem = np.repeat(np.arange(n_el), sigma.size)
-    frac = np.tile(sigma, n_el)
-    r_loc, p_loc = se3_exp(frac[:, None] * rho[elem], frac[:, None] * phi[elem])
-    prot = rots[elem] @ r_loc
-    ppos = poss[elem] + np.einsum("pij,pj->pi", rots[elem], p_loc)
-    z_part = _spatial_twists(beam, rots[elem], poss[elem], strains[elem], frac)  # (P, 6, ns)
-
-    n_points = elem.size
-    twist = np.zeros((n_points, 6, n_el, ns))
-    before = np.arange(n_el)[None, :] < elem[:, None]  # (P, N)
-    twist += before[:, None, :, None] * np.transpose(z_full, (1, 0, 2))[None]
-    twist[np.arange(n_points), :, elem, :] = z_part
-    twist = twist.reshape(n_points, 6, n_el * ns)
-    jac_rot = twist[:, 3:]
-    jac_pos = twist[:, :3] - _hat(ppos) @ jac_rot
-
-    tip = np.transpose(z_full, (1, 0, 2)).reshape(6, n_el * ns)
-    tip_rot = tip[3:]
-    tip_pos = tip[:3] - _hat(poss[-1]) @ tip_rot
+    n_el, ell, n = beam.n_elements, beam.element_length_m, beam.n_coordinates
+    sigma, _ = _gauss(beam.gauss_points)
+    n_points = n_el * sigma.size
+    rots, poss = np.empty((n_el + 1, 3, 3)), np.empty((n_el + 1, 3))
+    prot, ppos = np.empty((n_points, 3, 3)), np.empty((n_points, 3))
+    jac_pos, jac_rot = np.empty((n_points, 3, n)), np.empty((n_points, 3, n))
+    tip_pos, tip_rot = np.empty((3, n)), np.empty((3, n))
+    _kern.beam_chain(strains, ell, beam.root_rotation, beam.root_position_m, sigma, 4 - beam.strains_per_element,
+                     rots, poss, prot, ppos, jac_pos, jac_rot, tip_pos, tip_rot)
+    elem, points_s, points_weight = _point_layout(n_el, beam.gauss_points, ell)
     return BeamKinematics(
-        q=np.asarray(q, dtype=float).copy(), node_positions=poss, node_rotations=rots,
-        points_s=(elem + frac) * ell, points_weight=np.tile(weights, n_el) * ell, points_element=elem,
+        q=np.array(q, dtype=float), node_positions=poss, node_rotations=rots,
+        points_s=points_s, points_weight=points_weight, points_element=elem,
         positions=ppos, rotations=prot, jac_position=jac_pos, jac_rotation=jac_rot,
         tip_jac_position=tip_pos, tip_jac_rotation=tip_rot)
+
+
+@lru_cache(maxsize=64)
+def _point_layout(n_el: int, n_gauss: int, ell: float) -> tuple[NDArray, NDArray, NDArray]:
+    """Element index, arc length [m] and weight [m] of each quadrature point, root to tip (read-only; cached)."""
+    sigma, weights = _gauss(n_gauss)
+    elem = np.repeat(np.arange(n_el), n_gauss)
+    return (frozen_array(elem, dtype=np.int64), frozen_array((elem + np.tile(sigma, n_el)) * ell),
+            frozen_array(np.tile(weights, n_el) * ell))
 
 
 def stiffness_matrix(beam: BeamProperties) -> NDArray[np.float64]:

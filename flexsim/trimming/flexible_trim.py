@@ -11,7 +11,8 @@ the speed ``V`` of the undeformed aircraft's centre of gravity makes the angle o
 ``θ = α + γ``, ``ω = (0, q, 0)``, no sideslip. Unknowns: ``α``, the elevator ``δe``, the thrust ``T`` (or, in a
 glide, ``T = 0`` and ``γ``) and all strains ``ε``; equations: the force rows x and z, the pitching moment and the
 strain rows. The lateral rows vanish by the aircraft's symmetry (checked: their residual is reported). Solved by
-MINPACK's ``hybrd`` (Powell's hybrid method) from the rigid trim's attitude with the strains continued in load
+MINPACK's ``hybrj`` (Powell's hybrid method; one forward-difference Jacobian, then Broyden's updates, carried across
+the continuation and from a ``guess``) from the rigid trim's attitude with the strains continued in load
 (the gravity and load factor scaled 1/4, 1/2, 3/4, 1) so that a wing bending to half its span is reached on a path
 of equilibria. Units SI, radians.
 """
@@ -19,7 +20,7 @@ of equilibria. Units SI, radians.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -57,6 +58,11 @@ class FlexibleTrimPoint:
     density_kg_m3 : float
     residual : float
         Largest scaled residual of all 6 + n equations (lateral rows included) [-].
+    solver_jacobian : (bool, ndarray) or None
+        The solver's final Jacobian of the scaled residuals with respect to the unknowns, tagged with whether the
+        unknowns were a glide's (which changes them): the first Jacobian of a trim started from this point
+        (``guess``), so that a neighbouring speed of a scan costs a few residuals instead of a finite-difference
+        Jacobian (one residual per unknown).
     """
 
     manoeuvre: SteadyManoeuvre
@@ -70,6 +76,7 @@ class FlexibleTrimPoint:
     rate_rad_s: NDArray
     density_kg_m3: float
     residual: float
+    solver_jacobian: tuple | None = field(default=None, repr=False)
 
     @property
     def terms(self) -> dict:
@@ -103,6 +110,43 @@ def _state(z: NDArray, man: SteadyManoeuvre, cg: NDArray, g: float, glide: bool)
     theta = alpha + gamma
     quat = np.array([math.cos(theta / 2), 0.0, math.sin(theta / 2), 0.0])
     return v, omega, quat, np.array([thrust, 0.0, de, 0.0]), theta, gamma
+
+
+def _forward_jacobian(fun, x: NDArray, *args) -> NDArray:
+    """Forward-difference Jacobian of ``fun(x, *args)`` with MINPACK's steps ``√ε |x_j|`` (``√ε`` at 0)."""
+    f0 = fun(x, *args)
+    out = np.empty((f0.size, x.size))
+    h0 = math.sqrt(np.finfo(float).eps)
+    for j in range(x.size):
+        h = h0 * abs(x[j]) or h0
+        xp = x.copy()
+        xp[j] += h
+        out[:, j] = (fun(xp, *args) - f0) / h
+    return out
+
+
+def _solve(residual, z0: NDArray, loads: list, jacobian: NDArray | None, maxfev: int) -> tuple[NDArray, NDArray]:
+    """Solve ``residual(z, g) = 0`` for each gravity ``g`` of the continuation in turn by MINPACK's ``hybrj``
+    (Powell's hybrid method with Broyden updates of the Jacobian). The first Jacobian of each solve is the last
+    one of the previous solve (or ``jacobian``; else forward differences); ``hybrj`` asks for a fresh
+    finite-difference one when its steps stop making progress. Returns the solution and its final Jacobian."""
+    z = z0
+    for g_now in loads:
+        start = jacobian if jacobian is not None and jacobian.shape == (z.size, z.size) else None
+
+        known = [(z.copy(), start)]  # (x, Jacobian at x): scipy calls jac once more at the start to check its shape
+
+        def jac(x, g_arg, known=known):
+            if known[0][1] is None or not np.array_equal(x, known[0][0]):
+                known[0] = (x.copy(), _forward_jacobian(residual, x, g_arg))
+            return known[0][1]
+
+        sol = root(residual, z, args=(g_now,), method="hybr", jac=jac, options={"xtol": 1e-10, "maxfev": maxfev})
+        z = sol.x
+        r = np.zeros((z.size, z.size))
+        r[np.triu_indices(z.size)] = sol.r
+        jacobian = sol.fjac.T @ r
+    return z, jacobian
 
 
 def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int | None = None,
@@ -168,10 +212,9 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int |
     else:
         z0 = np.concatenate([[math.radians(2.0), 0.0, -0.05 if glide else 0.1 * weight], np.zeros(n)])
         steps = (0.25, 0.5, 0.75, 1.0)
-    z = z0
-    for frac in steps:
-        sol = root(residual, z, args=(g * frac,), method="hybr", options={"xtol": 1e-12, "maxfev": 200 * (n + 4)})
-        z = sol.x
+    known = guess.solver_jacobian if guess is not None else None
+    start = known[1] if known is not None and known[0] == glide else None  # the same unknowns
+    z, jacobian = _solve(residual, z0, [g * frac for frac in steps], start, 200 * (n + 4))
     final = residual(z, g)
     v, omega, quat, u, theta, gamma = _state(z, manoeuvre, cg, g, glide)
     full = flex.steady_residual(z[3:], quat, v, omega, u, rho, g)
@@ -183,7 +226,8 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int |
                                 f"(largest scaled residual {worst:.2e}; allowed 1e-8)")
     point = FlexibleTrimPoint(manoeuvre=manoeuvre, aircraft=flex, alpha_rad=float(z[0]), theta_rad=float(theta),
                               climb_angle_rad=float(gamma), controls=u, strains=z[3:].copy(), velocity_m_s=v,
-                              rate_rad_s=omega, density_kg_m3=rho, residual=worst)
+                              rate_rad_s=omega, density_kg_m3=rho, residual=worst,
+                              solver_jacobian=(glide, jacobian))
     limit = math.degrees(model.aircraft.aero_settings.max_alpha_rad)
     if check_limits and point.max_strip_alpha_deg > limit:
         raise FlexibleTrimError(f"the nonlinear trim of {flex.name!r} at {manoeuvre.speed_m_s:g} m/s, "

@@ -4,6 +4,8 @@
   force 2πρbU² sin α cos α plus the leading-edge suction 2πρbU² sin² α; thin-airfoil theory, Bisplinghoff,
   Ashley & Halfman 1955 §5-6) and, about a reference axis a semichords aft of mid-chord, the moment
   (½ + a) b × normal force nose up (the normal force at the quarter chord; the suction acts along the chord). Round-off tolerance 1e-12.
+* With a profile drag coefficient cd0 the strip adds the drag ½ρU² 2b cd0 along the wind (the in-section air
+  velocity) to that lift, for strips given one by one (arrays) or all alike (scalars) (round-off, 1e-12).
 * The strips follow the deformed sections: a wing rolled by a dihedral angle Γ about the wind carries the same lift,
   turned with it (1e-12).
 * The linear aeroelastic system of a wing in still air (U = 0) has the in-vacuo frequencies of
@@ -15,7 +17,7 @@ import numpy as np
 import pytest
 from scipy.linalg import eigvals
 
-from flexsim.model.beam_aero import TunnelFlow, WingAero, _steady_section_loads, aeroelastic_system
+from flexsim.model.beam_aero import TunnelFlow, WingAero, _steady_section_loads, aeroelastic_system, section_loads
 from flexsim.structure.strain_beam import BeamProperties, beam_kinematics, mass_matrix, stiffness_matrix
 
 
@@ -45,6 +47,21 @@ def test_steady_strip_lift_is_normal_to_the_wind_with_the_quarter_chord_moment(a
     lift = 2 * np.pi * rho * (chord / 2) * u**2 * np.sin(alpha)
     assert np.allclose(force, [0.0, 0.0, lift], rtol=0, atol=1e-12 * lift)
     assert np.allclose(moment, [(0.5 + a[0]) * chord / 2 * lift * np.cos(alpha), 0.0, 0.0], rtol=0, atol=1e-12 * lift)
+
+
+@pytest.mark.parametrize("per_strip", [False, True])
+def test_profile_drag_acts_along_the_wind(per_strip):
+    alpha, rho, u, chord, cd0 = np.radians(5.0), 0.9, 20.0, 1.2, 0.02
+    beam = _wing(_rot_x(alpha))
+    kin = beam_kinematics(beam, np.zeros(beam.n_coordinates))
+    b, a = WingAero(chord_m=chord).strips(beam, kin)
+    p = b.size
+    wind = np.array([0.0, -u, 0.0])
+    args = (np.full(p, rho), np.tile(wind, (p, 1)), np.full(p, cd0)) if per_strip else (rho, wind, cd0)
+    force, _ = section_loads(kin.rotations, b, a, args[1], args[0], cd0=args[2])
+    lift = 2 * np.pi * rho * (chord / 2) * u**2 * np.sin(alpha)
+    drag = 0.5 * rho * u**2 * chord * cd0
+    assert np.allclose(force, [0.0, -drag, lift], rtol=0, atol=1e-12 * lift)
 
 
 def test_strips_follow_a_dihedral_wing():
