@@ -14,7 +14,8 @@ from flexsim.aircraft.definition import FORMULATIONS
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.cli.validation import CliError, check_writable_dir, flight_condition, in_user_words, check_altitudes, check_damping, check_mach_range, check_out_dir, check_trim_options, check_workers, json_text
 from flexsim.io.output_paths import check_not_link, unique_names
-from flexsim.cli.nonlinear_commands import NONLINEAR_HELP, check_load_factor, nonlinear_flutter, nonlinear_trim
+from flexsim.cli.nonlinear_commands import (NONLINEAR_HELP, check_load_factor, nonlinear_flutter, nonlinear_trim,
+                                            pull_up_sweep)
 from flexsim.cli.paper_report import PAPER_REPLICATION, RunSettings, flutter_report, flutter_table, mode_matches_paper, physical_settings, sweep_report
 from flexsim.linear.study import MODELS as _MODELS
 from flexsim.linear.study import StudyCase, StudyRecord, case_key, climb_cases, plot_study, plot_trim, run_study, turn_cases, write_results
@@ -436,6 +437,11 @@ def _linspace(lo: float, hi: float, n: int) -> list[float]:
 
 
 def _sweep(args: argparse.Namespace) -> int:
+    if args.pull_up:
+        return pull_up_sweep(args, _model_keys(args.models))
+    for flag, value in (("--load-factors", args.load_factors), ("--nonlinear-beams", args.nonlinear_beams)):
+        if value is not None:
+            raise CliError(f"{flag}: applies to --pull-up sweeps (flutter against load factor)")
     kind = "turn" if args.turn else "climb"
     _check_replication(args)
     if args.components is not None:
@@ -626,6 +632,8 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     group = p_sw.add_mutually_exclusive_group(required=True)
     group.add_argument("--turn", action="store_true", help="level turns, R = 5-12 km")
     group.add_argument("--climb", action="store_true", help="climbs and descents, gamma = -15..15 deg")
+    group.add_argument("--pull-up", action="store_true",
+                       help="steady symmetric pull-ups, load factors --load-factors [1, 1.1, 1.2, 1.3, 1.5, 2]")
     p_sw.add_argument("--altitudes", type=float, nargs="+", default=None, metavar="H",
                       help="altitudes [m] [sea level to the aircraft file's envelope.max_altitude_m in 4 levels (the GTM: "
                            "0 3048 6096 9144), else sea level]")
@@ -637,6 +645,10 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_sw.add_argument("--coordinated", action="store_true", help="with --turn: coordinated turns (zero sideslip, heading free)")
     p_sw.add_argument("--radii-m", type=float, nargs="+", default=None, metavar="R",
                       help="turn radii [m] with --turn [the paper's 5000-12000 m in 1 km steps]")
+    p_sw.add_argument("--load-factors", type=float, nargs="+", default=None, metavar="N",
+                      help="load factors of a --pull-up sweep")
+    p_sw.add_argument("--nonlinear-beams", type=int, nargs="?", const=8, default=None, metavar="N",
+                      help="with --pull-up: the wing's flutter about the nonlinear trim too, " + NONLINEAR_HELP)
     p_sw.add_argument("--angles-deg", type=float, nargs="+", default=None, metavar="G",
                       help="flight-path angles [deg] with --climb [the paper's -15..15 deg in 5 deg steps]")
     p_sw.add_argument("--scheduler", metavar="ADDRESS", help="Dask distributed scheduler (default: local processes); "

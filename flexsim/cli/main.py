@@ -10,7 +10,8 @@
                     [--nonlinear-beams [N]] [--json]
     flexsim linearize [AIRCRAFT] [--altitude-m H] [--mach M | --speed-m-s V] [--turn-radius-m R | --climb-deg G] --out FILE.npz
     flexsim validate [CASE ...] [--json]
-    flexsim sweep (--turn | --climb) [AIRCRAFT] [--altitudes H ...] [--scheduler ADDRESS] [--out DIR]
+    flexsim sweep (--turn | --climb | --pull-up) [AIRCRAFT] [--altitudes H ...] [--scheduler ADDRESS] [--out DIR]
+                  [--load-factors N ...] [--nonlinear-beams [N]]
 
 AIRCRAFT is a bundled name (``gtm``, ``goland_wing``) or the path of a TOML file (default ``gtm``).
 """

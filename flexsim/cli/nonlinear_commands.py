@@ -180,3 +180,87 @@ def nonlinear_flutter(args: argparse.Namespace, vg_paths) -> int:
     for note in dict.fromkeys(w for r in rows for w in r["warnings"]):
         print(f"note: {note}")
     return 0
+
+
+#: Load factors of ``flexsim sweep --pull-up`` without ``--load-factors``.
+DEFAULT_LOAD_FACTORS = (1.0, 1.1, 1.2, 1.3, 1.5, 2.0)
+
+
+def pull_up_sweep(args: argparse.Namespace, models: list[str]) -> int:
+    """``flexsim sweep --pull-up``: flutter against load factor, each linear model of ``--models`` and, with
+    ``--nonlinear-beams``, the wing about the nonlinear trim, side by side; rows to CSV and JSON in ``--out``."""
+    from flexsim.cli.validation import check_out_dir
+    from flexsim.linear.envelope import flutter_altitudes, search_range
+    from flexsim.linear.flexible_flutter import FlexibleFlutterPoint
+    from flexsim.linear.flutter import FlutterNotFound, flutter
+    from flexsim.linear.study import MODELS, write_results
+    from flexsim.errors import FlexsimError
+
+    _refuse(args, {"--coordinated": args.coordinated, "--radii-m": args.radii_m is not None,
+                   "--angles-deg": args.angles_deg is not None, "--scheduler": args.scheduler is not None,
+                   "--workers": args.workers is not None, "--chain-length": args.chain_length is not None,
+                   "--resume": args.resume, "--structural-damping": args.structural_damping is not None,
+                   "--paper-replication": args.paper_replication, "--formulation": args.formulation is not None,
+                   "--linear-density-altitude-m": args.linear_density_altitude_m is not None,
+                   "--components": args.components is not None},
+            "not available with --pull-up (a serial sweep of the whole aircraft's flutter against load factor)")
+    factors = list(DEFAULT_LOAD_FACTORS if args.load_factors is None else args.load_factors)
+    for n in factors:
+        check_load_factor(n)
+    beams = beams_option(args.nonlinear_beams) if args.nonlinear_beams is not None else None
+    aircraft = load_aircraft(args.aircraft)
+    altitudes = args.altitudes if args.altitudes is not None else flutter_altitudes(aircraft)[0]
+    check_altitudes(altitudes)
+    if args.mach_min is not None and args.mach_max is not None:
+        check_mach_range(args.mach_min, args.mach_max)
+    out = check_out_dir(args.out)
+    linear = AircraftModel(aircraft)
+    runs = [(key, MODELS[key], linear) for key in models]
+    if beams is not None:
+        runs.append(("FS nonlinear", "unsteady", linear.replace(nonlinear_beams=beams)))
+    rows = []
+    for h in altitudes:
+        for n in factors:
+            shape = SteadyManoeuvre.pull_up(h, n, mach=0.5)
+            found = search_range(linear, shape, mach_min=args.mach_min, mach_max=args.mach_max)
+            for label, aero, model in runs:
+                row = {"model": label, "altitude_m": float(h), "load_factor": float(n)}
+                try:
+                    point = flutter(model, shape, aero, mach_range=(found.mach_min, found.mach_max))
+                except (FlutterNotFound, FlexsimError, ValueError) as exc:
+                    rows.append({**row, "error": str(exc)})
+                    continue
+                if isinstance(point, FlexibleFlutterPoint):  # the wing about the nonlinear trim
+                    if not np.isfinite(point.speed_m_s):
+                        skipped = [w for w in point.warnings if w.startswith("speeds not trimmable")]
+                        why = "no trimmable speed in the range" if not len(point.speeds_m_s) else \
+                            "no crossing in the trimmed scan"
+                        rows.append({**row, "error": "; ".join([why, *skipped])})
+                        continue
+                    tip = point.tip_deflection_fraction
+                else:  # the linear model: the right wing's tip at the flutter point, up positive
+                    tip = (-point.trim.tip_deflection_m / model.aircraft.component("right_wing").length_m
+                           if "right_wing" in model.aircraft.component_names else float("nan"))
+                said = list(point.warnings)
+                if not isinstance(point, FlexibleFlutterPoint) and point.trim is not None and point.trim.linear_range:
+                    said.append(point.trim.linear_range)
+                row.update(speed_m_s=point.speed_m_s, mach=point.mach, omega_rad_s=point.frequency_rad_s,
+                           tip_deflection_fraction=tip, warnings=said)
+                rows.append(row)
+    csv_path, json_path = write_results(rows, out, "flutter_pull_up")
+    if args.json:
+        print(json_text({"rows": rows}))
+        return 0
+    print(f"Flutter of {aircraft.name} against load factor (bottom of a steady symmetric pull-up); results: {csv_path}, "
+          f"{json_path}")
+    print(f"  {'model':<13} {'H [m]':>7} {'n':>5} {'V_F [m/s]':>10} {'M_F':>8} {'w_F [rad/s]':>12} {'tip [%]':>8}")
+    for r in rows:
+        head = f"  {r['model']:<13} {r['altitude_m']:7.0f} {r['load_factor']:5.2f}"
+        if "error" in r:
+            print(f"{head}   no flutter point: {r['error'][:60]}")
+        else:
+            print(f"{head} {r['speed_m_s']:10.3f} {r['mach']:8.4f} {r['omega_rad_s']:12.3f} "
+                  f"{100.0 * r['tip_deflection_fraction']:+8.1f}")
+    for note in dict.fromkeys(w for r in rows for w in r.get("warnings", ())):
+        print(f"note: {note}")
+    return 0

@@ -81,3 +81,24 @@ def test_flutter_refuses_what_it_cannot_honour(extra, words, capsys):
                                                              else []), *extra]
     code, _, err = _run(argv, capsys)
     assert code == 2 and words in err, err
+
+
+def test_pull_up_sweep_prints_linear_and_nonlinear_side_by_side(tmp_path, capsys):
+    """``flexsim sweep --pull-up``: each row is the API's flutter point of its model (linear US, and the wing about the
+    nonlinear trim), written to CSV and JSON; a load factor that cannot be trimmed is a row with its reason."""
+    out = tmp_path / "pull"
+    argv = ["sweep", "--pull-up", "phc_hale", "--nonlinear-beams", "4", "--altitudes", "20000", "--models", "US",
+            "--load-factors", "1.2", "1.5", "--mach-min", f"{30 / A_20KM:.6f}", "--mach-max", f"{40 / A_20KM:.6f}",
+            "--json", "--out", str(out)]
+    code, text, _ = _run(argv, capsys)
+    assert code == 0 and (out / "flutter_pull_up.csv").exists()
+    rows = {(r["model"], r["load_factor"]): r for r in json.loads(text)["rows"]}
+    hale = fs.load_aircraft("phc_hale")
+    man = fs.SteadyManoeuvre.pull_up(20000.0, 1.2, mach=0.5)
+    rng = (round(30 / A_20KM, 6), round(40 / A_20KM, 6))
+    linear = fs.flutter(fs.AircraftModel(hale), man, "theodorsen", mach_range=rng)
+    assert rows["US", 1.2]["speed_m_s"] == pytest.approx(linear.speed_m_s, rel=1e-12)
+    nonlinear = fs.flutter(fs.AircraftModel(hale, terms=fs.Terms(nonlinear_beams=NonlinearBeams(4))), man, "unsteady",
+                           mach_range=rng)
+    assert rows["FS nonlinear", 1.2]["speed_m_s"] == pytest.approx(nonlinear.speed_m_s, rel=1e-12)
+    assert rows["FS nonlinear", 1.5]["error"].startswith("no trimmable speed in the range")
