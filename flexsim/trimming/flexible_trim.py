@@ -29,6 +29,7 @@ from scipy.optimize import root
 from flexsim.atmosphere import isa_density
 from flexsim.errors import FlexsimError
 from flexsim.model.flexible_aircraft import FlexibleAircraft, flexible_aircraft
+from flexsim.trimming.flexible_turn import trim_turn
 from flexsim.trimming.manoeuvre import SteadyManoeuvre
 
 __all__ = ["FlexibleTrimPoint", "FlexibleTrimError", "trim_flexible"]
@@ -58,6 +59,10 @@ class FlexibleTrimPoint:
     density_kg_m3 : float
     residual : float
         Largest scaled residual of all 6 + n equations (lateral rows included) [-].
+    phi_rad : float
+        Bank angle [rad]; 0 in symmetric flight (a turn: :mod:`flexsim.trimming.flexible_turn`).
+    heading_offset_rad : float
+        Heading minus track [rad]; 0 except in a coordinated turn.
     solver_jacobian : (bool, ndarray) or None
         The solver's final Jacobian of the scaled residuals with respect to the unknowns, tagged with whether the
         unknowns were a glide's (which changes them): the first Jacobian of a trim started from this point
@@ -77,6 +82,13 @@ class FlexibleTrimPoint:
     density_kg_m3: float
     residual: float
     solver_jacobian: tuple | None = field(default=None, repr=False)
+    phi_rad: float = 0.0
+    heading_offset_rad: float = 0.0
+
+    @property
+    def sideslip_rad(self) -> float:
+        """Sideslip of the body origin's velocity, ``asin(v_y / |v|)`` [rad] (the paper's turn: ``asin(sin φ sin θ)``)."""
+        return float(math.asin(self.velocity_m_s[1] / np.linalg.norm(self.velocity_m_s)))
 
     @property
     def terms(self) -> dict:
@@ -159,7 +171,8 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int |
         Its aircraft, strips, gravity (``terms.gravity_m_s2``) and air density (ISA at the manoeuvre's altitude, or
         the variant's ``air_density_kg_m3``).
     manoeuvre : SteadyManoeuvre
-        Level, climb/descent, glide or pull-up; turns are refused (not symmetric).
+        Level, climb/descent, glide or pull-up; or a turn (level or climbing, the paper's eqs. 36-37 or coordinated:
+        :mod:`flexsim.trimming.flexible_turn`); a gliding turn is refused.
     elements_per_beam : int, optional
         Elements of each flexible component's beam (:func:`flexible_aircraft`), 1-64; default the model's
         ``terms.nonlinear_beams`` (8 for a model of the linear structure).
@@ -176,16 +189,15 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int |
     Raises
     ------
     ValueError
-        A turn, or a model without aerodynamics.
+        A gliding turn, or a model without aerodynamics.
     FlexibleTrimError
         No convergence, or (``check_limits``) strips beyond the linear-lift range.
     """
     if not isinstance(manoeuvre, SteadyManoeuvre):
         raise ValueError(f"manoeuvre = {manoeuvre!r}: must be a SteadyManoeuvre")
-    if manoeuvre.turn_radius_m != math.inf:
-        raise ValueError(f"manoeuvre.turn_radius_m = {manoeuvre.turn_radius_m!r}: the nonlinear trim covers symmetric "
-                         "flight (level, climb, descent, glide, pull-up); a turn is not available with the nonlinear "
-                         "structure")
+    if manoeuvre.turn_radius_m != math.inf and manoeuvre.climb_angle_rad is None:
+        raise ValueError(f"manoeuvre.turn_radius_m = {manoeuvre.turn_radius_m!r} with climb_angle_rad = None: a "
+                         "gliding turn is not available with the nonlinear structure (give the flight-path angle)")
     flex = guess.aircraft if guess is not None else flexible_aircraft(model, elements_per_beam)
     variant_rho = model.variant.air_density_kg_m3
     rho = float(variant_rho) if variant_rho is not None else float(isa_density(manoeuvre.altitude_m))
@@ -205,6 +217,8 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int |
         full = flex.steady_residual(eps, quat, v, omega * (g_now / g if g > 0 else 1.0), u, rho, g_now)
         return np.concatenate([full[_RIGID_ROWS] / np.array([weight, weight, weight * span]), full[6:] / k_diag])
 
+    if manoeuvre.turn_radius_m != math.inf:
+        return _turn_point(model, manoeuvre, flex, cg, weight, span, k_diag, rho, g, guess, check_limits)
     if guess is not None:
         z0 = np.concatenate([[guess.alpha_rad, guess.controls[2],
                               guess.climb_angle_rad if glide else guess.controls[0]], guess.strains])
@@ -228,6 +242,29 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int |
                               climb_angle_rad=float(gamma), controls=u, strains=z[3:].copy(), velocity_m_s=v,
                               rate_rad_s=omega, density_kg_m3=rho, residual=worst,
                               solver_jacobian=(glide, jacobian))
+    return _checked(model, point, check_limits)
+
+
+def _turn_point(model, manoeuvre, flex, cg, weight, span, k_diag, rho, g, guess, check_limits):
+    """The turn of :mod:`flexsim.trimming.flexible_turn` as a checked :class:`FlexibleTrimPoint`."""
+    sol = trim_turn(flex, manoeuvre, cg=cg, weight=weight, span=span, k_diag=k_diag, rho=rho, g=g, guess=guess,
+                    solve=_solve)
+    worst = sol["residual"]
+    if not np.isfinite(worst) or worst > 1e-8:
+        raise FlexibleTrimError(f"the nonlinear trim of {flex.name!r} in the {manoeuvre.describe()} did not converge "
+                                f"(largest scaled residual {worst:.2e}; allowed 1e-8)")
+    v_cg = sol["v"] + np.cross(sol["omega"], cg)
+    point = FlexibleTrimPoint(manoeuvre=manoeuvre, aircraft=flex, alpha_rad=float(math.atan2(v_cg[2], v_cg[0])),
+                              theta_rad=sol["theta"], climb_angle_rad=sol["gamma"], controls=sol["u"],
+                              strains=sol["strains"], velocity_m_s=sol["v"], rate_rad_s=sol["omega"],
+                              density_kg_m3=rho, residual=float(worst), solver_jacobian=sol["jacobian"],
+                              phi_rad=sol["phi"], heading_offset_rad=sol["heading_offset"])
+    return _checked(model, point, check_limits)
+
+
+def _checked(model, point: FlexibleTrimPoint, check_limits: bool) -> FlexibleTrimPoint:
+    """Refuse (``check_limits``) a trim whose strips exceed the aircraft's linear-lift range."""
+    flex, manoeuvre = point.aircraft, point.manoeuvre
     limit = math.degrees(model.aircraft.aero_settings.max_alpha_rad)
     if check_limits and point.max_strip_alpha_deg > limit:
         raise FlexibleTrimError(f"the nonlinear trim of {flex.name!r} at {manoeuvre.speed_m_s:g} m/s, "
