@@ -110,7 +110,7 @@ def test_pull_up_trims_and_bends_more(hale):
 
 def test_turn_and_incomplete_data_are_refused(hale):
     with pytest.raises(ValueError, match="turn_radius_m"):
-        trim_flexible(hale, fs.SteadyManoeuvre.turn(20000.0, 2000.0, speed_m_s=25.0))
+        trim_flexible(hale, fs.SteadyManoeuvre(25.0, 20000.0, turn_radius_m=2000.0, climb_angle_rad=None))
     with pytest.raises(ValueError, match="ei_chord_nm2"):
         flexible_aircraft(fs.AircraftModel(fs.load_aircraft("gtm")))
     with pytest.raises(ValueError, match="elements_per_beam"):
