@@ -86,9 +86,11 @@ def wing_system(model, point: FlexibleTrimPoint, component: str = "right_wing",
     air = -(point.velocity_m_s + np.cross(point.rate_rad_s, beam.root_position_m))
     speed = float(np.linalg.norm(air))
     flow = TunnelFlow(speed, point.density_kg_m3, air / speed)
-    theta = point.theta_rad
+    theta, phi = point.theta_rad, point.phi_rad
     g = float(model.terms.gravity_m_s2)
-    preload = SteadyInertialLoad(np.array([-g * np.sin(theta), 0.0, g * np.cos(theta)]), point.velocity_m_s,
+    # gravity in body axes, g (-sin θ, sin φ cos θ, cos φ cos θ) (the bank φ is 0 in symmetric flight)
+    g_body = g * np.array([-np.sin(theta), np.sin(phi) * np.cos(theta), np.cos(phi) * np.cos(theta)])
+    preload = SteadyInertialLoad(g_body, point.velocity_m_s,
                                  point.rate_rad_s)
     stiffness = static_stiffness(beam, eps, preload, aero, flow)
     return aeroelastic_system(beam, aero, flow, eps, stiffness)
@@ -138,6 +140,8 @@ class FlexibleFlutterPoint:
         What the result neglects (:data:`NEGLECTED`) and any skipped speeds.
     terms : dict
         The terms of the model analysed, with the nonlinear beams used (:attr:`FlexibleAircraft.terms`).
+    component : str
+        The wing that flutters ("" when none does); in a turn the less stable of both wings.
     """
 
     speed_m_s: float
@@ -149,11 +153,15 @@ class FlexibleFlutterPoint:
     skipped_m_s: NDArray
     warnings: tuple
     terms: dict = field(default_factory=dict)
+    component: str = ""
 
     @property
     def tip_deflection_fraction(self) -> float:
         """Vertical tip deflection of the analysed wing at the flutter speed over its length [-] (NaN: none)."""
-        return float(self.trim.tip_deflection_fraction[0]) if self.trim is not None else float("nan")
+        if self.trim is None:
+            return float("nan")
+        i = self.trim.aircraft.beam_index(self.component) if self.component else 0
+        return float(self.trim.tip_deflection_fraction[i])
 
 
 def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[float, float], *,
@@ -166,13 +174,14 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
     model : AircraftModel
         Aircraft (its flexible components need ``ei_chord_nm2``), gravity and density.
     manoeuvre : SteadyManoeuvre
-        Symmetric: level, climb, pull-up (its load factor and altitude are kept; its speed is searched).
+        Level, climb, pull-up or a turn (its load factor, radius and altitude are kept; its speed is searched). In a
+        turn both wings are analysed (``component`` is not used) and the bank follows the speed at fixed radius.
     speed_range_m_s : (float, float)
         Scanned true airspeeds [m/s], 0 < lo < hi.
     speed_step_m_s : float
         Scan step [m/s], > 0.
     component : str
-        The wing analysed.
+        The wing analysed in symmetric flight.
     elements_per_beam : int, optional
         Beam elements per component; default the model's ``terms.nonlinear_beams`` (8 for a model of the linear
         structure).
@@ -203,17 +212,23 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
     evaluated = {}  # speed -> (trim, growth, frequency): brentq's last evaluation is its root
     converged = []  # the last converged trim, within the strips' lift range or not: the start of the next scan speed
     limit = math.degrees(model.aircraft.aero_settings.max_alpha_rad)
+    turn = manoeuvre.turn_radius_m != math.inf
+    wings = ("right_wing", "left_wing") if turn else (component,)
+    critical = {}  # speed -> the wing whose root is the least stable
 
     def at(speed, guess):
         if speed not in evaluated:
             man = SteadyManoeuvre(speed, manoeuvre.altitude_m, climb_angle_rad=manoeuvre.climb_angle_rad,
-                                  load_factor=manoeuvre.load_factor)
+                                  load_factor=manoeuvre.load_factor, turn_radius_m=manoeuvre.turn_radius_m,
+                                  coordinated=manoeuvre.coordinated)
             point = trim_flexible(model, man, elements_per_beam=beams.elements_per_beam, guess=guess, check_limits=False)
             converged[:] = [point]
             if point.max_strip_alpha_deg > limit:  # refused with trim_flexible's own error (from the converged trim)
                 trim_flexible(model, man, elements_per_beam=beams.elements_per_beam, guess=point)
-            growth, freq, _ = wing_stability(model, point, component, inflow_states)
+            # in a turn both wings (inner and outer) are analysed and the less stable one kept
+            growth, freq, wing = max((*wing_stability(model, point, w, inflow_states)[:2], w) for w in wings)
             evaluated[speed] = (point, growth, freq)
+            critical[speed] = wing
         return evaluated[speed]
 
     def nearest(speed):
@@ -242,12 +257,15 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
             break
         previous = (point, g, speed)
     notes = [NEGLECTED]
+    if turn:
+        notes.append(f"turn of fixed radius {manoeuvre.turn_radius_m:g} m: the bank changes with the scanned speed "
+                     "(tan phi ~ V^2/(g R)); both wings analysed, the result is the less stable wing's")
     if skipped:
         notes.append(f"speeds not trimmable (skipped): {', '.join(f'{s:g}' for s in skipped)} m/s")
     sound = float(isa(manoeuvre.altitude_m).speed_of_sound)
     if found is None:
         return FlexibleFlutterPoint(float("nan"), float("nan"), float("nan"), None, np.array(speeds),
-                                    np.array(growth), np.array(skipped), tuple(notes), terms)
+                                    np.array(growth), np.array(skipped), tuple(notes), terms, "")
     speed_f, freq_f, point_f = found
     return FlexibleFlutterPoint(float(speed_f), float(speed_f / sound), float(freq_f), point_f, np.array(speeds),
-                                np.array(growth), np.array(skipped), tuple(notes), terms)
+                                np.array(growth), np.array(skipped), tuple(notes), terms, critical[speed_f])
