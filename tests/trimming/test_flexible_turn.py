@@ -94,3 +94,22 @@ def test_hale_turn_large_deflection():
     inner, outer = point.tip_deflection_fraction[:2]
     assert outer > inner > 0.33
     assert point.max_strip_alpha_deg < 12.0
+
+
+def test_turn_flutter_preload_mirrors_and_warns():
+    """Mirror symmetry of the wing's linear system about the turn (gravity with the bank): the right wing in a
+    right turn has the damping and frequency of the left wing in the left turn (to 1e-6). The flutter scan of a
+    turn analyses both wings and warns that the bank changes with speed at fixed radius."""
+    from flexsim.linear.flexible_flutter import flexible_flutter, wing_stability
+    hale = fs.AircraftModel(fs.load_aircraft("phc_hale"))
+    right = trim_flexible(hale, fs.SteadyManoeuvre.turn(20000.0, 1000.0, speed_m_s=25.0))
+    left = trim_flexible(hale, fs.SteadyManoeuvre.turn(20000.0, -1000.0, speed_m_s=25.0))
+    g_rr, f_rr, _ = wing_stability(hale, right, "right_wing")
+    g_ll, f_ll, _ = wing_stability(hale, left, "left_wing")
+    g_rl, _, _ = wing_stability(hale, right, "left_wing")
+    assert g_rr == pytest.approx(g_ll, abs=1e-6)
+    assert f_rr == pytest.approx(f_ll, rel=1e-6)
+    assert g_rl != pytest.approx(g_rr, abs=1e-6)  # the inner and outer wings differ
+    point = flexible_flutter(hale, fs.SteadyManoeuvre.turn(20000.0, 1000.0, speed_m_s=25.0), (25.0, 27.5),
+                             speed_step_m_s=2.5)
+    assert any("bank changes with the scanned speed" in w for w in point.warnings)
