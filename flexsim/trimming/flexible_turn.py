@@ -39,8 +39,8 @@ def _state(z: NDArray, man, weight: float, n: int, scale: float):
     theta, phi = z[0], z[1]
     gamma = man.climb_angle_rad
     dpsi = z[6 + n] if man.coordinated else 0.0
-    v, omega = man.body_rates(phi, theta, gamma, dpsi)
-    omega = (omega - np.array([0.0, man.pitch_rate, 0.0])) * scale
+    v, omega = man.body_rates(phi, theta, gamma, dpsi)  # a turn has no pull-up rate (load factor 1)
+    omega = omega * scale
     u = np.array([z[2] * weight, z[3], z[4], z[5]])
     return v, omega, euler_quaternion(phi, theta, dpsi), u, theta, phi, gamma
 
@@ -88,7 +88,7 @@ def trim_turn(flex, manoeuvre, *, cg: NDArray, weight: float, span: float, k_dia
     if guess is not None:
         u0 = guess.controls
         z0 = np.concatenate([[guess.theta_rad, guess.phi_rad, u0[0] / weight, u0[1], u0[2], u0[3]], guess.strains,
-                             [0.0] if coordinated else []])
+                             [guess.heading_offset_rad] if coordinated else []])
         steps = (1.0,)
         known = guess.solver_jacobian
         start = known[1] if known is not None and known[0] == tag else None
@@ -101,7 +101,6 @@ def trim_turn(flex, manoeuvre, *, cg: NDArray, weight: float, span: float, k_dia
     z, jacobian = solve(residual, z0, [g * f for f in steps], start, 200 * (n + 8))
     final = residual(z, g)
     v, omega, quat, u, theta, phi, gamma = _state(z, manoeuvre, weight, n, 1.0)
-    omega = omega + np.array([0.0, manoeuvre.pitch_rate, 0.0])
     return dict(z=z, strains=z[6:6 + n].copy(), v=v, omega=omega, u=u, theta=float(theta), phi=float(phi),
                 gamma=float(gamma), residual=float(np.abs(final).max()), jacobian=(tag, jacobian),
                 heading_offset=float(z[6 + n]) if coordinated else 0.0)
