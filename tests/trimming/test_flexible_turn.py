@@ -113,3 +113,38 @@ def test_turn_flutter_preload_mirrors_and_warns():
     point = flexible_flutter(hale, fs.SteadyManoeuvre.turn(20000.0, 1000.0, speed_m_s=25.0), (25.0, 27.5),
                              speed_step_m_s=2.5)
     assert any("bank changes with the scanned speed" in w for w in point.warnings)
+
+
+def _turn_rows() -> dict[float, list[str]]:
+    from pathlib import Path
+    text = (Path(__file__).parents[2] / "docs" / "flutter.md").read_text().split("<!-- hale-turn-table -->", 1)[1]
+    rows = {}
+    for line in text.splitlines()[3:]:
+        if not line.startswith("|"):
+            break
+        cells = [c.strip().replace("\u2212", "-") for c in line.strip("|").split("|")]
+        rows[float(cells[0])] = cells
+    return rows
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("radius", [2000.0, 1000.0, 500.0])
+def test_docs_turn_table_is_current(radius):
+    """The docs' HALE turn table against the current code, at its printed precision."""
+    from flexsim.linear.flexible_flutter import flexible_flutter
+    cells = _turn_rows()[radius]
+    hale = fs.AircraftModel(fs.load_aircraft("phc_hale"))
+    man = fs.SteadyManoeuvre.turn(20000.0, radius, speed_m_s=25.0)
+    lt, nt = fs.trim(hale, man, check_limits=False), trim_flexible(hale, man)
+    assert float(cells[1]) == pytest.approx(math.degrees(lt.phi), abs=0.006)
+    assert float(cells[2]) == pytest.approx(math.degrees(lt.u[1]), abs=0.006)
+    assert float(cells[3].rstrip(" %")) == pytest.approx(-100 * lt.tip_deflection_m / 16.0, abs=0.06)
+    assert float(cells[4]) == pytest.approx(fs.flutter(hale, man, "theodorsen").speed_m_s, abs=0.006)
+    assert float(cells[5]) == pytest.approx(math.degrees(nt.phi_rad), abs=0.006)
+    assert float(cells[6]) == pytest.approx(math.degrees(nt.controls[1]), abs=0.006)
+    inner, outer = (float(x.strip().rstrip(" %")) for x in cells[7].split("/"))
+    assert inner == pytest.approx(100 * nt.tip_deflection_fraction[0], abs=0.06)
+    assert outer == pytest.approx(100 * nt.tip_deflection_fraction[1], abs=0.06)
+    flutter = flexible_flutter(hale, man, (20.0, 45.0), speed_step_m_s=2.5)
+    assert cells[8] == ("none" if math.isnan(flutter.speed_m_s) else f"{flutter.speed_m_s:.2f}")
+    assert float(cells[9]) == pytest.approx(flutter.speeds_m_s.max(), abs=1e-9)
