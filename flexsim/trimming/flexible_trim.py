@@ -1,4 +1,4 @@
-"""Trim of the geometrically nonlinear aircraft in steady symmetric flight (level, climb, descent, glide, pull-up).
+"""Trim of the geometrically nonlinear aircraft in steady flight (level, climb, descent, glide, pull-up, turn).
 
 The flexible aircraft (:mod:`flexsim.model.flexible_aircraft`: rigid body + strain-based beams, strip airloads on the
 deformed strips) is in a steady state when its generalized accelerations and strain rates vanish: with
@@ -14,7 +14,9 @@ strain rows. The lateral rows vanish by the aircraft's symmetry (checked: their 
 MINPACK's ``hybrj`` (Powell's hybrid method; one forward-difference Jacobian, then Broyden's updates, carried across
 the continuation and from a ``guess``) from the rigid trim's attitude with the strains continued in load
 (the gravity and load factor scaled 1/4, 1/2, 3/4, 1) so that a wing bending to half its span is reached on a path
-of equilibria. Units SI, radians.
+of equilibria. A steady turn (level or climbing; the paper's eqs. 36-37 or coordinated) is solved by
+:mod:`flexsim.trimming.flexible_turn` for the bank, pitch, thrust, all three controls and the strains. Units SI,
+radians.
 """
 
 from __future__ import annotations

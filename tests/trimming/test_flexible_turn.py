@@ -91,7 +91,8 @@ def test_hale_turn_large_deflection():
           f"{math.degrees(linear.alpha):.3f} deg, bank {math.degrees(linear.phi):.3f} deg, controls {linear.u}, "
           f"tip {linear.tip_deflection_m:.3f} m")
     assert point.residual < 1e-8
-    inner, outer = point.tip_deflection_fraction[:2]
+    fractions = point.tip_deflection_fraction
+    inner, outer = (fractions[point.aircraft.beam_index(w)] for w in ("right_wing", "left_wing"))
     assert outer > inner > 0.33
     assert point.max_strip_alpha_deg < 12.0
 
@@ -143,8 +144,9 @@ def test_docs_turn_table_is_current(radius):
     assert float(cells[5]) == pytest.approx(math.degrees(nt.phi_rad), abs=0.006)
     assert float(cells[6]) == pytest.approx(math.degrees(nt.controls[1]), abs=0.006)
     inner, outer = (float(x.strip().rstrip(" %")) for x in cells[7].split("/"))
-    assert inner == pytest.approx(100 * nt.tip_deflection_fraction[0], abs=0.06)
-    assert outer == pytest.approx(100 * nt.tip_deflection_fraction[1], abs=0.06)
+    fractions = [nt.tip_deflection_fraction[nt.aircraft.beam_index(w)] for w in ("right_wing", "left_wing")]
+    assert inner == pytest.approx(100 * fractions[0], abs=0.06)
+    assert outer == pytest.approx(100 * fractions[1], abs=0.06)
     flutter = flexible_flutter(hale, man, (20.0, 45.0), speed_step_m_s=2.5)
     assert cells[8] == ("none" if math.isnan(flutter.speed_m_s) else f"{flutter.speed_m_s:.2f}")
     assert float(cells[9]) == pytest.approx(flutter.speeds_m_s.max(), abs=1e-9)
