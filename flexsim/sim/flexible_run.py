@@ -3,7 +3,8 @@
 The state is that of the free-flying structure (:mod:`flexsim.structure.free_flexible`, Su & Cesnik 2011 in Kane's
 form), ``y = [X (3), quaternion (4), ε (n), v (3), ω (3), ε̇ (n)]``; its rate is :func:`free_flight_rhs` with the
 generalized airloads and thrust of :meth:`flexsim.model.flexible_aircraft.FlexibleAircraft.airloads` added to ``Q``
-(:func:`free_flight_rate`, the one combination also linearised by :mod:`flexsim.linear.flexible_stability`).
+(:meth:`~flexsim.model.flexible_aircraft.FlexibleAircraft.free_flight_rate`, the one combination also linearised
+by :mod:`flexsim.linear.flexible_stability`).
 
 Neglected (said in every result's ``warnings``): the strips are quasi-steady (no wake or inflow states, no apparent
 mass); the wind is taken uniform over the aircraft at the body origin (a gust front reaches every strip at once);
@@ -25,45 +26,15 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
-from flexsim.structure.free_flexible import FreeFlexibleStructure, free_flight_rhs, quaternion_matrix
+from flexsim.structure.free_flexible import FreeFlexibleStructure, quaternion_matrix
 from flexsim.trimming.flexible_trim import FlexibleTrimPoint
 
-__all__ = ["FlexibleRun", "free_flight_rate", "trim_state", "fly_flexible", "write_flexible_log"]
+__all__ = ["FlexibleRun", "trim_state", "simulate_flexible", "write_flexible_log"]
 
 #: What every run neglects.
 NEGLECTED = ("quasi-steady strips: no wake or inflow states, no apparent mass",
              "wind uniform over the aircraft, taken at the body origin (no gust penetration along the span)",
              "air density held at the trim's")
-
-
-def free_flight_rate(point: FlexibleTrimPoint, structure: FreeFlexibleStructure, t: float, y: NDArray,
-                     controls: NDArray, wind_body_m_s: NDArray | None = None) -> NDArray:
-    """``dy/dt`` of the free aircraft with quasi-steady strip airloads (module docstring).
-
-    Parameters
-    ----------
-    point : FlexibleTrimPoint
-        Gives the aircraft (its strips) and the air density [kg/m³].
-    structure : FreeFlexibleStructure
-        The aircraft's structure with gravity (NED) [m/s²].
-    t : float
-        Time [s].
-    y : ndarray, shape (7 + 2 n + 6,)
-        State (module docstring).
-    controls : ndarray, shape (4,)
-        ``[T [N], δa, δe, δr [rad]]``.
-    wind_body_m_s : ndarray, shape (3,), optional
-        Uniform wind velocity, body axes [m/s].
-
-    Returns
-    -------
-    ndarray, shape like ``y``
-    """
-    n = structure.n_strains
-    eps, vel = y[7:7 + n], y[7 + n:]
-    q = point.aircraft.airloads(eps, vel[:3], vel[3:6], controls, point.density_kg_m3, wind=wind_body_m_s,
-                                epsdot=vel[6:])
-    return free_flight_rhs(structure, t, y, q)
 
 
 def trim_structure(model, point: FlexibleTrimPoint) -> FreeFlexibleStructure:
@@ -91,7 +62,7 @@ def _euler(quat: NDArray) -> NDArray:
 
 @dataclass(frozen=True, eq=False)
 class FlexibleRun:
-    """A run of the nonlinear aircraft (:func:`fly_flexible`).
+    """A run of the nonlinear aircraft (:func:`simulate_flexible`).
 
     Attributes
     ----------
@@ -143,7 +114,7 @@ def _positive(name: str, value, *, upper: float = math.inf) -> float:
     return float(value)
 
 
-def fly_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, controls: NDArray | Callable | None = None,
+def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, controls: NDArray | Callable | None = None,
                  wind: Callable | None = None, sample_dt_s: float = 0.05, initial_state: NDArray | None = None,
                  rtol: float = 1e-6, atol: float = 1e-8) -> FlexibleRun:
     """Fly the nonlinear aircraft from ``point`` for ``t_end_s`` seconds (module docstring).
@@ -199,10 +170,11 @@ def fly_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, controls: N
         return quaternion_matrix(y[3:7] / np.linalg.norm(y[3:7])).T @ w
 
     count = [0]
+    flex, rho = point.aircraft, point.density_kg_m3
 
     def rhs(t, y):
         count[0] += 1
-        return free_flight_rate(point, structure, t, y, np.asarray(u_of(t), float), wind_body(t, y))
+        return flex.free_flight_rate(structure, t, y, np.asarray(u_of(t), float), rho, wind_body(t, y))
 
     t_eval = np.arange(0.0, t_end + 0.5 * dt, dt)
     t_eval = t_eval[t_eval <= t_end]
@@ -210,7 +182,7 @@ def fly_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, controls: N
     sol = solve_ivp(rhs, (0.0, t_end), y0, method="BDF", t_eval=t_eval, rtol=rtol, atol=atol)
     wall = _time.perf_counter() - start
     if not sol.success:
-        raise RuntimeError(f"fly_flexible: the integration stopped at t = {sol.t[-1] if sol.t.size else 0.0:.4g} s: "
+        raise RuntimeError(f"simulate_flexible: the integration stopped at t = {sol.t[-1] if sol.t.size else 0.0:.4g} s: "
                            f"{sol.message}")
     ys = sol.y.T
     n = structure.n_strains
