@@ -83,7 +83,8 @@ def test_hale_gust_encounter_nonlinear_logs_and_views(hale, tmp_path):
     flight = read_flight_log(log)
     assert flight.complete and abs(flight.t[-1] - 1.5) < 1e-9
     right = flight.structure["right_wing"]
-    assert abs(-(right[:, -1, 2] - right[0, 0, 2]).max()) > 0.25 * SEMISPAN_M - 1.0  # deformed nodes logged
+    up = -(right[:, -1, 2] - point.aircraft.undeformed_tips[point.aircraft.beam_index("right_wing"), 2])
+    assert up.max() > 0.25 * SEMISPAN_M  # the logged nodes are the deformed wing's
     rrd = tmp_path / "hale-nl-gust.rrd"
     from flexsim.cli.main import main
     assert main(["view", str(log), "--save", str(rrd)]) == 0
