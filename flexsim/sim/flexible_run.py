@@ -142,6 +142,9 @@ def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, contro
     -------
     FlexibleRun
     """
+    from flexsim.model.aircraft_model import check_model
+
+    check_model(model, nonlinear=True)
     if not isinstance(point, FlexibleTrimPoint):
         raise ValueError(f"point = {point!r}: must be a FlexibleTrimPoint (flexsim.trim_flexible)")
     t_end = _positive("t_end_s", t_end_s, upper=3600.0)
@@ -204,7 +207,6 @@ def write_flexible_log(run: FlexibleRun, path, *, metadata: dict | None = None) 
     from flexsim.io.flight_log import FlightLogWriter
 
     flex = run.point.aircraft
-    n = flex.n_strains
     comps = flex.beam_components
     state_names = ["x_north_m", "y_east_m", "z_down_m", "phi_rad", "theta_rad", "psi_rad", "v_x_m_s", "v_y_m_s",
                    "v_z_m_s", "omega_x_rad_s", "omega_y_rad_s", "omega_z_rad_s"]
@@ -220,7 +222,6 @@ def write_flexible_log(run: FlexibleRun, path, *, metadata: dict | None = None) 
     defl = run.tip_positions_m[:, :, 2] - flex.undeformed_tips[None, :, 2]
     signals = np.column_stack([airspeed, -run.position_m[:, 2], defl])
     controls = np.repeat(run.point.controls[None], run.t.size, 0)
-    del n
     with FlightLogWriter(path, state_names=state_names, control_names=["thrust_N", "aileron_rad", "elevator_rad",
                                                                        "rudder_rad"],
                          signal_names=signal_names, structure_topology=topology,
