@@ -53,6 +53,8 @@ _API: dict[str, str] = {
     "FlexibleTrimPoint": "flexsim.trimming.flexible_trim",
     "FlexibleTrimError": "flexsim.trimming.flexible_trim",
     "flexible_flutter": "flexsim.linear.flexible_flutter",
+    "simulate_flexible": "flexsim.sim.flexible_run",
+    "FlexibleRun": "flexsim.sim.flexible_run",
     "FlexibleFlutterPoint": "flexsim.linear.flexible_flutter",
     "WindTunnelResult": "flexsim.linear.flutter",
     "SearchRange": "flexsim.linear.envelope",

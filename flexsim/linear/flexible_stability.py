@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from flexsim.linear.flexible_flutter import MAX_FREQUENCY_RAD_S
-from flexsim.structure.free_flexible import FreeFlexibleStructure, free_flight_rhs
+from flexsim.structure.free_flexible import FreeFlexibleStructure
 from flexsim.trimming.flexible_trim import FlexibleTrimPoint
 
 __all__ = ["FreeAircraftSpectrum", "FreeMode", "free_aircraft_spectrum", "NEUTRAL_1_S"]
@@ -116,9 +116,7 @@ def free_aircraft_spectrum(model, point: FlexibleTrimPoint) -> FreeAircraftSpect
     u, rho = point.controls, point.density_kg_m3
 
     def rate(y):
-        eps, vel = y[7:7 + n], y[7 + n:]
-        q = flex.airloads(eps, vel[:3], vel[3:6], u, rho, epsdot=vel[6:])
-        return free_flight_rhs(structure, 0.0, y, q)[3:]
+        return flex.free_flight_rate(structure, 0.0, y, u, rho)[3:]
 
     keep = np.arange(3, y0.size)
     a = np.zeros((keep.size, keep.size))

@@ -40,8 +40,8 @@ from flexsim.model.aircraft_model import check_model
 from flexsim.model.beam_aero import WingAero, section_loads
 from flexsim.model.terms import NonlinearBeams
 from flexsim.structure.beam_sections import beam_from_sections
-from flexsim.structure.free_flexible import (FreeFlexibleStructure, RigidBody, _cross, generalized_mass_matrix,
-                                             steady_generalized_force)
+from flexsim.structure.free_flexible import (FreeFlexibleStructure, RigidBody, _cross, free_flight_rhs,
+                                             generalized_mass_matrix, steady_generalized_force)
 from flexsim.structure.strain_beam import BeamProperties, beam_kinematics
 
 __all__ = ["FlexibleAircraft", "flexible_aircraft"]
@@ -182,6 +182,38 @@ class FlexibleAircraft:
             Force [N] (body), moment about o [N m] (body), strain forces.
         """
         return self._airloads(eps, v, omega, u, rho, wind, epsdot, self.kinematics(eps))
+
+    def free_flight_rate(self, structure: FreeFlexibleStructure, t: float, y: NDArray, u: NDArray, rho: float,
+                         wind: NDArray | None = None) -> NDArray:
+        """``dy/dt`` of the free aircraft with quasi-steady strip airloads: :func:`free_flight_rhs` (Su & Cesnik
+        2011, eq. 2 in Kane's form) with :meth:`airloads` (at the state's ``ε``, ``v``, ``ω``, ``ε̇``) as ``Q``.
+
+        The one combination integrated by :func:`flexsim.sim.flexible_run.simulate_flexible` and linearised by
+        :func:`flexsim.linear.flexible_stability.free_aircraft_spectrum`.
+
+        Parameters
+        ----------
+        structure : FreeFlexibleStructure
+            This aircraft's structure with its gravity (NED) [m/s²].
+        t : float
+            Time [s].
+        y : ndarray, shape (7 + 2 n + 6,)
+            ``[X (3, NED) [m], quaternion (4, body→NED), ε (n), v (3) [m/s], ω (3) [rad/s], ε̇ (n)]``, body axes.
+        u : ndarray, shape (4,)
+            ``[T [N], δa, δe, δr [rad]]``.
+        rho : float
+            Air density [kg/m³].
+        wind : ndarray, shape (3,), optional
+            Uniform wind velocity, body axes [m/s].
+
+        Returns
+        -------
+        ndarray, shape like ``y``
+        """
+        n = structure.n_strains
+        eps, vel = y[7:7 + n], y[7 + n:]
+        q = self.airloads(eps, vel[:3], vel[3:6], u, rho, wind=wind, epsdot=vel[6:])
+        return free_flight_rhs(structure, t, y, q)
 
     @cached_property
     def _strip_data(self) -> tuple:
