@@ -111,15 +111,15 @@ def nonlinear_flutter(args: argparse.Namespace, vg_paths) -> int:
                        "nonlinear beams (--nonlinear-beams); for the linear model use "
                        "fs.flutter(model, fs.SteadyManoeuvre.pull_up(h, n)) in Python")
     _refuse(args, {"--wind-tunnel": args.wind_tunnel, "--mode": bool(args.mode),
-                   "--components": args.components is not None, "--turn-radius-m": args.turn_radius_m is not None,
-                   "--glide": args.glide, "--coordinated": args.coordinated, "--formulation": args.formulation is not None,
+                   "--components": args.components is not None,
+                   "--glide": args.glide, "--formulation": args.formulation is not None,
                    "--paper-replication": args.paper_replication,
                    "--linear-density-altitude-m": args.linear_density_altitude_m is not None,
                    "--speed-range-m-s": args.speed_range_m_s is not None,
                    "--speed-step-m-s": args.speed_step_m_s is not None,
                    "--structural-damping": args.structural_damping is not None},
             "not available with --nonlinear-beams (the flutter of a free-flying aircraft's wing about its nonlinear "
-            "trim in level flight, climb or pull-up; a clamped wing in a tunnel is fs.nonlinear_wing_tunnel)")
+            "trim in level flight, climb, pull-up or turn; a clamped wing in a tunnel is fs.nonlinear_wing_tunnel)")
     if args.models not in ("FS", "QS,US"):  # QS,US: the option's default, not chosen
         raise CliError(f"--models {args.models}: with --nonlinear-beams the flutter is solved with Peters finite-state "
                        "strips only (--models FS)")
@@ -127,6 +127,14 @@ def nonlinear_flutter(args: argparse.Namespace, vg_paths) -> int:
     if args.load_factor is not None and args.load_factor != 1.0 and args.climb_deg:
         raise CliError(f"--load-factor {args.load_factor:g}, --climb-deg {args.climb_deg:g}: a pull-up's bottom has "
                        "gamma = 0; give one of them")
+    radius = math.inf if args.turn_radius_m is None else float(args.turn_radius_m)
+    if args.load_factor is not None and args.load_factor != 1.0 and radius != math.inf:
+        raise CliError(f"--load-factor {args.load_factor:g}, --turn-radius-m {radius:g}: a turn's load factor follows "
+                       "from its radius and speed; give one of them")
+    if args.coordinated and radius == math.inf:
+        raise CliError("--coordinated: applies to turns only; give --turn-radius-m")
+    if radius != math.inf and not abs(radius) >= 100.0:
+        raise CliError(f"--turn-radius-m = {radius:g}: must be at least 100 m in magnitude")
     beams = beams_option(args.nonlinear_beams)
     aircraft = load_aircraft(args.aircraft)
     altitudes = args.altitudes if args.altitudes is not None else flutter_altitudes(aircraft)[0]
@@ -143,7 +151,7 @@ def nonlinear_flutter(args: argparse.Namespace, vg_paths) -> int:
     rows, vg_lines = [], []
     for i, h in enumerate(altitudes):
         shape = (SteadyManoeuvre.pull_up(h, n, mach=0.5) if n != 1.0
-                 else SteadyManoeuvre(0.5 * speed_of_sound(h), h, climb_angle_rad=gamma))
+                 else SteadyManoeuvre(0.5 * speed_of_sound(h), h, radius, gamma, bool(args.coordinated)))
         # the envelope (or stall estimate) of the model's linear sibling, or the range given
         found = search_range(model.replace(nonlinear_beams=None), shape, mach_min=args.mach_min, mach_max=args.mach_max)
         rng = (found.mach_min, found.mach_max)
@@ -157,6 +165,7 @@ def nonlinear_flutter(args: argparse.Namespace, vg_paths) -> int:
                     if first is not None else "no branch crosses into instability")
             vg_lines.append(f"V-g diagram H = {h:.0f} m: {paths[i]} ({said})")
         rows.append({"altitude_m": float(h), "load_factor": n, "climb_deg": float(args.climb_deg or 0.0),
+                     "turn_radius_m": radius if radius != math.inf else None, "component": point.component,
                      "speed_m_s": point.speed_m_s, "mach": point.mach, "frequency_rad_s": point.frequency_rad_s,
                      "tip_deflection_fraction": point.tip_deflection_fraction,
                      "scanned_m_s": [float(v) for v in point.speeds_m_s], "warnings": list(point.warnings),
@@ -165,7 +174,9 @@ def nonlinear_flutter(args: argparse.Namespace, vg_paths) -> int:
         print(json_text({"aircraft": aircraft.name, "rows": rows, "vg": vg_lines}))
         return 0
     print(f"Flutter of {aircraft.name}'s wing about the nonlinear trim (geometrically nonlinear beams, "
-          f"{beams.elements_per_beam} elements per flexible component; Peters finite-state strips), load factor {n:g}")
+          f"{beams.elements_per_beam} elements per flexible component; Peters finite-state strips), "
+          + (f"load factor {n:g}" if radius == math.inf else
+             f"{'coordinated ' if args.coordinated else ''}turn R = {radius:g} m (the less stable wing)"))
     print(f"  {'H [m]':>8} {'V_F [m/s]':>10} {'M_F':>8} {'w_F [rad/s]':>12} {'tip [%]':>8}")
     for r in rows:
         if np.isfinite(r["speed_m_s"]):

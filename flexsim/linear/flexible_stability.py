@@ -22,7 +22,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from flexsim.linear.flexible_flutter import MAX_FREQUENCY_RAD_S
-from flexsim.structure.free_flexible import FreeFlexibleStructure
 from flexsim.trimming.flexible_trim import FlexibleTrimPoint
 
 __all__ = ["FreeAircraftSpectrum", "FreeMode", "free_aircraft_spectrum", "NEUTRAL_1_S"]
@@ -106,13 +105,9 @@ def free_aircraft_spectrum(model, point: FlexibleTrimPoint) -> FreeAircraftSpect
     FreeAircraftSpectrum
     """
     flex = point.aircraft
-    g = float(model.terms.gravity_m_s2)
-    structure = FreeFlexibleStructure(flex.structure.body, flex.structure.beams, np.array([0.0, 0.0, g]))
+    structure = flex.free_structure(model.terms.gravity_m_s2)
     n = structure.n_strains
-    theta = point.theta_rad
-    y0 = np.concatenate([[0.0, 0.0, -point.manoeuvre.altitude_m],
-                         [np.cos(theta / 2), 0.0, np.sin(theta / 2), 0.0], point.strains,
-                         point.velocity_m_s, point.rate_rad_s, np.zeros(n)])
+    y0 = point.state()
     u, rho = point.controls, point.density_kg_m3
 
     def rate(y):

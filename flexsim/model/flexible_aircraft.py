@@ -183,6 +183,12 @@ class FlexibleAircraft:
         """
         return self._airloads(eps, v, omega, u, rho, wind, epsdot, self.kinematics(eps))
 
+    def free_structure(self, gravity_m_s2: float) -> FreeFlexibleStructure:
+        """This aircraft's structure with gravity ``gravity_m_s2`` [m/s²] along NED down, as the free-flight equations
+        (:func:`~flexsim.structure.free_flexible.free_flight_rhs`) take it."""
+        return FreeFlexibleStructure(self.structure.body, self.structure.beams,
+                                     np.array([0.0, 0.0, float(gravity_m_s2)]))
+
     def free_flight_rate(self, structure: FreeFlexibleStructure, t: float, y: NDArray, u: NDArray, rho: float,
                          wind: NDArray | None = None) -> NDArray:
         """``dy/dt`` of the free aircraft with quasi-steady strip airloads: :func:`free_flight_rhs` (Su & Cesnik

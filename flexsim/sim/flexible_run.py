@@ -26,30 +26,15 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
-from flexsim.structure.free_flexible import FreeFlexibleStructure, quaternion_matrix
+from flexsim.structure.free_flexible import quaternion_matrix
 from flexsim.trimming.flexible_trim import FlexibleTrimPoint
 
-__all__ = ["FlexibleRun", "trim_state", "simulate_flexible", "write_flexible_log"]
+__all__ = ["FlexibleRun", "simulate_flexible", "write_flexible_log"]
 
 #: What every run neglects.
 NEGLECTED = ("quasi-steady strips: no wake or inflow states, no apparent mass",
              "wind uniform over the aircraft, taken at the body origin (no gust penetration along the span)",
              "air density held at the trim's")
-
-
-def trim_structure(model, point: FlexibleTrimPoint) -> FreeFlexibleStructure:
-    """The trim's structure with the model's gravity along NED down."""
-    flex = point.aircraft
-    g = float(model.terms.gravity_m_s2)
-    return FreeFlexibleStructure(flex.structure.body, flex.structure.beams, np.array([0.0, 0.0, g]))
-
-
-def trim_state(point: FlexibleTrimPoint) -> NDArray:
-    """The free-flight state ``y`` of a trim point: at ``(0, 0, −altitude)``, heading north, strains at rest."""
-    n = point.aircraft.n_strains
-    th = point.theta_rad
-    return np.concatenate([[0.0, 0.0, -point.manoeuvre.altitude_m], [math.cos(th / 2), 0.0, math.sin(th / 2), 0.0],
-                           point.strains, point.velocity_m_s, point.rate_rad_s, np.zeros(n)])
 
 
 def _euler(quat: NDArray) -> NDArray:
@@ -134,7 +119,7 @@ def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, contro
     sample_dt_s : float
         Output spacing [s], in (0, t_end_s].
     initial_state : ndarray, optional
-        Start here instead of the trim (:func:`trim_state` layout), e.g. a perturbed trim.
+        Start here instead of the trim (:meth:`FlexibleTrimPoint.state` layout), e.g. a perturbed trim.
     rtol, atol : float
         BDF tolerances (relative in (0, 0.1], absolute > 0).
 
@@ -150,8 +135,8 @@ def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, contro
     t_end = _positive("t_end_s", t_end_s, upper=3600.0)
     dt = _positive("sample_dt_s", sample_dt_s, upper=t_end)
     rtol, atol = _positive("rtol", rtol, upper=0.1), _positive("atol", atol)
-    structure = trim_structure(model, point)
-    y0 = trim_state(point) if initial_state is None else np.asarray(initial_state, float)
+    structure = point.aircraft.free_structure(model.terms.gravity_m_s2)
+    y0 = point.state() if initial_state is None else np.asarray(initial_state, float)
     if y0.shape != (structure.n_states,) or not np.all(np.isfinite(y0)):
         raise ValueError(f"initial_state: must be {structure.n_states} finite numbers, got shape {y0.shape}")
     if controls is None:

@@ -31,7 +31,7 @@ from scipy.optimize import root
 from flexsim.atmosphere import isa_density
 from flexsim.errors import FlexsimError
 from flexsim.model.flexible_aircraft import FlexibleAircraft, flexible_aircraft
-from flexsim.trimming.flexible_turn import trim_turn
+from flexsim.trimming.flexible_turn import euler_quaternion, trim_turn
 from flexsim.trimming.manoeuvre import SteadyManoeuvre
 
 __all__ = ["FlexibleTrimPoint", "FlexibleTrimError", "trim_flexible"]
@@ -86,6 +86,16 @@ class FlexibleTrimPoint:
     solver_jacobian: tuple | None = field(default=None, repr=False)
     phi_rad: float = 0.0
     heading_offset_rad: float = 0.0
+
+    def state(self) -> NDArray:
+        """The free-flight state at this trim, ``[X (3), quaternion (4), ε (n), v (3), ω (3), ε̇ (n)]``
+        (:func:`flexsim.structure.free_flexible.free_flight_rhs`): the body origin at the manoeuvre's altitude
+        (``X = (0, 0, −h)``, NED), attitude from the 3-2-1 angles (bank φ, pitch θ, heading = the heading offset, the
+        track due north), the trim's strains, velocities and rates, ``ε̇ = 0``."""
+        n = self.strains.size
+        return np.concatenate([[0.0, 0.0, -self.manoeuvre.altitude_m],
+                               euler_quaternion(self.phi_rad, self.theta_rad, self.heading_offset_rad), self.strains,
+                               self.velocity_m_s, self.rate_rad_s, np.zeros(n)])
 
     @property
     def sideslip_rad(self) -> float:

@@ -68,6 +68,23 @@ def test_flutter_writes_the_nonlinear_vg_diagram(tmp_path, capsys):
     assert abs(speed - float(table.split()[1])) < 0.05  # two routes to one point: crossing and search tolerances
 
 
+def test_flutter_in_a_turn_prints_the_api_point(capsys):
+    """In a turn both wings are analysed about the banked nonlinear trim; the row is the API's point."""
+    rng = (round(26 / A_20KM, 6), round(30 / A_20KM, 6))
+    argv = ["flutter", "phc_hale", "--nonlinear-beams", "4", "--altitudes", "20000", "--turn-radius-m", "1000",
+            "--mach-min", f"{rng[0]:.6f}", "--mach-max", f"{rng[1]:.6f}"]
+    code, out, _ = _run(argv + ["--json"], capsys)
+    assert code == 0
+    row = json.loads(out)["rows"][0]
+    model = fs.AircraftModel(fs.load_aircraft("phc_hale"), terms=fs.Terms(nonlinear_beams=NonlinearBeams(4)))
+    point = fs.flutter(model, fs.SteadyManoeuvre.turn(20000.0, 1000.0, speed_m_s=25.0), "unsteady", mach_range=rng)
+    assert row["turn_radius_m"] == 1000.0 and row["scanned_m_s"] == pytest.approx(list(point.speeds_m_s), rel=1e-12)
+    assert row["component"] == point.component
+    assert any("both wings analysed" in w for w in row["warnings"])
+    code, text, _ = _run(argv, capsys)
+    assert code == 0 and "turn R = 1000 m (the less stable wing)" in text
+
+
 @pytest.mark.parametrize("extra, words", [
     (["--models", "QS"], "--models QS: with --nonlinear-beams"),
     (["--vg", "x.txt"], "--vg 'x.txt': must name a .png file"),
@@ -75,6 +92,8 @@ def test_flutter_writes_the_nonlinear_vg_diagram(tmp_path, capsys):
     (["--nonlinear-beams", "0"], "--nonlinear-beams = 0: must be an integer in 1-64"),
     (["--load-factor", "9"], "--load-factor = 9.0: must be a load factor in [1, 6]"),
     (["--load-factor", "1.2", "--climb-deg", "2"], "--load-factor 1.2, --climb-deg 2"),
+    (["--load-factor", "1.2", "--turn-radius-m", "1000"], "--load-factor 1.2, --turn-radius-m 1000"),
+    (["--coordinated"], "--coordinated: applies to turns only"),
 ])
 def test_flutter_refuses_what_it_cannot_honour(extra, words, capsys):
     argv = ["flutter", "phc_hale", "--altitudes", "20000", *(["--nonlinear-beams"] if "--nonlinear-beams" not in extra

@@ -24,7 +24,7 @@ import pytest
 import flexsim as fs
 from flexsim.io.flight_log import read_flight_log
 from flexsim.sim.disturbances import OneMinusCosineGust
-from flexsim.sim.flexible_run import simulate_flexible, trim_state, trim_structure, write_flexible_log
+from flexsim.sim.flexible_run import simulate_flexible, write_flexible_log
 from flexsim.structure.free_flexible import conserved_quantities, quaternion_matrix
 from flexsim.trimming.flexible_trim import trim_flexible
 
@@ -49,7 +49,7 @@ def test_vacuum_run_conserves_energy(hale):
     model, point = hale
     vacuum = dataclasses.replace(point, density_kg_m3=0.0)
     run = simulate_flexible(model, vacuum, 0.3, controls=np.zeros(4), sample_dt_s=0.05, rtol=1e-8, atol=1e-10)
-    structure = trim_structure(model, point)
+    structure = point.aircraft.free_structure(model.terms.gravity_m_s2)
     e = np.array([conserved_quantities(structure, y).energy_j for y in run.states])
     released = conserved_quantities(structure, run.states[0]).strain_j
     assert np.abs(run.strains - point.strains).max() > 1e-3  # the wings do swing
@@ -68,7 +68,7 @@ def test_bad_input_names_the_field(hale, field, value):
 @pytest.mark.slow
 def test_hale_gust_encounter_nonlinear_logs_and_views(hale, tmp_path):
     model, point = hale
-    y0 = trim_state(point)
+    y0 = point.state()
     gust = OneMinusCosineGust.encounter(10.0, 60.0, position_ned_m=y0[:3],
                                         velocity_ned_m_s=quaternion_matrix(y0[3:7]) @ point.velocity_m_s,
                                         start_time_s=0.2)
