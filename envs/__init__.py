@@ -1,7 +1,9 @@
 """Gymnasium environments of flexsim: the flexible notional GTM in four control tasks (six ids),
-and the very flexible PHC HALE aircraft in gust alleviation (one id).
+and the very flexible PHC HALE aircraft in gust alleviation (two ids: the linear structure, and the geometrically
+nonlinear beams in :mod:`flexsim.envs.hale_nonlinear`).
 
-Importing this package registers (idempotently) the environment ids of :data:`ENV_IDS`::
+Importing this package registers (idempotently) the environment ids of :data:`ENV_IDS` and
+:data:`NONLINEAR_ENV_IDS`::
 
     import gymnasium as gym
     import flexsim.envs  # noqa: F401  (registers the FlexSim/* ids)
@@ -22,12 +24,13 @@ from flexsim.envs.base import FlexSimEnv
 from flexsim.envs.config import ActuatorRates, FlightLimits, InitialPerturbation, IntegratorSettings, RewardTerm, TrackingReward
 from flexsim.envs.flutter_margin import FlutterMarginEnv, FlutterMarginTask, WingFlutterMarginEnv, WingFlutterMarginTask
 from flexsim.envs.gust_alleviation import GustAlleviationEnv, GustAlleviationTask, HaleGustAlleviationEnv
+from flexsim.envs.hale_nonlinear import HaleNonlinearGustEnv
 from flexsim.envs.level_hold import LevelHoldCaptureEnv, LevelHoldEnv, LevelHoldTask
 from flexsim.envs.turn import TurnEnv, TurnTask
 from flexsim.io.env_log import FlightLogRecorder
 
 __all__ = [
-    "ENV_IDS", "VECTOR_ENTRY_POINTS", "register_envs", "FlexSimEnv", "LevelHoldEnv", "LevelHoldCaptureEnv", "TurnEnv", "GustAlleviationEnv", "HaleGustAlleviationEnv", "FlutterMarginEnv",
+    "ENV_IDS", "NONLINEAR_ENV_IDS", "VECTOR_ENTRY_POINTS", "register_envs", "FlexSimEnv", "LevelHoldEnv", "LevelHoldCaptureEnv", "TurnEnv", "GustAlleviationEnv", "HaleGustAlleviationEnv", "HaleNonlinearGustEnv", "FlutterMarginEnv",
     "WingFlutterMarginEnv", "LevelHoldTask", "TurnTask", "GustAlleviationTask", "FlutterMarginTask", "WingFlutterMarginTask", "ActuatorRates", "FlightLimits",
     "InitialPerturbation", "IntegratorSettings", "RewardTerm", "TrackingReward", "FlightLogRecorder",
 ]
@@ -43,6 +46,11 @@ ENV_IDS: dict[str, tuple[str, int]] = {
 VECTOR_ENTRY_POINTS: dict[str, str] = {
     c.env_id: f"flexsim.envs.vector:{c.__name__.removesuffix('Env')}VectorEnv" for c in _ENV_CLASSES}
 
+#: Registered id -> (entry point, max_episode_steps) of the environments on the geometrically nonlinear beams: a plain
+#: ``gymnasium.Env`` each (:mod:`flexsim.envs.hale_nonlinear`), without the linear model's batched vector entry point.
+NONLINEAR_ENV_IDS: dict[str, tuple[str, int]] = {
+    c.env_id: (f"{c.__module__}:{c.__name__}", c.max_episode_steps) for c in (HaleNonlinearGustEnv,)}
+
 
 def register_envs() -> None:
     """Register the ids of :data:`ENV_IDS` with gymnasium (a no-op for ids already registered), each with its
@@ -50,6 +58,9 @@ def register_envs() -> None:
     for env_id, (entry_point, steps) in ENV_IDS.items():
         if env_id not in gym.registry:
             gym.register(id=env_id, entry_point=entry_point, vector_entry_point=VECTOR_ENTRY_POINTS[env_id], max_episode_steps=steps)
+    for env_id, (entry_point, steps) in NONLINEAR_ENV_IDS.items():
+        if env_id not in gym.registry:
+            gym.register(id=env_id, entry_point=entry_point, max_episode_steps=steps)
 
 
 register_envs()

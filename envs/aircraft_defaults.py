@@ -27,7 +27,7 @@ from flexsim.trimming import SteadyManoeuvre
 
 from flexsim.envs.config import FlightLimits
 
-__all__ = ["is_bundled_gtm", "task_for_aircraft", "limits_for_aircraft", "WING_DEFLECTION_FRACTION"]
+__all__ = ["is_bundled_gtm", "task_for_aircraft", "limits_for_aircraft", "limits_about", "WING_DEFLECTION_FRACTION"]
 
 #: The bundled aircraft files the task and limit defaults were written for.
 _GTM_FILES = ("gtm.toml", "gtm_paper.toml", "gtm_uncalibrated.toml")
@@ -82,22 +82,37 @@ def limits_for_aircraft(aircraft: Aircraft, dynamics, task) -> FlightLimits:
     names = {f.name for f in dataclasses.fields(task)}
     if is_bundled_gtm(aircraft) or "altitude_m" not in names:
         return FlightLimits()
-    from flexsim.linear.envelope import MODEL_MAX_MACH, search_range
     from flexsim.trimming import TrimError
 
-    # the task's flight, or for a flutter-margin task the middle of its flutter search (its target is found later)
-    mach = task.mach if "mach" in names else 0.5 * sum(task.flutter_mach_range)
-    level = SteadyManoeuvre.level(task.altitude_m, mach=mach)
-    changes: dict = {}
     try:
-        point = dynamics.trim(level)
+        point = dynamics.trim(_level(task)[0])
     except TrimError:  # no episode can start there: reset() says why; the bound is then measured from the jig shape
         point = None
+    tip = abs(float(point.tip_deflection_m)) if point is not None else 0.0
+    return limits_about(aircraft, dynamics.model, task, tip)
+
+
+def _level(task) -> tuple[SteadyManoeuvre, float]:
+    """The task's level flight and its Mach number: the task's, or for a flutter-margin task the middle of its
+    flutter search (its target is found later)."""
+    names = {f.name for f in dataclasses.fields(task)}
+    mach = task.mach if "mach" in names else 0.5 * sum(task.flutter_mach_range)
+    return SteadyManoeuvre.level(task.altitude_m, mach=mach), mach
+
+
+def limits_about(aircraft: Aircraft, model, task, trim_tip_deflection_m: float) -> FlightLimits:
+    """The bounds of the module docstring for an aircraft that is not the GTM, about a trim whose wing tip is
+    ``trim_tip_deflection_m`` [m] (its magnitude) from the jig shape; ``model`` a linear model of the aircraft
+    (the envelope's speed bounds, :func:`flexsim.linear.envelope.search_range`)."""
+    from flexsim.linear.envelope import MODEL_MAX_MACH, search_range
+
+    level, mach = _level(task)
+    changes: dict = {}
     if "right_wing" in aircraft.component_names:
-        tip = abs(float(point.tip_deflection_m)) if point is not None else 0.0
-        changes["wing_tip_deflection_m"] = tip + WING_DEFLECTION_FRACTION * aircraft.component("right_wing").length_m
+        changes["wing_tip_deflection_m"] = (abs(float(trim_tip_deflection_m))
+                                            + WING_DEFLECTION_FRACTION * aircraft.component("right_wing").length_m)
     try:
-        rng = search_range(dynamics.model, level)
+        rng = search_range(model, level)
     except ValueError:  # no envelope and no stall estimate: the GTM's speed bounds do not fit; half the task's speed
         changes["min_airspeed_m_s"] = 0.5 * level.speed_m_s
     else:

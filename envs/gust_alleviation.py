@@ -170,9 +170,9 @@ class HaleGustAlleviationEnv(GustAlleviationEnv):
 
     The structure flown is the paper's linear (small-deflection) beam: the trim alone bends the wing tips by
     several metres, beyond the linear structure's range (14 % of the wing's length), and ``reset`` says so in one
-    line (``info["linear_range"]``, a warning once per env). The geometrically nonlinear beam is not yet coupled
-    to the free-flying model; until it is, this environment is a control task on the linear model of a very
-    flexible aircraft, not a prediction of its large-deflection response.
+    line (``info["linear_range"]``, a warning once per env). ``FlexSim/HALE-GustAlleviation-v1``
+    (:class:`flexsim.envs.hale_nonlinear.HaleNonlinearGustEnv`) flies the same task on the geometrically nonlinear
+    beams, within their range.
 
     ## Action Space
     <action space>

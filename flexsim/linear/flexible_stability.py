@@ -108,19 +108,7 @@ def free_aircraft_spectrum(model, point: FlexibleTrimPoint) -> FreeAircraftSpect
     structure = flex.free_structure(model.terms.gravity_m_s2)
     n = structure.n_strains
     y0 = point.state()
-    u, rho = point.controls, point.density_kg_m3
-
-    def rate(y):
-        return flex.free_flight_rate(structure, 0.0, y, u, rho)[3:]
-
-    keep = np.arange(3, y0.size)
-    a = np.zeros((keep.size, keep.size))
-    for j, col in enumerate(keep):
-        h = 1e-6 * max(1.0, abs(y0[col]))
-        up, down = y0.copy(), y0.copy()
-        up[col] += h
-        down[col] -= h
-        a[:, j] = (rate(up) - rate(down)) / (2.0 * h)
+    a = flex.free_flight_jacobian(structure, y0, point.controls, point.density_kg_m3)[3:]
     lam, vec = np.linalg.eig(a)
     return FreeAircraftSpectrum(eigenvalues=lam, eigenvectors=vec, n_strains=n, point=point)
 

@@ -221,6 +221,29 @@ class FlexibleAircraft:
         q = self.airloads(eps, vel[:3], vel[3:6], u, rho, wind=wind, epsdot=vel[6:])
         return free_flight_rhs(structure, t, y, q)
 
+    def free_flight_jacobian(self, structure: FreeFlexibleStructure, y: NDArray, u: NDArray, rho: float,
+                             columns: slice = slice(3, None)) -> NDArray:
+        """``∂(dy/dt)/∂y`` of :meth:`free_flight_rate` at ``y`` (no wind), by central differences with steps
+        ``1e-6 max(1, |y_j|)``, for the state columns ``columns`` (default all but the position ``X``, on which the rate
+        does not depend at a held density).
+
+        Returns
+        -------
+        ndarray, shape (7 + 2 n + 6, k)
+            Column ``j`` the derivative with respect to ``y[columns][j]``.
+        """
+        y = np.asarray(y, float)
+        cols = np.arange(y.size)[columns]
+        out = np.zeros((y.size, cols.size))
+        for j, col in enumerate(cols):
+            h = 1e-6 * max(1.0, abs(y[col]))
+            up, down = y.copy(), y.copy()
+            up[col] += h
+            down[col] -= h
+            out[:, j] = (self.free_flight_rate(structure, 0.0, up, u, rho)
+                         - self.free_flight_rate(structure, 0.0, down, u, rho)) / (2.0 * h)
+        return out
+
     @cached_property
     def _strip_data(self) -> tuple:
         """Per beam, its strips' constants at the quadrature points: ``b``, ``a``, ``lift_slope/2π``, incidence,

@@ -11,8 +11,9 @@ mass); the wind is taken uniform over the aircraft at the body origin (a gust fr
 the density is held at the trim's. Integration: scipy's ``solve_ivp`` with the implicit BDF method (variable order
 1-5) — the structural roots reach ~6000 rad/s on the 8-element HALE, so an explicit method would be held to steps
 of ~1e-4 s by stability alone, while BDF's step follows the accuracy of the slow motion; BDF reuses its
-finite-difference Jacobian over many steps (Radau refactors each step). SI units, radians, body axes x forward,
-z down.
+finite-difference Jacobian over many steps (Radau refactors each step). With ``step_s`` the run takes fixed
+ROS2 steps instead (:mod:`flexsim.sim.flexible_step`), the integrator of the nonlinear HALE environment. SI units,
+radians, body axes x forward, z down.
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
-from flexsim.structure.free_flexible import quaternion_matrix
+from flexsim.sim.flexible_step import FlexibleStepper, body_wind
 from flexsim.trimming.flexible_trim import FlexibleTrimPoint
 
 __all__ = ["FlexibleRun", "simulate_flexible", "write_flexible_log"]
@@ -74,6 +75,8 @@ class FlexibleRun:
     wall_s : float
         Wall time of the integration [s].
     warnings : tuple of str
+    method : str
+        The integrator ("BDF", or ROS2 with its step).
     """
 
     point: FlexibleTrimPoint
@@ -90,6 +93,7 @@ class FlexibleRun:
     n_rhs: int
     wall_s: float
     warnings: tuple
+    method: str = "BDF"
 
 
 def _positive(name: str, value, *, upper: float = math.inf) -> float:
@@ -101,7 +105,7 @@ def _positive(name: str, value, *, upper: float = math.inf) -> float:
 
 def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, controls: NDArray | Callable | None = None,
                  wind: Callable | None = None, sample_dt_s: float = 0.05, initial_state: NDArray | None = None,
-                 rtol: float = 1e-6, atol: float = 1e-8) -> FlexibleRun:
+                 rtol: float = 1e-6, atol: float = 1e-8, step_s: float | None = None) -> FlexibleRun:
     """Fly the nonlinear aircraft from ``point`` for ``t_end_s`` seconds (module docstring).
 
     Parameters
@@ -122,6 +126,11 @@ def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, contro
         Start here instead of the trim (:meth:`FlexibleTrimPoint.state` layout), e.g. a perturbed trim.
     rtol, atol : float
         BDF tolerances (relative in (0, 0.1], absolute > 0).
+    step_s : float, optional
+        Fly with fixed ROS2 steps of this length [s] instead (:mod:`flexsim.sim.flexible_step`: its Jacobian frozen at
+        the initial state, controls held over each step; ``sample_dt_s`` must be a whole number of steps); ``rtol`` and
+        ``atol`` then do not apply. About 80 times faster than BDF on the HALE, within 1.5 cm of its tip deflection
+        at 10 ms.
 
     Returns
     -------
@@ -151,38 +160,49 @@ def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, contro
     if wind is not None and not callable(wind):
         raise ValueError(f"wind = {wind!r}: must be a wind field (t, positions_ned) -> velocities, or None")
 
-    def wind_body(t, y):
-        if wind is None:
-            return np.zeros(3)
-        w = np.asarray(wind(t, y[None, :3]), float).reshape(3)
-        return quaternion_matrix(y[3:7] / np.linalg.norm(y[3:7])).T @ w
-
-    count = [0]
     flex, rho = point.aircraft, point.density_kg_m3
-
-    def rhs(t, y):
-        count[0] += 1
-        return flex.free_flight_rate(structure, t, y, np.asarray(u_of(t), float), rho, wind_body(t, y))
-
     t_eval = np.arange(0.0, t_end + 0.5 * dt, dt)
     t_eval = t_eval[t_eval <= t_end]
     start = _time.perf_counter()
-    sol = solve_ivp(rhs, (0.0, t_end), y0, method="BDF", t_eval=t_eval, rtol=rtol, atol=atol)
+    if step_s is None:
+        def rhs(t, y):
+            return flex.free_flight_rate(structure, t, y, np.asarray(u_of(t), float), rho, body_wind(wind, t, y))
+
+        sol = solve_ivp(rhs, (0.0, t_end), y0, method="BDF", t_eval=t_eval, rtol=rtol, atol=atol)
+        if not sol.success:
+            raise RuntimeError(f"simulate_flexible: the integration stopped at t = "
+                               f"{sol.t[-1] if sol.t.size else 0.0:.4g} s: {sol.message}")
+        ts, ys, n_rhs = sol.t, sol.y.T, int(sol.nfev + sol.njev * structure.n_states)
+        method = "BDF"
+    else:
+        stepper = FlexibleStepper.about(flex, structure, y0, np.asarray(u_of(0.0), float), rho, step_s)
+        per_sample = dt / stepper.step_s
+        if abs(per_sample - round(per_sample)) > 1e-9 * per_sample:
+            raise ValueError(f"sample_dt_s = {dt!r}: must be a whole number of steps of step_s = {step_s!r}")
+        per_sample = int(round(per_sample))
+        ys, y = [y0.copy()], y0.copy()
+        for i in range(t_eval.size - 1):
+            for k in range(per_sample):
+                t = t_eval[i] + k * stepper.step_s
+                y = stepper.advance(t, y, np.asarray(u_of(t), float), wind, 1)
+            if not np.all(np.isfinite(y)):
+                raise RuntimeError(f"simulate_flexible: the state is not finite at t = {t_eval[i + 1]:.4g} s "
+                                   f"(step_s = {step_s!r} too long for this motion)")
+            ys.append(y)
+        ts, ys = t_eval, np.array(ys)
+        n_rhs = 2 * per_sample * (t_eval.size - 1) + 2 * structure.n_states
+        method = f"ROS2, h = {stepper.step_s:g} s (Jacobian frozen at the initial state)"
     wall = _time.perf_counter() - start
-    if not sol.success:
-        raise RuntimeError(f"simulate_flexible: the integration stopped at t = {sol.t[-1] if sol.t.size else 0.0:.4g} s: "
-                           f"{sol.message}")
-    ys = sol.y.T
     n = structure.n_strains
     flex = point.aircraft
     tips = np.array([flex.tip_positions(y[7:7 + n]) for y in ys])
     lengths = np.array([b.length_m for b in flex.structure.beams])
     frac = -(tips - flex.undeformed_tips[None])[:, :, 2] / lengths[None, :]
-    return FlexibleRun(point=point, t=sol.t, states=ys, position_m=ys[:, :3],
+    return FlexibleRun(point=point, t=ts, states=ys, position_m=ys[:, :3],
                        euler_rad=np.array([_euler(y[3:7]) for y in ys]), velocity_m_s=ys[:, 7 + n:10 + n],
                        rate_rad_s=ys[:, 10 + n:13 + n], strains=ys[:, 7:7 + n], tip_positions_m=tips,
-                       tip_deflection_fraction=frac, wind_body_m_s=np.array([wind_body(t, y) for t, y in zip(sol.t, ys)]),
-                       n_rhs=int(sol.nfev + sol.njev * structure.n_states), wall_s=wall, warnings=NEGLECTED)
+                       tip_deflection_fraction=frac, wind_body_m_s=np.array([body_wind(wind, t, y) for t, y in zip(ts, ys)]),
+                       n_rhs=n_rhs, wall_s=wall, warnings=NEGLECTED, method=method)
 
 
 def write_flexible_log(run: FlexibleRun, path, *, metadata: dict | None = None) -> None:
