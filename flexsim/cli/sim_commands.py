@@ -2,7 +2,7 @@
 
     flexsim simulate MANOEUVRE|SCRIPT.py|AIRCRAFT [--aircraft AIRCRAFT] [--altitude-m H] [--mach M | --speed-m-s V]
                      [--duration S] [--log PATH | --no-log] [--aero unsteady|quasi-steady]
-                     [--method auto|Radau|DOP853|...] [--rtol R]
+                     [--method auto|Radau|DOP853|...] [--rtol R] [--nonlinear-beams [N]]
     flexsim view LOG.mcap [--save FILE.rrd] [--connect URL] [--port N]
 
 MANOEUVRE is a registered manoeuvre (:func:`flexsim.sim.manoeuvres.manoeuvre_names`); a SCRIPT.py is run
@@ -21,6 +21,8 @@ import sys
 import warnings
 from pathlib import Path
 from typing import Sequence
+
+import numpy as np
 
 from flexsim.aircraft.definition import FORMULATIONS
 
@@ -59,6 +61,10 @@ def _simulate(args: argparse.Namespace) -> int:
 
     target = args.manoeuvre
     if target.endswith(".py"):
+        if args.nonlinear_beams is not None:
+            raise ValueError("--nonlinear-beams: applies to named manoeuvres and aircraft; a script builds its own model "
+                             "(fs.simulate_flexible, docs/nonlinear-beams.md)")
+        args.aero = args.aero or "unsteady"
         return _run_script(Path(target), args)
     if target not in manoeuvre_names():  # an aircraft: its elevator doublet from level flight at its cruise point
         from flexsim.aircraft.toml_loader import bundled_aircraft_names
@@ -77,6 +83,9 @@ def _simulate(args: argparse.Namespace) -> int:
         from flexsim.cli.validation import check_log_path
 
         check_log_path("simulate", args.log)
+    if args.nonlinear_beams is not None:
+        return _simulate_nonlinear(target, args)
+    args.aero = args.aero or "unsteady"
     setup = build_manoeuvre(target, aero=args.aero, duration_s=args.duration, formulation=args.formulation,
                             aircraft=args.aircraft, altitude_m=args.altitude_m, mach=args.mach, speed_m_s=args.speed_m_s)
     log_path = None if args.no_log else (args.log or default_log_path(setup.name))
@@ -88,6 +97,59 @@ def _simulate(args: argparse.Namespace) -> int:
     result = setup.simulate(integrator=integrator, output=OutputSettings(log_path=log_path))
     print(result.summary())
     return 1 if result.status in ("non_finite", "solver_failure") else 0
+
+
+def _simulate_nonlinear(name: str, args: argparse.Namespace) -> int:
+    """``flexsim simulate MANOEUVRE --nonlinear-beams [N]``: the manoeuvre of the nonlinear aircraft
+    (:func:`flexsim.sim.flexible_manoeuvres.build_flexible_manoeuvre`), its flight log with the deformed beams."""
+    from flexsim.cli.nonlinear_commands import beams_option
+    from flexsim.sim.flexible_manoeuvres import FLEXIBLE_MANOEUVRES, build_flexible_manoeuvre
+    from flexsim.sim.flexible_run import write_flexible_log
+    from flexsim.sim.recording import default_log_path
+
+    if name not in FLEXIBLE_MANOEUVRES:
+        raise ValueError(f"{name}: not flown with --nonlinear-beams; available: {', '.join(FLEXIBLE_MANOEUVRES)}")
+    if args.aircraft is None:
+        raise ValueError("--nonlinear-beams: give --aircraft (the aircraft file's flexible components need "
+                         "ei_chord_nm2; e.g. phc_hale)")
+    if args.formulation is not None:
+        raise ValueError(f"--formulation {args.formulation}: applies to the linear structure's strips; with "
+                         "--nonlinear-beams the strips resolve the full force on their deformed sections")
+    if args.aero == "unsteady":
+        raise ValueError("--aero unsteady: with --nonlinear-beams the strips are quasi-steady (give --aero quasi-steady "
+                         "or leave it out)")
+    if args.method not in ("auto", "BDF"):
+        raise ValueError(f"--method {args.method}: with --nonlinear-beams the method is auto (ROS2, 10 ms fixed steps, "
+                         "Jacobian frozen at the trim) or BDF (error-controlled, with --rtol)")
+    if args.rtol is not None and args.method != "BDF":
+        raise ValueError(f"--rtol {args.rtol:g}: applies to --method BDF; the ROS2 steps are fixed")
+    if args.rtol is not None and not 0.0 < args.rtol <= 0.1:
+        raise ValueError(f"--rtol = {args.rtol!r}: must be in (0, 0.1]")
+    beams = beams_option(args.nonlinear_beams)
+    setup = build_flexible_manoeuvre(name, args.aircraft, beams=beams, altitude_m=args.altitude_m, mach=args.mach,
+                                     speed_m_s=args.speed_m_s, duration_s=args.duration)
+    log_path = None if args.no_log else (args.log or default_log_path(setup.name))
+    step = None if args.method == "BDF" else 0.01
+    print(f"{setup.name}: {setup.description}; {setup.duration_s:g} s, geometrically nonlinear beams "
+          f"({beams.elements_per_beam} elements per flexible component), quasi-steady strips")
+    run = setup.fly(step_s=step, rtol=args.rtol or 1e-6)
+    flex = run.point.aircraft
+    peak = run.tip_deflection_fraction.max(axis=0)
+    low = run.tip_deflection_fraction.min(axis=0)
+    airspeed = np.linalg.norm(run.velocity_m_s - run.wind_body_m_s, axis=1)
+    print(f"  integrator : {run.method}; {run.n_rhs} right-hand sides, {run.wall_s:.1f} s wall")
+    for i, comp in enumerate(flex.beam_components):
+        length = flex.structure.beams[i].length_m
+        print(f"  tip {comp:<11}: {100 * run.point.tip_deflection_fraction[i]:+.1f} % of its {length:g} m at trim, "
+              f"{100 * low[i]:+.1f} to {100 * peak[i]:+.1f} % in the run (vertical, up +)")
+    print(f"  airspeed    : {airspeed.min():.2f} to {airspeed.max():.2f} m/s; altitude {-run.position_m[-1, 2]:.1f} m "
+          f"at t = {run.t[-1]:g} s")
+    for note in run.warnings:
+        print(f"  neglected   : {note}")
+    if log_path is not None:
+        write_flexible_log(run, log_path, metadata={"manoeuvre": setup.name, "description": setup.description})
+        print(f"  flight log  : {log_path} (flexsim view {log_path})")
+    return 0
 
 
 def _run_script(path: Path, args: argparse.Namespace) -> int:
@@ -212,11 +274,15 @@ def add_sim_commands(subparsers: argparse._SubParsersAction) -> None:
     p_sim.add_argument("--duration", type=float, metavar="S", help="simulated time [s] (default: the manoeuvre's)")
     p_sim.add_argument("--log", metavar="PATH", help="flight log (.mcap) [logs/<manoeuvre>-<time>.mcap]")
     p_sim.add_argument("--no-log", action="store_true", help="do not write a flight log")
-    p_sim.add_argument("--aero", choices=_AERO, default="unsteady", help="aerodynamic model [unsteady]")
+    p_sim.add_argument("--aero", choices=_AERO, default=None,
+                       help="aerodynamic model [unsteady; quasi-steady with --nonlinear-beams]")
     p_sim.add_argument("--formulation", choices=FORMULATIONS, default=None,
                        help="force resolution of the strip airloads (physical or paper, docs/design.md) [the aircraft file's]")
     p_sim.add_argument("--method", choices=["auto", *METHODS], default="auto", help="integration method [auto: ETD2RK (20 ms steps) with aerodynamics, DOP853 without]")
     p_sim.add_argument("--rtol", type=float, help="relative tolerance [method's default]")
+    p_sim.add_argument("--nonlinear-beams", type=int, nargs="?", const=8, default=None, metavar="N",
+                       help="fly the geometrically nonlinear aircraft with N elements per flexible component [8] "
+                            "(with --aircraft; elevator-doublet, aileron-roll, gust-encounter; docs/nonlinear-beams.md)")
     p_sim.set_defaults(func=_simulate)
 
     p_view = subparsers.add_parser("view", help="show a flight log in Rerun, or save it as a Rerun recording")

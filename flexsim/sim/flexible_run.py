@@ -70,6 +70,8 @@ class FlexibleRun:
         Upward tip displacement from the undeformed tip over the beam length (semispan on a wing half) [-].
     wind_body_m_s : ndarray, shape (K, 3)
         The wind at the body origin, body axes [m/s].
+    controls : ndarray, shape (K, 4)
+        The controls applied at each sample ``[T [N], δa, δe, δr [rad]]``.
     n_rhs : int
         Right-hand-side evaluations (Jacobian columns included).
     wall_s : float
@@ -90,6 +92,7 @@ class FlexibleRun:
     tip_positions_m: NDArray
     tip_deflection_fraction: NDArray
     wind_body_m_s: NDArray
+    controls: NDArray
     n_rhs: int
     wall_s: float
     warnings: tuple
@@ -202,6 +205,7 @@ def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, contro
                        euler_rad=np.array([_euler(y[3:7]) for y in ys]), velocity_m_s=ys[:, 7 + n:10 + n],
                        rate_rad_s=ys[:, 10 + n:13 + n], strains=ys[:, 7:7 + n], tip_positions_m=tips,
                        tip_deflection_fraction=frac, wind_body_m_s=np.array([body_wind(wind, t, y) for t, y in zip(ts, ys)]),
+                       controls=np.array([np.asarray(u_of(t), float) for t in ts]),
                        n_rhs=n_rhs, wall_s=wall, warnings=NEGLECTED, method=method)
 
 
@@ -226,11 +230,10 @@ def write_flexible_log(run: FlexibleRun, path, *, metadata: dict | None = None) 
     airspeed = np.linalg.norm(run.velocity_m_s - run.wind_body_m_s, axis=1)
     defl = run.tip_positions_m[:, :, 2] - flex.undeformed_tips[None, :, 2]
     signals = np.column_stack([airspeed, -run.position_m[:, 2], defl])
-    controls = np.repeat(run.point.controls[None], run.t.size, 0)
     with FlightLogWriter(path, state_names=state_names, control_names=["thrust_N", "aileron_rad", "elevator_rad",
                                                                        "rudder_rad"],
                          signal_names=signal_names, structure_topology=topology,
                          metadata={"aircraft": flex.name, "model": "nonlinear strain-based beams, quasi-steady strips",
                                    **(metadata or {})}) as writer:
         writer.write_samples(run.t, position_m=run.position_m, euler_rad=run.euler_rad, state=state,
-                             controls=controls, signals=signals, structure={c: np.array(v) for c, v in nodes.items()})
+                             controls=run.controls, signals=signals, structure={c: np.array(v) for c, v in nodes.items()})

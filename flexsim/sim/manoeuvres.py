@@ -242,21 +242,48 @@ def _climb(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
                   sched, 10.0, notes=((1.0, "controls ramp to the 3 deg climb trim"),))
 
 
-def _elevator_doublet(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
+@dataclass(frozen=True)
+class PulseManoeuvre:
+    """A named manoeuvre made of control pulses from a level trim (:func:`pulse_schedule`), flown by the linear
+    model's :func:`build_manoeuvre` and the nonlinear aircraft's
+    :func:`flexsim.sim.flexible_manoeuvres.build_flexible_manoeuvre` alike."""
+
+    name: str
+    description: str
+    pulses: tuple[tuple[int, float, float, float], ...]
+    ramp_s: float
+    duration_s: float
+    note: tuple[float, str]
+
+    def schedule(self, trim_u: np.ndarray) -> ControlSchedule:
+        """The pulses about the trim's controls ``trim_u`` [N, rad]."""
+        return pulse_schedule(trim_u, list(self.pulses), ramp_s=self.ramp_s)
+
+
+#: The elevator doublet and the aileron roll.
+ELEVATOR_DOUBLET = PulseManoeuvre("elevator-doublet", "elevator doublet +-2 deg, 0.5 s each, from level trim",
+                                  ((2, 1.0, 1.5, math.radians(2.0)), (2, 1.5, 2.0, -math.radians(2.0))), 0.05, 6.0,
+                                  (1.0, "elevator doublet"))
+AILERON_ROLL = PulseManoeuvre("aileron-roll", "aileron -3 deg (roll right) for 2 s from level trim",
+                              ((1, 1.0, 3.0, -math.radians(3.0)),), 0.1, 6.0, (1.0, "aileron input"))
+#: The gust encounter: U_ds [m/s], H [m], the time the body origin reaches the front [s], duration [s].
+GUST_ENCOUNTER = {"amplitude_m_s": 10.0, "length_m": 60.0, "start_s": 1.0, "duration_s": 5.0}
+GUST_DESCRIPTION = "1-cos up-gust U_ds = 10 m/s, H = 60 m (CS-25.341) reached at t = 1 s"
+
+
+def _pulses(manoeuvre: PulseManoeuvre, aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
     model = _model(flight, aero)
     level = _cruise(model, flight)
-    d = math.radians(2.0)
-    sched = pulse_schedule(level.u, [(2, 1.0, 1.5, d), (2, 1.5, 2.0, -d)])
-    return _setup(flight, model, level, "elevator-doublet", "elevator doublet +-2 deg, 0.5 s each, from level trim",
-                  sched, 6.0, notes=((1.0, "elevator doublet"),))
+    return _setup(flight, model, level, manoeuvre.name, manoeuvre.description, manoeuvre.schedule(level.u),
+                  manoeuvre.duration_s, notes=(manoeuvre.note,))
+
+
+def _elevator_doublet(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
+    return _pulses(ELEVATOR_DOUBLET, aero, flight)
 
 
 def _aileron_roll(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
-    model = _model(flight, aero)
-    level = _cruise(model, flight)
-    sched = pulse_schedule(level.u, [(1, 1.0, 3.0, -math.radians(3.0))], ramp_s=0.1)
-    return _setup(flight, model, level, "aileron-roll", "aileron -3 deg (roll right) for 2 s from level trim",
-                  sched, 6.0, notes=((1.0, "aileron input"),))
+    return _pulses(AILERON_ROLL, aero, flight)
 
 
 def _gust_encounter(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
@@ -264,10 +291,11 @@ def _gust_encounter(aero: AeroOptions, flight: _Flight) -> ManoeuvreSetup:
     level = _cruise(model, flight)
     lay = model.layout
     velocity_ned = dcm_321(*level.x[lay.euler]).T @ level.x[lay.v]
-    gust = OneMinusCosineGust.encounter(10.0, 60.0, position_ned_m=level.x[lay.position], velocity_ned_m_s=velocity_ned,
-                                        start_time_s=1.0)
-    return _setup(flight, model, level, "gust-encounter", "1-cos up-gust U_ds = 10 m/s, H = 60 m (CS-25.341) reached at t = 1 s",
-                  level.u, 5.0, notes=((1.0, "the body origin enters the 1-cos gust"),),
+    g = GUST_ENCOUNTER
+    gust = OneMinusCosineGust.encounter(g["amplitude_m_s"], g["length_m"], position_ned_m=level.x[lay.position],
+                                        velocity_ned_m_s=velocity_ned, start_time_s=g["start_s"])
+    return _setup(flight, model, level, "gust-encounter", GUST_DESCRIPTION,
+                  level.u, g["duration_s"], notes=((g["start_s"], "the body origin enters the 1-cos gust"),),
                   metadata={"gust": "1-cos, U_ds 10 m/s, H 60 m"}, wind=gust)
 
 

@@ -166,6 +166,8 @@ CASES: dict[tuple[str, str], tuple[list[str], list[str], Expect]] = {
     ("simulate", "--formulation"): (SIMULATE, ["--formulation", "paper"], Expect(CHANGES)),
     ("simulate", "--method"): (SIMULATE, ["--method", "DOP853", "--aero", "quasi-steady"], Expect(CHANGES)),
     ("simulate", "--rtol"): (SIMULATE, ["--rtol", "1e-3"], refused("--rtol 0.001: applies to the adaptive methods")),
+    ("simulate", "--nonlinear-beams"): (["simulate", "gust-encounter", "--aircraft", "phc_hale", "--no-log", "--duration",
+                                         "0.2", "--aero", "quasi-steady"], ["--nonlinear-beams", "2"], Expect(CHANGES)),
     ("view", "log"): (VIEW, ["view", "{tmp}/missing.mcap", "--save", "{tmp}/m.rrd"], refused("no such flight log file")),
     ("view", "--save"): (["view", "{log}", "--connect", "rerun+http://127.0.0.1:1/proxy"], ["--save", "{tmp}/v.rrd", "--port",
                          "9000"], refused("--port: apply to the viewer that flexsim view starts")),

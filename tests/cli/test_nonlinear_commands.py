@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 
 import flexsim as fs
@@ -121,3 +122,41 @@ def test_pull_up_sweep_prints_linear_and_nonlinear_side_by_side(tmp_path, capsys
                            mach_range=rng)
     assert rows["FS nonlinear", 1.2]["speed_m_s"] == pytest.approx(nonlinear.speed_m_s, rel=1e-12)
     assert rows["FS nonlinear", 1.5]["error"].startswith("no trimmable speed in the range")
+
+
+def test_simulate_flies_the_nonlinear_manoeuvre_and_logs_it(tmp_path, capsys):
+    """``flexsim simulate gust-encounter --aircraft phc_hale --nonlinear-beams 4``: the API's run
+    (``build_flexible_manoeuvre(...).fly()``), printed to its digits, and its log with the deformed wings."""
+    from flexsim.io.flight_log import read_flight_log
+    from flexsim.sim.flexible_manoeuvres import build_flexible_manoeuvre
+
+    log = tmp_path / "gust.mcap"
+    code, out, _ = _run(["simulate", "gust-encounter", "--aircraft", "phc_hale", "--nonlinear-beams", "4",
+                         "--duration", "2", "--log", str(log)], capsys)
+    assert code == 0
+    run = build_flexible_manoeuvre("gust-encounter", "phc_hale", beams=NonlinearBeams(4), duration_s=2.0).fly()
+    peak = run.tip_deflection_fraction.max(axis=0)
+    assert f"to {100 * peak[0]:+.1f} % in the run" in out and peak[0] > 0.25
+    flight = read_flight_log(log)
+    assert flight.complete and abs(flight.t[-1] - 2.0) < 1e-9
+    assert np.allclose(flight.controls, run.controls)
+    assert set(flight.structure) == {"right_wing", "left_wing"}
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["simulate", "gust-encounter", "--nonlinear-beams"], "--nonlinear-beams: give --aircraft"),
+    (["simulate", "level-turn-entry", "--aircraft", "phc_hale", "--nonlinear-beams"],
+     "level-turn-entry: not flown with --nonlinear-beams"),
+    (["simulate", "gust-encounter", "--aircraft", "phc_hale", "--nonlinear-beams", "--aero", "unsteady"],
+     "--aero unsteady: with --nonlinear-beams the strips are quasi-steady"),
+    (["simulate", "gust-encounter", "--aircraft", "phc_hale", "--nonlinear-beams", "--method", "Radau"],
+     "--method Radau: with --nonlinear-beams"),
+    (["simulate", "gust-encounter", "--aircraft", "phc_hale", "--nonlinear-beams", "--rtol", "1e-4"],
+     "--rtol 0.0001: applies to --method BDF"),
+    (["simulate", "gust-encounter", "--aircraft", "phc_hale", "--nonlinear-beams", "--formulation", "paper"],
+     "--formulation paper: applies to the linear structure"),
+    (["simulate", "x.py", "--nonlinear-beams"], "--nonlinear-beams: applies to named manoeuvres"),
+])
+def test_simulate_refuses_what_the_nonlinear_aircraft_cannot_fly(argv, words, capsys):
+    code, _, err = _run(argv, capsys)
+    assert code == 2 and words in err, err
