@@ -155,7 +155,8 @@ def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDAr
     """Quasi-steady strip loads per unit span (inflow zero) of sections in a flow (module docstring).
 
     Peters-Johnson airloads of a rigid section (reference §1.3-1.4, ``{L} = πρ b u0 [B]{w}`` with the inflow
-    ``λ0 = 0``), resolved as in the module docstring: lift along ``e3``, leading-edge suction along ``e2``, moment
+    ``λ0 = 0``), resolved as in the module docstring: lift along ``e3``, leading-edge suction along ``e2`` (with an
+    incidence, the suction that keeps the steady resultant normal to the wind: :func:`_section_loads_kernel`), moment
     about the reference axis along ``e1``; plus, when ``cd0`` is given, a profile drag ``½ρ|V|² 2b cd0`` along the
     in-section air velocity (the linear model's physical force resolution, paper eq. 28 with
     ``docs/design.md`` "Force resolution").
@@ -207,8 +208,11 @@ def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, bm, fo
     """The loads of :func:`section_loads` strip by strip (compiled; arguments broadcast to P strips).
 
     ``u0 = −e2·V_a``, ``w_n = e3·V_a``, ``w1 = b Ω1``, ``w0 = w_n + u0 α_i − a w1``; ``{L} = πρ b u0 [B]{w}``;
-    lift ``L0`` along e3, moment ``a b L0 − b L1`` along e1, suction ``2πρ b w0²`` along e2, profile drag
-    ``ρ b cd0 |V_in| V_in`` along the in-section air velocity ``V_in = w_n e3 − u0 e2``.
+    lift ``L0`` along e3, moment ``a b L0 − b L1`` along e1, suction ``2πρ b w0 (w0 − u0 α_i)`` along e2, profile
+    drag ``ρ b cd0 |V_in| V_in`` along the in-section air velocity ``V_in = w_n e3 − u0 e2``. The incidence ``α_i``
+    (rigging or a flap's equivalent angle) changes the circulation, not the direction of the resultant: a steady
+    strip's lift and suction add to ``2πρ b w0 (w_n e2 + u0 e3)``, normal to ``V_in`` (Kutta-Joukowski: no force
+    along the wind without drag), where ``w0²`` would tilt it by ``α_i`` and make a flap produce thrust.
     """
     for k in range(rotations.shape[0]):
         r = rotations[k]
@@ -220,7 +224,7 @@ def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, bm, fo
         gen0 = scale * (bm[0, 0] * w0 + bm[0, 1] * w1)
         gen1 = scale * (bm[1, 0] * w0 + bm[1, 1] * w1)
         mom = a[k] * b[k] * gen0 - b[k] * gen1
-        suction = 2.0 * np.pi * rho[k] * b[k] * w0 ** 2
+        suction = 2.0 * np.pi * rho[k] * b[k] * w0 * (w0 - u0 * incidence[k])
         drag = 0.0
         if cd0[k] != 0.0:
             drag = rho[k] * b[k] * cd0[k] * np.sqrt(wn * wn + u0 * u0)

@@ -295,10 +295,13 @@ class FlexibleAircraft:
         return out
 
     def max_strip_alpha_deg(self, eps: NDArray, v: NDArray, omega: NDArray, u: NDArray) -> float:
-        """Largest ``|atan2(w, u0)|`` over all strips, incidence and flap angle included [deg] (``ε̇ = 0``)."""
+        """Largest ``|atan2(w, u0)|`` over all lifting strips, incidence and flap angle included [deg] (``ε̇ = 0``);
+        a beam without strips (a fuselage: zero lift slope) has no angle of attack to check."""
         worst = 0.0
         groups = []
         for beam, strips, kin in zip(self.structure.beams, self.beam_strips, self.kinematics(eps)):
+            if not np.any(np.asarray(strips.aero.lift_slope_per_rad) != 0.0):
+                continue
             e = kin.points_element
             groups.append((kin.rotations, kin.positions, strips.incidence[e] + strips.flap[e] @ u))
         r = self.rigid_strips
@@ -327,11 +330,17 @@ class FlexibleAircraft:
 
 
 def _beam_frame(comp) -> NDArray:
-    """``[e1, e2, e3]`` in body axes: along the axis, towards the leading edge, ``e1 × e2``."""
+    """``[e1, e2, e3]`` in body axes: along the axis, towards the leading edge, ``e1 × e2``. A component whose chord
+    lies along its axis (a fuselage: no leading edge across it) bends "flapwise" in the body's vertical plane:
+    ``e3`` up (body −z) normal to the axis, ``e2 = e3 × e1``."""
     axes = comp.axes_in_body
     e1 = axes[:, 0]
     e2 = -(axes @ comp.chord_direction)
     e2 = e2 - (e2 @ e1) * e1
+    if np.linalg.norm(e2) < 1e-9:
+        e3 = np.array([0.0, 0.0, -1.0]) - (-e1[2]) * e1
+        e3 /= np.linalg.norm(e3)
+        return np.column_stack([e1, np.cross(e3, e1), e3])
     e2 /= np.linalg.norm(e2)
     return np.column_stack([e1, e2, np.cross(e1, e2)])
 

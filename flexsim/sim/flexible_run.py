@@ -171,7 +171,12 @@ def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, contro
         def rhs(t, y):
             return flex.free_flight_rate(structure, t, y, np.asarray(u_of(t), float), rho, body_wind(wind, t, y))
 
-        sol = solve_ivp(rhs, (0.0, t_end), y0, method="BDF", t_eval=t_eval, rtol=rtol, atol=atol)
+        # scipy's finite-difference Jacobian (num_jac) tries steps that overflow for state components near 1e-11 and
+        # then recovers; its RuntimeWarning is silenced here, a state that is not finite is refused below
+        with np.errstate(over="ignore"):
+            sol = solve_ivp(rhs, (0.0, t_end), y0, method="BDF", t_eval=t_eval, rtol=rtol, atol=atol)
+        if sol.success and not np.all(np.isfinite(sol.y)):
+            sol.success, sol.message = False, "the state is not finite"
         if not sol.success:
             raise RuntimeError(f"simulate_flexible: the integration stopped at t = "
                                f"{sol.t[-1] if sol.t.size else 0.0:.4g} s: {sol.message}")
