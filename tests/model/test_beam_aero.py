@@ -95,3 +95,19 @@ def test_still_air_system_has_the_structural_roots_with_apparent_mass():
     expected = np.sort(np.sqrt(eigvals(k, mass_matrix(beam, kin) + ma).real))
     assert np.allclose(structural, expected[: structural.size], rtol=1e-8)
     assert structural.size == n
+
+
+@pytest.mark.parametrize("incidence", [0.0, 0.05, -0.3])
+def test_steady_resultant_is_normal_to_the_wind_with_an_incidence(incidence):
+    """Kutta-Joukowski for a thin section without drag: the steady force is normal to the in-section air velocity
+    whatever the incidence (rigging or a flap's equivalent angle), and its magnitude is 2 pi rho b |V_in| w0 with
+    w0 = w_n + u0 alpha_i (thin-airfoil lift at the effective angle). A resultant tilted by the incidence would make a
+    deflected flap produce thrust."""
+    rot = np.eye(3)[None]  # e1 = x (span), e2 = y (leading edge), e3 = z
+    u0, wn, rho, b = 30.0, 2.0, 1.1, 0.4
+    va = np.array([[0.0, -u0, wn]])  # air velocity: from the leading edge, and up through the section
+    force, _ = section_loads(rot, np.array([b]), np.array([0.0]), va, rho, incidence=incidence)
+    v_in = va[0]
+    assert abs(force[0] @ v_in) < 1e-12 * np.linalg.norm(force[0]) * np.linalg.norm(v_in)
+    w0 = wn + u0 * incidence
+    assert np.linalg.norm(force[0]) == pytest.approx(2 * np.pi * rho * b * abs(w0) * np.linalg.norm(v_in), rel=1e-12)
