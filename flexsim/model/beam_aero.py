@@ -151,7 +151,7 @@ def _section_matrices():
 
 def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDArray, rho: NDArray | float, *,
                   rate_e1: NDArray | float = 0.0, incidence: NDArray | float = 0.0,
-                  cd0: NDArray | float = 0.0) -> tuple[NDArray, NDArray]:
+                  cd0: NDArray | float = 0.0, induced: NDArray | float = 0.0) -> tuple[NDArray, NDArray]:
     """Quasi-steady strip loads per unit span (inflow zero) of sections in a flow (module docstring).
 
     Peters-Johnson airloads of a rigid section (reference §1.3-1.4, ``{L} = πρ b u0 [B]{w}`` with the inflow
@@ -177,6 +177,10 @@ def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDAr
         Nose-up incidence added to the section [rad] (rigging, or a flap's equivalent angle ``τ δ``).
     cd0 : float or ndarray, shape (P,)
         Profile drag coefficient [-].
+    induced : float or ndarray, shape (P,)
+        ``1 − Cl_α/2π`` of a strip whose lift slope is a finite wing's: its induced drag ``L α_e (1 − Cl_α/2π)``
+        along the in-section air velocity (``α_e = w0/u0``), the linear model's (:mod:`flexsim._kernels.strips`,
+        ``circulatory``); 0 (default) for none.
 
     Returns
     -------
@@ -189,7 +193,8 @@ def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDAr
     force, moment = np.empty((p, 3)), np.empty((p, 3))
     _section_loads_kernel(_strip_array(rotations, (p, 3, 3)), _strip_array(b, (p,)), _strip_array(a, (p,)),
                           _strip_array(air_velocity, (p, 3)), _strip_array(rho, (p,)), _strip_array(rate_e1, (p,)),
-                          _strip_array(incidence, (p,)), _strip_array(cd0, (p,)), bm, force, moment)
+                          _strip_array(incidence, (p,)), _strip_array(cd0, (p,)), _strip_array(induced, (p,)), bm,
+                          force, moment)
     return force, moment
 
 
@@ -204,12 +209,13 @@ def _strip_array(value, shape: tuple) -> NDArray:
 
 
 @njit(cache=True, nogil=True)
-def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, bm, force, moment):
+def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, induced, bm, force, moment):
     """The loads of :func:`section_loads` strip by strip (compiled; arguments broadcast to P strips).
 
     ``u0 = −e2·V_a``, ``w_n = e3·V_a``, ``w1 = b Ω1``, ``w0 = w_n + u0 α_i − a w1``; ``{L} = πρ b u0 [B]{w}``;
     lift ``L0`` along e3, moment ``a b L0 − b L1`` along e1, suction ``2πρ b w0 (w0 − u0 α_i)`` along e2, profile
-    drag ``ρ b cd0 |V_in| V_in`` along the in-section air velocity ``V_in = w_n e3 − u0 e2``. The incidence ``α_i``
+    drag ``ρ b cd0 |V_in| V_in`` and induced drag ``L0 (w0/u0) (1 − Cl_α/2π)`` along the in-section air velocity
+    ``V_in = w_n e3 − u0 e2``. The incidence ``α_i``
     (rigging or a flap's equivalent angle) changes the circulation, not the direction of the resultant: a steady
     strip's lift and suction add to ``2πρ b w0 (w_n e2 + u0 e3)``, normal to ``V_in`` (Kutta-Joukowski: no force
     along the wind without drag), where ``w0²`` would tilt it by ``α_i`` and make a flap produce thrust.
@@ -226,8 +232,11 @@ def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, bm, fo
         mom = a[k] * b[k] * gen0 - b[k] * gen1
         suction = 2.0 * np.pi * rho[k] * b[k] * w0 * (w0 - u0 * incidence[k])
         drag = 0.0
+        speed = np.sqrt(wn * wn + u0 * u0)
         if cd0[k] != 0.0:
-            drag = rho[k] * b[k] * cd0[k] * np.sqrt(wn * wn + u0 * u0)
+            drag = rho[k] * b[k] * cd0[k] * speed
+        if induced[k] != 0.0 and u0 != 0.0 and speed > 0.0:
+            drag += gen0 * (w0 / u0) * induced[k] / speed  # L alpha_e (1 - Cl_a/2 pi) along V_in / |V_in|
         for i in range(3):
             force[k, i] = gen0 * r[i, 2] + suction * r[i, 1] + drag * (wn * r[i, 2] - u0 * r[i, 1])
             moment[k, i] = mom * r[i, 0]

@@ -19,7 +19,9 @@ wing): quasi-steady Peters-Johnson strip loads (reference §1.3-1.4 with the inf
 Control surfaces act through the thin-airfoil lift effectiveness of a plain flap, an equivalent incidence
 ``τ δ`` with ``τ = 1 − (φ_h − sin φ_h)/π``, ``cos φ_h`` = the hinge position (Glauert 1927; the first entry of
 the linear model's flap weights ``[φ_h/π, 2 sin φ_h/π, …]``, :mod:`flexsim.model.strips`); the flap's own
-zero-lift moment is neglected. Thrust acts at the engines along body x. The generalized forces are the virtual
+zero-lift moment is neglected. Incidences and deflections are streamwise angles (the linear model's strips are
+streamwise); on a swept component they enter the section normal to the beam as ``α / cos Λ``, which gives the
+normal velocity ``U α`` of the streamwise strip. Thrust acts at the engines along body x. The generalized forces are the virtual
 work of these loads, ``Q = Σ w (L_pᵀ F + Aᵀ M)`` with ``L_p = [I, −p^, J_p]`` and ``A = [0, I, J_θ]`` over the
 generalized velocities ``V = [v, ω, ε̇]`` (Shearer & Cesnik 2007 eq. 9; Su & Cesnik 2011 eq. 13).
 
@@ -271,7 +273,7 @@ class FlexibleAircraft:
                 va = va - kin.jac_position @ epsdot[s]
                 rate = rate + np.einsum("pi,pi->p", kin.rotations[:, :, 0], kin.jac_rotation @ epsdot[s])
             force, moment = section_loads(kin.rotations, b, a, va, rho * scale, rate_e1=rate,
-                                          incidence=incidence + flap @ u, cd0=cd0)
+                                          incidence=incidence + flap @ u, cd0=cd0, induced=1.0 - scale)
             wt = kin.points_weight
             f, m = wt[:, None] * force, wt[:, None] * moment
             out[:3] += f.sum(0)
@@ -283,7 +285,7 @@ class FlexibleAircraft:
             va = w_air - (v + _cross(omega, r.position))
             force, moment = section_loads(r.rotations, r.b, r.a, va, rho * r.scale,
                                           rate_e1=r.rotations[:, :, 0] @ omega, incidence=r.incidence + r.flap @ u,
-                                          cd0=r.cd0)
+                                          cd0=r.cd0, induced=1.0 - r.scale)
             f, m = r.width[:, None] * force, r.width[:, None] * moment
             out[:3] += f.sum(0)
             out[3:6] += (_cross(r.position, f) + m).sum(0)
@@ -345,6 +347,18 @@ def _beam_frame(comp) -> NDArray:
     return np.column_stack([e1, e2, np.cross(e1, e2)])
 
 
+def _streamwise_to_section(comp) -> float:
+    """``1 / cos Λ``: the factor from a streamwise angle of incidence (the aircraft file's ``incidence_deg`` and control
+    deflections, on the linear model's streamwise strips) to the angle of the section normal to the beam, whose
+    chordwise speed is ``U cos Λ``: ``u0 α_n = U α_s`` keeps the normal velocity ``U α_s`` the streamwise strip sees
+    (Λ the angle between the streamwise chord and ``e2``, the sweep; 1 for an unswept component or a fuselage)."""
+    axes = comp.axes_in_body
+    stream = -(axes @ comp.chord_direction)
+    e2 = _beam_frame(comp)[:, 1]
+    cos_sweep = abs(float(stream @ e2)) / max(float(np.linalg.norm(stream)), 1e-12)
+    return 1.0 / cos_sweep if cos_sweep > 1e-3 else 1.0
+
+
 def _flap_rows(comp, stations: NDArray) -> NDArray:
     """(k, 4) incidence per control at the given stations (0 outside the surface)."""
     from flexsim.model.strips import FLAP_KINDS
@@ -354,7 +368,8 @@ def _flap_rows(comp, stations: NDArray) -> NDArray:
     if cs is not None:
         inside = (stations >= cs.start_m) & (stations <= cs.end_m)
         sign = -1.0 if comp.name == "left_wing" else 1.0
-        rows[inside, 1 + FLAP_KINDS.index(cs.kind)] = sign * _normal_sign(comp) * _flap_effectiveness(cs.hinge_d)
+        rows[inside, 1 + FLAP_KINDS.index(cs.kind)] = (sign * _normal_sign(comp) * _flap_effectiveness(cs.hinge_d)
+                                                       * _streamwise_to_section(comp))
     return rows
 
 
@@ -410,7 +425,8 @@ def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAi
             aero = _BeamStrips(WingAero(chord_m=comp.sections.at("chord_m", mid),
                                         axis_fraction=comp.sections.at("ea_fraction", mid),
                                         lift_slope_per_rad=slope),
-                               np.full(n, comp.aero.cd0), np.full(n, _normal_sign(comp) * comp.aero.incidence_rad),
+                               np.full(n, comp.aero.cd0),
+                               np.full(n, _normal_sign(comp) * comp.aero.incidence_rad * _streamwise_to_section(comp)),
                                _flap_rows(comp, mid))
         beams.append(beam), names.append(comp.name), beam_strips.append(aero)
     probe = FreeFlexibleStructure(RigidBody(0.0), tuple(beams))
@@ -429,7 +445,7 @@ def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAi
     for k, i in enumerate(r):
         comp = aircraft.component(strips.component[i])
         frames.append(_beam_frame(comp))
-        normal[k] = _normal_sign(comp)
+        normal[k] = _normal_sign(comp) * _streamwise_to_section(comp)
         flap[k] = _flap_rows(comp, np.array([strips.station_m[i]]))[0]
     rigid = _RigidStrips(position=strips.position_body_m[r], rotations=np.array(frames).reshape(-1, 3, 3),
                          b=strips.semichord_m[r], a=strips.a[r], width=strips.width_m[r],
