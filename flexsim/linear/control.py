@@ -390,7 +390,17 @@ def linear_system(model: AircraftModel, point: TrimPoint | np.ndarray, u0: np.nd
     Returns
     -------
     LinearSystem
+
+    With the geometrically nonlinear beams (``Terms(nonlinear_beams=...)``) ``point`` is the model's nonlinear trim
+    (``fs.trim``) and the system is that of :func:`flexsim.linear.flexible_control.flexible_linear_system` (the free
+    aircraft about its deformed equilibrium, quasi-steady strips; its own state names).
     """
+    if getattr(getattr(model, "terms", None), "nonlinear_beams", None) is not None:
+        from flexsim.linear.flexible_control import flexible_linear_system
+
+        if u0 is not None:
+            raise ValueError("u0: the nonlinear trim supplies its own controls")
+        return flexible_linear_system(model, point, state_outputs=state_outputs)
     check_model(model)
     manoeuvre = None
     if isinstance(point, TrimPoint):

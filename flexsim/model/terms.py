@@ -55,8 +55,8 @@ def _finite_tuple(name: str, value, length: int | None = None) -> tuple[float, .
 
 #: The analyses that evaluate a model with :attr:`Terms.nonlinear_beams`; every other analysis refuses such a model
 #: (:func:`flexsim.model.aircraft_model.check_model`).
-NONLINEAR_ANALYSES = ("fs.trim, fs.flutter, fs.vg_diagram, fs.flexible_aircraft, fs.trim_flexible, fs.flexible_flutter, "
-                      "fs.simulate_flexible (time-domain flight)")
+NONLINEAR_ANALYSES = ("fs.trim, fs.flutter, fs.vg_diagram, fs.linear_system, fs.state_space, fs.flexible_aircraft, "
+                      "fs.trim_flexible, fs.flexible_flutter, fs.simulate_flexible (time-domain flight)")
 
 
 @dataclass(frozen=True)

@@ -213,8 +213,8 @@ def test_every_term_reaches_every_analysis(gtm, name):
 
 def test_nonlinear_beams_reach_trim_and_flutter():
     """A model with the geometrically nonlinear beams (the PHC HALE, which gives every stiffness they need): the trim
-    and the flutter search evaluate them and record the element count used; every analysis of the linear structure
-    refuses the model, naming the field."""
+    and the flutter search evaluate them and record the element count used, the linear system is the free aircraft's
+    about the nonlinear trim; every analysis of the linear structure refuses the model, naming the field."""
     hale = fs.load_aircraft("phc_hale")
     model = AircraftModel(hale, terms=Terms(nonlinear_beams=NonlinearBeams(4)))
     level = SteadyManoeuvre.level(20000.0, speed_m_s=25.0)
@@ -232,7 +232,9 @@ def test_nonlinear_beams_reach_trim_and_flutter():
         trim(model, level, classify=True)
     vg = vg_diagram(model, manoeuvre=level, models=("FS",), speeds_m_s=(30.0, 31.0), refine=False)
     assert vg.terms["unsteady"] == fp.terms
-    for refused in (lambda: linear_system(model, point), lambda: vg_diagram(model, manoeuvre=level, models=("QS",)),
+    system = linear_system(model, point)  # the free aircraft about the nonlinear trim
+    assert system.model.terms.nonlinear_beams == NonlinearBeams(4) and system.x0.size == point.state().size
+    for refused in (lambda: vg_diagram(model, manoeuvre=level, models=("QS",)),
                     lambda: wind_tunnel(model, speed_range=(10.0, 20.0)), lambda: fs.simulate(model, point, 1.0),
                     lambda: fs.spectrum(model, np.zeros(model.layout.n_states), np.zeros(4))):
         with pytest.raises(ValueError, match="nonlinear_beams = NonlinearBeams"):
