@@ -7,7 +7,7 @@ second core :func:`start` compiles it there from the signatures below while this
 numba saves both to its cache, and this process loads the second group from it when the search reaches it (a
 dispatcher looks in the cache before it compiles a new signature). A signature that no longer matches a kernel
 (the kernel changed) only costs the other core's time: this process then compiles the kernel itself, as without
-this module. It runs only when a core is idle (1-minute load average below the cores - 1.5): measured on the
+this module. It runs only when a core is idle (:func:`idle_cores`, at least 0.8 over 0.2 s): measured on the
 2-core machine at load 4-5 (other jobs), the first `flexsim flutter` took 66 and 99 s with the helper against 85, 82
 and 71 s without, the two compiles competing for the same busy cores (48-52 s of CPU against 40-41 s).
 """
@@ -18,7 +18,7 @@ import os
 import subprocess
 import sys
 
-__all__ = ["start", "compile_group"]
+__all__ = ["start", "compile_group", "idle_cores"]
 
 
 def _signatures() -> list[tuple[object, tuple]]:
@@ -51,6 +51,28 @@ def compile_group() -> None:
             pass
 
 
+def idle_cores(window_s: float = 0.2) -> float:
+    """Idle cores now: the idle share of all cores' time over ``window_s`` [s] (``/proc/stat``, Linux) times the
+    number of cores; elsewhere ``cores − 1-minute load average``. Not the load average alone: right after
+    ``pip install`` it still counts the install's minute of work while the machine is already idle."""
+    import time
+
+    cores = os.cpu_count() or 1
+
+    def sample():
+        with open("/proc/stat", encoding="ascii") as f:
+            values = [float(v) for v in f.readline().split()[1:]]
+        return values[3] + (values[4] if len(values) > 4 else 0.0), sum(values)  # idle + iowait, total
+
+    try:
+        idle0, total0 = sample()
+        time.sleep(window_s)
+        idle1, total1 = sample()
+    except (OSError, ValueError, IndexError):
+        return cores - os.getloadavg()[0] if hasattr(os, "getloadavg") else 0.0
+    return cores * (idle1 - idle0) / max(total1 - total0, 1e-9)
+
+
 def start(parent_pid: int | None = None) -> subprocess.Popen | None:
     """A background process compiling the p-k group, when this machine has an idle second core and the group is not
     in numba's cache; None otherwise. It ends with this process (``PR_SET_PDEATHSIG``) and shows no progress."""
@@ -59,7 +81,7 @@ def start(parent_pid: int | None = None) -> subprocess.Popen | None:
     cores = os.cpu_count() or 1
     if cores < 2 or os.environ.get("NUMBA_DISABLE_JIT") == "1":
         return None
-    if hasattr(os, "getloadavg") and os.getloadavg()[0] > cores - 1.5:  # no idle core: a second compile only competes
+    if idle_cores() < 0.8:  # no idle core: a second compile only competes
         return None
     try:
         if is_cached(*(d for d, _ in _signatures())):
