@@ -29,6 +29,11 @@ def test_no_helper_when_the_group_is_cached(monkeypatch):
 
 def test_no_helper_without_an_idle_core(monkeypatch):
     monkeypatch.setattr("flexsim._numba_cache.is_cached", lambda *d: False)
-    monkeypatch.setattr(os, "getloadavg", lambda: (8.0, 8.0, 8.0))
+    monkeypatch.setattr(_precompile, "idle_cores", lambda window_s=0.2: 0.3)
     monkeypatch.setattr(os, "cpu_count", lambda: 2)
     assert _precompile.start() is None
+
+
+def test_idle_cores_is_between_zero_and_the_core_count():
+    idle = _precompile.idle_cores(0.05)
+    assert 0.0 <= idle <= (os.cpu_count() or 1) + 1e-9
