@@ -44,7 +44,7 @@ from flexsim.model.reference import ReferenceGeometry
 from flexsim.model.terms import NONLINEAR_ANALYSES, Terms
 from flexsim.model.variant import Variant, VariantSettings
 from flexsim.kinematics import dcm_321
-from flexsim.structure.model import StructuralModel, structural_model
+from flexsim.structure.model import structural_model
 
 __all__ = ["Variant", "VariantSettings", "AircraftModel", "STANDARD_GRAVITY", "CONTROL_NAMES", "Wind", "check_model",
            "check_aircraft"]

@@ -44,7 +44,7 @@ from flexsim.model.terms import NonlinearBeams
 from flexsim.structure.beam_sections import beam_from_sections
 from flexsim.structure.free_flexible import (FreeFlexibleStructure, RigidBody, _cross, free_flight_rhs,
                                              generalized_mass_matrix, steady_generalized_force)
-from flexsim.structure.strain_beam import BeamProperties, beam_kinematics
+from flexsim.structure.strain_beam import beam_kinematics
 
 __all__ = ["FlexibleAircraft", "flexible_aircraft"]
 

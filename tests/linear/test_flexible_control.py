@@ -50,8 +50,9 @@ def test_small_input_response_is_the_nonlinear_one(hale, column, amplitude, tole
     if column < 4:
         controls[column] += amplitude
     else:
-        def wind(t, positions):
+        def up_gust(t, positions):
             return np.tile([0.0, 0.0, -amplitude], (len(positions), 1))
+        wind = up_gust
     run = fs.simulate_flexible(model, point, steps * dt, controls=controls, wind=wind, sample_dt_s=dt, step_s=0.005)
     flex = point.aircraft
     tip = run.tip_positions_m[1:, 0, 2] - flex.tip_positions(point.strains)[0, 2]
