@@ -1,0 +1,182 @@
+"""The free aircraft with nonlinear beams linearised about its nonlinear trim with Peters' unsteady strips.
+
+:func:`flexsim.linear.flexible_stability.free_aircraft_spectrum` linearises the free-flight equations with
+quasi-steady strips (:meth:`~flexsim.model.flexible_aircraft.FlexibleAircraft.free_flight_jacobian`). Here the strips
+carry Peters' finite-state airloads (reference §1.3-1.4 and §2.1; Peters, Karunamoorthy & Cao 1995), the same model as
+the clamped wing's :func:`flexsim.model.beam_aero.aeroelastic_system`, on every strip of the free aircraft (flexible
+beams at their quadrature points, rigid components at their strip stations):
+
+* ``{L} = πρ{b²[M]{ẇ} + b u0([B]{w} − {S}λ0)}`` — the quasi-steady part ``πρ b u0 [B]{w}`` (with its leading-edge
+  suction) is already in the quasi-steady Jacobian; added here are the apparent mass ``πρ b² [M]{ẇ}`` and the
+  inflow ``−πρ b u0 {S} λ0``, with the suction's change ``∂S/∂λ0 = −2πρ b (2 w0 − u0 α_i)``;
+* per strip, ``[A]λ̇ + (u0/b)λ = {c}(ẇ0 + ẇ1/2)``, ``λ0 = ½ bᵀλ``;
+* a strip point moves with ``L V`` (``L = [I, −p^, J_p]``, body axes) and its section turns with ``A V``
+  (``A = [0, I, J_θ]``) over the generalized velocities ``V = [v, ω, ε̇]``; so ``δw0 = −(e3ᵀL + a b e1ᵀA) δV``,
+  ``δw1 = b e1ᵀA δV`` and ``δẇ0 = (…) δV̇ + (e3 × V_a)ᵀ [0, 0, J_θ] δV`` (the elastic turn of ``e3`` against the air
+  velocity ``V_a``; a rigid turn of the body is in ``v̇`` of the body-axis equations).
+
+With ``M`` the generalized mass at the trim and ``M_a`` the apparent mass, the velocity rows become
+``(M + M_a) δV̇ = M J_V δy − C_a δV + G_λ λ`` (``J_V`` the quasi-steady Jacobian's velocity rows: the trim is an
+equilibrium in body axes, ``R = 0``). States: ``[quaternion (4), ε (n), V (6 + n), λ (P × N)]``. Valid about a trim with
+``ω = 0`` (level flight, climb, glide); a pull-up or a turn is refused (the rigid rotation of the air velocity would
+add terms not written here). SI units, body axes x forward, z down.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from flexsim.aero.inflow import inflow_coefficients
+from flexsim.model.beam_aero import _section_matrices
+from flexsim.structure.free_flexible import generalized_mass_matrix
+from flexsim.trimming.flexible_trim import FlexibleTrimPoint
+
+__all__ = ["UnsteadyFreeAircraft", "free_aircraft_unsteady"]
+
+
+@dataclass(frozen=True, eq=False)
+class UnsteadyFreeAircraft:
+    """The linear free aircraft with Peters strips about a nonlinear trim.
+
+    Attributes
+    ----------
+    state_matrix : ndarray, shape (4 + n + 6 + n + P N, same)
+    n_strains : int
+    n_strips : int
+        P: strips with inflow states.
+    inflow_states : int
+        N per strip.
+    point : FlexibleTrimPoint
+    """
+
+    state_matrix: NDArray
+    n_strains: int
+    n_strips: int
+    inflow_states: int
+    point: FlexibleTrimPoint
+
+    @property
+    def eigenvalues(self) -> NDArray:
+        """Eigenvalues of the state matrix [1/s]."""
+        return np.linalg.eigvals(self.state_matrix)
+
+
+def _hat(p: NDArray) -> NDArray:
+    """(k, 3, 3) cross-product matrices of (k, 3) vectors."""
+    out = np.zeros((p.shape[0], 3, 3))
+    out[:, 0, 1], out[:, 0, 2], out[:, 1, 2] = -p[:, 2], p[:, 1], -p[:, 0]
+    out[:, 1, 0], out[:, 2, 0], out[:, 2, 1] = p[:, 2], -p[:, 1], p[:, 0]
+    return out
+
+
+def _strips(flex, structure, eps: NDArray, v: NDArray, u: NDArray, rho: float) -> dict:
+    """Every strip's frame, position, point and rotation Jacobians over V, semichord, axis, effective density,
+    incidence and weight (flexible beams at their quadrature points, then the rigid strips)."""
+    n, nv = structure.n_strains, structure.n_velocities
+    parts = {k: [] for k in ("rot", "pos", "jl", "ja", "je", "b", "a", "rho", "inc", "w")}
+    for s, kin, (b, a, scale, incidence, flap, _cd0) in zip(structure.strain_slices(), flex.kinematics(eps),
+                                                             flex._strip_data):
+        k = kin.positions.shape[0]
+        jl, ja, je = np.zeros((k, 3, nv)), np.zeros((k, 3, nv)), np.zeros((k, 3, nv))
+        jl[:, :, :3] = np.eye(3)
+        jl[:, :, 3:6] = -_hat(kin.positions)
+        jl[:, :, 6 + s.start:6 + s.stop] = kin.jac_position
+        ja[:, :, 3:6] = np.eye(3)
+        ja[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
+        je[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
+        for key, value in (("rot", kin.rotations), ("pos", kin.positions), ("jl", jl), ("ja", ja), ("je", je),
+                           ("b", b), ("a", a), ("rho", rho * np.broadcast_to(scale, b.shape)),
+                           ("inc", incidence + flap @ u), ("w", kin.points_weight)):
+            parts[key].append(np.asarray(value, float))
+    r = flex.rigid_strips
+    if r.b.size:
+        k = r.b.size
+        jl, ja = np.zeros((k, 3, nv)), np.zeros((k, 3, nv))
+        jl[:, :, :3] = np.eye(3)
+        jl[:, :, 3:6] = -_hat(r.position)
+        ja[:, :, 3:6] = np.eye(3)
+        for key, value in (("rot", r.rotations), ("pos", r.position), ("jl", jl), ("ja", ja),
+                           ("je", np.zeros((k, 3, nv))), ("b", r.b), ("a", r.a), ("rho", rho * r.scale),
+                           ("inc", r.incidence + r.flap @ u), ("w", r.width)):
+            parts[key].append(np.asarray(value, float))
+    out = {key: np.concatenate(value) for key, value in parts.items()}
+    lifting = out["rho"] > 0.0  # a beam without lift (a fuselage) has no strips
+    out = {key: value[lifting] for key, value in out.items()}
+    out["va"] = -(v[None, :] + np.zeros_like(out["pos"]))  # ω = 0 at the trims accepted here
+    return out
+
+
+def free_aircraft_unsteady(model, point: FlexibleTrimPoint, inflow_states: int = 6) -> UnsteadyFreeAircraft:
+    """The linear free aircraft with Peters' strips about ``point`` (module docstring).
+
+    Parameters
+    ----------
+    model : AircraftModel
+        The model the trim was computed for (its gravity).
+    point : FlexibleTrimPoint
+        A trim with zero body rates (level flight, climb or glide).
+    inflow_states : int
+        Peters inflow states per strip, 1-10.
+
+    Returns
+    -------
+    UnsteadyFreeAircraft
+    """
+    if not isinstance(point, FlexibleTrimPoint):
+        raise ValueError(f"point = {point!r}: must be a FlexibleTrimPoint (fs.trim of a model with nonlinear beams)")
+    if np.abs(point.rate_rad_s).max() > 1e-12:
+        raise ValueError(f"point: body rates {point.rate_rad_s} rad/s; the unsteady free aircraft is linearised about "
+                         "trims without rotation (level flight, climb, glide), not a pull-up or a turn")
+    flex = point.aircraft
+    structure = flex.free_structure(model.terms.gravity_m_s2)
+    y0 = point.state()
+    n, nv = structure.n_strains, structure.n_velocities
+    jq = flex.free_flight_jacobian(structure, y0, point.controls, point.density_kg_m3)[3:]  # over y[3:]
+    npos = 4 + n
+    mass = generalized_mass_matrix(structure, point.strains)
+    s = _strips(flex, structure, point.strains, point.velocity_m_s, np.asarray(point.controls, float),
+                point.density_kg_m3)
+    coef = inflow_coefficients(inflow_states)
+    nl = coef.n_states
+    mm, _bm, sv = _section_matrices()
+    e1, e2, e3 = s["rot"][:, :, 0], s["rot"][:, :, 1], s["rot"][:, :, 2]
+    b, a, rho, w, va = s["b"], s["a"], s["rho"], s["w"], s["va"]
+    u0 = -np.einsum("pi,pi->p", e2, va)
+    w0s = np.einsum("pi,pi->p", e3, va) + u0 * s["inc"]
+    pn = np.einsum("pi,pik->pk", e3, s["jl"])
+    pc = np.einsum("pi,pik->pk", e2, s["jl"])
+    a1 = np.einsum("pi,pik->pk", e1, s["ja"])
+    rn = np.einsum("pi,pik->pk", np.cross(e3, va), s["je"])
+    w0v = -pn - (a * b)[:, None] * a1
+    w1v = b[:, None] * a1
+    am = np.pi * (rho * b**2)[:, None, None]
+    acc = am * np.einsum("ij,pjk->pik", mm, np.stack([w0v, w1v], 1))        # {L} per δV̇
+    rate = am * np.einsum("ij,pjk->pik", mm, np.stack([rn, np.zeros_like(rn)], 1))  # {L} per δV (apparent mass)
+    lam = -np.pi * (rho * b * u0)[:, None] * sv[None, :]                   # {L} per λ0
+    mom_acc = (a * b)[:, None] * acc[:, 0] - b[:, None] * acc[:, 1]
+    mom_rate = (a * b)[:, None] * rate[:, 0] - b[:, None] * rate[:, 1]
+    mom_lam = a * b * lam[:, 0] - b * lam[:, 1]
+    suc_lam = -2.0 * np.pi * rho * b * (2.0 * w0s - u0 * s["inc"])        # ∂S/∂λ0
+    ma = -(np.einsum("p,pk,pl->kl", w, pn, acc[:, 0]) + np.einsum("p,pk,pl->kl", w, a1, mom_acc))
+    ca = -(np.einsum("p,pk,pl->kl", w, pn, rate[:, 0]) + np.einsum("p,pk,pl->kl", w, a1, mom_rate))
+    g0 = (w[:, None] * (pn * lam[:, 0][:, None] + a1 * mom_lam[:, None] + pc * suc_lam[:, None])).T  # (nv, P)
+    p = b.size
+    size = npos + nv + p * nl
+    out = np.zeros((size, size))
+    out[:npos, :npos + nv] = jq[:npos]  # kinematics: unchanged
+    h = np.linalg.inv(mass + ma)
+    vel = slice(npos, npos + nv)
+    out[vel, :npos + nv] = h @ (mass @ jq[npos:])
+    out[vel, vel] -= h @ ca
+    for i in range(p):
+        out[vel, npos + nv + i * nl:npos + nv + (i + 1) * nl] = np.outer(h @ g0[:, i], 0.5 * coef.b)
+    f_rows = (w0v + 0.5 * w1v) @ out[vel]  # ẇ0 + ẇ1/2 of each strip per state, through δV̇
+    f_rows[:, vel] += rn
+    for i in range(p):
+        rows = slice(npos + nv + i * nl, npos + nv + (i + 1) * nl)
+        out[rows] = np.outer(coef.A_inv_c, f_rows[i])
+        out[rows, rows] -= (u0[i] / b[i]) * coef.A_inv
+    return UnsteadyFreeAircraft(out, n, p, nl, point)

@@ -1,0 +1,58 @@
+"""The free aircraft with nonlinear beams and Peters' unsteady strips, linearised about the nonlinear trim
+(flexsim.linear.flexible_unsteady), against its two neighbours (HALE at 20 km, 25 m/s, 8 elements per wing):
+
+* slow motion: the phugoid equals the quasi-steady free aircraft's (``free_aircraft_spectrum``): at its frequency,
+  0.31 rad/s, the reduced frequency is ~0.006 and the wake's lag is negligible. Measured -0.0503 +- 0.3124j against
+  -0.0502 +- 0.3113j; tolerances 2 % in damping, 1 % in frequency.
+* the wing's torsion band (35-50 rad/s): the quasi-steady strips make the torsion roots unstable (as the linear
+  model's quasi-steady roots are); with the wake they are damped, and the least damped one is near the clamped wing's
+  (``wing_system``: the same Peters strips on one wing clamped at its trimmed root; the free aircraft adds the
+  rigid-body and the other wing's coupling). Measured -0.882 at 40.73 rad/s against -0.852 at 39.89 rad/s;
+  tolerances 15 % in damping and 5 % in frequency.
+* a pull-up (body rates not zero) is refused.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import flexsim as fs
+from flexsim.linear.flexible_flutter import wing_system
+from flexsim.linear.flexible_stability import free_aircraft_spectrum
+from flexsim.linear.flexible_unsteady import free_aircraft_unsteady
+from flexsim.trimming.flexible_trim import trim_flexible
+
+
+@pytest.fixture(scope="module")
+def hale():
+    model = fs.AircraftModel(fs.load_aircraft("phc_hale"))
+    point = trim_flexible(model, fs.SteadyManoeuvre.level(20000.0, speed_m_s=25.0), elements_per_beam=8)
+    return model, point, free_aircraft_unsteady(model, point).eigenvalues
+
+
+def test_phugoid_is_the_quasi_steady_one(hale):
+    model, point, roots = hale
+    quasi = free_aircraft_spectrum(model, point).phugoid[0]
+    near = roots[np.argmin(np.abs(roots - quasi))]
+    assert near.real == pytest.approx(quasi.real, rel=0.02)
+    assert abs(near.imag) == pytest.approx(abs(quasi.imag), rel=0.01)
+
+
+def test_torsion_band_damped_as_the_clamped_wing(hale):
+    model, point, roots = hale
+    band = lambda lam: lam[(lam.imag > 35.0) & (lam.imag < 50.0)]  # noqa: E731
+    quasi = band(free_aircraft_spectrum(model, point).eigenvalues)
+    free = band(roots)
+    clamped = band(np.linalg.eigvals(wing_system(model, point, "right_wing", 6).state_matrix))
+    assert quasi.real.max() > 0.0 and free.real.max() < 0.0
+    least, least_clamped = free[np.argmax(free.real)], clamped[np.argmax(clamped.real)]
+    assert least.real == pytest.approx(least_clamped.real, rel=0.15)
+    assert least.imag == pytest.approx(least_clamped.imag, rel=0.05)
+
+
+def test_rotating_trims_are_refused(hale):
+    model, _, _ = hale
+    pull_up = trim_flexible(model, fs.SteadyManoeuvre.pull_up(20000.0, 1.1, speed_m_s=25.0), elements_per_beam=4)
+    with pytest.raises(ValueError, match="pull-up or a turn"):
+        free_aircraft_unsteady(model, pull_up)
