@@ -51,17 +51,21 @@ def nonlinear_trim(args: argparse.Namespace, aircraft, manoeuvre: SteadyManoeuvr
     _refuse(args, {"--formulation": args.formulation is not None},
             "applies to the linear structure's trim; with --nonlinear-beams the strips resolve the full force on their "
             "deformed sections")
-    if args.roots == "unsteady":
-        raise CliError("--roots unsteady: the free aircraft's roots about the nonlinear trim are computed with "
-                       "quasi-steady strips; give --roots quasi-steady")
+    if args.roots == "unsteady" and (manoeuvre.turn_radius_m != math.inf or manoeuvre.load_factor != 1.0):
+        raise CliError("--roots unsteady: the free aircraft with Peters' strips is linearised about trims without "
+                       "body rates (level flight, climb, glide); for a turn or a pull-up give --roots quasi-steady")
     beams = beams_option(args.nonlinear_beams)
     model = AircraftModel(aircraft, terms=Terms(nonlinear_beams=beams))
     point = trim(model, manoeuvre, check_limits=not args.no_limits, classify=False)
     spectrum = None
-    if args.roots:
+    if args.roots == "quasi-steady":
         from flexsim.linear.flexible_stability import free_aircraft_spectrum
 
         spectrum = free_aircraft_spectrum(model, point)
+    elif args.roots:
+        from flexsim.linear.flexible_unsteady import free_aircraft_unsteady
+
+        spectrum = free_aircraft_unsteady(model, point).spectrum()
     flex = point.aircraft
     tips = {name: float(f) for name, f in zip(flex.beam_components, point.tip_deflection_fraction)}
     u = point.controls
@@ -87,8 +91,8 @@ def nonlinear_trim(args: argparse.Namespace, aircraft, manoeuvre: SteadyManoeuvr
         print(f"  {'tip ' + name:<20} {100.0 * fraction:+.1f} % of its length (vertical, up +)")
     if spectrum is not None:
         band = MAX_FREQUENCY_RAD_S
-        print(f"Roots of the free aircraft linearised about the nonlinear trim (quasi-steady strips; below {band:g} rad/s, "
-              "the beams' converged band):")
+        print(f"Roots of the free aircraft linearised about the nonlinear trim ({spectrum.aero} strips; below {band:g} "
+              "rad/s, the beams' converged band):")
         print(f"  {'kind':<8} {'real [1/s]':>11} {'imag [rad/s]':>12}  mode")
         for r in roots:
             if abs(complex(r["real"], r["imag"])) <= band:

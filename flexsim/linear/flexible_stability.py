@@ -43,12 +43,16 @@ class FreeAircraftSpectrum:
     n_strains : int
     point : FlexibleTrimPoint or None
         The trim linearised about (names the modes: :attr:`modes`).
+    aero : str
+        The strips' model: ``"quasi-steady"`` (:func:`free_aircraft_spectrum`) or ``"unsteady"`` (Peters' strips,
+        :meth:`flexsim.linear.flexible_unsteady.UnsteadyFreeAircraft.spectrum`: the eigenvectors' structural rows).
     """
 
     eigenvalues: NDArray
     eigenvectors: NDArray
     n_strains: int
     point: FlexibleTrimPoint | None = None
+    aero: str = "quasi-steady"
 
     @cached_property
     def modes(self) -> tuple[FreeMode, ...]:
@@ -64,15 +68,15 @@ class FreeAircraftSpectrum:
                      and abs(m.eigenvalue) <= MAX_FREQUENCY_RAD_S)
 
     def verdict(self) -> str:
-        """One line: stable, or the most unstable mode with its root and how many more (quasi-steady strips)."""
+        """One line: stable, or the most unstable mode with its root and how many more (the strips' model named)."""
         bad = self.unstable
         if not bad:
-            return "stable about the nonlinear trim (quasi-steady strips; neutral roots aside)"
+            return f"stable about the nonlinear trim ({self.aero} strips; neutral roots aside)"
         worst = max(bad, key=lambda m: m.eigenvalue.real)
         z = worst.eigenvalue
         root = f"{z.real:+.4g}" + (f" ± {z.imag:.4g}j" if z.imag else "")
         more = f" and {len(bad) - 1} more" if len(bad) > 1 else ""
-        return f"unstable about the nonlinear trim (quasi-steady strips): {worst.name} ({root}){more}"
+        return f"unstable about the nonlinear trim ({self.aero} strips): {worst.name} ({root}){more}"
 
     @property
     def phugoid(self) -> tuple:

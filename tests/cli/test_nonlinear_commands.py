@@ -39,8 +39,12 @@ def test_trim_prints_the_named_roots_about_the_nonlinear_trim(capsys):
     doc = json.loads(out)
     names = [r["name"] for r in doc["roots"]]
     assert "phugoid" in names and "short period" in names and doc["verdict"].startswith(("stable", "unstable"))
-    code, _, err = _run(["trim", "phc_hale", "--nonlinear-beams", "4", "--roots"], capsys)
-    assert code == 2 and "--roots unsteady: the free aircraft's roots about the nonlinear trim" in err
+    code, out, _ = _run(["trim", "phc_hale", "--nonlinear-beams", "4", "--roots", "--json"], capsys)  # unsteady
+    assert code == 0
+    unsteady = json.loads(out)
+    assert "unsteady strips" in unsteady["verdict"] and "phugoid" in [r["name"] for r in unsteady["roots"]]
+    code, _, err = _run(["trim", "phc_hale", "--nonlinear-beams", "4", "--roots", "--turn-radius-m", "1000"], capsys)
+    assert code == 2 and "--roots unsteady: the free aircraft with Peters' strips" in err
 
 
 def test_flutter_prints_the_nonlinear_flutter_point(capsys):
