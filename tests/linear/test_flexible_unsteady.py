@@ -56,3 +56,24 @@ def test_rotating_trims_are_refused(hale):
     pull_up = trim_flexible(model, fs.SteadyManoeuvre.pull_up(20000.0, 1.1, speed_m_s=25.0), elements_per_beam=4)
     with pytest.raises(ValueError, match="pull-up or a turn"):
         free_aircraft_unsteady(model, pull_up)
+
+
+def test_free_hale_has_no_oscillatory_instability_to_42_m_s():
+    """docs/flutter.md: the free HALE with Peters' strips in level flight (8 elements) has no unstable oscillatory root
+    up to 42.5 m/s (its least damped one, the Dutch roll, at -0.0379 +- 1.563j there); its first instability is
+    aperiodic, a real root of the split phugoid, between 35 and 36.25 m/s (+0.0344 1/s at 36.25 m/s) — where the
+    wing clamped at its trimmed root flutters at 37.31 m/s, 2.41 rad/s."""
+    model = fs.AircraftModel(fs.load_aircraft("phc_hale"))
+    guess = None
+    found = {}
+    for speed in (35.0, 36.25, 42.5):
+        guess = trim_flexible(model, fs.SteadyManoeuvre.level(20000.0, speed_m_s=speed), elements_per_beam=8,
+                              guess=guess, check_limits=False)
+        modes = [m for m in free_aircraft_unsteady(model, guess).spectrum().modes
+                 if m.kind != "neutral" and abs(m.eigenvalue) < 200.0]
+        found[speed] = ([m for m in modes if m.eigenvalue.real > 0.0],
+                        max((m for m in modes if m.eigenvalue.imag > 0.5), key=lambda m: m.eigenvalue.real))
+    assert not found[35.0][0]
+    assert [m.name for m in found[36.25][0]] == ["phugoid"] and found[36.25][0][0].eigenvalue.imag == 0.0
+    assert found[42.5][1].eigenvalue.real < 0.0
+    print({v: (len(u), o.name, complex(o.eigenvalue)) for v, (u, o) in found.items()})
