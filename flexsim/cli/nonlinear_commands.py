@@ -51,9 +51,6 @@ def nonlinear_trim(args: argparse.Namespace, aircraft, manoeuvre: SteadyManoeuvr
     _refuse(args, {"--formulation": args.formulation is not None},
             "applies to the linear structure's trim; with --nonlinear-beams the strips resolve the full force on their "
             "deformed sections")
-    if args.roots == "unsteady" and (manoeuvre.turn_radius_m != math.inf or manoeuvre.load_factor != 1.0):
-        raise CliError("--roots unsteady: the free aircraft with Peters' strips is linearised about trims without "
-                       "body rates (level flight, climb, glide); for a turn or a pull-up give --roots quasi-steady")
     beams = beams_option(args.nonlinear_beams)
     model = AircraftModel(aircraft, terms=Terms(nonlinear_beams=beams))
     point = trim(model, manoeuvre, check_limits=not args.no_limits, classify=False)

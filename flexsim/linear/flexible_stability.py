@@ -28,6 +28,10 @@ __all__ = ["FreeAircraftSpectrum", "FreeMode", "free_aircraft_spectrum", "NEUTRA
 
 #: Roots closer to zero than this [1/s] count as neutral (a period over 20 min; module docstring).
 NEUTRAL_1_S = 5e-3
+#: Growth rate under which a root counts as neutral in :attr:`FreeAircraftSpectrum.unstable` [1/s] (a doubling time of
+#: 8 days): the frozen linearisation of a turn leaves its heading's rotation, ±V/(2R) j, with a real part of round-off
+#: (9e-12 1/s on the bundled HALE at R = 1000 m).
+GROWTH_FLOOR_1_S = 1e-6
 
 
 @dataclass(frozen=True, eq=False)
@@ -61,10 +65,10 @@ class FreeAircraftSpectrum:
 
     @property
     def unstable(self) -> tuple[FreeMode, ...]:
-        """The non-neutral modes with ``Re λ > 0`` in the converged band (``|λ| <=``
+        """The non-neutral modes with ``Re λ >`` :data:`GROWTH_FLOOR_1_S` in the converged band (``|λ| <=``
         :data:`~flexsim.linear.flexible_flutter.MAX_FREQUENCY_RAD_S`; above it the beams' discretisation has not
         converged, as in :func:`~flexsim.linear.flexible_flutter.wing_stability`)."""
-        return tuple(m for m in self.modes if m.kind != "neutral" and m.eigenvalue.real > 0.0
+        return tuple(m for m in self.modes if m.kind != "neutral" and m.eigenvalue.real > GROWTH_FLOOR_1_S
                      and abs(m.eigenvalue) <= MAX_FREQUENCY_RAD_S)
 
     def verdict(self) -> str:

@@ -13,13 +13,14 @@ beams at their quadrature points, rigid components at their strip stations):
 * a strip point moves with ``L V`` (``L = [I, −p^, J_p]``, body axes) and its section turns with ``A V``
   (``A = [0, I, J_θ]``) over the generalized velocities ``V = [v, ω, ε̇]``; so ``δw0 = −(e3ᵀL + a b e1ᵀA) δV``,
   ``δw1 = b e1ᵀA δV`` and ``δẇ0 = (…) δV̇ + (e3 × V_a)ᵀ [0, 0, J_θ] δV`` (the elastic turn of ``e3`` against the air
-  velocity ``V_a``; a rigid turn of the body is in ``v̇`` of the body-axis equations).
+  velocity ``V_a``; a rigid turn of the body is in ``v̇`` of the body-axis equations). About a rotating trim (a
+  pull-up, a turn: body rates ``ω0``) each strip's ``V_a = −(v + ω0 × p)``, its steady ``w1 = b e1·ω0``, and ``ẇ``
+  gains ``−(e3 × ω0)ᵀ J_p ε̇`` (the rotation carrying the elastic velocity) and ``ẇ1`` gains ``b (e1 × ω0)ᵀ J_θ ε̇``.
 
 With ``M`` the generalized mass at the trim and ``M_a`` the apparent mass, the velocity rows become
 ``(M + M_a) δV̇ = M J_V δy − C_a δV + G_λ λ`` (``J_V`` the quasi-steady Jacobian's velocity rows: the trim is an
-equilibrium in body axes, ``R = 0``). States: ``[quaternion (4), ε (n), V (6 + n), λ (P × N)]``. Valid about a trim with
-``ω = 0`` (level flight, climb, glide); a pull-up or a turn is refused (the rigid rotation of the air velocity would
-add terms not written here). SI units, body axes x forward, z down.
+equilibrium in body axes, ``R = 0``). States: ``[quaternion (4), ε (n), V (6 + n), λ (P × N)]``. SI units, body axes
+x forward, z down.
 """
 
 from __future__ import annotations
@@ -88,22 +89,24 @@ def _hat(p: NDArray) -> NDArray:
     return out
 
 
-def _strips(flex, structure, eps: NDArray, v: NDArray, u: NDArray, rho: float) -> dict:
+def _strips(flex, structure, eps: NDArray, v: NDArray, omega: NDArray, u: NDArray, rho: float) -> dict:
     """Every strip's frame, position, point and rotation Jacobians over V, semichord, axis, effective density,
     incidence and weight (flexible beams at their quadrature points, then the rigid strips)."""
     n, nv = structure.n_strains, structure.n_velocities
-    parts = {k: [] for k in ("rot", "pos", "jl", "ja", "je", "b", "a", "rho", "inc", "w")}
+    parts = {k: [] for k in ("rot", "pos", "jl", "ja", "je", "jpe", "b", "a", "rho", "inc", "w")}
     for s, kin, (b, a, scale, incidence, flap, _cd0) in zip(structure.strain_slices(), flex.kinematics(eps),
                                                              flex._strip_data):
         k = kin.positions.shape[0]
-        jl, ja, je = np.zeros((k, 3, nv)), np.zeros((k, 3, nv)), np.zeros((k, 3, nv))
+        jl, ja, je, jpe = (np.zeros((k, 3, nv)) for _ in range(4))
         jl[:, :, :3] = np.eye(3)
         jl[:, :, 3:6] = -_hat(kin.positions)
         jl[:, :, 6 + s.start:6 + s.stop] = kin.jac_position
         ja[:, :, 3:6] = np.eye(3)
         ja[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
         je[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
+        jpe[:, :, 6 + s.start:6 + s.stop] = kin.jac_position
         for key, value in (("rot", kin.rotations), ("pos", kin.positions), ("jl", jl), ("ja", ja), ("je", je),
+                           ("jpe", jpe),
                            ("b", b), ("a", a), ("rho", rho * np.broadcast_to(scale, b.shape)),
                            ("inc", incidence + flap @ u), ("w", kin.points_weight)):
             parts[key].append(np.asarray(value, float))
@@ -115,13 +118,13 @@ def _strips(flex, structure, eps: NDArray, v: NDArray, u: NDArray, rho: float) -
         jl[:, :, 3:6] = -_hat(r.position)
         ja[:, :, 3:6] = np.eye(3)
         for key, value in (("rot", r.rotations), ("pos", r.position), ("jl", jl), ("ja", ja),
-                           ("je", np.zeros((k, 3, nv))), ("b", r.b), ("a", r.a), ("rho", rho * r.scale),
+                           ("je", np.zeros((k, 3, nv))), ("jpe", np.zeros((k, 3, nv))), ("b", r.b), ("a", r.a), ("rho", rho * r.scale),
                            ("inc", r.incidence + r.flap @ u), ("w", r.width)):
             parts[key].append(np.asarray(value, float))
     out = {key: np.concatenate(value) for key, value in parts.items()}
     lifting = out["rho"] > 0.0  # a beam without lift (a fuselage) has no strips
     out = {key: value[lifting] for key, value in out.items()}
-    out["va"] = -(v[None, :] + np.zeros_like(out["pos"]))  # ω = 0 at the trims accepted here
+    out["va"] = -(v[None, :] + np.cross(omega, out["pos"]))
     return out
 
 
@@ -133,7 +136,7 @@ def free_aircraft_unsteady(model, point: FlexibleTrimPoint, inflow_states: int =
     model : AircraftModel
         The model the trim was computed for (its gravity).
     point : FlexibleTrimPoint
-        A trim with zero body rates (level flight, climb or glide).
+        Any nonlinear trim (level flight, climb, glide, pull-up, turn).
     inflow_states : int
         Peters inflow states per strip, 1-10.
 
@@ -143,9 +146,6 @@ def free_aircraft_unsteady(model, point: FlexibleTrimPoint, inflow_states: int =
     """
     if not isinstance(point, FlexibleTrimPoint):
         raise ValueError(f"point = {point!r}: must be a FlexibleTrimPoint (fs.trim of a model with nonlinear beams)")
-    if np.abs(point.rate_rad_s).max() > 1e-12:
-        raise ValueError(f"point: body rates {point.rate_rad_s} rad/s; the unsteady free aircraft is linearised about "
-                         "trims without rotation (level flight, climb, glide), not a pull-up or a turn")
     flex = point.aircraft
     structure = flex.free_structure(model.terms.gravity_m_s2)
     y0 = point.state()
@@ -153,7 +153,8 @@ def free_aircraft_unsteady(model, point: FlexibleTrimPoint, inflow_states: int =
     jq = flex.free_flight_jacobian(structure, y0, point.controls, point.density_kg_m3)[3:]  # over y[3:]
     npos = 4 + n
     mass = generalized_mass_matrix(structure, point.strains)
-    s = _strips(flex, structure, point.strains, point.velocity_m_s, np.asarray(point.controls, float),
+    omega = np.asarray(point.rate_rad_s, float)
+    s = _strips(flex, structure, point.strains, point.velocity_m_s, omega, np.asarray(point.controls, float),
                 point.density_kg_m3)
     coef = inflow_coefficients(inflow_states)
     nl = coef.n_states
@@ -161,16 +162,20 @@ def free_aircraft_unsteady(model, point: FlexibleTrimPoint, inflow_states: int =
     e1, e2, e3 = s["rot"][:, :, 0], s["rot"][:, :, 1], s["rot"][:, :, 2]
     b, a, rho, w, va = s["b"], s["a"], s["rho"], s["w"], s["va"]
     u0 = -np.einsum("pi,pi->p", e2, va)
-    w0s = np.einsum("pi,pi->p", e3, va) + u0 * s["inc"]
+    w0s = np.einsum("pi,pi->p", e3, va) + u0 * s["inc"] - a * b * np.einsum("pi,i->p", e1, omega)
     pn = np.einsum("pi,pik->pk", e3, s["jl"])
     pc = np.einsum("pi,pik->pk", e2, s["jl"])
     a1 = np.einsum("pi,pik->pk", e1, s["ja"])
-    rn = np.einsum("pi,pik->pk", np.cross(e3, va), s["je"])
+    # ẇ's terms in δV (body-axis components): the elastic turn of e3 against V_a, the transport of the elastic
+    # velocity by the trim's rotation (−ω0 × J_p ε̇ in V̇_a), and the elastic turn of e1 against ω0 in ẇ1 = b ė1·Ω
+    rn1 = b[:, None] * np.einsum("pi,pik->pk", np.cross(e1, omega[None, :]), s["je"])
+    rn = (np.einsum("pi,pik->pk", np.cross(e3, va), s["je"])
+          - np.einsum("pi,pik->pk", np.cross(e3, omega[None, :]), s["jpe"]) - a[:, None] * rn1)
     w0v = -pn - (a * b)[:, None] * a1
     w1v = b[:, None] * a1
     am = np.pi * (rho * b**2)[:, None, None]
     acc = am * np.einsum("ij,pjk->pik", mm, np.stack([w0v, w1v], 1))        # {L} per δV̇
-    rate = am * np.einsum("ij,pjk->pik", mm, np.stack([rn, np.zeros_like(rn)], 1))  # {L} per δV (apparent mass)
+    rate = am * np.einsum("ij,pjk->pik", mm, np.stack([rn, rn1], 1))       # {L} per δV (apparent mass)
     lam = -np.pi * (rho * b * u0)[:, None] * sv[None, :]                   # {L} per λ0
     mom_acc = (a * b)[:, None] * acc[:, 0] - b[:, None] * acc[:, 1]
     mom_rate = (a * b)[:, None] * rate[:, 0] - b[:, None] * rate[:, 1]
@@ -190,7 +195,7 @@ def free_aircraft_unsteady(model, point: FlexibleTrimPoint, inflow_states: int =
     for i in range(p):
         out[vel, npos + nv + i * nl:npos + nv + (i + 1) * nl] = np.outer(h @ g0[:, i], 0.5 * coef.b)
     f_rows = (w0v + 0.5 * w1v) @ out[vel]  # ẇ0 + ẇ1/2 of each strip per state, through δV̇
-    f_rows[:, vel] += rn
+    f_rows[:, vel] += rn + 0.5 * rn1
     for i in range(p):
         rows = slice(npos + nv + i * nl, npos + nv + (i + 1) * nl)
         out[rows] = np.outer(coef.A_inv_c, f_rows[i])
