@@ -95,3 +95,17 @@ def test_rotating_trims_keep_the_neighbours(manoeuvre):
     assert least.real == pytest.approx(least_clamped.real, rel=0.15)
     assert least.imag == pytest.approx(least_clamped.imag, rel=0.05)
     assert spectrum.verdict().startswith("stable")
+
+
+def test_free_hale_in_a_pull_up_is_stable_where_the_clamped_wing_flutters():
+    """docs/flutter.md: in the n = 1.3 pull-up the wing clamped at its trimmed root flutters at 34.72 m/s (the load
+    factor table); the free HALE with Peters' strips about the same trims is stable at 35 and at 42.5 m/s (a scan in
+    1.25 m/s steps found no unstable root from 32.5 to 42.5 m/s at n = 1.2 and 1.3, and at n = 1.1 only the split
+    phugoid's real root from 36.25 m/s, +0.0072 1/s)."""
+    model = fs.AircraftModel(fs.load_aircraft("phc_hale"))
+    guess = None
+    for speed in (32.5, 35.0, 37.5, 40.0, 42.5):
+        guess = trim_flexible(model, fs.SteadyManoeuvre.pull_up(20000.0, 1.3, speed_m_s=speed), elements_per_beam=8,
+                              guess=guess)
+        if speed in (35.0, 42.5):
+            assert free_aircraft_unsteady(model, guess).spectrum().verdict().startswith("stable"), speed
