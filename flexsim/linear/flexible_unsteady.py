@@ -92,7 +92,7 @@ def _hat(p: NDArray) -> NDArray:
 def _strips(flex, structure, eps: NDArray, v: NDArray, omega: NDArray, u: NDArray, rho: float) -> dict:
     """Every strip's frame, position, point and rotation Jacobians over V, semichord, axis, effective density,
     incidence and weight (flexible beams at their quadrature points, then the rigid strips)."""
-    n, nv = structure.n_strains, structure.n_velocities
+    nv = structure.n_velocities
     parts = {k: [] for k in ("rot", "pos", "jl", "ja", "je", "jpe", "b", "a", "rho", "inc", "w")}
     for s, kin, (b, a, scale, incidence, flap, _cd0) in zip(structure.strain_slices(), flex.kinematics(eps),
                                                              flex._strip_data):
