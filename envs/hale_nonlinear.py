@@ -19,6 +19,7 @@ from gymnasium import spaces
 from flexsim.aircraft.definition import Aircraft
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.atmosphere import speed_of_sound
+from flexsim.kinematics import euler_321_of_quaternion
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.terms import NonlinearBeams, Terms
 from flexsim.sim.disturbances import OneMinusCosineGust
@@ -49,14 +50,6 @@ OBSERVATION = (("tip_deflection_increment_m", 50.0, "mean wing-tip height above 
                ("rudder_action", 1.0, "rudder / its limit"))
 #: Task errors (the first five observation entries), the reward's inputs.
 ERRORS = tuple(e[0] for e in OBSERVATION[:5])
-
-
-def _euler(quat: np.ndarray) -> tuple[float, float, float]:
-    """3-2-1 roll, pitch, yaw [rad] of a body→NED quaternion (scalar first)."""
-    q0, q1, q2, q3 = quat / np.linalg.norm(quat)
-    return (math.atan2(2 * (q0 * q1 + q2 * q3), 1 - 2 * (q1 * q1 + q2 * q2)),
-            math.asin(max(-1.0, min(1.0, 2 * (q0 * q2 - q3 * q1)))),
-            math.atan2(2 * (q0 * q3 + q1 * q2), 1 - 2 * (q2 * q2 + q3 * q3)))
 
 
 class HaleNonlinearGustEnv(gym.Env[np.ndarray, np.ndarray]):
@@ -140,7 +133,7 @@ class HaleNonlinearGustEnv(gym.Env[np.ndarray, np.ndarray]):
         self._wings = [flex.beam_index(c) for c in ("right_wing", "left_wing")]
         self._fin = flex.beam_index("vtail") if "vtail" in flex.beam_components else None
         self._structure = flex.free_structure(self.model.terms.gravity_m_s2)
-        self._lengths = np.array([b.length_m for b in flex.structure.beams])
+        self._lengths = flex.beam_lengths_m
         self._y_trim = self.point.state()
         self.stepper = FlexibleStepper.about(flex, self._structure, self._y_trim, self.point.controls,
                                              self.point.density_kg_m3, float(step_s))
@@ -168,25 +161,18 @@ class HaleNonlinearGustEnv(gym.Env[np.ndarray, np.ndarray]):
 
     def _tip_heights(self, y: np.ndarray) -> np.ndarray:
         """Each wing tip's height above its jig position, body axes (up +) [m], shape (2,)."""
-        flex = self.point.aircraft
-        tips = flex.tip_positions(self._strains(y))
-        return -(tips - flex.undeformed_tips)[self._wings, 2]
+        return self.point.aircraft.tip_heights_m(self._strains(y))[self._wings]
 
     def _root_moments(self, y: np.ndarray) -> np.ndarray:
         """Each wing's flapwise root bending moment EI_flap κ2 of its root element [N m], shape (2,)."""
-        eps, out = self._strains(y), []
-        slices = self._structure.strain_slices()
-        for i in self._wings:
-            beam = self._structure.beams[i]
-            out.append(float(beam.ei_flap_nm2[0] * beam.full_strains(eps[slices[i]])[0, 2]))
-        return np.array(out)
+        return self.point.aircraft.root_bending_moments_n_m(self._strains(y))[self._wings]
 
     def _measure(self, y: np.ndarray) -> tuple[dict, np.ndarray, str]:
         """Task errors, the observation (unclipped) and the termination reason ("" when flying) of state ``y``."""
         if not np.all(np.isfinite(y)):
             return {k: math.nan for k in ERRORS}, np.zeros(len(OBSERVATION)), "state not finite"
         ref, n = self._trim_ref, self._structure.n_strains
-        phi, theta, _ = _euler(y[3:7])
+        phi, theta, _ = euler_321_of_quaternion(y[3:7])
         tips = self._tip_heights(y)
         altitude = -float(y[2])
         air = y[7 + n:10 + n] - body_wind(self._episode_wind, self._t, y)
@@ -218,9 +204,7 @@ class HaleNonlinearGustEnv(gym.Env[np.ndarray, np.ndarray]):
         return errors, obs, reason
 
     def _fin_twist(self, y: np.ndarray) -> float:
-        beam = self._structure.beams[self._fin]
-        eps = self._strains(y)[self._structure.strain_slices()[self._fin]]
-        return float(beam.full_strains(eps)[:, 1].sum() * beam.element_length_m)
+        return float(self.point.aircraft.tip_twists_rad(self._strains(y))[self._fin])
 
     def _observe(self, obs: np.ndarray) -> np.ndarray:
         return np.clip(obs, self.observation_space.low, self.observation_space.high).astype(np.float32)

@@ -11,7 +11,7 @@ import numpy as np
 
 from flexsim import _kernels as _k
 
-__all__ = ["skew", "dcm_321", "euler_rate_matrix", "euler_rate_matrix_inverse"]
+__all__ = ["skew", "dcm_321", "euler_rate_matrix", "euler_rate_matrix_inverse", "euler_321_of_quaternion"]
 
 
 def skew(d: np.ndarray) -> np.ndarray:
@@ -92,3 +92,15 @@ def euler_rate_matrix_inverse(phi: float, theta: float) -> np.ndarray:
     ct = np.cos(theta)
     tt = np.tan(theta)
     return np.array([[1.0, sf * tt, cf * tt], [0.0, cf, -sf], [0.0, sf / ct, cf / ct]])
+
+
+def euler_321_of_quaternion(quat: np.ndarray) -> np.ndarray:
+    """3-2-1 Euler angles ``[phi, theta, psi]`` [rad] of a body→NED quaternion ``[q0, q1, q2, q3]`` (scalar first,
+    normalised here): Stevens & Lewis (2003) eq. 1.8-17 inverted; ``dcm_321`` of the result is the quaternion's
+    NED→body matrix. ``theta`` is clipped to ±pi/2 against round-off."""
+    import math
+
+    q0, q1, q2, q3 = np.asarray(quat, dtype=float) / np.linalg.norm(quat)
+    return np.array([math.atan2(2 * (q0 * q1 + q2 * q3), 1 - 2 * (q1 * q1 + q2 * q2)),
+                     math.asin(max(-1.0, min(1.0, 2 * (q0 * q2 - q3 * q1)))),
+                     math.atan2(2 * (q0 * q3 + q1 * q2), 1 - 2 * (q2 * q2 + q3 * q3))])

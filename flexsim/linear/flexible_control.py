@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from flexsim.io.vocabulary import CONTROL_NAMES, check_names
+from flexsim.io.vocabulary import check_names
 from flexsim.linear.control import INPUT_NAMES, LinearSystem, ModelRecord
 from flexsim.structure.free_flexible import quaternion_matrix
 from flexsim.structure.strain_beam import STRAIN_NAMES
@@ -45,25 +45,27 @@ def _state_names(flex) -> tuple[str, ...]:
 
 
 def _sensor_rows(flex, structure, eps: np.ndarray) -> np.ndarray:
-    """Rows (5 per flexible component, module docstring) of C over ``[ε (n), ε̇ (n)]`` at strains ``eps``: the tip
-    deflection by central differences of the beams' kinematics, the twist and the root moment linear in the strains,
-    the rates the same rows on ``ε̇`` (the trim has ``ε̇ = 0``)."""
+    """Rows (5 per flexible component, module docstring) of C over ``[ε (n), ε̇ (n)]`` at strains ``eps``: the
+    derivatives of the aircraft's tip heights, tip twists and root moments
+    (:meth:`~flexsim.model.flexible_aircraft.FlexibleAircraft.tip_heights_m` and its siblings) by central differences;
+    a rate's row is its quantity's row on ``ε̇`` (the trim has ``ε̇ = 0``)."""
     n = structure.n_strains
-    jac = np.zeros((len(structure.beams), n))
+
+    def sensors(e):
+        return np.stack([-flex.tip_heights_m(e), flex.tip_twists_rad(e), flex.root_bending_moments_n_m(e)])
+
+    jac = np.zeros((3, len(structure.beams), n))
     for k in range(n):
         h = 1e-6 * max(1.0, abs(eps[k]))
         up, down = eps.copy(), eps.copy()
         up[k] += h
         down[k] -= h
-        jac[:, k] = (flex.tip_positions(up)[:, 2] - flex.tip_positions(down)[:, 2]) / (2.0 * h)
+        jac[:, :, k] = (sensors(up) - sensors(down)) / (2.0 * h)
+    zero = np.zeros(n)
     rows = []
-    for i, (beam, sl) in enumerate(zip(structure.beams, structure.strain_slices())):
-        first = 1 if beam.extensible else 0  # [e,] κ1, κ2, κ3 per element
-        twist, root = np.zeros(n), np.zeros(n)
-        twist[sl.start + first:sl.stop:beam.strains_per_element] = beam.element_length_m
-        root[sl.start + first + 1] = beam.ei_flap_nm2[0]
-        zero = np.zeros(n)
-        rows += [np.concatenate([jac[i], zero]), np.concatenate([zero, jac[i]]), np.concatenate([twist, zero]),
+    for i in range(len(structure.beams)):
+        deflection, twist, root = jac[:, i]
+        rows += [np.concatenate([deflection, zero]), np.concatenate([zero, deflection]), np.concatenate([twist, zero]),
                  np.concatenate([zero, twist]), np.concatenate([root, zero])]
     return np.array(rows)
 
@@ -117,6 +119,5 @@ def flexible_linear_system(model, point: FlexibleTrimPoint, *, state_outputs: bo
     if state_outputs:
         c = np.vstack([c, np.eye(keep.size)])
         names = names + states
-    assert tuple(INPUT_NAMES[:4]) == tuple(CONTROL_NAMES)
     return LinearSystem(a, b, c, np.zeros((c.shape[0], b.shape[1])), states, INPUT_NAMES, names, keep, y0, u0,
                         point.manoeuvre, ModelRecord.of(model))

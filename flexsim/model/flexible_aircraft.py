@@ -156,6 +156,27 @@ class FlexibleAircraft:
         """Tip positions at ``ε = 0`` [m], shape (B, 3)."""
         return self.tip_positions(np.zeros(self.n_strains))
 
+    @cached_property
+    def beam_lengths_m(self) -> NDArray:
+        """Length of each beam [m], shape (B,)."""
+        return np.array([b.length_m for b in self.structure.beams])
+
+    def tip_heights_m(self, eps: NDArray) -> NDArray:
+        """Each beam tip's displacement from its undeformed position along body −z (up positive) [m], shape (B,)."""
+        return -(self.tip_positions(eps) - self.undeformed_tips)[:, 2]
+
+    def tip_twists_rad(self, eps: NDArray) -> NDArray:
+        """Each beam's twist strain integrated root to tip, ``Σ κ1 ℓ`` [rad] (nose up on the right wing), shape (B,)."""
+        eps = np.asarray(eps, float)
+        return np.array([b.full_strains(eps[s])[:, 1].sum() * b.element_length_m
+                         for b, s in zip(self.structure.beams, self.structure.strain_slices())])
+
+    def root_bending_moments_n_m(self, eps: NDArray) -> NDArray:
+        """Each beam's flapwise bending moment at the root, ``EI_flap κ2`` of its root element [N m], shape (B,)."""
+        eps = np.asarray(eps, float)
+        return np.array([b.ei_flap_nm2[0] * b.full_strains(eps[s])[0, 2]
+                         for b, s in zip(self.structure.beams, self.structure.strain_slices())])
+
     def airloads(self, eps: NDArray, v: NDArray, omega: NDArray, u: NDArray, rho: float,
                  wind: NDArray | None = None, epsdot: NDArray | None = None) -> NDArray:
         """Generalized aerodynamic and thrust force ``Q`` (6 + n) at strains ``eps`` (module docstring).
@@ -247,7 +268,7 @@ class FlexibleAircraft:
         return out
 
     @cached_property
-    def _strip_data(self) -> tuple:
+    def strip_constants(self) -> tuple:
         """Per beam, its strips' constants at the quadrature points: ``b``, ``a``, ``lift_slope/2π``, incidence,
         flap rows (P, 4) and cd0 (they depend on the element of each point only, not on the strains)."""
         out = []
@@ -265,7 +286,7 @@ class FlexibleAircraft:
         out = np.zeros(nv)
         w_air = np.zeros(3) if wind is None else np.asarray(wind, float)
         for s, kin, (b, a, scale, incidence, flap, cd0) in zip(self.structure.strain_slices(), kinematics,
-                                                              self._strip_data):
+                                                              self.strip_constants):
             p = kin.positions
             va = w_air - (v + _cross(omega, p))
             rate = kin.rotations[:, :, 0] @ omega

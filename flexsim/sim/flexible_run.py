@@ -27,6 +27,8 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
+from flexsim.errors import positive_number
+from flexsim.kinematics import euler_321_of_quaternion
 from flexsim.sim.flexible_step import FlexibleStepper, body_wind
 from flexsim.trimming.flexible_trim import FlexibleTrimPoint
 
@@ -36,14 +38,6 @@ __all__ = ["FlexibleRun", "simulate_flexible", "write_flexible_log"]
 NEGLECTED = ("quasi-steady strips: no wake or inflow states, no apparent mass",
              "wind uniform over the aircraft, taken at the body origin (no gust penetration along the span)",
              "air density held at the trim's")
-
-
-def _euler(quat: NDArray) -> NDArray:
-    """3-2-1 Euler angles [roll, pitch, yaw] [rad] of a body→NED quaternion (scalar first)."""
-    q0, q1, q2, q3 = quat / np.linalg.norm(quat)
-    return np.array([math.atan2(2 * (q0 * q1 + q2 * q3), 1 - 2 * (q1 * q1 + q2 * q2)),
-                     math.asin(max(-1.0, min(1.0, 2 * (q0 * q2 - q3 * q1)))),
-                     math.atan2(2 * (q0 * q3 + q1 * q2), 1 - 2 * (q2 * q2 + q3 * q3))])
 
 
 @dataclass(frozen=True, eq=False)
@@ -100,10 +94,11 @@ class FlexibleRun:
 
 
 def _positive(name: str, value, *, upper: float = math.inf) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)) \
-            or not math.isfinite(value) or not 0.0 < value <= upper:
-        raise ValueError(f"{name} = {value!r}: must be a finite number in (0, {upper}]")
-    return float(value)
+    """:func:`flexsim.errors.positive_number`, and at most ``upper``."""
+    v = positive_number(name, value)
+    if v > upper:
+        raise ValueError(f"{name} = {value!r}: must be a finite number in (0, {upper:g}]")
+    return v
 
 
 def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, controls: NDArray | Callable | None = None,
@@ -204,10 +199,9 @@ def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, contro
     n = structure.n_strains
     flex = point.aircraft
     tips = np.array([flex.tip_positions(y[7:7 + n]) for y in ys])
-    lengths = np.array([b.length_m for b in flex.structure.beams])
-    frac = -(tips - flex.undeformed_tips[None])[:, :, 2] / lengths[None, :]
+    frac = -(tips - flex.undeformed_tips)[:, :, 2] / flex.beam_lengths_m
     return FlexibleRun(point=point, t=ts, states=ys, position_m=ys[:, :3],
-                       euler_rad=np.array([_euler(y[3:7]) for y in ys]), velocity_m_s=ys[:, 7 + n:10 + n],
+                       euler_rad=np.array([euler_321_of_quaternion(y[3:7]) for y in ys]), velocity_m_s=ys[:, 7 + n:10 + n],
                        rate_rad_s=ys[:, 10 + n:13 + n], strains=ys[:, 7:7 + n], tip_positions_m=tips,
                        tip_deflection_fraction=frac, wind_body_m_s=np.array([body_wind(wind, t, y) for t, y in zip(ts, ys)]),
                        controls=np.array([np.asarray(u_of(t), float) for t in ts]),

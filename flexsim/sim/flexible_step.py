@@ -29,6 +29,7 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import NDArray
 
+from flexsim.errors import positive_number
 from flexsim.model.flexible_aircraft import FlexibleAircraft
 from flexsim.structure.free_flexible import FreeFlexibleStructure, quaternion_matrix
 
@@ -79,7 +80,7 @@ class FlexibleStepper:
         step_s : float
             h [s], in (0, 0.05].
         """
-        if isinstance(step_s, bool) or not isinstance(step_s, (int, float)) or not 0.0 < step_s <= 0.05:
+        if positive_number("step_s", step_s, "s") > 0.05:
             raise ValueError(f"step_s = {step_s!r}: must be a step in (0, 0.05] s")
         jac = aircraft.free_flight_jacobian(structure, y, u, density_kg_m3, columns=slice(None))
         w = np.eye(jac.shape[0]) - GAMMA * float(step_s) * jac

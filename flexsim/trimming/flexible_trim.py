@@ -120,8 +120,7 @@ class FlexibleTrimPoint:
     @property
     def tip_deflection_fraction(self) -> NDArray:
         """Vertical tip displacement (up positive) over the beam's length [-], shape (B,)."""
-        lengths = np.array([b.length_m for b in self.aircraft.structure.beams])
-        return -self.tip_displacement_m[:, 2] / lengths
+        return self.aircraft.tip_heights_m(self.strains) / self.aircraft.beam_lengths_m
 
 
 def _state(z: NDArray, man: SteadyManoeuvre, cg: NDArray, g: float, glide: bool):
