@@ -31,7 +31,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from flexsim.aero.inflow import inflow_coefficients
-from flexsim.model.beam_aero import _section_matrices
+from flexsim.kinematics import skew
+from flexsim.model.beam_aero import inflow_columns, peters_strip_terms, set_inflow_rows
 from flexsim.structure.free_flexible import generalized_mass_matrix
 from flexsim.trimming.flexible_trim import FlexibleTrimPoint
 
@@ -81,45 +82,33 @@ class UnsteadyFreeAircraft:
         return FreeAircraftSpectrum(lam[keep], vec[:m, keep] / part[keep], self.n_strains, self.point, "unsteady")
 
 
-def _hat(p: NDArray) -> NDArray:
-    """(k, 3, 3) cross-product matrices of (k, 3) vectors."""
-    out = np.zeros((p.shape[0], 3, 3))
-    out[:, 0, 1], out[:, 0, 2], out[:, 1, 2] = -p[:, 2], p[:, 1], -p[:, 0]
-    out[:, 1, 0], out[:, 2, 0], out[:, 2, 1] = p[:, 2], -p[:, 1], p[:, 0]
-    return out
-
-
 def _strips(flex, structure, eps: NDArray, v: NDArray, omega: NDArray, u: NDArray, rho: float) -> dict:
     """Every strip's frame, position, point and rotation Jacobians over V, semichord, axis, effective density,
     incidence and weight (flexible beams at their quadrature points, then the rigid strips)."""
     nv = structure.n_velocities
-    parts = {k: [] for k in ("rot", "pos", "jl", "ja", "je", "jpe", "b", "a", "rho", "inc", "w")}
+    parts = {k: [] for k in ("rot", "pos", "jl", "ja", "b", "a", "rho", "inc", "w")}
     for s, kin, (b, a, scale, incidence, flap, _cd0) in zip(structure.strain_slices(), flex.kinematics(eps),
-                                                             flex._strip_data):
+                                                             flex.strip_constants):
         k = kin.positions.shape[0]
-        jl, ja, je, jpe = (np.zeros((k, 3, nv)) for _ in range(4))
+        jl, ja = np.zeros((k, 3, nv)), np.zeros((k, 3, nv))
         jl[:, :, :3] = np.eye(3)
-        jl[:, :, 3:6] = -_hat(kin.positions)
+        jl[:, :, 3:6] = -skew(kin.positions)
         jl[:, :, 6 + s.start:6 + s.stop] = kin.jac_position
         ja[:, :, 3:6] = np.eye(3)
         ja[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
-        je[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
-        jpe[:, :, 6 + s.start:6 + s.stop] = kin.jac_position
-        for key, value in (("rot", kin.rotations), ("pos", kin.positions), ("jl", jl), ("ja", ja), ("je", je),
-                           ("jpe", jpe),
-                           ("b", b), ("a", a), ("rho", rho * np.broadcast_to(scale, b.shape)),
-                           ("inc", incidence + flap @ u), ("w", kin.points_weight)):
+        for key, value in (("rot", kin.rotations), ("pos", kin.positions), ("jl", jl), ("ja", ja), ("b", b), ("a", a),
+                           ("rho", rho * np.broadcast_to(scale, b.shape)), ("inc", incidence + flap @ u),
+                           ("w", kin.points_weight)):
             parts[key].append(np.asarray(value, float))
     r = flex.rigid_strips
     if r.b.size:
         k = r.b.size
         jl, ja = np.zeros((k, 3, nv)), np.zeros((k, 3, nv))
         jl[:, :, :3] = np.eye(3)
-        jl[:, :, 3:6] = -_hat(r.position)
+        jl[:, :, 3:6] = -skew(r.position)
         ja[:, :, 3:6] = np.eye(3)
-        for key, value in (("rot", r.rotations), ("pos", r.position), ("jl", jl), ("ja", ja),
-                           ("je", np.zeros((k, 3, nv))), ("jpe", np.zeros((k, 3, nv))), ("b", r.b), ("a", r.a), ("rho", rho * r.scale),
-                           ("inc", r.incidence + r.flap @ u), ("w", r.width)):
+        for key, value in (("rot", r.rotations), ("pos", r.position), ("jl", jl), ("ja", ja), ("b", r.b), ("a", r.a),
+                           ("rho", rho * r.scale), ("inc", r.incidence + r.flap @ u), ("w", r.width)):
             parts[key].append(np.asarray(value, float))
     out = {key: np.concatenate(value) for key, value in parts.items()}
     lifting = out["rho"] > 0.0  # a beam without lift (a fuselage) has no strips
@@ -158,7 +147,6 @@ def free_aircraft_unsteady(model, point: FlexibleTrimPoint, inflow_states: int =
                 point.density_kg_m3)
     coef = inflow_coefficients(inflow_states)
     nl = coef.n_states
-    mm, _bm, sv = _section_matrices()
     e1, e2, e3 = s["rot"][:, :, 0], s["rot"][:, :, 1], s["rot"][:, :, 2]
     b, a, rho, w, va = s["b"], s["a"], s["rho"], s["w"], s["va"]
     u0 = -np.einsum("pi,pi->p", e2, va)
@@ -168,22 +156,16 @@ def free_aircraft_unsteady(model, point: FlexibleTrimPoint, inflow_states: int =
     a1 = np.einsum("pi,pik->pk", e1, s["ja"])
     # ẇ's terms in δV (body-axis components): the elastic turn of e3 against V_a, the transport of the elastic
     # velocity by the trim's rotation (−ω0 × J_p ε̇ in V̇_a), and the elastic turn of e1 against ω0 in ẇ1 = b ė1·Ω
-    rn1 = b[:, None] * np.einsum("pi,pik->pk", np.cross(e1, omega[None, :]), s["je"])
-    rn = (np.einsum("pi,pik->pk", np.cross(e3, va), s["je"])
-          - np.einsum("pi,pik->pk", np.cross(e3, omega[None, :]), s["jpe"]) - a[:, None] * rn1)
+    elastic_rotation, elastic_position = s["ja"].copy(), s["jl"].copy()
+    elastic_rotation[:, :, :6] = 0.0
+    elastic_position[:, :, :6] = 0.0
+    rn1 = b[:, None] * np.einsum("pi,pik->pk", np.cross(e1, omega[None, :]), elastic_rotation)
+    rn = (np.einsum("pi,pik->pk", np.cross(e3, va), elastic_rotation)
+          - np.einsum("pi,pik->pk", np.cross(e3, omega[None, :]), elastic_position) - a[:, None] * rn1)
     w0v = -pn - (a * b)[:, None] * a1
     w1v = b[:, None] * a1
-    am = np.pi * (rho * b**2)[:, None, None]
-    acc = am * np.einsum("ij,pjk->pik", mm, np.stack([w0v, w1v], 1))        # {L} per δV̇
-    rate = am * np.einsum("ij,pjk->pik", mm, np.stack([rn, rn1], 1))       # {L} per δV (apparent mass)
-    lam = -np.pi * (rho * b * u0)[:, None] * sv[None, :]                   # {L} per λ0
-    mom_acc = (a * b)[:, None] * acc[:, 0] - b[:, None] * acc[:, 1]
-    mom_rate = (a * b)[:, None] * rate[:, 0] - b[:, None] * rate[:, 1]
-    mom_lam = a * b * lam[:, 0] - b * lam[:, 1]
     suc_lam = -2.0 * np.pi * rho * b * (2.0 * w0s - u0 * s["inc"])        # ∂S/∂λ0
-    ma = -(np.einsum("p,pk,pl->kl", w, pn, acc[:, 0]) + np.einsum("p,pk,pl->kl", w, a1, mom_acc))
-    ca = -(np.einsum("p,pk,pl->kl", w, pn, rate[:, 0]) + np.einsum("p,pk,pl->kl", w, a1, mom_rate))
-    g0 = (w[:, None] * (pn * lam[:, 0][:, None] + a1 * mom_lam[:, None] + pc * suc_lam[:, None])).T  # (nv, P)
+    ma, ca, g0 = peters_strip_terms(w, pn, pc, a1, w0v, w1v, rn, rn1, b, a, rho, u0, suc_lam)
     p = b.size
     size = npos + nv + p * nl
     out = np.zeros((size, size))
@@ -192,12 +174,8 @@ def free_aircraft_unsteady(model, point: FlexibleTrimPoint, inflow_states: int =
     vel = slice(npos, npos + nv)
     out[vel, :npos + nv] = h @ (mass @ jq[npos:])
     out[vel, vel] -= h @ ca
-    for i in range(p):
-        out[vel, npos + nv + i * nl:npos + nv + (i + 1) * nl] = np.outer(h @ g0[:, i], 0.5 * coef.b)
+    out[vel, npos + nv:] = h @ inflow_columns(g0, coef)
     f_rows = (w0v + 0.5 * w1v) @ out[vel]  # ẇ0 + ẇ1/2 of each strip per state, through δV̇
     f_rows[:, vel] += rn + 0.5 * rn1
-    for i in range(p):
-        rows = slice(npos + nv + i * nl, npos + nv + (i + 1) * nl)
-        out[rows] = np.outer(coef.A_inv_c, f_rows[i])
-        out[rows, rows] -= (u0[i] / b[i]) * coef.A_inv
+    set_inflow_rows(out, npos + nv, coef, f_rows, u0, b)
     return UnsteadyFreeAircraft(out, n, p, nl, point)

@@ -42,7 +42,7 @@ from flexsim.structure.strain_beam import (BeamKinematics, BeamProperties, beam_
                                            stiffness_matrix)
 
 __all__ = ["WingAero", "TunnelFlow", "section_loads", "StripAirloads", "LoadSum", "AeroelasticSystem", "aeroelastic_system",
-           "static_stiffness"]
+           "static_stiffness", "peters_strip_terms", "inflow_columns", "set_inflow_rows"]
 
 
 @dataclass(frozen=True)
@@ -232,11 +232,12 @@ def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, induce
         mom = a[k] * b[k] * gen0 - b[k] * gen1
         suction = 2.0 * np.pi * rho[k] * b[k] * w0 * (w0 - u0 * incidence[k])
         drag = 0.0
-        speed = np.sqrt(wn * wn + u0 * u0)
-        if cd0[k] != 0.0:
-            drag = rho[k] * b[k] * cd0[k] * speed
-        if induced[k] != 0.0 and u0 != 0.0 and speed > 0.0:
-            drag += gen0 * (w0 / u0) * induced[k] / speed  # L alpha_e (1 - Cl_a/2 pi) along V_in / |V_in|
+        if cd0[k] != 0.0 or induced[k] != 0.0:
+            speed = np.sqrt(wn * wn + u0 * u0)
+            if cd0[k] != 0.0:
+                drag = rho[k] * b[k] * cd0[k] * speed
+            if induced[k] != 0.0 and u0 != 0.0 and speed > 0.0:
+                drag += gen0 * (w0 / u0) * induced[k] / speed  # L alpha_e (1 - Cl_a/2 pi) along V_in / |V_in|
         for i in range(3):
             force[k, i] = gen0 * r[i, 2] + suction * r[i, 1] + drag * (wn * r[i, 2] - u0 * r[i, 1])
             moment[k, i] = mom * r[i, 0]
@@ -306,6 +307,58 @@ class AeroelasticSystem:
     mass: NDArray
 
 
+def peters_strip_terms(weight: NDArray, pn: NDArray, pc: NDArray, a1: NDArray, w0v: NDArray, w1v: NDArray,
+                       rate0: NDArray, rate1: NDArray, b: NDArray, a: NDArray, rho: NDArray, u0: NDArray,
+                       suction_per_lambda0: NDArray) -> tuple[NDArray, NDArray, NDArray]:
+    """The apparent-mass and inflow parts of Peters' strip loads (module docstring) in generalized coordinates.
+
+    Per strip ``p`` (weight ``w``), the rows over the generalized velocities (shape (P, n)): ``pn = e3ᵀL`` and
+    ``pc = e2ᵀL`` (the strip point's velocity normal and chordwise), ``a1 = e1ᵀA`` (its section's rate about the
+    span), ``δw0 = w0v``, ``δw1 = w1v`` per velocity, and the velocity terms ``rate0``, ``rate1`` of ``ẇ0``, ``ẇ1``.
+    ``{L} = πρ b² [M]{ẇ}`` and ``−πρ b u0 {S} λ0`` are resolved as lift along ``e3`` and moment ``a b L0 − b L1``
+    along ``e1``; the suction's change per ``λ0`` is ``suction_per_lambda0`` along ``e2``.
+
+    Returns
+    -------
+    ma, ca : ndarray, shape (n, n)
+        ``δQ = −ma δq̈ − ca δq̇`` of the apparent mass (its acceleration and velocity terms).
+    g0 : ndarray, shape (n, P)
+        ``δQ`` per strip ``λ0``.
+    """
+    mm, _, sv = _section_matrices()
+    am = np.pi * (rho * b**2)[:, None, None]
+    acc = am * np.einsum("ij,pjk->pik", mm, np.stack([w0v, w1v], 1))
+    rate = am * np.einsum("ij,pjk->pik", mm, np.stack([rate0, rate1], 1))
+    lam = -np.pi * (rho * b * u0)[:, None] * sv[None, :]
+    mom_acc = (a * b)[:, None] * acc[:, 0] - b[:, None] * acc[:, 1]
+    mom_rate = (a * b)[:, None] * rate[:, 0] - b[:, None] * rate[:, 1]
+    mom_lam = a * b * lam[:, 0] - b * lam[:, 1]
+    ma = -(np.einsum("p,pk,pl->kl", weight, pn, acc[:, 0]) + np.einsum("p,pk,pl->kl", weight, a1, mom_acc))
+    ca = -(np.einsum("p,pk,pl->kl", weight, pn, rate[:, 0]) + np.einsum("p,pk,pl->kl", weight, a1, mom_rate))
+    g0 = (weight[:, None] * (pn * lam[:, 0][:, None] + a1 * mom_lam[:, None]
+                             + pc * suction_per_lambda0[:, None])).T
+    return ma, ca, g0
+
+
+def inflow_columns(g0: NDArray, coefficients) -> NDArray:
+    """``δQ`` per inflow state, shape (n, P N): ``g0`` (per strip ``λ0``) times ``λ0 = ½ bᵀλ`` of each strip."""
+    nl = coefficients.n_states
+    out = np.zeros((g0.shape[0], g0.shape[1] * nl))
+    for i in range(g0.shape[1]):
+        out[:, i * nl:(i + 1) * nl] = np.outer(g0[:, i], 0.5 * coefficients.b)
+    return out
+
+
+def set_inflow_rows(out: NDArray, start: int, coefficients, forcing_rows: NDArray, u0: NDArray, b: NDArray) -> None:
+    """Write the inflow states' rows of a state matrix in place: strip ``i``'s ``N`` states from ``start + i N``,
+    ``[A]λ̇ + (u0/b)λ = {c} f`` with ``f = forcing_rows[i] @ state`` (``ẇ0 + ẇ1/2`` per state)."""
+    nl = coefficients.n_states
+    for i in range(forcing_rows.shape[0]):
+        rows = slice(start + i * nl, start + (i + 1) * nl)
+        out[rows] = np.outer(coefficients.A_inv_c, forcing_rows[i])
+        out[rows, rows] -= (u0[i] / b[i]) * coefficients.A_inv
+
+
 def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q0: ArrayLike,
                        stiffness: NDArray) -> AeroelasticSystem:
     """Linear aeroelastic state matrix about the equilibrium ``q0`` (module docstring).
@@ -328,7 +381,7 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
     b, a = aero.strips(beam, kin)
     coef = inflow_coefficients(aero.inflow_states)
     nl = coef.n_states
-    mm, bm, sv = _section_matrices()
+    _, bm, _ = _section_matrices()
     rho, va, w = flow.density_kg_m3 * aero.density_scale(beam, kin), flow.velocity_m_s, kin.points_weight
     e1, e2, e3 = kin.rotations[:, :, 0], kin.rotations[:, :, 1], kin.rotations[:, :, 2]
     jp, jt = kin.jac_position, kin.jac_rotation
@@ -338,29 +391,19 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
     rn = np.einsum("pi,pik->pk", np.cross(e3, va), jt)
     w0v = -pn - (a * b)[:, None] * a1  # δw0 per δq̇ and δẇ0 per δq̈
     w1v = b[:, None] * a1
-    # {L} = πρ{b²[M]{ẇ} + b δu0 [B]{w_s} + b u0([B]{δw} − {S}λ0)}, rows (P, 2, n) per δq̈ and δq̇; per λ0 (P, 2)
-    acc = np.pi * (rho * b**2)[:, None, None] * np.einsum("ij,pjk->pik", mm, np.stack([w0v, w1v], 1))
-    acc_rate = np.stack([rn, np.zeros_like(rn)], 1)  # δẇ = ... + [Rn, 0] δq̇
-    vel = np.pi * rho[:, None, None] * (b[:, None, None] ** 2 * np.einsum("ij,pjk->pik", mm, acc_rate)
-                         + (b * w0s)[:, None, None] * bm[:, 0][None, :, None] * pc[:, None, :]
-                         + (b * u0)[:, None, None] * np.einsum("ij,pjk->pik", bm, np.stack([w0v, w1v], 1)))
-    lam = -np.pi * (rho * b * u0)[:, None] * sv[None, :]  # per λ0
-    # section lift (up, along e3), moment about the axis (nose up, along e1): [L, M] = diag(1, -1) Tᵀ{L}
-    lift_acc, lift_vel, lift_lam = acc[:, 0], vel[:, 0], lam[:, 0]
-    mom_acc = (a * b)[:, None] * acc[:, 0] - b[:, None] * acc[:, 1]
-    mom_vel = (a * b)[:, None] * vel[:, 0] - b[:, None] * vel[:, 1]
-    mom_lam = a * b * lam[:, 0] - b * lam[:, 1]
     suc = 4.0 * np.pi * rho * b * w0s  # δS = suc (δw0 − λ0)
-    # δQ = Σ w (pnᵀ δL + pcᵀ δS + a1ᵀ δM)  ->  −M_a δq̈ − C_a δq̇ + G_λ λ0
-    ma = -(np.einsum("p,pk,pl->kl", w, pn, lift_acc) + np.einsum("p,pk,pl->kl", w, a1, mom_acc))
-    ca = -(np.einsum("p,pk,pl->kl", w, pn, lift_vel) + np.einsum("p,pk,pl->kl", w, a1, mom_vel)
-           + np.einsum("p,pk,pl->kl", w * suc, pc, w0v))
-    g0 = (w[:, None] * (pn * lift_lam[:, None] + a1 * mom_lam[:, None] - pc * suc[:, None])).T  # (n, P) per λ0_p
-    # λ0_p = ½ bᵀ λ_p
+    # apparent mass (δẇ = [w0v, w1v] δq̈ + [rn, 0] δq̇) and inflow
+    ma, ca, g0 = peters_strip_terms(w, pn, pc, a1, w0v, w1v, rn, np.zeros_like(rn), b, a, rho, u0, -suc)
+    # the quasi-steady velocity terms πρ{b δu0 [B]{w_s} + b u0 [B]{δw}}, resolved the same way, and the suction's
+    # change with δw0
+    vel = np.pi * rho[:, None, None] * ((b * w0s)[:, None, None] * bm[:, 0][None, :, None] * pc[:, None, :]
+                                        + (b * u0)[:, None, None]
+                                        * np.einsum("ij,pjk->pik", bm, np.stack([w0v, w1v], 1)))
+    mom_vel = (a * b)[:, None] * vel[:, 0] - b[:, None] * vel[:, 1]
+    ca = ca - (np.einsum("p,pk,pl->kl", w, pn, vel[:, 0]) + np.einsum("p,pk,pl->kl", w, a1, mom_vel)
+               + np.einsum("p,pk,pl->kl", w * suc, pc, w0v))
     p = b.size
-    g_lam = np.zeros((n, p * nl))
-    for i in range(p):
-        g_lam[:, i * nl:(i + 1) * nl] = np.outer(g0[:, i], 0.5 * coef.b)
+    g_lam = inflow_columns(g0, coef)
     m = mass_matrix(beam, kin)
     h = np.linalg.inv(m + ma)
     size = 2 * n + p * nl
@@ -369,13 +412,9 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
     qdd_q, qdd_v, qdd_l = -h @ stiffness, -h @ ca, h @ g_lam
     out[n:2 * n, :n], out[n:2 * n, n:2 * n], out[n:2 * n, 2 * n:] = qdd_q, qdd_v, qdd_l
     # [A]λ̇ + (u0/b)λ = {c}(ẇ0 + ẇ1/2),  ẇ0 + ẇ1/2 = (w0v + w1v/2) δq̈ + rn δq̇
-    forcing_acc = w0v + 0.5 * w1v
-    f_rows = forcing_acc @ out[n:2 * n]  # (P, size): ẇ0 + ẇ1/2 of each strip per state, through δq̈
+    f_rows = (w0v + 0.5 * w1v) @ out[n:2 * n]  # (P, size): ẇ0 + ẇ1/2 of each strip per state, through δq̈
     f_rows[:, n:2 * n] += rn
-    for i in range(p):
-        rows = slice(2 * n + i * nl, 2 * n + (i + 1) * nl)
-        out[rows] = np.outer(coef.A_inv_c, f_rows[i])
-        out[rows, rows] -= (u0[i] / b[i]) * coef.A_inv
+    set_inflow_rows(out, 2 * n, coef, f_rows, u0, b)
     return AeroelasticSystem(state_matrix=out, n_structural=n, tangent_stiffness=stiffness, mass=m)
 
 
