@@ -47,3 +47,17 @@ def test_euler_rates_generate_body_angular_velocity():
 def test_skew_is_cross_product():
     a, b = np.array([1.0, -2.0, 0.5]), np.array([0.3, 4.0, -1.0])
     np.testing.assert_allclose(skew(a) @ b, np.cross(a, b), atol=1e-15)
+
+
+def test_euler_321_of_quaternion_inverts_the_quaternion_of_the_angles():
+    """Round trip through flexsim.trimming.flexible_turn.euler_quaternion (Stevens & Lewis eq. 1.8-17) to round-off,
+    and the quaternion's matrix equals dcm_321 of the angles recovered (transposed: body→NED)."""
+    from flexsim.kinematics import euler_321_of_quaternion
+    from flexsim.structure.free_flexible import quaternion_matrix
+    from flexsim.trimming.flexible_turn import euler_quaternion
+
+    for angles in ((0.3, 0.2, -0.4), (-1.2, 1.4, 3.0), (0.0, -0.7, -2.5)):
+        quat = euler_quaternion(*angles)
+        back = euler_321_of_quaternion(2.0 * quat)  # any norm
+        np.testing.assert_allclose(back, angles, atol=1e-12)
+        np.testing.assert_allclose(quaternion_matrix(quat), dcm_321(*back).T, atol=1e-12)
