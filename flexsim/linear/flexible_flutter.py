@@ -30,7 +30,7 @@ from flexsim.model.aircraft_model import check_model
 from flexsim.model.beam_aero import AeroelasticSystem, TunnelFlow, aeroelastic_system, static_stiffness
 from flexsim.model.terms import NonlinearBeams
 from flexsim.structure.free_flexible import _cross
-from flexsim.structure.strain_beam import BeamKinematics, BeamProperties, mass_centre_jacobian
+from flexsim.structure.strain_beam import BeamKinematics, BeamProperties, mass_points
 from flexsim.trimming.flexible_trim import FlexibleTrimError, FlexibleTrimPoint, trim_flexible
 from flexsim.trimming.manoeuvre import SteadyManoeuvre
 
@@ -64,11 +64,10 @@ class SteadyInertialLoad:
 
     def generalized_force(self, beam: BeamProperties, kin: BeamKinematics) -> NDArray[np.float64]:
         """``Q = Σ w J_cᵀ m (g_b − ω × v − ω × (ω × r_c))``, shape (n,)."""
-        r, jc = mass_centre_jacobian(beam, kin)
+        pts = mass_points(beam, kin)  # the sections' mass centres and the point masses
         om = np.asarray(self.rate_rad_s, float)
-        acc = _cross(om, self.velocity_m_s) + _cross(om, _cross(om, r))
-        mass = beam.mass_kg_per_m[kin.points_element] * kin.points_weight
-        return np.einsum("pik,pi->k", jc, mass[:, None] * (np.asarray(self.gravity_body_m_s2, float) - acc))
+        acc = _cross(om, self.velocity_m_s) + _cross(om, _cross(om, pts.r))
+        return np.einsum("pik,pi->k", pts.jac_c, pts.mass[:, None] * (np.asarray(self.gravity_body_m_s2, float) - acc))
 
 
 def wing_system(model, point: FlexibleTrimPoint, component: str = "right_wing",

@@ -21,7 +21,7 @@ from scipy.linalg import eig, eigh
 
 from flexsim._arrays import frozen_array
 from flexsim.errors import FlexsimError
-from flexsim.structure.strain_beam import (BeamKinematics, BeamProperties, beam_kinematics, mass_centre_jacobian,
+from flexsim.structure.strain_beam import (BeamKinematics, BeamProperties, beam_kinematics, mass_points,
                                            mass_matrix, stiffness_matrix)
 
 __all__ = ["BeamLoads", "BeamConvergenceError", "NewtonSettings", "StaticSolution", "solve_static",
@@ -82,9 +82,8 @@ class BeamLoads:
         moment = self.tip_moment_nm + r_tip @ self.tip_follower_moment_nm
         q = kin.tip_jac_position.T @ force + kin.tip_jac_rotation.T @ moment
         if np.any(self.gravity_m_s2):
-            _, jc = mass_centre_jacobian(beam, kin)
-            weight = beam.mass_kg_per_m[kin.points_element] * kin.points_weight
-            q = q + np.einsum("p,pik,i->k", weight, jc, self.gravity_m_s2)
+            pts = mass_points(beam, kin)  # the sections' mass centres and the point masses
+            q = q + np.einsum("p,pik,i->k", pts.mass, pts.jac_c, self.gravity_m_s2)
         if np.any(self.distributed_force_n_m):
             q = q + np.einsum("p,pik,i->k", kin.points_weight, kin.jac_position, self.distributed_force_n_m)
         return q

@@ -51,7 +51,7 @@ from scipy.linalg import cho_factor, cho_solve, eigh
 
 from flexsim._arrays import frozen_array
 from flexsim.structure import _strain_kernels as _kern
-from flexsim.structure.strain_beam import (BeamProperties, beam_kinematics, mass_centre_jacobian,
+from flexsim.structure.strain_beam import (BeamProperties, beam_kinematics, mass_points,
                                            stiffness_matrix)
 
 __all__ = ["RigidBody", "FreeFlexibleStructure", "Conserved", "quaternion_matrix", "initial_state",
@@ -305,29 +305,25 @@ def _points(structure: FreeFlexibleStructure, eps: NDArray, epsdot: NDArray | No
     if kinematics is None:
         kinematics = [beam_kinematics(beam, eps[s]) for beam, s in zip(structure.beams, slices)]
     for beam, s, kin in zip(structure.beams, slices, kinematics):
-        r, jc = mass_centre_jacobian(beam, kin)
-        e = kin.points_element
-        n_p = e.size
+        pts = mass_points(beam, kin)
+        n_p = pts.mass.size
         lc = np.zeros((n_p, 3, nv))
         lw = np.zeros((n_p, 3, nv))
         lc[:, :, :3] = np.eye(3)
-        lc[:, :, 3:6] = -_hat(r)
-        lc[:, :, 6 + s.start:6 + s.stop] = jc
+        lc[:, :, 3:6] = -_hat(pts.r)
+        lc[:, :, 6 + s.start:6 + s.stop] = pts.jac_c
         lw[:, :, 3:6] = np.eye(3)
-        lw[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
-        w = kin.points_weight
-        sec = np.stack([beam.torsion_inertia_kg_m[e], beam.flap_inertia_kg_m[e], beam.chord_inertia_kg_m[e]], 1)
-        inertia = (kin.rotations * (sec * w[:, None])[:, None, :]) @ np.swapaxes(kin.rotations, 1, 2)
+        lw[:, :, 6 + s.start:6 + s.stop] = pts.jac_rotation
+        inertia = pts.rotations @ pts.inertia_section @ np.swapaxes(pts.rotations, 1, 2)
         motion = []
         if epsdot is not None:
-            frac = kin.points_s / beam.element_length_m - e
-            _, pd, pdd, rot, rd, rdd = beam_relative_motion(beam, eps[s], epsdot[s], e, frac)
-            d = beam.cg_offset_m[e][:, None]
-            rdot, rddot = pd + d * rd[:, :, 1], pdd + d * rdd[:, :, 1]
+            _, pd, pdd, rot, rd, rdd = beam_relative_motion(beam, eps[s], epsdot[s], pts.element, pts.fraction)
+            rdot = pd + np.einsum("pij,pj->pi", rd, pts.offset)
+            rddot = pdd + np.einsum("pij,pj->pi", rdd, pts.offset)
             w_rel = _vee(rd @ np.swapaxes(rot, 1, 2))
             alpha_rel = _vee(rdd @ np.swapaxes(rot, 1, 2) + rd @ np.swapaxes(rd, 1, 2))
             motion = [rdot, rddot, w_rel, alpha_rel]
-        blocks.append((beam.mass_kg_per_m[e] * w, inertia, r, lc, lw, *motion))
+        blocks.append((pts.mass, inertia, pts.r, lc, lw, *motion))
     if not blocks:
         z3, zj = np.zeros((0, 3)), np.zeros((0, 3, nv))
         return _Points(np.zeros(0), np.zeros((0, 3, 3)), z3, zj, zj, z3, z3, z3, z3)

@@ -30,7 +30,9 @@ point. They map strain rates to the velocity of the point and the angular veloci
 Energies: strain energy ``U = ½ qᵀ K q`` with constant ``K = blockdiag(ℓ_j diag(EA, GJ, EI_flap, EI_chord))``
 (Su & Cesnik eq. 6); kinetic energy ``T = ½ q̇ᵀ M(q) q̇``, ``M(q) = ∫ (m J_cᵀ J_c + J_θᵀ R I Rᵀ J_θ) ds``
 (eq. 10 in strain form) with ``J_c`` the Jacobian of the section's mass centre, integrated by Gauss-Legendre
-points along each element.
+points along each element, plus the point masses carried by the beam (engines, stores: :class:`PointMass`), each a
+rigid body fixed to the section at its station, ``m J_cᵀ J_c + J_θᵀ R I Rᵀ J_θ`` at its mass centre ``p + R o``
+(Shearer & Cesnik 2007 eq. 12 with a concentrated mass; the paper's engines, eq. 6: ``v_e = v_w(r_we)``).
 """
 
 from __future__ import annotations
@@ -44,8 +46,8 @@ from numpy.typing import ArrayLike, NDArray
 from flexsim._arrays import frozen_array
 from flexsim.structure import _strain_kernels as _kern
 
-__all__ = ["BeamProperties", "BeamKinematics", "beam_kinematics", "stiffness_matrix", "mass_matrix",
-           "se3_exp", "se3_left_jacobian", "STRAIN_NAMES"]
+__all__ = ["BeamProperties", "PointMass", "BeamKinematics", "MassPoints", "beam_kinematics", "mass_points",
+           "station_kinematics", "stiffness_matrix", "mass_matrix", "se3_exp", "se3_left_jacobian", "STRAIN_NAMES"]
 
 #: Names of the four strains of an element, in order.
 STRAIN_NAMES = ("extension", "twist", "flap curvature", "chord curvature")
@@ -66,6 +68,49 @@ def _per_element(name: str, value, n: int, unit: str, *, allow_zero: bool = Fals
         bad = float(arr[~ok][0])
         raise ValueError(f"{name} = {bad!r}: must be a finite number {'>=' if allow_zero else '>'} 0 [{unit}]")
     return frozen_array(arr)
+
+
+@dataclass(frozen=True)
+class PointMass:
+    """A rigid mass fixed to a beam's section (an engine, a store, a tip body; validated, frozen).
+
+    Parameters
+    ----------
+    station_m : float
+        Undeformed arc length of the section it is fixed to [m], ``0 <= station_m <= L`` (checked by the beam).
+    mass_kg : float
+        Mass [kg], >= 0.
+    offset_m : array_like, shape (3,)
+        Its mass centre from the reference axis at the station, in the undeformed section frame ``[e1, e2, e3]``
+        (along the span, towards the leading edge, normal) [m].
+    inertia_kg_m2 : array_like, shape (3, 3)
+        Inertia about its mass centre in the section frame [kg m²], symmetric.
+    name : str
+        Its name in messages.
+    """
+
+    station_m: float
+    mass_kg: float
+    offset_m: ArrayLike = field(default_factory=lambda: np.zeros(3))
+    inertia_kg_m2: ArrayLike = field(default_factory=lambda: np.zeros((3, 3)))
+    name: str = "point mass"
+
+    def __post_init__(self) -> None:
+        for attr, unit in (("station_m", "m"), ("mass_kg", "kg")):
+            value = getattr(self, attr)
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)) \
+                    or not np.isfinite(value) or value < 0.0:
+                raise ValueError(f"{self.name}: {attr} = {value!r}: must be a finite number >= 0 [{unit}]")
+            object.__setattr__(self, attr, float(value))
+        offset = np.array(self.offset_m, dtype=float)
+        if offset.shape != (3,) or not np.all(np.isfinite(offset)):
+            raise ValueError(f"{self.name}: offset_m = {self.offset_m!r}: must be 3 finite numbers [m]")
+        inertia = np.array(self.inertia_kg_m2, dtype=float)
+        if inertia.shape != (3, 3) or not np.all(np.isfinite(inertia)) \
+                or np.abs(inertia - inertia.T).max() > 1e-9 * max(1.0, np.abs(inertia).max()):
+            raise ValueError(f"{self.name}: inertia_kg_m2 must be a finite symmetric 3 x 3 matrix [kg m^2]")
+        object.__setattr__(self, "offset_m", frozen_array(offset))
+        object.__setattr__(self, "inertia_kg_m2", frozen_array(0.5 * (inertia + inertia.T)))
 
 
 @dataclass(frozen=True)
@@ -96,6 +141,8 @@ class BeamProperties:
         right-handed.
     gauss_points : int
         Gauss-Legendre points per element for the mass matrix and distributed loads (1-6).
+    point_masses : tuple of PointMass
+        Rigid masses fixed to sections of the beam (default none).
     """
 
     length_m: float
@@ -112,6 +159,7 @@ class BeamProperties:
     root_position_m: ArrayLike = field(default_factory=lambda: np.zeros(3))
     root_rotation: ArrayLike = field(default_factory=lambda: np.eye(3))
     gauss_points: int = 3
+    point_masses: tuple = ()
 
     def __post_init__(self) -> None:
         length = float(self.length_m) if isinstance(self.length_m, (int, float, np.floating)) else np.nan
@@ -148,6 +196,14 @@ class BeamProperties:
             raise ValueError(f"root_rotation must be orthonormal and right-handed (|R^T R - I| = {orth:.2e}, "
                              f"det = {np.linalg.det(r0):.6f}; allowed: 1e-9 and +1)")
         object.__setattr__(self, "root_rotation", frozen_array(r0))
+        masses = tuple(self.point_masses)
+        for k, pm in enumerate(masses):
+            if not isinstance(pm, PointMass):
+                raise ValueError(f"point_masses[{k}] = {pm!r}: must be a PointMass")
+            if pm.station_m > length * (1.0 + 1e-12):
+                raise ValueError(f"point_masses[{k}] ({pm.name}): station_m = {pm.station_m!r}: must be within the "
+                                 f"beam, 0-{length:g} [m]")
+        object.__setattr__(self, "point_masses", masses)
 
     @property
     def extensible(self) -> bool:
@@ -357,14 +413,95 @@ def stiffness_matrix(beam: BeamProperties) -> NDArray[np.float64]:
     return np.diag(diag)
 
 
-def mass_centre_jacobian(beam: BeamProperties, kin: BeamKinematics) -> tuple[NDArray, NDArray]:
-    """Positions [m] (P, 3) and Jacobians (P, 3, n) of the sections' mass centres (offset ``cg_offset_m`` along e2)."""
-    offset = beam.cg_offset_m[kin.points_element][:, None] * kin.rotations[:, :, 1]
-    return kin.positions + offset, kin.jac_position - _hat(offset) @ kin.jac_rotation
+@dataclass(frozen=True, eq=False)
+class MassPoints:
+    """The beam's masses as points (global components, SI): its sections' mass centres at the quadrature points
+    (mass ``m w``, inertia ``diag(I_torsion, I_flap, I_chord) w``), then its point masses.
+
+    Attributes
+    ----------
+    mass : ndarray, shape (Q,)
+        [kg].
+    r : ndarray, shape (Q, 3)
+        Mass-centre positions [m].
+    jac_c : ndarray, shape (Q, 3, n)
+        ``∂r/∂q`` [m].
+    rotations : ndarray, shape (Q, 3, 3)
+        Frames of the sections carrying them.
+    jac_rotation : ndarray, shape (Q, 3, n)
+        Virtual rotation of those sections per unit ``q``.
+    inertia_section : ndarray, shape (Q, 3, 3)
+        Inertia about the mass centre in the section frame [kg m²].
+    element : ndarray of int, shape (Q,)
+    fraction : ndarray, shape (Q,)
+        Element and fraction of its length (0-1) of each carrying section.
+    offset : ndarray, shape (Q, 3)
+        Mass centre from the reference axis, section frame [m].
+    """
+
+    mass: NDArray
+    r: NDArray
+    jac_c: NDArray
+    rotations: NDArray
+    jac_rotation: NDArray
+    inertia_section: NDArray
+    element: NDArray
+    fraction: NDArray
+    offset: NDArray
+
+
+def station_kinematics(beam: BeamProperties, q: ArrayLike, stations_m: ArrayLike) -> tuple[NDArray, ...]:
+    """Reference-axis positions (K, 3), section frames (K, 3, 3) and their Jacobians (K, 3, n) at stations along the
+    beam [m] (the exact chain of :func:`beam_kinematics` evaluated at each station's element and fraction), plus the
+    elements (K,) and fractions (K,)."""
+    stations = np.atleast_1d(np.asarray(stations_m, dtype=float))
+    strains = beam.full_strains(q)
+    n_el, ell, n = beam.n_elements, beam.element_length_m, beam.n_coordinates
+    k = stations.size
+    pos, rot = np.empty((k, 3)), np.empty((k, 3, 3))
+    jp, jr = np.empty((k, 3, n)), np.empty((k, 3, n))
+    element = np.minimum((stations / ell).astype(np.int64), n_el - 1)
+    fraction = np.clip(stations / ell - element, 0.0, 1.0)
+    rots, poss = np.empty((n_el + 1, 3, 3)), np.empty((n_el + 1, 3))
+    prot, ppos = np.empty((n_el, 3, 3)), np.empty((n_el, 3))
+    jac_pos, jac_rot = np.empty((n_el, 3, n)), np.empty((n_el, 3, n))
+    tip_pos, tip_rot = np.empty((3, n)), np.empty((3, n))
+    for i in range(k):
+        _kern.beam_chain(strains, ell, beam.root_rotation, beam.root_position_m, fraction[i:i + 1],
+                         4 - beam.strains_per_element, rots, poss, prot, ppos, jac_pos, jac_rot, tip_pos, tip_rot)
+        j = element[i]
+        pos[i], rot[i], jp[i], jr[i] = ppos[j], prot[j], jac_pos[j], jac_rot[j]
+    return pos, rot, jp, jr, element, fraction
+
+
+def mass_points(beam: BeamProperties, kin: BeamKinematics) -> MassPoints:
+    """The beam's sections (mass centre ``cg_offset_m`` ahead of the reference axis along e2) and point masses as
+    mass points at the strains of ``kin`` (:class:`MassPoints`; ``J_c = J_p − (R o)^ J_θ``)."""
+    e = kin.points_element
+    w = kin.points_weight
+    n_p = e.size
+    offset = np.zeros((n_p, 3))
+    offset[:, 1] = beam.cg_offset_m[e]
+    inertia = np.zeros((n_p, 3, 3))
+    inertia[:, 0, 0] = beam.torsion_inertia_kg_m[e] * w
+    inertia[:, 1, 1] = beam.flap_inertia_kg_m[e] * w
+    inertia[:, 2, 2] = beam.chord_inertia_kg_m[e] * w
+    parts = [(beam.mass_kg_per_m[e] * w, kin.positions, kin.rotations, kin.jac_position, kin.jac_rotation, inertia,
+              e, kin.points_s / beam.element_length_m - e, offset)]
+    if beam.point_masses:
+        pms = beam.point_masses
+        pos, rot, jp, jr, el, fr = station_kinematics(beam, kin.q, [pm.station_m for pm in pms])
+        parts.append((np.array([pm.mass_kg for pm in pms]), pos, rot, jp, jr,
+                      np.array([pm.inertia_kg_m2 for pm in pms]), el, fr, np.array([pm.offset_m for pm in pms])))
+    mass, p, rot, jp, jr, inertia, el, fr, offset = (np.concatenate(a) if len(parts) > 1 else a[0]
+                                                      for a in zip(*parts))
+    arm = np.einsum("pij,pj->pi", rot, offset)
+    return MassPoints(mass, p + arm, jp - _hat(arm) @ jr, rot, jr, inertia, el, fr, offset)
 
 
 def mass_matrix(beam: BeamProperties, kin: BeamKinematics) -> NDArray[np.float64]:
-    """Mass matrix ``M(q) = ∫ (m J_cᵀ J_c + J_θᵀ R I Rᵀ J_θ) ds`` [kg, kg m, kg m²] (Su & Cesnik 2011 eq. 10).
+    """Mass matrix ``M(q) = ∫ (m J_cᵀ J_c + J_θᵀ R I Rᵀ J_θ) ds`` [kg, kg m, kg m²] (Su & Cesnik 2011 eq. 10),
+    plus the point masses' ``m J_cᵀ J_c + J_θᵀ R I Rᵀ J_θ`` (:func:`mass_points`).
 
     Gauss-Legendre quadrature over each element (``beam.gauss_points`` points, exact kinematics at each).
 
@@ -373,13 +510,9 @@ def mass_matrix(beam: BeamProperties, kin: BeamKinematics) -> NDArray[np.float64
     ndarray, shape (n, n)
         Symmetric positive definite; ``T = ½ q̇ᵀ M q̇`` [J].
     """
-    e = kin.points_element
-    _, jc = mass_centre_jacobian(beam, kin)
-    w = kin.points_weight
-    m = beam.mass_kg_per_m[e] * w
-    inertia = np.stack([beam.torsion_inertia_kg_m[e], beam.flap_inertia_kg_m[e], beam.chord_inertia_kg_m[e]], 1)
-    rt_j = np.einsum("pji,pjk->pik", kin.rotations, kin.jac_rotation)  # (P, 3, n): ω in section axes
-    trans = np.einsum("p,pji,pjk->ik", m, jc, jc)
-    rotary = np.einsum("p,pj,pji,pjk->ik", w, inertia, rt_j, rt_j)
+    pts = mass_points(beam, kin)
+    rt_j = np.einsum("pji,pjk->pik", pts.rotations, pts.jac_rotation)  # (Q, 3, n): ω in section axes
+    trans = np.einsum("p,pji,pjk->ik", pts.mass, pts.jac_c, pts.jac_c)
+    rotary = np.einsum("pji,pjl,plk->ik", rt_j, pts.inertia_section, rt_j)
     out = trans + rotary
     return 0.5 * (out + out.T)
