@@ -1,8 +1,11 @@
 """A free-flying aircraft whose flexible components are geometrically exact beams, with strip airloads.
 
 The structure is :class:`flexsim.structure.free_flexible.FreeFlexibleStructure`: a rigid body (the rigid
-components, lumped masses and engines) with strain-based beams (Su & Cesnik 2011) clamped to it — one beam per
-flexible component, rooted where the component is rooted, in body axes (x forward, y right, z down, origin o).
+components and the lumped masses and engines they carry) with strain-based beams (Su & Cesnik 2011) clamped to it —
+one beam per flexible component, rooted where the component is rooted, in body axes (x forward, y right, z down,
+origin o), carrying its component's lumped masses and engines as point masses at their stations (the paper's eq. 6:
+an engine moves with its wing). A flexible fuselage carrying the other components is refused: the beams are clamped
+to the rigid body, not to the fuselage's bending (the linear model's topology, paper eq. 6).
 Each beam's frame ``[e1, e2, e3]`` has ``e1`` along the component's axis, ``e2`` along the streamwise chord
 towards the leading edge (body +x for an unswept wing) and ``e3 = e1 × e2`` (up on the right wing, down on the
 left: the section theory is the same in either orientation, and the mass-centre offsets keep their meaning).
@@ -44,7 +47,7 @@ from flexsim.model.terms import NonlinearBeams
 from flexsim.structure.beam_sections import beam_from_sections
 from flexsim.structure.free_flexible import (FreeFlexibleStructure, RigidBody, _cross, free_flight_rhs,
                                              generalized_mass_matrix, steady_generalized_force)
-from flexsim.structure.strain_beam import beam_kinematics
+from flexsim.structure.strain_beam import PointMass, beam_kinematics
 
 __all__ = ["FlexibleAircraft", "flexible_aircraft"]
 
@@ -368,6 +371,33 @@ def _beam_frame(comp) -> NDArray:
     return np.column_stack([e1, e2, np.cross(e1, e2)])
 
 
+def _point_masses(aircraft, comp) -> tuple:
+    """The lumped masses and engines of the file on flexible component ``comp``, as point masses of its beam: at the
+    station nearest each (as the linear model places them, :func:`flexsim.structure.sections.mass_points`), offset and
+    inertia in the beam's section frame (paper eq. 6, ``v_e = v_w(r_we)``: an engine moves with its wing)."""
+    frame = _beam_frame(comp)
+    out = []
+    for item in (*aircraft.lumped_masses, *aircraft.engines):
+        if item.component != comp.name:
+            continue
+        x = float(np.clip(comp.station_of(item.position_m), 0.0, comp.length_m))
+        offset = frame.T @ (item.position_m - comp.root_m) - np.array([x, 0.0, 0.0])
+        out.append(PointMass(x, item.mass_kg, offset, frame.T @ item.inertia_kg_m2 @ frame,
+                             name=f"{item.where}.{item.name}"))
+    return tuple(out)
+
+
+def _check_topology(aircraft) -> None:
+    """Refuse a flexible fuselage that carries other components: the nonlinear structure clamps every beam to the
+    rigid body, whereas the linear model (paper eq. 6) attaches them to the fuselage's bending and torsion; the GTM's
+    fuselage bending would be a 4.9 rad/s cantilever instead of its 27 rad/s mode carrying the wings."""
+    names = [c.name for c in aircraft.components]
+    if "fuselage" in names and aircraft.component("fuselage").is_flexible and len(names) > 1:
+        raise ValueError("components.fuselage is flexible: the geometrically nonlinear structure clamps the wings and "
+                         "stabilizers to the rigid body, not to a bending fuselage; set components.fuselage.rigid = "
+                         "true to use it (the fuselage's flexibility is in the linear model only)")
+
+
 def _streamwise_to_section(comp) -> float:
     """``1 / cos Λ``: the factor from a streamwise angle of incidence (the aircraft file's ``incidence_deg`` and control
     deflections, on the linear model's streamwise strips) to the angle of the section normal to the beam, whose
@@ -435,6 +465,9 @@ def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAi
                              "component [N m^2] (or set rigid = true)")
         beam = beam_from_sections(comp.sections, int(elements_per_beam), root_position_m=comp.root_m,
                                   root_rotation=_beam_frame(comp))
+        carried = _point_masses(aircraft, comp)
+        if carried:
+            beam = replace(beam, point_masses=carried)
         n = beam.n_elements
         mid = (np.arange(n) + 0.5) * beam.element_length_m
         if comp.aero is None:
@@ -450,6 +483,7 @@ def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAi
                                np.full(n, _normal_sign(comp) * comp.aero.incidence_rad * _streamwise_to_section(comp)),
                                _flap_rows(comp, mid))
         beams.append(beam), names.append(comp.name), beam_strips.append(aero)
+    _check_topology(aircraft)
     probe = FreeFlexibleStructure(RigidBody(0.0), tuple(beams))
     m_beams = generalized_mass_matrix(probe, np.zeros(probe.n_strains))[:6, :6]
     m_rigid = model.structure.inertia.m0[:6, :6] - m_beams
