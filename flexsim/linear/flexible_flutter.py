@@ -28,6 +28,7 @@ from scipy.optimize import brentq
 from flexsim.atmosphere import isa
 from flexsim.model.aircraft_model import check_model
 from flexsim.model.beam_aero import AeroelasticSystem, TunnelFlow, aeroelastic_system, static_stiffness
+from flexsim.linear.flexible_unsteady import free_aircraft_unsteady
 from flexsim.model.terms import NonlinearBeams
 from flexsim.structure.free_flexible import _cross
 from flexsim.structure.strain_beam import BeamKinematics, BeamProperties, mass_points
@@ -35,7 +36,7 @@ from flexsim.trimming.flexible_trim import FlexibleTrimError, FlexibleTrimPoint,
 from flexsim.trimming.manoeuvre import SteadyManoeuvre
 
 __all__ = ["SteadyInertialLoad", "FlexibleFlutterPoint", "wing_system", "wing_stability", "flexible_flutter", "NEGLECTED",
-           "MAX_FREQUENCY_RAD_S"]
+           "MAX_FREQUENCY_RAD_S", "FREE_AIRCRAFT", "STRUCTURES"]
 
 #: The approximation every result of this module carries.
 NEGLECTED = ("wing clamped at the trimmed root: coupling with the rigid-body motion and the other wing neglected "
@@ -80,8 +81,8 @@ def wing_system(model, point: FlexibleTrimPoint, component: str = "right_wing",
     beam = flex.structure.beams[i]
     eps = point.strains[flex.structure.strain_slices()[i]]
     aero = flex.beam_strips[i].aero
-    if inflow_states != aero.inflow_states:
-        aero = replace(aero, inflow_states=inflow_states)
+    if inflow_states != aero.inflow_states or flex.compressibility_beta != aero.compressibility_beta:
+        aero = replace(aero, inflow_states=inflow_states, compressibility_beta=flex.compressibility_beta)
     air = -(point.velocity_m_s + np.cross(point.rate_rad_s, beam.root_position_m))
     speed = float(np.linalg.norm(air))
     flow = TunnelFlow(speed, point.density_kg_m3, air / speed)
@@ -163,9 +164,18 @@ class FlexibleFlutterPoint:
         return float(self.trim.tip_deflection_fraction[i])
 
 
+#: The approximation of a result of the free aircraft (``structure="free-aircraft"``).
+FREE_AIRCRAFT = ("free aircraft with Peters' strips on every lifting strip about the nonlinear trim "
+                 "(flexsim.linear.flexible_unsteady); elastic roots only (over half their kinetic energy in the strains)")
+
+#: The structures a flutter search can linearise.
+STRUCTURES = ("clamped-wing", "free-aircraft")
+
+
 def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[float, float], *,
                      speed_step_m_s: float = 1.0, component: str = "right_wing", elements_per_beam: int | None = None,
-                     inflow_states: int | None = None, tol_m_s: float = 1e-3) -> FlexibleFlutterPoint:
+                     inflow_states: int | None = None, tol_m_s: float = 1e-3,
+                     structure: str = "clamped-wing") -> FlexibleFlutterPoint:
     """Lowest flutter speed of a very flexible aircraft's wing about its nonlinear trim in ``manoeuvre``.
 
     Parameters
@@ -188,11 +198,18 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
         Peters inflow states per strip; default the model's ``terms.aero.n_inflow``.
     tol_m_s : float
         Brent tolerance [m/s].
+    structure : {"clamped-wing", "free-aircraft"}
+        What is linearised about each trim: the wing clamped at its trimmed root (:func:`wing_stability`, default) or
+        the whole free aircraft with its six rigid-body degrees of freedom and Peters' strips on every lifting strip
+        (:meth:`flexsim.linear.flexible_unsteady.UnsteadyFreeAircraft.elastic_stability`: its elastic roots).
 
     Returns
     -------
     FlexibleFlutterPoint
     """
+    if structure not in STRUCTURES:
+        raise ValueError(f"structure = {structure!r}: must be one of {', '.join(STRUCTURES)}")
+    free = structure == "free-aircraft"
     check_model(model, nonlinear=True)
     beams = model.terms.nonlinear_beams or NonlinearBeams()
     if elements_per_beam is not None:
@@ -224,8 +241,11 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
             converged[:] = [point]
             if point.max_strip_alpha_deg > limit:  # refused with trim_flexible's own error (from the converged trim)
                 trim_flexible(model, man, elements_per_beam=beams.elements_per_beam, guess=point)
-            # in a turn both wings (inner and outer) are analysed and the less stable one kept
-            growth, freq, wing = max((*wing_stability(model, point, w, inflow_states)[:2], w) for w in wings)
+            if free:
+                growth, freq = free_aircraft_unsteady(model, point, inflow_states).elastic_stability()[:2]
+                wing = ""
+            else:  # in a turn both wings (inner and outer) are analysed and the less stable one kept
+                growth, freq, wing = max((*wing_stability(model, point, w, inflow_states)[:2], w) for w in wings)
             evaluated[speed] = (point, growth, freq)
             critical[speed] = wing
         return evaluated[speed]
@@ -255,8 +275,8 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
             found = (speed_f, freq_f, point_f)
             break
         previous = (point, g, speed)
-    notes = [NEGLECTED]
-    if turn:
+    notes = [FREE_AIRCRAFT if free else NEGLECTED]
+    if turn and not free:
         notes.append(f"turn of fixed radius {manoeuvre.turn_radius_m:g} m: the bank changes with the scanned speed "
                      "(tan phi ~ V^2/(g R)); both wings analysed, the result is the less stable wing's")
     if skipped:

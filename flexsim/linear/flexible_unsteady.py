@@ -65,6 +65,37 @@ class UnsteadyFreeAircraft:
         """Eigenvalues of the state matrix [1/s]."""
         return np.linalg.eigvals(self.state_matrix)
 
+    def elastic_stability(self, max_frequency_rad_s: float = 200.0) -> tuple[float, float, NDArray]:
+        """The least stable elastic oscillatory root: the largest damping ratio ``Re λ / |λ|`` over the complex roots
+        whose eigenvector's kinetic energy ``½ δVᴴ M δV`` lies mostly (over half) in the strain rates, up to
+        ``max_frequency_rad_s`` (the beams' unconverged band above; roots neutral to 1e-6 skipped, as in the
+        clamped wing's :func:`~flexsim.linear.flexible_flutter.wing_stability`). An energy share, not a share of the
+        state vector, so that the inflow states' units (m/s) and the strains' (1/m) do not decide.
+
+        Returns
+        -------
+        growth : float
+            [-] (> 0: unstable); −1 when there is no elastic oscillatory root.
+        frequency_rad_s : float
+        roots : ndarray of complex
+            All eigenvalues [1/s].
+        """
+        lam, vec = np.linalg.eig(self.state_matrix)
+        n = self.n_strains
+        start = 4 + n
+        vel = vec[start:start + 6 + n]
+        mass = generalized_mass_matrix(self.point.aircraft.structure, self.point.strains)
+        total = np.einsum("ik,ij,jk->k", vel.conj(), mass, vel).real
+        elastic = np.einsum("ik,ij,jk->k", vel[6:].conj(), mass[6:, 6:], vel[6:]).real
+        share = elastic / np.maximum(total, 1e-300)
+        ratio = lam.real / np.maximum(np.abs(lam), 1e-300)
+        keep = ((np.abs(lam.imag) > 1e-6 * np.abs(lam)) & (np.abs(ratio) > 1e-6) & (share > 0.5)
+                & (np.abs(lam.imag) <= max_frequency_rad_s))
+        if not np.any(keep):
+            return -1.0, 0.0, lam
+        k = int(np.argmax(np.where(keep, ratio, -np.inf)))
+        return float(ratio[k]), float(abs(lam[k].imag)), lam
+
     def spectrum(self):
         """The roots with a structural part, named as the quasi-steady ones
         (:class:`~flexsim.linear.flexible_stability.FreeAircraftSpectrum` over the eigenvectors' rows
@@ -86,7 +117,8 @@ def _strips(flex, structure, eps: NDArray, v: NDArray, omega: NDArray, u: NDArra
     """Every strip's frame, position, point and rotation Jacobians over V, semichord, axis, effective density,
     incidence and weight (flexible beams at their quadrature points, then the rigid strips)."""
     nv = structure.n_velocities
-    parts = {k: [] for k in ("rot", "pos", "jl", "ja", "b", "a", "rho", "inc", "w")}
+    beta = flex.compressibility_beta
+    parts = {k: [] for k in ("rot", "pos", "jl", "ja", "b", "a", "rho", "rho_a", "inc", "w")}
     for s, kin, (b, a, scale, incidence, flap, _cd0) in zip(structure.strain_slices(), flex.kinematics(eps),
                                                              flex.strip_constants):
         k = kin.positions.shape[0]
@@ -97,7 +129,8 @@ def _strips(flex, structure, eps: NDArray, v: NDArray, omega: NDArray, u: NDArra
         ja[:, :, 3:6] = np.eye(3)
         ja[:, :, 6 + s.start:6 + s.stop] = kin.jac_rotation
         for key, value in (("rot", kin.rotations), ("pos", kin.positions), ("jl", jl), ("ja", ja), ("b", b), ("a", a),
-                           ("rho", rho * np.broadcast_to(scale, b.shape)), ("inc", incidence + flap @ u),
+                           ("rho", rho * np.broadcast_to(scale, b.shape) / beta),
+                           ("rho_a", rho * np.broadcast_to(scale, b.shape)), ("inc", incidence + flap @ u),
                            ("w", kin.points_weight)):
             parts[key].append(np.asarray(value, float))
     r = flex.rigid_strips
@@ -108,7 +141,8 @@ def _strips(flex, structure, eps: NDArray, v: NDArray, omega: NDArray, u: NDArra
         jl[:, :, 3:6] = -skew(r.position)
         ja[:, :, 3:6] = np.eye(3)
         for key, value in (("rot", r.rotations), ("pos", r.position), ("jl", jl), ("ja", ja), ("b", r.b), ("a", r.a),
-                           ("rho", rho * r.scale), ("inc", r.incidence + r.flap @ u), ("w", r.width)):
+                           ("rho", rho * r.scale / beta), ("rho_a", rho * r.scale), ("inc", r.incidence + r.flap @ u),
+                           ("w", r.width)):
             parts[key].append(np.asarray(value, float))
     out = {key: np.concatenate(value) for key, value in parts.items()}
     lifting = out["rho"] > 0.0  # a beam without lift (a fuselage) has no strips
@@ -165,7 +199,7 @@ def free_aircraft_unsteady(model, point: FlexibleTrimPoint, inflow_states: int =
     w0v = -pn - (a * b)[:, None] * a1
     w1v = b[:, None] * a1
     suc_lam = -2.0 * np.pi * rho * b * (2.0 * w0s - u0 * s["inc"])        # ∂S/∂λ0
-    ma, ca, g0 = peters_strip_terms(w, pn, pc, a1, w0v, w1v, rn, rn1, b, a, rho, u0, suc_lam)
+    ma, ca, g0 = peters_strip_terms(w, pn, pc, a1, w0v, w1v, rn, rn1, b, a, rho, u0, suc_lam, s["rho_a"])
     p = b.size
     size = npos + nv + p * nl
     out = np.zeros((size, size))

@@ -63,12 +63,17 @@ class WingAero:
         ``lift_slope / 2π`` — as if the strip's air density were scaled — so that the strip keeps thin-airfoil
         theory's centre of pressure and unsteady behaviour (the usual strip-theory correction, e.g. Riso & Cesnik,
         J. Aircraft 2023, doi 10.2514/1.C036869).
+    compressibility_beta : float
+        Prandtl-Glauert's ``β = √(1 − M²)`` in (0, 1] (Glauert 1928; default 1: incompressible): the circulatory
+        airloads (lift, moment, suction and the wake's) scale by ``1/β`` further, the apparent mass does not (the linear
+        strips' correction, :func:`flexsim._kernels.strips.circulatory`).
     """
 
     chord_m: ArrayLike
     axis_fraction: ArrayLike = 0.5
     inflow_states: int = 6
     lift_slope_per_rad: ArrayLike = 2.0 * np.pi
+    compressibility_beta: float = 1.0
 
     def __post_init__(self) -> None:
         chord = np.atleast_1d(np.array(self.chord_m, dtype=float))
@@ -86,6 +91,10 @@ class WingAero:
             raise ValueError(f"lift_slope_per_rad = {self.lift_slope_per_rad!r}: must be numbers in [0, 4π] "
                              "[1/rad]")
         object.__setattr__(self, "lift_slope_per_rad", frozen_array(slope))
+        beta = self.compressibility_beta
+        if isinstance(beta, bool) or not isinstance(beta, (int, float, np.floating)) or not 0.0 < beta <= 1.0:
+            raise ValueError(f"compressibility_beta = {beta!r}: must be a number in (0, 1] (sqrt(1 - M^2))")
+        object.__setattr__(self, "compressibility_beta", float(beta))
 
     def strips(self, beam: BeamProperties, kin: BeamKinematics) -> tuple[NDArray, NDArray]:
         """Semichord ``b`` [m] and axis position ``a`` [semichords aft of mid-chord] at the quadrature points."""
@@ -98,8 +107,10 @@ class WingAero:
         return 0.5 * _at_points(self.chord_m, n, e), 2.0 * _at_points(self.axis_fraction, n, e) - 1.0
 
     def density_scale(self, beam: BeamProperties, kin: BeamKinematics) -> NDArray:
-        """``lift_slope / 2π`` at the quadrature points (the factor on each strip's airloads)."""
-        return _at_points(self.lift_slope_per_rad, beam.n_elements, kin.points_element) / (2.0 * np.pi)
+        """``lift_slope / (2π β)`` at the quadrature points (the factor on each strip's circulatory airloads; the
+        apparent mass's is ``lift_slope / 2π``)."""
+        return (_at_points(self.lift_slope_per_rad, beam.n_elements, kin.points_element)
+                / (2.0 * np.pi * self.compressibility_beta))
 
 
 def _at_points(values: NDArray, n: int, element: NDArray) -> NDArray:
@@ -151,7 +162,8 @@ def _section_matrices():
 
 def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDArray, rho: NDArray | float, *,
                   rate_e1: NDArray | float = 0.0, incidence: NDArray | float = 0.0,
-                  cd0: NDArray | float = 0.0, induced: NDArray | float = 0.0) -> tuple[NDArray, NDArray]:
+                  cd0: NDArray | float = 0.0, induced: NDArray | float = 0.0,
+                  lift_scale: NDArray | float = 1.0) -> tuple[NDArray, NDArray]:
     """Quasi-steady strip loads per unit span (inflow zero) of sections in a flow (module docstring).
 
     Peters-Johnson airloads of a rigid section (reference §1.3-1.4, ``{L} = πρ b u0 [B]{w}`` with the inflow
@@ -170,7 +182,7 @@ def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDAr
     air_velocity : ndarray, shape (P, 3) or (3,)
         Air velocity relative to the section's reference axis [m/s], in the frames' components.
     rho : float or ndarray, shape (P,)
-        Air density [kg/m³] (times ``lift_slope / 2π`` for a corrected lift slope, :meth:`WingAero.density_scale`).
+        Air density [kg/m³].
     rate_e1 : float or ndarray, shape (P,)
         Section angular velocity about ``e1`` [rad/s] (pitch rate: ``w1 = b Ω1``, ``w0`` at mid-chord ``−a b Ω1``).
     incidence : float or ndarray, shape (P,)
@@ -178,9 +190,13 @@ def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDAr
     cd0 : float or ndarray, shape (P,)
         Profile drag coefficient [-].
     induced : float or ndarray, shape (P,)
-        ``1 − Cl_α/2π`` of a strip whose lift slope is a finite wing's: its induced drag ``L α_e (1 − Cl_α/2π)``
+        ``(1 − Cl_α0/2π)/β`` of a strip whose lift slope is a finite wing's: its induced drag ``L α_e (1 − Cl_α0/2π)/β``
         along the in-section air velocity (``α_e = w0/u0``), the linear model's (:mod:`flexsim._kernels.strips`,
-        ``circulatory``); 0 (default) for none.
+        ``circulatory``, physical formulation); 0 (default) for none.
+    lift_scale : float or ndarray, shape (P,)
+        ``Cl_α / 2π`` of the circulatory loads (lift, moment and suction): a corrected lift slope
+        (:meth:`WingAero.density_scale`) over the compressibility factor ``β`` (Prandtl-Glauert, Glauert 1928); the
+        profile drag is not scaled. Default 1.
 
     Returns
     -------
@@ -193,8 +209,8 @@ def section_loads(rotations: NDArray, b: NDArray, a: NDArray, air_velocity: NDAr
     force, moment = np.empty((p, 3)), np.empty((p, 3))
     _section_loads_kernel(_strip_array(rotations, (p, 3, 3)), _strip_array(b, (p,)), _strip_array(a, (p,)),
                           _strip_array(air_velocity, (p, 3)), _strip_array(rho, (p,)), _strip_array(rate_e1, (p,)),
-                          _strip_array(incidence, (p,)), _strip_array(cd0, (p,)), _strip_array(induced, (p,)), bm,
-                          force, moment)
+                          _strip_array(incidence, (p,)), _strip_array(cd0, (p,)), _strip_array(induced, (p,)),
+                          _strip_array(lift_scale, (p,)), bm, force, moment)
     return force, moment
 
 
@@ -209,11 +225,12 @@ def _strip_array(value, shape: tuple) -> NDArray:
 
 
 @njit(cache=True, nogil=True)
-def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, induced, bm, force, moment):
+def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, induced, lift_scale, bm, force, moment):
     """The loads of :func:`section_loads` strip by strip (compiled; arguments broadcast to P strips).
 
-    ``u0 = −e2·V_a``, ``w_n = e3·V_a``, ``w1 = b Ω1``, ``w0 = w_n + u0 α_i − a w1``; ``{L} = πρ b u0 [B]{w}``;
-    lift ``L0`` along e3, moment ``a b L0 − b L1`` along e1, suction ``2πρ b w0 (w0 − u0 α_i)`` along e2, profile
+    ``u0 = −e2·V_a``, ``w_n = e3·V_a``, ``w1 = b Ω1``, ``w0 = w_n + u0 α_i − a w1``; ``{L} = πρ s b u0 [B]{w}``
+    (``s`` the lift scale); lift ``L0`` along e3, moment ``a b L0 − b L1`` along e1, suction
+    ``2πρ s b w0 (w0 − u0 α_i)`` along e2, profile
     drag ``ρ b cd0 |V_in| V_in`` and induced drag ``L0 (w0/u0) (1 − Cl_α/2π)`` along the in-section air velocity
     ``V_in = w_n e3 − u0 e2``. The incidence ``α_i``
     (rigging or a flap's equivalent angle) changes the circulation, not the direction of the resultant: a steady
@@ -226,11 +243,11 @@ def _section_loads_kernel(rotations, b, a, va, rho, rate, incidence, cd0, induce
         wn = r[0, 2] * va[k, 0] + r[1, 2] * va[k, 1] + r[2, 2] * va[k, 2]
         w1 = b[k] * rate[k]
         w0 = wn + u0 * incidence[k] - a[k] * w1
-        scale = np.pi * rho[k] * b[k] * u0
+        scale = np.pi * rho[k] * lift_scale[k] * b[k] * u0
         gen0 = scale * (bm[0, 0] * w0 + bm[0, 1] * w1)
         gen1 = scale * (bm[1, 0] * w0 + bm[1, 1] * w1)
         mom = a[k] * b[k] * gen0 - b[k] * gen1
-        suction = 2.0 * np.pi * rho[k] * b[k] * w0 * (w0 - u0 * incidence[k])
+        suction = 2.0 * np.pi * rho[k] * lift_scale[k] * b[k] * w0 * (w0 - u0 * incidence[k])
         drag = 0.0
         if cd0[k] != 0.0 or induced[k] != 0.0:
             speed = np.sqrt(wn * wn + u0 * u0)
@@ -248,7 +265,7 @@ def _steady_section_loads(kin, b, a, flow, scale=1.0):
 
     ``scale``: ``lift_slope / 2π`` per strip, shape (P,) or scalar (:meth:`WingAero.density_scale`).
     """
-    return section_loads(kin.rotations, b, a, flow.velocity_m_s, flow.density_kg_m3 * scale)
+    return section_loads(kin.rotations, b, a, flow.velocity_m_s, flow.density_kg_m3, lift_scale=scale)
 
 
 @dataclass(frozen=True)
@@ -309,14 +326,16 @@ class AeroelasticSystem:
 
 def peters_strip_terms(weight: NDArray, pn: NDArray, pc: NDArray, a1: NDArray, w0v: NDArray, w1v: NDArray,
                        rate0: NDArray, rate1: NDArray, b: NDArray, a: NDArray, rho: NDArray, u0: NDArray,
-                       suction_per_lambda0: NDArray) -> tuple[NDArray, NDArray, NDArray]:
+                       suction_per_lambda0: NDArray, rho_apparent: NDArray | None = None
+                       ) -> tuple[NDArray, NDArray, NDArray]:
     """The apparent-mass and inflow parts of Peters' strip loads (module docstring) in generalized coordinates.
 
     Per strip ``p`` (weight ``w``), the rows over the generalized velocities (shape (P, n)): ``pn = e3ᵀL`` and
     ``pc = e2ᵀL`` (the strip point's velocity normal and chordwise), ``a1 = e1ᵀA`` (its section's rate about the
     span), ``δw0 = w0v``, ``δw1 = w1v`` per velocity, and the velocity terms ``rate0``, ``rate1`` of ``ẇ0``, ``ẇ1``.
     ``{L} = πρ b² [M]{ẇ}`` and ``−πρ b u0 {S} λ0`` are resolved as lift along ``e3`` and moment ``a b L0 − b L1``
-    along ``e1``; the suction's change per ``λ0`` is ``suction_per_lambda0`` along ``e2``.
+    along ``e1``; the suction's change per ``λ0`` is ``suction_per_lambda0`` along ``e2``. ``rho`` (P,) is the
+    circulatory loads' density (times the lift scale), ``rho_apparent`` (P,) the apparent mass's (default ``rho``).
 
     Returns
     -------
@@ -326,7 +345,7 @@ def peters_strip_terms(weight: NDArray, pn: NDArray, pc: NDArray, a1: NDArray, w
         ``δQ`` per strip ``λ0``.
     """
     mm, _, sv = _section_matrices()
-    am = np.pi * (rho * b**2)[:, None, None]
+    am = np.pi * ((rho if rho_apparent is None else rho_apparent) * b**2)[:, None, None]
     acc = am * np.einsum("ij,pjk->pik", mm, np.stack([w0v, w1v], 1))
     rate = am * np.einsum("ij,pjk->pik", mm, np.stack([rate0, rate1], 1))
     lam = -np.pi * (rho * b * u0)[:, None] * sv[None, :]
@@ -393,7 +412,8 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
     w1v = b[:, None] * a1
     suc = 4.0 * np.pi * rho * b * w0s  # δS = suc (δw0 − λ0)
     # apparent mass (δẇ = [w0v, w1v] δq̈ + [rn, 0] δq̇) and inflow
-    ma, ca, g0 = peters_strip_terms(w, pn, pc, a1, w0v, w1v, rn, np.zeros_like(rn), b, a, rho, u0, -suc)
+    ma, ca, g0 = peters_strip_terms(w, pn, pc, a1, w0v, w1v, rn, np.zeros_like(rn), b, a, rho, u0, -suc,
+                                    rho * aero.compressibility_beta)
     # the quasi-steady velocity terms πρ{b δu0 [B]{w_s} + b u0 [B]{δw}}, resolved the same way, and the suction's
     # change with δw0
     vel = np.pi * rho[:, None, None] * ((b * w0s)[:, None, None] * bm[:, 0][None, :, None] * pc[:, None, :]

@@ -41,6 +41,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
+from flexsim._kernels.strips import compressibility_factor
 from flexsim.model.aircraft_model import check_model
 from flexsim.model.beam_aero import WingAero, section_loads
 from flexsim.model.terms import NonlinearBeams
@@ -124,6 +125,14 @@ class FlexibleAircraft:
     terms : dict
         The terms of the model it was built from, with the nonlinear beams it uses
         (:meth:`flexsim.model.terms.Terms.record`; ``nonlinear_beams.elements_per_beam`` the element count).
+    prandtl_glauert : bool
+        Whether the strips' circulatory lift slope carries the Prandtl-Glauert factor ``1/β`` (the model's
+        compressibility correction, :class:`flexsim.model.coupling.AeroOptions`).
+    mach : float
+        The Mach number at which ``β`` is held (as the density is held at the trim's altitude): the trim's
+        (:meth:`held_at_mach`), or the model's frozen ``terms.compressibility_mach``; 0 before a trim.
+    mach_frozen : bool
+        True when ``mach`` is the model's ``terms.compressibility_mach`` (a trim does not change it).
     """
 
     name: str
@@ -133,6 +142,22 @@ class FlexibleAircraft:
     rigid_strips: _RigidStrips
     engine_position_m: NDArray
     terms: dict = field(default_factory=dict)
+    prandtl_glauert: bool = False
+    mach: float = 0.0
+    mach_frozen: bool = False
+
+    @property
+    def compressibility_beta(self) -> float:
+        """``β = √(1 − min(M, 0.95)²)`` at :attr:`mach` with the Prandtl-Glauert correction, else 1
+        (:func:`flexsim._kernels.strips.compressibility_factor`, the linear strips' own)."""
+        return float(compressibility_factor(self.prandtl_glauert, float(self.mach)))
+
+    def held_at_mach(self, mach: float) -> "FlexibleAircraft":
+        """This aircraft with its compressibility factor held at ``mach`` (itself when the factor does not depend on
+        the Mach number: no correction, or a frozen Mach number)."""
+        if not self.prandtl_glauert or self.mach_frozen or float(mach) == self.mach:
+            return self
+        return replace(self, mach=float(mach))
 
     @property
     def n_strains(self) -> int:
@@ -272,8 +297,8 @@ class FlexibleAircraft:
 
     @cached_property
     def strip_constants(self) -> tuple:
-        """Per beam, its strips' constants at the quadrature points: ``b``, ``a``, ``lift_slope/2π``, incidence,
-        flap rows (P, 4) and cd0 (they depend on the element of each point only, not on the strains)."""
+        """Per beam, its strips' constants at the quadrature points: ``b``, ``a``, ``lift_slope/2π`` (incompressible),
+        incidence, flap rows (P, 4) and cd0 (they depend on the element of each point only, not on the strains)."""
         out = []
         for beam, strips in zip(self.structure.beams, self.beam_strips):
             kin = beam_kinematics(beam, np.zeros(beam.n_coordinates))
@@ -288,6 +313,7 @@ class FlexibleAircraft:
         nv = self.structure.n_velocities
         out = np.zeros(nv)
         w_air = np.zeros(3) if wind is None else np.asarray(wind, float)
+        beta = self.compressibility_beta
         for s, kin, (b, a, scale, incidence, flap, cd0) in zip(self.structure.strain_slices(), kinematics,
                                                               self.strip_constants):
             p = kin.positions
@@ -296,8 +322,8 @@ class FlexibleAircraft:
             if epsdot is not None:
                 va = va - kin.jac_position @ epsdot[s]
                 rate = rate + np.einsum("pi,pi->p", kin.rotations[:, :, 0], kin.jac_rotation @ epsdot[s])
-            force, moment = section_loads(kin.rotations, b, a, va, rho * scale, rate_e1=rate,
-                                          incidence=incidence + flap @ u, cd0=cd0, induced=1.0 - scale)
+            force, moment = section_loads(kin.rotations, b, a, va, rho, rate_e1=rate, incidence=incidence + flap @ u,
+                                          cd0=cd0, induced=(1.0 - scale) / beta, lift_scale=scale / beta)
             wt = kin.points_weight
             f, m = wt[:, None] * force, wt[:, None] * moment
             out[:3] += f.sum(0)
@@ -307,9 +333,9 @@ class FlexibleAircraft:
         r = self.rigid_strips
         if r.b.size:
             va = w_air - (v + _cross(omega, r.position))
-            force, moment = section_loads(r.rotations, r.b, r.a, va, rho * r.scale,
-                                          rate_e1=r.rotations[:, :, 0] @ omega, incidence=r.incidence + r.flap @ u,
-                                          cd0=r.cd0, induced=1.0 - r.scale)
+            force, moment = section_loads(r.rotations, r.b, r.a, va, rho, rate_e1=r.rotations[:, :, 0] @ omega,
+                                          incidence=r.incidence + r.flap @ u, cd0=r.cd0,
+                                          induced=(1.0 - r.scale) / beta, lift_scale=r.scale / beta)
             f, m = r.width[:, None] * force, r.width[:, None] * moment
             out[:3] += f.sum(0)
             out[3:6] += (_cross(r.position, f) + m).sum(0)
@@ -507,6 +533,9 @@ def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAi
                          scale=strips.lift_slope0[r] / (2.0 * np.pi), cd0=strips.cd0[r],
                          incidence=normal * strips.incidence_rad[r], flap=flap)
     engines = np.array([e.position_m for e in aircraft.engines]).reshape(-1, 3)
+    frozen = model.terms.compressibility_mach
     return FlexibleAircraft(name=aircraft.name, structure=FreeFlexibleStructure(body, tuple(beams)),
                             beam_components=tuple(names), beam_strips=tuple(beam_strips), rigid_strips=rigid,
-                            engine_position_m=engines, terms=terms)
+                            engine_position_m=engines, terms=terms,
+                            prandtl_glauert=model.aero.compressibility == "prandtl-glauert",
+                            mach=0.0 if frozen is None else float(frozen), mach_frozen=frozen is not None)

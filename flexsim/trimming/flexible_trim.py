@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import root
 
-from flexsim.atmosphere import isa_density
+from flexsim.atmosphere import isa, isa_density
 from flexsim.errors import FlexsimError
 from flexsim.model.flexible_aircraft import FlexibleAircraft, flexible_aircraft
 from flexsim.trimming.flexible_turn import euler_quaternion, trim_turn
@@ -210,6 +210,8 @@ def trim_flexible(model, manoeuvre: SteadyManoeuvre, *, elements_per_beam: int |
         raise ValueError(f"manoeuvre.turn_radius_m = {manoeuvre.turn_radius_m!r} with climb_angle_rad = None: a "
                          "gliding turn is not available with the nonlinear structure (give the flight-path angle)")
     flex = guess.aircraft if guess is not None else flexible_aircraft(model, elements_per_beam)
+    # the strips' compressibility factor held at this trim's Mach number, as the density at its altitude
+    flex = flex.held_at_mach(manoeuvre.speed_m_s / float(isa(manoeuvre.altitude_m).speed_of_sound))
     variant_rho = model.variant.air_density_kg_m3
     rho = float(variant_rho) if variant_rho is not None else float(isa_density(manoeuvre.altitude_m))
     g = float(model.terms.gravity_m_s2)
