@@ -163,6 +163,9 @@ def _flutter(args: argparse.Namespace) -> int:
     if args.nonlinear_beams is not None or args.load_factor is not None:
         _check_vg_options(args)
         return nonlinear_flutter(args, vg_paths)
+    if args.free_aircraft:
+        raise CliError("--free-aircraft: applies to --nonlinear-beams (the linear model's flutter is always the free "
+                       "aircraft's)")
     keys = _model_keys(args.models)
     if args.wind_tunnel:
         return _wind_tunnel(args, keys)
@@ -601,6 +604,10 @@ def add_flutter_commands(sub: argparse._SubParsersAction, add_aircraft) -> None:
     p_fl.add_argument("--load-factor", type=float, default=None, metavar="N",
                       help="steady symmetric pull-up at load factor N (with --nonlinear-beams) [1: level]")
     p_fl.add_argument("--nonlinear-beams", type=int, nargs="?", const=8, default=None, metavar="N", help=NONLINEAR_HELP)
+    p_fl.add_argument("--free-aircraft", action="store_true",
+                      help="with --nonlinear-beams: the flutter of the whole free aircraft (six rigid-body degrees of "
+                           "freedom, Peters strips on every lifting strip) about each nonlinear trim, instead of the "
+                           "wing clamped at its trimmed root")
     p_fl.add_argument("--coordinated", action="store_true",
                       help="with --turn-radius-m: coordinated turn (zero sideslip, heading free)")
     p_fl.add_argument("--vg", default=None, metavar="FILE.png",

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -137,6 +138,11 @@ def nonlinear_flutter(args: argparse.Namespace, vg_paths) -> int:
     if radius != math.inf and not abs(radius) >= 100.0:
         raise CliError(f"--turn-radius-m = {radius:g}: must be at least 100 m in magnitude")
     beams = beams_option(args.nonlinear_beams)
+    if args.free_aircraft:
+        if args.vg is not None:
+            raise CliError("--vg with --free-aircraft: the V-g diagram of the nonlinear beams tracks the wing clamped at "
+                           "its trimmed root; leave out one of them")
+        beams = replace(beams, stability="free-aircraft")
     aircraft = load_aircraft(args.aircraft)
     altitudes = args.altitudes if args.altitudes is not None else flutter_altitudes(aircraft)[0]
     check_altitudes(altitudes)
@@ -174,7 +180,8 @@ def nonlinear_flutter(args: argparse.Namespace, vg_paths) -> int:
     if args.json:
         print(json_text({"aircraft": aircraft.name, "rows": rows, "vg": vg_lines}))
         return 0
-    print(f"Flutter of {aircraft.name}'s wing about the nonlinear trim (geometrically nonlinear beams, "
+    whose = "the free aircraft" if args.free_aircraft else f"{aircraft.name}'s wing"
+    print(f"Flutter of {whose} about the nonlinear trim (geometrically nonlinear beams, "
           f"{beams.elements_per_beam} elements per flexible component; Peters finite-state strips), "
           + (f"load factor {n:g}" if radius == math.inf else
              f"{'coordinated ' if args.coordinated else ''}turn R = {radius:g} m (the less stable wing)"))

@@ -29,7 +29,7 @@ from flexsim.atmosphere import isa
 from flexsim.model.aircraft_model import check_model
 from flexsim.model.beam_aero import AeroelasticSystem, TunnelFlow, aeroelastic_system, static_stiffness
 from flexsim.linear.flexible_unsteady import free_aircraft_unsteady
-from flexsim.model.terms import NonlinearBeams
+from flexsim.model.terms import STABILITY_STRUCTURES, NonlinearBeams
 from flexsim.structure.free_flexible import _cross
 from flexsim.structure.strain_beam import BeamKinematics, BeamProperties, mass_points
 from flexsim.trimming.flexible_trim import FlexibleTrimError, FlexibleTrimPoint, trim_flexible
@@ -169,13 +169,13 @@ FREE_AIRCRAFT = ("free aircraft with Peters' strips on every lifting strip about
                  "(flexsim.linear.flexible_unsteady); elastic roots only (over half their kinetic energy in the strains)")
 
 #: The structures a flutter search can linearise.
-STRUCTURES = ("clamped-wing", "free-aircraft")
+STRUCTURES = STABILITY_STRUCTURES
 
 
 def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[float, float], *,
                      speed_step_m_s: float = 1.0, component: str = "right_wing", elements_per_beam: int | None = None,
                      inflow_states: int | None = None, tol_m_s: float = 1e-3,
-                     structure: str = "clamped-wing") -> FlexibleFlutterPoint:
+                     structure: str | None = None) -> FlexibleFlutterPoint:
     """Lowest flutter speed of a very flexible aircraft's wing about its nonlinear trim in ``manoeuvre``.
 
     Parameters
@@ -198,22 +198,25 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
         Peters inflow states per strip; default the model's ``terms.aero.n_inflow``.
     tol_m_s : float
         Brent tolerance [m/s].
-    structure : {"clamped-wing", "free-aircraft"}
-        What is linearised about each trim: the wing clamped at its trimmed root (:func:`wing_stability`, default) or
-        the whole free aircraft with its six rigid-body degrees of freedom and Peters' strips on every lifting strip
-        (:meth:`flexsim.linear.flexible_unsteady.UnsteadyFreeAircraft.elastic_stability`: its elastic roots).
+    structure : {"clamped-wing", "free-aircraft"}, optional
+        What is linearised about each trim: the wing clamped at its trimmed root (:func:`wing_stability`) or the whole
+        free aircraft with its six rigid-body degrees of freedom and Peters' strips on every lifting strip
+        (:meth:`flexsim.linear.flexible_unsteady.UnsteadyFreeAircraft.elastic_stability`: its elastic roots); default
+        the model's ``terms.nonlinear_beams.stability`` ("clamped-wing" for a model of the linear structure).
 
     Returns
     -------
     FlexibleFlutterPoint
     """
-    if structure not in STRUCTURES:
+    if structure is not None and structure not in STRUCTURES:
         raise ValueError(f"structure = {structure!r}: must be one of {', '.join(STRUCTURES)}")
-    free = structure == "free-aircraft"
     check_model(model, nonlinear=True)
     beams = model.terms.nonlinear_beams or NonlinearBeams()
     if elements_per_beam is not None:
-        beams = NonlinearBeams(elements_per_beam)
+        beams = replace(beams, elements_per_beam=elements_per_beam)
+    if structure is not None:
+        beams = replace(beams, stability=structure)
+    free = beams.stability == "free-aircraft"
     if model.aero is None:
         raise ValueError("the model has no aerodynamics (Terms(aero=None)): a flutter search needs its strips")
     if inflow_states is None:

@@ -101,8 +101,13 @@ def flexible_vg(model, manoeuvre: SteadyManoeuvre, speeds_m_s: Sequence[float], 
         raise ValueError(f"speeds_m_s = {speeds_m_s!r}: must be at least 2 increasing true airspeeds > 0 [m/s]")
     if not (np.isfinite(max_frequency_rad_s) and max_frequency_rad_s > 0):
         raise ValueError(f"max_frequency_rad_s = {max_frequency_rad_s!r}: must be > 0 [rad/s]")
-    beams = NonlinearBeams(elements_per_beam) if elements_per_beam is not None else (
-        model.terms.nonlinear_beams or NonlinearBeams())
+    beams = model.terms.nonlinear_beams or NonlinearBeams()
+    if beams.stability != "clamped-wing":
+        raise ValueError(f"nonlinear_beams.stability = {beams.stability!r}: the V-g diagram of the nonlinear beams "
+                         "tracks the wing clamped at its trimmed root; the free aircraft's flutter is "
+                         "fs.flutter(model, ...) (or stability='clamped-wing' for this diagram)")
+    if elements_per_beam is not None:
+        beams = replace(beams, elements_per_beam=elements_per_beam)
     inflow = model.terms.aero.n_inflow if inflow_states is None else inflow_states
     terms = replace(model.terms, nonlinear_beams=beams).record()
 

@@ -24,7 +24,10 @@ Control surfaces act through the thin-airfoil lift effectiveness of a plain flap
 the linear model's flap weights ``[φ_h/π, 2 sin φ_h/π, …]``, :mod:`flexsim.model.strips`); the flap's own
 zero-lift moment is neglected. Incidences and deflections are streamwise angles (the linear model's strips are
 streamwise); on a swept component they enter the section normal to the beam as ``α / cos Λ``, which gives the
-normal velocity ``U α`` of the streamwise strip. Thrust acts at the engines along body x. The generalized forces are the virtual
+normal velocity ``U α`` of the streamwise strip. With the model's Prandtl-Glauert correction the circulatory loads
+carry ``1/β``, ``β = √(1 − M²)`` at the Mach number of the trim (:meth:`FlexibleAircraft.held_at_mach`; held, like the
+density, through a simulation or a linearisation about it; the linear strips' factor, Glauert 1928), the apparent
+mass and the profile drag do not. Thrust acts at the engines along body x. The generalized forces are the virtual
 work of these loads, ``Q = Σ w (L_pᵀ F + Aᵀ M)`` with ``L_p = [I, −p^, J_p]`` and ``A = [0, I, J_θ]`` over the
 generalized velocities ``V = [v, ω, ε̇]`` (Shearer & Cesnik 2007 eq. 9; Su & Cesnik 2011 eq. 13).
 
@@ -475,7 +478,7 @@ def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAi
     if isinstance(elements_per_beam, bool) or not isinstance(elements_per_beam, (int, np.integer)) \
             or not 1 <= elements_per_beam <= 64:
         raise ValueError(f"elements_per_beam = {elements_per_beam!r}: must be an integer in 1-64")
-    terms = replace(model.terms, nonlinear_beams=NonlinearBeams(int(elements_per_beam))).record()
+    terms = replace(model.terms, nonlinear_beams=replace(beams_option, elements_per_beam=int(elements_per_beam))).record()
     aircraft = model.aircraft
     if model.aero is None:
         raise ValueError("the model has no aerodynamics (Terms(aero=None)): the flexible aircraft needs its strips")

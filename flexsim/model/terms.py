@@ -59,6 +59,10 @@ NONLINEAR_ANALYSES = ("fs.trim, fs.flutter, fs.vg_diagram, fs.linear_system, fs.
                       "fs.trim_flexible, fs.flexible_flutter, fs.simulate_flexible (time-domain flight)")
 
 
+#: The structures the nonlinear beams' flutter search can linearise about a trim.
+STABILITY_STRUCTURES = ("clamped-wing", "free-aircraft")
+
+
 @dataclass(frozen=True)
 class NonlinearBeams:
     """The geometrically nonlinear structure: each flexible component a strain-based beam (Su & Cesnik 2011, J.
@@ -70,15 +74,23 @@ class NonlinearBeams:
     elements_per_beam : int
         Elements of each flexible component's beam, 1-64 (default 8: the HALE wing's first modes and its flutter
         within 1 % of 16 elements, docs/nonlinear-beams.md).
+    stability : {"clamped-wing", "free-aircraft"}
+        What the flutter search linearises about each nonlinear trim: the wing clamped at its trimmed root (default)
+        or the whole free aircraft with Peters' strips on every lifting strip
+        (:func:`flexsim.linear.flexible_flutter.flexible_flutter`'s ``structure``).
     """
 
     elements_per_beam: int = 8
+    stability: str = "clamped-wing"
 
     def __post_init__(self) -> None:
         n = self.elements_per_beam
         if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= 64:
             raise ValueError(f"nonlinear_beams.elements_per_beam = {n!r}: must be an integer in 1-64")
         object.__setattr__(self, "elements_per_beam", int(n))
+        if self.stability not in STABILITY_STRUCTURES:
+            raise ValueError(f"nonlinear_beams.stability = {self.stability!r}: must be one of "
+                             f"{', '.join(STABILITY_STRUCTURES)}")
 
 
 @dataclass(frozen=True)

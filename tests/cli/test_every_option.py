@@ -107,6 +107,7 @@ CASES: dict[tuple[str, str], tuple[list[str], list[str], Expect]] = {
     ("flutter", "--load-factor"): (FLUTTER, ["--load-factor", "1.2"],
                                    refused("--load-factor 1.2: the pull-up's flutter is searched with the geometrically")),
     ("flutter", "--nonlinear-beams"): (FLUTTER, ["--nonlinear-beams"], refused("--models US: with --nonlinear-beams")),
+    ("flutter", "--free-aircraft"): (FLUTTER, ["--free-aircraft"], refused("--free-aircraft: applies to --nonlinear-beams")),
     ("sweep", "aircraft"): (SWEEP, ["sweep", "--turn", "maewing1", "--altitudes", "0", "--models", "US", "--radii-m", "300",
                                     "--workers", "1", "--out", "{new}"], Expect(CHANGES)),
     ("sweep", "--json"): (SWEEP, ["--json"], Expect(CHANGES)),

@@ -29,7 +29,7 @@ def test_trim_prints_the_nonlinear_trim(capsys):
     model = fs.AircraftModel(fs.load_aircraft("phc_hale"), terms=fs.Terms(nonlinear_beams=NonlinearBeams(4)))
     point = fs.trim(model, fs.SteadyManoeuvre.level(20000.0, speed_m_s=25.0))
     assert doc["alpha_deg"] == pytest.approx(point.alpha_rad * 57.29577951308232, rel=1e-12)
-    assert doc["terms"]["nonlinear_beams"] == {"elements_per_beam": 4}
+    assert doc["terms"]["nonlinear_beams"] == {"elements_per_beam": 4, "stability": "clamped-wing"}
     assert doc["tip_deflection_fraction"]["right_wing"] == pytest.approx(point.tip_deflection_fraction[0], rel=1e-12)
 
 
@@ -60,6 +60,30 @@ def test_flutter_prints_the_nonlinear_flutter_point(capsys):
     assert row["speed_m_s"] == pytest.approx(point.speed_m_s, rel=1e-9) and row["terms"] == point.terms
     code, text, _ = _run(argv, capsys)
     assert code == 0 and f"{point.speed_m_s:10.3f}" in text and "wing clamped at the trimmed root" in text
+
+
+def test_free_aircraft_flutter_prints_the_api_point(capsys):
+    """``--free-aircraft``: the model's ``NonlinearBeams(stability="free-aircraft")``, the whole free aircraft about
+    each trim; the row is the API's (its scan and terms), the header says which structure was linearised."""
+    argv = ["flutter", "phc_hale", "--nonlinear-beams", "4", "--free-aircraft", "--altitudes", "20000",
+            "--mach-min", f"{34 / A_20KM:.6f}", "--mach-max", f"{40 / A_20KM:.6f}"]
+    code, out, _ = _run(argv + ["--json"], capsys)
+    assert code == 0
+    row = json.loads(out)["rows"][0]
+    beams = NonlinearBeams(4, stability="free-aircraft")
+    model = fs.AircraftModel(fs.load_aircraft("phc_hale"), terms=fs.Terms(nonlinear_beams=beams))
+    point = fs.flutter(model, fs.SteadyManoeuvre.level(20000.0, speed_m_s=25.0), "unsteady",
+                       mach_range=(round(34 / A_20KM, 6), round(40 / A_20KM, 6)))
+    assert row["scanned_m_s"] == pytest.approx(list(point.speeds_m_s), rel=1e-12) and row["terms"] == point.terms
+    assert row["terms"]["nonlinear_beams"]["stability"] == "free-aircraft"
+    assert row["warnings"][0].startswith("free aircraft with Peters' strips")
+    code, text, _ = _run(argv, capsys)
+    assert code == 0 and text.startswith("Flutter of the free aircraft about the nonlinear trim")
+    code, _, err = _run(argv + ["--vg", "x.png"], capsys)
+    assert code == 2 and "--vg with --free-aircraft" in err
+    with pytest.raises(ValueError, match="nonlinear_beams.stability = 'free-aircraft': the V-g diagram"):
+        fs.vg_diagram(model, manoeuvre=fs.SteadyManoeuvre.level(20000.0, speed_m_s=25.0), models=("FS",),
+                      speeds_m_s=[30.0, 35.0])
 
 
 def test_flutter_writes_the_nonlinear_vg_diagram(tmp_path, capsys):

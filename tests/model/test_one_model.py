@@ -219,13 +219,13 @@ def test_nonlinear_beams_reach_trim_and_flutter():
     model = AircraftModel(hale, terms=Terms(nonlinear_beams=NonlinearBeams(4)))
     level = SteadyManoeuvre.level(20000.0, speed_m_s=25.0)
     point = trim(model, level)
-    assert isinstance(point, fs.FlexibleTrimPoint) and point.terms["nonlinear_beams"] == {"elements_per_beam": 4}
+    assert isinstance(point, fs.FlexibleTrimPoint) and point.terms["nonlinear_beams"] == {"elements_per_beam": 4, "stability": "clamped-wing"}
     assert point.aircraft.structure.beams[0].n_elements == 4
     # the linear sibling's trim is another answer (the HALE's tips: 47 % linear, 50 % nonlinear at 8 elements)
     assert isinstance(trim(model.replace(nonlinear_beams=None), level, check_limits=False), fs.TrimPoint)
     a = 295.07  # speed of sound at 20 km [m/s] (ISA 216.65 K); the scan covers 30-33 m/s around the 4-element point
     fp = fs.flutter(model, level, "unsteady", mach_range=(30.0 / a, 40.0 / a), mach_step=2.5 / a, tol=1e-3)
-    assert fp.terms["nonlinear_beams"] == {"elements_per_beam": 4} and fp.trim.terms == fp.terms
+    assert fp.terms["nonlinear_beams"] == {"elements_per_beam": 4, "stability": "clamped-wing"} and fp.trim.terms == fp.terms
     with pytest.raises(ValueError, match="aero_model = 'theodorsen'.*nonlinear_beams"):
         fs.flutter(model, level)
     with pytest.raises(ValueError, match="classify = True"):
