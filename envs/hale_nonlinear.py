@@ -2,7 +2,7 @@
 
 The physics is apart from this thin ``Env``: the nonlinear trim (:func:`flexsim.trimming.flexible_trim.trim_flexible`
 through ``fs.trim``) and the fixed-step flight of :class:`flexsim.sim.flexible_step.FlexibleStepper` (ROS2, its
-Jacobian frozen at the trim, quasi-steady strips, the wind uniform over the aircraft at its body origin). The task —
+Jacobian frozen at the trim, quasi-steady strips, each strip meeting the wind where it is). The task —
 gust, errors, reward — is that of ``FlexSim/HALE-GustAlleviation-v0`` (:class:`GustAlleviationTask` at the aircraft's
 cruise point, :mod:`flexsim.envs.aircraft_defaults`); the limits are derived the same way, about the nonlinear trim.
 """
@@ -61,7 +61,7 @@ class HaleNonlinearGustEnv(gym.Env[np.ndarray, np.ndarray]):
     is ``FlexSim/HALE-GustAlleviation-v0``'s; the structure is the geometrically nonlinear strain-based beam
     (``Terms(nonlinear_beams=NonlinearBeams(elements_per_beam))``, docs/nonlinear-beams.md), so the large
     deflections are within the model's range. Neglected: unsteady aerodynamics (the strips are quasi-steady), the
-    gust's penetration along the span (the wind is taken at the body origin), the density's change with altitude.
+    density's change with altitude.
 
     ## Action Space
     ``Box([0, -1, -1, -1], [1, 1, 1, 1], float32)``: thrust / maximum thrust, aileron, elevator and rudder / their

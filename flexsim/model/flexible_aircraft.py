@@ -225,8 +225,10 @@ class FlexibleAircraft:
             ``[T [N], δa, δe, δr [rad]]``.
         rho : float
             Air density [kg/m³].
-        wind : ndarray, shape (3,), optional
-            Uniform wind velocity in body axes [m/s].
+        wind : ndarray, shape (3,), or callable, optional
+            Uniform wind velocity in body axes [m/s], or the wind at points of the aircraft: a function of their
+            body-axis positions (k, 3) [m] returning the wind there in body axes (k, 3) [m/s]
+            (:func:`flexsim.sim.flexible_step.strip_wind`: each strip sees the gust where it is).
         epsdot : ndarray, shape (n,), optional
             Strain rates.
 
@@ -263,8 +265,8 @@ class FlexibleAircraft:
             ``[T [N], δa, δe, δr [rad]]``.
         rho : float
             Air density [kg/m³].
-        wind : ndarray, shape (3,), optional
-            Uniform wind velocity, body axes [m/s].
+        wind : ndarray, shape (3,), or callable, optional
+            Uniform wind velocity, body axes [m/s], or the wind at points of the aircraft (:meth:`airloads`).
 
         Returns
         -------
@@ -315,12 +317,13 @@ class FlexibleAircraft:
         """:meth:`airloads` with the beams' kinematics at ``eps`` given (one list per evaluation of the equations)."""
         nv = self.structure.n_velocities
         out = np.zeros(nv)
-        w_air = np.zeros(3) if wind is None else np.asarray(wind, float)
+        wind_at = wind if callable(wind) else None
+        w_air = np.zeros(3) if wind is None or wind_at is not None else np.asarray(wind, float)
         beta = self.compressibility_beta
         for s, kin, (b, a, scale, incidence, flap, cd0) in zip(self.structure.strain_slices(), kinematics,
                                                               self.strip_constants):
             p = kin.positions
-            va = w_air - (v + _cross(omega, p))
+            va = (w_air if wind_at is None else wind_at(p)) - (v + _cross(omega, p))
             rate = kin.rotations[:, :, 0] @ omega
             if epsdot is not None:
                 va = va - kin.jac_position @ epsdot[s]
@@ -335,7 +338,7 @@ class FlexibleAircraft:
                                             + np.einsum("pik,pi->k", kin.jac_rotation, m))
         r = self.rigid_strips
         if r.b.size:
-            va = w_air - (v + _cross(omega, r.position))
+            va = (w_air if wind_at is None else wind_at(r.position)) - (v + _cross(omega, r.position))
             force, moment = section_loads(r.rotations, r.b, r.a, va, rho, rate_e1=r.rotations[:, :, 0] @ omega,
                                           incidence=r.incidence + r.flap @ u, cd0=r.cd0,
                                           induced=(1.0 - r.scale) / beta, lift_scale=r.scale / beta)

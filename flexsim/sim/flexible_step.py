@@ -33,7 +33,7 @@ from flexsim.errors import positive_number
 from flexsim.model.flexible_aircraft import FlexibleAircraft
 from flexsim.structure.free_flexible import FreeFlexibleStructure, quaternion_matrix
 
-__all__ = ["FlexibleStepper", "GAMMA", "body_wind"]
+__all__ = ["FlexibleStepper", "GAMMA", "body_wind", "strip_wind"]
 
 #: ROS2's diagonal coefficient, 1 + 1/√2 (L-stable; Verwer et al. 1999).
 GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
@@ -46,6 +46,23 @@ def body_wind(wind: Callable | None, t: float, y: NDArray) -> NDArray:
         return np.zeros(3)
     w = np.asarray(wind(t, y[None, :3]), float).reshape(3)
     return quaternion_matrix(y[3:7] / np.linalg.norm(y[3:7])).T @ w
+
+
+def strip_wind(wind: Callable | None, t: float, y: NDArray) -> Callable | None:
+    """The wind field ``wind(t, positions_ned (k, 3)) -> (k, 3)`` (NED [m/s], :mod:`flexsim.sim.disturbances`) at points
+    of the aircraft in state ``y``: a function of body-axis positions ``p`` (k, 3) [m] returning the wind at
+    ``X + C p`` (NED) in body axes, ``Cᵀ w`` (k, 3) [m/s] — each strip meets a gust where it is (the gust's penetration
+    along the span and from the wing to the tail); None without a wind."""
+    if wind is None:
+        return None
+    c = quaternion_matrix(y[3:7] / np.linalg.norm(y[3:7]))
+    origin = np.asarray(y[:3], float)
+
+    def at(points_body: NDArray) -> NDArray:
+        points = np.asarray(points_body, float).reshape(-1, 3)
+        return np.asarray(wind(t, origin[None, :] + points @ c.T), float).reshape(-1, 3) @ c
+
+    return at
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,8 +104,8 @@ class FlexibleStepper:
         return cls(aircraft, structure, float(density_kg_m3), float(step_s), scipy.linalg.lu_factor(w))
 
     def rate(self, t: float, y: NDArray, u: NDArray, wind: Callable | None) -> NDArray:
-        """``dy/dt`` with controls ``u`` and the wind field ``wind`` at the body origin."""
-        return self.aircraft.free_flight_rate(self.structure, t, y, u, self.density_kg_m3, body_wind(wind, t, y))
+        """``dy/dt`` with controls ``u`` and the wind field ``wind`` at each strip (:func:`strip_wind`)."""
+        return self.aircraft.free_flight_rate(self.structure, t, y, u, self.density_kg_m3, strip_wind(wind, t, y))
 
     def advance(self, t: float, y: NDArray, u: NDArray, wind: Callable | None, steps: int) -> NDArray:
         """``y`` after ``steps`` steps from time ``t`` with controls ``u`` held (a new array).

@@ -4,10 +4,15 @@
   trim's residual is ~1e-10 scaled; ROS2 keeps any equilibrium of f exactly up to round-off, since f(y*) = 0 gives
   k1 = k2 = 0).
 * The HALE's 1-cos gust (10 m/s, H 60 m, 4 elements per beam, 1.5 s) against ``simulate_flexible``'s error-controlled
-  BDF (rtol 1e-6): the tip deflection within 2 cm at h = 10 ms (measured 1.54 cm; 3.19 cm at 20 ms, 0.77 cm at 5 ms:
-  the error halves with h) and the peak within 0.1 % of the semispan (slow: the BDF run takes ~25 s).
+  BDF (rtol 1e-6), each strip meeting the gust where it is: the tip deflection within 5 cm at h = 10 ms (measured
+  3.94 cm; 7.93 cm at 20 ms, 1.94 cm at 5 ms, 0.93 cm at 2.5 ms: the error halves with h) and the peak within 0.4 %
+  of the semispan (measured 0.25 %; slow: the BDF run takes ~20 s).
 * The phugoid of the nonlinear run equals the linearisation's eigenvalue (3 % in damping, 0.5 % in frequency).
 * Bad steps are refused by name.
+* Each strip meets the wind where it is (``strip_wind``): a field uniform in space gives the uniform wind's airloads
+  to round-off; an upward gust whose front lies between the wing (10 m ahead of the body origin) and the tail (at it)
+  lifts the wing only, so the lift lies between none and the uniform gust's and the nose-up moment about the centre of
+  gravity exceeds the uniform gust's (whose tail lift pitches the nose down).
 """
 
 from __future__ import annotations
@@ -17,7 +22,7 @@ import pytest
 
 import flexsim as fs
 from flexsim.sim.disturbances import OneMinusCosineGust
-from flexsim.sim.flexible_step import FlexibleStepper
+from flexsim.sim.flexible_step import FlexibleStepper, strip_wind
 from flexsim.structure.free_flexible import quaternion_matrix
 from flexsim.trimming.flexible_trim import trim_flexible
 
@@ -66,8 +71,8 @@ def test_gust_against_bdf(hale):
     print(f"tip deflection: ROS2 h = 10 ms within {diff:.4f} m of BDF; wall {ros2.wall_s:.2f} s against "
           f"{bdf.wall_s:.1f} s; peak {100 * ros2.tip_deflection_fraction.max():.2f} % against "
           f"{100 * bdf.tip_deflection_fraction.max():.2f} %")
-    assert diff < 0.02
-    assert abs(ros2.tip_deflection_fraction.max() - bdf.tip_deflection_fraction.max()) < 1e-3
+    assert diff < 0.05
+    assert abs(ros2.tip_deflection_fraction.max() - bdf.tip_deflection_fraction.max()) < 4e-3
 
 
 def test_phugoid_in_time_matches_the_linearisation(hale):
@@ -100,3 +105,30 @@ def test_phugoid_in_time_matches_the_linearisation(hale):
     assert np.abs(fit.fun).max() < 1e-3 * 0.25  # the fitted form describes the response
     assert sigma == pytest.approx(phugoid.real, rel=0.03)
     assert omega == pytest.approx(phugoid.imag, rel=0.005)
+
+
+def test_each_strip_meets_the_wind_where_it_is(hale):
+    model, point = hale
+    y = point.state()
+    flex, n = point.aircraft, point.aircraft.n_strains
+    eps, v, om, u, rho = y[7:7 + n], y[7 + n:10 + n], y[10 + n:13 + n], point.controls, point.density_kg_m3
+    c = quaternion_matrix(y[3:7])
+    up = np.array([0.0, 0.0, -5.0])  # NED: 5 m/s upward
+    uniform = flex.airloads(eps, v, om, u, rho, wind=c.T @ up)
+    field = flex.airloads(eps, v, om, u, rho, wind=strip_wind(lambda t, p: np.tile(up, (len(p), 1)), 0.0, y))
+    assert np.abs(field - uniform).max() < 1e-12 * np.abs(uniform).max()
+    forward = c[:, 0]  # the body x axis in NED: the front 5 m ahead of the tail (the body origin), behind the wing
+    front = (y[:3] + 5.0 * forward) @ forward
+
+    def gust(t, p):
+        return np.where((np.asarray(p) @ forward > front)[:, None], up[None, :], 0.0)
+
+    split = flex.airloads(eps, v, om, u, rho, wind=strip_wind(gust, 0.0, y))
+    still = flex.airloads(eps, v, om, u, rho)
+    assert -still[2] < -split[2] < -uniform[2]  # lift (body z down)
+    cg = np.asarray(model.structure.mass_properties.cg_m)
+
+    def pitch_about_cg(q):
+        return q[4] - np.cross(cg, q[:3])[1]
+
+    assert pitch_about_cg(split) > pitch_about_cg(uniform) + 0.01 * abs(pitch_about_cg(uniform) - pitch_about_cg(still))
