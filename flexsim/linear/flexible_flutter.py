@@ -93,7 +93,9 @@ def wing_system(model, point: FlexibleTrimPoint, component: str = "right_wing",
     preload = SteadyInertialLoad(g_body, point.velocity_m_s,
                                  point.rate_rad_s)
     stiffness = static_stiffness(beam, eps, preload, aero, flow)
-    return aeroelastic_system(beam, aero, flow, eps, stiffness)
+    # the beam's block of the structure's modal damping (blocks of the clamped-body modes are the beams' own)
+    sl = flex.structure.strain_slices()[i]
+    return aeroelastic_system(beam, aero, flow, eps, stiffness, flex.structure.damping()[sl, sl])
 
 
 def wing_stability(model, point: FlexibleTrimPoint, component: str = "right_wing", inflow_states: int = 6,

@@ -379,7 +379,7 @@ def set_inflow_rows(out: NDArray, start: int, coefficients, forcing_rows: NDArra
 
 
 def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q0: ArrayLike,
-                       stiffness: NDArray) -> AeroelasticSystem:
+                       stiffness: NDArray, damping: NDArray | None = None) -> AeroelasticSystem:
     """Linear aeroelastic state matrix about the equilibrium ``q0`` (module docstring).
 
     Parameters
@@ -389,6 +389,9 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
         Static equilibrium under the flow (and any other loads).
     stiffness : ndarray, shape (n, n)
         ``K_T`` at ``q0``: elastic, geometric and steady-aero stiffness (:func:`static_stiffness`).
+    damping : ndarray, shape (n, n), optional
+        Structural damping ``C`` (generalized force ``−C q̇``), e.g. the beam's block of
+        :meth:`flexsim.structure.free_flexible.FreeFlexibleStructure.damping`; default none.
 
     Returns
     -------
@@ -429,7 +432,7 @@ def aeroelastic_system(beam: BeamProperties, aero: WingAero, flow: TunnelFlow, q
     size = 2 * n + p * nl
     out = np.zeros((size, size))
     out[:n, n:2 * n] = np.eye(n)
-    qdd_q, qdd_v, qdd_l = -h @ stiffness, -h @ ca, h @ g_lam
+    qdd_q, qdd_v, qdd_l = -h @ stiffness, -h @ (ca if damping is None else ca + damping), h @ g_lam
     out[n:2 * n, :n], out[n:2 * n, n:2 * n], out[n:2 * n, 2 * n:] = qdd_q, qdd_v, qdd_l
     # [A]λ̇ + (u0/b)λ = {c}(ẇ0 + ẇ1/2),  ẇ0 + ẇ1/2 = (w0v + w1v/2) δq̈ + rn δq̇
     f_rows = (w0v + 0.5 * w1v) @ out[n:2 * n]  # (P, size): ẇ0 + ẇ1/2 of each strip per state, through δq̈

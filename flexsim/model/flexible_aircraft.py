@@ -33,7 +33,9 @@ generalized velocities ``V = [v, ω, ε̇]`` (Shearer & Cesnik 2007 eq. 9; Su & 
 
 Mass: the rigid body is the linear structural model's rigid block ``M0[:6, :6]`` (the whole undeformed aircraft,
 paper eq. 8) less the beams' share at ``ε = 0``, so both models carry the same mass, centre of gravity and inertia
-(up to the beams' element quadrature, O(1/N²) in the inertia). Units SI, angles in radians.
+(up to the beams' element quadrature, O(1/N²) in the inertia). Structural damping: the model's modal damping ratio
+(``terms.structural_damping``, else the file's ``structural_damping_ratio``) on every mode of the beams with the body
+clamped, as the linear model applies it (:meth:`FreeFlexibleStructure.damping`). Units SI, angles in radians.
 """
 
 from __future__ import annotations
@@ -243,7 +245,7 @@ class FlexibleAircraft:
         """This aircraft's structure with gravity ``gravity_m_s2`` [m/s²] along NED down, as the free-flight equations
         (:func:`~flexsim.structure.free_flexible.free_flight_rhs`) take it."""
         return FreeFlexibleStructure(self.structure.body, self.structure.beams,
-                                     np.array([0.0, 0.0, float(gravity_m_s2)]))
+                                     np.array([0.0, 0.0, float(gravity_m_s2)]), self.structure.damping_ratio)
 
     def free_flight_rate(self, structure: FreeFlexibleStructure, t: float, y: NDArray, u: NDArray, rho: float,
                          wind: NDArray | None = None) -> NDArray:
@@ -540,7 +542,8 @@ def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAi
                          incidence=normal * strips.incidence_rad[r], flap=flap)
     engines = np.array([e.position_m for e in aircraft.engines]).reshape(-1, 3)
     frozen = model.terms.compressibility_mach
-    return FlexibleAircraft(name=aircraft.name, structure=FreeFlexibleStructure(body, tuple(beams)),
+    structure = FreeFlexibleStructure(body, tuple(beams), damping_ratio=model.structural_damping_ratio)
+    return FlexibleAircraft(name=aircraft.name, structure=structure,
                             beam_components=tuple(names), beam_strips=tuple(beam_strips), rigid_strips=rigid,
                             engine_position_m=engines, terms=terms,
                             prandtl_glauert=model.aero.compressibility == "prandtl-glauert",

@@ -140,6 +140,9 @@ class FreeFlexibleStructure:
         frame). A wing continuous through the centreline is two beams rooted at the same point.
     gravity_m_s2 : array_like, shape (3,)
         Acceleration of gravity in inertial (north-east-down) components [m/s²]; default none (vacuum, no gravity).
+    damping_ratio : float
+        Modal structural damping ratio ζ in [0, 1) of every mode of the beams with the body clamped (:meth:`damping`;
+        the linear model's convention, :meth:`flexsim.structure.model.StructuralModel.damping`); default 0.
 
     The generalized coordinates are numbered ``[6 rigid-body, beam 0's strains, beam 1's strains, ...]``.
     """
@@ -147,6 +150,7 @@ class FreeFlexibleStructure:
     body: RigidBody
     beams: tuple = ()
     gravity_m_s2: ArrayLike = field(default_factory=lambda: np.zeros(3))
+    damping_ratio: float = 0.0
 
     def __post_init__(self) -> None:
         if not isinstance(self.body, RigidBody):
@@ -160,6 +164,10 @@ class FreeFlexibleStructure:
         if g.shape != (3,) or not np.all(np.isfinite(g)):
             raise ValueError(f"gravity_m_s2 = {self.gravity_m_s2!r}: must be 3 finite numbers [m/s^2]")
         object.__setattr__(self, "gravity_m_s2", frozen_array(g))
+        z = self.damping_ratio
+        if isinstance(z, bool) or not isinstance(z, (int, float, np.floating)) or not 0.0 <= z < 1.0:
+            raise ValueError(f"damping_ratio = {z!r}: must be a damping ratio in [0, 1)")
+        object.__setattr__(self, "damping_ratio", float(z))
         rigid = generalized_mass_matrix(self, np.zeros(self.n_strains))[:6, :6]
         if np.linalg.eigvalsh(rigid).min() <= 1e-12 * max(np.abs(rigid).max(), 1e-300):
             raise ValueError("body and beams together have a singular rigid-body mass matrix (mass or an inertia "
@@ -191,6 +199,28 @@ class FreeFlexibleStructure:
     def stiffness(self) -> NDArray[np.float64]:
         """``blockdiag(K_beam)``, shape (n, n) (Su & Cesnik 2011 eq. 6)."""
         return self._stiffness.copy()
+
+    def damping(self) -> NDArray[np.float64]:
+        """Modal structural damping on the strains, shape (n, n) [N m s ...]: ``C = M Φ diag(2 ζ ω_i) Φᵀ M`` with
+        ``(ω_i, Φ)`` the mass-normalised modes of the beams with the body clamped (``K φ = ω² M φ``, ``M`` the strain
+        block of :func:`generalized_mass_matrix` at ``ε = 0``), so that each of them has the damping ratio ζ; the
+        generalized force ``−C ε̇`` (the linear model's convention, not in the paper, whose structure is undamped)."""
+        return np.zeros((self.n_strains,) * 2) if self._damping is None else self._damping.copy()
+
+    @cached_property
+    def _damping(self) -> NDArray[np.float64] | None:
+        """:meth:`damping`, built once (read-only); None when ζ = 0."""
+        if self.damping_ratio == 0.0 or self.n_strains == 0:
+            return None
+        mass = generalized_mass_matrix(self, np.zeros(self.n_strains))[6:, 6:]
+        try:
+            lam, phi = eigh(self._stiffness, 0.5 * (mass + mass.T))
+        except np.linalg.LinAlgError:
+            raise ValueError(f"damping_ratio = {self.damping_ratio!r}: the beams' mass matrix is singular (a strain "
+                             "moves no mass: give the sections' inertias), so their modes, and a modal damping, are "
+                             "not defined") from None
+        mp = mass @ phi
+        return frozen_array((mp * (2.0 * self.damping_ratio * np.sqrt(np.clip(lam, 0.0, None)))[None, :]) @ mp.T)
 
     @cached_property
     def _stiffness(self) -> NDArray[np.float64]:
@@ -377,6 +407,8 @@ def _generalized_force(structure: FreeFlexibleStructure, pts: _Points, quat: NDA
     g_body = quaternion_matrix(quat).T @ np.asarray(gravity_m_s2, dtype=float)
     q = np.zeros(structure.n_velocities)
     q[6:] = -structure._stiffness @ eps
+    if structure._damping is not None:
+        q[6:] -= structure._damping @ vel[6:]
     # rigid body: bias ω × (m u_b) and ω × I_b ω, and its weight
     u_b = v + _cross(om, body.cg_m)
     f_b = body.mass_kg * (g_body - _cross(om, u_b))
