@@ -286,6 +286,9 @@ def flexible_flutter(model, manoeuvre: SteadyManoeuvre, speed_range_m_s: tuple[f
                      "(tan phi ~ V^2/(g R)); both wings analysed, the result is the less stable wing's")
     if skipped:
         notes.append(f"speeds not trimmable (skipped): {', '.join(f'{s:g}' for s in skipped)} m/s")
+    unmodelled = next(iter(evaluated.values()))[0].aircraft.unmodelled if evaluated else ()
+    if unmodelled:
+        notes.append(f"not in the nonlinear strips: {', '.join(unmodelled)}")
     sound = float(isa(manoeuvre.altitude_m).speed_of_sound)
     if found is None:
         return FlexibleFlutterPoint(float("nan"), float("nan"), float("nan"), None, np.array(speeds),

@@ -40,7 +40,7 @@ clamped, as the linear model applies it (:meth:`FreeFlexibleStructure.damping`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from functools import cached_property
 
 import numpy as np
@@ -49,7 +49,7 @@ from numpy.typing import NDArray
 from flexsim._kernels.strips import compressibility_factor
 from flexsim.model.aircraft_model import check_model
 from flexsim.model.beam_aero import WingAero, section_loads
-from flexsim.model.terms import NonlinearBeams
+from flexsim.model.terms import NonlinearBeams, Terms
 from flexsim.structure.beam_sections import beam_from_sections
 from flexsim.structure.free_flexible import (FreeFlexibleStructure, RigidBody, _cross, free_flight_rhs,
                                              generalized_mass_matrix, steady_generalized_force)
@@ -138,6 +138,9 @@ class FlexibleAircraft:
         (:meth:`held_at_mach`), or the model's frozen ``terms.compressibility_mach``; 0 before a trim.
     mach_frozen : bool
         True when ``mach`` is the model's ``terms.compressibility_mach`` (a trim does not change it).
+    unmodelled : tuple of str
+        The model's aerodynamic terms present on this aircraft that the nonlinear strips do not have (its tail's
+        downwash, its parasite-drag items, its slender bodies' moments); the results that use it say so.
     """
 
     name: str
@@ -150,6 +153,7 @@ class FlexibleAircraft:
     prandtl_glauert: bool = False
     mach: float = 0.0
     mach_frozen: bool = False
+    unmodelled: tuple = ()
 
     @property
     def compressibility_beta(self) -> float:
@@ -421,6 +425,35 @@ def _point_masses(aircraft, comp) -> tuple:
     return tuple(out)
 
 
+#: The fields of :class:`~flexsim.model.terms.Terms` the nonlinear aircraft evaluates; any other field must keep its
+#: default (refused by name otherwise: an option is honoured or refused, never dropped).
+HONOURED_TERMS = ("aero", "gravity_m_s2", "structural_damping", "compressibility_mach", "nonlinear_beams")
+
+
+def _check_terms(model) -> tuple:
+    """Refuse the model's terms the nonlinear aircraft cannot evaluate, naming the field (a Terms field off its default
+    outside :data:`HONOURED_TERMS`, the paper's force resolution); return the aerodynamic terms present on the aircraft
+    that its strips do not have (:attr:`FlexibleAircraft.unmodelled`)."""
+    default = Terms()
+    for f in fields(Terms):
+        value = getattr(model.terms, f.name)
+        if f.name not in HONOURED_TERMS and value != getattr(default, f.name):
+            raise ValueError(f"{f.name} = {value!r}: not available with the geometrically nonlinear beams (their "
+                             f"aircraft evaluates the terms {', '.join(HONOURED_TERMS)}); leave it at its default, "
+                             f"{getattr(default, f.name)!r}")
+    if model.aero.formulation != "physical":
+        raise ValueError(f"formulation = {model.aero.formulation!r}: the nonlinear strips resolve the physical force "
+                         "(paper eq. 28 with the flow angle); not available with nonlinear_beams")
+    out = []
+    if model.aero.downwash_gradient:
+        out.append("the tail's downwash ([aero] downwash_gradient)")
+    if model.parasite_drag is not None:
+        out.append("the parasite-drag items ([[aero.drag]])")
+    if model.bodies is not None:
+        out.append("the slender bodies' Munk moments ([[aero.body]])")
+    return tuple(out)
+
+
 def _check_topology(aircraft) -> None:
     """Refuse a flexible fuselage that carries other components: the nonlinear structure clamps every beam to the
     rigid body, whereas the linear model (paper eq. 6) attaches them to the fuselage's bending and torsion; the GTM's
@@ -487,6 +520,7 @@ def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAi
     aircraft = model.aircraft
     if model.aero is None:
         raise ValueError("the model has no aerodynamics (Terms(aero=None)): the flexible aircraft needs its strips")
+    unmodelled = _check_terms(model)
     strips = model.aero.strips
     beams, names, beam_strips = [], [], []
     for comp in aircraft.components:
@@ -525,7 +559,13 @@ def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAi
     first = np.array([m_rigid[1, 5], m_rigid[2, 3], m_rigid[0, 4]])  # m c (M_v,ω = −m c^)
     cg = first / mass
     j_cg = m_rigid[3:6, 3:6] + mass * _hat(cg) @ _hat(cg)
-    body = RigidBody(mass, cg, 0.5 * (j_cg + j_cg.T))
+    j_cg = 0.5 * (j_cg + j_cg.T)
+    if mass <= 0.0 or np.linalg.eigvalsh(j_cg).min() < -1e-9 * max(float(np.abs(j_cg).max()), 1.0):
+        raise ValueError(f"elements_per_beam = {elements_per_beam}: the beams' mass at this element count (each element's "
+                         "mean section) exceeds the linear model's in some direction, leaving the rigid body a mass "
+                         f"{mass:.6g} kg and inertia eigenvalues {np.round(np.linalg.eigvalsh(j_cg), 1).tolist()} kg m^2; "
+                         "use more elements per beam")
+    body = RigidBody(mass, cg, j_cg)
     rigid_rows = [i for i, c in enumerate(strips.component) if not aircraft.component(c).is_flexible]
     r = np.asarray(rigid_rows, dtype=int)
     frames = []
@@ -547,4 +587,5 @@ def flexible_aircraft(model, elements_per_beam: int | None = None) -> FlexibleAi
                             beam_components=tuple(names), beam_strips=tuple(beam_strips), rigid_strips=rigid,
                             engine_position_m=engines, terms=terms,
                             prandtl_glauert=model.aero.compressibility == "prandtl-glauert",
-                            mach=0.0 if frozen is None else float(frozen), mach_frozen=frozen is not None)
+                            mach=0.0 if frozen is None else float(frozen), mach_frozen=frozen is not None,
+                            unmodelled=unmodelled)

@@ -205,7 +205,9 @@ def simulate_flexible(model, point: FlexibleTrimPoint, t_end_s: float, *, contro
                        rate_rad_s=ys[:, 10 + n:13 + n], strains=ys[:, 7:7 + n], tip_positions_m=tips,
                        tip_deflection_fraction=frac, wind_body_m_s=np.array([body_wind(wind, t, y) for t, y in zip(ts, ys)]),
                        controls=np.array([np.asarray(u_of(t), float) for t in ts]),
-                       n_rhs=n_rhs, wall_s=wall, warnings=NEGLECTED, method=method)
+                       n_rhs=n_rhs, wall_s=wall, warnings=NEGLECTED + tuple(
+                           f"not in the nonlinear strips: {', '.join(flex.unmodelled)}" for _ in flex.unmodelled[:1]),
+                       method=method)
 
 
 def write_flexible_log(run: FlexibleRun, path, *, metadata: dict | None = None) -> None:

@@ -247,3 +247,28 @@ def test_engines_ride_on_the_wing_beams(tmp_path):
     lin = in_vacuo_modes(fs.AircraftModel(aircraft, terms=fs.Terms(aero=None))).frequencies_rad_s
     lin = lin[lin > 1.0][:2]  # the elastic modes (the six rigid-body ones are zero)
     assert np.abs(nl / lin - 1).max() < 0.04
+
+
+def test_terms_the_nonlinear_aircraft_cannot_evaluate_are_refused_and_absent_ones_said(tmp_path):
+    """A Terms field the nonlinear aircraft does not evaluate, off its default, is refused by name (not dropped); the
+    linear model's aerodynamic terms that the nonlinear strips lack are listed where the aircraft has them (the GTM:
+    tail downwash, parasite drag, slender bodies; the PHC HALE: none) and said in the flutter search's warnings."""
+    from flexsim.model.coupling import AeroOptions
+
+    gtm = _gtm_with_chordwise_stiffness(tmp_path, 2)
+    flex = flexible_aircraft(fs.AircraftModel(gtm), 3)
+    with pytest.raises(ValueError, match="elements_per_beam = 2: the beams' mass at this element count"):
+        flexible_aircraft(fs.AircraftModel(gtm), 2)  # two elements: too coarse for the GTM's tapered wing mass
+    assert [u.split(" (")[0] for u in flex.unmodelled] == ["the tail's downwash", "the parasite-drag items",
+                                                           "the slender bodies' Munk moments"]
+    assert flexible_aircraft(fs.AircraftModel(fs.load_aircraft("phc_hale")), 2).unmodelled == ()
+    with pytest.raises(ValueError, match="force_resolution = 'normal': not available with the geometrically nonlinear"):
+        flexible_aircraft(fs.AircraftModel(gtm, terms=fs.Terms(force_resolution="normal")), 3)
+    with pytest.raises(ValueError, match="formulation = 'paper'"):
+        flexible_aircraft(fs.AircraftModel(gtm, aero=AeroOptions(formulation="paper")), 3)
+    from flexsim.linear.flexible_flutter import flexible_flutter
+
+    point = flexible_flutter(fs.AircraftModel(gtm), fs.SteadyManoeuvre.level(9144.0, mach=0.6), (200.0, 210.0),
+                             speed_step_m_s=10.0, elements_per_beam=3)
+    assert any(w.startswith("not in the nonlinear strips: the tail's downwash") for w in point.warnings)
+
