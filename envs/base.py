@@ -552,7 +552,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         else:
             winds, dynamics, states = [b.winds[i] for i in rows], [b.dynamics[i] for i in rows], [b.states[i] for i in rows]
         outcome, u, meas = advance_period(dynamics, states, b.x[rows], b.u[rows], a * self._u_scale, steps, winds,
-                                          b.packed_rows(rows))
+                                          *b.packed_rows(rows))
         if not self.dynamics.substeps:  # DOP853, Radau: the next period's warm-start step (ETD2RK's states do not change)
             for i, state in zip(range(b.n)[rows] if isinstance(rows, slice) else rows, outcome.states):
                 b.states[i] = state
