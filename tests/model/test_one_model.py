@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import flexsim as fs
+from flexsim._kernels.downwash_lag import DownwashLag
 from flexsim.linear.control import LinearSystem, ModelRecord, linear_system
 from flexsim.linear.flutter import wind_tunnel
 from flexsim.linear.study import StudyCase, run_case
@@ -134,7 +135,7 @@ NON_DEFAULT = {
     "engine_angular_momentum": (2e5, 0.0, 0.0),
     "inertia_q_offset_m": lambda nq: tuple(0.001 * (i + 1) for i in range(nq)),
     "aero_velocity_offset_m_s": (0.0, 0.0, 0.5),
-    "downwash_lag": True,
+    "aero_terms": (DownwashLag(),),
     "nonlinear_beams": NonlinearBeams(4),
 }
 #: (field, analysis) pairs refused with a message naming the field instead of evaluated, and why: a flutter search
@@ -164,6 +165,8 @@ def _carried(record: dict, name: str, value) -> bool:
     if name == "aero":
         want = {f.name: getattr(value, f.name) for f in dataclasses.fields(value)}
         return {k: v for k, v in got.items() if k != "model"} == {k: v for k, v in want.items() if k != "model"}
+    if name == "aero_terms":
+        return got == [{"term": type(t).__name__, **dataclasses.asdict(t)} for t in value]
     if dataclasses.is_dataclass(value):
         return got == {f.name: getattr(value, f.name) for f in dataclasses.fields(value)}
     return got == (list(value) if isinstance(value, tuple) else value)
