@@ -622,7 +622,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         """Observations (m, n_obs) float32 of m aircraft (measurements, task errors (m, k), applied controls (m, 4))."""
         obs = np.empty((len(errors), self._obs_low.shape[0]), np.float32)
         _rk.observe_rows(meas.matrix, np.ascontiguousarray(errors, dtype=float), np.ascontiguousarray(u, dtype=float),
-                         *self._observe_data, obs)
+                         self._observe_data, obs)
         return obs
 
     # ------------------------------------------------------------------ introspection

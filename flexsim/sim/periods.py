@@ -19,12 +19,14 @@ every period, so one :class:`FlightDynamics` flies any number of episodes at onc
   controls), warm-started with the step the solver reached in the previous period, shortened so that a whole
   number of steps fills the period; Radau gets the constant trim Jacobian; a terminal event at altitude 0.
 
-:func:`advance_period` is the one entry point of a period of N aircraft (N = 1 for a single environment): rate
-limits, integration and measurements (:mod:`flexsim.sim.measurements`) in one compiled call
-(:func:`flexsim.sim._step_kernels.period_rows`) for rows flown about one trim with packed winds, the products over
-the rows as matrix products from :data:`COMPILED_ROWS_BELOW` rows on; otherwise the same arithmetic in separate
-calls (rows about different trims: the compiled step row by row; a Python wind callable: steps around ``model.rhs``,
-:meth:`FlightDynamics.advance`). The wind field of each episode is passed per call and reaches ``model.rhs(t, x, u,
+:func:`advance_period` is the one route of a period of N aircraft (N = 1 for a single environment), with two paths
+per row: rate limits, integration and measurements (:mod:`flexsim.sim.measurements`) in one compiled call
+(:func:`flexsim.sim._step_kernels.period_rows`) per trim for the rows the kernels can fly (ETD2RK, a packed wind),
+the products over the rows as matrix products from :data:`COMPILED_ROWS_BELOW` rows on; for the rest, which the
+kernels cannot run (DOP853 or Radau, a Python wind callable, a replaced right-hand side), the same arithmetic in Python
+order (the compiled rate limits, :meth:`FlightDynamics.advance`: the compiled ETD2RK stages around ``model.rhs`` or
+``solve_ivp``, the compiled measurements). :func:`advance_rows` is the integration alone, for many rows at once
+(used to check the compiled period against it). The wind field of each episode is passed per call and reaches ``model.rhs(t, x, u,
 wind)``; nothing here stores it, so trims are in still air and do not depend on earlier episodes.
 """
 
