@@ -17,14 +17,13 @@ import numpy as np
 import pytest
 
 import flexsim as fs
-from flexsim._kernels.downwash_lag import DownwashLag
 from flexsim.linear.control import LinearSystem, ModelRecord, linear_system
 from flexsim.linear.flutter import wind_tunnel
 from flexsim.linear.study import StudyCase, run_case
 from flexsim.linear.vg import vg_diagram
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.model.terms import NonlinearBeams, Terms
+from flexsim.model.terms import NonlinearBeams, Terms, aero_term_options
 from flexsim.model.variant import Variant, VariantSettings
 from flexsim.trimming import SteadyManoeuvre, trim
 
@@ -135,7 +134,7 @@ NON_DEFAULT = {
     "engine_angular_momentum": (2e5, 0.0, 0.0),
     "inertia_q_offset_m": lambda nq: tuple(0.001 * (i + 1) for i in range(nq)),
     "aero_velocity_offset_m_s": (0.0, 0.0, 0.5),
-    "aero_terms": (DownwashLag(),),
+    "aero_terms": tuple(options() for options in aero_term_options()),  # every registered aerodynamic term, switched on
     "nonlinear_beams": NonlinearBeams(4),
 }
 #: (field, analysis) pairs refused with a message naming the field instead of evaluated, and why: a flutter search
