@@ -552,7 +552,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         else:
             winds, dynamics, states = [b.winds[i] for i in rows], [b.dynamics[i] for i in rows], [b.states[i] for i in rows]
         outcome, u, meas = advance_period(dynamics, states, b.x[rows], b.u[rows], a * self._u_scale, steps, winds,
-                                          b.packed_rows(rows))
+                                          *b.packed_rows(rows))
         if not self.dynamics.substeps:  # DOP853, Radau: the next period's warm-start step (ETD2RK's states do not change)
             for i, state in zip(range(b.n)[rows] if isinstance(rows, slice) else rows, outcome.states):
                 b.states[i] = state
@@ -622,7 +622,7 @@ class FlexSimEnv(gym.Env[np.ndarray, np.ndarray]):
         """Observations (m, n_obs) float32 of m aircraft (measurements, task errors (m, k), applied controls (m, 4))."""
         obs = np.empty((len(errors), self._obs_low.shape[0]), np.float32)
         _rk.observe_rows(meas.matrix, np.ascontiguousarray(errors, dtype=float), np.ascontiguousarray(u, dtype=float),
-                         *self._observe_data, obs)
+                         self._observe_data, obs)
         return obs
 
     # ------------------------------------------------------------------ introspection

@@ -79,7 +79,7 @@ class EpisodeBatch:
         self.states: list[Any] = [None] * n
         self._path = np.zeros((n, PATH_HISTORY, 3))
         self._path_count = np.zeros(n, dtype=np.int64)
-        self._packed: Any = None  # the winds packed for the compiled model (None: to pack; False: cannot)
+        self._packed: Any = None  # the winds packed for the compiled model and the rows not packed (None: to pack)
 
     # ------------------------------------------------------------------ episodes
     def begin(self, row: int, dynamics, state, wind, x0: np.ndarray, u: np.ndarray, action: np.ndarray, reference: dict) -> None:
@@ -109,25 +109,26 @@ class EpisodeBatch:
         return {key: value[rows] for key, value in self.reference.items()}
 
     # ------------------------------------------------------------------ winds
-    def packed_winds(self) -> Any:
-        """The winds of all rows packed once per reset (:func:`flexsim.sim.periods.pack_period_winds`; None: not
-        packed, evaluated per row)."""
+    def packed_winds(self) -> tuple[Any, Any]:
+        """The winds of all rows packed once per reset, with the rows whose wind the kernels cannot evaluate
+        (:func:`flexsim.sim.periods.pack_period_winds`: ``packed``, ``python_winds``)."""
         if self._packed is None:
-            packed = pack_period_winds(self.dynamics, self.winds)
-            self._packed = False if packed is None else packed
-        return self._packed or None
+            self._packed = pack_period_winds(self.dynamics, self.winds)
+        return self._packed
 
     def invalidate_winds(self) -> None:
         """Pack the winds again before the next use (a row's wind field was replaced)."""
         self._packed = None
 
-    def packed_rows(self, rows: np.ndarray | slice) -> Any:
-        """:meth:`packed_winds` of ``rows`` only (None stays None)."""
-        packed = self.packed_winds()
+    def packed_rows(self, rows: np.ndarray | slice) -> tuple[Any, Any]:
+        """:meth:`packed_winds` of ``rows`` only (the ``packed`` and ``python_winds`` arguments of
+        :func:`flexsim.sim.periods.advance_period`; None stays None)."""
+        packed, python = self.packed_winds()
         if packed is None or (rows == slice(0, self.n) if isinstance(rows, slice) else
                               (len(rows) == self.n and np.array_equal(rows, np.arange(self.n)))):
-            return packed
-        return select_packed_rows(packed, rows if isinstance(rows, slice) else np.asarray(rows, dtype=np.int64))
+            return packed, python
+        index = rows if isinstance(rows, slice) else np.asarray(rows, dtype=np.int64)
+        return select_packed_rows(packed, index), None if python is None else python[index]
 
     # ------------------------------------------------------------------ flight path
     def record_path(self, rows: np.ndarray | slice, positions: np.ndarray) -> None:

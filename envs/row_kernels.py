@@ -84,11 +84,13 @@ def termination_rows(meas, failed, crashed, limits, n_comp, codes):
 
 
 @_jit
-def observe_rows(meas, errors, u, u_scale, act_low, act_high, n_comp, obs_low, obs_high, obs):
+def observe_rows(meas, errors, u, ob, obs):
     """Observations of N aircraft into ``obs`` (N, n_obs) float32: Euler angles (psi wrapped), body rates,
     airspeed, alpha, beta, altitude, the task errors (N, k), per component the tip deflection, its rate, the tip
-    twist and its rate, and the applied controls u (N, 4) normalised by ``u_scale`` (0 where the scale is 0),
-    clipped to [act_low, act_high] and rounded to float32; NaN -> 0, then clipped to [obs_low, obs_high]."""
+    twist and its rate, and the applied controls u (N, 4) normalised by ``ob.u_scale`` (0 where the scale is 0),
+    clipped to [ob.act_low, ob.act_high] and rounded to float32; NaN -> 0, then clipped to [ob.obs_low, ob.obs_high];
+    ``ob`` the environment's :class:`ObserveData`."""
+    u_scale, act_low, act_high, n_comp, obs_low, obs_high = ob.u_scale, ob.act_low, ob.act_high, ob.n_comp, ob.obs_low, ob.obs_high
     k = errors.shape[1]
     for i in range(meas.shape[0]):
         row = np.empty(obs.shape[1])
@@ -219,4 +221,4 @@ def finish_rows(*args):
             codes[i] = end.task_codes[i]
         terminated[i] = codes[i] > 0
     reward_rows(end.errors, data.terms, terminated, end.da, data.reward_data, out.parts, out.reward)
-    observe_rows(end.meas, end.errors, end.u, ob.u_scale, ob.act_low, ob.act_high, ob.n_comp, ob.obs_low, ob.obs_high, out.obs)
+    observe_rows(end.meas, end.errors, end.u, ob, out.obs)

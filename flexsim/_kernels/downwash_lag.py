@@ -1,5 +1,5 @@
-"""The horizontal tail's downwash lag (the alpha-dot term): its data and its entries of E, compiled (not in the paper;
-off by default, :attr:`flexsim.model.terms.Terms.downwash_lag`).
+"""The horizontal tail's downwash lag (the alpha-dot term): its switch, its data and its entries of E, compiled (not in
+the paper; off by default: on with ``Terms(aero_terms=(DownwashLag(),))``, :attr:`flexsim.model.terms.Terms.aero_terms`).
 
 The wing's downwash reaches the horizontal tail after the wake's travel time tau = l_t / V, so the tail sees the
 downwash of the wing's angle of attack a moment earlier: epsilon(t) = (d epsilon/d alpha) alpha(t - tau), and to first
@@ -37,10 +37,20 @@ from flexsim._kernels.layout import _f1, _f2, _flag, kernel, packed, term_data
 from flexsim._kernels.strips import PRANDTL_GLAUERT, PROJ_N0, compressibility_factor, strip_mach
 
 
+@dataclasses.dataclass(frozen=True)
+class DownwashLag:
+    """The switch of the horizontal tail's downwash lag (module docstring): a model has the term when its
+    ``Terms(aero_terms=...)`` holds a ``DownwashLag()``. No options: the gradient (d epsilon/d alpha)_0 is the aircraft
+    file's ``[aero] downwash_gradient`` and the arm l_t the strips'."""
+
+
 @term_data
 @dataclasses.dataclass(frozen=True)
 class DownwashLagData:
-    """The horizontal tail's downwash lag (module docstring; :attr:`flexsim.model.terms.Terms.downwash_lag`)."""
+    """The horizontal tail's downwash lag (module docstring), switched by :class:`DownwashLag`."""
+
+    #: The term's options class (the switch, :attr:`flexsim.model.terms.Terms.aero_terms`).
+    options = DownwashLag
 
     downwash_lag_k: np.ndarray = packed(1, "k_j = 1/2 c_j w_j Cl_a0,j nz_j (d eps/d alpha)_0 l_t (n_s,) [m^3], 0 off the tail")
     has_downwash_lag: int = packed(0, "1 with the downwash lag", "flag")
@@ -48,16 +58,16 @@ class DownwashLagData:
     @staticmethod
     def fields_of(model) -> dict:
         """The fields of a model (:class:`flexsim.model.aircraft_model.AircraftModel`): k_j of its horizontal-tail
-        strips from its strip coupling (``model.aero``) when ``terms.downwash_lag`` is on.
+        strips from its strip coupling (``model.aero``) when its terms hold a :class:`DownwashLag`.
 
         Raises ValueError when the switch is on and the model has no downwash at the tail to lag (no wing or no
         horizontal tail, a zero ``downwash_gradient``, ``AeroOptions(downwash=False)`` or the paper's formulation).
         """
-        if not model.terms.downwash_lag:
+        if model.terms.aero_term(DownwashLag) is None:
             return dict(has_downwash_lag=False)
         a = model.aero
         if a is None or a.downwash_gradient == 0.0:
-            raise ValueError("downwash_lag = True: this model has no wing downwash at the horizontal tail to lag (it needs "
+            raise ValueError("aero_terms: DownwashLag(): this model has no wing downwash at the horizontal tail to lag (it needs "
                              "a wing and a horizontal tail, the aircraft file's [aero] downwash_gradient > 0, "
                              "AeroOptions(downwash=True) and the physical formulation)")
         s = a.strips

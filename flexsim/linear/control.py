@@ -44,7 +44,7 @@ from flexsim.io.vocabulary import CONTROL_NAMES, check_names
 from flexsim.linear.linearize import linearize
 from flexsim.model.aircraft_model import AircraftModel, check_model
 from flexsim.model.coupling import AeroOptions
-from flexsim.model.terms import NonlinearBeams, Terms
+from flexsim.model.terms import Terms
 from flexsim.model.variant import VariantSettings
 from flexsim.model.naming import state_names
 from flexsim.model.sensors import SENSOR_QUANTITIES, SensorBank, structural_sensors
@@ -150,11 +150,7 @@ class ModelRecord:
             rho = d.pop("aero_density_kg_m3", None)
             d["terms"] = {"aero": d.pop("aero"), "gravity_m_s2": d.pop("gravity_m_s2"), "aero_density_kg_m3": rho}
             d["variant"] = {"kind": d["variant"]}
-        t = dict(d["terms"])
-        t["aero"] = None if t["aero"] is None else AeroOptions(**t["aero"])
-        if t.get("nonlinear_beams") is not None:
-            t["nonlinear_beams"] = NonlinearBeams(**t["nonlinear_beams"])
-        d["terms"], d["variant"] = Terms(**t), VariantSettings(**d["variant"])
+        d["terms"], d["variant"] = Terms.from_record(d["terms"]), VariantSettings(**d["variant"])
         return cls(**d)
 
 

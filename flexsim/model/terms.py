@@ -28,10 +28,12 @@ import math
 import numbers
 from dataclasses import dataclass, field, fields
 
+import flexsim._kernels  # noqa: F401  (imports every term module, which registers its data class in TERMS)
+from flexsim._kernels.layout import TERMS
 from flexsim.atmosphere import G0
 from flexsim.model.coupling import AeroOptions
 
-__all__ = ["Terms", "NonlinearBeams", "FORCE_RESOLUTIONS", "NONLINEAR_ANALYSES"]
+__all__ = ["Terms", "NonlinearBeams", "FORCE_RESOLUTIONS", "NONLINEAR_ANALYSES", "aero_term_options"]
 
 #: Metadata of a :class:`Terms` field that switches an aerodynamic term: with ``aero=None`` it must keep its default.
 _AERODYNAMIC = {"aerodynamic": True}
@@ -51,6 +53,13 @@ def _finite_tuple(name: str, value, length: int | None = None) -> tuple[float, .
     if length is not None and len(out) != length:
         raise ValueError(f"{name} = {value!r}: must have {length} entries")
     return out
+
+
+def aero_term_options() -> tuple[type, ...]:
+    """The options classes of the optional aerodynamic terms, the values :attr:`Terms.aero_terms` takes: each declared in
+    its term's module of :mod:`flexsim._kernels` beside the data class that names it (``options``), in the order the
+    terms are registered (e.g. :class:`flexsim._kernels.downwash_lag.DownwashLag`)."""
+    return tuple(t.options for t in TERMS if getattr(t, "options", None) is not None)
 
 
 #: The analyses that evaluate a model with :attr:`Terms.nonlinear_beams`; every other analysis refuses such a model
@@ -148,11 +157,12 @@ class Terms:
         apparent mass, inflow forcing and downwash; not the Mach number, the parasite drag or the bodies). E.g. the
         level flight's body velocity minus a manoeuvre's at the same speed: the aerodynamics at the level angle of
         attack and sideslip. None (default): dv = 0.
-    downwash_lag : bool
-        True: the horizontal tail's downwash lag, the tail's alpha-dot derivatives (C_L_alpha_dot, C_m_alpha_dot;
-        Etkin & Reid 1996 ch. 5, USAF DATCOM sec. 7.4.4), as an apparent mass of w_dot
-        (:mod:`flexsim._kernels.downwash_lag`); needs the wing's downwash at the tail (the file's
-        ``downwash_gradient``). False (default): the tail sees the downwash without lag (the paper has none).
+    aero_terms : tuple
+        The optional aerodynamic terms the model has, each given by its options object, declared in the term's own
+        module (:func:`aero_term_options`), at most one of each; e.g. ``(DownwashLag(),)``
+        (:class:`flexsim._kernels.downwash_lag.DownwashLag`): the horizontal tail's downwash lag, the tail's alpha-dot
+        derivatives (Etkin & Reid 1996 ch. 5, USAF DATCOM sec. 7.4.4), which needs the wing's downwash at the tail.
+        Default ``()``: none (the paper has none).
     nonlinear_beams : NonlinearBeams or None
         The structure: None (default) the paper's linear beams (eqs. 1, 14; the small-deflection limit, valid to a
         tip deflection of 14 % of a beam's length, :mod:`flexsim.model.linear_range`); a :class:`NonlinearBeams`:
@@ -172,7 +182,7 @@ class Terms:
     engine_angular_momentum: tuple[float, float, float] | None = None
     inertia_q_offset_m: tuple[float, ...] | None = None
     aero_velocity_offset_m_s: tuple[float, float, float] | None = field(default=None, metadata=_AERODYNAMIC)
-    downwash_lag: bool = field(default=False, metadata=_AERODYNAMIC)
+    aero_terms: tuple = field(default=(), metadata=_AERODYNAMIC)
     nonlinear_beams: NonlinearBeams | None = None
 
     def __post_init__(self) -> None:
@@ -206,8 +216,7 @@ class Terms:
             object.__setattr__(self, "fin_drag_per_lift", float(k))
         if not isinstance(self.thrust_follows_deflection, bool):
             raise ValueError(f"thrust_follows_deflection = {self.thrust_follows_deflection!r}: must be True or False")
-        if not isinstance(self.downwash_lag, bool):
-            raise ValueError(f"downwash_lag = {self.downwash_lag!r}: must be True or False")
+        self._check_aero_terms()
         if self.nonlinear_beams is not None and not isinstance(self.nonlinear_beams, NonlinearBeams):
             raise ValueError(f"nonlinear_beams = {self.nonlinear_beams!r}: must be a NonlinearBeams (e.g. "
                              "NonlinearBeams(elements_per_beam=8)) or None (the paper's linear beams)")
@@ -222,15 +231,61 @@ class Terms:
                     raise ValueError(f"{f.name} = {getattr(self, f.name)!r}: a model without aerodynamics (aero None) has "
                                      "no aerodynamic term to apply it to")
 
+    def _check_aero_terms(self) -> None:
+        """:attr:`aero_terms` as a tuple of options objects of distinct registered terms, else a ValueError."""
+        given = self.aero_terms
+        if isinstance(given, (str, bytes)) or not hasattr(given, "__iter__"):
+            raise ValueError(f"aero_terms = {given!r}: must be a tuple of aerodynamic terms' options, e.g. (DownwashLag(),)")
+        given = tuple(given)
+        allowed = aero_term_options()
+        for option in given:
+            if type(option) not in allowed:
+                raise ValueError(f"aero_terms = {given!r}: {option!r} is not the options of an aerodynamic term (one of "
+                                 f"{', '.join(c.__name__ for c in allowed)})")
+        kinds = [type(option) for option in given]
+        if len(set(kinds)) != len(kinds):
+            raise ValueError(f"aero_terms = {given!r}: each term at most once")
+        object.__setattr__(self, "aero_terms", given)
+
+    def aero_term(self, options: type):
+        """The options object of class ``options`` in :attr:`aero_terms` (the term is on), or None (off)."""
+        for option in self.aero_terms:
+            if type(option) is options:
+                return option
+        return None
+
     def record(self) -> dict:
         """The terms as a JSON-ready dict (for result rows and log headers): every field by name, ``aero`` as the
-        dict of its options (None: vacuum), offsets as lists."""
+        dict of its options (None: vacuum), offsets as lists, ``aero_terms`` as a list of dicts (``"term"``: the
+        options class's name, then its options); :meth:`from_record` reads it back."""
         out = {}
         for f in fields(self):
             v = getattr(self, f.name)
             if f.name in ("aero", "nonlinear_beams"):
                 v = None if v is None else {g.name: getattr(v, g.name) for g in fields(v)}
+            elif f.name == "aero_terms":  # each term by its options class's name and its options
+                v = [{"term": type(t).__name__, **{g.name: getattr(t, g.name) for g in fields(t)}} for t in v]
             elif isinstance(v, tuple):
                 v = list(v)
             out[f.name] = v
         return out
+
+    @classmethod
+    def from_record(cls, record: dict) -> Terms:
+        """The terms of a :meth:`record` (also of earlier records: a ``downwash_lag`` flag, fields then absent)."""
+        t = dict(record)
+        t["aero"] = None if t.get("aero") is None else AeroOptions(**t["aero"])
+        if t.get("nonlinear_beams") is not None:
+            t["nonlinear_beams"] = NonlinearBeams(**t["nonlinear_beams"])
+        options = {c.__name__: c for c in aero_term_options()}
+        terms = []
+        for entry in t.pop("aero_terms", ()):
+            entry = dict(entry)
+            name = entry.pop("term")
+            if name not in options:
+                raise ValueError(f"aero_terms: {name!r} is not an aerodynamic term of this flexsim (one of {', '.join(options)})")
+            terms.append(options[name](**entry))
+        if t.pop("downwash_lag", False):
+            terms.append(options["DownwashLag"]())
+        t["aero_terms"] = tuple(terms)
+        return cls(**t)

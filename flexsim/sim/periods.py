@@ -19,12 +19,14 @@ every period, so one :class:`FlightDynamics` flies any number of episodes at onc
   controls), warm-started with the step the solver reached in the previous period, shortened so that a whole
   number of steps fills the period; Radau gets the constant trim Jacobian; a terminal event at altitude 0.
 
-:func:`advance_period` is the one entry point of a period of N aircraft (N = 1 for a single environment): rate
-limits, integration and measurements (:mod:`flexsim.sim.measurements`) in one compiled call
-(:func:`flexsim.sim._step_kernels.period_rows`) for rows flown about one trim with packed winds, the products over
-the rows as matrix products from :data:`COMPILED_ROWS_BELOW` rows on; otherwise the same arithmetic in separate
-calls (rows about different trims: the compiled step row by row; a Python wind callable: steps around ``model.rhs``,
-:meth:`FlightDynamics.advance`). The wind field of each episode is passed per call and reaches ``model.rhs(t, x, u,
+:func:`advance_period` is the one route of a period of N aircraft (N = 1 for a single environment), with two paths
+per row: rate limits, integration and measurements (:mod:`flexsim.sim.measurements`) in one compiled call
+(:func:`flexsim.sim._step_kernels.period_rows`) per trim for the rows the kernels can fly (ETD2RK, a packed wind),
+the products over the rows as matrix products from :data:`COMPILED_ROWS_BELOW` rows on; for the rest, which the
+kernels cannot run (DOP853 or Radau, a Python wind callable, a replaced right-hand side), the same arithmetic in Python
+order (the compiled rate limits, :meth:`FlightDynamics.advance`: the compiled ETD2RK stages around ``model.rhs`` or
+``solve_ivp``, the compiled measurements). :func:`advance_rows` is the integration alone, for many rows at once
+(used to check the compiled period against it). The wind field of each episode is passed per call and reaches ``model.rhs(t, x, u,
 wind)``; nothing here stores it, so trims are in still air and do not depend on earlier episodes.
 """
 
@@ -612,20 +614,6 @@ def _shared_stepper(dynamics: Sequence[FlightDynamics], states: Sequence[Integra
     return first
 
 
-def _stepper_groups(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState]) -> list[np.ndarray] | None:
-    """The rows grouped by their ETD2RK stepper (one per trim; int index arrays, in order of first appearance) when
-    every row flies the first row's model, whose right-hand side the compiled step evaluates, with ETD2RK; else None."""
-    model = dynamics[0].model
-    if not dynamics[0].substeps or not _compiled_rhs(model):
-        return None
-    groups: dict[int, list[int]] = {}
-    for i, (d, st) in enumerate(zip(dynamics, states)):
-        if st.stepper is None or d.model is not model:
-            return None
-        groups.setdefault(id(st.stepper), []).append(i)
-    return [np.array(rows, np.int64) for rows in groups.values()]
-
-
 def _period_group(first: FlightDynamics, step_data: _sk.StepData, x: np.ndarray, applied: np.ndarray, command: np.ndarray,
                   k: np.ndarray, packed: _k.BatchWind, winds) -> _sk.PeriodOut:
     """One compiled call (:func:`flexsim.sim._step_kernels.period_rows`) for rows about one trim (``step_data``)."""
@@ -673,56 +661,117 @@ def advance_rows(dynamics: Sequence[FlightDynamics], states: Sequence[Integratio
 
 @single_blas_thread
 def advance_period(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState], x: np.ndarray, applied: np.ndarray,
-                   command: np.ndarray, k: np.ndarray, winds, packed=None) -> PeriodResult:
+                   command: np.ndarray, k: np.ndarray, winds, packed=None, python_winds=None) -> PeriodResult:
     """One control period of N aircraft: rate limits from the ``applied`` towards the ``command`` controls (N, 4)
     [N, rad], the integration of period ``k[i]`` (N,) int of row i, [k dt, (k + 1) dt] [s] with the control period
-    ``dt`` of the dynamics, and the measurements of the states reached.
+    ``dt`` of the dynamics, and the measurements of the states reached; the one route of the environments' periods.
 
     ``dynamics[i]`` flies row i from its integration state ``states[i]`` (:meth:`FlightDynamics.start` of its episode;
     those of the next period: ``outcome.states``; the rate limits and outputs are those of ``dynamics[0]``);
-    ``winds`` the N wind fields, ``packed`` the same packed by the model's ``pack_winds`` (or None). Rows flown about
-    one trim with packed winds take one compiled call (:func:`flexsim.sim._step_kernels.period_rows`; a row that stops
-    with a model error reads the model's message, :meth:`FlightDynamics.model_error`), rows about several trims one such
-    call per trim; other integrators or winds that cannot be packed take :meth:`FlightDynamics.rate_limit`,
-    :func:`advance_rows` and :meth:`FlightDynamics.measure_batch`, the same arithmetic.
+    ``winds`` the N wind fields, ``packed`` the same packed by :func:`pack_period_winds` (or the model's
+    ``pack_winds``; None: none packed) and ``python_winds`` (N,) bool the rows whose wind it packed as still air because
+    the kernels cannot evaluate it (a Python callable; None: none).
+
+    Each row takes one of two paths (:func:`_kernel_rows` decides): the rows the kernels can fly (ETD2RK about a trim
+    of the first row's compiled model, a packed wind) the compiled period, one call of
+    :func:`flexsim.sim._step_kernels.period_rows` per trim (rate limits, ETD2RK steps, measurements; a row that stops
+    with a model error reads the model's message, :meth:`FlightDynamics.model_error`); the others, by name what the
+    kernels cannot run (DOP853 or Radau, a Python wind callable, a right-hand side other than the compiled one), the
+    same arithmetic in Python order: the rate limits (:func:`flexsim.sim._step_kernels.rate_limit_rows`), each row's
+    :meth:`FlightDynamics.advance` (ETD2RK: the compiled stages around ``model.rhs``; or ``solve_ivp``) and the
+    measurements (:func:`flexsim.sim.measurements.measure_rows`). A row's result does not depend on the others'.
     """
     first = dynamics[0]
     m = len(dynamics)
-    out = None
-    if isinstance(packed, _k.BatchWind):
-        if _shared_stepper(dynamics, states) is not None:  # every row about one trim: one call on the arrays as given
-            out = _period_group(first, states[0].step_data, x, applied, command, k, packed, winds)
+    if python_winds is None and isinstance(packed, _k.BatchWind) and _shared_stepper(dynamics, states) is not None:
+        out = _period_group(first, states[0].step_data, x, applied, command, k, packed, winds)  # the arrays as given
+        return _compiled_result(first, out, k, states, winds)
+    groups, python = _kernel_rows(dynamics, states, packed, python_winds)
+    if not python.size and len(groups) == 1:  # every row about one trim, in a subset of the packed winds' rows
+        return _compiled_result(first, _period_group(first, states[0].step_data, x, applied, command, k, packed, winds),
+                                k, states, winds)
+    parts: list[tuple[np.ndarray, BatchOutcome, np.ndarray, np.ndarray]] = []
+    for rows in groups:  # one compiled call per trim, each on its rows
+        sub = [winds[i] for i in rows]
+        out = _period_group(first, states[rows[0]].step_data, x[rows], applied[rows], command[rows], k[rows],
+                            select_packed_rows(packed, rows), sub)
+        res = _compiled_result(first, out, k[rows], [states[i] for i in rows], sub)
+        parts.append((rows, res.outcome, res.u, res.meas.matrix))
+    if python.size:
+        parts.append((python, *_python_rows(dynamics, states, x, applied, command, k, winds, packed, python_winds, python)))
+    return _join(first, m, parts)
+
+
+def _compiled_result(first: FlightDynamics, out: _sk.PeriodOut, k: np.ndarray, states, winds) -> PeriodResult:
+    """The :class:`PeriodResult` of rows flown by one compiled call (:func:`_period_group`)."""
+    stopped = np.count_nonzero(out.status)
+    return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None, states,
+                                           out.u, winds), out.u, MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))
+
+
+def _kernel_rows(dynamics: Sequence[FlightDynamics], states: Sequence[IntegrationState], packed,
+                 python_winds) -> tuple[list[np.ndarray], np.ndarray]:
+    """The rows of a period that the compiled kernels fly, grouped by their ETD2RK stepper (one per trim, int index
+    arrays in order of first appearance), and the rest (int indices): a row is compiled when its wind is packed (in
+    ``packed``, not marked in ``python_winds``) and it flies the first row's model, whose right-hand side the kernels
+    evaluate (:func:`_compiled_rhs`), with ETD2RK from a state that has its stepper."""
+    model = dynamics[0].model
+    kernel = isinstance(packed, _k.BatchWind) and _compiled_rhs(model)
+    groups: dict[int, list[int]] = {}
+    python = []
+    for i, (d, st) in enumerate(zip(dynamics, states)):
+        if kernel and d.substeps and d.model is model and st.stepper is not None and not (
+                python_winds is not None and python_winds[i]):
+            groups.setdefault(id(st.stepper), []).append(i)
         else:
-            groups = _stepper_groups(dynamics, states)
-            if groups is not None:  # one call per trim, each on its rows (a row's result does not depend on the others)
-                out = _sk.PeriodOut(np.empty((m, 4)), np.empty((m, first.layout.n_states)), np.empty(m), np.empty(m, np.int64),
-                                    np.empty(m, np.int64), np.empty((m, first.n_measurements)))
-                for rows in groups:
-                    part = _period_group(first, states[rows[0]].step_data, x[rows], applied[rows], command[rows], k[rows],
-                                         select_packed_rows(packed, rows), [winds[i] for i in rows])
-                    for whole, piece in zip(out, part):
-                        whole[rows] = piece
-    if out is not None:
-        stopped = np.count_nonzero(out.status)
-        return PeriodResult(first.rows_outcome(out.x, out.t, out.status, out.taken, k * first.dt if stopped else None, states,
-                                               out.u, winds), out.u, MeasurementBatch(out.t, out.meas, SENSOR_COMPONENTS))
-    t0, t1 = k * first.dt, (k + 1) * first.dt
-    u = first.rate_limit(applied, command)
-    outcome = advance_rows(dynamics, states, x, u, t0, t1, winds, packed=packed)
-    return PeriodResult(outcome, u, first.measure_batch(outcome.x, outcome.time_s, winds, packed))
+            python.append(i)
+    return [np.array(rows, np.int64) for rows in groups.values()], np.array(python, np.int64)
 
 
-def pack_period_winds(dynamics: Sequence[FlightDynamics | None], winds) -> _k.BatchWind | None:
-    """The ``packed`` argument of :func:`advance_period` for rows flown on ``dynamics`` in ``winds``: the winds packed
-    once (e.g. per reset) by the model's ``pack_winds``, or None where the rows are not all on one compiled model or a
-    wind cannot be packed (then evaluated per row)."""
+def _python_rows(dynamics, states, x, applied, command, k, winds, packed, python_winds, rows) -> tuple:
+    """(outcome, u, measurement rows) of the rows ``rows`` that the kernels cannot fly (:func:`advance_period`): the
+    rate limits, each row's :meth:`FlightDynamics.advance` and the measurements, the winds read as packed where they
+    all are, else each asked in Python."""
+    first = dynamics[0]
+    u = first.rate_limit(applied[rows], command[rows])
+    t0, t1 = k[rows] * first.dt, (k[rows] + 1) * first.dt
+    sub = [winds[i] for i in rows]
+    outcome = BatchOutcome.of([dynamics[i].advance(states[i], x[i], u[j], float(t0[j]), float(t1[j]), winds[i])
+                               for j, i in enumerate(rows)])
+    given = python_winds is not None and bool(np.any(python_winds[rows]))
+    meas = first.measure_batch(outcome.x, outcome.time_s, sub, None if given else select_packed_rows(packed, rows))
+    return outcome, u, meas.matrix
+
+
+def _join(first: FlightDynamics, m: int, parts) -> PeriodResult:
+    """The :class:`PeriodResult` of m rows from the parts (rows, outcome, u, measurement rows) that flew them."""
+    n = first.layout.n_states
+    x, t, u, meas = np.empty((m, n)), np.empty(m), np.empty((m, 4)), np.empty((m, first.n_measurements))
+    crashed, failed = np.empty(m, np.bool_), np.empty(m, np.bool_)
+    failure, nfev, nlu = np.empty(m, dtype=object), np.empty(m, np.int64), np.empty(m, np.int64)
+    states: list = [None] * m
+    for rows, o, u_rows, meas_rows in parts:
+        x[rows], t[rows], u[rows], meas[rows] = o.x, o.time_s, u_rows, meas_rows
+        crashed[rows], failed[rows], failure[rows], nfev[rows], nlu[rows] = o.crashed, o.failed, o.failure, o.nfev, o.nlu
+        for j, i in enumerate(rows):
+            states[i] = o.states[j]
+    return PeriodResult(BatchOutcome(x, t, crashed, failure, nfev, nlu, failed, tuple(states)), u,
+                        MeasurementBatch(t, meas, SENSOR_COMPONENTS))
+
+
+def pack_period_winds(dynamics: Sequence[FlightDynamics | None], winds) -> tuple[_k.BatchWind | None, np.ndarray | None]:
+    """The ``packed`` and ``python_winds`` arguments of :func:`advance_period` for rows flown on ``dynamics`` in
+    ``winds``, made once (e.g. per reset): the winds packed by the model's ``pack_winds``, a wind that the kernels
+    cannot evaluate (not a field of :mod:`flexsim.sim.disturbances`: a Python callable) packed as still air and marked
+    True in ``python_winds`` (None where every wind is packed); (None, None) where the model packs no winds."""
     model = dynamics[0].model if len(dynamics) and dynamics[0] is not None else None
-    if getattr(model, "pack_winds", None) is None or not all(d is not None and d.model is model for d in dynamics):
-        return None
+    if getattr(model, "pack_winds", None) is None:
+        return None, None
     try:
-        return model.pack_winds(winds)
+        return model.pack_winds(winds), None
     except ValueError:
-        return None
+        python = np.array([w is not None and not isinstance(getattr(w, "wind_data", None), _k.WindData) for w in winds])
+        return model.pack_winds([None if p else w for w, p in zip(winds, python)]), python
 
 
 def select_packed_rows(packed: _k.BatchWind | None, rows: np.ndarray | slice) -> _k.BatchWind | None:

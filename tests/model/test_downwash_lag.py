@@ -1,7 +1,8 @@
-"""The horizontal tail's downwash lag (:mod:`flexsim._kernels.downwash_lag`, ``Terms.downwash_lag``) against the
+"""The horizontal tail's downwash lag (:mod:`flexsim._kernels.downwash_lag`, ``Terms(aero_terms=(DownwashLag(),))``) against the
 closed form of the tail's alpha-dot derivatives (Etkin & Reid 1996 ch. 5; USAF DATCOM sec. 7.4.4):
 C_L_alpha_dot = 2 a_t V_H (d eps/d alpha), C_m_alpha_dot = -C_L_alpha_dot (l / c_bar) with l the tail's arm from the CG;
-off by default, nothing else changed, refused where there is no downwash to lag."""
+off by default, nothing else changed, refused where there is no downwash to lag; its switch is its own options class,
+which the terms record by name and read back."""
 
 from __future__ import annotations
 
@@ -10,11 +11,12 @@ import math
 import numpy as np
 import pytest
 
+from flexsim._kernels.downwash_lag import DownwashLag
 from flexsim.aircraft.toml_loader import load_aircraft
 from flexsim.atmosphere import isa
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.model.terms import Terms
+from flexsim.model.terms import Terms, aero_term_options
 
 QS = AeroOptions("quasi-steady")
 ALTITUDE_M, SPEED_M_S = 3000.0, 190.0
@@ -23,7 +25,7 @@ ALTITUDE_M, SPEED_M_S = 3000.0, 190.0
 @pytest.fixture(scope="module")
 def models():
     gtm = load_aircraft("gtm")
-    return AircraftModel(gtm, terms=Terms(aero=QS)), AircraftModel(gtm, terms=Terms(aero=QS, downwash_lag=True))
+    return AircraftModel(gtm, terms=Terms(aero=QS)), AircraftModel(gtm, terms=Terms(aero=QS, aero_terms=(DownwashLag(),)))
 
 
 def _state(model):
@@ -97,8 +99,11 @@ def test_handbook_alpha_dot_derivatives(models):
 
 def test_off_by_default_nothing_else_changed(models):
     plain, lag = models
-    assert Terms().downwash_lag is False and lag.terms.record()["downwash_lag"] is True
-    default = AircraftModel(plain.aircraft, terms=Terms(aero=QS, downwash_lag=False))
+    assert Terms().aero_term(DownwashLag) is None and lag.terms.aero_term(DownwashLag) == DownwashLag()
+    assert DownwashLag in aero_term_options() and lag.terms.record()["aero_terms"] == [{"term": "DownwashLag"}]
+    assert Terms.from_record(lag.terms.record()) == lag.terms
+    assert Terms.from_record({**plain.terms.record(), "downwash_lag": True}) == lag.terms  # an earlier record's flag
+    default = AircraftModel(plain.aircraft, terms=Terms(aero=QS, aero_terms=()))
     assert np.array_equal(default.kernel_data.F, plain.kernel_data.F, equal_nan=True) and np.array_equal(default.kernel_data.I, plain.kernel_data.I)
     # an E term: the explicit aerodynamic force (static margins, outputs) and the right-hand side's f are unchanged
     x, u = _state(plain), np.array([5e4, 0.0, -0.02, 0.0])
@@ -108,9 +113,11 @@ def test_off_by_default_nothing_else_changed(models):
 
 def test_refused_where_there_is_nothing_to_lag(models):
     plain, _ = models
-    with pytest.raises(ValueError, match="downwash_lag = 1: must be True or False"):
-        Terms(downwash_lag=1)
-    with pytest.raises(ValueError, match="downwash_lag = True: a model without aerodynamics"):
-        Terms(aero=None, downwash_lag=True)
-    with pytest.raises(ValueError, match="downwash_lag = True: this model has no wing downwash"):
-        AircraftModel(plain.aircraft, terms=Terms(aero=AeroOptions("quasi-steady", downwash=False), downwash_lag=True))
+    with pytest.raises(ValueError, match=r"aero_terms = \(1,\): 1 is not the options of an aerodynamic term"):
+        Terms(aero_terms=(1,))
+    with pytest.raises(ValueError, match="each term at most once"):
+        Terms(aero_terms=(DownwashLag(), DownwashLag()))
+    with pytest.raises(ValueError, match=r"aero_terms = \(DownwashLag\(\),\): a model without aerodynamics"):
+        Terms(aero=None, aero_terms=(DownwashLag(),))
+    with pytest.raises(ValueError, match=r"aero_terms: DownwashLag\(\): this model has no wing downwash"):
+        AircraftModel(plain.aircraft, terms=Terms(aero=AeroOptions("quasi-steady", downwash=False), aero_terms=(DownwashLag(),)))

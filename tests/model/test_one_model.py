@@ -23,7 +23,7 @@ from flexsim.linear.study import StudyCase, run_case
 from flexsim.linear.vg import vg_diagram
 from flexsim.model.aircraft_model import AircraftModel
 from flexsim.model.coupling import AeroOptions
-from flexsim.model.terms import NonlinearBeams, Terms
+from flexsim.model.terms import NonlinearBeams, Terms, aero_term_options
 from flexsim.model.variant import Variant, VariantSettings
 from flexsim.trimming import SteadyManoeuvre, trim
 
@@ -134,7 +134,7 @@ NON_DEFAULT = {
     "engine_angular_momentum": (2e5, 0.0, 0.0),
     "inertia_q_offset_m": lambda nq: tuple(0.001 * (i + 1) for i in range(nq)),
     "aero_velocity_offset_m_s": (0.0, 0.0, 0.5),
-    "downwash_lag": True,
+    "aero_terms": tuple(options() for options in aero_term_options()),  # every registered aerodynamic term, switched on
     "nonlinear_beams": NonlinearBeams(4),
 }
 #: (field, analysis) pairs refused with a message naming the field instead of evaluated, and why: a flutter search
@@ -164,6 +164,8 @@ def _carried(record: dict, name: str, value) -> bool:
     if name == "aero":
         want = {f.name: getattr(value, f.name) for f in dataclasses.fields(value)}
         return {k: v for k, v in got.items() if k != "model"} == {k: v for k, v in want.items() if k != "model"}
+    if name == "aero_terms":
+        return got == [{"term": type(t).__name__, **dataclasses.asdict(t)} for t in value]
     if dataclasses.is_dataclass(value):
         return got == {f.name: getattr(value, f.name) for f in dataclasses.fields(value)}
     return got == (list(value) if isinstance(value, tuple) else value)

@@ -180,3 +180,52 @@ def test_rows_about_two_trims(three):
         assert (one.outcome.time_s[i], one.outcome.failure[i], one.outcome.nfev[i]) == (alone.time_s, "", 2)
         meas = dyn.measure_batch(alone.x[None, :], np.array([alone.time_s]), [winds[i]], dyn.model.pack_winds([winds[i]]))
         np.testing.assert_array_equal(one.meas.matrix[i], meas.matrix[0])
+
+
+def test_a_wind_callable_row_leaves_the_others_compiled(three):
+    """One route with two paths per row: in a period whose row 1 flies a Python wind callable (which the kernels cannot
+    evaluate), rows 0 and 2 still take the compiled period and equal, bit for bit, the same rows without row 1 (one
+    kernel; the rows are independent); row 1 equals its own ``advance`` (the compiled stages around ``model.rhs``) with
+    the rate limits and measurements of the separate calls, bit for bit."""
+    dyns, states, x, applied, command = three
+    dyn = dyns[0]
+    field = DrydenTurbulence.mil_f_8785c(9144.0, "moderate", seed=3)
+    plain = lambda t, positions: field(t, positions)
+    winds = [field, plain, None]
+    k = np.array([4, 4, 9])
+    packed, python = periods.pack_period_winds(dyns, winds)
+    assert python.tolist() == [False, True, False]
+    one = advance_period(dyns, states, x, applied, command, k, winds, packed, python)
+    kept = np.array([0, 2])
+    alone = advance_period([dyn] * 2, [states[i] for i in kept], x[kept], applied[kept], command[kept], k[kept],
+                           [winds[i] for i in kept], dyn.model.pack_winds([winds[i] for i in kept]))
+    np.testing.assert_array_equal(one.outcome.x[kept], alone.outcome.x)
+    np.testing.assert_array_equal(one.meas.matrix[kept], alone.meas.matrix)
+    u = dyn.rate_limit(applied, command)
+    np.testing.assert_array_equal(one.u, u)
+    own = dyn.advance(states[1], x[1], u[1], k[1] * dyn.dt, (k[1] + 1) * dyn.dt, plain)
+    np.testing.assert_array_equal(one.outcome.x[1], own.x)
+    meas = dyn.measure_batch(own.x[None, :], np.array([own.time_s]), [plain])
+    np.testing.assert_array_equal(one.meas.matrix[1], meas.matrix[0])
+    assert one.outcome.failure.tolist() == ["", "", ""] and one.outcome.nfev.tolist() == [2, 2, 2]
+    assert [s is t for s, t in zip(one.outcome.states, states)] == [True] * 3
+
+
+def test_solve_ivp_rows_take_the_python_path(three):
+    """DOP853, which the kernels do not run, flies each row by its own ``advance`` inside :func:`advance_period`
+    (bit for bit), with the compiled rate limits and the packed winds' measurements."""
+    dyns, _, x, applied, command = three
+    dop = FlightDynamics(dyns[0].model, IntegratorSettings(method="DOP853"), ActuatorRates(), 0.02)
+    manoeuvre = SteadyManoeuvre(speed_m_s=230.0, altitude_m=9144.0)
+    states = [dop.start(manoeuvre) for _ in range(2)]
+    winds = [DrydenTurbulence.mil_f_8785c(9144.0, "light", seed=5), None]
+    packed, python = periods.pack_period_winds([dop] * 2, winds)
+    k = np.array([0, 1])
+    one = advance_period([dop] * 2, states, x[:2], applied[:2], command[:2], k, winds, packed, python)
+    u = dop.rate_limit(applied[:2], command[:2])
+    for i in range(2):
+        own = dop.advance(states[i], x[i], u[i], k[i] * dop.dt, (k[i] + 1) * dop.dt, winds[i])
+        np.testing.assert_array_equal(one.outcome.x[i], own.x)
+        assert one.outcome.nfev[i] == own.nfev and one.outcome.states[i].first_step_s == own.state.first_step_s
+    meas = dop.measure_batch(one.outcome.x, one.outcome.time_s, winds, packed)
+    np.testing.assert_array_equal(one.meas.matrix, meas.matrix)
