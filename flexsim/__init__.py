@@ -30,6 +30,8 @@ _API: dict[str, str] = {
     "AircraftModel": "flexsim.model.aircraft_model",
     "AeroOptions": "flexsim.model.coupling",
     "Terms": "flexsim.model.terms",
+    "NonlinearBeams": "flexsim.model.terms",
+    "DownwashLag": "flexsim._kernels.downwash_lag",
     "VariantSettings": "flexsim.model.variant",
     "SteadyManoeuvre": "flexsim.trimming",
     "TrimPoint": "flexsim.trimming",

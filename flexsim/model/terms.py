@@ -159,7 +159,7 @@ class Terms:
         attack and sideslip. None (default): dv = 0.
     aero_terms : tuple
         The optional aerodynamic terms the model has, each given by its options object, declared in the term's own
-        module (:func:`aero_term_options`), at most one of each; e.g. ``(DownwashLag(),)``
+        module (:func:`aero_term_options`), at most one of each; e.g. ``(fs.DownwashLag(),)``
         (:class:`flexsim._kernels.downwash_lag.DownwashLag`): the horizontal tail's downwash lag, the tail's alpha-dot
         derivatives (Etkin & Reid 1996 ch. 5, USAF DATCOM sec. 7.4.4), which needs the wing's downwash at the tail.
         Default ``()``: none (the paper has none).
