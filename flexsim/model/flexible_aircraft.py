@@ -155,7 +155,7 @@ class FlexibleAircraft:
     mach_frozen: bool = False
     unmodelled: tuple = ()
 
-    @property
+    @cached_property
     def compressibility_beta(self) -> float:
         """``β = √(1 − min(M, 0.95)²)`` at :attr:`mach` with the Prandtl-Glauert correction, else 1
         (:func:`flexsim._kernels.strips.compressibility_factor`, the linear strips' own)."""
