@@ -37,18 +37,3 @@ def test_no_helper_without_an_idle_core(monkeypatch):
 def test_idle_cores_is_between_zero_and_the_core_count():
     idle = _precompile.idle_cores(0.05)
     assert 0.0 <= idle <= (os.cpu_count() or 1) + 1e-9
-
-
-def test_the_helper_imports_this_process_flexsim(monkeypatch, tmp_path):
-    """Started from another folder holding a flexsim package (a source checkout beside an install), the helper
-    still runs where this process's flexsim is, so it fills the cache this process reads."""
-    import flexsim
-
-    (tmp_path / "flexsim").mkdir()
-    monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr("flexsim._numba_cache.is_cached", lambda *d: False)
-    monkeypatch.setattr(os, "cpu_count", lambda: 2)
-    seen = {}
-    monkeypatch.setattr(subprocess, "Popen", lambda args, **kw: seen.update(kw) or None)
-    _precompile.start()
-    assert seen["cwd"] == os.path.dirname(os.path.dirname(os.path.abspath(flexsim.__file__)))
